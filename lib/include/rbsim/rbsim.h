@@ -1,0 +1,433 @@
+/*
+ * rbsim.h - the public C API of rbsim, a fixed-memory rigid-body simulator of
+ * spheres and planes.
+ *
+ * Conventions (see docs/design.md):
+ *  - SI units and double precision throughout.
+ *  - Every fallible call returns an rbs_status: RBS_OK (0) or a negative error.
+ *    rbs_status_string() explains a code; rbs_world_last_error() gives detail.
+ *  - The world is an opaque pointer.  Bodies and materials are small ids passed
+ *    by value (index + generation); the all-zero id is null, a stale id is an
+ *    error code, never a crash.
+ *  - Definition structs (*_def) are filled with defaults by their init macro,
+ *    which records the caller's sizeof so that newer libraries can grow them.
+ *  - Thread safety: a world is not thread-safe; distinct worlds may be used from
+ *    distinct threads at once.  The library has no global mutable state.
+ *  - Quaternions are [w, x, y, z] and rotate body-frame vectors to world frame.
+ */
+#ifndef RBSIM_RBSIM_H
+#define RBSIM_RBSIM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rbsim/version.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(RBS_BUILDING_LIBRARY) && defined(__GNUC__)
+#define RBS_API __attribute__((visibility("default")))
+#else
+#define RBS_API
+#endif
+
+/* ------------------------------------------------------------------------- */
+/* Status codes                                                              */
+/* ------------------------------------------------------------------------- */
+
+/* One list generates the enum, rbs_status_name() and rbs_status_string()
+ * (and the Python exception mapping).  Values are pinned. */
+#define RBS_STATUS_LIST(X)                                                     \
+    X(OK, 0, "success")                                                        \
+    X(E_INVALID, -1, "invalid argument")                                       \
+    X(E_CAPACITY, -2, "capacity exceeded")                                     \
+    X(E_STALE_ID, -3, "null, stale or foreign id")                             \
+    X(E_NUMERIC, -4, "numerical failure (NaN, infinity or overflow)")          \
+    X(E_OVERLAP, -5, "bodies overlap and could not be separated")              \
+    X(E_MEMORY, -6, "out of memory or buffer too small")                       \
+    X(E_IO, -7, "input/output error")                                          \
+    X(E_SCENE, -8, "scene error")                                              \
+    X(E_UNSUPPORTED, -9, "not supported")                                      \
+    X(E_NOT_FOUND, -10, "not found")                                           \
+    X(E_RENDERER, -11, "renderer failure")                                     \
+    X(E_CLOSED, -12, "closed or interrupted")                                  \
+    X(E_VERSION, -13, "version mismatch")                                      \
+    X(E_CORRUPT, -14, "corrupt or foreign data")
+
+#define RBS_STATUS_ENUM_ITEM(name, value, text) RBS_##name = value,
+/** Status of a call: RBS_OK (0) or a negative error code. */
+typedef enum rbs_status {
+    RBS_STATUS_LIST(RBS_STATUS_ENUM_ITEM)
+    RBS_STATUS_FORCE32 = 0x7fffffff
+} rbs_status;
+#undef RBS_STATUS_ENUM_ITEM
+
+/** Short English text for a status code; never NULL, static storage. */
+RBS_API const char *rbs_status_string(rbs_status status);
+/** The code's name without prefix ("E_CAPACITY"); never NULL, static storage. */
+RBS_API const char *rbs_status_name(rbs_status status);
+
+/* ------------------------------------------------------------------------- */
+/* Version                                                                   */
+/* ------------------------------------------------------------------------- */
+
+/** Run-time library version as "MAJOR.MINOR.PATCH"; static storage. */
+RBS_API const char *rbs_version(void);
+/** Run-time version as MAJOR*10000 + MINOR*100 + PATCH, to compare with
+ * RBS_VERSION_NUMBER from the header a caller was compiled against. */
+RBS_API uint32_t rbs_version_number(void);
+
+/* ------------------------------------------------------------------------- */
+/* Basic types                                                               */
+/* ------------------------------------------------------------------------- */
+
+/** A vector in metres, metres per second, newtons, ... (see each use). */
+typedef struct rbs_vec3 {
+    double x, y, z;
+} rbs_vec3;
+
+/** A unit quaternion [w, x, y, z]: rotates body-frame vectors to world frame. */
+typedef struct rbs_quat {
+    double w, x, y, z;
+} rbs_quat;
+
+/** Body handle: slot index + generation; {0, 0} is null. Pass by value. */
+typedef struct rbs_body_id {
+    uint32_t index;      /**< slot index */
+    uint32_t generation; /**< 0 means null; starts at 1 */
+} rbs_body_id;
+
+/** Material handle; {0, 0} is null and stands for "any material" ("*") in a
+ * material pair. */
+typedef struct rbs_material_id {
+    uint32_t index;
+    uint32_t generation;
+} rbs_material_id;
+
+/** Opaque world: bodies, materials, contacts and state in one memory block. */
+typedef struct rbs_world rbs_world;
+
+/** How gravity acts. */
+typedef enum rbs_gravity_mode {
+    RBS_GRAVITY_ACCELERATION = 0, /**< every body falls alike: a = g */
+    RBS_GRAVITY_FORCE = 1,        /**< the same force g (N) on every body */
+    RBS_GRAVITY_MODE_FORCE32 = 0x7fffffff
+} rbs_gravity_mode;
+
+/** Stepping method (see docs/methods.md). */
+typedef enum rbs_method {
+    RBS_METHOD_EULER = 0,     /**< semi-implicit Euler, global rollback (default) */
+    RBS_METHOD_SELECTIVE = 1, /**< Euler, only overlapping groups roll back */
+    RBS_METHOD_EVENT = 2,     /**< exact event-driven stepping */
+    RBS_METHOD_VERLET = 3,    /**< velocity Verlet between contacts */
+    RBS_METHOD_RK4 = 4,       /**< classical Runge-Kutta between contacts */
+    RBS_METHOD_ADAPTIVE = 5,  /**< GSL odeiv2 with error control */
+    RBS_METHOD_COUNT = 6,
+    RBS_METHOD_FORCE32 = 0x7fffffff
+} rbs_method;
+
+/** Name of a method ("euler", ...), or NULL when out of range. */
+RBS_API const char *rbs_method_name(rbs_method method);
+/** Look a method up by name; RBS_E_NOT_FOUND if unknown. */
+RBS_API rbs_status rbs_method_from_name(const char *name, rbs_method *out);
+
+/** Body kind. */
+typedef enum rbs_body_type {
+    RBS_BODY_NONE = 0, /**< free slot */
+    RBS_BODY_SPHERE = 1,
+    RBS_BODY_PLANE = 2,
+    RBS_BODY_TYPE_FORCE32 = 0x7fffffff
+} rbs_body_type;
+
+/** How a sphere's moment of inertia is given. */
+typedef enum rbs_inertia_kind {
+    RBS_INERTIA_SOLID = 0,     /**< 2/5 m r^2 */
+    RBS_INERTIA_HOLLOW = 1,    /**< 2/3 m r^2 (thin shell) */
+    RBS_INERTIA_PRINCIPAL = 2, /**< rbs_sphere_def.inertia: principal moments
+                                    about the geometric centre, body axes */
+    RBS_INERTIA_KIND_FORCE32 = 0x7fffffff
+} rbs_inertia_kind;
+
+/** Texture drawn on a body by renderers (no effect on physics). */
+typedef enum rbs_texture {
+    RBS_TEXTURE_NONE = 0,
+    RBS_TEXTURE_STRIPES = 1,
+    RBS_TEXTURE_CHECKER = 2,
+    RBS_TEXTURE_FORCE32 = 0x7fffffff
+} rbs_texture;
+
+/* ------------------------------------------------------------------------- */
+/* Definitions                                                               */
+/* ------------------------------------------------------------------------- */
+
+/** Longest body or material name, including the terminating NUL. */
+#define RBS_NAME_MAX 64
+
+/** World definition: capacities (fixed for the world's life) and settings.
+ * Initialise with rbs_world_def_init(&def). */
+typedef struct rbs_world_def {
+    uint32_t struct_size;     /**< set by rbs_world_def_init; do not touch */
+    uint32_t max_bodies;      /**< spheres + planes; default 64, >= 1 */
+    uint32_t max_materials;   /**< named materials; default 16 */
+    uint32_t max_pairs;       /**< material-pair rows; default 64 */
+    uint32_t max_contacts;    /**< contacts per step; default 4*max_bodies+16 */
+    double dt;                /**< step, s; default 0.001, > 0 */
+    rbs_vec3 gravity;         /**< m/s^2 (or N in force mode); default 0,0,-9.81 */
+    rbs_gravity_mode gravity_mode; /**< default acceleration */
+    double restitution;       /**< fallback coefficient of restitution, [0,1];
+                                   default 0.5 */
+    rbs_method method;        /**< default RBS_METHOD_EULER */
+    double tolerance;         /**< adaptive method's error tolerance; default 1e-9 */
+    double slop;              /**< allowed overlap and contact margin, relative to
+                                   the smaller radius of a pair; default 1e-6 */
+    uint32_t max_halvings;    /**< rollback floor: dt / 2^max_halvings; default 30 */
+    uint32_t max_sweeps;      /**< impulse sweeps per contact pass; default 64 */
+    int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
+    double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11 */
+    double softening;         /**< Plummer softening length, m; default 0 */
+    int32_t prune;            /**< nonzero (default): leave out stages that cannot
+                                   change the result; 0 runs every stage */
+} rbs_world_def;
+
+/** Fill a world definition with defaults.  Prefer the rbs_world_def_init macro. */
+RBS_API void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size);
+#define rbs_world_def_init(def) rbs_world_def_init_sized((def), sizeof *(def))
+
+/** Sphere definition.  Initialise with rbs_sphere_def_init(&def). */
+typedef struct rbs_sphere_def {
+    uint32_t struct_size;       /**< set by the init macro */
+    const char *name;           /**< optional, copied (< RBS_NAME_MAX bytes), unique */
+    double radius;              /**< m, > 0; default 0.1 */
+    double mass;                /**< kg, > 0; default 1; ignored if density > 0 */
+    double density;             /**< kg/m^3; 0 (default) means use mass */
+    rbs_inertia_kind inertia_kind; /**< default solid */
+    rbs_vec3 inertia;           /**< principal moments about the centre, kg m^2,
+                                     used with RBS_INERTIA_PRINCIPAL */
+    rbs_vec3 position;          /**< geometric centre, m */
+    rbs_quat orientation;       /**< normalised on add; default identity */
+    rbs_vec3 velocity;          /**< velocity of the centre of mass, m/s */
+    rbs_vec3 angular_velocity;  /**< rad/s, world frame */
+    rbs_vec3 center_of_mass;    /**< offset from the centre, body frame, m;
+                                     |c| < radius */
+    rbs_vec3 force;             /**< constant applied force at the COM, N, world */
+    rbs_vec3 torque;            /**< constant applied torque, N m, world */
+    rbs_material_id material;   /**< null: no material (matches only "*") */
+    uint32_t color;             /**< 0xRRGGBB; default 0xd03030 */
+    rbs_texture texture;        /**< default stripes */
+    int32_t fixed;              /**< nonzero: never moves (infinite mass) */
+} rbs_sphere_def;
+
+RBS_API void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size);
+#define rbs_sphere_def_init(def) rbs_sphere_def_init_sized((def), sizeof *(def))
+
+/** Plane definition: a half-space whose solid side lies behind the normal. */
+typedef struct rbs_plane_def {
+    uint32_t struct_size;
+    const char *name;          /**< optional, copied, unique */
+    rbs_vec3 point;            /**< a point on the plane, m */
+    rbs_vec3 normal;           /**< outward normal, normalised on add; nonzero;
+                                    default 0,0,1 */
+    rbs_material_id material;
+    uint32_t color;            /**< default 0x808080 */
+    rbs_texture texture;       /**< default checker */
+} rbs_plane_def;
+
+RBS_API void rbs_plane_def_init_sized(rbs_plane_def *def, size_t def_size);
+#define rbs_plane_def_init(def) rbs_plane_def_init_sized((def), sizeof *(def))
+
+/** Contact properties of an unordered pair of materials.  A null material id
+ * stands for "*" (any).  The most specific row wins: exact pair, then one
+ * wildcard, then "*"/"*". */
+typedef struct rbs_pair_def {
+    uint32_t struct_size;
+    rbs_material_id a, b;
+    double static_friction;   /**< mu_s >= kinetic; default 0.5 */
+    double kinetic_friction;  /**< mu_k >= 0; default 0.3 */
+    double restitution;       /**< [0,1], or negative (default) for the world's */
+    double rolling;           /**< rolling resistance, dimensionless
+                                   (torque <= rolling * radius * normal force) */
+    double spinning;          /**< spinning resistance, m
+                                   (torque <= spinning * normal force) */
+} rbs_pair_def;
+
+RBS_API void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size);
+#define rbs_pair_def_init(def) rbs_pair_def_init_sized((def), sizeof *(def))
+
+/* ------------------------------------------------------------------------- */
+/* World life cycle                                                          */
+/* ------------------------------------------------------------------------- */
+
+/** Bytes a world of these capacities needs (pure; 0 if def is invalid). */
+RBS_API size_t rbs_world_memory_size(const rbs_world_def *def);
+
+/** Build a world inside caller memory of at least rbs_world_memory_size()
+ * bytes, aligned to 16.  The caller owns the buffer and frees it after
+ * rbs_world_destroy().  No other memory is taken, now or later. */
+RBS_API rbs_status rbs_world_create_in(void *buffer, size_t bytes,
+                                       const rbs_world_def *def,
+                                       rbs_world **out);
+
+/** Allocate exactly once and build a world there.  Free with
+ * rbs_world_destroy(). */
+RBS_API rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out);
+
+/** Destroy a world; frees its memory if rbs_world_create made it.  NULL ok. */
+RBS_API void rbs_world_destroy(rbs_world *world);
+
+/** Detail of the world's last error ("" if none); owned by the world, valid
+ * until the next call on it. */
+RBS_API const char *rbs_world_last_error(const rbs_world *world);
+
+/** The definition the world was created with (capacities and settings as
+ * they are now). */
+RBS_API rbs_status rbs_world_get_def(const rbs_world *world, rbs_world_def *out);
+
+/* ------------------------------------------------------------------------- */
+/* Materials and bodies                                                      */
+/* ------------------------------------------------------------------------- */
+
+/** Add a named material.  RBS_E_CAPACITY leaves the world unchanged. */
+RBS_API rbs_status rbs_world_add_material(rbs_world *world, const char *name,
+                                          rbs_material_id *out);
+/** Find a material by name; RBS_E_NOT_FOUND if absent. */
+RBS_API rbs_status rbs_world_find_material(const rbs_world *world,
+                                           const char *name,
+                                           rbs_material_id *out);
+/** Set (add or replace) the row of a material pair. */
+RBS_API rbs_status rbs_world_set_pair(rbs_world *world, const rbs_pair_def *def);
+
+/** Add a sphere.  Invalid values give RBS_E_INVALID with the reason in
+ * rbs_world_last_error(); RBS_E_CAPACITY leaves the world unchanged. */
+RBS_API rbs_status rbs_world_add_sphere(rbs_world *world,
+                                        const rbs_sphere_def *def,
+                                        rbs_body_id *out);
+/** Add a plane (see rbs_world_add_sphere). */
+RBS_API rbs_status rbs_world_add_plane(rbs_world *world,
+                                       const rbs_plane_def *def,
+                                       rbs_body_id *out);
+/** Remove a body; its id and slot's old ids become stale. */
+RBS_API rbs_status rbs_world_remove_body(rbs_world *world, rbs_body_id id);
+/** Find a body by name. */
+RBS_API rbs_status rbs_world_find_body(const rbs_world *world, const char *name,
+                                       rbs_body_id *out);
+/** Id of the body in a slot, or RBS_E_NOT_FOUND if the slot is free. */
+RBS_API rbs_status rbs_world_body_at(const rbs_world *world, uint32_t slot,
+                                     rbs_body_id *out);
+
+/** A body's full state, copied out. */
+typedef struct rbs_body_state {
+    rbs_body_type type;
+    uint32_t slot;
+    const char *name;          /**< owned by the world; "" if unnamed */
+    rbs_vec3 position;         /**< sphere centre or plane point, m */
+    rbs_quat orientation;
+    rbs_vec3 velocity;         /**< COM velocity, m/s */
+    rbs_vec3 angular_velocity; /**< rad/s */
+    rbs_vec3 normal;           /**< planes only */
+    double radius;             /**< spheres only, m */
+    double mass;               /**< kg; 0 for planes and fixed spheres' inverse */
+    rbs_vec3 force, torque;
+    rbs_material_id material;
+    uint32_t color;
+    rbs_texture texture;
+    int32_t fixed;
+} rbs_body_state;
+
+RBS_API rbs_status rbs_body_get_state(const rbs_world *world, rbs_body_id id,
+                                      rbs_body_state *out);
+/** Setters: finite values only (RBS_E_NUMERIC otherwise, world unchanged).
+ * Moving a body into overlap is allowed; the next step separates it. */
+RBS_API rbs_status rbs_body_set_position(rbs_world *world, rbs_body_id id, rbs_vec3 p);
+RBS_API rbs_status rbs_body_set_orientation(rbs_world *world, rbs_body_id id, rbs_quat q);
+RBS_API rbs_status rbs_body_set_velocity(rbs_world *world, rbs_body_id id, rbs_vec3 v);
+RBS_API rbs_status rbs_body_set_angular_velocity(rbs_world *world, rbs_body_id id, rbs_vec3 w);
+RBS_API rbs_status rbs_body_set_force(rbs_world *world, rbs_body_id id, rbs_vec3 f);
+RBS_API rbs_status rbs_body_set_torque(rbs_world *world, rbs_body_id id, rbs_vec3 t);
+
+/* ------------------------------------------------------------------------- */
+/* Stepping                                                                  */
+/* ------------------------------------------------------------------------- */
+
+/** What one call of rbs_world_step did. */
+typedef struct rbs_step_info {
+    uint32_t contacts;    /**< contacts touching at the end of the step */
+    uint32_t colliding;   /**< impacts resolved with restitution */
+    uint32_t resting;     /**< resting-contact impulses */
+    uint32_t substeps;    /**< accepted sub-steps (1 if no rollback) */
+    uint32_t rollbacks;   /**< sub-steps undone because of overlap */
+    uint32_t floor_hits;  /**< sub-steps accepted at the rollback floor with
+                               overlap left (then pushed apart) */
+    uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
+    uint32_t events;      /**< events processed (event method) */
+    double max_overlap;   /**< deepest overlap at the end of the step, m */
+} rbs_step_info;
+
+/** Advance the world by dt (one frame).  Sub-steps are internal: afterwards
+ * the world is at time (step_count) * dt.  On error the world stays at its
+ * last good state.  info may be NULL.  Allocates nothing. */
+RBS_API rbs_status rbs_world_step(rbs_world *world, rbs_step_info *info);
+
+/** Simulated time, s (= step count * dt). */
+RBS_API double rbs_world_time(const rbs_world *world);
+/** Steps taken since creation (or the checkpoint's count). */
+RBS_API uint64_t rbs_world_step_count(const rbs_world *world);
+/** Change the step size, s (> 0). */
+RBS_API rbs_status rbs_world_set_dt(rbs_world *world, double dt);
+/** Change the method and its tolerance (tolerance <= 0 keeps the current). */
+RBS_API rbs_status rbs_world_set_method(rbs_world *world, rbs_method method,
+                                        double tolerance);
+
+/** Zero-copy view of the state, structure of arrays over body slots
+ * 0 .. slots-1 (free slots hold zeros).  Pointers stay valid for the world's
+ * life; the arrays change when the world steps.  Write only through setters. */
+typedef struct rbs_state_view {
+    uint32_t slots;                 /**< slots in use (high-water mark) */
+    uint32_t capacity;              /**< max_bodies */
+    const double *position;         /**< slots x 3, m */
+    const double *velocity;         /**< slots x 3, m/s */
+    const double *angular_velocity; /**< slots x 3, rad/s */
+    const double *orientation;      /**< slots x 4, [w x y z] */
+    const int32_t *type;            /**< slots, rbs_body_type */
+} rbs_state_view;
+
+RBS_API rbs_status rbs_world_state(const rbs_world *world, rbs_state_view *out);
+
+/* ------------------------------------------------------------------------- */
+/* Diagnostics                                                               */
+/* ------------------------------------------------------------------------- */
+
+/** Energies, J.  Potential counts uniform gravity (relative to the origin)
+ * and mutual gravity when on. */
+typedef struct rbs_energy {
+    double kinetic;
+    double potential;
+    double total;
+} rbs_energy;
+
+RBS_API rbs_status rbs_world_energy(const rbs_world *world, rbs_energy *out);
+/** Total linear momentum (kg m/s) and angular momentum about the origin
+ * (kg m^2/s). Either pointer may be NULL. */
+RBS_API rbs_status rbs_world_momentum(const rbs_world *world, rbs_vec3 *linear,
+                                      rbs_vec3 *angular);
+
+/** Memory use, for sizing worlds: run, read the high-water marks, shrink. */
+typedef struct rbs_usage {
+    size_t bytes;                /**< size of the world's block */
+    uint32_t bodies, bodies_high;
+    uint32_t materials, pairs;
+    uint32_t contacts_high;      /**< most contacts seen in a pass */
+} rbs_usage;
+
+RBS_API rbs_status rbs_world_usage(const rbs_world *world, rbs_usage *out);
+
+/** Deterministic 64-bit hash (FNV-1a) of the full state bits; for
+ * determinism tests and golden files. */
+RBS_API uint64_t rbs_world_hash(const rbs_world *world);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RBSIM_RBSIM_H */

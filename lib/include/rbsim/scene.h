@@ -1,0 +1,101 @@
+/*
+ * rbsim/scene.h - scene files: the JSON scene (format version 1) and the
+ * seed's config.txt / materials.txt / objects.txt.  See scenes/FORMAT.md.
+ *
+ * A scene is parsed and validated before any world exists; parsing may
+ * allocate and frees everything in rbs_scene_free().  A scene object is not
+ * thread-safe; distinct scenes may be used from distinct threads.
+ */
+#ifndef RBSIM_SCENE_H
+#define RBSIM_SCENE_H
+
+#include "rbsim/rbsim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** A parsed scene (or the errors that rejected it).  Opaque. */
+typedef struct rbs_scene rbs_scene;
+
+/** Most errors kept per scene; further ones are counted, not kept. */
+#define RBS_SCENE_ERRORS_MAX 50
+
+/** One error in a scene, e.g. "bad.json:12:17: bodies[3].radius: must be > 0,
+ * got -0.1".  Strings are owned by the scene. */
+typedef struct rbs_scene_error {
+    const char *file;    /**< path as given */
+    int32_t line;        /**< 1-based; 0 if not tied to a place */
+    int32_t column;      /**< 1-based, in bytes */
+    const char *path;    /**< key path, e.g. "bodies[3].radius"; may be "" */
+    const char *message; /**< what was wrong and what was expected */
+    const char *text;    /**< the whole line "file:line:col: path: message" */
+} rbs_scene_error;
+
+/** Scene file formats. */
+typedef enum rbs_scene_format {
+    RBS_SCENE_AUTO = 0, /**< by content/extension: .json is JSON, else text */
+    RBS_SCENE_JSON = 1,
+    RBS_SCENE_TEXT = 2, /**< config.txt with materials.txt and objects.txt */
+    RBS_SCENE_FORMAT_FORCE32 = 0x7fffffff
+} rbs_scene_format;
+
+/** Load and validate a scene file.  On RBS_E_SCENE (or RBS_E_IO) *out is
+ * still set, holds the errors, and must be freed; on other errors *out is
+ * NULL. */
+RBS_API rbs_status rbs_scene_load(const char *path, rbs_scene_format format,
+                                  rbs_scene **out);
+
+/** Parse a JSON scene held in memory (len bytes, NUL not required).
+ * name labels errors.  Same ownership as rbs_scene_load. */
+RBS_API rbs_status rbs_scene_parse_json(const char *text, size_t len,
+                                        const char *name, rbs_scene **out);
+
+/** Free a scene.  NULL ok. */
+RBS_API void rbs_scene_free(rbs_scene *scene);
+
+/** Number of errors found (kept ones are at most RBS_SCENE_ERRORS_MAX). */
+RBS_API uint32_t rbs_scene_error_count(const rbs_scene *scene);
+/** The i-th kept error. */
+RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
+                                       rbs_scene_error *out);
+
+/** The world definition the scene asks for (capacities fit the scene). */
+RBS_API rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out);
+/** Add the scene's materials, pairs and bodies to an empty world. */
+RBS_API rbs_status rbs_scene_populate(const rbs_scene *scene, rbs_world *world);
+/** rbs_world_create with rbs_scene_world_def, then rbs_scene_populate. */
+RBS_API rbs_status rbs_scene_build(const rbs_scene *scene, rbs_world **out);
+
+/** simulation.steps */
+RBS_API uint64_t rbs_scene_steps(const rbs_scene *scene);
+/** simulation.pause_on_collision */
+RBS_API int32_t rbs_scene_pause_on_collision(const rbs_scene *scene);
+/** Command-line overrides: steps (0 keeps), dt (<= 0 keeps), method
+ * (NULL keeps).  Validated like the file's values. */
+RBS_API rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
+                                      const char *method);
+
+/** A renderer entry of the scene ("renderers": [...]). */
+typedef struct rbs_scene_renderer {
+    const char *type;  /**< "csv", "json", "sdl", or a registered name */
+    const char *json;  /**< the entry as a JSON object text (owned by scene) */
+    const char *file;  /**< where it was written, for error messages */
+    int32_t line, column;
+} rbs_scene_renderer;
+
+RBS_API uint32_t rbs_scene_renderer_count(const rbs_scene *scene);
+RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
+                                          rbs_scene_renderer *out);
+
+/** Write the scene in a format (JSON, or TEXT: path names config.txt and the
+ * materials/objects files are written beside it).  A round trip through
+ * either format gives an equal scene. */
+RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
+                                  rbs_scene_format format);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* RBSIM_SCENE_H */
