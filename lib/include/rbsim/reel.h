@@ -104,6 +104,11 @@ typedef struct rbs_renderer_config {
     const char *json;      /**< the scene entry as JSON text, or NULL */
     const char *file;      /**< scene file for messages, or NULL */
     int32_t line, column;
+    /** Filled by the projector: lets a renderer send a command line
+     * ("quit", "pause", "resume", ...) back to the run, e.g. from a window's
+     * keys.  Thread-safe; may be NULL outside a projector. */
+    void (*control)(void *control_context, const char *command);
+    void *control_context;
 } rbs_renderer_config;
 
 /** A renderer type: a flat table of functions plus a context pointer.
@@ -122,6 +127,13 @@ typedef struct rbs_renderer_class {
                        size_t errlen);
     rbs_status (*finish)(void *instance, char *err, size_t errlen);
     void (*destroy)(void *instance);
+    /** Optional (NULL if none): a command line for this renderer from the
+     * input thread (e.g. "orbit 10 0", "zoom 0.5", "reset" for cameras).
+     * Called on the renderer thread between frames.  Returns RBS_OK if
+     * handled, RBS_E_NOT_FOUND if the command is not this renderer's; may
+     * write a reply into out. */
+    rbs_status (*command)(void *instance, const char *line, char *out,
+                          size_t outlen);
 } rbs_renderer_class;
 
 /** A table of renderer types (fixed capacity RBS_RENDERER_TYPES_MAX). */
