@@ -134,7 +134,27 @@ typedef struct rbs_renderer_class {
      * write a reply into out. */
     rbs_status (*command)(void *instance, const char *line, char *out,
                           size_t outlen);
+    /** rbs_renderer_flags, OR-ed; 0 (default) is a recorder that needs
+     * every frame, in order. */
+    uint32_t flags;
+    /** Optional (NULL if none): validate a configuration without side
+     * effects (no file opened, nothing written).  The projector calls it for
+     * every renderer before it creates any, so a rejected run writes
+     * nothing. */
+    rbs_status (*check)(void *context, const rbs_renderer_config *config,
+                        const rbs_world *world, char *err, size_t errlen);
 } rbs_renderer_class;
+
+/** Flags of a renderer class. */
+typedef enum rbs_renderer_flags {
+    /** A live view: may miss frames (the latest-only reel; skipped when
+     * behind in real time) and, while the run is paused, gets the held
+     * frame again about 30 times a second with frame->paused set, so it can
+     * keep its window alive.  Recorders (flag clear) never see a frame
+     * twice. */
+    RBS_RENDERER_LIVE = 1,
+    RBS_RENDERER_FLAGS_FORCE32 = 0x7fffffff
+} rbs_renderer_flags;
 
 /** A table of renderer types (fixed capacity RBS_RENDERER_TYPES_MAX). */
 #define RBS_RENDERER_TYPES_MAX 32
@@ -150,6 +170,138 @@ RBS_API rbs_status rbs_renderer_register(rbs_renderer_registry *registry,
 RBS_API rbs_status rbs_renderer_find(const rbs_renderer_registry *registry,
                                      const char *name,
                                      const rbs_renderer_class **out);
+
+/* ------------------------------------------------------------------------- */
+/* Projector: the simulation thread, the renderer thread and the controls    */
+/* ------------------------------------------------------------------------- */
+
+/** How a run is projected.  Initialise with rbs_projector_def_init(&def). */
+typedef struct rbs_projector_def {
+    uint32_t struct_size;     /**< set by the init macro; do not touch */
+    uint64_t steps;           /**< steps to take: frames k = 0..steps at
+                                   t = k dt (frame 0 is the initial state);
+                                   0 runs until "quit".  Default 0 */
+    uint32_t reel_capacity;   /**< frames in the reel, >= 2; default 64 */
+    rbs_reel_policy policy;   /**< default lossless.  Latest-only is used
+                                   only if every renderer is
+                                   RBS_RENDERER_LIVE; otherwise lossless */
+    int32_t realtime;         /**< nonzero: show frame k at k dt / speed of
+                                   wall time; 0 (default): as fast as
+                                   possible */
+    double speed;             /**< real-time factor, > 0; default 1 */
+    int32_t start_paused;     /**< nonzero: pause after frame 0; default 0 */
+    int32_t pause_on_collision; /**< nonzero: pause after a frame whose step
+                                   resolved an impact; default 0 */
+} rbs_projector_def;
+
+/** Fill a projector definition with defaults.  Prefer the macro. */
+RBS_API void rbs_projector_def_init_sized(rbs_projector_def *def,
+                                          size_t def_size);
+#define rbs_projector_def_init(def) \
+    rbs_projector_def_init_sized((def), sizeof *(def))
+
+/** Where a run is. */
+typedef enum rbs_run_state {
+    RBS_RUN_READY = 0,   /**< created, not started */
+    RBS_RUN_RUNNING = 1, /**< threads running (possibly paused) */
+    RBS_RUN_DONE = 2,    /**< both threads finished; see result */
+    RBS_RUN_STATE_FORCE32 = 0x7fffffff
+} rbs_run_state;
+
+/** A snapshot of a run, from rbs_projector_status(). */
+typedef struct rbs_run_info {
+    rbs_run_state state;
+    rbs_status result;        /**< RBS_OK so far, or the run's status when
+                                   done (as rbs_projector_wait returns) */
+    int32_t paused;           /**< nonzero while paused */
+    int32_t quit;             /**< nonzero once quit was asked */
+    int32_t realtime;         /**< nonzero if paced to the wall clock */
+    double speed;             /**< real-time factor */
+    uint64_t steps;           /**< steps asked (0: until quit) */
+    uint64_t captured;        /**< frames captured by the simulation so far */
+    uint64_t frame;           /**< number of the last frame drawn */
+    double time;              /**< simulated time of the last frame drawn, s */
+    uint64_t drawn;           /**< frames taken from the reel so far */
+    uint64_t dropped;         /**< frames dropped by a latest-only reel */
+    uint64_t substeps;        /**< sub-steps accepted, all steps so far */
+    uint64_t rollbacks;       /**< sub-steps undone, all steps so far */
+    uint64_t collisions;      /**< impacts resolved, all steps so far */
+    double energy_initial;    /**< total energy at frame 0, J */
+    double energy_last;       /**< total energy at the last frame captured, J */
+    double wall_time;         /**< seconds since start (until done) */
+} rbs_run_info;
+
+/** A run: owns a reel, the renderer instances and two threads.  Opaque. */
+typedef struct rbs_projector rbs_projector;
+
+/** Make a projector for a world and create its renderers: configs[i].type
+ * is looked up in the registry (count <= RBS_RENDERERS_MAX, configs may be
+ * NULL when count is 0).  Every renderer's check() runs before any create(),
+ * so a rejected configuration writes nothing.  The projector borrows the
+ * world and the registry: both must outlive it.  From rbs_projector_start()
+ * until rbs_projector_wait() returns, the world belongs to the simulation
+ * thread: no other thread may call anything on it.
+ * On RBS_E_INVALID/RBS_E_MEMORY *out is NULL.  On other errors (unknown type,
+ * a renderer's check or create failing) *out is still set, explains the error
+ * in rbs_projector_last_error(), cannot start, and must be destroyed.
+ * Not thread-safe. */
+RBS_API rbs_status rbs_projector_create(rbs_world *world,
+                                        const rbs_renderer_registry *registry,
+                                        const rbs_renderer_config *configs,
+                                        uint32_t count,
+                                        const rbs_projector_def *def,
+                                        rbs_projector **out);
+
+/** Start the simulation and renderer threads.  Once only. */
+RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
+
+/** Send a command line, as typed by a user.  Thread-safe (any thread, also
+ * from a renderer's control hook).  Commands: "pause", "resume",
+ * "step [N]" (while paused: advance N frames, default 1, then stay paused),
+ * "speed X" (real-time factor, > 0), "quit" (stop after the frame being
+ * made; frames already in the reel are still drawn and every output
+ * finished), "status" (a one-line summary).  Any other line is offered to
+ * each renderer's command hook on the renderer thread (cameras: "orbit",
+ * "zoom", ...), and this call waits for the answer unless it comes from the
+ * renderer thread itself.  A reply (one line, no newline) is written into
+ * reply (reply_size bytes; reply may be NULL).  Returns RBS_OK, RBS_E_INVALID
+ * for bad arguments, RBS_E_NOT_FOUND if no one knows the command, or
+ * RBS_E_CLOSED if the run is over. */
+RBS_API rbs_status rbs_projector_command(rbs_projector *projector,
+                                         const char *line, char *reply,
+                                         size_t reply_size);
+
+/** Wait up to timeout seconds (0: just look) for the run to end; nonzero if
+ * it has ended (then rbs_projector_wait() returns at once).  Thread-safe. */
+RBS_API int32_t rbs_projector_finished(rbs_projector *projector,
+                                       double timeout);
+
+/** Wait for the run to end and join its threads.  Returns RBS_OK when all
+ * steps were made and every renderer finished, RBS_E_CLOSED when stopped by
+ * "quit" (outputs are complete up to the last frame drawn), or the first
+ * error (a step's failure, RBS_E_RENDERER, RBS_E_IO, ...; see
+ * rbs_projector_last_error()).  Call from one thread; repeat calls return
+ * the same status.  A projector never started returns RBS_E_INVALID. */
+RBS_API rbs_status rbs_projector_wait(rbs_projector *projector);
+
+/** rbs_projector_start() then rbs_projector_wait(). */
+RBS_API rbs_status rbs_projector_run(rbs_projector *projector);
+
+/** A snapshot of the run.  Thread-safe.  Prefer the macro. */
+RBS_API rbs_status rbs_projector_status_sized(rbs_projector *projector,
+                                              rbs_run_info *out,
+                                              size_t out_size);
+#define rbs_projector_status(projector, out) \
+    rbs_projector_status_sized((projector), (out), sizeof *(out))
+
+/** The first error's detail, e.g. "csv renderer 'out.csv': write failed:
+ * No space left on device" ("" if none).  Owned by the projector; stable
+ * once rbs_projector_wait() has returned (or after a failed create). */
+RBS_API const char *rbs_projector_last_error(const rbs_projector *projector);
+
+/** Stop the run if running (as "quit"), join the threads, destroy every
+ * renderer and free the projector.  NULL ok.  Not thread-safe. */
+RBS_API void rbs_projector_destroy(rbs_projector *projector);
 
 #ifdef __cplusplus
 }
