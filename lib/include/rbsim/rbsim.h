@@ -259,6 +259,11 @@ RBS_API void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size);
 /* World life cycle                                                          */
 /* ------------------------------------------------------------------------- */
 
+/** Check a world definition without creating anything.  On error writes
+ * the reason into message (message_size bytes; may be NULL/0). */
+RBS_API rbs_status rbs_world_def_validate(const rbs_world_def *def, char *message,
+                                          size_t message_size);
+
 /** Bytes a world of these capacities needs (pure; 0 if def is invalid). */
 RBS_API size_t rbs_world_memory_size(const rbs_world_def *def);
 

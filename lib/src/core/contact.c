@@ -1,0 +1,284 @@
+/*
+ * contact.c - sphere-plane and sphere-sphere detection, the swept overlap
+ * test that triggers rollback, and separation of leftover overlap.
+ *
+ * Tolerances: a pair's slop is def.slop times the smaller radius.  Bodies
+ * whose gap is at most the slop touch (a contact); an overlap deeper than the
+ * slop that was not there at the start of the sub-step makes it roll back.
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
+{
+    return v3_add(v3_load(&w->vel[3 * i]), v3_cross(v3_load(&w->avel[3 * i]), r));
+}
+
+void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out)
+{
+    if (w->isotropic[i])
+        *out = v3_scale(u, w->inv_inertia[9 * i]);
+    else
+        *out = m3_mul_world(&w->inv_inertia[9 * i], q_load(&w->orient[4 * i]), u);
+}
+
+void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
+{
+    v3 dw;
+    if (w->inv_mass[i] == 0.0)
+        return;
+    v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
+    rbs__body_inv_inertia_world(w, i, v3_cross(r, j), &dw);
+    v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
+}
+
+/* Inverse effective mass along unit u: u . K u. */
+static double inv_mass_along(const rbs_world *w, uint32_t a, v3 ra, uint32_t b, v3 rb, v3 u)
+{
+    double k = w->inv_mass[a] + w->inv_mass[b];
+    v3 t, x;
+    if (w->inv_mass[a] != 0.0) {
+        x = v3_cross(ra, u);
+        rbs__body_inv_inertia_world(w, a, x, &t);
+        k += v3_dot(x, t);
+    }
+    if (w->inv_mass[b] != 0.0) {
+        x = v3_cross(rb, u);
+        rbs__body_inv_inertia_world(w, b, x, &t);
+        k += v3_dot(x, t);
+    }
+    return k;
+}
+
+/* Fill material properties and thresholds of a new contact. */
+static void contact_finish(rbs_world *w, rbs__contact *c, double dt)
+{
+    uint32_t n = w->def.max_materials + 1;
+    int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
+    v3 aa, ab, ta;
+    if (row >= 0) {
+        const rbs__pair *p = &w->pair[row];
+        c->mu_s = p->mu_s;
+        c->mu_k = p->mu_k;
+        c->e = p->e >= 0.0 ? p->e : w->def.restitution;
+        c->rolling = p->rolling;
+        c->spinning = p->spinning;
+    } else {
+        /* No row for this pair: frictionless, the world's restitution
+         * (documented in rbsim.h; scenes reject this case). */
+        c->mu_s = c->mu_k = c->rolling = c->spinning = 0.0;
+        c->e = w->def.restitution;
+    }
+    /* Resting threshold: the approach speed one step of the applied forces
+     * can build along the normal. */
+    rbs__accelerations(w, c->a, &aa, &ta);
+    rbs__accelerations(w, c->b, &ab, &ta);
+    c->thr = fabs(v3_dot(v3_sub(aa, ab), c->n)) * dt;
+    c->kn = inv_mass_along(w, c->a, c->ra, c->b, c->rb, c->n);
+    c->jn = 0.0;
+    c->jt = c->jroll = v3_make(0, 0, 0);
+    c->jspin = 0.0;
+}
+
+rbs_status rbs__detect(rbs_world *w, double dt)
+{
+    uint32_t i, j, k;
+    uint32_t count = 0, cap = w->def.max_contacts;
+    double slop_rel = w->def.slop;
+
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        v3 pa = v3_load(&w->pos[3 * a]);
+        double ra = w->radius[a];
+        int a_moves = !w->fixed[a];
+        v3 ca = a_moves ? rbs__body_com(w, a) : pa;
+        /* sphere - plane */
+        if (a_moves) {
+            for (k = 0; k < w->plane_count; ++k) {
+                uint32_t b = w->planes[k];
+                v3 n = v3_load(&w->normal[3 * b]);
+                double gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n) - ra;
+                double slop = slop_rel * ra;
+                rbs__contact *c;
+                v3 cp;
+                if (gap > slop)
+                    continue;
+                if (count >= cap)
+                    return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
+                        "more than max_contacts = %u contacts in one step", (unsigned)cap);
+                c = &w->contact[count++];
+                c->a = a;
+                c->b = b;
+                c->n = n;
+                c->gap = gap;
+                c->slop = slop;
+                c->radius = ra;
+                cp = v3_mad(pa, n, -ra);
+                c->ra = v3_sub(cp, ca);
+                c->rb = v3_make(0, 0, 0);
+                contact_finish(w, c, dt);
+            }
+        }
+        /* sphere - sphere */
+        for (j = i + 1; j < w->sphere_count; ++j) {
+            uint32_t b = w->spheres[j];
+            double rb = w->radius[b], d2, dist, gap, rmin, slop, reach;
+            v3 d;
+            rbs__contact *c;
+            if (!a_moves && w->fixed[b])
+                continue;
+            d = v3_sub(pa, v3_load(&w->pos[3 * b]));
+            rmin = ra < rb ? ra : rb;
+            slop = slop_rel * rmin;
+            reach = ra + rb + slop;
+            d2 = v3_dot(d, d);
+            if (d2 > reach * reach)
+                continue;
+            dist = sqrt(d2);
+            gap = dist - ra - rb;
+            if (gap > slop)
+                continue;
+            if (count >= cap)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
+                    "more than max_contacts = %u contacts in one step", (unsigned)cap);
+            c = &w->contact[count++];
+            c->a = a;
+            c->b = b;
+            /* Coincident centres have no normal: pick +z (documented). */
+            c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+            c->gap = gap;
+            c->slop = slop;
+            c->radius = ra * rb / (ra + rb);
+            {
+                v3 cp = v3_mad(pa, c->n, -ra);
+                c->ra = v3_sub(cp, ca);
+                c->rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
+            }
+            contact_finish(w, c, dt);
+        }
+    }
+    w->contact_count = count;
+    if (count > w->contacts_high)
+        w->contacts_high = count;
+    return RBS_OK;
+}
+
+/* Penetration depth of a sphere pair from saved start and current centres:
+ * the deepest along the straight path between them (swept test), and at the
+ * start. */
+static void sphere_pair_pen(v3 a0, v3 a1, v3 b0, v3 b1, double rsum, double *path, double *start,
+                            double *end)
+{
+    v3 d0 = v3_sub(a0, b0), d1 = v3_sub(a1, b1), dd = v3_sub(d1, d0);
+    double l2 = v3_dot(dd, dd), s = 0.0, dmin;
+    if (l2 > 0.0) {
+        s = -v3_dot(d0, dd) / l2;
+        s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+    }
+    dmin = v3_len(v3_mad(d0, dd, s));
+    *start = rsum - v3_len(d0);
+    *end = rsum - v3_len(d1);
+    *path = rsum - dmin;
+    if (*end > *path)
+        *path = *end;
+}
+
+int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen)
+{
+    uint32_t i, j, k;
+    int grew = 0;
+    double worst = 0.0;
+    const uint32_t S = RBS__SAVE_STRIDE;
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        v3 a1 = v3_load(&w->pos[3 * a]), a0 = v3_load(&save[S * a]);
+        double ra = w->radius[a];
+        int a_moves = !w->fixed[a];
+        if (a_moves) {
+            for (k = 0; k < w->plane_count; ++k) {
+                uint32_t b = w->planes[k];
+                v3 n = v3_load(&w->normal[3 * b]), p = v3_load(&w->pos[3 * b]);
+                double pen1 = ra - v3_dot(v3_sub(a1, p), n);
+                double pen0 = ra - v3_dot(v3_sub(a0, p), n);
+                double slop = w->def.slop * ra;
+                if (pen1 > worst)
+                    worst = pen1;
+                if (pen1 > slop && pen1 > pen0 + slop)
+                    grew = 1;
+            }
+        }
+        for (j = i + 1; j < w->sphere_count; ++j) {
+            uint32_t b = w->spheres[j];
+            double rb = w->radius[b], rmin = ra < rb ? ra : rb, slop = w->def.slop * rmin;
+            double path, start, end;
+            v3 b1, b0, mid;
+            if (!a_moves && w->fixed[b])
+                continue;
+            b1 = v3_load(&w->pos[3 * b]);
+            b0 = v3_load(&save[S * b]);
+            /* cheap reject: far apart at both ends and along the way */
+            mid = v3_sub(v3_scale(v3_add(a0, a1), 0.5), v3_scale(v3_add(b0, b1), 0.5));
+            {
+                double reach = ra + rb + 0.5 * (v3_len(v3_sub(a1, a0)) + v3_len(v3_sub(b1, b0))) + slop;
+                if (v3_dot(mid, mid) > reach * reach)
+                    continue;
+            }
+            sphere_pair_pen(a0, a1, b0, b1, ra + rb, &path, &start, &end);
+            if (end > worst)
+                worst = end;
+            if (path > slop && path > start + slop)
+                grew = 1;
+        }
+    }
+    *max_pen = worst;
+    return grew;
+}
+
+void rbs__separate(rbs_world *w)
+{
+    uint32_t i, j, k;
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        double ra = w->radius[a];
+        int a_moves = !w->fixed[a];
+        if (a_moves) {
+            for (k = 0; k < w->plane_count; ++k) {
+                uint32_t b = w->planes[k];
+                v3 n = v3_load(&w->normal[3 * b]);
+                v3 pa = v3_load(&w->pos[3 * a]);
+                double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n);
+                if (pen > w->def.slop * ra)
+                    v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
+            }
+        }
+        for (j = i + 1; j < w->sphere_count; ++j) {
+            uint32_t b = w->spheres[j];
+            double rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
+            v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
+            if (!a_moves && w->fixed[b])
+                continue;
+            d = v3_sub(pa, pb);
+            dist = v3_len(d);
+            pen = ra + rb - dist;
+            if (!(pen > w->def.slop * rmin))
+                continue;
+            n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+            wa = w->inv_mass[a];
+            wb = w->inv_mass[b];
+            wsum = wa + wb;
+            v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
+            v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
+        }
+    }
+}
+
+double rbs__max_overlap(const rbs_world *w)
+{
+    uint32_t i;
+    double worst = 0.0;
+    for (i = 0; i < w->contact_count; ++i)
+        if (-w->contact[i].gap > worst)
+            worst = -w->contact[i].gap;
+    return worst;
+}

@@ -1,0 +1,205 @@
+/*
+ * solver.c - impulses at contacts.
+ *
+ * Two passes per sub-step (see docs/physics.md):
+ *  1. Collisions, on the velocities before this sub-step's forces: every
+ *     contact approaching faster than its resting threshold gets the impulse
+ *     that makes it leave with e times its approach speed, with Coulomb
+ *     friction (stick if the impulse that stops slip is at most mu_s * Jn,
+ *     else slide with mu_k * Jn against slip).  Pair by pair, swept until no
+ *     contact approaches, at most max_sweeps times.
+ *  2. Resting contact, after the forces: projected Gauss-Seidel on
+ *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn, rolling and spinning
+ *     resistance bounded by Jn), cancelling the approach the forces built.
+ */
+#include "core/world_internal.h"
+
+/* K u for the pair: (1/ma + 1/mb) u + (Ia^-1 (ra x u)) x ra + (Ib^-1 (rb x u)) x rb. */
+static v3 k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
+{
+    v3 r = v3_scale(u, w->inv_mass[c->a] + w->inv_mass[c->b]), t;
+    if (w->inv_mass[c->a] != 0.0) {
+        rbs__body_inv_inertia_world(w, c->a, v3_cross(c->ra, u), &t);
+        r = v3_add(r, v3_cross(t, c->ra));
+    }
+    if (w->inv_mass[c->b] != 0.0) {
+        rbs__body_inv_inertia_world(w, c->b, v3_cross(c->rb, u), &t);
+        r = v3_add(r, v3_cross(t, c->rb));
+    }
+    return r;
+}
+
+static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
+{
+    return v3_sub(rbs__point_velocity(w, c->a, c->ra), rbs__point_velocity(w, c->b, c->rb));
+}
+
+static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
+{
+    rbs__apply_impulse(w, c->a, c->ra, j);
+    rbs__apply_impulse(w, c->b, c->rb, v3_scale(j, -1.0));
+}
+
+/* Tangential impulse that stops the slip vt (in the tangent plane): solves
+ * the 2x2 system K_tt j = -vt in the basis (t1 = vt/|vt|, t2 = n x t1). */
+static v3 stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
+{
+    double s = v3_len(vt), k11, k12, k21, k22, det, j1, j2;
+    v3 t1, t2, kt1, kt2;
+    if (!(s > 0.0))
+        return v3_make(0, 0, 0);
+    t1 = v3_scale(vt, 1.0 / s);
+    t2 = v3_cross(c->n, t1);
+    kt1 = k_apply(w, c, t1);
+    kt2 = k_apply(w, c, t2);
+    k11 = v3_dot(t1, kt1);
+    k12 = v3_dot(t1, kt2);
+    k21 = v3_dot(t2, kt1);
+    k22 = v3_dot(t2, kt2);
+    det = k11 * k22 - k12 * k21;
+    if (k12 == 0.0 && k21 == 0.0) {
+        /* the common case (centred spheres): decoupled */
+        j1 = -s / k11;
+        j2 = 0.0;
+    } else {
+        j1 = -s * k22 / det;
+        j2 = s * k21 / det;
+    }
+    return v3_add(v3_scale(t1, j1), v3_scale(t2, j2));
+}
+
+/* Tangential part of the relative velocity at a contact. */
+static v3 slip(const rbs_world *w, const rbs__contact *c)
+{
+    v3 v = rel_velocity(w, c);
+    return v3_mad(v, c->n, -v3_dot(v, c->n));
+}
+
+void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
+{
+    uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
+    int friction = w->plan.friction;
+    for (i = 0; i < w->contact_count; ++i)
+        w->contact[i].jn = 0.0; /* used as a "collided" mark here */
+    for (sweep = 0; sweep < max_sweeps; ++sweep) {
+        int active = 0;
+        for (i = 0; i < w->contact_count; ++i) {
+            rbs__contact *c = &w->contact[i];
+            double vn = v3_dot(rel_velocity(w, c), c->n), jn;
+            if (!(vn < -c->thr) || vn >= 0.0)
+                continue;
+            jn = -(1.0 + c->e) * vn / c->kn;
+            apply_pair(w, c, v3_scale(c->n, jn));
+            if (friction && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+                v3 vt = slip(w, c);
+                v3 jt = stick_impulse(w, c, vt);
+                double l = v3_len(jt);
+                if (l > c->mu_s * jn)
+                    jt = v3_scale(jt, c->mu_k * jn / l);
+                apply_pair(w, c, jt);
+            }
+            if (c->jn == 0.0 && info)
+                info->colliding++;
+            c->jn = 1.0;
+            active = 1;
+        }
+        if (!active)
+            return;
+    }
+    if (info)
+        info->sweep_limit++;
+}
+
+void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
+{
+    uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
+    int friction = w->plan.friction, any = 0;
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        c->jn = 0.0;
+        c->jt = c->jroll = v3_make(0, 0, 0);
+        c->jspin = 0.0;
+    }
+    for (sweep = 0; sweep < max_sweeps; ++sweep) {
+        double change = 0.0, total = 0.0;
+        for (i = 0; i < w->contact_count; ++i) {
+            rbs__contact *c = &w->contact[i];
+            double vn = v3_dot(rel_velocity(w, c), c->n);
+            double jn_new = c->jn - vn / c->kn, d;
+            if (jn_new < 0.0)
+                jn_new = 0.0;
+            d = jn_new - c->jn;
+            if (d != 0.0) {
+                apply_pair(w, c, v3_scale(c->n, d));
+                c->jn = jn_new;
+                change += fabs(d);
+                any = 1;
+            }
+            total += c->jn;
+            if (!friction || c->jn == 0.0)
+                continue;
+            if (c->mu_s > 0.0 || c->mu_k > 0.0) {
+                v3 vt = slip(w, c);
+                if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
+                    v3 cand = v3_add(c->jt, stick_impulse(w, c, vt)), dj;
+                    double l = v3_len(cand);
+                    if (l > c->mu_s * c->jn)
+                        cand = v3_scale(cand, c->mu_k * c->jn / l);
+                    dj = v3_sub(cand, c->jt);
+                    apply_pair(w, c, dj);
+                    c->jt = cand;
+                    change += v3_len(dj);
+                }
+            }
+            if (c->rolling > 0.0 || c->spinning > 0.0) {
+                v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
+                double ws = v3_dot(wrel, c->n);
+                v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
+                double lr = v3_len(wr);
+                if (c->rolling > 0.0 && lr > 0.0) {
+                    v3 u = v3_scale(wr, 1.0 / lr), cand;
+                    double k = 0.0, lim = c->rolling * c->radius * c->jn, l;
+                    rbs__body_inv_inertia_world(w, c->a, u, &ia);
+                    rbs__body_inv_inertia_world(w, c->b, u, &ib);
+                    k = v3_dot(u, ia) + v3_dot(u, ib);
+                    cand = v3_mad(c->jroll, u, -lr / k);
+                    l = v3_len(cand);
+                    if (l > lim)
+                        cand = v3_scale(cand, lim / l);
+                    dl = v3_add(dl, v3_sub(cand, c->jroll));
+                    c->jroll = cand;
+                }
+                if (c->spinning > 0.0 && ws != 0.0) {
+                    double k, cand, lim = c->spinning * c->jn;
+                    rbs__body_inv_inertia_world(w, c->a, c->n, &ia);
+                    rbs__body_inv_inertia_world(w, c->b, c->n, &ib);
+                    k = v3_dot(c->n, ia) + v3_dot(c->n, ib);
+                    cand = c->jspin - ws / k;
+                    if (cand > lim) cand = lim;
+                    if (cand < -lim) cand = -lim;
+                    dl = v3_mad(dl, c->n, cand - c->jspin);
+                    c->jspin = cand;
+                }
+                if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
+                    rbs__body_inv_inertia_world(w, c->a, dl, &ia);
+                    rbs__body_inv_inertia_world(w, c->b, dl, &ib);
+                    if (w->inv_mass[c->a] != 0.0)
+                        v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
+                    if (w->inv_mass[c->b] != 0.0)
+                        v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+                    change += v3_len(dl) / (c->radius > 0.0 ? c->radius : 1.0);
+                }
+            }
+        }
+        /* converged when no impulse changed by more than 1e-12 of the total */
+        if (change <= 1e-12 * total || total == 0.0)
+            break;
+    }
+    if (info && any) {
+        for (i = 0; i < w->contact_count; ++i)
+            if (w->contact[i].jn > 0.0)
+                info->resting++;
+        if (sweep == max_sweeps)
+            info->sweep_limit++;
+    }
+}

@@ -1,0 +1,137 @@
+/*
+ * step.c - the stepping entry point: plans the stages a world needs,
+ * dispatches to the chosen method, and guards the world against numerical
+ * failure (a step that produces NaN or infinity is undone).
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *torque)
+{
+    v3 g = v3_make(w->def.gravity.x, w->def.gravity.y, w->def.gravity.z);
+    if (!rbs__body_moves(w, i)) {
+        *lin = v3_make(0, 0, 0);
+        *torque = v3_make(0, 0, 0);
+        return;
+    }
+    if (w->def.gravity_mode == RBS_GRAVITY_FORCE)
+        g = v3_scale(g, w->inv_mass[i]);
+    *lin = v3_mad(g, v3_load(&w->force[3 * i]), w->inv_mass[i]);
+    *torque = v3_load(&w->torque[3 * i]);
+}
+
+static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2] != 0.0; }
+
+/* Decide which stages can change the result.  A stage left out is one whose
+ * every contribution would be exactly zero, so results are bit-identical. */
+void rbs__world_plan(rbs_world *w)
+{
+    rbs__plan p;
+    uint32_t i, moving = 0;
+    memset(&p, 0, sizeof p);
+    for (i = 0; i < w->pairs; ++i) {
+        const rbs__pair *r = &w->pair[i];
+        if (r->mu_s > 0.0 || r->mu_k > 0.0 || r->rolling > 0.0 || r->spinning > 0.0)
+            p.friction = 1;
+    }
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t s = w->spheres[i];
+        if (w->fixed[s])
+            continue;
+        moving++;
+        if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
+            p.angular = 1;
+        if (!w->isotropic[s] || nonzero3(&w->com_body[3 * s]))
+            p.gyroscopic = 1;
+    }
+    if (p.friction)
+        p.angular = 1;
+    p.sphere_pairs = moving >= 1 && w->sphere_count >= 2;
+    p.mutual = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
+    if (!w->def.prune) {
+        p.angular = p.gyroscopic = p.friction = p.sphere_pairs = 1;
+        p.mutual = w->def.mutual_gravity != 0;
+    }
+    w->plan = p;
+    w->plan_dirty = 0;
+}
+
+/* Copy the dynamic state of every slot to/from a save area. */
+void rbs__save_state(const rbs_world *w, double *save)
+{
+    uint32_t i;
+    for (i = 0; i < w->slots; ++i) {
+        double *s = &save[RBS__SAVE_STRIDE * i];
+        memcpy(s, &w->pos[3 * i], 3 * sizeof(double));
+        memcpy(s + 3, &w->vel[3 * i], 3 * sizeof(double));
+        memcpy(s + 6, &w->avel[3 * i], 3 * sizeof(double));
+        memcpy(s + 9, &w->orient[4 * i], 4 * sizeof(double));
+    }
+}
+
+void rbs__restore_state(rbs_world *w, const double *save)
+{
+    uint32_t i;
+    for (i = 0; i < w->slots; ++i) {
+        const double *s = &save[RBS__SAVE_STRIDE * i];
+        memcpy(&w->pos[3 * i], s, 3 * sizeof(double));
+        memcpy(&w->vel[3 * i], s + 3, 3 * sizeof(double));
+        memcpy(&w->avel[3 * i], s + 6, 3 * sizeof(double));
+        memcpy(&w->orient[4 * i], s + 9, 4 * sizeof(double));
+    }
+}
+
+/* First non-finite body, or UINT32_MAX. */
+static uint32_t first_bad(const rbs_world *w)
+{
+    uint32_t i;
+    int k;
+    for (i = 0; i < w->slots; ++i) {
+        if (!rbs__body_moves(w, i))
+            continue;
+        for (k = 0; k < 3; ++k)
+            if (!isfinite(w->pos[3 * i + k]) || !isfinite(w->vel[3 * i + k]) ||
+                !isfinite(w->avel[3 * i + k]))
+                return i;
+        for (k = 0; k < 4; ++k)
+            if (!isfinite(w->orient[4 * i + k]))
+                return i;
+    }
+    return UINT32_MAX;
+}
+
+rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
+{
+    rbs_step_info local;
+    rbs_status st;
+    uint32_t bad;
+    if (w == NULL || w->magic != 0x72627377u)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    if (info == NULL)
+        info = &local;
+    memset(info, 0, sizeof *info);
+    if (w->plan_dirty)
+        rbs__world_plan(w);
+    rbs__save_state(w, w->step_save);
+    switch (w->def.method) {
+    case RBS_METHOD_EULER:
+        st = rbs__step_euler(w, info);
+        break;
+    default:
+        st = (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available",
+                                               rbs_method_name(w->def.method));
+        break;
+    }
+    if (st == RBS_OK && (bad = first_bad(w)) != UINT32_MAX)
+        st = (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+            "step %llu: body %u (\"%s\") became NaN or infinite; the world is left at its last good state",
+            (unsigned long long)w->step_count + 1, (unsigned)bad, w->name[bad]);
+    if (st != RBS_OK) {
+        rbs__restore_state(w, w->step_save);
+        return st;
+    }
+    w->step_count++;
+    return RBS_OK;
+}

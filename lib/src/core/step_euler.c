@@ -1,0 +1,141 @@
+/*
+ * step_euler.c - the seed's method: semi-implicit Euler with global rollback.
+ *
+ * One frame (dt) is covered by sub-steps h = dt / 2^k.  Each sub-step:
+ *   detect contacts; resolve collisions; v += a h, w += I^-1 (tau - w x Iw) h;
+ *   resolve resting contacts; x += v h, q = exp(w h) q.
+ * If an overlap deeper than the slop appears (swept for sphere pairs), the
+ * sub-step is undone and retried with h/2 (the seed's rollback), down to the
+ * floor dt / 2^max_halvings, where the overlap is accepted, pushed apart and
+ * reported.  After an accepted sub-step h doubles again.  Time is kept in
+ * integer units of the floor, so a frame always ends exactly at dt.
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+void rbs__save_state(const rbs_world *w, double *save);
+void rbs__restore_state(rbs_world *w, const double *save);
+
+/* Mutual Newtonian gravity: accelerations into w->acc (exact pairwise sum). */
+static void mutual_gravity(rbs_world *w)
+{
+    uint32_t i, j;
+    double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+    memset(w->acc, 0, 3 * w->slots * sizeof(double));
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        v3 xa = rbs__body_com(w, a);
+        for (j = i + 1; j < w->sphere_count; ++j) {
+            uint32_t b = w->spheres[j];
+            v3 d = v3_sub(rbs__body_com(w, b), xa);
+            double r2 = v3_dot(d, d) + eps2, inv3;
+            if (!(r2 > 0.0))
+                continue;
+            inv3 = G / (r2 * sqrt(r2));
+            v3_store(&w->acc[3 * a], v3_mad(v3_load(&w->acc[3 * a]), d, inv3 * w->mass[b]));
+            v3_store(&w->acc[3 * b], v3_mad(v3_load(&w->acc[3 * b]), d, -inv3 * w->mass[a]));
+        }
+    }
+}
+
+/* v += a h; w += I^-1 (tau - w x I w) h. */
+static void integrate_velocities(rbs_world *w, double h)
+{
+    uint32_t k;
+    if (w->plan.mutual)
+        mutual_gravity(w);
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        v3 a, tau;
+        if (w->fixed[i])
+            continue;
+        rbs__accelerations(w, i, &a, &tau);
+        if (w->plan.mutual)
+            a = v3_add(a, v3_load(&w->acc[3 * i]));
+        v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), a, h));
+        if (w->plan.angular) {
+            v3 om = v3_load(&w->avel[3 * i]), dw;
+            if (!w->isotropic[i]) {
+                /* gyroscopic term; identically zero for isotropic inertia */
+                quat q = q_load(&w->orient[4 * i]);
+                tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
+            }
+            if (tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) {
+                rbs__body_inv_inertia_world(w, i, tau, &dw);
+                v3_store(&w->avel[3 * i], v3_mad(om, dw, h));
+            }
+        }
+    }
+}
+
+/* x += v h (for the centre of mass); q = exp(w h) q, exactly. */
+static void integrate_positions(rbs_world *w, double h)
+{
+    uint32_t k;
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        v3 v, om, c;
+        if (w->fixed[i])
+            continue;
+        v = v3_load(&w->vel[3 * i]);
+        om = v3_load(&w->avel[3 * i]);
+        c = v3_load(&w->com_body[3 * i]);
+        if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
+            v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->pos[3 * i]), v, h));
+            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
+                quat q = q_mul(q_from_rotation(om, h), q_load(&w->orient[4 * i]));
+                q_store(&w->orient[4 * i], q_normalize(q));
+            }
+        } else {
+            v3 com = v3_mad(rbs__body_com(w, i), v, h);
+            quat q = q_load(&w->orient[4 * i]);
+            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
+                q = q_normalize(q_mul(q_from_rotation(om, h), q));
+            q_store(&w->orient[4 * i], q);
+            v3_store(&w->pos[3 * i], v3_sub(com, q_rotate(q, c)));
+        }
+    }
+}
+
+rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
+{
+    const double dt = w->def.dt;
+    const uint32_t K = w->def.max_halvings;
+    const uint64_t total = (uint64_t)1 << K;
+    uint64_t done = 0, hu = total; /* progress and sub-step, in units of dt/2^K */
+    double pen = 0.0;
+    rbs_status st;
+
+    while (done < total) {
+        double h;
+        if (hu > total - done)
+            hu = total - done;
+        h = ldexp(dt, 0) * ((double)hu / (double)total);
+        rbs__save_state(w, w->sub_save);
+        st = rbs__detect(w, dt);
+        if (st != RBS_OK)
+            return st;
+        rbs__solve_collisions(w, info);
+        integrate_velocities(w, h);
+        rbs__solve_resting(w, info);
+        integrate_positions(w, h);
+        if (rbs__overlap_grew(w, w->sub_save, &pen)) {
+            if (hu > 1) {
+                rbs__restore_state(w, w->sub_save);
+                info->rollbacks++;
+                hu >>= 1;
+                continue;
+            }
+            info->floor_hits++;
+            rbs__separate(w);
+        }
+        done += hu;
+        info->substeps++;
+        if (hu < total && (done % (hu << 1)) == 0)
+            hu <<= 1; /* grow back, staying aligned to the sub-step grid */
+    }
+    info->contacts = w->contact_count;
+    info->max_overlap = pen;
+    return RBS_OK;
+}

@@ -1,0 +1,1082 @@
+/*
+ * world.c - world creation in one memory block, bodies, materials, state
+ * access and diagnostics.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/world_internal.h"
+
+#define WORLD_MAGIC 0x72627377u /* "rbsw" */
+#define ALIGN 16u
+
+/* ------------------------------------------------------------------------- */
+/* Definitions                                                               */
+/* ------------------------------------------------------------------------- */
+
+/* Copy a caller's def (whose first member is its struct_size) over a fully
+ * defaulted one, taking only the bytes the caller's header knew about. */
+static int def_read(void *dst, size_t dst_size, const void *src)
+{
+    uint32_t size;
+    memcpy(&size, src, sizeof size);
+    if (size < sizeof(uint32_t) || size > 65536u)
+        return 0;
+    memcpy(dst, src, size < dst_size ? size : dst_size);
+    ((uint32_t *)dst)[0] = (uint32_t)dst_size;
+    return 1;
+}
+
+void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
+{
+    rbs_world_def d;
+    if (def == NULL || def_size < sizeof(uint32_t))
+        return;
+    memset(&d, 0, sizeof d);
+    d.struct_size = (uint32_t)sizeof d;
+    d.max_bodies = 64;
+    d.max_materials = 16;
+    d.max_pairs = 64;
+    d.max_contacts = 0;
+    d.dt = 0.001;
+    d.gravity.z = -9.81;
+    d.gravity_mode = RBS_GRAVITY_ACCELERATION;
+    d.restitution = 0.5;
+    d.method = RBS_METHOD_EULER;
+    d.tolerance = 1e-9;
+    d.slop = 1e-6;
+    d.max_halvings = 30;
+    d.max_sweeps = 64;
+    d.mutual_gravity = 0;
+    d.gravity_constant = 6.674e-11;
+    d.softening = 0.0;
+    d.prune = 1;
+    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
+    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+}
+
+void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size)
+{
+    rbs_sphere_def d;
+    if (def == NULL || def_size < sizeof(uint32_t))
+        return;
+    memset(&d, 0, sizeof d);
+    d.struct_size = (uint32_t)sizeof d;
+    d.radius = 0.1;
+    d.mass = 1.0;
+    d.inertia_kind = RBS_INERTIA_SOLID;
+    d.orientation.w = 1.0;
+    d.color = 0xd03030u;
+    d.texture = RBS_TEXTURE_STRIPES;
+    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
+    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+}
+
+void rbs_plane_def_init_sized(rbs_plane_def *def, size_t def_size)
+{
+    rbs_plane_def d;
+    if (def == NULL || def_size < sizeof(uint32_t))
+        return;
+    memset(&d, 0, sizeof d);
+    d.struct_size = (uint32_t)sizeof d;
+    d.normal.z = 1.0;
+    d.color = 0x808080u;
+    d.texture = RBS_TEXTURE_CHECKER;
+    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
+    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+}
+
+void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size)
+{
+    rbs_pair_def d;
+    if (def == NULL || def_size < sizeof(uint32_t))
+        return;
+    memset(&d, 0, sizeof d);
+    d.struct_size = (uint32_t)sizeof d;
+    d.static_friction = 0.5;
+    d.kinetic_friction = 0.3;
+    d.restitution = -1.0;
+    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
+    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+}
+
+/* Read and check a world def; fills *out with defaults for fields the
+ * caller's header did not have. */
+static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
+                                  char *msg, size_t len)
+{
+    rbs_world_def d;
+    if (def == NULL) {
+        snprintf(msg, len, "def is NULL");
+        return RBS_E_INVALID;
+    }
+    rbs_world_def_init(&d);
+    if (!def_read(&d, sizeof d, def)) {
+        snprintf(msg, len, "def.struct_size is %u: initialise defs with rbs_world_def_init()",
+                 (unsigned)def->struct_size);
+        return RBS_E_INVALID;
+    }
+    if (d.max_bodies < 1 || d.max_bodies > (1u << 24)) {
+        snprintf(msg, len, "max_bodies must be in [1, 16777216], got %u", (unsigned)d.max_bodies);
+        return RBS_E_INVALID;
+    }
+    if (d.max_materials > (1u << 12) || d.max_pairs > (1u << 16)) {
+        snprintf(msg, len, "max_materials must be <= 4096 and max_pairs <= 65536");
+        return RBS_E_INVALID;
+    }
+    if (d.max_contacts == 0)
+        d.max_contacts = 4u * d.max_bodies + 16u;
+    if (d.max_contacts > (1u << 26)) {
+        snprintf(msg, len, "max_contacts must be <= 67108864, got %u", (unsigned)d.max_contacts);
+        return RBS_E_INVALID;
+    }
+    if (!(d.dt > 0.0) || !isfinite(d.dt)) {
+        snprintf(msg, len, "dt must be finite and > 0, got %g", d.dt);
+        return RBS_E_INVALID;
+    }
+    if (!isfinite(d.gravity.x) || !isfinite(d.gravity.y) || !isfinite(d.gravity.z)) {
+        snprintf(msg, len, "gravity must be finite");
+        return RBS_E_INVALID;
+    }
+    if (d.gravity_mode != RBS_GRAVITY_ACCELERATION && d.gravity_mode != RBS_GRAVITY_FORCE) {
+        snprintf(msg, len, "gravity_mode must be acceleration (0) or force (1), got %d", (int)d.gravity_mode);
+        return RBS_E_INVALID;
+    }
+    if (!(d.restitution >= 0.0 && d.restitution <= 1.0)) {
+        snprintf(msg, len, "restitution must be in [0, 1], got %g", d.restitution);
+        return RBS_E_INVALID;
+    }
+    if ((int)d.method < 0 || (int)d.method >= RBS_METHOD_COUNT) {
+        snprintf(msg, len, "method %d is not a rbs_method", (int)d.method);
+        return RBS_E_INVALID;
+    }
+    if (!(d.tolerance > 0.0) || !isfinite(d.tolerance)) {
+        snprintf(msg, len, "tolerance must be finite and > 0, got %g", d.tolerance);
+        return RBS_E_INVALID;
+    }
+    if (!(d.slop > 0.0 && d.slop < 0.1)) {
+        snprintf(msg, len, "slop must be in (0, 0.1), got %g", d.slop);
+        return RBS_E_INVALID;
+    }
+    if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {
+        snprintf(msg, len, "max_halvings must be <= 60 and max_sweeps in [1, 100000]");
+        return RBS_E_INVALID;
+    }
+    if (!(d.gravity_constant >= 0.0) || !isfinite(d.gravity_constant) ||
+        !(d.softening >= 0.0) || !isfinite(d.softening)) {
+        snprintf(msg, len, "gravity_constant and softening must be finite and >= 0");
+        return RBS_E_INVALID;
+    }
+    if (out)
+        *out = d;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_def_validate(const rbs_world_def *def, char *message, size_t message_size)
+{
+    char buf[RBS__ERROR_MAX];
+    rbs_status st = world_def_check(def, NULL, buf, sizeof buf);
+    if (message && message_size > 0)
+        snprintf(message, message_size, "%s", st == RBS_OK ? "" : buf);
+    return st;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Layout                                                                    */
+/* ------------------------------------------------------------------------- */
+
+static size_t align_up(size_t n) { return (n + (ALIGN - 1)) & ~(size_t)(ALIGN - 1); }
+
+/* Carve one array: advance *at, and if base is set, store the pointer. */
+static void *carve(unsigned char *base, size_t *at, size_t bytes)
+{
+    void *p = base ? base + *at : NULL;
+    *at = align_up(*at + bytes);
+    return p;
+}
+
+size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *base)
+{
+    size_t at = align_up(sizeof(rbs_world));
+    size_t B = d->max_bodies, M = d->max_materials, P = d->max_pairs, C = d->max_contacts;
+    size_t T = (M + 1) * (M + 1);
+    rbs_world dummy;
+    rbs_world *x = w ? w : &dummy;
+
+    x->type = carve(base, &at, B * sizeof(int32_t));
+    x->generation = carve(base, &at, B * sizeof(uint32_t));
+    x->fixed = carve(base, &at, B * sizeof(int32_t));
+    x->material = carve(base, &at, B * sizeof(uint32_t));
+    x->color = carve(base, &at, B * sizeof(uint32_t));
+    x->texture = carve(base, &at, B * sizeof(int32_t));
+    x->isotropic = carve(base, &at, B * sizeof(int32_t));
+    x->free_list = carve(base, &at, B * sizeof(uint32_t));
+    x->spheres = carve(base, &at, B * sizeof(uint32_t));
+    x->planes = carve(base, &at, B * sizeof(uint32_t));
+    x->acc = carve(base, &at, 3 * B * sizeof(double));
+    x->name = carve(base, &at, B * RBS_NAME_MAX);
+    x->pos = carve(base, &at, 3 * B * sizeof(double));
+    x->vel = carve(base, &at, 3 * B * sizeof(double));
+    x->avel = carve(base, &at, 3 * B * sizeof(double));
+    x->orient = carve(base, &at, 4 * B * sizeof(double));
+    x->force = carve(base, &at, 3 * B * sizeof(double));
+    x->torque = carve(base, &at, 3 * B * sizeof(double));
+    x->normal = carve(base, &at, 3 * B * sizeof(double));
+    x->radius = carve(base, &at, B * sizeof(double));
+    x->mass = carve(base, &at, B * sizeof(double));
+    x->inv_mass = carve(base, &at, B * sizeof(double));
+    x->com_body = carve(base, &at, 3 * B * sizeof(double));
+    x->inertia = carve(base, &at, 9 * B * sizeof(double));
+    x->inv_inertia = carve(base, &at, 9 * B * sizeof(double));
+    x->step_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
+    x->sub_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
+    x->material_name = carve(base, &at, M * RBS_NAME_MAX);
+    x->pair = carve(base, &at, P * sizeof(rbs__pair));
+    x->pair_table = carve(base, &at, T * sizeof(int32_t));
+    x->contact = carve(base, &at, C * sizeof(rbs__contact));
+    return at;
+}
+
+size_t rbs_world_memory_size(const rbs_world_def *def)
+{
+    rbs_world_def d;
+    char msg[RBS__ERROR_MAX];
+    if (world_def_check(def, &d, msg, sizeof msg) != RBS_OK)
+        return 0;
+    return rbs__world_layout(NULL, &d, NULL);
+}
+
+static void rebuild_pair_table(rbs_world *w);
+
+rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *def,
+                               rbs_world **out)
+{
+    rbs_world_def d;
+    char msg[RBS__ERROR_MAX];
+    size_t need;
+    rbs_world *w;
+    rbs_status st;
+
+    if (out == NULL)
+        return RBS_E_INVALID;
+    *out = NULL;
+    st = world_def_check(def, &d, msg, sizeof msg);
+    if (st != RBS_OK)
+        return st;
+    if (buffer == NULL || ((uintptr_t)buffer % ALIGN) != 0)
+        return RBS_E_INVALID;
+    need = rbs__world_layout(NULL, &d, NULL);
+    if (bytes < need)
+        return RBS_E_MEMORY;
+    if (d.method != RBS_METHOD_EULER)
+        return RBS_E_UNSUPPORTED;
+    memset(buffer, 0, need);
+    w = (rbs_world *)buffer;
+    w->magic = WORLD_MAGIC;
+    w->bytes = need;
+    w->def = d;
+    rbs__world_layout(w, &d, (unsigned char *)buffer);
+    rebuild_pair_table(w);
+    w->plan_dirty = 1;
+    *out = w;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out)
+{
+    size_t need;
+    void *mem;
+    rbs_status st;
+    if (out == NULL)
+        return RBS_E_INVALID;
+    *out = NULL;
+    need = rbs_world_memory_size(def);
+    if (need == 0) {
+        rbs_world_def d;
+        char msg[RBS__ERROR_MAX];
+        return world_def_check(def, &d, msg, sizeof msg);
+    }
+    /* The one allocation of a world's life. */
+    mem = malloc(need);
+    if (mem == NULL)
+        return RBS_E_MEMORY;
+    st = rbs_world_create_in(mem, need, def, out);
+    if (st != RBS_OK) {
+        free(mem);
+        return st;
+    }
+    (*out)->owns_memory = 1;
+    return RBS_OK;
+}
+
+void rbs_world_destroy(rbs_world *w)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return;
+    w->magic = 0;
+    if (w->owns_memory)
+        free(w);
+}
+
+int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(w->error, sizeof w->error, fmt, ap);
+    va_end(ap);
+    return (int)status;
+}
+
+#define FAIL(w, st, ...) return (rbs_status)rbs__world_set_error((w), (st), __VA_ARGS__)
+
+const char *rbs_world_last_error(const rbs_world *w)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return "invalid world";
+    return w->error;
+}
+
+rbs_status rbs_world_get_def(const rbs_world *w, rbs_world_def *out)
+{
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (out->struct_size < sizeof(uint32_t))
+        return RBS_E_INVALID;
+    memcpy(out, &w->def, out->struct_size < sizeof w->def ? out->struct_size : sizeof w->def);
+    out->struct_size = out->struct_size < sizeof w->def ? out->struct_size : (uint32_t)sizeof w->def;
+    return RBS_OK;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Materials                                                                 */
+/* ------------------------------------------------------------------------- */
+
+static int name_ok(const char *name) { return name != NULL && strlen(name) < RBS_NAME_MAX; }
+
+rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_id *out)
+{
+    rbs_material_id id;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    if (!name_ok(name) || name[0] == '\0' || strcmp(name, "*") == 0)
+        FAIL(w, RBS_E_INVALID, "material name must be 1..%d bytes and not \"*\"", RBS_NAME_MAX - 1);
+    if (rbs_world_find_material(w, name, &id) == RBS_OK)
+        FAIL(w, RBS_E_INVALID, "material \"%s\" already exists", name);
+    if (w->materials >= w->def.max_materials)
+        FAIL(w, RBS_E_CAPACITY, "material \"%s\": world holds at most %u materials", name,
+             (unsigned)w->def.max_materials);
+    strcpy(w->material_name[w->materials], name);
+    w->materials++;
+    rebuild_pair_table(w);
+    if (out) {
+        out->index = w->materials - 1;
+        out->generation = 1;
+    }
+    return RBS_OK;
+}
+
+rbs_status rbs_world_find_material(const rbs_world *w, const char *name, rbs_material_id *out)
+{
+    uint32_t i;
+    if (w == NULL || name == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    for (i = 0; i < w->materials; ++i) {
+        if (strcmp(w->material_name[i], name) == 0) {
+            if (out) {
+                out->index = i;
+                out->generation = 1;
+            }
+            return RBS_OK;
+        }
+    }
+    return RBS_E_NOT_FOUND;
+}
+
+/* Material id -> stored code (index + 1, 0 = none/"*"); -1 if invalid. */
+static int64_t material_code(const rbs_world *w, rbs_material_id m)
+{
+    if (m.index == 0 && m.generation == 0)
+        return 0;
+    if (m.generation != 1 || m.index >= w->materials)
+        return -1;
+    return (int64_t)m.index + 1;
+}
+
+/* Best row for every ordered pair of material codes: exact pair, then one
+ * wildcard, then both.  Rebuilt when materials or pairs change. */
+static void rebuild_pair_table(rbs_world *w)
+{
+    uint32_t n = w->def.max_materials + 1, a, b, p;
+    for (a = 0; a < n; ++a) {
+        for (b = 0; b < n; ++b) {
+            int best = -1, best_score = -1;
+            for (p = 0; p < w->pairs; ++p) {
+                const rbs__pair *r = &w->pair[p];
+                int score = -1;
+                if ((r->a == a && r->b == b) || (r->a == b && r->b == a))
+                    score = (r->a != 0) + (r->b != 0);
+                else if (r->a == 0 && (r->b == a || r->b == b))
+                    score = r->b != 0;
+                else if (r->b == 0 && (r->a == a || r->a == b))
+                    score = r->a != 0;
+                /* a row naming a real material matches only that material */
+                if (score >= 0 && r->a != 0 && r->b != 0 &&
+                    !((r->a == a && r->b == b) || (r->a == b && r->b == a)))
+                    score = -1;
+                if (score > best_score) {
+                    best_score = score;
+                    best = (int)p;
+                }
+            }
+            w->pair_table[a * n + b] = best;
+        }
+    }
+    w->plan_dirty = 1;
+}
+
+rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
+{
+    rbs_pair_def d;
+    int64_t a, b;
+    uint32_t p;
+    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    rbs_pair_def_init(&d);
+    if (!def_read(&d, sizeof d, def))
+        FAIL(w, RBS_E_INVALID, "pair def not initialised (use rbs_pair_def_init)");
+    a = material_code(w, d.a);
+    b = material_code(w, d.b);
+    if (a < 0 || b < 0)
+        FAIL(w, RBS_E_STALE_ID, "pair: unknown material id");
+    if (!(d.static_friction >= 0.0) || !isfinite(d.static_friction) ||
+        !(d.kinetic_friction >= 0.0) || !isfinite(d.kinetic_friction))
+        FAIL(w, RBS_E_INVALID, "pair: friction must be finite and >= 0 (static %g, kinetic %g)",
+             d.static_friction, d.kinetic_friction);
+    if (d.kinetic_friction > d.static_friction)
+        FAIL(w, RBS_E_INVALID, "pair: kinetic friction %g exceeds static %g", d.kinetic_friction,
+             d.static_friction);
+    if (!(d.restitution <= 1.0) || isnan(d.restitution))
+        FAIL(w, RBS_E_INVALID, "pair: restitution must be in [0, 1] (or negative for the world's), got %g",
+             d.restitution);
+    if (!(d.rolling >= 0.0) || !isfinite(d.rolling) || !(d.spinning >= 0.0) || !isfinite(d.spinning))
+        FAIL(w, RBS_E_INVALID, "pair: rolling and spinning resistance must be finite and >= 0");
+    for (p = 0; p < w->pairs; ++p) {
+        rbs__pair *r = &w->pair[p];
+        if ((r->a == (uint32_t)a && r->b == (uint32_t)b) || (r->a == (uint32_t)b && r->b == (uint32_t)a))
+            break;
+    }
+    if (p == w->pairs) {
+        if (w->pairs >= w->def.max_pairs)
+            FAIL(w, RBS_E_CAPACITY, "pair: world holds at most %u material pairs",
+                 (unsigned)w->def.max_pairs);
+        w->pairs++;
+    }
+    w->pair[p].a = (uint32_t)a;
+    w->pair[p].b = (uint32_t)b;
+    w->pair[p].mu_s = d.static_friction;
+    w->pair[p].mu_k = d.kinetic_friction;
+    w->pair[p].e = d.restitution;
+    w->pair[p].rolling = d.rolling;
+    w->pair[p].spinning = d.spinning;
+    rebuild_pair_table(w);
+    return RBS_OK;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Bodies                                                                    */
+/* ------------------------------------------------------------------------- */
+
+static int id_valid(const rbs_world *w, rbs_body_id id)
+{
+    return w != NULL && w->magic == WORLD_MAGIC && id.generation != 0 && id.index < w->slots &&
+           w->generation[id.index] == id.generation && w->type[id.index] != RBS_BODY_NONE;
+}
+
+static int name_taken(const rbs_world *w, const char *name)
+{
+    uint32_t i;
+    if (name == NULL || name[0] == '\0')
+        return 0;
+    for (i = 0; i < w->slots; ++i)
+        if (w->type[i] != RBS_BODY_NONE && strcmp(w->name[i], name) == 0)
+            return 1;
+    return 0;
+}
+
+/* Take a free slot (reusing removed ones first); UINT32_MAX if full. */
+static uint32_t slot_take(rbs_world *w)
+{
+    uint32_t s;
+    if (w->free_count > 0) {
+        s = w->free_list[--w->free_count];
+    } else {
+        if (w->slots >= w->def.max_bodies)
+            return UINT32_MAX;
+        s = w->slots++;
+    }
+    w->generation[s] = w->generation[s] + 1u == 0u ? 1u : w->generation[s] + 1u;
+    w->bodies++;
+    return s;
+}
+
+static void rebuild_sphere_list(rbs_world *w)
+{
+    uint32_t i;
+    w->sphere_count = 0;
+    w->plane_count = 0;
+    for (i = 0; i < w->slots; ++i) {
+        if (w->type[i] == RBS_BODY_SPHERE)
+            w->spheres[w->sphere_count++] = i;
+        else if (w->type[i] == RBS_BODY_PLANE)
+            w->planes[w->plane_count++] = i;
+    }
+}
+
+/* Determinant and inverse of a symmetric 3x3 (row-major). */
+static double m3_inverse(const double *m, double *inv)
+{
+    double c00 = m[4] * m[8] - m[5] * m[7];
+    double c01 = m[5] * m[6] - m[3] * m[8];
+    double c02 = m[3] * m[7] - m[4] * m[6];
+    double det = m[0] * c00 + m[1] * c01 + m[2] * c02;
+    if (det == 0.0)
+        return 0.0;
+    inv[0] = c00 / det;
+    inv[1] = (m[2] * m[7] - m[1] * m[8]) / det;
+    inv[2] = (m[1] * m[5] - m[2] * m[4]) / det;
+    inv[3] = c01 / det;
+    inv[4] = (m[0] * m[8] - m[2] * m[6]) / det;
+    inv[5] = (m[2] * m[3] - m[0] * m[5]) / det;
+    inv[6] = c02 / det;
+    inv[7] = (m[1] * m[6] - m[0] * m[7]) / det;
+    inv[8] = (m[0] * m[4] - m[1] * m[3]) / det;
+    return det;
+}
+
+rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
+{
+    rbs_sphere_def d;
+    double mass, I[9], inv[9], c2;
+    v3 c, p, v, av, f, t;
+    quat q;
+    double qn;
+    uint32_t s;
+    int64_t mat;
+    int k;
+
+    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    rbs_sphere_def_init(&d);
+    if (!def_read(&d, sizeof d, def))
+        FAIL(w, RBS_E_INVALID, "sphere def not initialised (use rbs_sphere_def_init)");
+    if (d.name != NULL && !name_ok(d.name))
+        FAIL(w, RBS_E_INVALID, "sphere name longer than %d bytes", RBS_NAME_MAX - 1);
+    if (name_taken(w, d.name))
+        FAIL(w, RBS_E_INVALID, "sphere \"%s\": name already used", d.name);
+    if (!(d.radius > 0.0) || !isfinite(d.radius))
+        FAIL(w, RBS_E_INVALID, "sphere radius must be finite and > 0, got %g", d.radius);
+    if (d.density != 0.0) {
+        if (!(d.density > 0.0) || !isfinite(d.density))
+            FAIL(w, RBS_E_INVALID, "sphere density must be finite and > 0, got %g", d.density);
+        mass = d.density * (4.0 / 3.0) * RBS__PI * d.radius * d.radius * d.radius;
+    } else {
+        mass = d.mass;
+    }
+    if (!(mass > 0.0) || !isfinite(mass))
+        FAIL(w, RBS_E_INVALID, "sphere mass must be finite and > 0, got %g", mass);
+    p = v3_make(d.position.x, d.position.y, d.position.z);
+    v = v3_make(d.velocity.x, d.velocity.y, d.velocity.z);
+    av = v3_make(d.angular_velocity.x, d.angular_velocity.y, d.angular_velocity.z);
+    c = v3_make(d.center_of_mass.x, d.center_of_mass.y, d.center_of_mass.z);
+    f = v3_make(d.force.x, d.force.y, d.force.z);
+    t = v3_make(d.torque.x, d.torque.y, d.torque.z);
+    if (!v3_finite(p) || !v3_finite(v) || !v3_finite(av) || !v3_finite(c) || !v3_finite(f) ||
+        !v3_finite(t))
+        FAIL(w, RBS_E_NUMERIC, "sphere: position, velocities, centre of mass, force and torque must be finite");
+    q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
+    qn = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!(qn > 0.0) || !isfinite(qn))
+        FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero finite quaternion");
+    q = q_normalize(q);
+    if (!(v3_len(c) < d.radius))
+        FAIL(w, RBS_E_INVALID, "sphere centre of mass offset %g must be < radius %g", v3_len(c), d.radius);
+
+    /* Inertia about the geometric centre, body axes. */
+    memset(I, 0, sizeof I);
+    switch (d.inertia_kind) {
+    case RBS_INERTIA_SOLID:
+        I[0] = I[4] = I[8] = 0.4 * mass * d.radius * d.radius;
+        break;
+    case RBS_INERTIA_HOLLOW:
+        I[0] = I[4] = I[8] = (2.0 / 3.0) * mass * d.radius * d.radius;
+        break;
+    case RBS_INERTIA_PRINCIPAL:
+        I[0] = d.inertia.x; I[4] = d.inertia.y; I[8] = d.inertia.z;
+        if (!(I[0] > 0.0 && I[4] > 0.0 && I[8] > 0.0) || !isfinite(I[0] + I[4] + I[8]))
+            FAIL(w, RBS_E_INVALID, "sphere principal moments must be finite and > 0");
+        if (I[0] + I[4] < I[8] || I[4] + I[8] < I[0] || I[0] + I[8] < I[4])
+            FAIL(w, RBS_E_INVALID, "sphere principal moments violate the triangle inequality");
+        break;
+    default:
+        FAIL(w, RBS_E_INVALID, "sphere inertia_kind %d is not a rbs_inertia_kind", (int)d.inertia_kind);
+    }
+    /* Parallel-axis rule: move the inertia from the centre to the COM. */
+    c2 = v3_dot(c, c);
+    {
+        double cc[3] = {c.x, c.y, c.z};
+        int i, j;
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j)
+                I[3 * i + j] -= mass * ((i == j ? c2 : 0.0) - cc[i] * cc[j]);
+    }
+    if (!(I[0] > 0.0) || !(I[0] * I[4] - I[1] * I[3] > 0.0) || !(m3_inverse(I, inv) > 0.0))
+        FAIL(w, RBS_E_INVALID,
+             "sphere: centre of mass offset %g is too far from the centre for this inertia "
+             "(inertia about the COM would not be positive definite)", sqrt(c2));
+    mat = material_code(w, d.material);
+    if (mat < 0)
+        FAIL(w, RBS_E_STALE_ID, "sphere: unknown material id");
+    if (d.texture < RBS_TEXTURE_NONE || d.texture > RBS_TEXTURE_CHECKER)
+        FAIL(w, RBS_E_INVALID, "sphere texture %d is not a rbs_texture", (int)d.texture);
+
+    s = slot_take(w);
+    if (s == UINT32_MAX)
+        FAIL(w, RBS_E_CAPACITY, "sphere: world holds at most %u bodies", (unsigned)w->def.max_bodies);
+    w->type[s] = RBS_BODY_SPHERE;
+    w->fixed[s] = d.fixed != 0;
+    w->material[s] = (uint32_t)mat;
+    w->color[s] = d.color & 0xffffffu;
+    w->texture[s] = d.texture;
+    memset(w->name[s], 0, RBS_NAME_MAX);
+    if (d.name)
+        strcpy(w->name[s], d.name);
+    v3_store(&w->pos[3 * s], p);
+    v3_store(&w->vel[3 * s], d.fixed ? v3_make(0, 0, 0) : v);
+    v3_store(&w->avel[3 * s], d.fixed ? v3_make(0, 0, 0) : av);
+    q_store(&w->orient[4 * s], q);
+    v3_store(&w->force[3 * s], f);
+    v3_store(&w->torque[3 * s], t);
+    v3_store(&w->normal[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->com_body[3 * s], c);
+    w->radius[s] = d.radius;
+    w->mass[s] = mass;
+    w->inv_mass[s] = d.fixed ? 0.0 : 1.0 / mass;
+    for (k = 0; k < 9; ++k) {
+        w->inertia[9 * s + k] = I[k];
+        w->inv_inertia[9 * s + k] = d.fixed ? 0.0 : inv[k];
+    }
+    w->isotropic[s] = I[1] == 0.0 && I[2] == 0.0 && I[3] == 0.0 && I[5] == 0.0 && I[6] == 0.0 &&
+                      I[7] == 0.0 && I[0] == I[4] && I[4] == I[8];
+    rebuild_sphere_list(w);
+    w->plan_dirty = 1;
+    if (out) {
+        out->index = s;
+        out->generation = w->generation[s];
+    }
+    return RBS_OK;
+}
+
+rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_id *out)
+{
+    rbs_plane_def d;
+    v3 p, n;
+    double len;
+    uint32_t s;
+    int64_t mat;
+    int k;
+    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    rbs_plane_def_init(&d);
+    if (!def_read(&d, sizeof d, def))
+        FAIL(w, RBS_E_INVALID, "plane def not initialised (use rbs_plane_def_init)");
+    if (d.name != NULL && !name_ok(d.name))
+        FAIL(w, RBS_E_INVALID, "plane name longer than %d bytes", RBS_NAME_MAX - 1);
+    if (name_taken(w, d.name))
+        FAIL(w, RBS_E_INVALID, "plane \"%s\": name already used", d.name);
+    p = v3_make(d.point.x, d.point.y, d.point.z);
+    n = v3_make(d.normal.x, d.normal.y, d.normal.z);
+    if (!v3_finite(p) || !v3_finite(n))
+        FAIL(w, RBS_E_NUMERIC, "plane point and normal must be finite");
+    len = v3_len(n);
+    if (!(len > 0.0) || !isfinite(len))
+        FAIL(w, RBS_E_INVALID, "plane normal must be nonzero");
+    n = v3_scale(n, 1.0 / len);
+    mat = material_code(w, d.material);
+    if (mat < 0)
+        FAIL(w, RBS_E_STALE_ID, "plane: unknown material id");
+    if (d.texture < RBS_TEXTURE_NONE || d.texture > RBS_TEXTURE_CHECKER)
+        FAIL(w, RBS_E_INVALID, "plane texture %d is not a rbs_texture", (int)d.texture);
+    s = slot_take(w);
+    if (s == UINT32_MAX)
+        FAIL(w, RBS_E_CAPACITY, "plane: world holds at most %u bodies", (unsigned)w->def.max_bodies);
+    w->type[s] = RBS_BODY_PLANE;
+    w->fixed[s] = 1;
+    w->material[s] = (uint32_t)mat;
+    w->color[s] = d.color & 0xffffffu;
+    w->texture[s] = d.texture;
+    memset(w->name[s], 0, RBS_NAME_MAX);
+    if (d.name)
+        strcpy(w->name[s], d.name);
+    v3_store(&w->pos[3 * s], p);
+    v3_store(&w->vel[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->avel[3 * s], v3_make(0, 0, 0));
+    q_store(&w->orient[4 * s], (quat){1.0, 0.0, 0.0, 0.0});
+    v3_store(&w->force[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->torque[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->normal[3 * s], n);
+    v3_store(&w->com_body[3 * s], v3_make(0, 0, 0));
+    w->radius[s] = 0.0;
+    w->mass[s] = 0.0;
+    w->inv_mass[s] = 0.0;
+    for (k = 0; k < 9; ++k) {
+        w->inertia[9 * s + k] = 0.0;
+        w->inv_inertia[9 * s + k] = 0.0;
+    }
+    w->isotropic[s] = 1;
+    rebuild_sphere_list(w);
+    w->plan_dirty = 1;
+    if (out) {
+        out->index = s;
+        out->generation = w->generation[s];
+    }
+    return RBS_OK;
+}
+
+rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
+{
+    uint32_t s = id.index;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (!id_valid(w, id))
+        FAIL(w, RBS_E_STALE_ID, "remove_body: null or stale body id {%u, %u}", (unsigned)id.index,
+             (unsigned)id.generation);
+    w->type[s] = RBS_BODY_NONE;
+    memset(w->name[s], 0, RBS_NAME_MAX);
+    memset(&w->pos[3 * s], 0, 3 * sizeof(double));
+    memset(&w->vel[3 * s], 0, 3 * sizeof(double));
+    memset(&w->avel[3 * s], 0, 3 * sizeof(double));
+    memset(&w->orient[4 * s], 0, 4 * sizeof(double));
+    w->free_list[w->free_count++] = s;
+    w->bodies--;
+    rebuild_sphere_list(w);
+    w->plan_dirty = 1;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_find_body(const rbs_world *w, const char *name, rbs_body_id *out)
+{
+    uint32_t i;
+    if (w == NULL || w->magic != WORLD_MAGIC || name == NULL || name[0] == '\0')
+        return RBS_E_INVALID;
+    for (i = 0; i < w->slots; ++i) {
+        if (w->type[i] != RBS_BODY_NONE && strcmp(w->name[i], name) == 0) {
+            if (out) {
+                out->index = i;
+                out->generation = w->generation[i];
+            }
+            return RBS_OK;
+        }
+    }
+    return RBS_E_NOT_FOUND;
+}
+
+rbs_status rbs_world_body_at(const rbs_world *w, uint32_t slot, rbs_body_id *out)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (slot >= w->slots || w->type[slot] == RBS_BODY_NONE)
+        return RBS_E_NOT_FOUND;
+    if (out) {
+        out->index = slot;
+        out->generation = w->generation[slot];
+    }
+    return RBS_OK;
+}
+
+v3 rbs__body_com(const rbs_world *w, uint32_t i)
+{
+    v3 p = v3_load(&w->pos[3 * i]);
+    if (w->type[i] == RBS_BODY_SPHERE) {
+        v3 c = v3_load(&w->com_body[3 * i]);
+        if (c.x != 0.0 || c.y != 0.0 || c.z != 0.0)
+            p = v3_add(p, q_rotate(q_load(&w->orient[4 * i]), c));
+    }
+    return p;
+}
+
+int rbs__body_moves(const rbs_world *w, uint32_t i)
+{
+    return w->type[i] == RBS_BODY_SPHERE && !w->fixed[i];
+}
+
+rbs_status rbs_body_get_state(const rbs_world *w, rbs_body_id id, rbs_body_state *out)
+{
+    uint32_t s = id.index;
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (!id_valid(w, id))
+        return RBS_E_STALE_ID;
+    memset(out, 0, sizeof *out);
+    out->type = (rbs_body_type)w->type[s];
+    out->slot = s;
+    out->name = w->name[s];
+    out->position.x = w->pos[3 * s]; out->position.y = w->pos[3 * s + 1]; out->position.z = w->pos[3 * s + 2];
+    out->orientation.w = w->orient[4 * s]; out->orientation.x = w->orient[4 * s + 1];
+    out->orientation.y = w->orient[4 * s + 2]; out->orientation.z = w->orient[4 * s + 3];
+    out->velocity.x = w->vel[3 * s]; out->velocity.y = w->vel[3 * s + 1]; out->velocity.z = w->vel[3 * s + 2];
+    out->angular_velocity.x = w->avel[3 * s]; out->angular_velocity.y = w->avel[3 * s + 1];
+    out->angular_velocity.z = w->avel[3 * s + 2];
+    out->normal.x = w->normal[3 * s]; out->normal.y = w->normal[3 * s + 1]; out->normal.z = w->normal[3 * s + 2];
+    out->radius = w->radius[s];
+    out->mass = w->mass[s];
+    out->force.x = w->force[3 * s]; out->force.y = w->force[3 * s + 1]; out->force.z = w->force[3 * s + 2];
+    out->torque.x = w->torque[3 * s]; out->torque.y = w->torque[3 * s + 1]; out->torque.z = w->torque[3 * s + 2];
+    out->material.index = w->material[s] ? w->material[s] - 1 : 0;
+    out->material.generation = w->material[s] ? 1 : 0;
+    out->color = w->color[s];
+    out->texture = (rbs_texture)w->texture[s];
+    out->fixed = w->fixed[s];
+    return RBS_OK;
+}
+
+/* Common checks of the setters: valid id, finite value. */
+static rbs_status setter_check(rbs_world *w, rbs_body_id id, const double *v, int n, const char *what)
+{
+    int k;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    w->error[0] = '\0';
+    if (!id_valid(w, id))
+        FAIL(w, RBS_E_STALE_ID, "%s: null or stale body id {%u, %u}", what, (unsigned)id.index,
+             (unsigned)id.generation);
+    for (k = 0; k < n; ++k)
+        if (!isfinite(v[k]))
+            FAIL(w, RBS_E_NUMERIC, "%s: value must be finite", what);
+    return RBS_OK;
+}
+
+rbs_status rbs_body_set_position(rbs_world *w, rbs_body_id id, rbs_vec3 p)
+{
+    double v[3] = {p.x, p.y, p.z};
+    rbs_status st = setter_check(w, id, v, 3, "set_position");
+    if (st != RBS_OK)
+        return st;
+    v3_store(&w->pos[3 * id.index], v3_load(v));
+    return RBS_OK;
+}
+
+rbs_status rbs_body_set_orientation(rbs_world *w, rbs_body_id id, rbs_quat q)
+{
+    double v[4] = {q.w, q.x, q.y, q.z};
+    quat qq = {q.w, q.x, q.y, q.z};
+    double n;
+    rbs_status st = setter_check(w, id, v, 4, "set_orientation");
+    if (st != RBS_OK)
+        return st;
+    n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!(n > 0.0) || !isfinite(n))
+        FAIL(w, RBS_E_INVALID, "set_orientation: quaternion must be nonzero");
+    if (w->type[id.index] != RBS_BODY_SPHERE)
+        FAIL(w, RBS_E_INVALID, "set_orientation: planes have no orientation");
+    q_store(&w->orient[4 * id.index], q_normalize(qq));
+    return RBS_OK;
+}
+
+static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *arr, const char *what)
+{
+    double v[3] = {a.x, a.y, a.z};
+    rbs_status st = setter_check(w, id, v, 3, what);
+    if (st != RBS_OK)
+        return st;
+    if (!rbs__body_moves(w, id.index) && (a.x != 0.0 || a.y != 0.0 || a.z != 0.0))
+        FAIL(w, RBS_E_INVALID, "%s: body does not move (plane or fixed sphere)", what);
+    v3_store(&arr[3 * id.index], v3_load(v));
+    w->plan_dirty = 1;
+    return RBS_OK;
+}
+
+rbs_status rbs_body_set_velocity(rbs_world *w, rbs_body_id id, rbs_vec3 v)
+{
+    if (w == NULL) return RBS_E_INVALID;
+    return set_motion(w, id, v, w->vel, "set_velocity");
+}
+rbs_status rbs_body_set_angular_velocity(rbs_world *w, rbs_body_id id, rbs_vec3 v)
+{
+    if (w == NULL) return RBS_E_INVALID;
+    return set_motion(w, id, v, w->avel, "set_angular_velocity");
+}
+rbs_status rbs_body_set_force(rbs_world *w, rbs_body_id id, rbs_vec3 v)
+{
+    if (w == NULL) return RBS_E_INVALID;
+    return set_motion(w, id, v, w->force, "set_force");
+}
+rbs_status rbs_body_set_torque(rbs_world *w, rbs_body_id id, rbs_vec3 v)
+{
+    if (w == NULL) return RBS_E_INVALID;
+    return set_motion(w, id, v, w->torque, "set_torque");
+}
+
+/* ------------------------------------------------------------------------- */
+/* Settings, state, diagnostics                                              */
+/* ------------------------------------------------------------------------- */
+
+double rbs_world_time(const rbs_world *w)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return 0.0;
+    return (double)w->step_count * w->def.dt;
+}
+
+uint64_t rbs_world_step_count(const rbs_world *w)
+{
+    return (w == NULL || w->magic != WORLD_MAGIC) ? 0 : w->step_count;
+}
+
+rbs_status rbs_world_set_dt(rbs_world *w, double dt)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (!(dt > 0.0) || !isfinite(dt))
+        FAIL(w, RBS_E_INVALID, "dt must be finite and > 0, got %g", dt);
+    w->def.dt = dt;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double tolerance)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if ((int)method < 0 || (int)method >= RBS_METHOD_COUNT)
+        FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
+    if (isnan(tolerance) || (tolerance > 0.0 && !isfinite(tolerance)))
+        FAIL(w, RBS_E_INVALID, "tolerance must be finite");
+    if (method != RBS_METHOD_EULER)
+        FAIL(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available in this build", rbs_method_name(method));
+    w->def.method = method;
+    if (tolerance > 0.0)
+        w->def.tolerance = tolerance;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_state(const rbs_world *w, rbs_state_view *out)
+{
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    out->slots = w->slots;
+    out->capacity = w->def.max_bodies;
+    out->position = w->pos;
+    out->velocity = w->vel;
+    out->angular_velocity = w->avel;
+    out->orientation = w->orient;
+    out->type = w->type;
+    return RBS_OK;
+}
+
+/* Kinetic and potential energy. */
+rbs_status rbs_world_energy(const rbs_world *w, rbs_energy *out)
+{
+    double ke = 0.0, pe = 0.0;
+    v3 g;
+    uint32_t i, j;
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    g = v3_make(w->def.gravity.x, w->def.gravity.y, w->def.gravity.z);
+    for (i = 0; i < w->slots; ++i) {
+        v3 v, om, x, Iw;
+        quat q;
+        if (!rbs__body_moves(w, i))
+            continue;
+        v = v3_load(&w->vel[3 * i]);
+        om = v3_load(&w->avel[3 * i]);
+        q = q_load(&w->orient[4 * i]);
+        Iw = m3_mul_world(&w->inertia[9 * i], q, om);
+        ke += 0.5 * w->mass[i] * v3_dot(v, v) + 0.5 * v3_dot(om, Iw);
+        x = rbs__body_com(w, i);
+        if (w->def.gravity_mode == RBS_GRAVITY_ACCELERATION)
+            pe -= w->mass[i] * v3_dot(g, x);
+        else
+            pe -= v3_dot(g, x);
+        pe -= v3_dot(v3_load(&w->force[3 * i]), x);
+    }
+    if (w->def.mutual_gravity) {
+        double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+        for (i = 0; i < w->sphere_count; ++i) {
+            uint32_t a = w->spheres[i];
+            v3 xa = rbs__body_com(w, a);
+            for (j = i + 1; j < w->sphere_count; ++j) {
+                uint32_t b = w->spheres[j];
+                v3 d = v3_sub(rbs__body_com(w, b), xa);
+                pe -= G * w->mass[a] * w->mass[b] / sqrt(v3_dot(d, d) + eps2);
+            }
+        }
+    }
+    out->kinetic = ke;
+    out->potential = pe;
+    out->total = ke + pe;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_momentum(const rbs_world *w, rbs_vec3 *linear, rbs_vec3 *angular)
+{
+    v3 P = v3_make(0, 0, 0), L = v3_make(0, 0, 0);
+    uint32_t i;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    for (i = 0; i < w->slots; ++i) {
+        v3 p, x, om;
+        if (!rbs__body_moves(w, i))
+            continue;
+        p = v3_scale(v3_load(&w->vel[3 * i]), w->mass[i]);
+        x = rbs__body_com(w, i);
+        om = v3_load(&w->avel[3 * i]);
+        P = v3_add(P, p);
+        L = v3_add(L, v3_add(v3_cross(x, p), m3_mul_world(&w->inertia[9 * i], q_load(&w->orient[4 * i]), om)));
+    }
+    if (linear) { linear->x = P.x; linear->y = P.y; linear->z = P.z; }
+    if (angular) { angular->x = L.x; angular->y = L.y; angular->z = L.z; }
+    return RBS_OK;
+}
+
+rbs_status rbs_world_usage(const rbs_world *w, rbs_usage *out)
+{
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    memset(out, 0, sizeof *out);
+    out->bytes = w->bytes;
+    out->bodies = w->bodies;
+    out->bodies_high = w->slots;
+    out->materials = w->materials;
+    out->pairs = w->pairs;
+    out->contacts_high = w->contacts_high;
+    return RBS_OK;
+}
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)p;
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        h ^= b[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+uint64_t rbs_world_hash(const rbs_world *w)
+{
+    uint64_t h = 14695981039346656037ull;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return 0;
+    h = fnv(h, &w->step_count, sizeof w->step_count);
+    h = fnv(h, w->pos, 3 * w->slots * sizeof(double));
+    h = fnv(h, w->vel, 3 * w->slots * sizeof(double));
+    h = fnv(h, w->avel, 3 * w->slots * sizeof(double));
+    h = fnv(h, w->orient, 4 * w->slots * sizeof(double));
+    return h;
+}

@@ -1,0 +1,139 @@
+/*
+ * world_internal.h - the world's layout (internal; never installed).
+ *
+ * A world lives in one block: this struct, then structure-of-arrays pools
+ * carved from the same block by rbs__world_layout().  Nothing is allocated
+ * after creation.  Body state is kept per slot:
+ *   pos     geometric centre (sphere) or point (plane)
+ *   vel     velocity of the centre of mass
+ *   avel    angular velocity, world frame
+ *   orient  unit quaternion body -> world
+ * For spheres with an off-centre COM, com = pos + R(orient) * com_body.
+ */
+#ifndef RBS_CORE_WORLD_INTERNAL_H
+#define RBS_CORE_WORLD_INTERNAL_H
+
+#include "rbsim/rbsim.h"
+#include "core/vec.h"
+
+#define RBS__ERROR_MAX 256
+
+/* A contact between body a (sphere) and body b (sphere or plane); the normal
+ * points from b towards a. */
+typedef struct rbs__contact {
+    uint32_t a, b;
+    v3 n;          /* unit normal, from b to a */
+    v3 ra, rb;     /* from each COM to the contact point */
+    double gap;    /* signed distance between surfaces, m (< 0: overlap) */
+    double slop;   /* allowed overlap for this pair, m */
+    double thr;    /* approach speed below which the contact is resting, m/s */
+    double mu_s, mu_k, e, rolling, spinning;
+    double radius; /* lever for rolling resistance, m */
+    double kn;     /* n . K n : inverse effective mass along n */
+    /* accumulated impulses in the resting pass */
+    double jn;
+    v3 jt, jroll;
+    double jspin;
+} rbs__contact;
+
+/* A material-pair row. */
+typedef struct rbs__pair {
+    uint32_t a, b; /* material index + 1; 0 = "*" */
+    double mu_s, mu_k, e, rolling, spinning;
+} rbs__pair;
+
+/* Which stages a step runs (see rbs__world_plan). */
+typedef struct rbs__plan {
+    int angular;      /* integrate angular velocity and orientation */
+    int gyroscopic;   /* some body needs the w x Iw term */
+    int friction;     /* some pair has friction or resistance */
+    int sphere_pairs; /* two or more spheres, at least one moving */
+    int mutual;       /* mutual gravity */
+} rbs__plan;
+
+struct rbs_world {
+    uint32_t magic;
+    int owns_memory;
+    size_t bytes;
+    rbs_world_def def;
+    char error[RBS__ERROR_MAX];
+
+    uint64_t step_count;
+    uint32_t slots;       /* high-water mark of used slots */
+    uint32_t bodies;      /* live bodies */
+    uint32_t free_count;  /* entries in free_list */
+    uint32_t materials;
+    uint32_t pairs;
+    uint32_t contact_count;
+    uint32_t contacts_high;
+    rbs__plan plan;
+    int plan_dirty;
+
+    /* per body (capacity def.max_bodies) */
+    int32_t *type;
+    uint32_t *generation;
+    int32_t *fixed;
+    uint32_t *material;   /* material index + 1, 0 = none */
+    uint32_t *color;
+    int32_t *texture;
+    char (*name)[RBS_NAME_MAX];
+    double *pos, *vel, *avel, *orient;    /* 3, 3, 3, 4 per slot */
+    double *force, *torque, *normal;      /* 3 per slot */
+    double *radius, *mass, *inv_mass;
+    double *com_body;                     /* 3 per slot, body frame */
+    double *inertia, *inv_inertia;        /* 9 per slot, about COM, body frame */
+    int32_t *isotropic;                   /* inertia is a multiple of identity */
+    uint32_t *free_list;
+    /* backups: start of step, start of sub-step */
+    double *step_save;                    /* 13 per slot */
+    double *sub_save;                     /* 13 per slot */
+    uint32_t *spheres;                    /* slots of moving and fixed spheres */
+    uint32_t sphere_count;
+    uint32_t *planes;                     /* slots of planes */
+    uint32_t plane_count;
+    double *acc;                          /* 3 per slot: scratch accelerations */
+
+    /* materials */
+    char (*material_name)[RBS_NAME_MAX];
+    rbs__pair *pair;
+    int32_t *pair_table;                  /* (max_materials+1)^2 -> pair row or -1 */
+
+    /* contacts */
+    rbs__contact *contact;
+};
+
+/* Layout and creation (world.c). */
+size_t rbs__world_layout(rbs_world *w, const rbs_world_def *def, unsigned char *base);
+int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+void rbs__world_plan(rbs_world *w);
+
+/* Body helpers (world.c). */
+v3 rbs__body_com(const rbs_world *w, uint32_t i);
+int rbs__body_moves(const rbs_world *w, uint32_t i);
+void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out);
+
+/* Contacts (contact.c). */
+rbs_status rbs__detect(rbs_world *w, double dt);
+double rbs__max_overlap(const rbs_world *w);
+int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen);
+void rbs__separate(rbs_world *w);
+v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r);
+void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j);
+
+/* Solver (solver.c). */
+void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
+void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
+
+/* Forces (step.c). */
+void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
+
+/* Methods (step_euler.c). */
+rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
+
+#define RBS__SAVE_STRIDE 13
+
+#endif
