@@ -1,0 +1,123 @@
+/*
+ * dumper.c - the renderer functions shared by every dump format: open the
+ * file with a frame buffer sized for the world, write the header, then each
+ * kept frame whole; finish closes and reports any error.
+ */
+#include "dump_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PATH_MAX_BYTES 4096
+
+typedef struct dumper {
+    const rbsf__format *format;
+    rbsf__out out;
+    int finished;
+} dumper;
+
+static rbs_status dumper_check(void *context, const rbs_renderer_config *config,
+                               const rbs_world *world, char *err, size_t errlen)
+{
+    const rbsf__format *format = context;
+    (void)world;
+    return rbsf__dump_check(format->name, config, err, errlen);
+}
+
+static rbs_status dumper_create(void *context, const rbs_renderer_config *config,
+                                const rbs_world *world, void **instance,
+                                char *err, size_t errlen)
+{
+    const rbsf__format *format = context;
+    rbs_world_def wd;
+    char path[PATH_MAX_BYTES];
+    dumper *d;
+    rbs_status st;
+
+    *instance = NULL;
+    st = rbsf__dump_check(format->name, config, err, errlen);
+    if (st != RBS_OK)
+        return st;
+    st = rbsf__dump_path(config, path, sizeof path, err, errlen);
+    if (st != RBS_OK)
+        return st;
+    if (world == NULL || rbs_world_get_def(world, &wd) != RBS_OK) {
+        snprintf(err, errlen, "no world");
+        return RBS_E_INVALID;
+    }
+    d = calloc(1, sizeof *d);
+    if (d == NULL) {
+        snprintf(err, errlen, "out of memory");
+        return RBS_E_MEMORY;
+    }
+    d->format = format;
+    st = rbsf__out_open(&d->out, path,
+                        rbsf__frame_bytes(wd.max_bodies, format->per_body), err,
+                        errlen);
+    if (st != RBS_OK) {
+        free(d);
+        return st;
+    }
+    if (format->header != NULL) {
+        rbsf__out_put(&d->out, format->header, strlen(format->header));
+        st = rbsf__out_commit(&d->out, err, errlen);
+        if (st != RBS_OK) {
+            rbsf__out_free(&d->out);
+            free(d);
+            return st;
+        }
+    }
+    *instance = d;
+    return RBS_OK;
+}
+
+static rbs_status dumper_draw(void *instance, const rbs_frame *frame, char *err,
+                              size_t errlen)
+{
+    dumper *d = instance;
+    rbs_status st = d->format->frame(&d->out, frame, NULL);
+    if (st != RBS_OK) {
+        rbsf__out_discard(&d->out);
+        snprintf(err, errlen, "frame %llu does not fit the frame buffer of '%s'",
+                 (unsigned long long)frame->number, d->out.path);
+        return RBS_E_MEMORY;
+    }
+    return rbsf__out_commit(&d->out, err, errlen);
+}
+
+static rbs_status dumper_finish(void *instance, char *err, size_t errlen)
+{
+    dumper *d = instance;
+    if (d->finished)
+        return RBS_OK;
+    d->finished = 1;
+    return rbsf__out_close(&d->out, err, errlen);
+}
+
+static void dumper_destroy(void *instance)
+{
+    dumper *d = instance;
+    if (d == NULL)
+        return;
+    rbsf__out_free(&d->out);
+    free(d);
+}
+
+/* The classes: one table per format, the format as context. */
+#define DUMPER_CLASS(name, fmt)                                                \
+    {                                                                          \
+        sizeof(rbs_renderer_class), name, (void *)&(fmt), dumper_create,       \
+            dumper_draw, dumper_finish, dumper_destroy, NULL, 0, dumper_check  \
+    }
+
+static const rbs_renderer_class csv_class =
+    DUMPER_CLASS("csv", rbsf__csv_format);
+static const rbs_renderer_class json_class =
+    DUMPER_CLASS("json", rbsf__json_format);
+static const rbs_renderer_class stats_class =
+    DUMPER_CLASS("stats", rbsf__stats_format);
+
+const rbs_renderer_class *rbsf_csv_class(void) { return &csv_class; }
+const rbs_renderer_class *rbsf_json_class(void) { return &json_class; }
+const rbs_renderer_class *rbsf_stats_class(void) { return &stats_class; }

@@ -1,0 +1,291 @@
+/*
+ * out.c - output files written a whole frame at a time, the shortest
+ * round-trip number format, and the check of a dumper's entry.
+ */
+#include "dump_internal.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+size_t rbsf_format_double(char *buf, size_t size, double x)
+{
+    int prec, n = 0;
+    if (size == 0)
+        return 0;
+    if (isnan(x))
+        return (size_t)snprintf(buf, size, "nan");
+    if (isinf(x))
+        return (size_t)snprintf(buf, size, x > 0 ? "inf" : "-inf");
+    /* The shortest precision that reads back as the same double (17
+     * significant digits always do, for IEEE binary64). */
+    for (prec = 1; prec <= 17; prec++) {
+        n = snprintf(buf, size, "%.*g", prec, x);
+        if (n < 0 || (size_t)n >= size)
+            return 0;
+        if (strtod(buf, NULL) == x)
+            break;
+    }
+    return (size_t)n;
+}
+
+rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
+                          char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    out->fd = -1;
+    out->path = malloc(strlen(path) + 1);
+    out->buf = malloc(cap);
+    if (out->path == NULL || out->buf == NULL) {
+        rbsf__out_free(out);
+        snprintf(err, errlen, "out of memory for a %lu-byte frame buffer",
+                 (unsigned long)cap);
+        return RBS_E_MEMORY;
+    }
+    strcpy(out->path, path);
+    out->cap = cap;
+    if (strcmp(path, "-") == 0) {
+        out->fd = STDOUT_FILENO;
+        out->owned = 0;
+        return RBS_OK;
+    }
+    out->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (out->fd < 0) {
+        snprintf(err, errlen, "cannot create '%s': %s", path, strerror(errno));
+        rbsf__out_free(out);
+        return RBS_E_IO;
+    }
+    out->owned = 1;
+    return RBS_OK;
+}
+
+rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n)
+{
+    if (n > out->cap - out->len)
+        return RBS_E_MEMORY;
+    memcpy(out->buf + out->len, s, n);
+    out->len += n;
+    return RBS_OK;
+}
+
+rbs_status rbsf__out_num(rbsf__out *out, double x)
+{
+    char b[40];
+    size_t n = rbsf_format_double(b, sizeof b, x);
+    return rbsf__out_put(out, b, n);
+}
+
+rbs_status rbsf__out_uint(rbsf__out *out, unsigned long long v)
+{
+    char b[24];
+    int n = snprintf(b, sizeof b, "%llu", v);
+    return rbsf__out_put(out, b, (size_t)n);
+}
+
+void rbsf__out_discard(rbsf__out *out)
+{
+    out->len = 0;
+}
+
+rbs_status rbsf__out_commit(rbsf__out *out, char *err, size_t errlen)
+{
+    size_t done = 0;
+    if (out->failed) {
+        snprintf(err, errlen, "'%s': an earlier write failed", out->path);
+        return RBS_E_IO;
+    }
+    while (done < out->len) {
+        ssize_t w = write(out->fd, out->buf + done, out->len - done);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            int e = w < 0 ? errno : EIO;
+            out->failed = 1;
+            /* Cut the frame's partial bytes off again: the file ends on the
+             * last whole frame. */
+            if (done > 0 && out->owned && ftruncate(out->fd, out->good) == 0)
+                lseek(out->fd, out->good, SEEK_SET);
+            snprintf(err, errlen, "write to '%s' failed: %s", out->path,
+                     strerror(e));
+            out->len = 0;
+            return RBS_E_IO;
+        }
+        done += (size_t)w;
+    }
+    out->good += (off_t)out->len;
+    out->len = 0;
+    return RBS_OK;
+}
+
+rbs_status rbsf__out_close(rbsf__out *out, char *err, size_t errlen)
+{
+    rbs_status st = RBS_OK;
+    if (out->fd >= 0 && out->owned) {
+        if (close(out->fd) != 0 && !out->failed) {
+            snprintf(err, errlen, "closing '%s' failed: %s", out->path,
+                     strerror(errno));
+            st = RBS_E_IO;
+        }
+    }
+    out->fd = -1;
+    return st;
+}
+
+void rbsf__out_free(rbsf__out *out)
+{
+    if (out->fd >= 0 && out->owned)
+        close(out->fd);
+    out->fd = -1;
+    free(out->buf);
+    free(out->path);
+    out->buf = NULL;
+    out->path = NULL;
+}
+
+size_t rbsf__frame_bytes(uint32_t max_bodies, size_t per_body)
+{
+    return 1024 + (size_t)max_bodies * per_body;
+}
+
+rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
+{
+    struct stat sb;
+    char *dir;
+    const char *slash;
+    size_t n;
+    int ok;
+
+    if (path == NULL || path[0] == '\0') {
+        snprintf(err, errlen, "no output path given");
+        return RBS_E_IO;
+    }
+    if (strcmp(path, "-") == 0)
+        return RBS_OK;
+    if (stat(path, &sb) == 0) {
+        if (S_ISDIR(sb.st_mode)) {
+            snprintf(err, errlen, "'%s' is a folder, expected a file name", path);
+            return RBS_E_IO;
+        }
+        if (access(path, W_OK) != 0) {
+            snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+            return RBS_E_IO;
+        }
+        return RBS_OK;
+    }
+    /* The file does not exist yet: its folder must. */
+    slash = strrchr(path, '/');
+    n = slash == NULL ? 1 : (slash == path ? 1 : (size_t)(slash - path));
+    dir = malloc(n + 1);
+    if (dir == NULL) {
+        snprintf(err, errlen, "out of memory");
+        return RBS_E_MEMORY;
+    }
+    if (slash == NULL)
+        strcpy(dir, ".");
+    else {
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    ok = stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode);
+    if (!ok)
+        snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist",
+                 path, dir);
+    else if (access(dir, W_OK) != 0) {
+        snprintf(err, errlen, "cannot create '%s' in '%s': %s", path, dir,
+                 strerror(errno));
+        ok = 0;
+    }
+    free(dir);
+    return ok ? RBS_OK : RBS_E_IO;
+}
+
+rbs_status rbsf__dump_check(const char *name, const rbs_renderer_config *config,
+                            char *err, size_t errlen)
+{
+    static const char *const keys[] = {"type", "path", "every", NULL};
+    if (config->json != NULL) {
+        cJSON *root = cJSON_Parse(config->json);
+        const cJSON *item;
+        if (root == NULL || !cJSON_IsObject(root)) {
+            cJSON_Delete(root);
+            snprintf(err, errlen, "the entry must be a JSON object");
+            return RBS_E_SCENE;
+        }
+        cJSON_ArrayForEach(item, root) {
+            int i, known = 0;
+            for (i = 0; keys[i]; i++)
+                known |= strcmp(item->string, keys[i]) == 0;
+            if (!known) {
+                snprintf(err, errlen,
+                         "unknown key '%s' in a %s entry (expected type, path, "
+                         "every)",
+                         item->string, name);
+                cJSON_Delete(root);
+                return RBS_E_SCENE;
+            }
+        }
+        item = cJSON_GetObjectItemCaseSensitive(root, "path");
+        if (item != NULL && (!cJSON_IsString(item) || item->valuestring[0] == 0)) {
+            snprintf(err, errlen, "path: must be a file name (a non-empty string)");
+            cJSON_Delete(root);
+            return RBS_E_SCENE;
+        }
+        {
+            const cJSON *every = cJSON_GetObjectItemCaseSensitive(root, "every");
+            if (every != NULL &&
+                (!cJSON_IsNumber(every) || every->valuedouble < 1 ||
+                 every->valuedouble > 4294967295.0 ||
+                 every->valuedouble != floor(every->valuedouble))) {
+                snprintf(err, errlen, "every: must be a whole number >= 1");
+                cJSON_Delete(root);
+                return RBS_E_SCENE;
+            }
+        }
+        if (config->path == NULL && item != NULL) {
+            /* Only the JSON names the file. */
+            rbs_status st = rbsf_check_output_file(item->valuestring, err, errlen);
+            cJSON_Delete(root);
+            return st;
+        }
+        cJSON_Delete(root);
+    }
+    if (config->path == NULL) {
+        snprintf(err, errlen, "a %s renderer needs \"path\": a file name", name);
+        return RBS_E_SCENE;
+    }
+    return rbsf_check_output_file(config->path, err, errlen);
+}
+
+rbs_status rbsf__dump_path(const rbs_renderer_config *config, char *buf,
+                           size_t n, char *err, size_t errlen)
+{
+    cJSON *root;
+    const cJSON *item;
+    if (config->path != NULL) {
+        if (strlen(config->path) >= n) {
+            snprintf(err, errlen, "path too long (at most %lu bytes)",
+                     (unsigned long)n - 1);
+            return RBS_E_INVALID;
+        }
+        strcpy(buf, config->path);
+        return RBS_OK;
+    }
+    root = config->json ? cJSON_Parse(config->json) : NULL;
+    item = cJSON_GetObjectItemCaseSensitive(root, "path");
+    if (!cJSON_IsString(item) || strlen(item->valuestring) >= n ||
+        item->valuestring[0] == '\0') {
+        cJSON_Delete(root);
+        snprintf(err, errlen, "no output path given (or longer than %lu bytes)",
+                 (unsigned long)n - 1);
+        return RBS_E_INVALID;
+    }
+    strcpy(buf, item->valuestring);
+    cJSON_Delete(root);
+    return RBS_OK;
+}
