@@ -1,0 +1,104 @@
+/* common.h - small helpers shared by the core tests. */
+#ifndef RBS_TEST_COMMON_H
+#define RBS_TEST_COMMON_H
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "rbsim/rbsim.h"
+
+#define CHECK_OK(call)                                                          \
+    do {                                                                        \
+        rbs_status st_ = (call);                                                \
+        if (st_ != RBS_OK)                                                      \
+            fail_msg("%s -> %s", #call, rbs_status_name(st_));                  \
+    } while (0)
+
+/* A world with default settings and room for n bodies. */
+static inline rbs_world *make_world(uint32_t n, double dt, double gz, double e)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_world_def_init(&d);
+    d.max_bodies = n;
+    d.dt = dt;
+    d.gravity.z = gz;
+    d.restitution = e;
+    CHECK_OK(rbs_world_create(&d, &w));
+    return w;
+}
+
+/* One material with the given friction, used on every body of the world. */
+static inline rbs_material_id material(rbs_world *w, const char *name, double mu_s, double mu_k,
+                                       double e)
+{
+    rbs_material_id m;
+    rbs_pair_def p;
+    CHECK_OK(rbs_world_add_material(w, name, &m));
+    rbs_pair_def_init(&p);
+    p.a = m;
+    p.b = m;
+    p.static_friction = mu_s;
+    p.kinetic_friction = mu_k;
+    p.restitution = e;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    return m;
+}
+
+static inline rbs_body_id floor_plane(rbs_world *w, rbs_material_id m)
+{
+    rbs_plane_def p;
+    rbs_body_id id;
+    rbs_plane_def_init(&p);
+    p.material = m;
+    CHECK_OK(rbs_world_add_plane(w, &p, &id));
+    return id;
+}
+
+static inline rbs_body_id ball(rbs_world *w, double r, double m, double x, double y, double z,
+                               double vx, double vy, double vz, rbs_material_id mat)
+{
+    rbs_sphere_def s;
+    rbs_body_id id;
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.mass = m;
+    s.position.x = x; s.position.y = y; s.position.z = z;
+    s.velocity.x = vx; s.velocity.y = vy; s.velocity.z = vz;
+    s.material = mat;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    return id;
+}
+
+static inline rbs_body_state state_of(const rbs_world *w, rbs_body_id id)
+{
+    rbs_body_state s;
+    CHECK_OK(rbs_body_get_state(w, id, &s));
+    return s;
+}
+
+static inline void step_n(rbs_world *w, int n)
+{
+    int k;
+    for (k = 0; k < n; ++k) {
+        rbs_status st = rbs_world_step(w, NULL);
+        if (st != RBS_OK)
+            fail_msg("step %d: %s: %s", k, rbs_status_name(st), rbs_world_last_error(w));
+    }
+}
+
+#define ASSERT_NEAR(a, b, tol)                                                  \
+    do {                                                                        \
+        double a_ = (a), b_ = (b), t_ = (tol);                                  \
+        if (!(fabs(a_ - b_) <= t_))                                             \
+            fail_msg("%s = %.17g, expected %.17g within %.3g (off by %.3g)",     \
+                     #a, a_, b_, t_, fabs(a_ - b_));                            \
+    } while (0)
+
+#endif

@@ -1,0 +1,372 @@
+/*
+ * test_physics.c - the core's motion against exact answers from mechanics.
+ * Each test states its tolerance and why.
+ */
+#include "common.h"
+
+static const double G = 9.81;
+
+/* A ball dropped from h = 1 m (gap) onto a plane, e = 0.5, dt = 1 ms.
+ * Exact: first impact at sqrt(2h/g); apex n at h e^(2n).
+ * Semi-implicit Euler lags the exact fall by g*dt*t/2 in position, so the
+ * impact is reported in the frame containing t* or the next one (<= 2 dt),
+ * and an apex reached at speed v is low by about v*dt/2 (bound: 2 v dt). */
+static void drop_ball_impact_and_apexes(void **state)
+{
+    const double h = 1.0, r = 0.1, e = 0.5, dt = 1e-3;
+    rbs_world *w = make_world(4, dt, -G, e);
+    rbs_material_id m = material(w, "m", 0.0, 0.0, -1.0);
+    rbs_body_id b;
+    double prev_v = 0.0, t_impact = -1.0;
+    int apex = 0, k;
+    (void)state;
+    floor_plane(w, m);
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, m);
+    for (k = 0; k < 2000 && apex < 4; ++k) {
+        rbs_step_info info;
+        rbs_body_state s;
+        CHECK_OK(rbs_world_step(w, &info));
+        s = state_of(w, b);
+        if (info.colliding && t_impact < 0.0)
+            t_impact = rbs_world_time(w);
+        if (prev_v > 0.0 && s.velocity.z <= 0.0) {
+            double expect = h * pow(e, 2.0 * (apex + 1));
+            double v_launch = sqrt(2.0 * G * h) * pow(e, apex + 1);
+            ASSERT_NEAR(s.position.z - r, expect, 2.0 * v_launch * dt + G * dt * dt);
+            apex++;
+        }
+        prev_v = s.velocity.z;
+    }
+    assert_int_equal(apex, 4);
+    assert_true(t_impact >= sqrt(2.0 * h / G) && t_impact <= sqrt(2.0 * h / G) + 2.0 * dt);
+    rbs_world_destroy(w);
+}
+
+/* Without gravity a ball meets a plane at 3 m/s with e = 0.7 and must leave
+ * at exactly 2.1 m/s (one impulse: rounding only, 1e-12). */
+static void bounce_leaves_with_e_times_approach(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 0.7);
+    rbs_material_id m = material(w, "m", 0.0, 0.0, -1.0);
+    rbs_body_id b;
+    (void)state;
+    floor_plane(w, m);
+    b = ball(w, 0.1, 1.0, 0, 0, 0.1 + 0.0105, 0, 0, -3.0, m);
+    step_n(w, 20);
+    ASSERT_NEAR(state_of(w, b).velocity.z, 2.1, 1e-12);
+    assert_true(state_of(w, b).position.z > 0.1);
+    rbs_world_destroy(w);
+}
+
+/* e = 1 never gains energy: 10 s of bouncing, total energy never above the
+ * start by more than rounding (1e-9 J of 9.81 J). */
+static void elastic_bounce_never_gains_energy(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -G, 1.0);
+    rbs_material_id m = material(w, "m", 0.0, 0.0, -1.0);
+    rbs_energy e0, e;
+    int k;
+    (void)state;
+    floor_plane(w, m);
+    ball(w, 0.1, 1.0, 0, 0, 1.1, 0, 0, 0, m);
+    CHECK_OK(rbs_world_energy(w, &e0));
+    for (k = 0; k < 10000; ++k) {
+        CHECK_OK(rbs_world_step(w, NULL));
+        CHECK_OK(rbs_world_energy(w, &e));
+        if (e.total > e0.total + 1e-9)
+            fail_msg("step %d: energy %.12g above start %.12g", k, e.total, e0.total);
+    }
+    rbs_world_destroy(w);
+}
+
+/* Equal spheres head-on with e = 1 exchange velocities (1e-12: one impulse). */
+static void equal_spheres_exchange_velocities(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 1.0);
+    rbs_body_id a, b;
+    (void)state;
+    a = ball(w, 0.1, 2.0, 0.0, 0, 0, 1.5, 0, 0, (rbs_material_id){0, 0});
+    b = ball(w, 0.1, 2.0, 0.5, 0, 0, 0.0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 1000);
+    ASSERT_NEAR(state_of(w, a).velocity.x, 0.0, 1e-12);
+    ASSERT_NEAR(state_of(w, b).velocity.x, 1.5, 1e-12);
+    rbs_world_destroy(w);
+}
+
+/* Momentum is conserved in sphere-sphere impacts for mass ratios 1 .. 1e9,
+ * and the velocities match the exact impact law
+ *   va' = (ma va + mb vb - mb e (va - vb)) / (ma + mb).
+ * Tolerance: 1e-12 relative to the momentum scale (rounding of one impulse). */
+static void momentum_conserved_up_to_mass_ratio_1e9(void **state)
+{
+    const double ratios[] = {1.0, 1e3, 1e6, 1e9};
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof ratios / sizeof ratios[0]; ++i) {
+        const double e = 0.5, ma = ratios[i], mb = 1.0, va = 1.0, vb = -2.0;
+        rbs_world *w = make_world(4, 1e-3, 0.0, e);
+        rbs_body_id a = ball(w, 0.1, ma, 0.0, 0, 0, va, 0, 0, (rbs_material_id){0, 0});
+        rbs_body_id b = ball(w, 0.1, mb, 0.6, 0, 0, vb, 0, 0, (rbs_material_id){0, 0});
+        rbs_vec3 p0, p1;
+        double scale = fabs(ma * va) + fabs(mb * vb);
+        CHECK_OK(rbs_world_momentum(w, &p0, NULL));
+        step_n(w, 300);
+        CHECK_OK(rbs_world_momentum(w, &p1, NULL));
+        ASSERT_NEAR(p1.x, p0.x, 1e-12 * scale);
+        ASSERT_NEAR(state_of(w, a).velocity.x, (ma * va + mb * vb - mb * e * (va - vb)) / (ma + mb),
+                    1e-12 * (fabs(va) + fabs(vb)));
+        ASSERT_NEAR(state_of(w, b).velocity.x, (ma * va + mb * vb - ma * e * (vb - va)) / (ma + mb),
+                    1e-12 * (fabs(va) + fabs(vb)) * (1.0 + ma / mb * 1e-6));
+        rbs_world_destroy(w);
+    }
+}
+
+/* A solid sphere launched sliding at v0 = 5 m/s with mu_k = 0.3 rolls from
+ * t = 2 v0 / (7 mu g) at 5/7 v0 and keeps rolling.  Kinetic friction is a
+ * constant deceleration, which Euler integrates exactly, and the switch to
+ * rolling is an exact stick impulse: speed within 1e-12 relative; the switch
+ * is seen in the frame containing it (within dt). */
+static void sliding_sphere_starts_rolling(void **state)
+{
+    const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3;
+    const double t_roll = 2.0 * v0 / (7.0 * mu * G);
+    rbs_world *w = make_world(4, dt, -G, 0.5);
+    rbs_material_id m = material(w, "m", mu, mu, -1.0);
+    rbs_body_id b;
+    double t_seen = -1.0;
+    int k;
+    (void)state;
+    floor_plane(w, m);
+    b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
+    for (k = 0; k < 3000; ++k) {
+        rbs_body_state s;
+        step_n(w, 1);
+        s = state_of(w, b);
+        if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < 1e-12 * v0)
+            t_seen = rbs_world_time(w);
+    }
+    assert_true(t_seen >= t_roll && t_seen <= t_roll + dt);
+    ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
+    ASSERT_NEAR(state_of(w, b).angular_velocity.y * r, 5.0 / 7.0 * v0, 1e-12 * v0);
+    ASSERT_NEAR(state_of(w, b).position.z, r, 1e-12);
+    rbs_world_destroy(w);
+}
+
+/* A ball at rest on a plane for 10 s moves less than 1e-9 m. */
+static void ball_at_rest_stays_put(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -G, 0.5);
+    rbs_material_id m = material(w, "m", 0.5, 0.3, -1.0);
+    rbs_body_id b;
+    rbs_body_state s;
+    (void)state;
+    floor_plane(w, m);
+    b = ball(w, 0.1, 1.0, 0.3, -0.2, 0.1, 0, 0, 0, m);
+    step_n(w, 10000);
+    s = state_of(w, b);
+    ASSERT_NEAR(s.position.x, 0.3, 1e-9);
+    ASSERT_NEAR(s.position.y, -0.2, 1e-9);
+    ASSERT_NEAR(s.position.z, 0.1, 1e-9);
+    rbs_world_destroy(w);
+}
+
+/* On an incline of angle theta a solid ball rolls without slipping when
+ * tan(theta) <= 7/2 mu_s, with a = 5/7 g sin(theta); otherwise it slides with
+ * a = g (sin(theta) - mu_k cos(theta)).  Constant accelerations: Euler's
+ * velocity is exact up to rounding (1e-10 m/s after 1 s). */
+static void incline_rolls_or_slides(void **state)
+{
+    const double th = 20.0 * 3.14159265358979323846 / 180.0, r = 0.1, T = 1.0;
+    const double mus[2] = {0.5, 0.05};
+    int i;
+    (void)state;
+    for (i = 0; i < 2; ++i) {
+        rbs_world *w = make_world(4, 1e-3, -G, 0.0);
+        rbs_material_id m = material(w, "m", mus[i], mus[i], -1.0);
+        rbs_plane_def p;
+        rbs_body_id b;
+        double nx = -sin(th), nz = cos(th), a, v_along;
+        rbs_body_state s;
+        rbs_plane_def_init(&p);
+        p.normal.x = nx;
+        p.normal.z = nz;
+        p.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        b = ball(w, r, 1.0, r * nx, 0, r * nz, 0, 0, 0, m);
+        step_n(w, (int)(T / 1e-3 + 0.5));
+        s = state_of(w, b);
+        /* the plane z = x tan(th) falls towards -x: down the slope is
+         * (-cos th, 0, -sin th) */
+        v_along = -(s.velocity.x * cos(th) + s.velocity.z * sin(th));
+        if (tan(th) <= 3.5 * mus[i])
+            a = 5.0 / 7.0 * G * sin(th);
+        else
+            a = G * (sin(th) - mus[i] * cos(th));
+        ASSERT_NEAR(v_along, a * T, 1e-10);
+        ASSERT_NEAR(s.velocity.x * nx + s.velocity.z * nz, 0.0, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
+/* A sphere crossing 10 radii per step does not pass through a plane. */
+static void fast_sphere_does_not_tunnel_through_plane(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -G, 0.5);
+    rbs_body_id b;
+    rbs_body_state s;
+    int k;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, 0.1, 1.0, 0, 0, 1.05, 0, 0, -1000.0, (rbs_material_id){0, 0});
+    for (k = 0; k < 5; ++k) {
+        step_n(w, 1);
+        s = state_of(w, b);
+        assert_true(s.position.z >= 0.1 - 1e-7);
+    }
+    assert_true(state_of(w, b).velocity.z > 0.0);
+    rbs_world_destroy(w);
+}
+
+/* A sphere crossing 20 radii per step hits another instead of passing it. */
+static void fast_sphere_does_not_tunnel_through_sphere(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 1.0);
+    rbs_body_id a, b;
+    (void)state;
+    a = ball(w, 0.1, 1.0, 0.0, 0, 0, 2000.0, 0, 0, (rbs_material_id){0, 0});
+    b = ball(w, 0.1, 1.0, 1.0, 0, 0, 0.0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 1);
+    assert_true(state_of(w, a).position.x < state_of(w, b).position.x);
+    ASSERT_NEAR(state_of(w, b).velocity.x, 2000.0, 1e-9);
+    ASSERT_NEAR(state_of(w, a).velocity.x, 0.0, 1e-9);
+    rbs_world_destroy(w);
+}
+
+/* Newton's cradle: five equal balls touching, the first arrives at 1 m/s,
+ * e = 1, no friction or gravity: only the last ball moves afterwards, at
+ * 1 m/s (1e-9: a chain of four impulses). */
+static void newtons_cradle(void **state)
+{
+    rbs_world *w = make_world(8, 1e-3, 0.0, 1.0);
+    rbs_body_id b[5];
+    int i;
+    (void)state;
+    b[0] = ball(w, 0.1, 1.0, -0.5, 0, 0, 1.0, 0, 0, (rbs_material_id){0, 0});
+    for (i = 1; i < 5; ++i)
+        b[i] = ball(w, 0.1, 1.0, 0.2 * (i - 1), 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 2000);
+    for (i = 0; i < 4; ++i)
+        ASSERT_NEAR(state_of(w, b[i]).velocity.x, 0.0, 1e-9);
+    ASSERT_NEAR(state_of(w, b[4]).velocity.x, 1.0, 1e-9);
+    rbs_world_destroy(w);
+}
+
+/* Free fall is Euler's exact recurrence: after n steps of h,
+ * v = a n h and x = x0 + a h^2 n (n+1) / 2.  In force mode the same force
+ * acts on every body, so a 4 kg ball falls at g/4 (rounding only). */
+static void gravity_modes(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id light, heavy;
+    const int n = 100;
+    const double h = 1e-3;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.gravity_mode = RBS_GRAVITY_FORCE;
+    d.gravity.z = -G;
+    CHECK_OK(rbs_world_create(&d, &w));
+    light = ball(w, 0.1, 1.0, 0, 0, 100, 0, 0, 0, (rbs_material_id){0, 0});
+    heavy = ball(w, 0.1, 4.0, 1, 0, 100, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, n);
+    ASSERT_NEAR(state_of(w, light).velocity.z, -G * n * h, 1e-12);
+    ASSERT_NEAR(state_of(w, heavy).velocity.z, -G / 4.0 * n * h, 1e-12);
+    ASSERT_NEAR(state_of(w, light).position.z, 100.0 - G * h * h * n * (n + 1) / 2.0, 1e-11);
+    rbs_world_destroy(w);
+}
+
+/* A rolling ball with rolling resistance mu_r decelerates at 5/7 mu_r g
+ * (torque mu_r r N about the contact; I + m r^2 = 7/5 m r^2).  Constant
+ * deceleration: exact up to rounding while it rolls (1e-9 m/s). */
+static void rolling_resistance_decelerates(void **state)
+{
+    const double r = 0.1, v0 = 2.0, mur = 0.02, T = 1.0;
+    rbs_world *w = make_world(4, 1e-3, -G, 0.0);
+    rbs_material_id m;
+    rbs_pair_def p;
+    rbs_body_id b;
+    rbs_sphere_def s;
+    (void)state;
+    CHECK_OK(rbs_world_add_material(w, "m", &m));
+    rbs_pair_def_init(&p);
+    p.a = p.b = m;
+    p.static_friction = p.kinetic_friction = 0.5;
+    p.rolling = mur;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.position.z = r;
+    s.velocity.x = v0;
+    s.angular_velocity.y = v0 / r;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+    step_n(w, (int)(T / 1e-3 + 0.5));
+    ASSERT_NEAR(state_of(w, b).velocity.x, v0 - 5.0 / 7.0 * mur * G * T, 1e-9);
+    rbs_world_destroy(w);
+}
+
+/* A ball whose centre of mass is off-centre, set down with the COM to one
+ * side, rocks: it gains angular velocity from the contact, and with e = 0
+ * its energy never grows (1e-9 J). */
+static void off_centre_mass_wobbles(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -G, 0.0);
+    rbs_material_id m = material(w, "m", 0.8, 0.6, -1.0);
+    rbs_sphere_def s;
+    rbs_body_id b;
+    rbs_energy e0, e;
+    double wmax = 0.0;
+    int k;
+    (void)state;
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.radius = 0.1;
+    s.position.z = 0.1;
+    s.center_of_mass.x = 0.03;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+    CHECK_OK(rbs_world_energy(w, &e0));
+    for (k = 0; k < 2000; ++k) {
+        double wy;
+        step_n(w, 1);
+        CHECK_OK(rbs_world_energy(w, &e));
+        assert_true(e.total <= e0.total + 1e-9);
+        wy = fabs(state_of(w, b).angular_velocity.y);
+        if (wy > wmax)
+            wmax = wy;
+    }
+    assert_true(wmax > 1.0);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(drop_ball_impact_and_apexes),
+        cmocka_unit_test(bounce_leaves_with_e_times_approach),
+        cmocka_unit_test(elastic_bounce_never_gains_energy),
+        cmocka_unit_test(equal_spheres_exchange_velocities),
+        cmocka_unit_test(momentum_conserved_up_to_mass_ratio_1e9),
+        cmocka_unit_test(sliding_sphere_starts_rolling),
+        cmocka_unit_test(ball_at_rest_stays_put),
+        cmocka_unit_test(incline_rolls_or_slides),
+        cmocka_unit_test(fast_sphere_does_not_tunnel_through_plane),
+        cmocka_unit_test(fast_sphere_does_not_tunnel_through_sphere),
+        cmocka_unit_test(newtons_cradle),
+        cmocka_unit_test(gravity_modes),
+        cmocka_unit_test(rolling_resistance_decelerates),
+        cmocka_unit_test(off_centre_mass_wobbles),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
