@@ -11,6 +11,8 @@
  *    error code, never a crash.
  *  - Definition structs (*_def) are filled with defaults by their init macro,
  *    which records the caller's sizeof so that newer libraries can grow them.
+ *    Structs the library fills (rbs_step_info, rbs_body_state) carry reserved
+ *    room instead; all public structs only ever grow at the end.
  *  - Thread safety: a world is not thread-safe; distinct worlds may be used from
  *    distinct threads at once.  The library has no global mutable state.
  *  - Quaternions are [w, x, y, z] and rotate body-frame vectors to world frame.
@@ -338,6 +340,7 @@ typedef struct rbs_body_state {
     uint32_t color;
     rbs_texture texture;
     int32_t fixed;
+    double reserved[8];        /**< zero; room to grow without an ABI break */
 } rbs_body_state;
 
 RBS_API rbs_status rbs_body_get_state(const rbs_world *world, rbs_body_id id,
@@ -367,6 +370,7 @@ typedef struct rbs_step_info {
     uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
     uint32_t events;      /**< events processed (event method) */
     double max_overlap;   /**< deepest overlap at the end of the step, m */
+    uint32_t reserved[8]; /**< zero; room for new counters without an ABI break */
 } rbs_step_info;
 
 /** Advance the world by dt (one frame).  Sub-steps are internal: afterwards

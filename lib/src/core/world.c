@@ -634,7 +634,21 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
             for (j = 0; j < 3; ++j)
                 I[3 * i + j] -= mass * ((i == j ? c2 : 0.0) - cc[i] * cc[j]);
     }
-    if (!(I[0] > 0.0) || !(I[0] * I[4] - I[1] * I[3] > 0.0) || !(m3_inverse(I, inv) > 0.0))
+    /* Positive definite (Sylvester), checked and inverted on I / trace so
+     * that tiny or huge bodies neither underflow nor overflow. */
+    {
+        double sc = (I[0] + I[4] + I[8]) / 3.0, In[9];
+        for (k = 0; k < 9; ++k)
+            In[k] = I[k] / sc;
+        if (!(sc > 0.0) || !isfinite(sc) || !(In[0] > 0.0) || !(In[0] * In[4] - In[1] * In[3] > 0.0) ||
+            !(m3_inverse(In, inv) > 0.0))
+            sc = 0.0;
+        for (k = 0; k < 9; ++k)
+            inv[k] /= sc;
+        if (sc == 0.0)
+            inv[0] = NAN;
+    }
+    if (!isfinite(inv[0]) || !isfinite(inv[4]) || !isfinite(inv[8]))
         FAIL(w, RBS_E_INVALID,
              "sphere: centre of mass offset %g is too far from the centre for this inertia "
              "(inertia about the COM would not be positive definite)", sqrt(c2));

@@ -1,0 +1,397 @@
+/*
+ * test_api.c - the public API's contract: versions, status text, defs that
+ * grow, ids, validation with messages, capacity errors that leave the world
+ * unchanged, caller-owned memory.
+ */
+#include <stdlib.h>
+
+#include "common.h"
+
+static void version_matches_header(void **state)
+{
+    char buf[32];
+    (void)state;
+    snprintf(buf, sizeof buf, "%d.%d.%d", RBS_VERSION_MAJOR, RBS_VERSION_MINOR, RBS_VERSION_PATCH);
+    assert_string_equal(rbs_version(), buf);
+    assert_int_equal(rbs_version_number(), RBS_VERSION_NUMBER);
+}
+
+static void status_strings(void **state)
+{
+    (void)state;
+    assert_string_equal(rbs_status_name(RBS_E_CAPACITY), "E_CAPACITY");
+    assert_string_equal(rbs_status_string(RBS_OK), "success");
+    assert_string_equal(rbs_status_name((rbs_status)-999), "UNKNOWN");
+    assert_non_null(rbs_status_string((rbs_status)12345));
+}
+
+static void method_names_round_trip(void **state)
+{
+    int i;
+    rbs_method m;
+    (void)state;
+    for (i = 0; i < RBS_METHOD_COUNT; ++i) {
+        CHECK_OK(rbs_method_from_name(rbs_method_name((rbs_method)i), &m));
+        assert_int_equal(m, i);
+    }
+    assert_int_equal(rbs_method_from_name("eulerx", &m), RBS_E_NOT_FOUND);
+    assert_null(rbs_method_name(RBS_METHOD_COUNT));
+}
+
+/* A caller compiled against an older, shorter def: the library fills the
+ * fields it did not know with defaults. */
+typedef struct old_world_def {
+    uint32_t struct_size;
+    uint32_t max_bodies;
+} old_world_def;
+
+static void old_shorter_defs_get_defaults(void **state)
+{
+    old_world_def old;
+    rbs_world *w;
+    rbs_world_def got;
+    (void)state;
+    rbs_world_def_init_sized((rbs_world_def *)(void *)&old, sizeof old);
+    assert_int_equal(old.struct_size, sizeof old);
+    assert_int_equal(old.max_bodies, 64);
+    old.max_bodies = 3;
+    CHECK_OK(rbs_world_create((const rbs_world_def *)(const void *)&old, &w));
+    rbs_world_def_init(&got);
+    CHECK_OK(rbs_world_get_def(w, &got));
+    assert_int_equal(got.max_bodies, 3);
+    assert_true(got.dt == 0.001);
+    assert_true(got.gravity.z == -9.81);
+    rbs_world_destroy(w);
+}
+
+static void uninitialised_def_is_rejected(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = (rbs_world *)&d;
+    char msg[256];
+    (void)state;
+    memset(&d, 0, sizeof d);
+    assert_int_equal(rbs_world_create(&d, &w), RBS_E_INVALID);
+    assert_null(w);
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "rbs_world_def_init"));
+    rbs_world_def_init(&d);
+    d.dt = -1.0;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "dt"));
+    d.dt = NAN;
+    assert_int_equal(rbs_world_create(&d, &w), RBS_E_INVALID);
+    assert_int_equal(rbs_world_memory_size(&d), 0);
+    assert_int_equal(rbs_world_create(NULL, &w), RBS_E_INVALID);
+}
+
+static void create_in_caller_memory(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    size_t need;
+    void *mem;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.max_bodies = 10;
+    need = rbs_world_memory_size(&d);
+    assert_true(need > 0);
+    assert_int_equal(posix_memalign(&mem, 16, need), 0);
+    assert_int_equal(rbs_world_create_in(mem, need - 1, &d, &w), RBS_E_MEMORY);
+    CHECK_OK(rbs_world_create_in(mem, need, &d, &w));
+    ball(w, 0.1, 1, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 10);
+    rbs_world_destroy(w);
+    free(mem);
+    /* memory grows with capacity */
+    d.max_bodies = 1000;
+    assert_true(rbs_world_memory_size(&d) > need);
+}
+
+/* Everything a world can report, captured to compare before and after. */
+typedef struct snapshot {
+    uint64_t hash;
+    rbs_usage usage;
+} snapshot;
+
+static snapshot snap(const rbs_world *w)
+{
+    snapshot s;
+    s.hash = rbs_world_hash(w);
+    CHECK_OK(rbs_world_usage(w, &s.usage));
+    return s;
+}
+
+static void capacity_error_leaves_world_unchanged(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_material_id m, m2;
+    rbs_sphere_def s;
+    rbs_plane_def p;
+    rbs_pair_def pd;
+    snapshot before, after;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.max_bodies = 2;
+    d.max_materials = 1;
+    d.max_pairs = 1;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.3, -1.0);
+    ball(w, 0.1, 1, 0, 0, 1, 0, 0, 0, m);
+    floor_plane(w, m);
+    before = snap(w);
+    rbs_sphere_def_init(&s);
+    s.position.z = 3;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_CAPACITY);
+    assert_non_null(strstr(rbs_world_last_error(w), "at most 2 bodies"));
+    rbs_plane_def_init(&p);
+    assert_int_equal(rbs_world_add_plane(w, &p, NULL), RBS_E_CAPACITY);
+    assert_int_equal(rbs_world_add_material(w, "other", &m2), RBS_E_CAPACITY);
+    rbs_pair_def_init(&pd);
+    pd.a = m; /* m with "*": a second row */
+    assert_int_equal(rbs_world_set_pair(w, &pd), RBS_E_CAPACITY);
+    after = snap(w);
+    assert_true(before.hash == after.hash);
+    assert_int_equal(before.usage.bodies, after.usage.bodies);
+    assert_int_equal(before.usage.bodies_high, after.usage.bodies_high);
+    assert_int_equal(before.usage.materials, after.usage.materials);
+    assert_int_equal(before.usage.pairs, after.usage.pairs);
+    rbs_world_destroy(w);
+}
+
+/* Contacts beyond max_contacts fail the step and keep the last good state. */
+static void contact_capacity_error_keeps_state(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    uint64_t h;
+    int i;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.max_bodies = 8;
+    d.max_contacts = 2;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    for (i = 0; i < 4; ++i)
+        ball(w, 0.1, 1, 0.3 * i, 0, 0.1, 0, 0, 0, (rbs_material_id){0, 0});
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_world_step(w, NULL), RBS_E_CAPACITY);
+    assert_non_null(strstr(rbs_world_last_error(w), "max_contacts"));
+    assert_true(rbs_world_hash(w) == h);
+    assert_int_equal(rbs_world_step_count(w), 0);
+    rbs_world_destroy(w);
+}
+
+static void ids_stale_after_remove(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_body_id a, b, c, found;
+    rbs_body_state s;
+    rbs_vec3 v = {1, 0, 0};
+    rbs_sphere_def sd;
+    (void)state;
+    rbs_sphere_def_init(&sd);
+    sd.name = "a";
+    CHECK_OK(rbs_world_add_sphere(w, &sd, &a));
+    sd.name = "b";
+    sd.position.x = 1;
+    CHECK_OK(rbs_world_add_sphere(w, &sd, &b));
+    CHECK_OK(rbs_world_find_body(w, "b", &found));
+    assert_int_equal(found.index, b.index);
+    CHECK_OK(rbs_world_remove_body(w, a));
+    assert_int_equal(rbs_body_get_state(w, a, &s), RBS_E_STALE_ID);
+    assert_int_equal(rbs_body_set_velocity(w, a, v), RBS_E_STALE_ID);
+    assert_int_equal(rbs_world_remove_body(w, a), RBS_E_STALE_ID);
+    assert_int_equal(rbs_world_find_body(w, "a", &found), RBS_E_NOT_FOUND);
+    /* the slot is reused with a new generation */
+    sd.name = "c";
+    sd.position.x = 2;
+    CHECK_OK(rbs_world_add_sphere(w, &sd, &c));
+    assert_int_equal(c.index, a.index);
+    assert_int_not_equal(c.generation, a.generation);
+    assert_int_equal(rbs_body_get_state(w, a, &s), RBS_E_STALE_ID);
+    assert_int_equal(rbs_body_get_state(w, (rbs_body_id){0, 0}, &s), RBS_E_STALE_ID);
+    assert_int_equal(rbs_body_get_state(w, (rbs_body_id){99, 1}, &s), RBS_E_STALE_ID);
+    rbs_world_destroy(w);
+}
+
+static void bad_bodies_are_rejected_with_reasons(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_sphere_def s;
+    rbs_plane_def p;
+    rbs_vec3 nanv = {NAN, 0, 0};
+    rbs_body_id id;
+    (void)state;
+    rbs_sphere_def_init(&s);
+    s.radius = -0.1;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "radius"));
+    rbs_sphere_def_init(&s);
+    s.mass = 0.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "mass"));
+    rbs_sphere_def_init(&s);
+    s.orientation.w = 0.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    rbs_sphere_def_init(&s);
+    s.velocity.y = INFINITY;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_NUMERIC);
+    rbs_sphere_def_init(&s);
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 1; s.inertia.y = 1; s.inertia.z = 5;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "triangle"));
+    rbs_sphere_def_init(&s);
+    s.center_of_mass.x = 0.09; /* solid: 2/5 r^2 - c^2 < 0 */
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    rbs_sphere_def_init(&s);
+    s.material.index = 7;
+    s.material.generation = 1;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_STALE_ID);
+    rbs_plane_def_init(&p);
+    p.normal.z = 0.0;
+    assert_int_equal(rbs_world_add_plane(w, &p, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "normal"));
+    /* a duplicate name */
+    rbs_sphere_def_init(&s);
+    s.name = "x";
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    s.position.x = 1;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "already"));
+    /* NaN through a setter: refused, state unchanged */
+    assert_int_equal(rbs_body_set_force(w, id, nanv), RBS_E_NUMERIC);
+    assert_int_equal(rbs_body_set_velocity(w, id, nanv), RBS_E_NUMERIC);
+    assert_true(state_of(w, id).force.x == 0.0);
+    rbs_world_destroy(w);
+}
+
+static void pair_rules(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_material_id a, b;
+    rbs_pair_def p;
+    (void)state;
+    CHECK_OK(rbs_world_add_material(w, "a", &a));
+    CHECK_OK(rbs_world_add_material(w, "b", &b));
+    assert_int_equal(rbs_world_add_material(w, "a", NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_add_material(w, "*", NULL), RBS_E_INVALID);
+    rbs_pair_def_init(&p);
+    p.a = a;
+    p.b = b;
+    p.kinetic_friction = 0.9;
+    p.static_friction = 0.5;
+    assert_int_equal(rbs_world_set_pair(w, &p), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "exceeds static"));
+    p.kinetic_friction = 0.1;
+    p.restitution = 1.5;
+    assert_int_equal(rbs_world_set_pair(w, &p), RBS_E_INVALID);
+    p.restitution = 0.2;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    rbs_world_destroy(w);
+}
+
+/* The most specific pair row wins: a ball of "rubber" on "ice" with an exact
+ * row (e = 1) must bounce elastically even though "*"/"*" says e = 0. */
+static void most_specific_pair_wins(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 0.5);
+    rbs_material_id rubber, ice;
+    rbs_pair_def p;
+    rbs_plane_def pl;
+    rbs_body_id b;
+    (void)state;
+    CHECK_OK(rbs_world_add_material(w, "rubber", &rubber));
+    CHECK_OK(rbs_world_add_material(w, "ice", &ice));
+    rbs_pair_def_init(&p);
+    p.restitution = 0.0;
+    CHECK_OK(rbs_world_set_pair(w, &p)); /* "*" / "*" */
+    p.a = ice;
+    p.b = rubber; /* unordered */
+    p.restitution = 1.0;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    rbs_plane_def_init(&pl);
+    pl.material = ice;
+    CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+    b = ball(w, 0.1, 1, 0, 0, 0.2, 0, 0, -1, rubber);
+    step_n(w, 200);
+    ASSERT_NEAR(state_of(w, b).velocity.z, 1.0, 1e-12);
+    rbs_world_destroy(w);
+}
+
+static void state_view_is_zero_copy(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_state_view v;
+    const double *p;
+    (void)state;
+    ball(w, 0.1, 1, 0, 0, 5, 0, 0, 0, (rbs_material_id){0, 0});
+    CHECK_OK(rbs_world_state(w, &v));
+    assert_int_equal(v.slots, 1);
+    p = v.position;
+    assert_true(p[2] == 5.0);
+    step_n(w, 1);
+    CHECK_OK(rbs_world_state(w, &v));
+    assert_ptr_equal(p, v.position);
+    assert_true(p[2] < 5.0);
+    rbs_world_destroy(w);
+}
+
+static void null_arguments_never_crash(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    (void)state;
+    assert_int_equal(rbs_world_step(NULL, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_add_sphere(w, NULL, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_add_sphere(NULL, NULL, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_energy(w, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_find_body(w, NULL, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_set_dt(w, 0.0), RBS_E_INVALID);
+    assert_int_equal(rbs_world_set_dt(w, INFINITY), RBS_E_INVALID);
+    assert_non_null(rbs_world_last_error(NULL));
+    rbs_world_destroy(NULL);
+    rbs_world_destroy(w);
+}
+
+/* An overflow during a step (a huge force) is an error and the world stays
+ * at its last good state. */
+static void overflow_in_step_keeps_last_good_state(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_body_id b = ball(w, 0.1, 1e-5, 0, 0, 5, 0, 0, 0, (rbs_material_id){0, 0});
+    rbs_vec3 f = {1e308, 0, 0}; /* a = 1e313 overflows */
+    uint64_t h;
+    (void)state;
+    step_n(w, 3);
+    CHECK_OK(rbs_body_set_force(w, b, f));
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+    assert_non_null(strstr(rbs_world_last_error(w), "NaN or infinite"));
+    assert_true(rbs_world_hash(w) == h);
+    assert_int_equal(rbs_world_step_count(w), 3);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(version_matches_header),
+        cmocka_unit_test(status_strings),
+        cmocka_unit_test(method_names_round_trip),
+        cmocka_unit_test(old_shorter_defs_get_defaults),
+        cmocka_unit_test(uninitialised_def_is_rejected),
+        cmocka_unit_test(create_in_caller_memory),
+        cmocka_unit_test(capacity_error_leaves_world_unchanged),
+        cmocka_unit_test(contact_capacity_error_keeps_state),
+        cmocka_unit_test(ids_stale_after_remove),
+        cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
+        cmocka_unit_test(pair_rules),
+        cmocka_unit_test(most_specific_pair_wins),
+        cmocka_unit_test(state_view_is_zero_copy),
+        cmocka_unit_test(null_arguments_never_crash),
+        cmocka_unit_test(overflow_in_step_keeps_last_good_state),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
