@@ -1,6 +1,10 @@
 /*
  * step_euler.c - the seed's method: semi-implicit Euler with global rollback.
  *
+ * rbs__step_rollback() is the loop every rollback method shares; a method
+ * supplies the advance function that moves velocities and positions over one
+ * sub-step (Euler's below; Verlet and RK4 plug in the same way).
+ *
  * One frame (dt) is covered by sub-steps h = dt / 2^k.  Each sub-step:
  *   detect contacts; resolve collisions; v += a h, w += I^-1 (tau - w x Iw) h;
  *   resolve resting contacts; x += v h, q = exp(w h) q.
@@ -14,11 +18,8 @@
 
 #include "core/world_internal.h"
 
-void rbs__save_state(const rbs_world *w, double *save);
-void rbs__restore_state(rbs_world *w, const double *save);
-
 /* Mutual Newtonian gravity: accelerations into w->acc (exact pairwise sum). */
-static void mutual_gravity(rbs_world *w)
+void rbs__mutual_gravity(rbs_world *w)
 {
     uint32_t i, j;
     double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
@@ -40,11 +41,11 @@ static void mutual_gravity(rbs_world *w)
 }
 
 /* v += a h; w += I^-1 (tau - w x I w) h. */
-static void integrate_velocities(rbs_world *w, double h)
+void rbs__integrate_velocities(rbs_world *w, double h)
 {
     uint32_t k;
     if (w->plan.mutual)
-        mutual_gravity(w);
+        rbs__mutual_gravity(w);
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         v3 a, tau;
@@ -70,7 +71,7 @@ static void integrate_velocities(rbs_world *w, double h)
 }
 
 /* x += v h (for the centre of mass); q = exp(w h) q, exactly. */
-static void integrate_positions(rbs_world *w, double h)
+void rbs__integrate_positions(rbs_world *w, double h)
 {
     uint32_t k;
     for (k = 0; k < w->sphere_count; ++k) {
@@ -98,7 +99,20 @@ static void integrate_positions(rbs_world *w, double h)
     }
 }
 
+/* Euler's sub-step: forces, resting contact, then positions. */
+static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
+{
+    rbs__integrate_velocities(w, h);
+    rbs__solve_resting(w, info);
+    rbs__integrate_positions(w, h);
+}
+
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
+{
+    return rbs__step_rollback(w, info, euler_advance);
+}
+
+rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance)
 {
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
@@ -111,15 +125,13 @@ rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
         double h;
         if (hu > total - done)
             hu = total - done;
-        h = ldexp(dt, 0) * ((double)hu / (double)total);
+        h = dt * ((double)hu / (double)total);
         rbs__save_state(w, w->sub_save);
         st = rbs__detect(w, dt);
         if (st != RBS_OK)
             return st;
         rbs__solve_collisions(w, info);
-        integrate_velocities(w, h);
-        rbs__solve_resting(w, info);
-        integrate_positions(w, h);
+        advance(w, h, info);
         if (rbs__overlap_grew(w, w->sub_save, &pen)) {
             if (hu > 1) {
                 rbs__restore_state(w, w->sub_save);

@@ -131,7 +131,20 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
 
-/* Methods (step_euler.c). */
+/* State save/restore (step.c). */
+void rbs__save_state(const rbs_world *w, double *save);
+void rbs__restore_state(rbs_world *w, const double *save);
+
+/* The shared rollback loop and Euler's pieces (step_euler.c).  An advance
+ * function moves velocities and positions over one sub-step of h seconds,
+ * after the collision pass; it may run the resting pass. */
+typedef void (*rbs__advance_fn)(rbs_world *w, double h, rbs_step_info *info);
+rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance);
+void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
+void rbs__integrate_velocities(rbs_world *w, double h);
+void rbs__integrate_positions(rbs_world *w, double h);
+
+/* Methods: one entry point each (step_<method>.c). */
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
