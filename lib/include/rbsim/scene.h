@@ -69,6 +69,10 @@ RBS_API rbs_status rbs_scene_build(const rbs_scene *scene, rbs_world **out);
 
 /** simulation.steps */
 RBS_API uint64_t rbs_scene_steps(const rbs_scene *scene);
+/** simulation.dt, s (after any override); 0 for NULL. */
+RBS_API double rbs_scene_dt(const rbs_scene *scene);
+/** The scene's "description" ("" if none); owned by the scene. */
+RBS_API const char *rbs_scene_description(const rbs_scene *scene);
 /** simulation.pause_on_collision */
 RBS_API int32_t rbs_scene_pause_on_collision(const rbs_scene *scene);
 /** Command-line overrides: steps (0 keeps), dt (<= 0 keeps), method

@@ -1,0 +1,633 @@
+/*
+ * scene.c - the scene object: errors, loading, accessors, and building a
+ * world from the validated description.
+ */
+#include "scene/scene_internal.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+char *rbs__strdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d != NULL) {
+        memcpy(d, s, n);
+    }
+    return d;
+}
+
+rbs_scene *rbs__scene_new(void)
+{
+    rbs_scene *scene = calloc(1, sizeof *scene);
+    if (scene == NULL) {
+        return NULL;
+    }
+    scene->dt = 0.001;
+    scene->gravity.z = -9.81;
+    scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
+    scene->method = RBS_METHOD_EULER;
+    scene->tolerance = 1e-9;
+    scene->restitution = 0.5;
+    scene->gravity_constant = 6.674e-11;
+    return scene;
+}
+
+int32_t rbs__scene_add_file(rbs_scene *scene, const char *name)
+{
+    char *copy;
+    if (scene->file_count >= RBS__SCENE_FILES_MAX) {
+        return -1;
+    }
+    copy = rbs__strdup(name != NULL ? name : "<scene>");
+    if (copy == NULL) {
+        return -1;
+    }
+    scene->files[scene->file_count] = copy;
+    return scene->file_count++;
+}
+
+void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
+                      const char *fmt, ...)
+{
+    char message[512], head[64];
+    const char *file;
+    size_t nt, nf, np, nm;
+    char *buf;
+    rbs__scene_err *e;
+    va_list ap;
+    scene->error_count++;
+    if (scene->error_kept >= RBS_SCENE_ERRORS_MAX) {
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof message, fmt, ap);
+    va_end(ap);
+    if (path == NULL) {
+        path = "";
+    }
+    file = at.file >= 0 && at.file < scene->file_count ? scene->files[at.file]
+                                                       : "command line";
+    if (at.line > 0) {
+        snprintf(head, sizeof head, ":%ld:%ld", (long)at.line, (long)at.column);
+    } else {
+        head[0] = '\0';
+    }
+    nf = strlen(file);
+    np = strlen(path);
+    nm = strlen(message);
+    nt = nf + strlen(head) + 2 + np + (np ? 2 : 0) + nm;
+    buf = malloc(nt + 1 + nf + 1 + np + 1 + nm + 1);
+    if (buf == NULL) {
+        return; /* counted, not kept */
+    }
+    snprintf(buf, nt + 1, "%s%s: %s%s%s", file, head, path, np ? ": " : "", message);
+    memcpy(buf + nt + 1, file, nf + 1);
+    memcpy(buf + nt + 1 + nf + 1, path, np + 1);
+    memcpy(buf + nt + 1 + nf + 1 + np + 1, message, nm + 1);
+    e = &scene->errors[scene->error_kept++];
+    e->buf = buf;
+    e->pub.text = buf;
+    e->pub.file = buf + nt + 1;
+    e->pub.path = buf + nt + 1 + nf + 1;
+    e->pub.message = buf + nt + 1 + nf + 1 + np + 1;
+    e->pub.line = at.line;
+    e->pub.column = at.column;
+}
+
+size_t rbs__edit_distance(const char *a, const char *b)
+{
+    /* Levenshtein distance over at most 64 bytes of each word. */
+    size_t row[65];
+    size_t la = strlen(a), lb = strlen(b), i, j;
+    if (la > 64) {
+        la = 64;
+    }
+    if (lb > 64) {
+        lb = 64;
+    }
+    for (j = 0; j <= lb; j++) {
+        row[j] = j;
+    }
+    for (i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (j = 1; j <= lb; j++) {
+            size_t up = row[j];
+            size_t best = diag + (a[i - 1] == b[j - 1] ? 0 : 1);
+            if (up + 1 < best) {
+                best = up + 1;
+            }
+            if (row[j - 1] + 1 < best) {
+                best = row[j - 1] + 1;
+            }
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[lb];
+}
+
+const char *rbs__suggest(const char *word, const char *const *candidates, size_t n)
+{
+    const char *best = NULL;
+    size_t best_d = (size_t)-1, i, limit;
+    limit = strlen(word) / 3;
+    if (limit < 2) {
+        limit = 2;
+    }
+    for (i = 0; i < n; i++) {
+        size_t d = rbs__edit_distance(word, candidates[i]);
+        if (d < best_d) {
+            best_d = d;
+            best = candidates[i];
+        }
+    }
+    return best_d <= limit ? best : NULL;
+}
+
+rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,
+                          char **text, size_t *len)
+{
+    FILE *f;
+    char *buf = NULL;
+    size_t n = 0, cap = 0;
+    struct stat st;
+    char why[128];
+    *text = NULL;
+    *len = 0;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        rbs__scene_error(scene, at, "", "cannot read '%s': is a directory", path);
+        return RBS_E_IO;
+    }
+    f = fopen(path, "rb");
+    if (f == NULL) {
+        int err = errno;
+        if (strerror_r(err, why, sizeof why) != 0) {
+            snprintf(why, sizeof why, "error %d", err);
+        }
+        rbs__scene_error(scene, at, "", "cannot open '%s': %s", path, why);
+        return RBS_E_IO;
+    }
+    for (;;) {
+        size_t got;
+        if (cap - n < 65536) {
+            char *bigger;
+            if (cap > RBS__SCENE_FILE_MAX) {
+                rbs__scene_error(scene, at, "", "cannot read '%s': larger than %lu bytes",
+                                 path, (unsigned long)RBS__SCENE_FILE_MAX);
+                free(buf);
+                fclose(f);
+                return RBS_E_IO;
+            }
+            cap = cap ? cap * 2 : 65536 * 2;
+            bigger = realloc(buf, cap + 1);
+            if (bigger == NULL) {
+                rbs__scene_error(scene, at, "", "cannot read '%s': out of memory", path);
+                free(buf);
+                fclose(f);
+                return RBS_E_MEMORY;
+            }
+            buf = bigger;
+        }
+        got = fread(buf + n, 1, cap - n, f);
+        n += got;
+        if (got == 0) {
+            break;
+        }
+    }
+    if (ferror(f)) {
+        int err = errno;
+        if (strerror_r(err, why, sizeof why) != 0) {
+            snprintf(why, sizeof why, "error %d", err);
+        }
+        rbs__scene_error(scene, at, "", "cannot read '%s': %s", path, why);
+        free(buf);
+        fclose(f);
+        return RBS_E_IO;
+    }
+    fclose(f);
+    buf[n] = '\0';
+    *text = buf;
+    *len = n;
+    return RBS_OK;
+}
+
+/* Parse JSON text into an existing scene (file already registered). */
+static void scene_parse_json_into(rbs_scene *scene, const char *text, size_t len,
+                                  int32_t file)
+{
+    rbs__src src;
+    rbs__posmap map;
+    cJSON *tree = NULL;
+    memset(&map, 0, sizeof map);
+    if (rbs__src_init(&src, text, len) != 0) {
+        rbs__loc none = {file, 0, 0};
+        rbs__scene_error(scene, none, "", "out of memory");
+        return;
+    }
+    if (rbs__json_parse(scene, &src, file, &map, &tree) == 0) {
+        rbs__scene_validate(scene, tree, &map, &src, 1);
+    }
+    cJSON_Delete(tree);
+    rbs__posmap_fini(&map);
+    rbs__src_fini(&src);
+}
+
+static rbs_status scene_result(rbs_scene *scene, rbs_status io, rbs_scene **out)
+{
+    *out = scene;
+    if (io != RBS_OK) {
+        return io;
+    }
+    return scene->error_count > 0 ? RBS_E_SCENE : RBS_OK;
+}
+
+rbs_status rbs_scene_parse_json(const char *text, size_t len, const char *name,
+                                rbs_scene **out)
+{
+    rbs_scene *scene;
+    int32_t file;
+    if (out == NULL) {
+        return RBS_E_INVALID;
+    }
+    *out = NULL;
+    if (text == NULL && len > 0) {
+        return RBS_E_INVALID;
+    }
+    scene = rbs__scene_new();
+    if (scene == NULL) {
+        return RBS_E_MEMORY;
+    }
+    file = rbs__scene_add_file(scene, name != NULL ? name : "<json>");
+    if (file < 0) {
+        rbs_scene_free(scene);
+        return RBS_E_MEMORY;
+    }
+    scene_parse_json_into(scene, text != NULL ? text : "", len, file);
+    return scene_result(scene, RBS_OK, out);
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), m = strlen(suffix);
+    return n >= m && strcmp(s + n - m, suffix) == 0;
+}
+
+rbs_status rbs_scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
+{
+    rbs_scene *scene;
+    struct stat st;
+    char *dirpath = NULL;
+    rbs_status status = RBS_OK;
+    if (out == NULL) {
+        return RBS_E_INVALID;
+    }
+    *out = NULL;
+    if (path == NULL || (format != RBS_SCENE_AUTO && format != RBS_SCENE_JSON &&
+                         format != RBS_SCENE_TEXT)) {
+        return RBS_E_INVALID;
+    }
+    scene = rbs__scene_new();
+    if (scene == NULL) {
+        return RBS_E_MEMORY;
+    }
+    /* a folder stands for its config.txt */
+    if (format != RBS_SCENE_JSON && stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+        size_t n = strlen(path);
+        dirpath = malloc(n + sizeof "/config.txt");
+        if (dirpath == NULL) {
+            rbs_scene_free(scene);
+            return RBS_E_MEMORY;
+        }
+        memcpy(dirpath, path, n);
+        memcpy(dirpath + n, (n > 0 && path[n - 1] == '/') ? "config.txt" : "/config.txt",
+               (n > 0 && path[n - 1] == '/') ? sizeof "config.txt" : sizeof "/config.txt");
+        path = dirpath;
+        format = RBS_SCENE_TEXT;
+    }
+    if (format == RBS_SCENE_AUTO) {
+        format = ends_with(path, ".json") || ends_with(path, ".JSON") ? RBS_SCENE_JSON
+                                                                     : RBS_SCENE_TEXT;
+    }
+    if (format == RBS_SCENE_JSON) {
+        int32_t file = rbs__scene_add_file(scene, path);
+        char *text = NULL;
+        size_t len = 0;
+        rbs__loc at = {file, 0, 0};
+        if (file < 0) {
+            free(dirpath);
+            rbs_scene_free(scene);
+            return RBS_E_MEMORY;
+        }
+        status = rbs__read_file(scene, path, at, &text, &len);
+        if (status == RBS_OK) {
+            scene_parse_json_into(scene, text, len, file);
+        }
+        free(text);
+    } else {
+        status = rbs__text_load(scene, path);
+    }
+    free(dirpath);
+    if (status == RBS_E_MEMORY && scene->error_count == 0) {
+        rbs_scene_free(scene);
+        return RBS_E_MEMORY;
+    }
+    return scene_result(scene, status, out);
+}
+
+void rbs_scene_free(rbs_scene *scene)
+{
+    uint32_t i;
+    int32_t f;
+    if (scene == NULL) {
+        return;
+    }
+    for (i = 0; i < scene->error_kept; i++) {
+        free(scene->errors[i].buf);
+    }
+    for (f = 0; f < scene->file_count; f++) {
+        free(scene->files[f]);
+    }
+    for (i = 0; i < scene->renderer_count; i++) {
+        free(scene->renderers[i].type);
+        free(scene->renderers[i].json);
+    }
+    free(scene->description);
+    free(scene->materials);
+    free(scene->pairs);
+    free(scene->bodies);
+    free(scene);
+}
+
+uint32_t rbs_scene_error_count(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->error_count : 0;
+}
+
+rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i, rbs_scene_error *out)
+{
+    if (scene == NULL || out == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (i >= scene->error_kept) {
+        return RBS_E_NOT_FOUND;
+    }
+    *out = scene->errors[i].pub;
+    return RBS_OK;
+}
+
+rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
+{
+    uint32_t n;
+    if (scene == NULL || out == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (scene->error_count > 0) {
+        return RBS_E_SCENE;
+    }
+    rbs_world_def_init(out);
+    n = scene->body_count > 0 ? scene->body_count : 1;
+    out->max_bodies = n;
+    out->max_materials = scene->material_count > 0 ? scene->material_count : 1;
+    out->max_pairs = scene->pair_count > 0 ? scene->pair_count : 1;
+    out->max_contacts = n > (UINT32_MAX - 16) / 4 ? UINT32_MAX : 4 * n + 16;
+    out->dt = scene->dt;
+    out->gravity = scene->gravity;
+    out->gravity_mode = scene->gravity_mode;
+    out->restitution = scene->restitution;
+    out->method = scene->method;
+    out->tolerance = scene->tolerance;
+    out->mutual_gravity = scene->mutual_gravity;
+    out->gravity_constant = scene->gravity_constant;
+    out->softening = scene->softening;
+    return RBS_OK;
+}
+
+rbs_status rbs_scene_populate(const rbs_scene *scene, rbs_world *world)
+{
+    rbs_material_id *ids;
+    rbs_material_id none = {0, 0};
+    rbs_status st = RBS_OK;
+    uint32_t i;
+    if (scene == NULL || world == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (scene->error_count > 0) {
+        return RBS_E_SCENE;
+    }
+    ids = calloc(scene->material_count + 1, sizeof *ids);
+    if (ids == NULL) {
+        return RBS_E_MEMORY;
+    }
+    for (i = 0; i < scene->material_count && st == RBS_OK; i++) {
+        st = rbs_world_add_material(world, scene->materials[i], &ids[i]);
+    }
+    for (i = 0; i < scene->pair_count && st == RBS_OK; i++) {
+        const rbs__scene_pair *p = &scene->pairs[i];
+        rbs_pair_def def;
+        rbs_pair_def_init(&def);
+        def.a = p->a >= 0 ? ids[p->a] : none;
+        def.b = p->b >= 0 ? ids[p->b] : none;
+        def.static_friction = p->static_friction;
+        def.kinetic_friction = p->kinetic_friction;
+        def.restitution = p->restitution;
+        def.rolling = p->rolling;
+        def.spinning = p->spinning;
+        st = rbs_world_set_pair(world, &def);
+    }
+    for (i = 0; i < scene->body_count && st == RBS_OK; i++) {
+        const rbs__scene_body *b = &scene->bodies[i];
+        rbs_body_id id;
+        if (b->type == RBS_BODY_SPHERE) {
+            rbs_sphere_def def;
+            rbs_sphere_def_init(&def);
+            def.name = b->name;
+            def.radius = b->radius;
+            def.mass = b->density > 0 ? 0.0 : b->mass;
+            def.density = b->density;
+            def.inertia_kind = b->inertia_kind;
+            def.inertia = b->inertia;
+            def.position = b->position;
+            def.orientation = b->orientation;
+            def.velocity = b->velocity;
+            def.angular_velocity = b->angular_velocity;
+            def.center_of_mass = b->center_of_mass;
+            def.force = b->force;
+            def.torque = b->torque;
+            def.material = b->material >= 0 ? ids[b->material] : none;
+            def.color = b->color;
+            def.texture = b->texture;
+            def.fixed = b->fixed;
+            st = rbs_world_add_sphere(world, &def, &id);
+        } else {
+            rbs_plane_def def;
+            rbs_plane_def_init(&def);
+            def.name = b->name;
+            def.point = b->point;
+            def.normal = b->normal;
+            def.material = b->material >= 0 ? ids[b->material] : none;
+            def.color = b->color;
+            def.texture = b->texture;
+            st = rbs_world_add_plane(world, &def, &id);
+        }
+    }
+    free(ids);
+    return st;
+}
+
+rbs_status rbs_scene_build(const rbs_scene *scene, rbs_world **out)
+{
+    rbs_world_def def;
+    rbs_world *world = NULL;
+    rbs_status st;
+    if (out == NULL) {
+        return RBS_E_INVALID;
+    }
+    *out = NULL;
+    st = rbs_scene_world_def(scene, &def);
+    if (st != RBS_OK) {
+        return st;
+    }
+    st = rbs_world_create(&def, &world);
+    if (st != RBS_OK) {
+        return st;
+    }
+    st = rbs_scene_populate(scene, world);
+    if (st != RBS_OK) {
+        rbs_world_destroy(world);
+        return st;
+    }
+    *out = world;
+    return RBS_OK;
+}
+
+uint64_t rbs_scene_steps(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->steps : 0;
+}
+
+double rbs_scene_dt(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->dt : 0.0;
+}
+
+const char *rbs_scene_description(const rbs_scene *scene)
+{
+    return scene != NULL && scene->description != NULL ? scene->description : "";
+}
+
+int32_t rbs_scene_pause_on_collision(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->pause_on_collision : 0;
+}
+
+rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
+                              const char *method)
+{
+    rbs__loc none = {-1, 0, 0};
+    uint64_t new_steps;
+    double new_dt;
+    rbs_method new_method;
+    uint32_t before;
+    if (scene == NULL) {
+        return RBS_E_INVALID;
+    }
+    before = scene->error_count;
+    new_steps = steps != 0 ? steps : scene->steps;
+    new_dt = scene->dt;
+    new_method = scene->method;
+    if (!(dt <= 0.0)) {
+        if (!isfinite(dt)) {
+            rbs__scene_error(scene, none, "--dt", "must be a finite number > 0, got %g",
+                             dt);
+        } else {
+            new_dt = dt;
+        }
+    }
+    if ((double)new_steps > RBS__SCENE_STEPS_MAX) {
+        rbs__scene_error(scene, none, "--steps", "must be at most 2^53, got %llu",
+                         (unsigned long long)new_steps);
+    } else if (!isfinite((double)new_steps * new_dt)) {
+        rbs__scene_error(scene, none, "--steps",
+                         "steps * dt overflows (%llu * %g)",
+                         (unsigned long long)new_steps, new_dt);
+    }
+    if (method != NULL && rbs_method_from_name(method, &new_method) != RBS_OK) {
+        const char *names[RBS_METHOD_COUNT];
+        const char *hint;
+        int k;
+        for (k = 0; k < RBS_METHOD_COUNT; k++) {
+            names[k] = rbs_method_name((rbs_method)k);
+            if (names[k] == NULL) {
+                names[k] = "";
+            }
+        }
+        hint = rbs__suggest(method, names, RBS_METHOD_COUNT);
+        rbs__scene_error(scene, none, "--method",
+                         "unknown method \"%.64s\"%s%s%s; expected euler, selective, "
+                         "event, verlet, rk4 or adaptive",
+                         method, hint ? " (did you mean \"" : "", hint ? hint : "",
+                         hint ? "\"?)" : "");
+    }
+    if (scene->error_count != before) {
+        return RBS_E_SCENE;
+    }
+    scene->steps = new_steps;
+    scene->dt = new_dt;
+    scene->method = new_method;
+    return RBS_OK;
+}
+
+uint32_t rbs_scene_renderer_count(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->renderer_count : 0;
+}
+
+rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
+                                  rbs_scene_renderer *out)
+{
+    const rbs__scene_renderer *r;
+    if (scene == NULL || out == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (i >= scene->renderer_count) {
+        return RBS_E_NOT_FOUND;
+    }
+    r = &scene->renderers[i];
+    out->type = r->type;
+    out->json = r->json;
+    out->file = r->at.file >= 0 && r->at.file < scene->file_count
+                    ? scene->files[r->at.file]
+                    : "";
+    out->line = r->at.line;
+    out->column = r->at.column;
+    return RBS_OK;
+}
+
+rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
+                          rbs_scene_format format)
+{
+    if (scene == NULL || path == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (scene->error_count > 0) {
+        return RBS_E_SCENE;
+    }
+    if (format == RBS_SCENE_AUTO) {
+        format = ends_with(path, ".json") || ends_with(path, ".JSON") ? RBS_SCENE_JSON
+                                                                     : RBS_SCENE_TEXT;
+    }
+    if (format == RBS_SCENE_JSON) {
+        return rbs__scene_save_json(scene, path);
+    }
+    if (format == RBS_SCENE_TEXT) {
+        return rbs__scene_save_text(scene, path);
+    }
+    return RBS_E_INVALID;
+}

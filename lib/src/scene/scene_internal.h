@@ -1,0 +1,185 @@
+/*
+ * scene_internal.h - the scene module's private types (never installed).
+ *
+ * Design: both file formats are turned into the same cJSON tree (the JSON
+ * scene format, version 1) together with a position map that gives the file,
+ * line and column of every value and key.  One validator walks that tree,
+ * reports every error with its place, and fills the plain description below
+ * (struct rbs_scene).  Worlds are built from the description only, so the
+ * two formats cannot drift apart.
+ */
+#ifndef RBS_SCENE_INTERNAL_H
+#define RBS_SCENE_INTERNAL_H
+
+#include <cjson/cJSON.h>
+
+#include "rbsim/reel.h"
+#include "rbsim/scene.h"
+
+/** Deepest nesting of JSON arrays/objects accepted (cJSON allows 1000). */
+#define RBS__SCENE_DEPTH_MAX 64
+/** Longest number literal accepted (cJSON copies numbers into 64 bytes). */
+#define RBS__SCENE_NUMBER_MAX 63
+/** Largest scene file read, bytes. */
+#define RBS__SCENE_FILE_MAX ((size_t)256 * 1024 * 1024)
+/** Files of one scene: JSON uses one; text uses config, materials, objects. */
+#define RBS__SCENE_FILES_MAX 4
+/** Largest steps value: every frame time k*dt keeps an exact integer k. */
+#define RBS__SCENE_STEPS_MAX 9007199254740992.0 /* 2^53 */
+
+/** A place in a scene file. */
+typedef struct rbs__loc {
+    int32_t file; /* index in scene->files, -1 if none */
+    int32_t line; /* 1-based, 0 if none */
+    int32_t column;
+} rbs__loc;
+
+/** One source file held while parsing, with its line-start table. */
+typedef struct rbs__src {
+    const char *text;
+    size_t len;
+    size_t *lines; /* byte offset of each line start */
+    size_t line_count;
+} rbs__src;
+
+/** Where an item of the tree came from: its value and, in an object, its key.
+ * raw/raw_len: the value's literal text (numbers and text-format tokens). */
+typedef struct rbs__pos {
+    const cJSON *item;
+    int32_t file;
+    uint32_t value_off, key_off;
+    uint32_t raw_off, raw_len;
+    int32_t has_key;
+} rbs__pos;
+
+/** Map from cJSON item to rbs__pos (open addressing on the pointer). */
+typedef struct rbs__posmap {
+    rbs__pos *slots;
+    size_t cap; /* power of two */
+    size_t count;
+} rbs__posmap;
+
+typedef struct rbs__scene_error {
+    char *buf; /* "text\0file\0path\0message\0" */
+    rbs_scene_error pub;
+} rbs__scene_err;
+
+typedef struct rbs__scene_pair {
+    int32_t a, b; /* material index, -1 = "*" */
+    double static_friction, kinetic_friction;
+    double restitution; /* < 0: the simulation's */
+    double rolling, spinning;
+} rbs__scene_pair;
+
+typedef struct rbs__scene_body {
+    rbs_body_type type;
+    char name[RBS_NAME_MAX];
+    /* spheres */
+    double radius;
+    double mass;    /* > 0 unless density is used */
+    double density; /* > 0 when given instead of mass */
+    rbs_inertia_kind inertia_kind;
+    rbs_vec3 inertia;
+    rbs_vec3 position;
+    rbs_quat orientation;
+    rbs_vec3 velocity, angular_velocity, center_of_mass, force, torque;
+    int32_t fixed;
+    /* planes */
+    rbs_vec3 point, normal;
+    /* both */
+    int32_t material; /* index, -1 = none */
+    uint32_t color;
+    rbs_texture texture;
+    int32_t ok; /* its own values were valid (cross-checks use it) */
+    /* places, for cross-checks */
+    rbs__loc at, at_position, at_material;
+} rbs__scene_body;
+
+typedef struct rbs__scene_renderer {
+    char *type;
+    char *json;
+    rbs__loc at;
+} rbs__scene_renderer;
+
+struct rbs_scene {
+    /* errors */
+    rbs__scene_err errors[RBS_SCENE_ERRORS_MAX];
+    uint32_t error_kept;
+    uint32_t error_count;
+    /* files, for messages */
+    char *files[RBS__SCENE_FILES_MAX];
+    int32_t file_count;
+    /* description */
+    char *description; /* NULL if none */
+    uint64_t steps;
+    double dt;
+    rbs_vec3 gravity;
+    rbs_gravity_mode gravity_mode;
+    rbs_method method;
+    double tolerance;
+    double restitution;
+    int32_t pause_on_collision;
+    int32_t mutual_gravity;
+    double gravity_constant, softening;
+    uint32_t material_count;
+    char (*materials)[RBS_NAME_MAX];
+    uint32_t pair_count;
+    rbs__scene_pair *pairs;
+    uint32_t body_count;
+    rbs__scene_body *bodies;
+    uint32_t renderer_count;
+    rbs__scene_renderer renderers[RBS_RENDERERS_MAX];
+};
+
+/* scene.c */
+rbs_scene *rbs__scene_new(void);
+int32_t rbs__scene_add_file(rbs_scene *scene, const char *name);
+/** Record an error (printf-style message).  at.line == 0: no place. */
+void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
+                      const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+char *rbs__strdup(const char *s);
+size_t rbs__edit_distance(const char *a, const char *b);
+/** The closest of n candidates to word (stride bytes apart), or NULL if none
+ * is close enough to suggest. */
+const char *rbs__suggest(const char *word, const char *const *candidates,
+                         size_t n);
+
+/* scene_src.c: sources, positions */
+int rbs__src_init(rbs__src *src, const char *text, size_t len);
+void rbs__src_fini(rbs__src *src);
+rbs__loc rbs__src_loc(const rbs__src *src, int32_t file, size_t off);
+int rbs__posmap_init(rbs__posmap *map, size_t expected);
+void rbs__posmap_fini(rbs__posmap *map);
+int rbs__posmap_put(rbs__posmap *map, const rbs__pos *pos);
+const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item);
+
+/* scene_json.c: JSON text -> tree + positions */
+/** Parse JSON text into *tree with positions for every item (file index
+ * file).  On a syntax error records it and returns nonzero. */
+int rbs__json_parse(rbs_scene *scene, const rbs__src *src, int32_t file,
+                    rbs__posmap *map, cJSON **tree);
+
+/* scene_text.c: config.txt + materials.txt + objects.txt -> tree + positions */
+rbs_status rbs__text_load(rbs_scene *scene, const char *path);
+
+/* scene_validate.c: tree -> description */
+/** Validate a tree; fill the scene's description; record every error. */
+void rbs__scene_validate(rbs_scene *scene, const cJSON *tree,
+                         const rbs__posmap *map, const rbs__src *srcs,
+                         int32_t src_count);
+
+/* scene_save.c */
+rbs_status rbs__scene_save_json(const rbs_scene *scene, const char *path);
+rbs_status rbs__scene_save_text(const rbs_scene *scene, const char *path);
+
+/* scene.c: reading files */
+/** Read a whole file into a new buffer (NUL-terminated).  Records an error
+ * naming the file on failure. */
+rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,
+                          char **text, size_t *len);
+
+#endif /* RBS_SCENE_INTERNAL_H */

@@ -1,0 +1,965 @@
+/*
+ * scene_text.c - the seed's text scene: config.txt with materials.txt and
+ * objects.txt (see scenes/FORMAT.md, "Text format").
+ *
+ * The three files are turned into the same tree as a JSON scene, with the
+ * file, line and column of every token recorded, and then checked by the one
+ * validator; so both formats accept and reject exactly the same scenes.
+ *
+ * Lexical rules (all three files): '#' starts a comment when it begins a
+ * token, unless it is a colour "#rrggbb"; tokens are separated by blanks and
+ * commas; "double quotes" make one string token (escapes \" \\ \n \t \r).
+ * A token is a number if it follows the JSON number grammar, true/false are
+ * booleans, anything else is a string.
+ */
+#include "scene/scene_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct tctx {
+    rbs_scene *scene;
+    rbs__posmap *map;
+    rbs__src *srcs; /* indexed by file */
+    int32_t file;   /* file being read */
+    int failed;     /* out of memory */
+} tctx;
+
+typedef struct ttok {
+    size_t off, len; /* as written, quotes included */
+    int quoted;
+} ttok;
+
+#define TOKS_MAX 64
+
+static rbs__loc tloc(const tctx *t, size_t off)
+{
+    return rbs__src_loc(&t->srcs[t->file], t->file, off);
+}
+
+static void record(tctx *t, const cJSON *item, size_t value_off, size_t raw_len,
+                   int has_key, size_t key_off)
+{
+    rbs__pos pos;
+    memset(&pos, 0, sizeof pos);
+    pos.item = item;
+    pos.file = t->file;
+    pos.value_off = (uint32_t)value_off;
+    pos.raw_off = (uint32_t)value_off;
+    pos.raw_len = (uint32_t)raw_len;
+    pos.has_key = has_key;
+    pos.key_off = (uint32_t)key_off;
+    if (rbs__posmap_put(t->map, &pos) != 0) {
+        t->failed = 1;
+    }
+}
+
+static int is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+static int is_hex(char c)
+{
+    return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
+}
+
+/* '#' at s[i] begins a colour "#rrggbb" rather than a comment. */
+static int is_color_at(const char *s, size_t i, size_t end)
+{
+    size_t k;
+    if (i + 7 > end) {
+        return 0;
+    }
+    for (k = 1; k <= 6; k++) {
+        if (!is_hex(s[i + k])) {
+            return 0;
+        }
+    }
+    return i + 7 == end || is_blank(s[i + 7]) || s[i + 7] == ',';
+}
+
+/* Split [begin, end) into tokens; separators: blanks (and commas if commas).
+ * Stops at a comment.  Returns the count, or -1 after reporting an error. */
+static int tokenize(tctx *t, size_t begin, size_t end, int commas, ttok *toks,
+                    int max)
+{
+    const char *s = t->srcs[t->file].text;
+    size_t i = begin;
+    int n = 0;
+    while (i < end) {
+        size_t start;
+        if (is_blank(s[i]) || (commas && s[i] == ',')) {
+            i++;
+            continue;
+        }
+        if (s[i] == '#' && !is_color_at(s, i, end)) {
+            break;
+        }
+        if (n == max) {
+            rbs__scene_error(t->scene, tloc(t, i), "", "more than %d values on one line",
+                             max);
+            return -1;
+        }
+        start = i;
+        if (s[i] == '"') {
+            i++;
+            while (i < end && s[i] != '"') {
+                i += (s[i] == '\\' && i + 1 < end) ? 2 : 1;
+            }
+            if (i >= end) {
+                rbs__scene_error(t->scene, tloc(t, start), "",
+                                 "unterminated string: missing closing '\"'");
+                return -1;
+            }
+            i++;
+            toks[n].quoted = 1;
+        } else {
+            while (i < end && !is_blank(s[i]) && !(commas && s[i] == ',')) {
+                i++;
+            }
+            toks[n].quoted = 0;
+        }
+        toks[n].off = start;
+        toks[n].len = i - start;
+        n++;
+    }
+    return n;
+}
+
+/* JSON number grammar, the whole token. */
+static int is_number(const char *s, size_t n)
+{
+    size_t i = 0;
+    if (i < n && s[i] == '-') {
+        i++;
+    }
+    if (i >= n || s[i] < '0' || s[i] > '9') {
+        return 0;
+    }
+    if (s[i] == '0') {
+        i++;
+    } else {
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            i++;
+        }
+    }
+    if (i < n && s[i] == '.') {
+        i++;
+        if (i >= n || s[i] < '0' || s[i] > '9') {
+            return 0;
+        }
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            i++;
+        }
+    }
+    if (i < n && (s[i] == 'e' || s[i] == 'E')) {
+        i++;
+        if (i < n && (s[i] == '+' || s[i] == '-')) {
+            i++;
+        }
+        if (i >= n || s[i] < '0' || s[i] > '9') {
+            return 0;
+        }
+        while (i < n && s[i] >= '0' && s[i] <= '9') {
+            i++;
+        }
+    }
+    return i == n && n <= RBS__SCENE_NUMBER_MAX;
+}
+
+/* Decode a quoted token (quotes included) into a new string. */
+static char *unquote(const char *s, size_t len)
+{
+    char *out = malloc(len + 1);
+    size_t i, k = 0;
+    if (out == NULL) {
+        return NULL;
+    }
+    for (i = 1; i + 1 < len; i++) {
+        char c = s[i];
+        if (c == '\\' && i + 2 < len) {
+            char e = s[++i];
+            c = e == 'n' ? '\n' : e == 't' ? '\t' : e == 'r' ? '\r' : e;
+        }
+        out[k++] = c;
+    }
+    out[k] = '\0';
+    return out;
+}
+
+/* A token as a tree value (recorded at its place). */
+static cJSON *tok_value(tctx *t, const char *s, size_t off, size_t len, int quoted,
+                        int has_key, size_t key_off)
+{
+    cJSON *item;
+    const char *w = s + off;
+    if (quoted) {
+        char *str = unquote(w, len);
+        item = str != NULL ? cJSON_CreateString(str) : NULL;
+        free(str);
+    } else if (len == 4 && memcmp(w, "true", 4) == 0) {
+        item = cJSON_CreateTrue();
+    } else if (len == 5 && memcmp(w, "false", 5) == 0) {
+        item = cJSON_CreateFalse();
+    } else if (len == 4 && memcmp(w, "null", 4) == 0) {
+        item = cJSON_CreateNull();
+    } else if (len == 2 && memcmp(w, "[]", 2) == 0) {
+        item = cJSON_CreateArray();
+    } else if (len == 2 && memcmp(w, "{}", 2) == 0) {
+        item = cJSON_CreateObject();
+    } else if (is_number(w, len)) {
+        char buf[RBS__SCENE_NUMBER_MAX + 1];
+        memcpy(buf, w, len);
+        buf[len] = '\0';
+        item = cJSON_CreateNumber(strtod(buf, NULL));
+    } else {
+        char *str = malloc(len + 1);
+        if (str != NULL) {
+            memcpy(str, w, len);
+            str[len] = '\0';
+        }
+        item = str != NULL ? cJSON_CreateString(str) : NULL;
+        free(str);
+    }
+    if (item == NULL) {
+        t->failed = 1;
+        return NULL;
+    }
+    record(t, item, off, len, has_key, key_off);
+    return item;
+}
+
+/* Values of a "key value..." line: one token is a scalar, more an array. */
+static cJSON *toks_value(tctx *t, const ttok *toks, int n, size_t key_off)
+{
+    const char *s = t->srcs[t->file].text;
+    cJSON *arr;
+    int k;
+    if (n == 1) {
+        return tok_value(t, s, toks[0].off, toks[0].len, toks[0].quoted, 1, key_off);
+    }
+    arr = cJSON_CreateArray();
+    if (arr == NULL) {
+        t->failed = 1;
+        return NULL;
+    }
+    record(t, arr, toks[0].off, 0, 1, key_off);
+    for (k = 0; k < n; k++) {
+        cJSON *e = tok_value(t, s, toks[k].off, toks[k].len, toks[k].quoted, 0, 0);
+        if (e == NULL) {
+            cJSON_Delete(arr);
+            return NULL;
+        }
+        cJSON_AddItemToArray(arr, e);
+    }
+    return arr;
+}
+
+/* Add item under key to obj (duplicates are kept: the validator names them). */
+static void add(cJSON *obj, const char *key, cJSON *item)
+{
+    if (item != NULL) {
+        cJSON_AddItemToObject(obj, key, item);
+    }
+}
+
+/* ---- key=value lists (renderers, mutual_gravity) ------------------------ */
+
+/* Walk a dotted key ("camera.position", "views[1].fov", "path[0].t") from obj,
+ * creating objects/arrays, and add the value at the end. */
+static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *value)
+{
+    const char *s = t->srcs[t->file].text;
+    size_t i = key_off, end = key_off + key_len;
+    cJSON *cur = obj;
+    for (;;) {
+        size_t seg = i;
+        char name[RBS_NAME_MAX];
+        cJSON *next;
+        while (i < end && s[i] != '.' && s[i] != '[') {
+            i++;
+        }
+        if (i == seg || i - seg >= sizeof name) {
+            rbs__scene_error(t->scene, tloc(t, seg), "",
+                             "bad key \"%.*s\": expected names joined by '.' and [index]",
+                             (int)key_len, s + key_off);
+            return -1;
+        }
+        memcpy(name, s + seg, i - seg);
+        name[i - seg] = '\0';
+        if (i == end) {
+            add(cur, name, value);
+            return 0;
+        }
+        next = cJSON_GetObjectItemCaseSensitive(cur, name);
+        if (s[i] == '.') {
+            if (next == NULL) {
+                next = cJSON_CreateObject();
+                if (next == NULL) {
+                    t->failed = 1;
+                    return -1;
+                }
+                record(t, next, seg, 0, 1, seg);
+                add(cur, name, next);
+            } else if (!cJSON_IsObject(next)) {
+                rbs__scene_error(t->scene, tloc(t, seg), "",
+                                 "\"%s\" was given a value and cannot also have keys", name);
+                return -1;
+            }
+            cur = next;
+            i++;
+            continue;
+        }
+        /* name[index]... */
+        if (next == NULL) {
+            next = cJSON_CreateArray();
+            if (next == NULL) {
+                t->failed = 1;
+                return -1;
+            }
+            record(t, next, seg, 0, 1, seg);
+            add(cur, name, next);
+        } else if (!cJSON_IsArray(next)) {
+            rbs__scene_error(t->scene, tloc(t, seg), "",
+                             "\"%s\" was given a value and cannot also have [index]", name);
+            return -1;
+        }
+        for (;;) {
+            size_t idx = 0, istart = ++i;
+            int size = cJSON_GetArraySize(next);
+            cJSON *elem;
+            while (i < end && s[i] >= '0' && s[i] <= '9' && idx < 100000) {
+                idx = idx * 10 + (size_t)(s[i] - '0');
+                i++;
+            }
+            if (i == istart || i >= end || s[i] != ']') {
+                rbs__scene_error(t->scene, tloc(t, istart), "",
+                                 "bad index in key \"%.*s\": expected [number]",
+                                 (int)key_len, s + key_off);
+                return -1;
+            }
+            i++;
+            if (idx > (size_t)size) {
+                rbs__scene_error(t->scene, tloc(t, istart), "",
+                                 "index [%lu] skips [%d]: give elements in order",
+                                 (unsigned long)idx, size);
+                return -1;
+            }
+            if (i == end) {
+                if (idx < (size_t)size) {
+                    rbs__scene_error(t->scene, tloc(t, istart), "",
+                                     "element [%lu] is given twice", (unsigned long)idx);
+                    return -1;
+                }
+                cJSON_AddItemToArray(next, value);
+                return 0;
+            }
+            elem = cJSON_GetArrayItem(next, (int)idx);
+            if (s[i] == '[') {
+                if (elem == NULL) {
+                    elem = cJSON_CreateArray();
+                    if (elem == NULL) {
+                        t->failed = 1;
+                        return -1;
+                    }
+                    record(t, elem, seg, 0, 0, 0);
+                    cJSON_AddItemToArray(next, elem);
+                } else if (!cJSON_IsArray(elem)) {
+                    rbs__scene_error(t->scene, tloc(t, istart), "",
+                                     "element [%lu] is not an array", (unsigned long)idx);
+                    return -1;
+                }
+                next = elem;
+                continue;
+            }
+            if (s[i] != '.') {
+                rbs__scene_error(t->scene, tloc(t, i), "",
+                                 "bad key \"%.*s\": expected '.' or '[' after ']'",
+                                 (int)key_len, s + key_off);
+                return -1;
+            }
+            if (elem == NULL) {
+                elem = cJSON_CreateObject();
+                if (elem == NULL) {
+                    t->failed = 1;
+                    return -1;
+                }
+                record(t, elem, seg, 0, 0, 0);
+                cJSON_AddItemToArray(next, elem);
+            } else if (!cJSON_IsObject(elem)) {
+                rbs__scene_error(t->scene, tloc(t, istart), "",
+                                 "element [%lu] is not an object", (unsigned long)idx);
+                return -1;
+            }
+            cur = elem;
+            i++;
+            break;
+        }
+    }
+}
+
+/* Parse "k=v k=v ..." in [i, end) into obj.  A value is one token or a
+ * comma-separated list (an array); "..." quotes a string. */
+static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
+{
+    const char *s = t->srcs[t->file].text;
+    while (i < end) {
+        size_t key_off, key_len;
+        cJSON *value = NULL;
+        ttok toks[TOKS_MAX];
+        int n = 0;
+        if (is_blank(s[i])) {
+            i++;
+            continue;
+        }
+        if (s[i] == '#' && !is_color_at(s, i, end)) {
+            return;
+        }
+        key_off = i;
+        while (i < end && s[i] != '=' && !is_blank(s[i])) {
+            i++;
+        }
+        key_len = i - key_off;
+        if (i >= end || s[i] != '=' || key_len == 0) {
+            rbs__scene_error(t->scene, tloc(t, key_off), "",
+                             "expected key=value, got \"%.*s\"", (int)(key_len ? key_len : 1),
+                             s + key_off);
+            return;
+        }
+        i++; /* '=' */
+        /* the value runs to the next blank outside quotes */
+        {
+            size_t vstart = i, vend;
+            int inq = 0;
+            while (i < end && (inq || !is_blank(s[i]))) {
+                if (s[i] == '"') {
+                    inq = !inq;
+                } else if (inq && s[i] == '\\' && i + 1 < end) {
+                    i++;
+                }
+                i++;
+            }
+            vend = i;
+            if (inq) {
+                rbs__scene_error(t->scene, tloc(t, vstart), "",
+                                 "unterminated string: missing closing '\"'");
+                return;
+            }
+            if (vend == vstart) {
+                rbs__scene_error(t->scene, tloc(t, key_off), "",
+                                 "missing value after \"%.*s=\"", (int)key_len, s + key_off);
+                return;
+            }
+            n = tokenize(t, vstart, vend, 1, toks, TOKS_MAX);
+            if (n < 0) {
+                return;
+            }
+            if (n == 0) {
+                rbs__scene_error(t->scene, tloc(t, vstart), "",
+                                 "missing value after \"%.*s=\"", (int)key_len, s + key_off);
+                return;
+            }
+            if (n == 1 && memchr(s + vstart, ',', vend - vstart) == NULL) {
+                value = tok_value(t, s, toks[0].off, toks[0].len, toks[0].quoted, 1,
+                                  key_off);
+            } else {
+                value = toks_value(t, toks, n, key_off);
+                if (value != NULL && n == 1) {
+                    /* "x=1," is a one-element array */
+                    if (!cJSON_IsArray(value)) {
+                        cJSON *arr = cJSON_CreateArray();
+                        if (arr == NULL) {
+                            cJSON_Delete(value);
+                            t->failed = 1;
+                            return;
+                        }
+                        record(t, arr, toks[0].off, 0, 1, key_off);
+                        cJSON_AddItemToArray(arr, value);
+                        record(t, value, toks[0].off, toks[0].len, 0, 0);
+                        value = arr;
+                    }
+                }
+            }
+            if (value == NULL) {
+                return;
+            }
+        }
+        if (kv_set(t, obj, key_off, key_len, value) != 0) {
+            cJSON_Delete(value);
+            return;
+        }
+    }
+}
+
+/* ---- files -------------------------------------------------------------- */
+
+/* Iterate over the lines of the current file: [*b, *e) without the newline. */
+static int next_line(const tctx *t, size_t *pos, size_t *b, size_t *e)
+{
+    const rbs__src *src = &t->srcs[t->file];
+    const char *nl;
+    if (*pos >= src->len) {
+        return 0;
+    }
+    *b = *pos;
+    nl = memchr(src->text + *pos, '\n', src->len - *pos);
+    *e = nl != NULL ? (size_t)(nl - src->text) : src->len;
+    *pos = nl != NULL ? *e + 1 : src->len;
+    return 1;
+}
+
+static void check_binary(tctx *t)
+{
+    const rbs__src *src = &t->srcs[t->file];
+    const char *z = memchr(src->text, '\0', src->len);
+    if (z != NULL) {
+        rbs__scene_error(t->scene, tloc(t, (size_t)(z - src->text)), "",
+                         "NUL byte: this is not a text file");
+        t->failed = 2;
+    }
+}
+
+static void load_materials(tctx *t, cJSON *mats)
+{
+    static const char *const cols[] = {"static", "kinetic", "restitution", "rolling",
+                                       "spinning"};
+    const char *s = t->srcs[t->file].text;
+    size_t pos = 0, b, e;
+    while (next_line(t, &pos, &b, &e) && !t->failed) {
+        ttok toks[TOKS_MAX];
+        int n = tokenize(t, b, e, 1, toks, TOKS_MAX), k;
+        cJSON *row, *pair;
+        if (n <= 0) {
+            continue;
+        }
+        if (n < 4 || n > 7) {
+            rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                             "expected 4 to 7 columns: material_a material_b static "
+                             "kinetic [restitution [rolling [spinning]]], got %d",
+                             n);
+            continue;
+        }
+        row = cJSON_CreateObject();
+        pair = cJSON_CreateArray();
+        if (row == NULL || pair == NULL) {
+            cJSON_Delete(row);
+            cJSON_Delete(pair);
+            t->failed = 1;
+            return;
+        }
+        record(t, row, toks[0].off, 0, 0, 0);
+        record(t, pair, toks[0].off, 0, 1, toks[0].off);
+        add(row, "pair", pair);
+        for (k = 0; k < 2; k++) {
+            cJSON *nm = tok_value(t, s, toks[k].off, toks[k].len, toks[k].quoted, 0, 0);
+            if (nm != NULL) {
+                /* a name column is always a name, even if it looks like a number */
+                if (!cJSON_IsString(nm)) {
+                    char buf[RBS_NAME_MAX + 8];
+                    size_t len = toks[k].len < sizeof buf - 1 ? toks[k].len
+                                                              : sizeof buf - 1;
+                    cJSON *str;
+                    memcpy(buf, s + toks[k].off, len);
+                    buf[len] = '\0';
+                    str = cJSON_CreateString(buf);
+                    cJSON_Delete(nm);
+                    nm = str;
+                    if (nm != NULL) {
+                        record(t, nm, toks[k].off, toks[k].len, 0, 0);
+                    }
+                }
+                if (nm != NULL) {
+                    cJSON_AddItemToArray(pair, nm);
+                }
+            }
+        }
+        for (k = 2; k < n; k++) {
+            /* "-" in the restitution column: the simulation's restitution */
+            if (k == 4 && toks[k].len == 1 && s[toks[k].off] == '-' && !toks[k].quoted) {
+                continue;
+            }
+            add(row, cols[k - 2],
+                tok_value(t, s, toks[k].off, toks[k].len, toks[k].quoted, 1, toks[k].off));
+        }
+        cJSON_AddItemToArray(mats, row);
+    }
+}
+
+static void load_objects(tctx *t, cJSON *bodies)
+{
+    const char *s = t->srcs[t->file].text;
+    size_t pos = 0, b, e;
+    cJSON *body = NULL;
+    int complained = 0;
+    while (next_line(t, &pos, &b, &e) && !t->failed) {
+        ttok toks[TOKS_MAX];
+        int n = tokenize(t, b, e, 1, toks, TOKS_MAX);
+        char key[RBS_NAME_MAX];
+        if (n <= 0) {
+            continue;
+        }
+        if (!toks[0].quoted &&
+            ((toks[0].len == 6 && memcmp(s + toks[0].off, "sphere", 6) == 0) ||
+             (toks[0].len == 5 && memcmp(s + toks[0].off, "plane", 5) == 0))) {
+            body = cJSON_CreateObject();
+            if (body == NULL) {
+                t->failed = 1;
+                return;
+            }
+            record(t, body, toks[0].off, 0, 0, 0);
+            cJSON_AddItemToArray(bodies, body);
+            add(body, "type",
+                tok_value(t, s, toks[0].off, toks[0].len, 0, 1, toks[0].off));
+            if (n != 2) {
+                rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                                 "expected \"%.*s NAME\" (one name, no blanks), got %d "
+                                 "words",
+                                 (int)toks[0].len, s + toks[0].off, n);
+                continue;
+            }
+            {
+                /* the name is always a string */
+                size_t len = toks[1].len;
+                char *nm = toks[1].quoted ? unquote(s + toks[1].off, len) : malloc(len + 1);
+                cJSON *item;
+                if (nm != NULL && !toks[1].quoted) {
+                    memcpy(nm, s + toks[1].off, len);
+                    nm[len] = '\0';
+                }
+                item = nm != NULL ? cJSON_CreateString(nm) : NULL;
+                free(nm);
+                if (item == NULL) {
+                    t->failed = 1;
+                    return;
+                }
+                record(t, item, toks[1].off, len, 1, toks[1].off);
+                add(body, "name", item);
+            }
+            continue;
+        }
+        if (body == NULL) {
+            if (!complained) {
+                rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                                 "expected \"sphere NAME\" or \"plane NAME\" to start a "
+                                 "body, got \"%.*s\"",
+                                 (int)(toks[0].len < 40 ? toks[0].len : 40),
+                                 s + toks[0].off);
+                complained = 1;
+            }
+            continue;
+        }
+        if (toks[0].quoted || toks[0].len >= sizeof key) {
+            rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                             "expected a key such as \"radius\", got \"%.*s\"",
+                             (int)(toks[0].len < 40 ? toks[0].len : 40), s + toks[0].off);
+            continue;
+        }
+        memcpy(key, s + toks[0].off, toks[0].len);
+        key[toks[0].len] = '\0';
+        if (n == 1) {
+            rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                             "missing value after \"%s\"", key);
+            continue;
+        }
+        add(body, key, toks_value(t, toks + 1, n - 1, toks[0].off));
+    }
+}
+
+/* Resolve a file named in config.txt against config.txt's folder. */
+static char *beside(const char *config, const char *name)
+{
+    const char *slash = strrchr(config, '/');
+    size_t d = slash != NULL ? (size_t)(slash - config) + 1 : 0, n = strlen(name);
+    char *out;
+    if (name[0] == '/') {
+        d = 0;
+    }
+    out = malloc(d + n + 1);
+    if (out != NULL) {
+        memcpy(out, config, d);
+        memcpy(out + d, name, n + 1);
+    }
+    return out;
+}
+
+static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
+                           size_t line_off, char **texts, int which, cJSON *into)
+{
+    char *path;
+    int32_t file;
+    size_t len;
+    rbs_status st;
+    int32_t saved_file = t->file;
+    if (!cJSON_IsString(name_item) || name_item->valuestring[0] == '\0') {
+        rbs__scene_error(t->scene, tloc(t, line_off), "",
+                         "expected a file name after \"%s =\"",
+                         which == 1 ? "materials" : "objects");
+        cJSON_Delete((cJSON *)name_item);
+        return RBS_E_SCENE;
+    }
+    path = beside(config, name_item->valuestring);
+    cJSON_Delete((cJSON *)name_item);
+    if (path == NULL) {
+        t->failed = 1;
+        return RBS_E_MEMORY;
+    }
+    file = rbs__scene_add_file(t->scene, path);
+    if (file < 0 || file != which) {
+        free(path);
+        if (file < 0) {
+            t->failed = 1;
+            return RBS_E_MEMORY;
+        }
+        return RBS_E_SCENE;
+    }
+    st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len);
+    free(path);
+    if (st != RBS_OK) {
+        return st;
+    }
+    if (rbs__src_init(&t->srcs[file], texts[file], len) != 0) {
+        t->failed = 1;
+        return RBS_E_MEMORY;
+    }
+    t->file = file;
+    check_binary(t);
+    if (t->failed != 2) {
+        if (which == 1) {
+            load_materials(t, into);
+        } else {
+            load_objects(t, into);
+        }
+    }
+    if (t->failed == 2) {
+        t->failed = 0;
+    }
+    t->file = saved_file;
+    return RBS_OK;
+}
+
+rbs_status rbs__text_load(rbs_scene *scene, const char *path)
+{
+    rbs__src srcs[RBS__SCENE_FILES_MAX];
+    char *texts[RBS__SCENE_FILES_MAX] = {NULL, NULL, NULL, NULL};
+    rbs__posmap map;
+    tctx t;
+    cJSON *root = NULL, *sim, *mats, *bodies, *rends;
+    cJSON *mat_name = NULL, *obj_name = NULL;
+    size_t mat_off = 0, obj_off = 0, pos = 0, b, e, len;
+    rbs__loc none = {0, 0, 0};
+    rbs_status st = RBS_OK, st2;
+    int32_t file, k;
+    memset(srcs, 0, sizeof srcs);
+    memset(&map, 0, sizeof map);
+    memset(&t, 0, sizeof t);
+    t.scene = scene;
+    t.map = &map;
+    t.srcs = srcs;
+    file = rbs__scene_add_file(scene, path);
+    if (file != 0) {
+        return RBS_E_MEMORY;
+    }
+    st = rbs__read_file(scene, path, none, &texts[0], &len);
+    if (st != RBS_OK) {
+        return st;
+    }
+    root = cJSON_CreateObject();
+    sim = cJSON_CreateObject();
+    mats = cJSON_CreateArray();
+    bodies = cJSON_CreateArray();
+    rends = cJSON_CreateArray();
+    if (rbs__src_init(&srcs[0], texts[0], len) != 0 || rbs__posmap_init(&map, 1024) != 0 ||
+        root == NULL || sim == NULL || mats == NULL || bodies == NULL || rends == NULL) {
+        cJSON_Delete(root);
+        cJSON_Delete(sim);
+        cJSON_Delete(mats);
+        cJSON_Delete(bodies);
+        cJSON_Delete(rends);
+        rbs__src_fini(&srcs[0]);
+        rbs__posmap_fini(&map);
+        free(texts[0]);
+        rbs__scene_error(scene, none, "", "out of memory");
+        return RBS_E_MEMORY;
+    }
+    record(&t, root, 0, 0, 0, 0);
+    record(&t, sim, 0, 0, 1, 0);
+    record(&t, mats, 0, 0, 1, 0);
+    record(&t, bodies, 0, 0, 1, 0);
+    record(&t, rends, 0, 0, 1, 0);
+    add(root, "simulation", sim);
+    check_binary(&t);
+    /* config.txt: "key = value" lines */
+    while (t.failed == 0 && next_line(&t, &pos, &b, &e)) {
+        const char *s = texts[0];
+        size_t i = b, key_off, key_len, v;
+        char key[RBS_NAME_MAX];
+        ttok toks[TOKS_MAX];
+        int n;
+        while (i < e && is_blank(s[i])) {
+            i++;
+        }
+        if (i == e || s[i] == '#') {
+            continue;
+        }
+        key_off = i;
+        while (i < e && !is_blank(s[i]) && s[i] != '=') {
+            i++;
+        }
+        key_len = i - key_off;
+        while (i < e && is_blank(s[i])) {
+            i++;
+        }
+        if (i >= e || s[i] != '=') {
+            rbs__scene_error(scene, tloc(&t, key_off), "",
+                             "expected \"key = value\", got \"%.*s\"",
+                             (int)((e - key_off) < 40 ? (e - key_off) : 40), s + key_off);
+            continue;
+        }
+        if (key_len >= sizeof key) {
+            rbs__scene_error(scene, tloc(&t, key_off), "", "key too long");
+            continue;
+        }
+        memcpy(key, s + key_off, key_len);
+        key[key_len] = '\0';
+        v = i + 1;
+        while (v < e && is_blank(s[v])) {
+            v++;
+        }
+        if (strcmp(key, "renderer") == 0) {
+            ttok first;
+            cJSON *r = cJSON_CreateObject();
+            if (r == NULL) {
+                t.failed = 1;
+                break;
+            }
+            {
+                /* the type is the first word */
+                size_t w = v;
+                int inq = 0;
+                while (w < e && (inq || !is_blank(s[w]))) {
+                    if (s[w] == '"') {
+                        inq = !inq;
+                    }
+                    w++;
+                }
+                n = tokenize(&t, v, w, 0, &first, 1);
+            }
+            if (n <= 0) {
+                if (n == 0) {
+                    rbs__scene_error(scene, tloc(&t, key_off), "",
+                                     "expected \"renderer = TYPE key=value ...\"");
+                }
+                cJSON_Delete(r);
+                continue;
+            }
+            record(&t, r, first.off, 0, 0, 0);
+            add(r, "type", tok_value(&t, s, first.off, first.len, first.quoted, 1,
+                                     first.off));
+            kv_list(&t, first.off + first.len, e, r);
+            cJSON_AddItemToArray(rends, r);
+            continue;
+        }
+        if (strcmp(key, "mutual_gravity") == 0 && v < e && memchr(s + v, '=', e - v)) {
+            cJSON *g = cJSON_CreateObject();
+            if (g == NULL) {
+                t.failed = 1;
+                break;
+            }
+            record(&t, g, v, 0, 1, key_off);
+            kv_list(&t, v, e, g);
+            add(sim, key, g);
+            continue;
+        }
+        n = tokenize(&t, v, e, strcmp(key, "description") != 0, toks, TOKS_MAX);
+        if (n < 0) {
+            continue;
+        }
+        if (n == 0) {
+            rbs__scene_error(scene, tloc(&t, key_off), "", "missing value after \"%s =\"",
+                             key);
+            continue;
+        }
+        if (strcmp(key, "description") == 0) {
+            cJSON *d;
+            if (n == 1 && toks[0].quoted) {
+                d = tok_value(&t, s, toks[0].off, toks[0].len, 1, 1, key_off);
+            } else {
+                /* unquoted: the rest of the line, as written */
+                size_t end = toks[n - 1].off + toks[n - 1].len;
+                char *str = malloc(end - v + 1);
+                d = NULL;
+                if (str != NULL) {
+                    memcpy(str, s + v, end - v);
+                    str[end - v] = '\0';
+                    d = cJSON_CreateString(str);
+                    free(str);
+                }
+                if (d != NULL) {
+                    record(&t, d, v, end - v, 1, key_off);
+                } else {
+                    t.failed = 1;
+                }
+            }
+            add(root, "description", d);
+        } else if (strcmp(key, "format") == 0) {
+            add(root, "format", toks_value(&t, toks, n, key_off));
+        } else if (strcmp(key, "materials") == 0 || strcmp(key, "objects") == 0) {
+            cJSON **slot = key[0] == 'm' ? &mat_name : &obj_name;
+            if (*slot != NULL) {
+                rbs__scene_error(scene, tloc(&t, key_off), "",
+                                 "\"%s\" is given twice", key);
+                continue;
+            }
+            *slot = toks_value(&t, toks, n, key_off);
+            if (key[0] == 'm') {
+                mat_off = toks[0].off;
+            } else {
+                obj_off = toks[0].off;
+            }
+        } else {
+            add(sim, key, toks_value(&t, toks, n, key_off));
+        }
+    }
+    add(root, "materials", mats);
+    add(root, "bodies", bodies);
+    add(root, "renderers", rends);
+    /* the other two files, each as file 1 and 2 */
+    if (t.failed == 0) {
+        if (mat_name != NULL) {
+            st2 = load_sub(&t, path, mat_name, mat_off, texts, 1, mats);
+            mat_name = NULL;
+            if (st2 != RBS_OK && st == RBS_OK) {
+                st = st2;
+            }
+        } else if (rbs__scene_add_file(scene, "(no materials file)") != 1) {
+            t.failed = 1;
+        }
+    }
+    if (t.failed == 0) {
+        if (obj_name != NULL) {
+            st2 = load_sub(&t, path, obj_name, obj_off, texts, 2, bodies);
+            obj_name = NULL;
+            if (st2 != RBS_OK && st == RBS_OK) {
+                st = st2;
+            }
+        } else {
+            rbs__scene_error(scene, rbs__src_loc(&srcs[0], 0, 0), "",
+                             "missing \"objects = FILE\" (the file of bodies)");
+        }
+    }
+    cJSON_Delete(mat_name);
+    cJSON_Delete(obj_name);
+    if (t.failed == 1) {
+        rbs__scene_error(scene, none, "", "out of memory");
+        st = RBS_E_MEMORY;
+    }
+    if (st == RBS_OK) {
+        rbs__scene_validate(scene, root, &map, srcs, scene->file_count);
+    }
+    cJSON_Delete(root);
+    rbs__posmap_fini(&map);
+    for (k = 0; k < RBS__SCENE_FILES_MAX; k++) {
+        rbs__src_fini(&srcs[k]);
+        free(texts[k]);
+    }
+    return st;
+}

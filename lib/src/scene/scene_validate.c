@@ -1,0 +1,1732 @@
+/*
+ * scene_validate.c - check a scene tree (format version 1, see
+ * scenes/FORMAT.md) and fill the scene's description.
+ *
+ * Every problem is reported with the file, line and column of the offending
+ * value (or key), its key path and what was expected; checking goes on after
+ * an error so that all errors of a file are reported at once.  Cross-checks
+ * (material names, material pairs of bodies that could touch, overlap at the
+ * start, camera mounts) run after the local checks.
+ */
+#include "scene/scene_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct vctx {
+    rbs_scene *scene;
+    const rbs__posmap *map;
+    const rbs__src *srcs;
+    int32_t src_count;
+    char path[512];
+    size_t path_len;
+} vctx;
+
+/* ---- places and paths --------------------------------------------------- */
+
+static rbs__loc loc_at(const vctx *v, const cJSON *item, int key)
+{
+    rbs__loc none = {0, 0, 0};
+    const rbs__pos *pos = rbs__posmap_get(v->map, item);
+    if (pos == NULL || pos->file < 0 || pos->file >= v->src_count) {
+        return none;
+    }
+    return rbs__src_loc(&v->srcs[pos->file], pos->file,
+                        key && pos->has_key ? pos->key_off : pos->value_off);
+}
+
+static rbs__loc loc_value(const vctx *v, const cJSON *item) { return loc_at(v, item, 0); }
+static rbs__loc loc_key(const vctx *v, const cJSON *item) { return loc_at(v, item, 1); }
+
+static size_t push_key(vctx *v, const char *key)
+{
+    size_t saved = v->path_len;
+    int k = snprintf(v->path + v->path_len, sizeof v->path - v->path_len, "%s%s",
+                     v->path_len ? "." : "", key);
+    if (k > 0) {
+        v->path_len += (size_t)k;
+        if (v->path_len >= sizeof v->path) {
+            v->path_len = sizeof v->path - 1;
+        }
+    }
+    return saved;
+}
+
+static size_t push_index(vctx *v, size_t i)
+{
+    size_t saved = v->path_len;
+    int k = snprintf(v->path + v->path_len, sizeof v->path - v->path_len, "[%lu]",
+                     (unsigned long)i);
+    if (k > 0) {
+        v->path_len += (size_t)k;
+        if (v->path_len >= sizeof v->path) {
+            v->path_len = sizeof v->path - 1;
+        }
+    }
+    return saved;
+}
+
+static void pop(vctx *v, size_t saved)
+{
+    v->path_len = saved;
+    v->path[saved] = '\0';
+}
+
+#ifdef __GNUC__
+__attribute__((format(printf, 3, 4)))
+#endif
+static void err(vctx *v, rbs__loc at, const char *fmt, ...);
+
+#include <stdarg.h>
+static void err(vctx *v, rbs__loc at, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    rbs__scene_error(v->scene, at, v->path, "%s", msg);
+}
+
+/* The value as written, for "got ..." (raw number text, quoted string). */
+static void got(const vctx *v, const cJSON *item, char *out, size_t n)
+{
+    const rbs__pos *pos = rbs__posmap_get(v->map, item);
+    if (cJSON_IsNumber(item) && pos != NULL && pos->file >= 0 &&
+        pos->file < v->src_count && pos->raw_len > 0 &&
+        (size_t)pos->raw_off + pos->raw_len <= v->srcs[pos->file].len) {
+        size_t len = pos->raw_len;
+        if (len > 40) {
+            len = 40;
+        }
+        snprintf(out, n, "%.*s%s", (int)len, v->srcs[pos->file].text + pos->raw_off,
+                 len < pos->raw_len ? "..." : "");
+    } else if (cJSON_IsNumber(item)) {
+        snprintf(out, n, "%.17g", item->valuedouble);
+    } else if (cJSON_IsString(item)) {
+        char clean[48];
+        size_t i, k = 0;
+        const char *s = item->valuestring;
+        for (i = 0; s[i] != '\0' && k < 40; i++) {
+            unsigned char c = (unsigned char)s[i];
+            clean[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+        }
+        clean[k] = '\0';
+        snprintf(out, n, "\"%s\"%s", clean, s[i] != '\0' ? "..." : "");
+    } else if (cJSON_IsTrue(item)) {
+        snprintf(out, n, "true");
+    } else if (cJSON_IsFalse(item)) {
+        snprintf(out, n, "false");
+    } else if (cJSON_IsNull(item)) {
+        snprintf(out, n, "null");
+    } else if (cJSON_IsArray(item)) {
+        int count = cJSON_GetArraySize(item);
+        snprintf(out, n, "an array of %d element%s", count, count == 1 ? "" : "s");
+    } else if (cJSON_IsObject(item)) {
+        snprintf(out, n, "an object");
+    } else {
+        snprintf(out, n, "an invalid value");
+    }
+}
+
+/* ---- typed values ------------------------------------------------------- */
+
+/* A finite number; reports wrong types, overflow (cJSON turns 1e999 into inf)
+ * and literals that underflow to zero. */
+static int get_number(vctx *v, const cJSON *item, double *out)
+{
+    char g[64];
+    const rbs__pos *pos;
+    if (!cJSON_IsNumber(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be a number, got %s", g);
+        return -1;
+    }
+    got(v, item, g, sizeof g);
+    if (!isfinite(item->valuedouble)) {
+        err(v, loc_value(v, item),
+            "number out of range (overflows a double), got %s", g);
+        return -1;
+    }
+    pos = rbs__posmap_get(v->map, item);
+    if (item->valuedouble == 0.0 && pos != NULL && pos->file >= 0 &&
+        pos->file < v->src_count) {
+        /* a literal with a nonzero digit before the exponent is not zero */
+        size_t i;
+        const char *t = v->srcs[pos->file].text + pos->raw_off;
+        for (i = 0; i < pos->raw_len && t[i] != 'e' && t[i] != 'E'; i++) {
+            if (t[i] >= '1' && t[i] <= '9') {
+                err(v, loc_value(v, item),
+                    "number out of range (underflows to 0), got %s", g);
+                return -1;
+            }
+        }
+    }
+    *out = item->valuedouble;
+    return 0;
+}
+
+enum { R_ANY, R_POS, R_NONNEG, R_UNIT };
+
+static int get_ranged(vctx *v, const cJSON *item, int range, double *out)
+{
+    double x;
+    char g[64];
+    if (get_number(v, item, &x) != 0) {
+        return -1;
+    }
+    got(v, item, g, sizeof g);
+    if (range == R_POS && !(x > 0)) {
+        err(v, loc_value(v, item), "must be > 0, got %s", g);
+        return -1;
+    }
+    if (range == R_NONNEG && !(x >= 0)) {
+        err(v, loc_value(v, item), "must be >= 0, got %s", g);
+        return -1;
+    }
+    if (range == R_UNIT && !(x >= 0 && x <= 1)) {
+        err(v, loc_value(v, item), "must be in [0, 1], got %s", g);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+/* An array of exactly n numbers. */
+static int get_numbers(vctx *v, const cJSON *item, double *out, int n,
+                       const char *what)
+{
+    char g[64];
+    const cJSON *e;
+    int i = 0, bad = 0;
+    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != n) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        return -1;
+    }
+    for (e = item->child; e != NULL; e = e->next, i++) {
+        size_t saved = push_index(v, (size_t)i);
+        if (get_number(v, e, &out[i]) != 0) {
+            bad = 1;
+        }
+        pop(v, saved);
+    }
+    return bad ? -1 : 0;
+}
+
+static int get_vec3(vctx *v, const cJSON *item, rbs_vec3 *out)
+{
+    double a[3];
+    if (get_numbers(v, item, a, 3, "an array of 3 numbers [x, y, z]") != 0) {
+        return -1;
+    }
+    out->x = a[0];
+    out->y = a[1];
+    out->z = a[2];
+    return 0;
+}
+
+static int get_bool(vctx *v, const cJSON *item, int32_t *out)
+{
+    char g[64];
+    if (!cJSON_IsBool(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be true or false, got %s", g);
+        return -1;
+    }
+    *out = cJSON_IsTrue(item) ? 1 : 0;
+    return 0;
+}
+
+static int get_string(vctx *v, const cJSON *item, const char **out)
+{
+    char g[64];
+    if (!cJSON_IsString(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be a string, got %s", g);
+        return -1;
+    }
+    *out = item->valuestring;
+    return 0;
+}
+
+/* A string naming one of n choices; *out gets its index. */
+static int get_choice(vctx *v, const cJSON *item, const char *const *names, int n,
+                      int *out)
+{
+    char g[64], list[256];
+    const char *s, *hint;
+    int i;
+    size_t k = 0;
+    if (get_string(v, item, &s) != 0) {
+        return -1;
+    }
+    for (i = 0; i < n; i++) {
+        if (strcmp(s, names[i]) == 0) {
+            *out = i;
+            return 0;
+        }
+    }
+    list[0] = '\0';
+    for (i = 0; i < n && k < sizeof list; i++) {
+        int w = snprintf(list + k, sizeof list - k, "%s\"%s\"",
+                         i == 0 ? "" : (i == n - 1 ? " or " : ", "), names[i]);
+        if (w > 0) {
+            k += (size_t)w;
+        }
+    }
+    got(v, item, g, sizeof g);
+    hint = rbs__suggest(s, names, (size_t)n);
+    if (hint != NULL) {
+        err(v, loc_value(v, item), "must be %s, got %s (did you mean \"%s\"?)", list, g,
+            hint);
+    } else {
+        err(v, loc_value(v, item), "must be %s, got %s", list, g);
+    }
+    return -1;
+}
+
+/* An integer in [lo, hi] (JSON number without fraction). */
+static int get_integer(vctx *v, const cJSON *item, double lo, double hi,
+                       const char *what, uint64_t *out)
+{
+    double x;
+    char g[64];
+    if (!cJSON_IsNumber(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        return -1;
+    }
+    if (get_number(v, item, &x) != 0) {
+        return -1;
+    }
+    got(v, item, g, sizeof g);
+    if (x != floor(x) || x < lo || x > hi) {
+        err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        return -1;
+    }
+    *out = (uint64_t)x;
+    return 0;
+}
+
+/* A body or material name: 1..RBS_NAME_MAX-1 bytes, no blanks, controls, '#',
+ * '"', '=' or ','; so that it also fits the text format. */
+static int get_name(vctx *v, const cJSON *item, const char **out)
+{
+    const char *s;
+    size_t i, n;
+    char g[64];
+    if (get_string(v, item, &s) != 0) {
+        return -1;
+    }
+    n = strlen(s);
+    got(v, item, g, sizeof g);
+    if (n == 0 || n >= RBS_NAME_MAX) {
+        err(v, loc_value(v, item), "a name must have 1 to %d bytes, got %s",
+            RBS_NAME_MAX - 1, g);
+        return -1;
+    }
+    for (i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        if (c <= 0x20 || c == 0x7f || c == '#' || c == '"' || c == '=' || c == ',') {
+            err(v, loc_value(v, item),
+                "a name must not contain spaces, control characters, '#', '\"', '=' "
+                "or ',', got %s",
+                g);
+            return -1;
+        }
+    }
+    *out = s;
+    return 0;
+}
+
+/* ---- objects and keys --------------------------------------------------- */
+
+/* Check an object's keys: unknown keys (with a suggestion) and duplicates. */
+static void check_keys(vctx *v, const cJSON *obj, const char *const *keys, int n,
+                       const char *what)
+{
+    const cJSON *c, *d;
+    for (c = obj->child; c != NULL; c = c->next) {
+        int i, known = 0;
+        size_t saved;
+        for (i = 0; i < n; i++) {
+            if (strcmp(c->string, keys[i]) == 0) {
+                known = 1;
+                break;
+            }
+        }
+        saved = push_key(v, c->string);
+        if (!known) {
+            const char *hint = rbs__suggest(c->string, keys, (size_t)n);
+            if (hint != NULL) {
+                err(v, loc_key(v, c), "unknown key in %s (did you mean \"%s\"?)", what,
+                    hint);
+            } else {
+                char list[512];
+                size_t k = 0;
+                list[0] = '\0';
+                for (i = 0; i < n && k < sizeof list; i++) {
+                    int w = snprintf(list + k, sizeof list - k, "%s%s", i ? ", " : "",
+                                     keys[i]);
+                    if (w > 0) {
+                        k += (size_t)w;
+                    }
+                }
+                err(v, loc_key(v, c), "unknown key in %s; expected one of: %s", what,
+                    list);
+            }
+        }
+        for (d = obj->child; d != c; d = d->next) {
+            if (strcmp(d->string, c->string) == 0) {
+                rbs__loc first = loc_key(v, d);
+                err(v, loc_key(v, c), "duplicate key (first given at line %ld, column %ld)",
+                    (long)first.line, (long)first.column);
+                break;
+            }
+        }
+        pop(v, saved);
+    }
+}
+
+static int require_object(vctx *v, const cJSON *item, const char *what)
+{
+    char g[64];
+    if (!cJSON_IsObject(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be %s (a JSON object), got %s", what, g);
+        return -1;
+    }
+    return 0;
+}
+
+static int require_array(vctx *v, const cJSON *item, const char *what)
+{
+    char g[64];
+    if (!cJSON_IsArray(item)) {
+        got(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "must be %s (a JSON array), got %s", what, g);
+        return -1;
+    }
+    return 0;
+}
+
+static const cJSON *member(const cJSON *obj, const char *key)
+{
+    return cJSON_GetObjectItemCaseSensitive(obj, key);
+}
+
+static void missing(vctx *v, const cJSON *obj, const char *key, const char *what)
+{
+    err(v, loc_value(v, obj), "missing required key \"%s\" (%s)", key, what);
+}
+
+/* ---- simulation --------------------------------------------------------- */
+
+static const char *const sim_keys[] = {
+    "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "restitution",
+    "pause_on_collision", "mutual_gravity"};
+static const char *const mutual_keys[] = {"G", "softening"};
+static const char *const gravity_modes[] = {"acceleration", "force"};
+
+static void check_simulation(vctx *v, const cJSON *sim)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *c;
+    size_t saved;
+    int steps_ok = 0, dt_ok = 1;
+    if (require_object(v, sim, "the simulation settings") != 0) {
+        return;
+    }
+    check_keys(v, sim, sim_keys, (int)(sizeof sim_keys / sizeof *sim_keys),
+               "simulation");
+    if ((c = member(sim, "steps")) != NULL) {
+        uint64_t n;
+        saved = push_key(v, "steps");
+        if (get_integer(v, c, 0, RBS__SCENE_STEPS_MAX,
+                        "a non-negative integer (at most 2^53)", &n) == 0) {
+            s->steps = n;
+            steps_ok = 1;
+        }
+        pop(v, saved);
+    } else {
+        missing(v, sim, "steps", "the number of steps to run, an integer >= 0");
+    }
+    if ((c = member(sim, "dt")) != NULL) {
+        saved = push_key(v, "dt");
+        dt_ok = get_ranged(v, c, R_POS, &s->dt) == 0;
+        pop(v, saved);
+    }
+    if (steps_ok && dt_ok && !isfinite((double)s->steps * s->dt)) {
+        saved = push_key(v, "steps");
+        err(v, loc_value(v, member(sim, "steps")),
+            "steps * dt overflows (%llu * %g s)", (unsigned long long)s->steps, s->dt);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "gravity")) != NULL) {
+        saved = push_key(v, "gravity");
+        (void)get_vec3(v, c, &s->gravity);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "gravity_mode")) != NULL) {
+        int k;
+        saved = push_key(v, "gravity_mode");
+        if (get_choice(v, c, gravity_modes, 2, &k) == 0) {
+            s->gravity_mode = k == 0 ? RBS_GRAVITY_ACCELERATION : RBS_GRAVITY_FORCE;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "method")) != NULL) {
+        const char *names[RBS_METHOD_COUNT];
+        int k;
+        for (k = 0; k < RBS_METHOD_COUNT; k++) {
+            const char *nm = rbs_method_name((rbs_method)k);
+            names[k] = nm != NULL ? nm : "";
+        }
+        saved = push_key(v, "method");
+        if (cJSON_IsString(c) &&
+            rbs_method_from_name(c->valuestring, &s->method) == RBS_OK) {
+            /* known */
+        } else if (get_choice(v, c, names, RBS_METHOD_COUNT, &k) == 0) {
+            s->method = (rbs_method)k;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "tolerance")) != NULL) {
+        saved = push_key(v, "tolerance");
+        (void)get_ranged(v, c, R_POS, &s->tolerance);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "restitution")) != NULL) {
+        saved = push_key(v, "restitution");
+        (void)get_ranged(v, c, R_UNIT, &s->restitution);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "pause_on_collision")) != NULL) {
+        saved = push_key(v, "pause_on_collision");
+        (void)get_bool(v, c, &s->pause_on_collision);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "mutual_gravity")) != NULL) {
+        saved = push_key(v, "mutual_gravity");
+        if (cJSON_IsBool(c)) {
+            s->mutual_gravity = cJSON_IsTrue(c) ? 1 : 0;
+        } else if (cJSON_IsObject(c)) {
+            const cJSON *g;
+            size_t inner;
+            s->mutual_gravity = 1;
+            check_keys(v, c, mutual_keys, 2, "mutual_gravity");
+            if ((g = member(c, "G")) != NULL) {
+                inner = push_key(v, "G");
+                (void)get_ranged(v, g, R_POS, &s->gravity_constant);
+                pop(v, inner);
+            }
+            if ((g = member(c, "softening")) != NULL) {
+                inner = push_key(v, "softening");
+                (void)get_ranged(v, g, R_NONNEG, &s->softening);
+                pop(v, inner);
+            }
+        } else {
+            char g[64];
+            got(v, c, g, sizeof g);
+            err(v, loc_value(v, c),
+                "must be false, true or an object {\"G\": ..., \"softening\": ...}, got %s",
+                g);
+        }
+        pop(v, saved);
+    }
+}
+
+/* ---- materials ---------------------------------------------------------- */
+
+static int32_t material_find(const rbs_scene *s, const char *name)
+{
+    uint32_t i;
+    for (i = 0; i < s->material_count; i++) {
+        if (strcmp(s->materials[i], name) == 0) {
+            return (int32_t)i;
+        }
+    }
+    return -1;
+}
+
+static const char *const pair_keys[] = {"pair",        "static",  "kinetic",
+                                        "restitution", "rolling", "spinning"};
+
+static void check_materials(vctx *v, const cJSON *mats)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *row;
+    size_t i = 0, n;
+    const cJSON **firsts;
+    if (require_array(v, mats, "a list of material pairs") != 0) {
+        return;
+    }
+    n = (size_t)cJSON_GetArraySize(mats);
+    s->pairs = calloc(n + 1, sizeof *s->pairs);
+    s->materials = calloc(2 * n + 1, sizeof *s->materials);
+    firsts = calloc(n + 1, sizeof *firsts);
+    if (s->pairs == NULL || s->materials == NULL || firsts == NULL) {
+        err(v, loc_value(v, mats), "out of memory");
+        free(firsts);
+        return;
+    }
+    for (row = mats->child; row != NULL; row = row->next, i++) {
+        size_t saved = push_index(v, i), inner;
+        const cJSON *c;
+        rbs__scene_pair p;
+        int bad = 0;
+        uint32_t k;
+        memset(&p, 0, sizeof p);
+        p.restitution = -1.0;
+        if (require_object(v, row, "a material pair") != 0) {
+            pop(v, saved);
+            continue;
+        }
+        check_keys(v, row, pair_keys, (int)(sizeof pair_keys / sizeof *pair_keys),
+                   "a material pair");
+        c = member(row, "pair");
+        if (c == NULL) {
+            missing(v, row, "pair", "two material names, \"*\" for any");
+            bad = 1;
+        } else {
+            inner = push_key(v, "pair");
+            if (!cJSON_IsArray(c) || cJSON_GetArraySize(c) != 2) {
+                char g[64];
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c),
+                    "must be an array of 2 material names (\"*\" for any), got %s", g);
+                bad = 1;
+            } else {
+                const cJSON *e = c->child;
+                int j;
+                for (j = 0; j < 2; j++, e = e->next) {
+                    size_t in2 = push_index(v, (size_t)j);
+                    const char *nm;
+                    int32_t idx = -1;
+                    if (cJSON_IsString(e) && strcmp(e->valuestring, "*") == 0) {
+                        idx = -1;
+                    } else if (get_name(v, e, &nm) != 0) {
+                        bad = 1;
+                    } else {
+                        idx = material_find(s, nm);
+                        if (idx < 0) {
+                            idx = (int32_t)s->material_count;
+                            memcpy(s->materials[s->material_count++], nm,
+                                   strlen(nm) + 1);
+                        }
+                    }
+                    if (j == 0) {
+                        p.a = idx;
+                    } else {
+                        p.b = idx;
+                    }
+                    pop(v, in2);
+                }
+            }
+            pop(v, inner);
+        }
+        if ((c = member(row, "static")) != NULL) {
+            inner = push_key(v, "static");
+            bad |= get_ranged(v, c, R_NONNEG, &p.static_friction) != 0;
+            pop(v, inner);
+        } else {
+            missing(v, row, "static", "the static friction coefficient, >= 0");
+            bad = 1;
+        }
+        if ((c = member(row, "kinetic")) != NULL) {
+            inner = push_key(v, "kinetic");
+            if (get_ranged(v, c, R_NONNEG, &p.kinetic_friction) != 0) {
+                bad = 1;
+            } else if (member(row, "static") != NULL &&
+                       p.kinetic_friction > p.static_friction &&
+                       cJSON_IsNumber(member(row, "static"))) {
+                char g[64];
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c),
+                    "must not exceed the static friction (%g), got %s",
+                    p.static_friction, g);
+                bad = 1;
+            }
+            pop(v, inner);
+        } else {
+            missing(v, row, "kinetic", "the kinetic friction coefficient, 0..static");
+            bad = 1;
+        }
+        if ((c = member(row, "restitution")) != NULL) {
+            inner = push_key(v, "restitution");
+            bad |= get_ranged(v, c, R_UNIT, &p.restitution) != 0;
+            pop(v, inner);
+        }
+        if ((c = member(row, "rolling")) != NULL) {
+            inner = push_key(v, "rolling");
+            bad |= get_ranged(v, c, R_NONNEG, &p.rolling) != 0;
+            pop(v, inner);
+        }
+        if ((c = member(row, "spinning")) != NULL) {
+            inner = push_key(v, "spinning");
+            bad |= get_ranged(v, c, R_NONNEG, &p.spinning) != 0;
+            pop(v, inner);
+        }
+        if (!bad) {
+            /* an unordered pair may be given once */
+            for (k = 0; k < s->pair_count; k++) {
+                const rbs__scene_pair *q = &s->pairs[k];
+                if ((q->a == p.a && q->b == p.b) || (q->a == p.b && q->b == p.a)) {
+                    rbs__loc first = loc_value(v, firsts[k]);
+                    inner = push_key(v, "pair");
+                    err(v, loc_value(v, member(row, "pair")),
+                        "duplicate material pair [\"%s\", \"%s\"] (first given at line "
+                        "%ld, column %ld)",
+                        p.a >= 0 ? s->materials[p.a] : "*",
+                        p.b >= 0 ? s->materials[p.b] : "*", (long)first.line,
+                        (long)first.column);
+                    pop(v, inner);
+                    bad = 1;
+                    break;
+                }
+            }
+        }
+        if (!bad) {
+            firsts[s->pair_count] = member(row, "pair");
+            s->pairs[s->pair_count++] = p;
+        }
+        pop(v, saved);
+    }
+    free(firsts);
+}
+
+/* ---- bodies ------------------------------------------------------------- */
+
+static const char *const sphere_keys[] = {
+    "name",     "type",   "radius",   "mass",     "density",          "inertia",
+    "position", "orientation", "velocity", "angular_velocity", "center_of_mass",
+    "force",    "torque", "material", "color",    "texture",          "fixed"};
+static const char *const plane_keys[] = {"name",     "type",  "point",  "normal",
+                                         "material", "color", "texture"};
+static const char *const body_types[] = {"sphere", "plane"};
+static const char *const textures[] = {"none", "stripes", "checker"};
+static const char *const inertia_kinds[] = {"solid", "hollow"};
+
+static int get_color(vctx *v, const cJSON *item, uint32_t *out)
+{
+    char g[64];
+    if (cJSON_IsString(item)) {
+        const char *s = item->valuestring;
+        uint32_t c = 0;
+        int i, ok = s[0] == '#' && strlen(s) == 7;
+        for (i = 1; ok && i < 7; i++) {
+            char h = s[i];
+            int d = (h >= '0' && h <= '9')   ? h - '0'
+                    : (h >= 'a' && h <= 'f') ? h - 'a' + 10
+                    : (h >= 'A' && h <= 'F') ? h - 'A' + 10
+                                             : -1;
+            if (d < 0) {
+                ok = 0;
+            } else {
+                c = c * 16 + (uint32_t)d;
+            }
+        }
+        if (ok) {
+            *out = c;
+            return 0;
+        }
+    } else if (cJSON_IsArray(item) && cJSON_GetArraySize(item) == 3) {
+        double a[3];
+        int i, bad = 0;
+        const cJSON *e = item->child;
+        for (i = 0; i < 3; i++, e = e->next) {
+            size_t saved = push_index(v, (size_t)i);
+            bad |= get_ranged(v, e, R_UNIT, &a[i]) != 0;
+            pop(v, saved);
+        }
+        if (bad) {
+            return -1;
+        }
+        *out = ((uint32_t)lround(a[0] * 255.0) << 16) |
+               ((uint32_t)lround(a[1] * 255.0) << 8) | (uint32_t)lround(a[2] * 255.0);
+        return 0;
+    }
+    got(v, item, g, sizeof g);
+    err(v, loc_value(v, item),
+        "must be \"#rrggbb\" or three numbers in [0, 1] (red, green, blue), got %s", g);
+    return -1;
+}
+
+/* A length this close to 1 is left alone when normalising (8 ulp). */
+#define UNIT_TOL (8.0 * 2.220446049250313e-16)
+
+static int vec_len_zero(rbs_vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+
+static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
+{
+    const cJSON *c, *mass, *density;
+    size_t saved;
+    int radius_ok = 0;
+    check_keys(v, obj, sphere_keys, (int)(sizeof sphere_keys / sizeof *sphere_keys),
+               "a sphere");
+    b->orientation.w = 1.0;
+    b->color = 0xd03030;
+    b->texture = RBS_TEXTURE_STRIPES;
+    b->inertia_kind = RBS_INERTIA_SOLID;
+    if ((c = member(obj, "radius")) != NULL) {
+        saved = push_key(v, "radius");
+        radius_ok = get_ranged(v, c, R_POS, &b->radius) == 0;
+        pop(v, saved);
+    } else {
+        missing(v, obj, "radius", "m, > 0");
+    }
+    mass = member(obj, "mass");
+    density = member(obj, "density");
+    if (mass != NULL && density != NULL) {
+        saved = push_key(v, "density");
+        err(v, loc_key(v, density), "give either \"mass\" or \"density\", not both");
+        pop(v, saved);
+    } else if (mass != NULL) {
+        saved = push_key(v, "mass");
+        (void)get_ranged(v, mass, R_POS, &b->mass);
+        pop(v, saved);
+    } else if (density != NULL) {
+        saved = push_key(v, "density");
+        if (get_ranged(v, density, R_POS, &b->density) == 0 && radius_ok &&
+            !isfinite(b->density * 4.0 / 3.0 * 3.14159265358979323846 * b->radius * b->radius * b->radius)) {
+            err(v, loc_value(v, density), "the mass (density * volume) overflows");
+        }
+        pop(v, saved);
+    } else {
+        missing(v, obj, "mass", "kg, > 0; or give \"density\" in kg/m^3");
+    }
+    if ((c = member(obj, "inertia")) != NULL) {
+        saved = push_key(v, "inertia");
+        if (cJSON_IsString(c)) {
+            int k;
+            if (get_choice(v, c, inertia_kinds, 2, &k) == 0) {
+                b->inertia_kind = k == 0 ? RBS_INERTIA_SOLID : RBS_INERTIA_HOLLOW;
+            }
+        } else if (cJSON_IsNumber(c)) {
+            double I;
+            if (get_ranged(v, c, R_POS, &I) == 0) {
+                b->inertia_kind = RBS_INERTIA_PRINCIPAL;
+                b->inertia.x = b->inertia.y = b->inertia.z = I;
+            }
+        } else if (cJSON_IsArray(c)) {
+            double a[3];
+            if (get_numbers(v, c, a, 3, "three principal moments [I1, I2, I3]") == 0) {
+                int k, bad = 0;
+                for (k = 0; k < 3; k++) {
+                    if (!(a[k] > 0)) {
+                        size_t in2 = push_index(v, (size_t)k);
+                        char g[64];
+                        const cJSON *e = cJSON_GetArrayItem(c, k);
+                        got(v, e, g, sizeof g);
+                        err(v, loc_value(v, e), "must be > 0, got %s", g);
+                        pop(v, in2);
+                        bad = 1;
+                    }
+                }
+                if (!bad && (a[0] > a[1] + a[2] || a[1] > a[0] + a[2] ||
+                             a[2] > a[0] + a[1])) {
+                    err(v, loc_value(v, c),
+                        "principal moments must satisfy the triangle inequality "
+                        "(each <= the sum of the other two), got [%g, %g, %g]",
+                        a[0], a[1], a[2]);
+                    bad = 1;
+                }
+                if (!bad) {
+                    b->inertia_kind = RBS_INERTIA_PRINCIPAL;
+                    b->inertia.x = a[0];
+                    b->inertia.y = a[1];
+                    b->inertia.z = a[2];
+                }
+            }
+        } else {
+            char g[64];
+            got(v, c, g, sizeof g);
+            err(v, loc_value(v, c),
+                "must be \"solid\", \"hollow\", a number or three principal moments, "
+                "got %s",
+                g);
+        }
+        pop(v, saved);
+    }
+    if ((c = member(obj, "position")) != NULL) {
+        saved = push_key(v, "position");
+        (void)get_vec3(v, c, &b->position);
+        b->at_position = loc_value(v, c);
+        pop(v, saved);
+    } else {
+        missing(v, obj, "position", "the centre, [x, y, z] in m");
+    }
+    if ((c = member(obj, "orientation")) != NULL) {
+        double q[4];
+        saved = push_key(v, "orientation");
+        if (get_numbers(v, c, q, 4, "a quaternion [w, x, y, z]") == 0) {
+            double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+            if (fabs(n - 1.0) <= UNIT_TOL) {
+                n = 1.0; /* already unit: keep the bits, so saving and loading
+                            again changes nothing */
+            }
+            if (!(n > 0) || !isfinite(n)) {
+                err(v, loc_value(v, c),
+                    "must be a nonzero quaternion [w, x, y, z] of finite length");
+            } else {
+                b->orientation.w = q[0] / n;
+                b->orientation.x = q[1] / n;
+                b->orientation.y = q[2] / n;
+                b->orientation.z = q[3] / n;
+            }
+        }
+        pop(v, saved);
+    }
+    if ((c = member(obj, "velocity")) != NULL) {
+        saved = push_key(v, "velocity");
+        (void)get_vec3(v, c, &b->velocity);
+        pop(v, saved);
+    }
+    if ((c = member(obj, "angular_velocity")) != NULL) {
+        saved = push_key(v, "angular_velocity");
+        (void)get_vec3(v, c, &b->angular_velocity);
+        pop(v, saved);
+    }
+    if ((c = member(obj, "center_of_mass")) != NULL) {
+        saved = push_key(v, "center_of_mass");
+        if (get_vec3(v, c, &b->center_of_mass) == 0 && radius_ok) {
+            rbs_vec3 m = b->center_of_mass;
+            double len = sqrt(m.x * m.x + m.y * m.y + m.z * m.z);
+            if (!(len < b->radius)) {
+                err(v, loc_value(v, c),
+                    "must lie inside the sphere: |offset| = %g m, radius %g m", len,
+                    b->radius);
+            }
+        }
+        pop(v, saved);
+    }
+    if ((c = member(obj, "force")) != NULL) {
+        saved = push_key(v, "force");
+        (void)get_vec3(v, c, &b->force);
+        pop(v, saved);
+    }
+    if ((c = member(obj, "torque")) != NULL) {
+        saved = push_key(v, "torque");
+        (void)get_vec3(v, c, &b->torque);
+        pop(v, saved);
+    }
+    if ((c = member(obj, "fixed")) != NULL) {
+        saved = push_key(v, "fixed");
+        (void)get_bool(v, c, &b->fixed);
+        pop(v, saved);
+    }
+}
+
+static void check_plane(vctx *v, const cJSON *obj, rbs__scene_body *b)
+{
+    const cJSON *c;
+    size_t saved;
+    check_keys(v, obj, plane_keys, (int)(sizeof plane_keys / sizeof *plane_keys),
+               "a plane");
+    b->color = 0x808080;
+    b->texture = RBS_TEXTURE_CHECKER;
+    b->normal.z = 1.0;
+    if ((c = member(obj, "point")) != NULL) {
+        saved = push_key(v, "point");
+        (void)get_vec3(v, c, &b->point);
+        b->at_position = loc_value(v, c);
+        pop(v, saved);
+    } else {
+        missing(v, obj, "point", "a point on the plane, [x, y, z] in m");
+    }
+    if ((c = member(obj, "normal")) != NULL) {
+        rbs_vec3 n;
+        saved = push_key(v, "normal");
+        if (get_vec3(v, c, &n) == 0) {
+            double len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+            if (fabs(len - 1.0) <= UNIT_TOL) {
+                len = 1.0; /* already unit: keep the bits (see orientation) */
+            }
+            if (vec_len_zero(n) || !(len > 0) || !isfinite(len)) {
+                err(v, loc_value(v, c), "must be a nonzero vector of finite length, "
+                                        "got [%g, %g, %g]",
+                    n.x, n.y, n.z);
+            } else {
+                b->normal.x = n.x / len;
+                b->normal.y = n.y / len;
+                b->normal.z = n.z / len;
+            }
+        }
+        pop(v, saved);
+    } else {
+        missing(v, obj, "normal", "the outward normal, [x, y, z], nonzero");
+    }
+}
+
+/* qsort has no context argument: sort (name, index) records instead. */
+typedef struct name_rec {
+    const char *name;
+    size_t index;
+} name_rec;
+
+static int cmp_name_rec(const void *pa, const void *pb)
+{
+    const name_rec *a = pa, *b = pb;
+    int c = strcmp(a->name, b->name);
+    return c != 0 ? c : (a->index < b->index ? -1 : a->index > b->index);
+}
+
+static void check_bodies(vctx *v, const cJSON *bodies, const cJSON ***items_out)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *obj;
+    const cJSON **items;
+    name_rec *recs;
+    size_t i = 0, n, nrec = 0, k;
+    const char **mat_names;
+    *items_out = NULL;
+    if (require_array(v, bodies, "a list of bodies") != 0) {
+        return;
+    }
+    n = (size_t)cJSON_GetArraySize(bodies);
+    s->bodies = calloc(n + 1, sizeof *s->bodies);
+    items = calloc(n + 1, sizeof *items);
+    recs = calloc(n + 1, sizeof *recs);
+    mat_names = calloc(s->material_count + 1, sizeof *mat_names);
+    if (s->bodies == NULL || items == NULL || recs == NULL || mat_names == NULL) {
+        err(v, loc_value(v, bodies), "out of memory");
+        free(items);
+        free(recs);
+        free(mat_names);
+        return;
+    }
+    for (k = 0; k < s->material_count; k++) {
+        mat_names[k] = s->materials[k];
+    }
+    for (obj = bodies->child; obj != NULL; obj = obj->next, i++) {
+        size_t saved = push_index(v, i), inner;
+        rbs__scene_body *b = &s->bodies[i];
+        const cJSON *c;
+        int type = -1;
+        uint32_t before = s->error_count;
+        b->material = -1;
+        b->at = loc_value(v, obj);
+        b->at_position = b->at;
+        b->at_material = b->at;
+        items[i] = obj;
+        if (require_object(v, obj, "a body") != 0) {
+            pop(v, saved);
+            continue;
+        }
+        if ((c = member(obj, "type")) != NULL) {
+            inner = push_key(v, "type");
+            (void)get_choice(v, c, body_types, 2, &type);
+            pop(v, inner);
+        } else {
+            missing(v, obj, "type", "\"sphere\" or \"plane\"");
+        }
+        if ((c = member(obj, "name")) != NULL) {
+            const char *nm;
+            inner = push_key(v, "name");
+            if (get_name(v, c, &nm) == 0) {
+                memcpy(b->name, nm, strlen(nm) + 1);
+                recs[nrec].name = b->name;
+                recs[nrec].index = i;
+                nrec++;
+            }
+            pop(v, inner);
+        } else {
+            missing(v, obj, "name", "a unique body name");
+        }
+        if (type == 0) {
+            b->type = RBS_BODY_SPHERE;
+            check_sphere(v, obj, b);
+        } else if (type == 1) {
+            b->type = RBS_BODY_PLANE;
+            check_plane(v, obj, b);
+        }
+        if ((c = member(obj, "material")) != NULL) {
+            const char *nm;
+            inner = push_key(v, "material");
+            b->at_material = loc_value(v, c);
+            if (get_name(v, c, &nm) == 0) {
+                b->material = material_find(s, nm);
+                if (b->material < 0) {
+                    const char *hint = rbs__suggest(nm, mat_names, s->material_count);
+                    if (hint != NULL) {
+                        err(v, loc_value(v, c),
+                            "undefined material \"%s\" (did you mean \"%s\"?)", nm, hint);
+                    } else {
+                        err(v, loc_value(v, c),
+                            "undefined material \"%s\"; materials are the names used "
+                            "in \"materials\" pairs",
+                            nm);
+                    }
+                }
+            }
+            pop(v, inner);
+        }
+        if ((c = member(obj, "color")) != NULL) {
+            inner = push_key(v, "color");
+            (void)get_color(v, c, &b->color);
+            pop(v, inner);
+        }
+        if ((c = member(obj, "texture")) != NULL) {
+            int t;
+            inner = push_key(v, "texture");
+            if (get_choice(v, c, textures, 3, &t) == 0) {
+                b->texture = (rbs_texture)t;
+            }
+            pop(v, inner);
+        }
+        b->ok = s->error_count == before && type >= 0;
+        pop(v, saved);
+    }
+    s->body_count = (uint32_t)n;
+    /* duplicate names: sort, then compare neighbours */
+    qsort(recs, nrec, sizeof *recs, cmp_name_rec);
+    for (k = 1; k < nrec; k++) {
+        if (strcmp(recs[k].name, recs[k - 1].name) == 0) {
+            size_t j = k - 1, saved = v->path_len;
+            while (j > 0 && strcmp(recs[j - 1].name, recs[k].name) == 0) {
+                j--;
+            }
+            push_index(v, recs[k].index);
+            push_key(v, "name");
+            err(v, loc_value(v, member(items[recs[k].index], "name")),
+                "duplicate body name \"%s\" (first used by bodies[%lu])", recs[k].name,
+                (unsigned long)recs[j].index);
+            s->bodies[recs[k].index].ok = 0;
+            pop(v, saved);
+        }
+    }
+    free(recs);
+    free(mat_names);
+    *items_out = items;
+}
+
+/* ---- cross-checks ------------------------------------------------------- */
+
+static int pair_matches(const rbs__scene_pair *p, int32_t m1, int32_t m2)
+{
+    int a1 = p->a < 0 || p->a == m1, b2 = p->b < 0 || p->b == m2;
+    int a2 = p->a < 0 || p->a == m2, b1 = p->b < 0 || p->b == m1;
+    return (a1 && b2) || (a2 && b1);
+}
+
+static int pair_exists(const rbs_scene *s, int32_t m1, int32_t m2)
+{
+    uint32_t k;
+    for (k = 0; k < s->pair_count; k++) {
+        if (pair_matches(&s->pairs[k], m1, m2)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Bodies that could touch need a material pair row (after "*" fallbacks).
+ * Could touch: at least one is a movable sphere. */
+static void check_pairs(vctx *v)
+{
+    rbs_scene *s = v->scene;
+    uint32_t m = s->material_count + 1, i, a, b;
+    /* per material (index m-1 = none): first movable sphere, first other body */
+    int64_t *dyn = malloc(m * sizeof *dyn), *other = malloc(m * sizeof *other);
+    if (dyn == NULL || other == NULL) {
+        free(dyn);
+        free(other);
+        return;
+    }
+    for (i = 0; i < m; i++) {
+        dyn[i] = -1;
+        other[i] = -1;
+    }
+    for (i = 0; i < s->body_count; i++) {
+        const rbs__scene_body *bd = &s->bodies[i];
+        uint32_t mi = bd->material >= 0 ? (uint32_t)bd->material : m - 1;
+        if (!bd->ok) {
+            continue;
+        }
+        if (bd->type == RBS_BODY_SPHERE && !bd->fixed) {
+            if (dyn[mi] < 0) {
+                dyn[mi] = i;
+            }
+        } else if (bd->type != RBS_BODY_NONE && other[mi] < 0) {
+            other[mi] = i;
+        }
+    }
+    for (a = 0; a < m; a++) {
+        if (dyn[a] < 0) {
+            continue;
+        }
+        for (b = 0; b < m; b++) {
+            int64_t j = -1;
+            int32_t ma = a == m - 1 ? -1 : (int32_t)a, mb = b == m - 1 ? -1 : (int32_t)b;
+            if (b < a && dyn[b] >= 0) {
+                continue; /* (b, a) is checked when a and b swap */
+            }
+            if (b == a) {
+                /* another movable sphere or other body of the same material */
+                for (i = 0; i < s->body_count && j < 0; i++) {
+                    const rbs__scene_body *bd = &s->bodies[i];
+                    uint32_t mi = bd->material >= 0 ? (uint32_t)bd->material : m - 1;
+                    if (mi == a && (int64_t)i != dyn[a] && bd->ok) {
+                        j = i;
+                    }
+                }
+            } else {
+                j = dyn[b] >= 0 ? dyn[b] : other[b];
+            }
+            if (j < 0 || pair_exists(s, ma, mb)) {
+                continue;
+            }
+            {
+                const rbs__scene_body *bj = &s->bodies[j];
+                size_t saved = v->path_len;
+                push_key(v, "bodies");
+                push_index(v, (size_t)j);
+                push_key(v, bj->material >= 0 ? "material" : "name");
+                err(v, bj->material >= 0 ? bj->at_material : bj->at,
+                    "no material pair for [\"%s\", \"%s\"]: bodies \"%s\" and \"%s\" "
+                    "could touch; add the pair or a \"*\" row to \"materials\"",
+                    ma >= 0 ? s->materials[ma] : "(no material)",
+                    mb >= 0 ? s->materials[mb] : "(no material)",
+                    s->bodies[dyn[a]].name, bj->name);
+                pop(v, saved);
+            }
+        }
+    }
+    free(dyn);
+    free(other);
+}
+
+typedef struct sweep_rec {
+    double lo;
+    uint32_t index;
+} sweep_rec;
+
+static int cmp_sweep(const void *pa, const void *pb)
+{
+    const sweep_rec *a = pa, *b = pb;
+    if (a->lo != b->lo) {
+        return a->lo < b->lo ? -1 : 1;
+    }
+    return a->index < b->index ? -1 : a->index > b->index;
+}
+
+static void overlap_error(vctx *v, uint32_t i, const char *fmt_other, double depth,
+                          uint32_t j)
+{
+    rbs_scene *s = v->scene;
+    size_t saved = v->path_len;
+    push_key(v, "bodies");
+    push_index(v, i);
+    push_key(v, s->bodies[i].type == RBS_BODY_SPHERE ? "position" : "point");
+    err(v, s->bodies[i].at_position, "\"%s\" %s \"%s\" (bodies[%lu]) by %.6g m at the start",
+        s->bodies[i].name, fmt_other, s->bodies[j].name, (unsigned long)j, depth);
+    pop(v, saved);
+}
+
+/* Bodies may not overlap at the start (beyond the world's slop). */
+static void check_overlap(vctx *v)
+{
+    rbs_scene *s = v->scene;
+    rbs_world_def def;
+    uint32_t i, j, n = 0;
+    sweep_rec *rec;
+    rbs_world_def_init(&def);
+    rec = malloc((s->body_count + 1) * sizeof *rec);
+    if (rec == NULL) {
+        return;
+    }
+    for (i = 0; i < s->body_count; i++) {
+        const rbs__scene_body *b = &s->bodies[i];
+        if (b->ok && b->type == RBS_BODY_SPHERE) {
+            rec[n].lo = b->position.x - b->radius;
+            rec[n].index = i;
+            n++;
+        }
+    }
+    /* spheres against planes */
+    for (i = 0; i < s->body_count && v->scene->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
+        const rbs__scene_body *sp = &s->bodies[i];
+        if (!sp->ok || sp->type != RBS_BODY_SPHERE || sp->fixed) {
+            continue;
+        }
+        for (j = 0; j < s->body_count; j++) {
+            const rbs__scene_body *pl = &s->bodies[j];
+            double d;
+            if (!pl->ok || pl->type != RBS_BODY_PLANE) {
+                continue;
+            }
+            d = (sp->position.x - pl->point.x) * pl->normal.x +
+                (sp->position.y - pl->point.y) * pl->normal.y +
+                (sp->position.z - pl->point.z) * pl->normal.z;
+            if (d < sp->radius - def.slop * sp->radius) {
+                overlap_error(v, i, "starts behind (inside) plane", sp->radius - d, j);
+            }
+        }
+    }
+    /* spheres against spheres: sweep along x */
+    qsort(rec, n, sizeof *rec, cmp_sweep);
+    for (i = 0; i < n && v->scene->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
+        const rbs__scene_body *a = &s->bodies[rec[i].index];
+        double hi = a->position.x + a->radius;
+        for (j = i + 1; j < n && rec[j].lo <= hi; j++) {
+            const rbs__scene_body *b = &s->bodies[rec[j].index];
+            double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y,
+                   dz = a->position.z - b->position.z;
+            double dist = sqrt(dx * dx + dy * dy + dz * dz);
+            double rmin = a->radius < b->radius ? a->radius : b->radius;
+            if (a->fixed && b->fixed) {
+                continue;
+            }
+            if (dist < a->radius + b->radius - def.slop * rmin) {
+                uint32_t first = rec[i].index < rec[j].index ? rec[i].index : rec[j].index;
+                uint32_t second = rec[i].index ^ rec[j].index ^ first;
+                overlap_error(v, second, "overlaps", a->radius + b->radius - dist, first);
+            }
+        }
+    }
+    free(rec);
+}
+
+/* ---- renderers ---------------------------------------------------------- */
+
+static const char *const renderer_common_keys[] = {"type", "path", "every"};
+static const char *const sdl_keys[] = {"type",  "path", "every",         "width",
+                                       "height", "window", "tile", "contact_sheet",
+                                       "camera", "views"};
+static const char *const camera_keys[] = {"mode", "position", "target", "up",    "fov",
+                                          "near", "far",      "mount",  "offset", "path"};
+static const char *const camera_modes[] = {"fixed", "mounted", "free"};
+static const char *const path_keys[] = {"t", "position", "target"};
+
+static int find_sphere(const rbs_scene *s, const char *name)
+{
+    uint32_t i;
+    for (i = 0; i < s->body_count; i++) {
+        if (s->bodies[i].type == RBS_BODY_SPHERE && strcmp(s->bodies[i].name, name) == 0) {
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+static void check_camera(vctx *v, const cJSON *cam)
+{
+    const cJSON *c;
+    size_t saved;
+    rbs_vec3 pos = {3, -3, 2}, target = {0, 0, 0.5}, up = {0, 0, 1};
+    int pos_ok = 1, target_ok = 1, up_ok = 1, mode = 0;
+    double nearv = 0.05, farv = 100.0;
+    int near_ok = 1;
+    if (require_object(v, cam, "a camera") != 0) {
+        return;
+    }
+    check_keys(v, cam, camera_keys, (int)(sizeof camera_keys / sizeof *camera_keys),
+               "a camera");
+    if (member(cam, "mount") != NULL) {
+        mode = 1;
+    }
+    if ((c = member(cam, "mode")) != NULL) {
+        saved = push_key(v, "mode");
+        if (get_choice(v, c, camera_modes, 3, &mode) == 0) {
+            if (mode == 1 && member(cam, "mount") == NULL) {
+                err(v, loc_value(v, c), "mode \"mounted\" needs \"mount\" (a sphere's name)");
+            }
+            if (mode != 1 && member(cam, "mount") != NULL) {
+                err(v, loc_value(v, c),
+                    "\"mount\" is given, so the mode must be \"mounted\", got \"%s\"",
+                    c->valuestring);
+            }
+            if (mode != 1 && member(cam, "offset") != NULL) {
+                err(v, loc_value(v, c),
+                    "\"offset\" is given, so the mode must be \"mounted\", got \"%s\"",
+                    c->valuestring);
+            }
+        }
+        pop(v, saved);
+    } else if (member(cam, "offset") != NULL && member(cam, "mount") == NULL) {
+        saved = push_key(v, "offset");
+        err(v, loc_key(v, member(cam, "offset")),
+            "\"offset\" needs \"mount\" (a sphere's name)");
+        pop(v, saved);
+    }
+    if ((c = member(cam, "position")) != NULL) {
+        saved = push_key(v, "position");
+        pos_ok = get_vec3(v, c, &pos) == 0;
+        pop(v, saved);
+    }
+    if ((c = member(cam, "target")) != NULL) {
+        saved = push_key(v, "target");
+        target_ok = get_vec3(v, c, &target) == 0;
+        pop(v, saved);
+    }
+    if ((c = member(cam, "up")) != NULL) {
+        saved = push_key(v, "up");
+        up_ok = get_vec3(v, c, &up) == 0;
+        pop(v, saved);
+    }
+    if (pos_ok && target_ok && up_ok) {
+        rbs_vec3 d = {target.x - pos.x, target.y - pos.y, target.z - pos.z};
+        rbs_vec3 x = {d.y * up.z - d.z * up.y, d.z * up.x - d.x * up.z,
+                      d.x * up.y - d.y * up.x};
+        double ld = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+        double lu = sqrt(up.x * up.x + up.y * up.y + up.z * up.z);
+        double lx = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
+        if (!(ld > 0)) {
+            c = member(cam, "target") != NULL ? member(cam, "target") : cam;
+            saved = push_key(v, "target");
+            err(v, loc_value(v, c), "the target must differ from the position");
+            pop(v, saved);
+        } else if (!(lu > 0) || !(lx > 1e-9 * ld * lu)) {
+            c = member(cam, "up") != NULL ? member(cam, "up") : cam;
+            saved = push_key(v, "up");
+            err(v, loc_value(v, c),
+                "must be nonzero and not parallel to the view direction (target - "
+                "position)");
+            pop(v, saved);
+        }
+    }
+    if ((c = member(cam, "fov")) != NULL) {
+        double f;
+        saved = push_key(v, "fov");
+        if (get_number(v, c, &f) == 0 && !(f > 0 && f < 180)) {
+            char g[64];
+            got(v, c, g, sizeof g);
+            err(v, loc_value(v, c), "must be in (0, 180) degrees, got %s", g);
+        }
+        pop(v, saved);
+    }
+    if ((c = member(cam, "near")) != NULL) {
+        saved = push_key(v, "near");
+        near_ok = get_ranged(v, c, R_POS, &nearv) == 0;
+        pop(v, saved);
+    }
+    if ((c = member(cam, "far")) != NULL) {
+        saved = push_key(v, "far");
+        if (get_number(v, c, &farv) == 0 && near_ok && !(farv > nearv)) {
+            char g[64];
+            got(v, c, g, sizeof g);
+            err(v, loc_value(v, c), "must be > near (%g), got %s", nearv, g);
+        }
+        pop(v, saved);
+    }
+    if ((c = member(cam, "mount")) != NULL) {
+        const char *nm;
+        saved = push_key(v, "mount");
+        if (get_string(v, c, &nm) == 0 && find_sphere(v->scene, nm) < 0) {
+            const char **names = malloc((v->scene->body_count + 1) * sizeof *names);
+            const char *hint = NULL;
+            if (names != NULL) {
+                uint32_t i, k = 0;
+                for (i = 0; i < v->scene->body_count; i++) {
+                    if (v->scene->bodies[i].type == RBS_BODY_SPHERE) {
+                        names[k++] = v->scene->bodies[i].name;
+                    }
+                }
+                hint = rbs__suggest(nm, names, k);
+            }
+            if (hint != NULL) {
+                err(v, loc_value(v, c), "no sphere named \"%s\" (did you mean \"%s\"?)",
+                    nm, hint);
+            } else {
+                err(v, loc_value(v, c), "no sphere named \"%s\" to mount the camera on",
+                    nm);
+            }
+            free(names);
+        }
+        pop(v, saved);
+    }
+    if ((c = member(cam, "offset")) != NULL) {
+        rbs_vec3 o;
+        saved = push_key(v, "offset");
+        (void)get_vec3(v, c, &o);
+        pop(v, saved);
+    }
+    if ((c = member(cam, "path")) != NULL) {
+        saved = push_key(v, "path");
+        if (mode == 1) {
+            err(v, loc_key(v, c), "a mounted camera follows its body; \"path\" is for "
+                                  "fixed and free cameras");
+        } else if (require_array(v, c, "a list of {\"t\", \"position\", \"target\"} "
+                                       "keyframes") == 0) {
+            const cJSON *kf;
+            size_t i = 0;
+            double last_t = -INFINITY;
+            if (cJSON_GetArraySize(c) == 0) {
+                err(v, loc_value(v, c), "must have at least one keyframe");
+            }
+            for (kf = c->child; kf != NULL; kf = kf->next, i++) {
+                size_t s2 = push_index(v, i), s3;
+                const cJSON *e;
+                rbs_vec3 tmp;
+                if (require_object(v, kf, "a camera keyframe") == 0) {
+                    check_keys(v, kf, path_keys, 3, "a camera keyframe");
+                    if ((e = member(kf, "t")) != NULL) {
+                        double t;
+                        s3 = push_key(v, "t");
+                        if (get_ranged(v, e, R_NONNEG, &t) == 0) {
+                            if (!(t > last_t)) {
+                                char g[64];
+                                got(v, e, g, sizeof g);
+                                err(v, loc_value(v, e),
+                                    "times must increase, got %s after %g", g, last_t);
+                            }
+                            last_t = t;
+                        }
+                        pop(v, s3);
+                    } else {
+                        missing(v, kf, "t", "the keyframe's time, s");
+                    }
+                    if ((e = member(kf, "position")) != NULL) {
+                        s3 = push_key(v, "position");
+                        (void)get_vec3(v, e, &tmp);
+                        pop(v, s3);
+                    } else {
+                        missing(v, kf, "position", "the camera position, m");
+                    }
+                    if ((e = member(kf, "target")) != NULL) {
+                        s3 = push_key(v, "target");
+                        (void)get_vec3(v, e, &tmp);
+                        pop(v, s3);
+                    } else {
+                        missing(v, kf, "target", "the point looked at, m");
+                    }
+                }
+                pop(v, s2);
+            }
+        }
+        pop(v, saved);
+    }
+}
+
+static void check_renderer(vctx *v, const cJSON *r, size_t index)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *c, *type_item;
+    const char *type = NULL;
+    size_t saved;
+    int ok;
+    uint32_t before = s->error_count;
+    if (require_object(v, r, "a renderer entry") != 0) {
+        return;
+    }
+    type_item = member(r, "type");
+    if (type_item == NULL) {
+        missing(v, r, "type", "the renderer type, e.g. \"csv\", \"json\" or \"sdl\"");
+    } else {
+        saved = push_key(v, "type");
+        if (get_string(v, type_item, &type) == 0 && type[0] == '\0') {
+            err(v, loc_value(v, type_item), "must not be empty");
+            type = NULL;
+        }
+        pop(v, saved);
+    }
+    if (type != NULL && (strcmp(type, "csv") == 0 || strcmp(type, "json") == 0)) {
+        check_keys(v, r, renderer_common_keys, 3, type);
+    } else if (type != NULL && strcmp(type, "sdl") == 0) {
+        check_keys(v, r, sdl_keys, (int)(sizeof sdl_keys / sizeof *sdl_keys), "sdl");
+    } else {
+        /* other types validate their own keys; duplicates are still wrong */
+        const cJSON *a, *b;
+        for (a = r->child; a != NULL; a = a->next) {
+            for (b = r->child; b != a; b = b->next) {
+                if (strcmp(a->string, b->string) == 0) {
+                    rbs__loc first = loc_key(v, b);
+                    saved = push_key(v, a->string);
+                    err(v, loc_key(v, a), "duplicate key (first given at line %ld, column %ld)",
+                        (long)first.line, (long)first.column);
+                    pop(v, saved);
+                    break;
+                }
+            }
+        }
+    }
+    if ((c = member(r, "path")) != NULL) {
+        const char *p;
+        saved = push_key(v, "path");
+        if (get_string(v, c, &p) == 0 && p[0] == '\0') {
+            err(v, loc_value(v, c), "must not be empty");
+        }
+        pop(v, saved);
+    }
+    if ((c = member(r, "every")) != NULL) {
+        uint64_t k;
+        saved = push_key(v, "every");
+        (void)get_integer(v, c, 1, 4294967295.0, "an integer >= 1", &k);
+        pop(v, saved);
+    }
+    if (type != NULL && strcmp(type, "sdl") == 0) {
+        const char *const dims[] = {"width", "height"};
+        int d;
+        const cJSON *cam = member(r, "camera"), *views = member(r, "views");
+        for (d = 0; d < 2; d++) {
+            if ((c = member(r, dims[d])) != NULL) {
+                uint64_t k;
+                saved = push_key(v, dims[d]);
+                (void)get_integer(v, c, 16, 8192, "an integer in 16..8192 (pixels)", &k);
+                pop(v, saved);
+            }
+        }
+        if ((c = member(r, "window")) != NULL) {
+            saved = push_key(v, "window");
+            if (!cJSON_IsBool(c) && !(cJSON_IsString(c) && strcmp(c->valuestring, "auto") == 0)) {
+                char g[64];
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be \"auto\", true or false, got %s", g);
+            }
+            pop(v, saved);
+        }
+        if ((c = member(r, "tile")) != NULL) {
+            int32_t b;
+            saved = push_key(v, "tile");
+            (void)get_bool(v, c, &b);
+            pop(v, saved);
+        }
+        if ((c = member(r, "contact_sheet")) != NULL) {
+            int32_t b;
+            saved = push_key(v, "contact_sheet");
+            (void)get_bool(v, c, &b);
+            pop(v, saved);
+        }
+        if (cam != NULL && views != NULL) {
+            saved = push_key(v, "views");
+            err(v, loc_key(v, views), "give either \"camera\" or \"views\", not both");
+            pop(v, saved);
+        }
+        if (cam != NULL) {
+            saved = push_key(v, "camera");
+            check_camera(v, cam);
+            pop(v, saved);
+        }
+        if (views != NULL) {
+            saved = push_key(v, "views");
+            if (require_array(v, views, "a list of 1 to 4 cameras") == 0) {
+                int count = cJSON_GetArraySize(views);
+                const cJSON *e;
+                size_t i = 0;
+                if (count < 1 || count > 4) {
+                    err(v, loc_value(v, views), "must have 1 to 4 cameras, got %d", count);
+                }
+                for (e = views->child; e != NULL; e = e->next, i++) {
+                    size_t s2 = push_index(v, i);
+                    check_camera(v, e);
+                    pop(v, s2);
+                }
+            }
+            pop(v, saved);
+        }
+    }
+    ok = s->error_count == before && type != NULL;
+    if (index >= RBS_RENDERERS_MAX) {
+        err(v, loc_value(v, r), "at most %d renderers may be attached, this is number %lu",
+            RBS_RENDERERS_MAX, (unsigned long)index + 1);
+        ok = 0;
+    }
+    if (ok) {
+        char *text = cJSON_PrintUnformatted(r);
+        rbs__scene_renderer *out = &s->renderers[s->renderer_count];
+        if (text == NULL) {
+            err(v, loc_value(v, r), "out of memory");
+            return;
+        }
+        out->json = rbs__strdup(text);
+        cJSON_free(text);
+        out->type = rbs__strdup(type);
+        out->at = loc_value(v, r);
+        if (out->json == NULL || out->type == NULL) {
+            free(out->json);
+            free(out->type);
+            out->json = out->type = NULL;
+            err(v, loc_value(v, r), "out of memory");
+            return;
+        }
+        s->renderer_count++;
+    }
+}
+
+/* ---- the whole scene ---------------------------------------------------- */
+
+static const char *const top_keys[] = {"description", "format",    "simulation",
+                                       "materials",   "bodies",    "renderers"};
+
+void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap *map,
+                         const rbs__src *srcs, int32_t src_count)
+{
+    vctx v;
+    const cJSON *c;
+    const cJSON **body_items = NULL;
+    size_t saved;
+    int materials_ok = 1;
+    memset(&v, 0, sizeof v);
+    v.scene = scene;
+    v.map = map;
+    v.srcs = srcs;
+    v.src_count = src_count;
+    if (!cJSON_IsObject(tree)) {
+        char g[64];
+        got(&v, tree, g, sizeof g);
+        err(&v, loc_value(&v, tree), "a scene must be a JSON object, got %s", g);
+        return;
+    }
+    check_keys(&v, tree, top_keys, (int)(sizeof top_keys / sizeof *top_keys), "a scene");
+    if ((c = member(tree, "format")) != NULL) {
+        uint64_t f;
+        saved = push_key(&v, "format");
+        if (get_integer(&v, c, 1, 1, "1 (this library reads format version 1)", &f) != 0) {
+            pop(&v, saved);
+            return; /* another version: the rest would only mislead */
+        }
+        pop(&v, saved);
+    }
+    if ((c = member(tree, "description")) != NULL) {
+        const char *d;
+        saved = push_key(&v, "description");
+        if (get_string(&v, c, &d) == 0) {
+            scene->description = rbs__strdup(d);
+        }
+        pop(&v, saved);
+    }
+    if ((c = member(tree, "simulation")) != NULL) {
+        saved = push_key(&v, "simulation");
+        check_simulation(&v, c);
+        pop(&v, saved);
+    } else {
+        missing(&v, tree, "simulation", "an object with at least \"steps\"");
+    }
+    if ((c = member(tree, "materials")) != NULL) {
+        uint32_t before = scene->error_count;
+        saved = push_key(&v, "materials");
+        check_materials(&v, c);
+        pop(&v, saved);
+        materials_ok = scene->error_count == before;
+    }
+    if ((c = member(tree, "bodies")) != NULL) {
+        saved = push_key(&v, "bodies");
+        check_bodies(&v, c, &body_items);
+        pop(&v, saved);
+    } else {
+        missing(&v, tree, "bodies", "a list of spheres and planes");
+    }
+    if ((c = member(tree, "renderers")) != NULL) {
+        saved = push_key(&v, "renderers");
+        if (require_array(&v, c, "a list of renderer entries") == 0) {
+            const cJSON *r;
+            size_t i = 0;
+            for (r = c->child; r != NULL; r = r->next, i++) {
+                size_t s2 = push_index(&v, i);
+                check_renderer(&v, r, i);
+                pop(&v, s2);
+            }
+        }
+        pop(&v, saved);
+    }
+    /* cross-checks use the bodies whose own values were valid; missing pairs
+     * are only judged when every material row was valid */
+    check_overlap(&v);
+    if (materials_ok) {
+        check_pairs(&v);
+    }
+    free(body_items);
+}
