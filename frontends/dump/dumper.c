@@ -42,6 +42,7 @@ static rbs_status dumper_create(void *context, const rbs_renderer_config *config
     st = rbsf__dump_path(config, path, sizeof path, err, errlen);
     if (st != RBS_OK)
         return st;
+    rbs_world_def_init(&wd);
     if (world == NULL || rbs_world_get_def(world, &wd) != RBS_OK) {
         snprintf(err, errlen, "no world");
         return RBS_E_INVALID;

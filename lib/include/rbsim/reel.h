@@ -179,8 +179,8 @@ RBS_API rbs_status rbs_renderer_find(const rbs_renderer_registry *registry,
 typedef struct rbs_projector_def {
     uint32_t struct_size;     /**< set by the init macro; do not touch */
     uint64_t steps;           /**< steps to take: frames k = 0..steps at
-                                   t = k dt (frame 0 is the initial state);
-                                   0 runs until "quit".  Default 0 */
+                                   t = k dt (frame 0 is the initial state;
+                                   0 gives frame 0 only).  Default 0 */
     uint32_t reel_capacity;   /**< frames in the reel, >= 2; default 64 */
     rbs_reel_policy policy;   /**< default lossless.  Latest-only is used
                                    only if every renderer is
@@ -192,6 +192,8 @@ typedef struct rbs_projector_def {
     int32_t start_paused;     /**< nonzero: pause after frame 0; default 0 */
     int32_t pause_on_collision; /**< nonzero: pause after a frame whose step
                                    resolved an impact; default 0 */
+    int32_t endless;          /**< nonzero: ignore steps, run until "quit";
+                                   default 0 */
 } rbs_projector_def;
 
 /** Fill a projector definition with defaults.  Prefer the macro. */
@@ -217,7 +219,8 @@ typedef struct rbs_run_info {
     int32_t quit;             /**< nonzero once quit was asked */
     int32_t realtime;         /**< nonzero if paced to the wall clock */
     double speed;             /**< real-time factor */
-    uint64_t steps;           /**< steps asked (0: until quit) */
+    uint64_t steps;           /**< steps asked */
+    int32_t endless;          /**< nonzero: until quit */
     uint64_t captured;        /**< frames captured by the simulation so far */
     uint64_t frame;           /**< number of the last frame drawn */
     double time;              /**< simulated time of the last frame drawn, s */

@@ -182,6 +182,7 @@ void rbs_projector_def_init_sized(rbs_projector_def *def, size_t def_size)
     d.speed = 1.0;
     d.start_paused = 0;
     d.pause_on_collision = 0;
+    d.endless = 0;
     memcpy(def, &d, d.struct_size);
 }
 
@@ -228,6 +229,7 @@ rbs_status rbs_projector_create(rbs_world *world,
         (count > 0 && (configs == NULL || registry == NULL)) ||
         def->struct_size < offsetof(rbs_projector_def, pause_on_collision))
         return RBS_E_INVALID;
+    rbs_world_def_init(&wd);
     if (rbs_world_get_def(world, &wd) != RBS_OK)
         return RBS_E_INVALID;
 
@@ -412,13 +414,14 @@ static void *sim_main(void *arg)
     rbs_step_info info;
     uint64_t k;
     const uint64_t steps = p->def.steps;
+    const int endless = p->def.endless != 0;
 
     memset(&info, 0, sizeof info);
     /* Frame 0: the initial state. */
-    if (publish(p, &info, 0) != 0)
+    if (publish(p, &info, !endless && steps == 0) != 0)
         goto done;
 
-    for (k = 1; steps == 0 || k <= steps; k++) {
+    for (k = 1; endless || k <= steps; k++) {
         rbs_status st;
         /* Wait while paused, unless "step N" gave a budget. */
         pthread_mutex_lock(&p->mu);
@@ -442,7 +445,7 @@ static void *sim_main(void *arg)
                  why ? why : "");
             break;
         }
-        if (publish(p, &info, steps != 0 && k == steps) != 0)
+        if (publish(p, &info, !endless && k == steps) != 0)
             break;
     }
 
@@ -738,6 +741,7 @@ static void status_locked(rbs_projector *p, rbs_run_info *info)
     info->realtime = p->def.realtime;
     info->speed = p->speed;
     info->steps = p->def.steps;
+    info->endless = p->def.endless;
     info->captured = p->captured;
     info->frame = p->frame_drawn;
     info->time = p->time_drawn;

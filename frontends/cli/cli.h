@@ -1,0 +1,78 @@
+/*
+ * cli.h - the pieces of the rbsim command (not a library API).
+ */
+#ifndef RBSF_CLI_H
+#define RBSF_CLI_H
+
+#include <pthread.h>
+#include <stdio.h>
+
+#include "rbsim/reel.h"
+#include "rbsim/scene.h"
+
+/* Exit codes of the rbsim command. */
+enum {
+    RBSF_EXIT_OK = 0,
+    RBSF_EXIT_USAGE = 2,
+    RBSF_EXIT_SCENE = 3,
+    RBSF_EXIT_RUN = 4
+};
+
+/* ---- commands.c: the command map of the input thread ---- */
+
+/** Answer one command line typed during a run (reply: one or more lines,
+ * each ending in a newline).  Returns RBS_OK, or an error when the command
+ * is unknown or its arguments are bad (the reply explains). */
+rbs_status rbsf_command_run(rbs_projector *projector, const char *line,
+                            char *reply, size_t reply_size);
+/** Write the list of commands ("help"). */
+void rbsf_command_help(char *out, size_t size);
+
+/* ---- input.c: the input thread ---- */
+
+typedef struct rbsf_input {
+    pthread_t thread;
+    int wake[2];          /* self-pipe: a byte here ends the thread */
+    int fd;               /* the input, normally 0 */
+    FILE *reply;          /* where answers go */
+    pthread_mutex_t *reply_lock;
+    rbs_projector *projector;
+    int started;
+} rbsf_input;
+
+/** Start reading command lines from fd.  End of input ends the thread,
+ * not the run. */
+int rbsf_input_start(rbsf_input *in, int fd, rbs_projector *projector,
+                     FILE *reply, pthread_mutex_t *reply_lock);
+/** Stop and join the thread. */
+void rbsf_input_stop(rbsf_input *in);
+
+/* ---- signals.c: the signal thread ---- */
+
+typedef struct rbsf_signals {
+    pthread_t thread;
+    pthread_mutex_t lock;
+    rbs_projector *projector; /* guarded by lock; NULL until attached */
+    int caught;               /* the first SIGINT/SIGTERM, 0 if none */
+    int started;
+} rbsf_signals;
+
+/** Block SIGINT and SIGTERM in this thread (and the threads it starts) and
+ * start a thread that takes them with sigwait.  Call before any other
+ * thread starts. */
+int rbsf_signals_start(rbsf_signals *s);
+/** From now on a signal sends "quit" to this projector (at once if one was
+ * caught already). */
+void rbsf_signals_attach(rbsf_signals *s, rbs_projector *projector);
+/** The signal caught (SIGINT, SIGTERM) or 0. */
+int rbsf_signals_caught(rbsf_signals *s);
+/** Stop and join the signal thread. */
+void rbsf_signals_stop(rbsf_signals *s);
+
+/* ---- run.c ---- */
+/** "rbsim run ARGS": the exit code. */
+int rbsf_run_main(int argc, char **argv);
+/** Print help for a command (NULL: the general usage). 0 if known. */
+int rbsf_help(FILE *out, const char *command);
+
+#endif

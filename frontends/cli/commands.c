@@ -1,0 +1,122 @@
+/*
+ * commands.c - the command map: what a user may type while a run goes on.
+ * A const table of name, arguments, help and handler; the projector does the
+ * work (rbs_projector_command), camera lines go on to the renderers.
+ */
+#include "cli.h"
+
+#include <string.h>
+
+typedef rbs_status (*rbsf_handler)(rbs_projector *projector, const char *line,
+                                   char *reply, size_t reply_size);
+
+typedef struct rbsf_command {
+    const char *name;
+    const char *args;
+    const char *help;
+    rbsf_handler handler;
+} rbsf_command;
+
+static rbs_status cmd_help(rbs_projector *projector, const char *line,
+                           char *reply, size_t reply_size);
+static rbs_status cmd_forward(rbs_projector *projector, const char *line,
+                              char *reply, size_t reply_size);
+
+static const rbsf_command commands[] = {
+    {"help", "", "list these commands", cmd_help},
+    {"quit", "", "stop the run; every output is finished up to the last frame",
+     cmd_forward},
+    {"pause", "", "pause the simulation", cmd_forward},
+    {"resume", "", "go on after a pause", cmd_forward},
+    {"step", "[N]", "make N more frames (default 1), then stay paused",
+     cmd_forward},
+    {"speed", "FACTOR", "real-time factor (--realtime runs), e.g. 0.5",
+     cmd_forward},
+    {"status", "", "frame, simulated time, state and counters", cmd_forward},
+    {"orbit", "DYAW DPITCH", "turn the SDL camera about its target, degrees",
+     cmd_forward},
+    {"pan", "DX DY", "move the SDL camera and its target sideways, metres",
+     cmd_forward},
+    {"zoom", "FACTOR", "move the SDL camera closer (> 1) or away (< 1)",
+     cmd_forward},
+    {"reset", "", "put the SDL camera back where it started", cmd_forward},
+    {"camera", "ARGS", "other camera settings of the SDL views (see "
+     "frontends/sdl/README.md)", cmd_forward},
+};
+
+#define COMMAND_COUNT (sizeof commands / sizeof commands[0])
+
+void rbsf_command_help(char *out, size_t size)
+{
+    size_t i, used = 0;
+    if (size == 0)
+        return;
+    out[0] = '\0';
+    for (i = 0; i < COMMAND_COUNT && used < size; i++) {
+        char head[48];
+        int n;
+        snprintf(head, sizeof head, "%s%s%s", commands[i].name,
+                 commands[i].args[0] ? " " : "", commands[i].args);
+        n = snprintf(out + used, size - used, "  %-20s %s\n", head,
+                     commands[i].help);
+        if (n < 0)
+            break;
+        used += (size_t)n;
+    }
+}
+
+static rbs_status cmd_help(rbs_projector *projector, const char *line,
+                           char *reply, size_t reply_size)
+{
+    size_t n;
+    (void)projector;
+    (void)line;
+    n = (size_t)snprintf(reply, reply_size, "commands:\n");
+    if (n < reply_size)
+        rbsf_command_help(reply + n, reply_size - n);
+    return RBS_OK;
+}
+
+static rbs_status cmd_forward(rbs_projector *projector, const char *line,
+                              char *reply, size_t reply_size)
+{
+    rbs_status st = rbs_projector_command(projector, line, reply, reply_size);
+    size_t n = strlen(reply);
+    if (n + 1 < reply_size) {
+        reply[n] = '\n';
+        reply[n + 1] = '\0';
+    }
+    return st;
+}
+
+rbs_status rbsf_command_run(rbs_projector *projector, const char *line,
+                            char *reply, size_t reply_size)
+{
+    char word[32];
+    size_t i, n = 0;
+
+    if (reply_size == 0)
+        return RBS_E_INVALID;
+    reply[0] = '\0';
+    while (*line == ' ' || *line == '\t')
+        line++;
+    while (line[n] && line[n] != ' ' && line[n] != '\t' && line[n] != '\r' &&
+           line[n] != '\n' && n + 1 < sizeof word) {
+        word[n] = line[n];
+        n++;
+    }
+    word[n] = '\0';
+    if (word[0] == '\0')
+        return RBS_OK; /* an empty line: nothing to do */
+    for (i = 0; i < COMMAND_COUNT; i++)
+        if (strcmp(word, commands[i].name) == 0)
+            return commands[i].handler(projector, line, reply, reply_size);
+    /* Unknown: say so and list what is known. */
+    {
+        size_t m = (size_t)snprintf(reply, reply_size,
+                                    "unknown command '%s'; commands:\n", word);
+        if (m < reply_size)
+            rbsf_command_help(reply + m, reply_size - m);
+    }
+    return RBS_E_NOT_FOUND;
+}

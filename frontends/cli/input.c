@@ -1,0 +1,121 @@
+/*
+ * input.c - the input thread: reads command lines from standard input and
+ * answers each through the command map.  It waits with poll() on the input
+ * and on a self-pipe, so it can be stopped at any time; end of input (a pipe
+ * or /dev/null) ends the thread but never the run.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <string.h>
+#include <unistd.h>
+
+#define LINE_MAX_BYTES 1024
+#define REPLY_BYTES 4096
+
+static void answer(rbsf_input *in, const char *line)
+{
+    char reply[REPLY_BYTES];
+    rbsf_command_run(in->projector, line, reply, sizeof reply);
+    if (reply[0] == '\0')
+        return;
+    pthread_mutex_lock(in->reply_lock);
+    fputs(reply, in->reply);
+    fflush(in->reply);
+    pthread_mutex_unlock(in->reply_lock);
+}
+
+static void *input_main(void *arg)
+{
+    rbsf_input *in = arg;
+    char buf[LINE_MAX_BYTES];
+    size_t len = 0;
+    int overlong = 0;
+
+    for (;;) {
+        struct pollfd fds[2];
+        ssize_t n;
+        size_t i, start;
+
+        fds[0].fd = in->fd;
+        fds[0].events = POLLIN;
+        fds[1].fd = in->wake[0];
+        fds[1].events = POLLIN;
+        if (poll(fds, 2, -1) < 0) {
+            if (errno == EINTR)
+                continue;
+            break;
+        }
+        if (fds[1].revents)
+            break; /* asked to stop */
+        if (fds[0].revents & POLLNVAL)
+            break; /* no input at all (closed descriptor) */
+        if (!(fds[0].revents & (POLLIN | POLLHUP | POLLERR)))
+            continue;
+        n = read(in->fd, buf + len, sizeof buf - 1 - len);
+        if (n < 0 && (errno == EINTR || errno == EAGAIN))
+            continue;
+        if (n <= 0)
+            break; /* end of input: the run goes on by itself */
+        len += (size_t)n;
+
+        /* Answer every whole line. */
+        start = 0;
+        for (i = 0; i < len; i++) {
+            if (buf[i] != '\n')
+                continue;
+            buf[i] = '\0';
+            if (!overlong)
+                answer(in, buf + start);
+            overlong = 0;
+            start = i + 1;
+        }
+        memmove(buf, buf + start, len - start);
+        len -= start;
+        if (len == sizeof buf - 1) {
+            /* A line too long for the buffer: drop it whole. */
+            pthread_mutex_lock(in->reply_lock);
+            fprintf(in->reply, "line too long (at most %d bytes): ignored\n",
+                    LINE_MAX_BYTES - 2);
+            fflush(in->reply);
+            pthread_mutex_unlock(in->reply_lock);
+            len = 0;
+            overlong = 1;
+        }
+    }
+    return NULL;
+}
+
+int rbsf_input_start(rbsf_input *in, int fd, rbs_projector *projector,
+                     FILE *reply, pthread_mutex_t *reply_lock)
+{
+    memset(in, 0, sizeof *in);
+    in->fd = fd;
+    in->projector = projector;
+    in->reply = reply;
+    in->reply_lock = reply_lock;
+    if (pipe(in->wake) != 0)
+        return -1;
+    if (pthread_create(&in->thread, NULL, input_main, in) != 0) {
+        close(in->wake[0]);
+        close(in->wake[1]);
+        return -1;
+    }
+    in->started = 1;
+    return 0;
+}
+
+void rbsf_input_stop(rbsf_input *in)
+{
+    ssize_t w;
+    if (!in->started)
+        return;
+    do
+        w = write(in->wake[1], "x", 1);
+    while (w < 0 && errno == EINTR);
+    pthread_join(in->thread, NULL);
+    close(in->wake[0]);
+    close(in->wake[1]);
+    in->started = 0;
+}

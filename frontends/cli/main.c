@@ -1,0 +1,302 @@
+/*
+ * main.c - the rbsim command: run, check, convert, help, --version.
+ */
+#include "cli.h"
+#include "dump.h"
+#ifdef RBSF_HAVE_SDL
+#include "sdl_renderer.h"
+#endif
+
+#include <string.h>
+
+static const char usage_text[] =
+    "usage: rbsim COMMAND [ARGUMENTS]\n"
+    "\n"
+    "commands:\n"
+    "  run [SCENE] [OPTIONS]  run a scene; with no SCENE, the built-in\n"
+    "                         demonstration (outputs in ./rbsim-demo/)\n"
+    "  check SCENE            validate a scene and print every error\n"
+    "  convert IN OUT         convert a scene between JSON (.json) and the\n"
+    "                         config.txt format (OUT ending in .txt)\n"
+    "  help [COMMAND]         this text, or a command's options\n"
+    "  --version              print the version\n"
+    "\n"
+    "exit codes: 0 success, 2 usage error, 3 scene error, 4 run-time error\n"
+    "(capacity, numerical failure, renderer failure), 130/143 interrupted by\n"
+    "SIGINT/SIGTERM.\n";
+
+static const char run_text[] =
+    "usage: rbsim run [SCENE] [OPTIONS]\n"
+    "\n"
+    "Run SCENE (a .json scene, or a config.txt with its materials.txt and\n"
+    "objects.txt).  With no SCENE, run the built-in demonstration: a bouncing\n"
+    "ball, a ball launched sliding that then rolls, and a small billiards\n"
+    "break; it writes rbsim-demo/demo.csv, rbsim-demo/stats.csv (and PNG\n"
+    "frames in rbsim-demo/png/ when built with SDL) and checks the run against\n"
+    "exact answers (first impact at sqrt(2h/g), rolling at 5/7 v0).\n"
+    "\n"
+    "options (they override the scene):\n"
+    "  --steps N     steps to take: frames 0..N at t = k dt\n"
+    "  --dt S        time step, seconds (> 0)\n"
+    "  --method M    euler, selective, event, verlet, rk4 or adaptive\n"
+    "  --csv FILE    every body's state each frame, as CSV (\"-\": stdout)\n"
+    "  --json FILE   JSON Lines, one object per frame\n"
+    "  --stats FILE  energy, momentum and step counters each frame, as CSV\n"
+    "  --png DIR     PNG frames into DIR (builds with SDL)\n"
+    "  --every K     keep every K-th frame (and the last) in --csv, --json\n"
+    "                and --png\n"
+    "  --realtime    show frame k at k dt of wall time (default: as fast as\n"
+    "                possible)\n"
+    "  --speed X     real-time factor for --realtime (default 1)\n"
+    "  --paused      start paused (then \"resume\" or \"step N\")\n"
+    "  --reel N      frames the reel holds between the threads (default 64)\n"
+    "  --quiet       no progress bar and no summary\n"
+    "At most 4 outputs (the scene's renderers and these) per run.  Every output\n"
+    "is checked before any is opened: a rejected run writes nothing.\n"
+    "\n"
+    "While it runs, type commands on standard input:\n";
+
+static const char check_text[] =
+    "usage: rbsim check SCENE\n"
+    "\n"
+    "Validate SCENE: the file, the world it builds and its renderer entries\n"
+    "(including that their output folders exist).  Prints every error as\n"
+    "file:line:column: key: message.  Exit 0 if valid, 3 if not.\n";
+
+static const char convert_text[] =
+    "usage: rbsim convert IN OUT\n"
+    "\n"
+    "Read the scene IN (either format) and write it to OUT: JSON when OUT ends\n"
+    "in .json, the config.txt format (with materials.txt and objects.txt\n"
+    "beside it) when OUT ends in .txt.  Exit 0, 2 (usage), 3 (IN is not a\n"
+    "valid scene) or 4 (OUT could not be written).\n";
+
+int rbsf_help(FILE *out, const char *command)
+{
+    if (command == NULL) {
+        fputs(usage_text, out);
+        return 0;
+    }
+    if (strcmp(command, "run") == 0) {
+        char list[2048];
+        fputs(run_text, out);
+        rbsf_command_help(list, sizeof list);
+        fputs(list, out);
+        fputs("End of input (a pipe, /dev/null) does not stop the run; Ctrl-C "
+              "or SIGTERM stops it\ncleanly (outputs complete up to the last "
+              "frame; exit 130 or 143).\n",
+              out);
+        return 0;
+    }
+    if (strcmp(command, "check") == 0) {
+        fputs(check_text, out);
+        return 0;
+    }
+    if (strcmp(command, "convert") == 0) {
+        fputs(convert_text, out);
+        return 0;
+    }
+    if (strcmp(command, "help") == 0) {
+        fputs("usage: rbsim help [COMMAND]\n", out);
+        return 0;
+    }
+    return -1;
+}
+
+static int check_main(int argc, char **argv)
+{
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    rbs_renderer_registry *registry = NULL;
+    rbs_status st;
+    int code = RBSF_EXIT_OK;
+    uint32_t i, n;
+
+    if (argc != 1 || argv[0][0] == '\0') {
+        fprintf(stderr, "rbsim check: expected one scene file\n%s", check_text);
+        return RBSF_EXIT_USAGE;
+    }
+    st = rbs_scene_load(argv[0], RBS_SCENE_AUTO, &scene);
+    if (st != RBS_OK) {
+        uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
+        for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
+            rbs_scene_error e;
+            if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
+                printf("%s\n", e.text);
+        }
+        if (count > RBS_SCENE_ERRORS_MAX)
+            printf("... and %lu more errors\n",
+                   (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
+        if (count == 0)
+            printf("%s: %s\n", argv[0], rbs_status_string(st));
+        rbs_scene_free(scene);
+        return RBSF_EXIT_SCENE;
+    }
+    st = rbs_scene_build(scene, &world);
+    if (st != RBS_OK) {
+        printf("%s: cannot build the world: %s%s%s\n", argv[0],
+               rbs_status_string(st), world ? ": " : "",
+               world ? rbs_world_last_error(world) : "");
+        code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+    /* Renderer entries: each known type checks its own keys and path. */
+    if (rbs_renderer_registry_create(&registry) != RBS_OK) {
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+    rbs_renderer_register(registry, rbsf_csv_class());
+    rbs_renderer_register(registry, rbsf_json_class());
+    rbs_renderer_register(registry, rbsf_stats_class());
+#ifdef RBSF_HAVE_SDL
+    rbs_renderer_register(registry, rbsf_sdl_class());
+#endif
+    n = rbs_scene_renderer_count(scene);
+    for (i = 0; i < n; i++) {
+        rbs_scene_renderer r;
+        rbs_renderer_config c;
+        const rbs_renderer_class *cls;
+        char err[512] = "";
+        if (rbs_scene_renderer_get(scene, i, &r) != RBS_OK)
+            continue;
+        if (rbs_renderer_find(registry, r.type, &cls) != RBS_OK) {
+            printf("%s:%d:%d: renderers[%lu].type: unknown renderer type "
+                   "\"%s\"%s\n",
+                   r.file, (int)r.line, (int)r.column, (unsigned long)i, r.type,
+                   strcmp(r.type, "sdl") == 0
+                       ? " (this rbsim was built without SDL)"
+                       : " (known: csv, json, stats, sdl)");
+            code = RBSF_EXIT_SCENE;
+            continue;
+        }
+        if (cls->check == NULL)
+            continue;
+        memset(&c, 0, sizeof c);
+        c.struct_size = sizeof c;
+        c.type = r.type;
+        c.json = r.json;
+        c.file = r.file;
+        c.line = r.line;
+        c.column = r.column;
+        st = cls->check(cls->context, &c, world, err, sizeof err);
+        if (st != RBS_OK) {
+            printf("%s:%d:%d: renderers[%lu] (%s): %s\n", r.file, (int)r.line,
+                   (int)r.column, (unsigned long)i, r.type,
+                   err[0] ? err : rbs_status_string(st));
+            code = RBSF_EXIT_SCENE;
+        }
+    }
+    if (code == RBSF_EXIT_OK)
+        printf("%s: ok (%llu steps, %lu renderer%s)\n", argv[0],
+               (unsigned long long)rbs_scene_steps(scene), (unsigned long)n,
+               n == 1 ? "" : "s");
+out:
+    rbs_renderer_registry_destroy(registry);
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+    return code;
+}
+
+static int ends_with(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+static int convert_main(int argc, char **argv)
+{
+    rbs_scene *scene = NULL;
+    rbs_scene_format format;
+    rbs_status st;
+    uint32_t k, count;
+
+    if (argc != 2 || argv[0][0] == '\0' || argv[1][0] == '\0') {
+        fprintf(stderr, "rbsim convert: expected IN and OUT\n%s", convert_text);
+        return RBSF_EXIT_USAGE;
+    }
+    if (ends_with(argv[1], ".json"))
+        format = RBS_SCENE_JSON;
+    else if (ends_with(argv[1], ".txt"))
+        format = RBS_SCENE_TEXT;
+    else {
+        fprintf(stderr,
+                "rbsim convert: cannot tell the format of '%s': name it *.json "
+                "or a config.txt path\n",
+                argv[1]);
+        return RBSF_EXIT_USAGE;
+    }
+    st = rbs_scene_load(argv[0], RBS_SCENE_AUTO, &scene);
+    if (st != RBS_OK) {
+        count = scene ? rbs_scene_error_count(scene) : 0;
+        for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
+            rbs_scene_error e;
+            if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
+                fprintf(stderr, "%s\n", e.text);
+        }
+        if (count == 0)
+            fprintf(stderr, "%s: %s\n", argv[0], rbs_status_string(st));
+        rbs_scene_free(scene);
+        return RBSF_EXIT_SCENE;
+    }
+    count = rbs_scene_error_count(scene);
+    st = rbs_scene_save(scene, argv[1], format);
+    if (st != RBS_OK) {
+        uint32_t now = rbs_scene_error_count(scene);
+        for (k = count; k < now && k < RBS_SCENE_ERRORS_MAX; k++) {
+            rbs_scene_error e;
+            if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
+                fprintf(stderr, "%s\n", e.text);
+        }
+        fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", argv[1],
+                rbs_status_string(st));
+        rbs_scene_free(scene);
+        return RBSF_EXIT_RUN;
+    }
+    rbs_scene_free(scene);
+    return RBSF_EXIT_OK;
+}
+
+int main(int argc, char **argv)
+{
+    const char *cmd;
+    if (argc < 2) {
+        fputs(usage_text, stderr);
+        return RBSF_EXIT_USAGE;
+    }
+    cmd = argv[1];
+    if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
+        if (argc != 2) {
+            fprintf(stderr, "rbsim --version: takes no arguments\n");
+            return RBSF_EXIT_USAGE;
+        }
+        printf("rbsim %s (library %s)\n", RBS_VERSION_STRING, rbs_version());
+        if (rbs_version_number() / 10000 != RBS_VERSION_NUMBER / 10000) {
+            fprintf(stderr, "rbsim: library version %s does not match this "
+                            "program's %s\n",
+                    rbs_version(), RBS_VERSION_STRING);
+            return RBSF_EXIT_RUN;
+        }
+        return RBSF_EXIT_OK;
+    }
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 ||
+        strcmp(cmd, "help") == 0) {
+        if (argc > 3) {
+            fprintf(stderr, "rbsim help: one command at most\n");
+            return RBSF_EXIT_USAGE;
+        }
+        if (rbsf_help(stdout, argc == 3 ? argv[2] : NULL) != 0) {
+            fprintf(stderr, "rbsim help: unknown command '%s'\n%s", argv[2],
+                    usage_text);
+            return RBSF_EXIT_USAGE;
+        }
+        return RBSF_EXIT_OK;
+    }
+    if (strcmp(cmd, "run") == 0)
+        return rbsf_run_main(argc - 2, argv + 2);
+    if (strcmp(cmd, "check") == 0)
+        return check_main(argc - 2, argv + 2);
+    if (strcmp(cmd, "convert") == 0)
+        return convert_main(argc - 2, argv + 2);
+    fprintf(stderr, "rbsim: unknown command '%s'\n%s", cmd, usage_text);
+    return RBSF_EXIT_USAGE;
+}

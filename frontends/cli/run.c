@@ -1,0 +1,652 @@
+/*
+ * run.c - "rbsim run": load a scene (or the built-in demonstration), apply
+ * the command line, check every output before any is opened, then run the
+ * projector with an input thread (commands on stdin) and a signal thread
+ * (Ctrl-C, SIGTERM), and print a summary.
+ */
+#include "cli.h"
+#include "demo.h"
+#include "dump.h"
+#ifdef RBSF_HAVE_SDL
+#include "sdl_renderer.h"
+#endif
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define DEMO_DIR "rbsim-demo"
+
+typedef struct run_options {
+    const char *scene;
+    uint64_t steps;      /* 0: the scene's */
+    double dt;           /* <= 0: the scene's */
+    const char *method;  /* NULL: the scene's */
+    const char *csv, *json, *stats, *png;
+    uint32_t every;      /* 0: every frame */
+    int realtime, quiet, paused;
+    double speed;
+    uint32_t reel;
+} run_options;
+
+/* One renderer to attach, with where it came from. */
+typedef struct output {
+    rbs_renderer_config config;
+    int from_scene;        /* 1: a scene entry (errors exit 3), 0: argv (2) */
+    char *owned_json;      /* JSON text made here, freed at the end */
+    char *owned_path;
+} output;
+
+/* ---- argument parsing --------------------------------------------------- */
+
+static int usage_error(const char *fmt, const char *a, const char *b)
+{
+    fprintf(stderr, "rbsim run: ");
+    fprintf(stderr, fmt, a, b);
+    fprintf(stderr, "\ntry 'rbsim help run'\n");
+    return RBSF_EXIT_USAGE;
+}
+
+static int parse_u64(const char *s, uint64_t min, uint64_t max, uint64_t *out)
+{
+    char *end;
+    unsigned long long v;
+    if (s == NULL || *s < '0' || *s > '9')
+        return -1;
+    errno = 0;
+    v = strtoull(s, &end, 10);
+    if (errno != 0 || *end != '\0' || v < min || v > max)
+        return -1;
+    *out = (uint64_t)v;
+    return 0;
+}
+
+static int parse_positive(const char *s, double *out)
+{
+    char *end;
+    double v;
+    if (s == NULL || *s == '\0')
+        return -1;
+    errno = 0;
+    v = strtod(s, &end);
+    if (errno != 0 || *end != '\0' || !isfinite(v) || !(v > 0))
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* Options take their value as the next argument or after '='. */
+static int parse_run_args(int argc, char **argv, run_options *o)
+{
+    int i;
+    memset(o, 0, sizeof *o);
+    o->speed = 1.0;
+    o->reel = 64;
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i], *value = NULL, *eq;
+        char name[32];
+        size_t n;
+        uint64_t u;
+        if (a[0] != '-' || strcmp(a, "-") == 0) {
+            if (o->scene != NULL)
+                return usage_error("one scene at most, got '%s' and '%s'",
+                                   o->scene, a);
+            o->scene = a;
+            continue;
+        }
+        if (strcmp(a, "--") == 0) {
+            if (i + 1 < argc && o->scene == NULL)
+                o->scene = argv[++i];
+            if (i + 1 < argc)
+                return usage_error("unexpected argument '%s'%s", argv[i + 1], "");
+            break;
+        }
+        eq = strchr(a, '=');
+        n = eq ? (size_t)(eq - a) : strlen(a);
+        if (n >= sizeof name)
+            return usage_error("unknown option '%s'%s", a, "");
+        memcpy(name, a, n);
+        name[n] = '\0';
+        /* Flags. */
+        if (strcmp(name, "--realtime") == 0 || strcmp(name, "--quiet") == 0 ||
+            strcmp(name, "--paused") == 0) {
+            if (eq)
+                return usage_error("%s takes no value%s", name, "");
+            if (name[2] == 'r')
+                o->realtime = 1;
+            else if (name[2] == 'q')
+                o->quiet = 1;
+            else
+                o->paused = 1;
+            continue;
+        }
+        if (strcmp(name, "--steps") && strcmp(name, "--dt") &&
+            strcmp(name, "--method") && strcmp(name, "--csv") &&
+            strcmp(name, "--json") && strcmp(name, "--stats") &&
+            strcmp(name, "--png") && strcmp(name, "--every") &&
+            strcmp(name, "--reel") && strcmp(name, "--speed"))
+            return usage_error("unknown option '%s'%s", name, "");
+        if (eq)
+            value = eq + 1;
+        else if (i + 1 < argc)
+            value = argv[++i];
+        else
+            return usage_error("%s needs a value%s", name, "");
+        if (strcmp(name, "--steps") == 0) {
+            if (parse_u64(value, 1, 9007199254740992ULL, &o->steps) != 0)
+                return usage_error("--steps: expected a whole number from 1 to "
+                                   "2^53, got '%s'%s", value, "");
+        } else if (strcmp(name, "--dt") == 0) {
+            if (parse_positive(value, &o->dt) != 0)
+                return usage_error("--dt: expected a time step in seconds, > 0, "
+                                   "got '%s'%s", value, "");
+        } else if (strcmp(name, "--speed") == 0) {
+            if (parse_positive(value, &o->speed) != 0 || o->speed > 1e6)
+                return usage_error("--speed: expected a factor > 0 and <= 1e6, "
+                                   "got '%s'%s", value, "");
+        } else if (strcmp(name, "--method") == 0) {
+            rbs_method m;
+            if (rbs_method_from_name(value, &m) != RBS_OK)
+                return usage_error("--method: unknown method '%s'; expected "
+                                   "euler, selective, event, verlet, rk4 or "
+                                   "adaptive%s", value, "");
+            o->method = value;
+        } else if (strcmp(name, "--every") == 0) {
+            if (parse_u64(value, 1, 0xffffffffu, &u) != 0)
+                return usage_error("--every: expected a whole number >= 1, got "
+                                   "'%s'%s", value, "");
+            o->every = (uint32_t)u;
+        } else if (strcmp(name, "--reel") == 0) {
+            if (parse_u64(value, 2, 1u << 20, &u) != 0)
+                return usage_error("--reel: expected a capacity from 2 to "
+                                   "1048576 frames, got '%s'%s", value, "");
+            o->reel = (uint32_t)u;
+        } else if (value[0] == '\0') {
+            return usage_error("%s: expected a path, got an empty string%s",
+                               name, "");
+        } else if (strcmp(name, "--csv") == 0) {
+            o->csv = value;
+        } else if (strcmp(name, "--json") == 0) {
+            o->json = value;
+        } else if (strcmp(name, "--stats") == 0) {
+            o->stats = value;
+        } else {
+            o->png = value;
+        }
+    }
+    return 0;
+}
+
+/* ---- scene -------------------------------------------------------------- */
+
+static void print_scene_errors(const rbs_scene *scene, FILE *out)
+{
+    uint32_t i, n = rbs_scene_error_count(scene);
+    for (i = 0; i < n && i < RBS_SCENE_ERRORS_MAX; i++) {
+        rbs_scene_error e;
+        if (rbs_scene_error_get(scene, i, &e) == RBS_OK)
+            fprintf(out, "%s\n", e.text);
+    }
+    if (n > RBS_SCENE_ERRORS_MAX)
+        fprintf(out, "... and %lu more errors\n",
+                (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
+}
+
+/* Load a scene file or the demonstration; on failure print why. */
+static int load_scene(const char *path, rbs_scene **out)
+{
+    rbs_status st;
+    *out = NULL;
+    if (path != NULL)
+        st = rbs_scene_load(path, RBS_SCENE_AUTO, out);
+    else
+        st = rbs_scene_parse_json(rbsf_demo_scene, strlen(rbsf_demo_scene),
+                                  "(built-in demonstration)", out);
+    if (st == RBS_OK)
+        return 0;
+    if (*out != NULL && rbs_scene_error_count(*out) > 0)
+        print_scene_errors(*out, stderr);
+    else
+        fprintf(stderr, "rbsim: %s: %s\n", path ? path : "demonstration",
+                rbs_status_string(st));
+    rbs_scene_free(*out);
+    *out = NULL;
+    return -1;
+}
+
+/* ---- outputs ------------------------------------------------------------ */
+
+/* A renderer entry made on the command line, as the JSON a scene would
+ * hold. */
+static char *entry_json(const char *type, const char *path, uint32_t every,
+                        int no_window)
+{
+    cJSON *o = cJSON_CreateObject();
+    char *text;
+    if (o == NULL)
+        return NULL;
+    cJSON_AddStringToObject(o, "type", type);
+    if (path)
+        cJSON_AddStringToObject(o, "path", path);
+    if (every > 1)
+        cJSON_AddNumberToObject(o, "every", every);
+    if (no_window)
+        cJSON_AddFalseToObject(o, "window");
+    text = cJSON_PrintUnformatted(o);
+    cJSON_Delete(o);
+    return text;
+}
+
+static int add_output(output *outs, uint32_t *n, const char *type,
+                      const char *path, uint32_t every, int no_window)
+{
+    output *o;
+    if (*n == RBS_RENDERERS_MAX) {
+        fprintf(stderr,
+                "rbsim run: too many outputs: at most %d renderers can be "
+                "attached (the scene's and --csv/--json/--stats/--png "
+                "together)\n",
+                RBS_RENDERERS_MAX);
+        return RBSF_EXIT_USAGE;
+    }
+    o = &outs[(*n)++];
+    memset(o, 0, sizeof *o);
+    o->config.struct_size = sizeof o->config;
+    o->config.type = type;
+    o->owned_path = path ? malloc(strlen(path) + 1) : NULL;
+    if (path && o->owned_path)
+        strcpy(o->owned_path, path);
+    o->config.path = o->owned_path;
+    o->config.every = every ? every : 1;
+    o->owned_json = entry_json(type, path, every, no_window);
+    o->config.json = o->owned_json;
+    o->config.file = "(command line)";
+    if ((path && !o->owned_path) || !o->owned_json) {
+        fprintf(stderr, "rbsim: out of memory\n");
+        return RBSF_EXIT_RUN;
+    }
+    return 0;
+}
+
+/* The scene's renderer entries: "path" and "every" are read here for every
+ * type; each type checks the rest. */
+static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
+{
+    uint32_t i, count = rbs_scene_renderer_count(scene);
+    for (i = 0; i < count; i++) {
+        rbs_scene_renderer r;
+        output *o;
+        cJSON *root;
+        const cJSON *item;
+        if (rbs_scene_renderer_get(scene, i, &r) != RBS_OK)
+            continue;
+        if (*n == RBS_RENDERERS_MAX) {
+            fprintf(stderr, "%s:%d:%d: too many renderers (at most %d)\n",
+                    r.file, (int)r.line, (int)r.column, RBS_RENDERERS_MAX);
+            return RBSF_EXIT_SCENE;
+        }
+        o = &outs[(*n)++];
+        memset(o, 0, sizeof *o);
+        o->from_scene = 1;
+        o->config.struct_size = sizeof o->config;
+        o->config.type = r.type;
+        o->config.json = r.json;
+        o->config.file = r.file;
+        o->config.line = r.line;
+        o->config.column = r.column;
+        o->config.every = 1;
+        root = cJSON_Parse(r.json);
+        item = cJSON_GetObjectItemCaseSensitive(root, "path");
+        if (cJSON_IsString(item)) {
+            o->owned_path = malloc(strlen(item->valuestring) + 1);
+            if (o->owned_path)
+                strcpy(o->owned_path, item->valuestring);
+            o->config.path = o->owned_path;
+        }
+        item = cJSON_GetObjectItemCaseSensitive(root, "every");
+        if (cJSON_IsNumber(item) && item->valuedouble >= 1 &&
+            item->valuedouble <= 4294967295.0)
+            o->config.every = (uint32_t)item->valuedouble;
+        cJSON_Delete(root);
+    }
+    return 0;
+}
+
+static void free_outputs(output *outs, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        cJSON_free(outs[i].owned_json);
+        free(outs[i].owned_path);
+    }
+}
+
+static int make_dir(const char *path)
+{
+    struct stat sb;
+    if (mkdir(path, 0777) == 0)
+        return 0;
+    if (errno == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
+        return 0;
+    fprintf(stderr, "rbsim: cannot create folder '%s': %s\n", path,
+            strerror(errno));
+    return -1;
+}
+
+/* ---- progress and summary ----------------------------------------------- */
+
+static void progress(const rbs_run_info *info)
+{
+    char bar[31];
+    int i, filled;
+    if (info->endless || info->steps == 0) {
+        fprintf(stderr, "\r  frame %llu, t = %.4g s%s   ",
+                (unsigned long long)info->frame, info->time,
+                info->paused ? " (paused)" : "");
+        return;
+    }
+    filled = (int)(30.0 * (double)info->frame / (double)info->steps);
+    for (i = 0; i < 30; i++)
+        bar[i] = i < filled ? '#' : '.';
+    bar[30] = '\0';
+    fprintf(stderr, "\r  [%s] %3d%%  frame %llu/%llu  t = %.4g s%s   ", bar,
+            (int)(100.0 * (double)info->frame / (double)info->steps),
+            (unsigned long long)info->frame, (unsigned long long)info->steps,
+            info->time, info->paused ? " (paused)" : "");
+}
+
+static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
+                    const output *outs, uint32_t n)
+{
+    uint32_t i;
+    double drift = info->energy_last - info->energy_initial;
+    fprintf(out, "scene: %s\n", scene_name);
+    fprintf(out, "simulated %.6g s: %llu steps (%llu sub-steps, %llu rollbacks), "
+                 "%llu collisions\n",
+            info->time, (unsigned long long)info->frame,
+            (unsigned long long)info->substeps,
+            (unsigned long long)info->rollbacks,
+            (unsigned long long)info->collisions);
+    fprintf(out, "wall time %.3f s, %.0f steps/s\n", info->wall_time,
+            info->wall_time > 0 ? (double)info->frame / info->wall_time : 0.0);
+    fprintf(out, "energy: %.9g J at the start, %.9g J at the end (drift %+.3g J",
+            info->energy_initial, info->energy_last, drift);
+    if (info->energy_initial != 0)
+        fprintf(out, ", %+.3g %%", 100.0 * drift / fabs(info->energy_initial));
+    fprintf(out, ")\n");
+    for (i = 0; i < n; i++)
+        if (outs[i].config.path != NULL)
+            fprintf(out, "output: %s %s\n", outs[i].config.type,
+                    outs[i].config.path);
+}
+
+/* ---- run ---------------------------------------------------------------- */
+
+int rbsf_run_main(int argc, char **argv)
+{
+    run_options o;
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    rbs_renderer_registry *registry = NULL;
+    rbs_projector *projector = NULL;
+    rbs_renderer_class demo_class;
+    rbsf_demo_results demo_results;
+    rbs_renderer_config configs[RBS_RENDERERS_MAX];
+    output outs[RBS_RENDERERS_MAX];
+    uint32_t n_out = 0, i;
+    rbs_projector_def def;
+    rbsf_signals signals;
+    rbsf_input input;
+    pthread_mutex_t reply_lock = PTHREAD_MUTEX_INITIALIZER;
+    FILE *talk = stdout;
+    rbs_run_info info;
+    rbs_status st;
+    int code, demo, show_progress, sig;
+    double started;
+    struct timespec ts;
+
+    code = parse_run_args(argc, argv, &o);
+    if (code != 0)
+        return code;
+    demo = o.scene == NULL;
+
+    /* Signals are taken by their own thread; block them before any thread
+     * starts so every thread inherits the mask. */
+    if (rbsf_signals_start(&signals) != 0) {
+        fprintf(stderr, "rbsim: cannot start the signal thread\n");
+        return RBSF_EXIT_RUN;
+    }
+    signal(SIGPIPE, SIG_IGN); /* a closed pipe is a write error, reported */
+
+    /* 1. The scene and the command line's overrides. */
+    if (load_scene(o.scene, &scene) != 0) {
+        code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+    if (o.steps || o.dt > 0 || o.method) {
+        st = rbs_scene_override(scene, o.steps, o.dt, o.method);
+        if (st != RBS_OK) {
+            if (rbs_scene_error_count(scene) > 0)
+                print_scene_errors(scene, stderr);
+            else
+                fprintf(stderr, "rbsim run: cannot apply the options: %s\n",
+                        rbs_status_string(st));
+            code = RBSF_EXIT_USAGE;
+            goto out;
+        }
+    }
+    st = rbs_scene_build(scene, &world);
+    if (st != RBS_OK) {
+        if (rbs_scene_error_count(scene) > 0)
+            print_scene_errors(scene, stderr);
+        fprintf(stderr, "rbsim: %s: cannot build the world: %s%s%s\n",
+                o.scene ? o.scene : "demonstration", rbs_status_string(st),
+                world ? ": " : "", world ? rbs_world_last_error(world) : "");
+        code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+
+    /* 2. The renderer types. */
+    if (rbs_renderer_registry_create(&registry) != RBS_OK ||
+        rbs_renderer_register(registry, rbsf_csv_class()) != RBS_OK ||
+        rbs_renderer_register(registry, rbsf_json_class()) != RBS_OK ||
+        rbs_renderer_register(registry, rbsf_stats_class()) != RBS_OK) {
+        fprintf(stderr, "rbsim: cannot set up the renderer types\n");
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+#ifdef RBSF_HAVE_SDL
+    if (rbs_renderer_register(registry, rbsf_sdl_class()) != RBS_OK) {
+        fprintf(stderr, "rbsim: cannot register the sdl renderer\n");
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+#endif
+    if (demo) {
+        rbsf_demo_check_class(&demo_class, &demo_results);
+        if (rbs_renderer_register(registry, &demo_class) != RBS_OK) {
+            fprintf(stderr, "rbsim: cannot register the demonstration check\n");
+            code = RBSF_EXIT_RUN;
+            goto out;
+        }
+    }
+
+    /* 3. The outputs: the scene's, then the command line's (the
+     * demonstration's defaults unless replaced). */
+    code = add_scene_outputs(scene, outs, &n_out);
+    if (code != 0)
+        goto out;
+    if (demo) {
+        if (!o.csv)
+            o.csv = DEMO_DIR "/demo.csv";
+        if (!o.stats)
+            o.stats = DEMO_DIR "/stats.csv";
+#ifdef RBSF_HAVE_SDL
+        if (!o.png)
+            o.png = DEMO_DIR "/png";
+#endif
+    }
+    if ((o.csv && (code = add_output(outs, &n_out, "csv", o.csv, o.every, 0))) ||
+        (o.json &&
+         (code = add_output(outs, &n_out, "json", o.json, o.every, 0))) ||
+        (o.stats &&
+         (code = add_output(outs, &n_out, "stats", o.stats, 1, 0))) ||
+        (o.png &&
+         (code = add_output(outs, &n_out, "sdl", o.png,
+                            o.every ? o.every : (demo ? 50 : 1), 1))) ||
+        (demo &&
+         (code = add_output(outs, &n_out, demo_class.name, NULL, 1, 0))))
+        goto out;
+#ifndef RBSF_HAVE_SDL
+    if (o.png) {
+        fprintf(stderr, "rbsim run: --png: this rbsim was built without SDL\n");
+        code = RBSF_EXIT_USAGE;
+        goto out;
+    }
+#endif
+    for (i = 0; i < n_out; i++) {
+        if (outs[i].config.path && strcmp(outs[i].config.path, "-") == 0)
+            talk = stderr; /* stdout carries data */
+        configs[i] = outs[i].config;
+    }
+
+    /* 4. Check every output before any is opened: a rejected run writes
+     * nothing.  (The demonstration's folder is made first: it is ours.) */
+    if (demo && (make_dir(DEMO_DIR) != 0 ||
+                 (o.png && strcmp(o.png, DEMO_DIR "/png") == 0 &&
+                  make_dir(DEMO_DIR "/png") != 0))) {
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+    for (i = 0; i < n_out; i++) {
+        const rbs_renderer_class *cls;
+        char err[512] = "";
+        if (rbs_renderer_find(registry, configs[i].type, &cls) != RBS_OK) {
+            if (outs[i].from_scene)
+                fprintf(stderr, "%s:%d:%d: renderers[%lu]: unknown renderer "
+                                "type \"%s\"%s\n",
+                        configs[i].file, (int)configs[i].line,
+                        (int)configs[i].column, (unsigned long)i,
+                        configs[i].type,
+                        strcmp(configs[i].type, "sdl") == 0
+                            ? " (this rbsim was built without SDL)"
+                            : " (known: csv, json, stats, sdl)");
+            code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+            goto out;
+        }
+        if (cls->check == NULL)
+            continue;
+        st = cls->check(cls->context, &configs[i], world, err, sizeof err);
+        if (st != RBS_OK) {
+            if (outs[i].from_scene)
+                fprintf(stderr, "%s:%d:%d: renderers[%lu] (%s): %s\n",
+                        configs[i].file, (int)configs[i].line,
+                        (int)configs[i].column, (unsigned long)i,
+                        configs[i].type, err[0] ? err : rbs_status_string(st));
+            else
+                fprintf(stderr, "rbsim run: --%s: %s\n",
+                        strcmp(configs[i].type, "sdl") == 0 ? "png"
+                                                            : configs[i].type,
+                        err[0] ? err : rbs_status_string(st));
+            code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+            goto out;
+        }
+    }
+    if ((sig = rbsf_signals_caught(&signals)) != 0) {
+        code = 128 + sig; /* interrupted before anything was written */
+        goto out;
+    }
+
+    /* 5. The projector. */
+    rbs_projector_def_init(&def);
+    def.steps = rbs_scene_steps(scene);
+    def.reel_capacity = o.reel;
+    def.realtime = o.realtime;
+    def.policy = o.realtime ? RBS_REEL_LATEST_ONLY : RBS_REEL_LOSSLESS;
+    def.speed = o.speed;
+    def.start_paused = o.paused;
+    def.pause_on_collision = rbs_scene_pause_on_collision(scene);
+    st = rbs_projector_create(world, registry, configs, n_out, &def, &projector);
+    if (st != RBS_OK) {
+        fprintf(stderr, "rbsim: %s\n", projector
+                                           ? rbs_projector_last_error(projector)
+                                           : rbs_status_string(st));
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+    rbsf_signals_attach(&signals, projector);
+    if (rbs_projector_start(projector) != RBS_OK) {
+        fprintf(stderr, "rbsim: %s\n", rbs_projector_last_error(projector));
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+    if (rbsf_input_start(&input, STDIN_FILENO, projector, talk, &reply_lock) !=
+        0)
+        memset(&input, 0, sizeof input); /* no commands, the run goes on */
+
+    /* 6. Wait, with a progress bar on a terminal for long runs. */
+    show_progress = !o.quiet && isatty(STDERR_FILENO) && talk == stdout;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    started = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    {
+        int shown = 0;
+        while (!rbs_projector_finished(projector, 0.1)) {
+            double now;
+            clock_gettime(CLOCK_MONOTONIC, &ts);
+            now = (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+            if (show_progress && now - started > 0.5) {
+                rbs_projector_status(projector, &info);
+                pthread_mutex_lock(&reply_lock);
+                progress(&info);
+                pthread_mutex_unlock(&reply_lock);
+                shown = 1;
+            }
+        }
+        if (shown)
+            fprintf(stderr, "\r\033[K");
+    }
+    st = rbs_projector_wait(projector);
+    rbsf_input_stop(&input);
+    rbsf_signals_attach(&signals, NULL);
+    rbs_projector_status(projector, &info);
+    sig = rbsf_signals_caught(&signals);
+
+    /* 7. Report. */
+    if (st != RBS_OK && st != RBS_E_CLOSED) {
+        fprintf(stderr, "rbsim: error: %s\n", rbs_projector_last_error(projector));
+        code = RBSF_EXIT_RUN;
+    } else if (st == RBS_E_CLOSED && sig != 0) {
+        code = 128 + sig;
+    } else {
+        code = RBSF_EXIT_OK;
+    }
+    if (!o.quiet) {
+        if (st == RBS_E_CLOSED)
+            fprintf(talk, "stopped at frame %llu by %s\n",
+                    (unsigned long long)info.frame,
+                    sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "quit");
+        summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
+                outs, n_out);
+    }
+    if (demo && st == RBS_OK) {
+        int failed = rbsf_demo_report(&demo_results, talk);
+        if (failed > 0 && code == RBSF_EXIT_OK)
+            code = RBSF_EXIT_RUN;
+    }
+    fflush(talk);
+
+out:
+    rbsf_signals_stop(&signals);
+    rbs_projector_destroy(projector);
+    rbs_renderer_registry_destroy(registry);
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+    free_outputs(outs, n_out);
+    return code;
+}
