@@ -1,0 +1,156 @@
+"""rbsim: a fixed-memory rigid-body simulator of spheres and planes.
+
+Python binding of librbsim (cffi, API mode)::
+
+    import rbsim
+    world = rbsim.load("scenes/bounce.json")      # or rbsim.World(...)
+    world.step(100)
+    print(world.time, world.positions, world.energy())
+    world.bodies["ball"].velocity = (1.0, 0.0, 0.0)
+    world.run(1000, renderers=[lambda frame: print(frame.number)])
+
+Errors raise :class:`Error` subclasses: :class:`SceneError` (with file, line,
+column, message and every error), :class:`CapacityError`,
+:class:`StaleIdError`, :class:`NumericError`, ... -- one class per status code
+of the library, generated from its ``RBS_STATUS_LIST``.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, List, Optional, Union
+
+from . import _check
+from . import errors as _e
+from ._native import ffi, lib
+from ._render import Frame, Run, RunInfo
+from .errors import (ArgumentTypeError, BusyError, Error, SceneError,
+                     SceneIssue, error_class)
+from .errors import *  # noqa: F401,F403 - the generated classes
+from .world import (METHODS, Body, BodyMap, BodyState, Energy, Material,
+                    Momentum, StepInfo, Usage, World)
+
+#: version of the loaded library, "MAJOR.MINOR.PATCH"
+__version__: str = ffi.string(lib.rbs_version()).decode()
+
+_FORMATS = {"auto": lib.RBS_SCENE_AUTO, "json": lib.RBS_SCENE_JSON,
+            "text": lib.RBS_SCENE_TEXT}
+
+
+def _scene_issues(scene: Any) -> List[SceneIssue]:
+    issues = []
+    item = ffi.new("rbs_scene_error *")
+    count = lib.rbs_scene_error_count(scene)
+    for i in range(min(count, lib.RBS_SCENE_ERRORS_MAX)):
+        if lib.rbs_scene_error_get(scene, i, item) != lib.RBS_OK:
+            break
+        s = lambda p: ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
+        issues.append(SceneIssue(s(item.file), int(item.line), int(item.column),
+                                 s(item.path), s(item.message), s(item.text)))
+    return issues
+
+
+def _raise_scene(status: int, scene: Any, name: str) -> None:
+    issues = _scene_issues(scene) if scene != ffi.NULL else []
+    count = lib.rbs_scene_error_count(scene) if scene != ffi.NULL else 0
+    if status == lib.RBS_E_SCENE:
+        raise SceneError(name, status=status, errors=issues, count=count)
+    detail = "; ".join(i.text for i in issues) if issues else name
+    raise error_class(status)(detail)
+
+
+def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float],
+                method: Optional[str]) -> World:
+    if steps is not None or dt is not None or method is not None:
+        n = 0 if steps is None else _check.u64(steps, "steps", 1)
+        step = 0.0
+        if dt is not None:
+            step = _check.real(dt, "dt")
+            if not step > 0:
+                raise error_class(lib.RBS_E_INVALID)("dt: must be > 0, got %r" % step)
+        raw = None if method is None else _check.text(method, "method")
+        status = lib.rbs_scene_override(scene, n, step, raw if raw is not None else ffi.NULL)
+        if status != lib.RBS_OK:
+            _raise_scene(status, scene, name)
+    d = ffi.new("rbs_world_def *")
+    status = lib.rbs_scene_world_def(scene, d)
+    if status != lib.RBS_OK:
+        _raise_scene(status, scene, name)
+    world = World._from_def(d)
+    w = world._acquire()
+    try:
+        status = lib.rbs_scene_populate(scene, w)
+        detail = ffi.string(lib.rbs_world_last_error(w)).decode("utf-8", "replace")
+    finally:
+        world._lock.release()
+    if status != lib.RBS_OK:
+        if lib.rbs_scene_error_count(scene) > 0:
+            _raise_scene(status, scene, name)
+        raise error_class(status)("%s: %s" % (name, detail))
+    world._scene_steps = int(lib.rbs_scene_steps(scene))
+    world._scene_pause_on_collision = bool(lib.rbs_scene_pause_on_collision(scene))
+    return world
+
+
+def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
+         steps: Optional[int] = None, dt: Optional[float] = None,
+         method: Optional[str] = None) -> World:
+    """Load a scene file and build its world.
+
+    Args:
+        path: a JSON scene, or a seed-format config.txt (see scenes/FORMAT.md).
+        format: "auto" (by content/extension), "json" or "text".
+        steps, dt, method: override the scene's simulation settings (as the
+            command line's --steps/--dt/--method do).
+
+    Returns:
+        the World; :meth:`World.run` without steps uses the scene's.
+
+    Raises:
+        SceneError: the scene was rejected; ``.file``, ``.line``,
+            ``.column``, ``.message`` describe the first error and
+            ``.errors`` lists all of them.
+        IoError: the file cannot be read.
+    """
+    raw = _check.path(path, "path")
+    fmt = _FORMATS[_check.choice(format, "format", tuple(_FORMATS))]
+    out = ffi.new("rbs_scene **")
+    status = lib.rbs_scene_load(raw, fmt, out)
+    scene = out[0]
+    name = os.fsdecode(raw)
+    try:
+        if status != lib.RBS_OK:
+            _raise_scene(status, scene, name)
+        return _from_scene(scene, name, steps, dt, method)
+    finally:
+        lib.rbs_scene_free(scene)
+
+
+def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None,
+               dt: Optional[float] = None, method: Optional[str] = None) -> World:
+    """Build a world from a JSON scene held in a string (name labels
+    errors).  Same errors as :func:`load`."""
+    if not isinstance(text, str):
+        raise ArgumentTypeError("text: expected a str, got %s" % type(text).__name__)
+    data = text.encode("utf-8")
+    label = _check.text(name, "name")
+    out = ffi.new("rbs_scene **")
+    status = lib.rbs_scene_parse_json(data, len(data), label, out)
+    scene = out[0]
+    try:
+        if status != lib.RBS_OK:
+            _raise_scene(status, scene, name)
+        return _from_scene(scene, name, steps, dt, method)
+    finally:
+        lib.rbs_scene_free(scene)
+
+
+def version() -> str:
+    """Version of the loaded library ("MAJOR.MINOR.PATCH")."""
+    return __version__
+
+
+__all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
+           "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "METHODS",
+           "load", "parse_json", "version", "Error", "SceneError", "SceneIssue",
+           "BusyError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)

@@ -1,0 +1,119 @@
+"""Argument checks done in Python before calling C (C checks again).
+
+Wrong types raise :class:`ArgumentTypeError` (a TypeError), NaN and infinity
+raise :class:`NumericError`, out-of-range integers :class:`InvalidError`;
+every message names the argument.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+from typing import Any, Optional, Tuple
+
+from . import errors as _e
+
+_U32 = 2 ** 32
+_U64 = 2 ** 64
+
+
+def real(value: Any, what: str) -> float:
+    """A finite float from an int/float (not bool, not None)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _e.ArgumentTypeError("%s: expected a real number, got %s"
+                                   % (what, _describe(value)))
+    x = float(value)
+    if not math.isfinite(x):
+        raise _e.error_class(-4)("%s: must be finite, got %r" % (what, x))
+    return x
+
+
+def integer(value: Any, what: str, low: int = 0, high: int = _U32 - 1) -> int:
+    """An int in [low, high] (not bool, not float)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise _e.ArgumentTypeError("%s: expected an integer, got %s"
+                                   % (what, _describe(value)))
+    n = int(value)
+    if n < low or n > high:
+        raise _e.error_class(-1)("%s: must be in [%d, %d], got %d"
+                                 % (what, low, high, n))
+    return n
+
+
+def u32(value: Any, what: str, low: int = 0) -> int:
+    return integer(value, what, low, _U32 - 1)
+
+
+def u64(value: Any, what: str, low: int = 0) -> int:
+    return integer(value, what, low, _U64 - 1)
+
+
+def flag(value: Any, what: str) -> bool:
+    """A bool (or 0/1)."""
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, numbers.Integral) and int(value) in (0, 1):
+        return bool(value)
+    raise _e.ArgumentTypeError("%s: expected True or False, got %s"
+                               % (what, _describe(value)))
+
+
+def vector(value: Any, what: str, size: int = 3) -> Tuple[float, ...]:
+    """A tuple of `size` finite floats from any sequence or array."""
+    if value is None or isinstance(value, (str, bytes)):
+        raise _e.ArgumentTypeError("%s: expected %d numbers, got %s"
+                                   % (what, size, _describe(value)))
+    try:
+        items = list(value)
+    except TypeError:
+        raise _e.ArgumentTypeError("%s: expected %d numbers, got %s"
+                                   % (what, size, _describe(value))) from None
+    if len(items) != size:
+        raise _e.error_class(-1)("%s: expected %d numbers, got %d"
+                                 % (what, size, len(items)))
+    return tuple(real(x, "%s[%d]" % (what, i)) for i, x in enumerate(items))
+
+
+def text(value: Any, what: str, optional: bool = False) -> Optional[bytes]:
+    """UTF-8 bytes of a str without NUL (None allowed if optional)."""
+    if value is None and optional:
+        return None
+    if not isinstance(value, str):
+        raise _e.ArgumentTypeError("%s: expected a string, got %s"
+                                   % (what, _describe(value)))
+    if "\0" in value:
+        raise _e.error_class(-1)("%s: must not contain NUL characters" % what)
+    return value.encode("utf-8")
+
+
+def path(value: Any, what: str) -> bytes:
+    """File-system bytes of a str or os.PathLike."""
+    if isinstance(value, (str, bytes)) or isinstance(value, os.PathLike):
+        raw = os.fsencode(value)
+        if b"\0" in raw:
+            raise _e.error_class(-1)("%s: must not contain NUL characters" % what)
+        if not raw:
+            raise _e.error_class(-1)("%s: empty path" % what)
+        return raw
+    raise _e.ArgumentTypeError("%s: expected a path, got %s" % (what, _describe(value)))
+
+
+def choice(value: Any, what: str, names: Tuple[str, ...]) -> str:
+    """One of names (a str)."""
+    if not isinstance(value, str):
+        raise _e.ArgumentTypeError("%s: expected one of %s, got %s"
+                                   % (what, ", ".join(names), _describe(value)))
+    if value not in names:
+        raise _e.error_class(-1)("%s: expected one of %s, got %r"
+                                 % (what, ", ".join(names), value))
+    return value
+
+
+def _describe(value: Any) -> str:
+    if value is None:
+        return "None"
+    text = repr(value)
+    if len(text) > 40:
+        text = text[:37] + "..."
+    return "%s %s" % (type(value).__name__, text)

@@ -1,0 +1,398 @@
+"""Python renderers and runs through the projector.
+
+Design notes
+------------
+A Python renderer is a callable ``f(frame)`` or an object with ``draw(frame)``
+and optionally ``finish()`` (after the last frame), ``close()`` (always, at
+the end), ``every`` (keep every K-th frame and the last; default 1) and
+``live`` (True: a live view that may miss frames; default False, a recorder
+that sees every frame in order).
+
+Each renderer of a run is registered in a fresh registry as its own type
+(``python0``, ``python1``, ...) whose context is a cffi handle to an adapter;
+the C callbacks below (``@ffi.def_extern``) run on the projector's renderer
+thread and take the GIL, which the main thread released while it waits in C.
+The frame slot is reused by the reel, so a :class:`Frame` holds copies.  An
+exception raised by a renderer is kept, the callback returns
+RBS_E_RENDERER, the projector stops the run, and :meth:`Run.wait` raises the
+original exception again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from . import _check
+from . import errors as _e
+from ._native import ffi, lib
+from .world import Energy, Momentum, StepInfo, World
+
+_FIELDS = (("type", np.int32, ()), ("color", np.uint32, ()),
+           ("texture", np.int32, ()), ("slot", np.uint32, ()),
+           ("position", np.float64, (3,)), ("orientation", np.float64, (4,)),
+           ("velocity", np.float64, (3,)), ("angular_velocity", np.float64, (3,)),
+           ("normal", np.float64, (3,)), ("radius", np.float64, ()))
+# The layout of rbs_frame_body as the compiler laid it out (offsets from cffi).
+_BODY_DTYPE = np.dtype({
+    "names": [f[0] for f in _FIELDS],
+    "formats": [(f[1], f[2]) if f[2] else f[1] for f in _FIELDS],
+    "offsets": [ffi.offsetof("rbs_frame_body", f[0]) for f in _FIELDS],
+    "itemsize": ffi.sizeof("rbs_frame_body"),
+})
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One frame of a run, as a renderer receives it (arrays are copies,
+    one row per body in slot order)."""
+
+    number: int                   #: k: the frame at t = k dt; 0 is the start
+    time: float                   #: simulated time, s
+    target_time: float            #: wall time it should stay on screen, s
+    last: bool                    #: the run's last frame
+    paused: bool                  #: the run is paused at this frame
+    names: Tuple[str, ...]        #: body names ("" if unnamed)
+    slots: np.ndarray             #: uint32, the bodies' slots
+    types: np.ndarray             #: int32, 1 sphere, 2 plane
+    colors: np.ndarray            #: uint32 0xRRGGBB
+    positions: np.ndarray         #: n x 3, m
+    orientations: np.ndarray      #: n x 4, [w x y z]
+    velocities: np.ndarray        #: n x 3, m/s
+    angular_velocities: np.ndarray  #: n x 3, rad/s
+    normals: np.ndarray           #: n x 3 (planes)
+    radii: np.ndarray             #: n, m (spheres)
+    energy: Energy                #: J
+    momentum: Momentum            #: kg m/s and kg m^2/s about the origin
+    step: StepInfo                #: the step that made this frame
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """How a run went (from rbs_projector_status)."""
+
+    steps: int             #: steps asked
+    captured: int          #: frames captured by the simulation
+    drawn: int             #: frames taken from the reel
+    frame: int             #: number of the last frame drawn
+    time: float            #: simulated time of the last frame drawn, s
+    dropped: int           #: frames dropped by a latest-only reel
+    substeps: int
+    rollbacks: int
+    collisions: int        #: impacts resolved
+    energy_initial: float  #: J at frame 0
+    energy_last: float     #: J at the last frame captured
+    wall_time: float       #: s
+
+
+class _Adapter:
+    """One Python renderer inside one run."""
+
+    def __init__(self, run: "Run", obj: Any, index: int) -> None:
+        self.run = run
+        self.obj = obj
+        self.index = index
+        draw = getattr(obj, "draw", None)
+        if draw is None and callable(obj):
+            draw = obj
+        if draw is None or not callable(draw):
+            raise _e.ArgumentTypeError(
+                "renderers[%d]: expected a callable or an object with draw(frame), "
+                "got %s" % (index, _check._describe(obj)))
+        self.draw: Callable[[Frame], Any] = draw
+        self.finish = getattr(obj, "finish", None)
+        self.close = getattr(obj, "close", None)
+        every = getattr(obj, "every", 1)
+        self.every = _check.u32(every, "renderers[%d].every" % index, 1)
+        self.live = _check.flag(getattr(obj, "live", False),
+                                "renderers[%d].live" % index)
+        self.names: dict = {}
+        self.handle = ffi.new_handle(self)
+
+    def frame(self, f: Any) -> Frame:
+        n = int(f.body_count)
+        raw = np.frombuffer(ffi.buffer(f.bodies, n * _BODY_DTYPE.itemsize),
+                            dtype=_BODY_DTYPE).copy()
+        names = []
+        for i in range(n):
+            slot = int(raw["slot"][i])
+            name = self.names.get(slot)
+            if name is None:
+                p = f.bodies[i].name
+                name = ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
+                self.names[slot] = name  # stable for the run
+            names.append(name)
+        s = f.stats
+        return Frame(
+            number=int(f.number), time=float(f.time),
+            target_time=float(f.target_time), last=bool(f.last),
+            paused=bool(f.paused), names=tuple(names),
+            slots=raw["slot"].copy(), types=raw["type"].copy(),
+            colors=raw["color"].copy(), positions=raw["position"].copy(),
+            orientations=raw["orientation"].copy(),
+            velocities=raw["velocity"].copy(),
+            angular_velocities=raw["angular_velocity"].copy(),
+            normals=raw["normal"].copy(), radii=raw["radius"].copy(),
+            energy=Energy(float(s.kinetic), float(s.potential), float(s.total)),
+            momentum=Momentum(np.array(list(s.momentum), dtype=np.float64),
+                              np.array(list(s.angular_momentum), dtype=np.float64)),
+            step=StepInfo._from_c(s.step))
+
+
+def _fail(adapter: _Adapter, exc: BaseException, err: Any, errlen: int) -> int:
+    """Keep the first exception of the run; explain it to the projector."""
+    if adapter.run._error is None:
+        adapter.run._error = exc
+    if errlen > 0:
+        text = ("python renderer %d raised %s: %s"
+                % (adapter.index, type(exc).__name__, exc)).encode("utf-8", "replace")
+        text = text[:int(errlen) - 1]
+        ffi.memmove(err, text + b"\0", len(text) + 1)
+    return lib.RBS_E_RENDERER
+
+
+@ffi.def_extern(error=lib.RBS_E_RENDERER)
+def rbs_py_renderer_create(context: Any, config: Any, world: Any, instance: Any,
+                           err: Any, errlen: int) -> int:
+    instance[0] = context  # the adapter, kept alive by its Run
+    return lib.RBS_OK
+
+
+@ffi.def_extern(error=lib.RBS_E_RENDERER)
+def rbs_py_renderer_draw(instance: Any, frame: Any, err: Any, errlen: int) -> int:
+    adapter = ffi.from_handle(instance)
+    try:
+        adapter.draw(adapter.frame(frame))
+    except BaseException as exc:  # noqa: B902 - everything goes back to run()
+        return _fail(adapter, exc, err, errlen)
+    return lib.RBS_OK
+
+
+@ffi.def_extern(error=lib.RBS_E_RENDERER)
+def rbs_py_renderer_finish(instance: Any, err: Any, errlen: int) -> int:
+    adapter = ffi.from_handle(instance)
+    if adapter.finish is None:
+        return lib.RBS_OK
+    try:
+        adapter.finish()
+    except BaseException as exc:  # noqa: B902
+        return _fail(adapter, exc, err, errlen)
+    return lib.RBS_OK
+
+
+@ffi.def_extern()
+def rbs_py_renderer_destroy(instance: Any) -> None:
+    adapter = ffi.from_handle(instance)
+    if adapter.close is None:
+        return
+    try:
+        adapter.close()
+    except BaseException as exc:  # noqa: B902
+        if adapter.run._error is None:
+            adapter.run._error = exc
+
+
+class Run:
+    """A run of a world through the projector (see :meth:`World.start`).
+
+    From start until :meth:`wait` returns, the world belongs to the
+    simulation thread: using it raises BusyError.  :meth:`command`,
+    :meth:`status` and :meth:`finished` are thread-safe."""
+
+    def __init__(self, world: World, steps: int, renderers: Sequence[Any],
+                 realtime: bool, speed: float, start_paused: bool,
+                 pause_on_collision: bool, reel_capacity: Optional[int]) -> None:
+        self._error: Optional[BaseException] = None
+        self._world = world
+        self._projector: Any = ffi.NULL
+        self._registry: Any = ffi.NULL
+        self._result: Optional[int] = None
+        self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
+        self._keep: List[Any] = []
+        self._cworld = world._acquire()  # held until wait() ends
+        try:
+            self._make(steps, realtime, speed, start_paused, pause_on_collision,
+                       reel_capacity)
+        except BaseException:
+            self._release()
+            raise
+
+    def _make(self, steps: int, realtime: bool, speed: float, start_paused: bool,
+              pause_on_collision: bool, reel_capacity: Optional[int]) -> None:
+        n = len(self._adapters)
+        reg = ffi.new("rbs_renderer_registry **")
+        status = lib.rbs_renderer_registry_create(reg)
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("cannot make a renderer registry")
+        self._registry = reg[0]
+        configs = ffi.new("rbs_renderer_config[]", max(n, 1))
+        for i, a in enumerate(self._adapters):
+            name = ffi.new("char[]", b"python%d" % i)
+            cls = ffi.new("rbs_renderer_class *")
+            cls.struct_size = ffi.sizeof("rbs_renderer_class")
+            cls.name = name
+            cls.context = a.handle
+            cls.create = lib.rbs_py_renderer_create
+            cls.draw = lib.rbs_py_renderer_draw
+            cls.finish = lib.rbs_py_renderer_finish
+            cls.destroy = lib.rbs_py_renderer_destroy
+            cls.flags = lib.RBS_RENDERER_LIVE if a.live else 0
+            self._keep += [name, cls]
+            status = lib.rbs_renderer_register(self._registry, cls)
+            if status != lib.RBS_OK:
+                raise _e.error_class(status)("cannot register python renderer %d" % i)
+            configs[i].struct_size = ffi.sizeof("rbs_renderer_config")
+            configs[i].type = name
+            configs[i].every = a.every
+        self._keep.append(configs)
+        d = ffi.new("rbs_projector_def *")
+        lib.rbs_projector_def_init_sized(d, ffi.sizeof("rbs_projector_def"))
+        d.steps = steps
+        d.realtime = int(realtime)
+        d.speed = speed
+        d.start_paused = int(start_paused)
+        d.pause_on_collision = int(pause_on_collision)
+        if reel_capacity is not None:
+            d.reel_capacity = reel_capacity
+        out = ffi.new("rbs_projector **")
+        status = lib.rbs_projector_create(self._cworld, self._registry,
+                                          configs if n else ffi.NULL, n, d, out)
+        self._projector = out[0]
+        if status != lib.RBS_OK:
+            detail = (_text(lib.rbs_projector_last_error(self._projector))
+                      if self._projector != ffi.NULL else "projector definition rejected")
+            self._close_projector()
+            if self._error is not None:
+                raise self._error
+            raise _e.error_class(status)(detail)
+        status = lib.rbs_projector_start(self._projector)
+        if status != lib.RBS_OK:
+            detail = _text(lib.rbs_projector_last_error(self._projector))
+            self._close_projector()
+            raise _e.error_class(status)(detail)
+
+    def command(self, line: str) -> str:
+        """Send a command line ("pause", "resume", "step [N]", "speed X",
+        "quit", "status"); returns the reply.  Thread-safe."""
+        raw = _check.text(line, "line")
+        if self._projector == ffi.NULL:
+            raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
+        reply = ffi.new("char[]", 512)
+        status = lib.rbs_projector_command(self._projector, raw, reply, 512)
+        text = _text(reply)
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("%r: %s" % (line, text))
+        return text
+
+    def finished(self, timeout: float = 0.0) -> bool:
+        """Wait up to timeout seconds for the run to end; True if it has."""
+        t = _check.real(timeout, "timeout")
+        if self._projector == ffi.NULL:
+            return True
+        return bool(lib.rbs_projector_finished(self._projector, max(t, 0.0)))
+
+    def status(self) -> RunInfo:
+        """A snapshot of the run (also after it ended, until wait())."""
+        if self._projector == ffi.NULL:
+            raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
+        out = ffi.new("rbs_run_info *")
+        status = lib.rbs_projector_status_sized(self._projector, out,
+                                                ffi.sizeof("rbs_run_info"))
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("projector status")
+        return _run_info(out)
+
+    def wait(self) -> RunInfo:
+        """Wait for the end of the run; raise what stopped it early (a
+        renderer's own exception, or the library's error)."""
+        if self._projector == ffi.NULL:
+            raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
+        try:
+            # Wait in slices so Ctrl-C (KeyboardInterrupt) is seen.
+            while not lib.rbs_projector_finished(self._projector, 0.05):
+                pass
+        except BaseException:
+            lib.rbs_projector_command(self._projector, b"quit", ffi.NULL, 0)
+            lib.rbs_projector_wait(self._projector)
+            self._close_projector()
+            raise
+        status = lib.rbs_projector_wait(self._projector)
+        info = self.status()
+        detail = _text(lib.rbs_projector_last_error(self._projector))
+        self._close_projector()
+        if self._error is not None:
+            raise self._error
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)(detail)
+        return info
+
+    def _close_projector(self) -> None:
+        if self._projector != ffi.NULL:
+            lib.rbs_projector_destroy(self._projector)
+            self._projector = ffi.NULL
+        self._release()
+
+    def _release(self) -> None:
+        if self._registry != ffi.NULL:
+            lib.rbs_renderer_registry_destroy(self._registry)
+            self._registry = ffi.NULL
+        if self._cworld is not None:
+            self._cworld = None
+            self._world._lock.release()
+
+    def __del__(self) -> None:
+        if getattr(self, "_projector", ffi.NULL) != ffi.NULL:
+            self._close_projector()
+
+
+def _text(p: Any) -> str:
+    return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
+
+
+def _run_info(s: Any) -> RunInfo:
+    return RunInfo(int(s.steps), int(s.captured), int(s.drawn), int(s.frame),
+                   float(s.time), int(s.dropped), int(s.substeps),
+                   int(s.rollbacks), int(s.collisions), float(s.energy_initial),
+                   float(s.energy_last), float(s.wall_time))
+
+
+def start_world(world: World, steps: Optional[int] = None,
+                renderers: Sequence[Any] = (), *, realtime: bool = False,
+                speed: float = 1.0, start_paused: bool = False,
+                pause_on_collision: Optional[bool] = None,
+                reel_capacity: Optional[int] = None) -> Run:
+    """Start a run of world; see World.start."""
+    if steps is None:
+        steps = world._scene_steps
+        if steps is None:
+            raise _e.error_class(lib.RBS_E_INVALID)(
+                "steps: required (the world was not loaded from a scene)")
+    n = _check.u64(steps, "steps", 1)
+    if isinstance(renderers, (str, bytes)) or not isinstance(renderers, Sequence):
+        if callable(renderers) or hasattr(renderers, "draw"):
+            renderers = [renderers]
+        else:
+            raise _e.ArgumentTypeError("renderers: expected a list of renderers, got %s"
+                                       % _check._describe(renderers))
+    if len(renderers) > lib.RBS_RENDERERS_MAX:
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "renderers: at most %d, got %d" % (lib.RBS_RENDERERS_MAX, len(renderers)))
+    if pause_on_collision is None:
+        pause_on_collision = world._scene_pause_on_collision
+    cap = None if reel_capacity is None else _check.u32(reel_capacity, "reel_capacity", 2)
+    return Run(world, n, list(renderers), _check.flag(realtime, "realtime"),
+               _check.real(speed, "speed"), _check.flag(start_paused, "start_paused"),
+               _check.flag(pause_on_collision, "pause_on_collision"), cap)
+
+
+def run_world(world: World, steps: Optional[int] = None,
+              renderers: Sequence[Any] = (), *, realtime: bool = False,
+              speed: float = 1.0, reel_capacity: Optional[int] = None) -> RunInfo:
+    """Run to the end and wait; see World.run.  (Pausing needs someone to
+    resume: use World.start and Run.command for that.)"""
+    return start_world(world, steps, renderers, realtime=realtime, speed=speed,
+                       start_paused=False, pause_on_collision=False,
+                       reel_capacity=reel_capacity).wait()
+

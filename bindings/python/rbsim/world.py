@@ -1,0 +1,1021 @@
+"""The world: bodies, materials, stepping, state views and diagnostics.
+
+Design notes
+------------
+* The world's memory is one block owned by Python (``rbs_world_create_in``
+  into a buffer made by cffi).  The state arrays (:attr:`World.positions`,
+  ...) are numpy views into that block: no copy is made, a step changes what
+  they show, and because every view keeps the block alive, a view can never
+  dangle (after :meth:`World.close` it just stops changing).
+* The views are read-only and cannot be made writeable: writing would bypass
+  the library's validation.  Change a body through its setters
+  (``world.bodies["ball"].velocity = (1, 0, 0)``).
+* A World is not thread-safe, like the C world it wraps.  Every call takes a
+  per-world lock without waiting: using one world from two threads at once
+  raises :class:`~rbsim.BusyError` instead of corrupting memory.  Distinct
+  worlds may step in distinct threads; the GIL is released while C steps.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass
+from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
+                    NamedTuple, Optional, Sequence, Tuple, Union)
+
+import numpy as np
+
+from . import _check
+from . import errors as _e
+from ._native import ffi, lib
+
+if TYPE_CHECKING:
+    from ._render import Run, RunInfo
+
+Vector = Union[Sequence[float], np.ndarray]
+
+_ALIGN = 16  # rbs_world_create_in wants 16-byte alignment
+_STEP_CHUNK = 4096  # steps per C call in World.step (Ctrl-C between chunks)
+
+
+def _enum_names(ctype: str, prefix: str) -> Dict[str, int]:
+    """{"solid": 0, ...} from an enum of the headers (the 32-bit pin and
+    the COUNT sentinel left out)."""
+    names = {}
+    for value, cname in ffi.typeof(ctype).elements.items():
+        short = cname[len(prefix):].lower()
+        if short.endswith("force32") or short == "count":
+            continue
+        names[short] = value
+    return names
+
+
+#: method names accepted by World(method=...), in library order
+METHODS: Tuple[str, ...] = tuple(
+    ffi.string(lib.rbs_method_name(i)).decode() for i in range(lib.RBS_METHOD_COUNT))
+_GRAVITY_MODES = _enum_names("rbs_gravity_mode", "RBS_GRAVITY_")
+_TEXTURES = _enum_names("rbs_texture", "RBS_TEXTURE_")
+_INERTIA = _enum_names("rbs_inertia_kind", "RBS_INERTIA_")
+_BODY_TYPES = {v: k for k, v in _enum_names("rbs_body_type", "RBS_BODY_").items()}
+
+
+def _vec3(v: Any) -> np.ndarray:
+    return np.array([v.x, v.y, v.z], dtype=np.float64)
+
+
+def _quat(q: Any) -> np.ndarray:
+    return np.array([q.w, q.x, q.y, q.z], dtype=np.float64)
+
+
+def _set_vec3(dst: Any, v: Tuple[float, ...]) -> None:
+    dst.x, dst.y, dst.z = v
+
+
+def _str(p: Any) -> str:
+    return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
+
+
+# --------------------------------------------------------------------------
+# Small result types
+# --------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class StepInfo:
+    """What a call of :meth:`World.step` did.  For n > 1 steps the counts
+    are added up over the steps, ``contacts`` is the last step's and
+    ``max_overlap`` the deepest seen."""
+
+    contacts: int       #: contacts touching at the end of the (last) step
+    colliding: int      #: impacts resolved with restitution
+    resting: int        #: resting-contact impulses
+    substeps: int       #: accepted sub-steps
+    rollbacks: int      #: sub-steps undone because of overlap
+    floor_hits: int     #: sub-steps accepted at the rollback floor
+    sweep_limit: int    #: contact passes that hit max_sweeps
+    events: int         #: events processed (event method)
+    max_overlap: float  #: deepest overlap at the end of a step, m
+    steps: int = 1      #: steps this call made
+
+    @classmethod
+    def _from_c(cls, c: Any, steps: int = 1) -> "StepInfo":
+        return cls(int(c.contacts), int(c.colliding), int(c.resting),
+                   int(c.substeps), int(c.rollbacks), int(c.floor_hits),
+                   int(c.sweep_limit), int(c.events), float(c.max_overlap), steps)
+
+
+class Energy(NamedTuple):
+    """Energies, J (potential: uniform gravity relative to the origin, and
+    mutual gravity when on)."""
+
+    kinetic: float
+    potential: float
+    total: float
+
+
+class Momentum(NamedTuple):
+    """Total linear momentum (kg m/s) and angular momentum about the origin
+    (kg m^2/s), as arrays of 3."""
+
+    linear: np.ndarray
+    angular: np.ndarray
+
+
+class Usage(NamedTuple):
+    """Memory use, to size worlds: run, read the high-water marks, shrink."""
+
+    bytes: int
+    bodies: int
+    bodies_high: int
+    materials: int
+    pairs: int
+    contacts_high: int
+
+
+# --------------------------------------------------------------------------
+# Materials and bodies
+# --------------------------------------------------------------------------
+
+class Material:
+    """A named material of a world (a handle; compare with ==)."""
+
+    __slots__ = ("_world", "_index", "_generation", "name")
+
+    def __init__(self, world: "World", cid: Any, name: str) -> None:
+        self._world = world
+        self._index = int(cid.index)
+        self._generation = int(cid.generation)
+        self.name = name  #: the material's name
+
+    def _cid(self) -> Any:
+        return (self._index, self._generation)
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Material) and other._world is self._world
+                and other._cid() == self._cid())
+
+    def __hash__(self) -> int:
+        return hash((id(self._world), self._cid()))
+
+    def __repr__(self) -> str:
+        return "Material(%r)" % self.name
+
+
+@dataclass(frozen=True)
+class BodyState:
+    """A body's full state, copied out (arrays are copies)."""
+
+    type: str                     #: "sphere" or "plane"
+    slot: int
+    name: str
+    position: np.ndarray          #: sphere centre or plane point, m
+    orientation: np.ndarray       #: [w, x, y, z]
+    velocity: np.ndarray          #: COM velocity, m/s
+    angular_velocity: np.ndarray  #: rad/s
+    normal: np.ndarray            #: planes only
+    radius: float                 #: spheres only, m
+    mass: float                   #: kg
+    force: np.ndarray             #: N
+    torque: np.ndarray            #: N m
+    color: int                    #: 0xRRGGBB
+    texture: str
+    fixed: bool
+
+
+class Body:
+    """A body of a world, by id (slot index + generation).
+
+    Getters copy the state out; setters validate (finite numbers) and call
+    the library.  Using a body after it was removed raises
+    :class:`~rbsim.StaleIdError`.
+    """
+
+    __slots__ = ("_world", "_index", "_generation")
+
+    def __init__(self, world: "World", bid: Any) -> None:
+        self._world = world
+        self._index = int(bid.index)
+        self._generation = int(bid.generation)
+
+    def _bid(self) -> Tuple[int, int]:
+        return (self._index, self._generation)
+
+    @property
+    def world(self) -> "World":
+        """The world this body belongs to."""
+        return self._world
+
+    @property
+    def slot(self) -> int:
+        """Row of this body in the world's state arrays."""
+        return self._index
+
+    def state(self) -> BodyState:
+        """The full state, copied out."""
+        s = self._world._body_state(self._bid())
+        return BodyState(
+            type=_BODY_TYPES.get(int(s.type), "none"), slot=int(s.slot),
+            name=_str(s.name), position=_vec3(s.position),
+            orientation=_quat(s.orientation), velocity=_vec3(s.velocity),
+            angular_velocity=_vec3(s.angular_velocity), normal=_vec3(s.normal),
+            radius=float(s.radius), mass=float(s.mass), force=_vec3(s.force),
+            torque=_vec3(s.torque), color=int(s.color),
+            texture=_reverse(_TEXTURES, int(s.texture)), fixed=bool(s.fixed))
+
+    @property
+    def name(self) -> str:
+        """The body's name ("" if unnamed)."""
+        return _str(self._world._body_state(self._bid()).name)
+
+    @property
+    def type(self) -> str:
+        """"sphere" or "plane"."""
+        return _BODY_TYPES.get(int(self._world._body_state(self._bid()).type), "none")
+
+    @property
+    def radius(self) -> float:
+        """Radius, m (spheres; 0 for planes)."""
+        return float(self._world._body_state(self._bid()).radius)
+
+    @property
+    def mass(self) -> float:
+        """Mass, kg."""
+        return float(self._world._body_state(self._bid()).mass)
+
+    @property
+    def normal(self) -> np.ndarray:
+        """Outward unit normal (planes)."""
+        return _vec3(self._world._body_state(self._bid()).normal)
+
+    @property
+    def fixed(self) -> bool:
+        """True if the body never moves."""
+        return bool(self._world._body_state(self._bid()).fixed)
+
+    @property
+    def position(self) -> np.ndarray:
+        """Sphere centre or plane point, m (a copy; assign to move)."""
+        return _vec3(self._world._body_state(self._bid()).position)
+
+    @position.setter
+    def position(self, value: Vector) -> None:
+        self._world._set_vec(lib.rbs_body_set_position, self, value, "position")
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """Velocity of the centre of mass, m/s."""
+        return _vec3(self._world._body_state(self._bid()).velocity)
+
+    @velocity.setter
+    def velocity(self, value: Vector) -> None:
+        self._world._set_vec(lib.rbs_body_set_velocity, self, value, "velocity")
+
+    @property
+    def angular_velocity(self) -> np.ndarray:
+        """Angular velocity, rad/s, world frame."""
+        return _vec3(self._world._body_state(self._bid()).angular_velocity)
+
+    @angular_velocity.setter
+    def angular_velocity(self, value: Vector) -> None:
+        self._world._set_vec(lib.rbs_body_set_angular_velocity, self, value,
+                             "angular_velocity")
+
+    @property
+    def orientation(self) -> np.ndarray:
+        """Unit quaternion [w, x, y, z] (body frame to world frame)."""
+        return _quat(self._world._body_state(self._bid()).orientation)
+
+    @orientation.setter
+    def orientation(self, value: Vector) -> None:
+        q = _check.vector(value, "orientation", 4)
+        cid = self._world._cbody(self)
+        cq = ffi.new("rbs_quat *")
+        cq.w, cq.x, cq.y, cq.z = q
+        self._world._call(lib.rbs_body_set_orientation, cid, cq[0])
+
+    @property
+    def force(self) -> np.ndarray:
+        """Constant applied force at the centre of mass, N, world frame."""
+        return _vec3(self._world._body_state(self._bid()).force)
+
+    @force.setter
+    def force(self, value: Vector) -> None:
+        self._world._set_vec(lib.rbs_body_set_force, self, value, "force")
+
+    @property
+    def torque(self) -> np.ndarray:
+        """Constant applied torque, N m, world frame."""
+        return _vec3(self._world._body_state(self._bid()).torque)
+
+    @torque.setter
+    def torque(self, value: Vector) -> None:
+        self._world._set_vec(lib.rbs_body_set_torque, self, value, "torque")
+
+    def remove(self) -> None:
+        """Remove the body from its world; this handle becomes stale."""
+        self._world.remove_body(self)
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Body) and other._world is self._world
+                and other._bid() == self._bid())
+
+    def __hash__(self) -> int:
+        return hash((id(self._world), self._bid()))
+
+    def __repr__(self) -> str:
+        try:
+            s = self._world._body_state(self._bid())
+            return "Body(%r, %s, slot=%d)" % (_str(s.name),
+                                              _BODY_TYPES.get(int(s.type), "?"),
+                                              self._index)
+        except _e.Error:
+            return "Body(<stale>, slot=%d)" % self._index
+
+
+def _reverse(table: Mapping[str, int], value: int) -> str:
+    for k, v in table.items():
+        if v == value:
+            return k
+    return str(value)
+
+
+class BodyMap(Mapping[str, Body]):
+    """The named bodies of a world: ``world.bodies["ball"]``.  Unnamed
+    bodies are left out (see :meth:`World.all_bodies`).  A live view: it
+    reflects bodies added or removed later."""
+
+    def __init__(self, world: "World") -> None:
+        self._world = world
+
+    def __getitem__(self, name: str) -> Body:
+        return self._world.body(name)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter([b.name for b in self._world.all_bodies() if b.name])
+
+    def __len__(self) -> int:
+        return sum(1 for b in self._world.all_bodies() if b.name)
+
+    def __repr__(self) -> str:
+        return "BodyMap(%r)" % list(self)
+
+
+# --------------------------------------------------------------------------
+# World
+# --------------------------------------------------------------------------
+
+class World:
+    """A simulated world of spheres and planes.
+
+    Every keyword is optional; None keeps the library's default (see
+    rbsim.h, ``rbs_world_def``).  Capacities are fixed for the world's life.
+
+    Args:
+        max_bodies: spheres + planes (default 64).
+        max_materials: named materials (default 16).
+        max_pairs: material-pair rows (default 64).
+        max_contacts: contacts per step (default 4*max_bodies+16).
+        dt: step, s (default 0.001).
+        gravity: m/s^2, or N in "force" mode (default (0, 0, -9.81)).
+        gravity_mode: "acceleration" (default) or "force".
+        restitution: fallback coefficient of restitution in [0, 1].
+        method: one of :data:`METHODS` (default "euler").
+        tolerance: the adaptive method's error tolerance (> 0).
+        slop: allowed overlap relative to the smaller radius of a pair.
+        max_halvings: rollback floor dt / 2**max_halvings.
+        max_sweeps: impulse sweeps per contact pass.
+        mutual_gravity: Newtonian attraction between bodies.
+        gravity_constant: G, m^3 kg^-1 s^-2.
+        softening: Plummer softening length, m.
+        prune: leave out stages that cannot change the result (default True).
+
+    Raises:
+        InvalidError: a value out of range (the message names it).
+        ArgumentTypeError, NumericError: a wrong type, NaN or infinity.
+    """
+
+    def __init__(self, *, max_bodies: Optional[int] = None,
+                 max_materials: Optional[int] = None,
+                 max_pairs: Optional[int] = None,
+                 max_contacts: Optional[int] = None,
+                 dt: Optional[float] = None,
+                 gravity: Optional[Vector] = None,
+                 gravity_mode: Optional[str] = None,
+                 restitution: Optional[float] = None,
+                 method: Optional[str] = None,
+                 tolerance: Optional[float] = None,
+                 slop: Optional[float] = None,
+                 max_halvings: Optional[int] = None,
+                 max_sweeps: Optional[int] = None,
+                 mutual_gravity: Optional[bool] = None,
+                 gravity_constant: Optional[float] = None,
+                 softening: Optional[float] = None,
+                 prune: Optional[bool] = None) -> None:
+        self._world: Any = ffi.NULL
+        self._lock = threading.Lock()
+        self._scene_steps: Optional[int] = None
+        self._scene_pause_on_collision = False
+        d = ffi.new("rbs_world_def *")
+        lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
+        for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
+                           ("max_pairs", max_pairs), ("max_contacts", max_contacts),
+                           ("max_halvings", max_halvings), ("max_sweeps", max_sweeps)):
+            if value is not None:
+                setattr(d, key, _check.u32(value, key))
+        for key, value in (("dt", dt), ("restitution", restitution),
+                           ("tolerance", tolerance), ("slop", slop),
+                           ("gravity_constant", gravity_constant),
+                           ("softening", softening)):
+            if value is not None:
+                setattr(d, key, _check.real(value, key))
+        if gravity is not None:
+            _set_vec3(d.gravity, _check.vector(gravity, "gravity"))
+        if gravity_mode is not None:
+            d.gravity_mode = _GRAVITY_MODES[_check.choice(
+                gravity_mode, "gravity_mode", tuple(_GRAVITY_MODES))]
+        if method is not None:
+            d.method = _method_value(method)
+        if mutual_gravity is not None:
+            d.mutual_gravity = int(_check.flag(mutual_gravity, "mutual_gravity"))
+        if prune is not None:
+            d.prune = int(_check.flag(prune, "prune"))
+        self._create(d)
+
+    # -- creation ---------------------------------------------------------
+
+    def _create(self, d: Any) -> None:
+        """Create the C world for definition d in a block owned by Python."""
+        size = lib.rbs_world_memory_size(d)
+        if size == 0:
+            raise _e.error_class(lib.RBS_E_INVALID)(_def_problem(d))
+        self._mem = ffi.new("char[]", size + _ALIGN)
+        address = int(ffi.cast("uintptr_t", self._mem))
+        self._offset = (-address) % _ALIGN
+        self._base = address + self._offset
+        self._size = size
+        # Read-only bytes of the block: every state view is a slice of it.
+        self._block = np.frombuffer(memoryview(ffi.buffer(self._mem)).toreadonly(),
+                                    dtype=np.uint8)
+        out = ffi.new("rbs_world **")
+        status = lib.rbs_world_create_in(self._mem + self._offset, size, d, out)
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)(_def_problem(d))
+        self._world = out[0]
+
+    @classmethod
+    def _from_def(cls, d: Any) -> "World":
+        self = cls.__new__(cls)
+        self._world = ffi.NULL
+        self._lock = threading.Lock()
+        self._scene_steps = None
+        self._scene_pause_on_collision = False
+        self._create(d)
+        return self
+
+    def close(self) -> None:
+        """Destroy the C world.  State arrays taken before stay readable
+        (they stop changing); any other use raises ClosedError.  Idempotent."""
+        if not self._lock.acquire(blocking=False):
+            raise _e.BusyError("world is in use by another thread; cannot close it")
+        try:
+            if self._world != ffi.NULL:
+                lib.rbs_world_destroy(self._world)
+                self._world = ffi.NULL
+        finally:
+            self._lock.release()
+
+    def __enter__(self) -> "World":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.close()
+
+    def __del__(self) -> None:
+        world = getattr(self, "_world", ffi.NULL)
+        if world != ffi.NULL:
+            lib.rbs_world_destroy(world)
+            self._world = ffi.NULL
+
+    @property
+    def closed(self) -> bool:
+        """True after :meth:`close`."""
+        return self._world == ffi.NULL
+
+    # -- calling C --------------------------------------------------------
+
+    def _acquire(self) -> Any:
+        if not self._lock.acquire(blocking=False):
+            raise _e.BusyError("world is in use by another thread (a World is not "
+                               "thread-safe; give each thread its own)")
+        if self._world == ffi.NULL:
+            self._lock.release()
+            raise _e.error_class(lib.RBS_E_CLOSED)("world is closed")
+        return self._world
+
+    def _call(self, fn: Any, *args: Any) -> None:
+        """fn(world, *args) under the lock, for functions that change the
+        world (they explain failures in rbs_world_last_error); raise on a
+        negative status."""
+        w = self._acquire()
+        try:
+            status = fn(w, *args)
+            if status != lib.RBS_OK:
+                raise _e.error_class(status)(_str(lib.rbs_world_last_error(w)))
+        finally:
+            self._lock.release()
+
+    def _query(self, what: str, fn: Any, *args: Any) -> None:
+        """fn(world, *args) under the lock, for functions on a const world
+        (which cannot record an error text): what explains a failure."""
+        w = self._acquire()
+        try:
+            status = fn(w, *args)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)(what)
+
+    def _value(self, fn: Any, *args: Any) -> Any:
+        """fn(world, *args) under the lock, for functions that cannot fail."""
+        w = self._acquire()
+        try:
+            return fn(w, *args)
+        finally:
+            self._lock.release()
+
+    def _cbody(self, body: Any) -> Any:
+        if not isinstance(body, Body):
+            raise _e.ArgumentTypeError("expected a Body, got %s" % _check._describe(body))
+        if body._world is not self:
+            raise _e.error_class(lib.RBS_E_STALE_ID)("body %r belongs to another world"
+                                                     % body)
+        cid = ffi.new("rbs_body_id *")
+        cid.index, cid.generation = body._bid()
+        return cid[0]
+
+    def _body_state(self, bid: Tuple[int, int]) -> Any:
+        cid = ffi.new("rbs_body_id *")
+        cid.index, cid.generation = bid
+        out = ffi.new("rbs_body_state *")
+        self._query("body {%d, %d}: removed, or not of this world" % bid,
+                    lib.rbs_body_get_state, cid[0], out)
+        return out
+
+    def _set_vec(self, fn: Any, body: Body, value: Vector, what: str) -> None:
+        v = _check.vector(value, what)
+        cid = self._cbody(body)
+        cv = ffi.new("rbs_vec3 *")
+        _set_vec3(cv, v)
+        self._call(fn, cid, cv[0])
+
+    # -- materials ----------------------------------------------------------
+
+    def add_material(self, name: str) -> Material:
+        """Add a named material (names are unique; < 64 bytes)."""
+        raw = _check.text(name, "name")
+        out = ffi.new("rbs_material_id *")
+        self._call(lib.rbs_world_add_material, raw, out)
+        return Material(self, out, name)
+
+    def material(self, name: str) -> Material:
+        """The material of that name (NotFoundError if none)."""
+        raw = _check.text(name, "name")
+        out = ffi.new("rbs_material_id *")
+        self._query("no material named %r" % name, lib.rbs_world_find_material,
+                    raw, out)
+        return Material(self, out, name)
+
+    def _cmaterial(self, m: Union[Material, str, None], what: str) -> Any:
+        out = ffi.new("rbs_material_id *")
+        if m is None or (isinstance(m, str) and m == "*"):
+            return out[0]  # null: "*", any material
+        if isinstance(m, str):
+            m = self.material(m)
+        if not isinstance(m, Material):
+            raise _e.ArgumentTypeError("%s: expected a Material, a name or '*', got %s"
+                                       % (what, _check._describe(m)))
+        if m._world is not self:
+            raise _e.error_class(lib.RBS_E_STALE_ID)(
+                "%s: material %r belongs to another world" % (what, m.name))
+        out.index, out.generation = m._cid()
+        return out[0]
+
+    def set_material(self, a: Union[Material, str, None],
+                     b: Union[Material, str, None], *,
+                     static: Optional[float] = None,
+                     kinetic: Optional[float] = None,
+                     restitution: Optional[float] = None,
+                     rolling: Optional[float] = None,
+                     spinning: Optional[float] = None) -> None:
+        """Set (add or replace) the contact properties of a pair of
+        materials.  a and b are Materials, names, or "*"/None for any.
+
+        Args:
+            static: static friction coefficient (>= kinetic; default 0.5).
+            kinetic: kinetic friction coefficient (>= 0; default 0.3).
+            restitution: in [0, 1]; None keeps the world's.
+            rolling: rolling resistance, dimensionless.
+            spinning: spinning resistance, m.
+        """
+        d = ffi.new("rbs_pair_def *")
+        lib.rbs_pair_def_init_sized(d, ffi.sizeof("rbs_pair_def"))
+        d.a = self._cmaterial(a, "a")
+        d.b = self._cmaterial(b, "b")
+        for key, field, value in (("static", "static_friction", static),
+                                  ("kinetic", "kinetic_friction", kinetic),
+                                  ("restitution", "restitution", restitution),
+                                  ("rolling", "rolling", rolling),
+                                  ("spinning", "spinning", spinning)):
+            if value is not None:
+                setattr(d, field, _check.real(value, key))
+        self._call(lib.rbs_world_set_pair, d)
+
+    # -- bodies -------------------------------------------------------------
+
+    def add_sphere(self, name: Optional[str] = None, *,
+                   radius: Optional[float] = None,
+                   mass: Optional[float] = None,
+                   density: Optional[float] = None,
+                   position: Optional[Vector] = None,
+                   velocity: Optional[Vector] = None,
+                   angular_velocity: Optional[Vector] = None,
+                   orientation: Optional[Vector] = None,
+                   inertia: Union[str, Vector, None] = None,
+                   center_of_mass: Optional[Vector] = None,
+                   force: Optional[Vector] = None,
+                   torque: Optional[Vector] = None,
+                   material: Union[Material, str, None] = None,
+                   color: Optional[int] = None,
+                   texture: Optional[str] = None,
+                   fixed: Optional[bool] = None) -> Body:
+        """Add a sphere; None keeps the library's default.
+
+        Args:
+            name: optional unique name (< 64 bytes).
+            radius: m, > 0 (default 0.1).
+            mass: kg, > 0 (default 1); ignored if density > 0.
+            density: kg/m^3 (default 0: use mass).
+            position, velocity, angular_velocity: m, m/s, rad/s (world).
+            orientation: quaternion [w, x, y, z], normalised on add.
+            inertia: "solid" (default), "hollow", or principal moments
+                (Ix, Iy, Iz) about the centre, kg m^2, body axes.
+            center_of_mass: offset from the centre, body frame, m.
+            force, torque: constant applied force (N) and torque (N m).
+            material: a Material or its name (None: no material).
+            color: 0xRRGGBB.  texture: "none", "stripes" or "checker".
+            fixed: never moves (infinite mass).
+
+        Raises:
+            InvalidError: a value out of range (message from the library).
+            CapacityError: max_bodies reached (the world is unchanged).
+        """
+        d = ffi.new("rbs_sphere_def *")
+        lib.rbs_sphere_def_init_sized(d, ffi.sizeof("rbs_sphere_def"))
+        keep = []
+        if name is not None:
+            raw = _check.text(name, "name")
+            keep.append(ffi.new("char[]", raw))
+            d.name = keep[-1]
+        for key, value in (("radius", radius), ("mass", mass), ("density", density)):
+            if value is not None:
+                setattr(d, key, _check.real(value, key))
+        for key, value in (("position", position), ("velocity", velocity),
+                           ("angular_velocity", angular_velocity),
+                           ("center_of_mass", center_of_mass),
+                           ("force", force), ("torque", torque)):
+            if value is not None:
+                _set_vec3(getattr(d, key), _check.vector(value, key))
+        if orientation is not None:
+            q = _check.vector(orientation, "orientation", 4)
+            d.orientation.w, d.orientation.x, d.orientation.y, d.orientation.z = q
+        if inertia is not None:
+            if isinstance(inertia, str):
+                kinds = tuple(k for k in _INERTIA if k != "principal")
+                d.inertia_kind = _INERTIA[_check.choice(inertia, "inertia", kinds)]
+            else:
+                d.inertia_kind = _INERTIA["principal"]
+                _set_vec3(d.inertia, _check.vector(inertia, "inertia"))
+        if material is not None:
+            d.material = self._cmaterial(material, "material")
+        if color is not None:
+            d.color = _check.integer(color, "color", 0, 0xFFFFFF)
+        if texture is not None:
+            d.texture = _TEXTURES[_check.choice(texture, "texture", tuple(_TEXTURES))]
+        if fixed is not None:
+            d.fixed = int(_check.flag(fixed, "fixed"))
+        out = ffi.new("rbs_body_id *")
+        self._call(lib.rbs_world_add_sphere, d, out)
+        return Body(self, out)
+
+    def add_plane(self, name: Optional[str] = None, *,
+                  point: Optional[Vector] = None,
+                  normal: Optional[Vector] = None,
+                  material: Union[Material, str, None] = None,
+                  color: Optional[int] = None,
+                  texture: Optional[str] = None) -> Body:
+        """Add a plane: a half-space whose solid side lies behind the
+        normal.  point: a point on the plane, m (default origin); normal:
+        outward, nonzero, normalised on add (default (0, 0, 1))."""
+        d = ffi.new("rbs_plane_def *")
+        lib.rbs_plane_def_init_sized(d, ffi.sizeof("rbs_plane_def"))
+        keep = []
+        if name is not None:
+            keep.append(ffi.new("char[]", _check.text(name, "name")))
+            d.name = keep[-1]
+        if point is not None:
+            _set_vec3(d.point, _check.vector(point, "point"))
+        if normal is not None:
+            _set_vec3(d.normal, _check.vector(normal, "normal"))
+        if material is not None:
+            d.material = self._cmaterial(material, "material")
+        if color is not None:
+            d.color = _check.integer(color, "color", 0, 0xFFFFFF)
+        if texture is not None:
+            d.texture = _TEXTURES[_check.choice(texture, "texture", tuple(_TEXTURES))]
+        out = ffi.new("rbs_body_id *")
+        self._call(lib.rbs_world_add_plane, d, out)
+        return Body(self, out)
+
+    def remove_body(self, body: Body) -> None:
+        """Remove a body; its handle becomes stale."""
+        self._call(lib.rbs_world_remove_body, self._cbody(body))
+
+    def body(self, name: str) -> Body:
+        """The body of that name (NotFoundError, a KeyError, if none)."""
+        raw = _check.text(name, "name")
+        out = ffi.new("rbs_body_id *")
+        self._query("no body named %r" % name, lib.rbs_world_find_body, raw, out)
+        return Body(self, out)
+
+    @property
+    def bodies(self) -> BodyMap:
+        """The named bodies, by name (a live mapping)."""
+        return BodyMap(self)
+
+    def all_bodies(self) -> List[Body]:
+        """Every body, named or not, in slot order."""
+        view = self._state_view()
+        out = ffi.new("rbs_body_id *")
+        found = []
+        for slot in range(int(view.slots)):
+            w = self._acquire()
+            try:
+                status = lib.rbs_world_body_at(w, slot, out)
+            finally:
+                self._lock.release()
+            if status == lib.RBS_OK:
+                found.append(Body(self, out))
+            elif status != lib.RBS_E_NOT_FOUND:
+                raise _e.error_class(status)("slot %d" % slot)
+        return found
+
+    # -- stepping -----------------------------------------------------------
+
+    def step(self, n: int = 1) -> StepInfo:
+        """Advance the world n steps of dt (the GIL is released while C
+        steps).  Returns what the steps did (see :class:`StepInfo`).  On
+        error the world stays at its last good state and the exception's
+        ``steps_done`` tells how many steps were made."""
+        count = _check.u64(n, "n")
+        total = ffi.new("rbs_step_info *")
+        chunk = ffi.new("rbs_step_info *")
+        done = ffi.new("uint64_t *")
+        made = 0
+        if count == 0:
+            return StepInfo._from_c(total, 0)
+        fields = ("colliding", "resting", "substeps", "rollbacks", "floor_hits",
+                  "sweep_limit", "events")
+        while made < count:
+            todo = min(_STEP_CHUNK, count - made)
+            w = self._acquire()
+            try:
+                status = lib.rbs_py_step(w, todo, chunk, done, ffi.NULL)
+                detail = _str(lib.rbs_world_last_error(w)) if status != lib.RBS_OK else ""
+            finally:
+                self._lock.release()
+            made += int(done[0])
+            total.contacts = chunk.contacts
+            for f in fields:
+                setattr(total, f, getattr(total, f) + getattr(chunk, f))
+            total.max_overlap = max(total.max_overlap, chunk.max_overlap)
+            if status != lib.RBS_OK:
+                exc = _e.error_class(status)(
+                    "%s (after %d of %d steps, t = %.17g s)"
+                    % (detail, made, count, self.time))
+                exc.steps_done = made  # type: ignore[attr-defined]
+                raise exc
+        return StepInfo._from_c(total, made)
+
+    def run(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
+            realtime: bool = False, speed: float = 1.0,
+            reel_capacity: Optional[int] = None) -> "RunInfo":
+        """Run through the projector -- the simulation on one thread, the
+        renderers on another -- and wait for the end.
+
+        Args:
+            steps: steps to take (frames 0..steps); None: the scene's
+                ``simulation.steps`` for a loaded world.
+            renderers: Python renderers (at most 4): callables ``f(frame)``
+                or objects with ``draw(frame)`` and optionally ``finish()``,
+                ``close()``, ``every`` and ``live`` (see :class:`Frame`).
+            realtime: pace frame k at k dt / speed of wall time.
+            speed: real-time factor (> 0).
+            reel_capacity: frames in the reel (>= 2).
+
+        Returns:
+            a :class:`RunInfo`.  An exception raised by a renderer stops the
+            run and is raised again here; a library failure raises its
+            rbsim error.  The GIL is released while the run goes on.
+        """
+        from ._render import run_world
+        return run_world(self, steps, renderers, realtime=realtime, speed=speed,
+                         reel_capacity=reel_capacity)
+
+    def start(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
+              realtime: bool = False, speed: float = 1.0,
+              start_paused: bool = False,
+              pause_on_collision: Optional[bool] = None,
+              reel_capacity: Optional[int] = None) -> "Run":
+        """Start a run (as :meth:`run`) and return at once with a
+        :class:`Run` to send commands to ("pause", "resume", "step N",
+        "speed X", "quit") and to wait on.  pause_on_collision None takes
+        the scene's setting.  The world is busy until ``Run.wait()``."""
+        from ._render import start_world
+        return start_world(self, steps, renderers, realtime=realtime, speed=speed,
+                           start_paused=start_paused,
+                           pause_on_collision=pause_on_collision,
+                           reel_capacity=reel_capacity)
+
+    @property
+    def time(self) -> float:
+        """Simulated time, s (= step count * dt)."""
+        return float(self._value(lib.rbs_world_time))
+
+    @property
+    def step_count(self) -> int:
+        """Steps taken since creation."""
+        return int(self._value(lib.rbs_world_step_count))
+
+    def _def(self) -> Any:
+        out = ffi.new("rbs_world_def *")
+        lib.rbs_world_def_init_sized(out, ffi.sizeof("rbs_world_def"))
+        self._query("rbs_world_get_def", lib.rbs_world_get_def, out)
+        return out
+
+    @property
+    def dt(self) -> float:
+        """Step size, s (settable, > 0)."""
+        return float(self._def().dt)
+
+    @dt.setter
+    def dt(self, value: float) -> None:
+        self._call(lib.rbs_world_set_dt, _check.real(value, "dt"))
+
+    @property
+    def method(self) -> str:
+        """Stepping method, one of :data:`METHODS` (settable)."""
+        return METHODS[int(self._def().method)]
+
+    @method.setter
+    def method(self, value: str) -> None:
+        self._call(lib.rbs_world_set_method, _method_value(value), 0.0)
+
+    @property
+    def tolerance(self) -> float:
+        """The adaptive method's error tolerance (settable, > 0)."""
+        return float(self._def().tolerance)
+
+    @tolerance.setter
+    def tolerance(self, value: float) -> None:
+        tol = _check.real(value, "tolerance")
+        if not tol > 0:
+            # 0 would mean "keep the current" to the library: refuse it here.
+            raise _e.error_class(lib.RBS_E_INVALID)("tolerance: must be > 0, got %r" % tol)
+        self._call(lib.rbs_world_set_method, self._def().method, tol)
+
+    @property
+    def gravity(self) -> np.ndarray:
+        """Gravity, m/s^2 (or N in force mode)."""
+        return _vec3(self._def().gravity)
+
+    @property
+    def settings(self) -> Dict[str, Any]:
+        """Capacities and settings as they are now (a copy)."""
+        d = self._def()
+        return {
+            "max_bodies": int(d.max_bodies), "max_materials": int(d.max_materials),
+            "max_pairs": int(d.max_pairs), "max_contacts": int(d.max_contacts),
+            "dt": float(d.dt), "gravity": tuple(_vec3(d.gravity)),
+            "gravity_mode": _reverse(_GRAVITY_MODES, int(d.gravity_mode)),
+            "restitution": float(d.restitution), "method": METHODS[int(d.method)],
+            "tolerance": float(d.tolerance), "slop": float(d.slop),
+            "max_halvings": int(d.max_halvings), "max_sweeps": int(d.max_sweeps),
+            "mutual_gravity": bool(d.mutual_gravity),
+            "gravity_constant": float(d.gravity_constant),
+            "softening": float(d.softening), "prune": bool(d.prune),
+        }
+
+    # -- state views ---------------------------------------------------------
+
+    def _state_view(self) -> Any:
+        out = ffi.new("rbs_state_view *")
+        self._query("rbs_world_state", lib.rbs_world_state, out)
+        return out
+
+    def _view(self, ptr: Any, rows: int, cols: int, dtype: Any) -> np.ndarray:
+        """A read-only array over [ptr, ptr + rows*cols) inside the block."""
+        item = np.dtype(dtype).itemsize
+        start = int(ffi.cast("uintptr_t", ptr)) - self._base + self._offset
+        nbytes = rows * cols * item
+        if ptr == ffi.NULL or start < self._offset or start + nbytes > len(self._block):
+            raise _e.Error("state array outside the world's memory block")
+        return self._block[start:start + nbytes].view(dtype).reshape(rows, cols)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Positions, m: a read-only slots x 3 float64 view of the world's
+        memory (no copy; it changes as the world steps).  Row i is slot i
+        (:attr:`Body.slot`); free slots hold zeros.  Bodies added later are
+        not in an array taken before."""
+        v = self._state_view()
+        return self._view(v.position, int(v.slots), 3, np.float64)
+
+    @property
+    def velocities(self) -> np.ndarray:
+        """Velocities, m/s: read-only slots x 3 view (see positions)."""
+        v = self._state_view()
+        return self._view(v.velocity, int(v.slots), 3, np.float64)
+
+    @property
+    def angular_velocities(self) -> np.ndarray:
+        """Angular velocities, rad/s: read-only slots x 3 view."""
+        v = self._state_view()
+        return self._view(v.angular_velocity, int(v.slots), 3, np.float64)
+
+    @property
+    def orientations(self) -> np.ndarray:
+        """Orientations [w x y z]: read-only slots x 4 view."""
+        v = self._state_view()
+        return self._view(v.orientation, int(v.slots), 4, np.float64)
+
+    @property
+    def types(self) -> np.ndarray:
+        """Body types per slot (0 free, 1 sphere, 2 plane): read-only int32
+        view of length slots."""
+        v = self._state_view()
+        return self._view(v.type, int(v.slots), 1, np.int32).reshape(-1)
+
+    # -- diagnostics -----------------------------------------------------------
+
+    def energy(self) -> Energy:
+        """Kinetic, potential and total energy, J."""
+        out = ffi.new("rbs_energy *")
+        self._query("rbs_world_energy", lib.rbs_world_energy, out)
+        return Energy(float(out.kinetic), float(out.potential), float(out.total))
+
+    def momentum(self) -> Momentum:
+        """Linear momentum (kg m/s) and angular momentum about the origin
+        (kg m^2/s)."""
+        lin = ffi.new("rbs_vec3 *")
+        ang = ffi.new("rbs_vec3 *")
+        self._query("rbs_world_momentum", lib.rbs_world_momentum, lin, ang)
+        return Momentum(_vec3(lin), _vec3(ang))
+
+    def usage(self) -> Usage:
+        """Memory use and high-water marks."""
+        out = ffi.new("rbs_usage *")
+        self._query("rbs_world_usage", lib.rbs_world_usage, out)
+        return Usage(int(out.bytes), int(out.bodies), int(out.bodies_high),
+                     int(out.materials), int(out.pairs), int(out.contacts_high))
+
+    def hash(self) -> int:
+        """Deterministic 64-bit hash of the full state bits."""
+        return int(self._value(lib.rbs_world_hash))
+
+    def __repr__(self) -> str:
+        if self.closed:
+            return "World(<closed>)"
+        return "World(bodies=%d, t=%.6g s, method=%s)" % (
+            len(self.all_bodies()), self.time, self.method)
+
+
+def _method_value(name: Any) -> int:
+    raw = _check.text(name, "method")
+    out = ffi.new("rbs_method *")
+    if lib.rbs_method_from_name(raw, out) != lib.RBS_OK:
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "method: expected one of %s, got %r" % (", ".join(METHODS), name))
+    return int(out[0])
+
+
+def _def_problem(d: Any) -> str:
+    """Why the library rejects a world definition."""
+    validate = getattr(lib, "rbs_world_def_validate", None)
+    if validate is not None:
+        msg = ffi.new("char[]", 256)
+        validate(d, msg, 256)
+        if msg[0] != b"\0":
+            return ffi.string(msg).decode("utf-8", "replace")
+    return ("world definition rejected (max_bodies=%d, max_materials=%d, "
+            "max_pairs=%d, max_contacts=%d, dt=%r, method=%d, tolerance=%r)"
+            % (d.max_bodies, d.max_materials, d.max_pairs, d.max_contacts, d.dt,
+               d.method, d.tolerance))
