@@ -1,0 +1,398 @@
+/*
+ * sdl_camera.c - cameras: gluPerspective-style pinhole (vertical fov in
+ * degrees, near and far planes along the view direction), placed fixed, on a
+ * scripted path (linear in time, clamped at the ends), mounted on a body, or
+ * free (moved by orbit/pan/zoom/reset).
+ *
+ * Default placement: looking at the centre of the spheres' bounding box from
+ * azimuth -60 degrees and elevation 30 degrees (in the frame of the camera's
+ * up vector), far enough that the box's bounding sphere fills about 80% of
+ * the vertical field of view.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sdl_internal.h"
+
+static const double kPi = 3.14159265358979323846;
+/* Default view direction from the target: azimuth and elevation, degrees. */
+static const double kDefaultAzimuth = -60.0;
+static const double kDefaultElevation = 30.0;
+/* Orbits keep the elevation within this many degrees of the horizon. */
+static const double kMaxElevation = 89.0;
+
+static rbs_vec3 v3(double x, double y, double z)
+{
+    rbs_vec3 r;
+    r.x = x;
+    r.y = y;
+    r.z = z;
+    return r;
+}
+static rbs_vec3 add(rbs_vec3 a, rbs_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static rbs_vec3 sub(rbs_vec3 a, rbs_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static rbs_vec3 scale(rbs_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
+static double dot(rbs_vec3 a, rbs_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static double len(rbs_vec3 a) { return sqrt(dot(a, a)); }
+static rbs_vec3 cross(rbs_vec3 a, rbs_vec3 b)
+{
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+/* Two unit vectors e1, e2 with (e1, e2, up) right-handed; for up = z they
+ * are x and y. */
+static void up_frame(rbs_vec3 up, rbs_vec3 *e1, rbs_vec3 *e2)
+{
+    rbs_vec3 a;
+    double ax = fabs(up.x), ay = fabs(up.y), az = fabs(up.z);
+    if (ax <= ay && ax <= az) a = v3(1, 0, 0);
+    else if (ay <= az) a = v3(0, 1, 0);
+    else a = v3(0, 0, 1);
+    *e1 = sub(a, scale(up, dot(a, up)));
+    *e1 = scale(*e1, 1.0 / len(*e1));
+    *e2 = cross(up, *e1);
+}
+
+/* Unit direction at azimuth/elevation (degrees) in the frame of up. */
+static rbs_vec3 direction(rbs_vec3 up, double azimuth, double elevation)
+{
+    rbs_vec3 e1, e2;
+    double a = azimuth * kPi / 180.0, e = elevation * kPi / 180.0;
+    up_frame(up, &e1, &e2);
+    return add(add(scale(e1, cos(e) * cos(a)), scale(e2, cos(e) * sin(a))),
+               scale(up, sin(e)));
+}
+
+void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def)
+{
+    memset(camera, 0, sizeof *camera);
+    camera->def = def;
+    camera->up = def->up;
+    camera->fov = def->fov;
+    camera->znear = def->znear;
+    camera->zfar = def->zfar;
+    camera->mount_index = -1;
+}
+
+/* Index of the body named name in frame, using and updating the cache. */
+static int32_t find_body(rbsf__camera *camera, const rbs_frame *frame,
+                         const char *name)
+{
+    uint32_t i;
+    int32_t c = camera->mount_index;
+    if (c >= 0 && (uint32_t)c < frame->body_count &&
+        frame->bodies[c].type != RBS_BODY_NONE && frame->bodies[c].name != NULL &&
+        strcmp(frame->bodies[c].name, name) == 0)
+        return c;
+    for (i = 0; i < frame->body_count; i++) {
+        const rbs_frame_body *b = &frame->bodies[i];
+        if (b->type != RBS_BODY_NONE && b->name != NULL &&
+            strcmp(b->name, name) == 0) {
+            camera->mount_index = (int32_t)i;
+            return (int32_t)i;
+        }
+    }
+    camera->mount_index = -1;
+    return -1;
+}
+
+rbs_status rbsf__camera_resolve(rbsf__camera *camera, const rbs_frame *frame,
+                                char *err, size_t errlen)
+{
+    const rbsf__camera_def *def = camera->def;
+    rbs_vec3 lo = v3(0, 0, 0), hi = v3(0, 0, 0), centre, dir;
+    double radius = 0.0, dist;
+    uint32_t i, spheres = 0;
+    if (camera->resolved) return RBS_OK;
+
+    /* Bounding box of the spheres. */
+    for (i = 0; i < frame->body_count; i++) {
+        const rbs_frame_body *b = &frame->bodies[i];
+        const double *p = b->position;
+        double r = b->radius;
+        if (b->type != RBS_BODY_SPHERE) continue;
+        if (spheres++ == 0) {
+            lo = v3(p[0] - r, p[1] - r, p[2] - r);
+            hi = v3(p[0] + r, p[1] + r, p[2] + r);
+        } else {
+            lo = v3(fmin(lo.x, p[0] - r), fmin(lo.y, p[1] - r), fmin(lo.z, p[2] - r));
+            hi = v3(fmax(hi.x, p[0] + r), fmax(hi.y, p[1] + r), fmax(hi.z, p[2] + r));
+        }
+    }
+    centre = scale(add(lo, hi), 0.5);
+    radius = spheres > 0 ? 0.5 * len(sub(hi, lo)) : 1.0;
+    if (radius < 0.5) radius = 0.5;
+    dist = radius / sin(0.4 * def->fov * kPi / 180.0);
+    dir = direction(def->up, kDefaultAzimuth, kDefaultElevation);
+
+    switch (def->mode) {
+    case RBSF__CAMERA_MOUNTED: {
+        int32_t k = find_body(camera, frame, def->mount);
+        double r;
+        if (k < 0) {
+            snprintf(err, errlen, "mount: no body named \"%s\" in the frame",
+                     def->mount);
+            return RBS_E_INVALID;
+        }
+        r = frame->bodies[k].type == RBS_BODY_SPHERE ? frame->bodies[k].radius : 0.1;
+        camera->offset = def->has_offset ? def->offset : scale(dir, fmax(0.5, 8.0 * r));
+        dist = len(camera->offset);
+        radius = 2.0 * r;
+        break;
+    }
+    case RBSF__CAMERA_FIXED:
+    case RBSF__CAMERA_FREE:
+    default:
+        if (def->path_count > 0) {
+            camera->position = def->path[0].position;
+            camera->target = def->path[0].target;
+            for (i = 0; i < def->path_count; i++)
+                dist = fmax(dist, len(sub(def->path[i].position, def->path[i].target)));
+            break;
+        }
+        camera->target = def->has_target ? def->target : centre;
+        camera->position = def->has_position ? def->position
+                                             : add(camera->target, scale(dir, dist));
+        if (len(sub(camera->target, camera->position)) == 0.0) {
+            snprintf(err, errlen, "position: equals the target (%g, %g, %g)",
+                     camera->target.x, camera->target.y, camera->target.z);
+            return RBS_E_INVALID;
+        }
+        dist = len(sub(camera->target, camera->position));
+        break;
+    }
+    /* A far plane that shows the whole scene unless the scene set one. */
+    if (!def->has_far && camera->zfar < 4.0 * (dist + radius))
+        camera->zfar = 4.0 * (dist + radius);
+    camera->home_position = camera->position;
+    camera->home_target = camera->target;
+    camera->home_offset = camera->offset;
+    camera->resolved = 1;
+    return RBS_OK;
+}
+
+/* Position and target on a path at time t (linear, clamped). */
+static void path_at(const rbsf__camera_def *def, double t, rbs_vec3 *position,
+                    rbs_vec3 *target)
+{
+    uint32_t lo = 0, hi = def->path_count - 1;
+    double s;
+    if (t <= def->path[0].t) {
+        *position = def->path[0].position;
+        *target = def->path[0].target;
+        return;
+    }
+    if (t >= def->path[hi].t) {
+        *position = def->path[hi].position;
+        *target = def->path[hi].target;
+        return;
+    }
+    while (hi - lo > 1) { /* path[lo].t <= t < path[hi].t */
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (def->path[mid].t <= t) lo = mid;
+        else hi = mid;
+    }
+    s = (t - def->path[lo].t) / (def->path[hi].t - def->path[lo].t);
+    *position = add(def->path[lo].position,
+                    scale(sub(def->path[hi].position, def->path[lo].position), s));
+    *target = add(def->path[lo].target,
+                  scale(sub(def->path[hi].target, def->path[lo].target), s));
+}
+
+rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
+                             uint32_t width, uint32_t height, rbsf__view *out,
+                             char *err, size_t errlen)
+{
+    const rbsf__camera_def *def = camera->def;
+    rbs_vec3 position, target, right;
+    double l;
+    rbs_status st = rbsf__camera_resolve(camera, frame, err, errlen);
+    if (st != RBS_OK) return st;
+
+    if (def->mode == RBSF__CAMERA_MOUNTED) {
+        int32_t k = find_body(camera, frame, def->mount);
+        const double *p;
+        if (k < 0) {
+            snprintf(err, errlen, "mount: no body named \"%s\" in frame %llu",
+                     def->mount, (unsigned long long)frame->number);
+            return RBS_E_INVALID;
+        }
+        p = frame->bodies[k].position;
+        target = v3(p[0], p[1], p[2]);
+        position = add(target, camera->offset);
+    } else if (def->path_count > 0) {
+        path_at(def, frame->time, &position, &target);
+    } else {
+        position = camera->position;
+        target = camera->target;
+    }
+    if (!(isfinite(position.x) && isfinite(position.y) && isfinite(position.z) &&
+          isfinite(target.x) && isfinite(target.y) && isfinite(target.z))) {
+        snprintf(err, errlen, "position: not finite (from the path or the mounted body)");
+        return RBS_E_INVALID;
+    }
+
+    out->eye = position;
+    out->fwd = sub(target, position);
+    l = len(out->fwd);
+    if (!(l > 0.0)) {
+        snprintf(err, errlen, "target: equals the position");
+        return RBS_E_INVALID;
+    }
+    out->fwd = scale(out->fwd, 1.0 / l);
+    right = cross(out->fwd, camera->up);
+    l = len(right);
+    if (!(l > 1e-9)) {
+        snprintf(err, errlen, "up: the camera looks along its up vector");
+        return RBS_E_INVALID;
+    }
+    out->right = scale(right, 1.0 / l);
+    out->up = cross(out->right, out->fwd);
+    out->focal = 0.5 * (double)height / tan(0.5 * camera->fov * kPi / 180.0);
+    out->znear = camera->znear;
+    out->zfar = camera->zfar;
+    out->width = width;
+    out->height = height;
+    return RBS_OK;
+}
+
+/* The vector from the target to the eye that orbit and zoom change. */
+static rbs_vec3 *arm(rbsf__camera *camera, rbs_vec3 *scratch)
+{
+    if (camera->def->mode == RBSF__CAMERA_MOUNTED) return &camera->offset;
+    *scratch = sub(camera->position, camera->target);
+    return scratch;
+}
+
+static void set_arm(rbsf__camera *camera, rbs_vec3 v)
+{
+    if (camera->def->mode == RBSF__CAMERA_MOUNTED) camera->offset = v;
+    else camera->position = add(camera->target, v);
+}
+
+/* Commands move free cameras (and orbit/zoom mounted ones). */
+static rbs_status movable(const rbsf__camera *camera, int mounted_ok,
+                          const char *what, char *out, size_t outlen)
+{
+    if (!camera->resolved) {
+        snprintf(out, outlen, "%s: the camera is placed at the first frame; "
+                 "try again once a frame is drawn", what);
+        return RBS_E_INVALID;
+    }
+    if (camera->def->mode == RBSF__CAMERA_FREE) return RBS_OK;
+    if (camera->def->mode == RBSF__CAMERA_MOUNTED) {
+        if (mounted_ok) return RBS_OK;
+        snprintf(out, outlen, "%s: the camera is mounted on \"%s\" (orbit, zoom "
+                 "and reset work)", what, camera->def->mount);
+        return RBS_E_INVALID;
+    }
+    snprintf(out, outlen, "%s: the camera is %s (use \"mode\": \"free\" to "
+             "move it)", what,
+             camera->def->path_count > 0 ? "on a scripted path" : "fixed");
+    return RBS_E_INVALID;
+}
+
+rbs_status rbsf__camera_orbit(rbsf__camera *camera, double dyaw, double dpitch,
+                              char *out, size_t outlen)
+{
+    rbs_vec3 e1, e2, scratch, *a, v;
+    double d, az, el;
+    rbs_status st = movable(camera, 1, "orbit", out, outlen);
+    if (st != RBS_OK) return st;
+    if (!isfinite(dyaw) || !isfinite(dpitch)) {
+        snprintf(out, outlen, "orbit: angles must be finite degrees");
+        return RBS_E_INVALID;
+    }
+    a = arm(camera, &scratch);
+    d = len(*a);
+    up_frame(camera->up, &e1, &e2);
+    az = atan2(dot(*a, e2), dot(*a, e1)) * 180.0 / kPi + dyaw;
+    el = asin(fmax(-1.0, fmin(1.0, dot(*a, camera->up) / d))) * 180.0 / kPi + dpitch;
+    el = fmax(-kMaxElevation, fmin(kMaxElevation, el));
+    v = scale(direction(camera->up, az, el), d);
+    set_arm(camera, v);
+    snprintf(out, outlen, "orbit: azimuth %.1f deg, elevation %.1f deg, "
+             "distance %.3g m", fmod(az + 540.0, 360.0) - 180.0, el, d);
+    return RBS_OK;
+}
+
+rbs_status rbsf__camera_pan(rbsf__camera *camera, double dx, double dy,
+                            char *out, size_t outlen)
+{
+    rbs_vec3 fwd, right, up, shift;
+    rbs_status st = movable(camera, 0, "pan", out, outlen);
+    if (st != RBS_OK) return st;
+    if (!isfinite(dx) || !isfinite(dy)) {
+        snprintf(out, outlen, "pan: distances must be finite metres");
+        return RBS_E_INVALID;
+    }
+    fwd = sub(camera->target, camera->position);
+    fwd = scale(fwd, 1.0 / len(fwd));
+    right = cross(fwd, camera->up);
+    right = scale(right, 1.0 / len(right));
+    up = cross(right, fwd);
+    shift = add(scale(right, dx), scale(up, dy));
+    camera->position = add(camera->position, shift);
+    camera->target = add(camera->target, shift);
+    snprintf(out, outlen, "pan: target (%.3g, %.3g, %.3g) m", camera->target.x,
+             camera->target.y, camera->target.z);
+    return RBS_OK;
+}
+
+rbs_status rbsf__camera_zoom(rbsf__camera *camera, double factor, char *out,
+                             size_t outlen)
+{
+    rbs_vec3 scratch, *a;
+    double d;
+    rbs_status st = movable(camera, 1, "zoom", out, outlen);
+    if (st != RBS_OK) return st;
+    if (!(factor > 0.0) || !isfinite(factor)) {
+        snprintf(out, outlen, "zoom: factor must be a finite number > 0 "
+                 "(2 = twice as close), got %g", factor);
+        return RBS_E_INVALID;
+    }
+    a = arm(camera, &scratch);
+    d = len(*a);
+    if (!(d / factor > 0.0) || !isfinite(d / factor)) {
+        snprintf(out, outlen, "zoom: distance %g m / %g is out of range", d, factor);
+        return RBS_E_INVALID;
+    }
+    set_arm(camera, scale(*a, 1.0 / factor));
+    snprintf(out, outlen, "zoom: distance %.3g m -> %.3g m", d, d / factor);
+    return RBS_OK;
+}
+
+rbs_status rbsf__camera_reset(rbsf__camera *camera, char *out, size_t outlen)
+{
+    if (!camera->resolved) {
+        snprintf(out, outlen, "reset: nothing to reset before the first frame");
+        return RBS_OK;
+    }
+    camera->position = camera->home_position;
+    camera->target = camera->home_target;
+    camera->offset = camera->home_offset;
+    snprintf(out, outlen, "reset: camera back where it started");
+    return RBS_OK;
+}
+
+void rbsf__camera_describe(const rbsf__camera *camera, char *out, size_t outlen)
+{
+    static const char *const modes[] = {"fixed", "mounted", "free"};
+    const rbsf__camera_def *def = camera->def;
+    const char *mode = modes[def->mode];
+    if (!camera->resolved)
+        snprintf(out, outlen, "%s camera, placed at the first frame", mode);
+    else if (def->mode == RBSF__CAMERA_MOUNTED)
+        snprintf(out, outlen, "mounted on \"%s\", offset (%.3g, %.3g, %.3g) m, "
+                 "fov %g deg", def->mount, camera->offset.x, camera->offset.y,
+                 camera->offset.z, camera->fov);
+    else if (def->path_count > 0)
+        snprintf(out, outlen, "scripted path of %u keys, fov %g deg",
+                 def->path_count, camera->fov);
+    else
+        snprintf(out, outlen, "%s at (%.3g, %.3g, %.3g) m looking at (%.3g, "
+                 "%.3g, %.3g) m, fov %g deg", mode, camera->position.x,
+                 camera->position.y, camera->position.z, camera->target.x,
+                 camera->target.y, camera->target.z, camera->fov);
+}

@@ -1,0 +1,188 @@
+/*
+ * sdl_internal.h - internal interfaces of the SDL front end (not installed).
+ *
+ * sdl_config.c  parses and validates the scene entry (cJSON) into rbsf__config.
+ * sdl_camera.c  camera state: defaults, mounted/scripted cameras, commands.
+ * sdl_raster.c  draws one view of a frame into a 32-bit pixel buffer with a
+ *               depth buffer (ray casting, per-sphere screen-space boxes).
+ * sdl_font.c    a 5x7 bitmap font for the legend.
+ * sdl_renderer.c the renderer class: SDL surfaces, PNG files, contact sheet,
+ *               windows and events.
+ *
+ * Nothing here touches SDL except sdl_renderer.c; the rest works on plain
+ * memory so it can be reasoned about (and benchmarked) without SDL.
+ */
+#ifndef RBSF_SDL_INTERNAL_H
+#define RBSF_SDL_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "rbsim/reel.h"
+
+/** Most views (cameras) per renderer; tiled 2x2. */
+#define RBSF__VIEWS_MAX 4
+/** Longest accepted image side, pixels. */
+#define RBSF__SIDE_MAX 8192
+/** Side of a plane's checker cell, m. */
+#define RBSF__PLANE_CELL 0.5
+
+/* ------------------------------------------------------------------------- */
+/* Configuration (sdl_config.c)                                              */
+/* ------------------------------------------------------------------------- */
+
+typedef enum rbsf__camera_mode {
+    RBSF__CAMERA_FIXED = 0,   /**< stays where the scene put it (or its path) */
+    RBSF__CAMERA_MOUNTED = 1, /**< target = body, position = body + offset */
+    RBSF__CAMERA_FREE = 2     /**< moved by commands, keys and the mouse */
+} rbsf__camera_mode;
+
+typedef enum rbsf__window_mode {
+    RBSF__WINDOW_OFF = 0,
+    RBSF__WINDOW_ON = 1,  /**< required: an error if it cannot open */
+    RBSF__WINDOW_AUTO = 2 /**< when a display is there */
+} rbsf__window_mode;
+
+/** One key of a scripted camera path. */
+typedef struct rbsf__path_key {
+    double t;           /**< simulated time, s */
+    rbs_vec3 position;  /**< m */
+    rbs_vec3 target;    /**< m */
+} rbsf__path_key;
+
+/** A camera as the scene gives it.  has_* flags mark keys that were given;
+ * the others are filled from the first frame (see rbsf__camera_resolve). */
+typedef struct rbsf__camera_def {
+    rbsf__camera_mode mode;
+    int has_position, has_target, has_offset, has_far;
+    rbs_vec3 position, target, offset; /**< m */
+    rbs_vec3 up;                       /**< unit; default 0,0,1 */
+    double fov;                        /**< vertical, degrees, (0, 180) */
+    double znear, zfar;                /**< m, 0 < near < far */
+    char mount[RBS_NAME_MAX];          /**< body name (mounted mode) */
+    uint32_t path_count;
+    rbsf__path_key *path;              /**< owned (malloc), t increasing */
+} rbsf__camera_def;
+
+/** The whole scene entry, validated. */
+typedef struct rbsf__config {
+    char *path;                /**< output folder (owned, malloc) or NULL */
+    uint32_t every;            /**< as given (the projector keeps frames) */
+    uint32_t width, height;    /**< of one view, pixels */
+    rbsf__window_mode window;
+    int tile;                  /**< views tiled into one image */
+    int contact_sheet;         /**< write DIR/contact_sheet.png at finish */
+    uint32_t view_count;       /**< 1..RBSF__VIEWS_MAX */
+    int camera_given;          /**< 0: default camera for view 0 */
+    rbsf__camera_def cameras[RBSF__VIEWS_MAX];
+} rbsf__config;
+
+/** Fill defaults: one default camera, 640x480, window auto, no tile,
+ * contact sheet on, every 1, no path. */
+void rbsf__config_defaults(rbsf__config *config);
+
+/** Parse a scene entry (JSON object text; NULL keeps the defaults) into
+ * config (defaults first).  On error returns RBS_E_INVALID (or RBS_E_MEMORY)
+ * and writes "key: what is wrong" into err; config is left freeable. */
+rbs_status rbsf__config_parse(const char *json, rbsf__config *config,
+                              char *err, size_t errlen);
+
+/** Free what the config owns.  Safe on a defaults-filled config. */
+void rbsf__config_free(rbsf__config *config);
+
+/* ------------------------------------------------------------------------- */
+/* Cameras (sdl_camera.c)                                                    */
+/* ------------------------------------------------------------------------- */
+
+/** A live camera. */
+typedef struct rbsf__camera {
+    const rbsf__camera_def *def; /**< owned by the config */
+    int resolved;                /**< defaults filled from a first frame */
+    rbs_vec3 position, target;   /**< m, current (fixed/free) */
+    rbs_vec3 offset;             /**< m, mounted: position - body */
+    rbs_vec3 up;                 /**< unit */
+    double fov, znear, zfar;     /**< degrees, m, m */
+    rbs_vec3 home_position, home_target, home_offset; /**< for "reset" */
+    int32_t mount_index;         /**< cached frame index of the body, -1 */
+} rbsf__camera;
+
+/** A camera's pose for one frame: an orthonormal basis and the pinhole. */
+typedef struct rbsf__view {
+    rbs_vec3 eye;            /**< camera position, m */
+    rbs_vec3 right, up, fwd; /**< unit, right-handed: right = fwd x up */
+    double focal;            /**< (height/2) / tan(fov/2), pixels */
+    double znear, zfar;      /**< m, along fwd */
+    uint32_t width, height;  /**< pixels */
+} rbsf__view;
+
+/** Start a camera from its definition (unresolved until the first frame). */
+void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def);
+
+/** Fill what the scene left out from a frame (default oblique view of the
+ * spheres' bounding box; mounted offset from the body's radius) once.
+ * Returns RBS_E_INVALID with a message if the mount body is missing or the
+ * camera looks along its up vector. */
+rbs_status rbsf__camera_resolve(rbsf__camera *camera, const rbs_frame *frame,
+                                char *err, size_t errlen);
+
+/** The view for a frame (path interpolation, mounted body); resolves first.
+ * Returns RBS_E_INVALID (message in err) if the camera cannot be placed. */
+rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
+                             uint32_t width, uint32_t height, rbsf__view *out,
+                             char *err, size_t errlen);
+
+/** Orbit about the target: yaw about up and pitch (elevation) in degrees;
+ * elevation is kept within +-89 degrees.  Free and mounted cameras. */
+rbs_status rbsf__camera_orbit(rbsf__camera *camera, double dyaw, double dpitch,
+                              char *out, size_t outlen);
+/** Move position and target along the view's right and up by dx, dy metres
+ * (free cameras). */
+rbs_status rbsf__camera_pan(rbsf__camera *camera, double dx, double dy,
+                            char *out, size_t outlen);
+/** Divide the distance to the target by factor (> 0; 2 = twice as close). */
+rbs_status rbsf__camera_zoom(rbsf__camera *camera, double factor, char *out,
+                             size_t outlen);
+/** Back to where the camera started. */
+rbs_status rbsf__camera_reset(rbsf__camera *camera, char *out, size_t outlen);
+/** One line describing the camera. */
+void rbsf__camera_describe(const rbsf__camera *camera, char *out,
+                           size_t outlen);
+
+/* ------------------------------------------------------------------------- */
+/* Drawing (sdl_raster.c, sdl_font.c)                                        */
+/* ------------------------------------------------------------------------- */
+
+/** Where a view is drawn: a rectangle of 0xAARRGGBB pixels plus scratch. */
+typedef struct rbsf__canvas {
+    uint32_t *pixels;   /**< top-left pixel of the view */
+    size_t pitch;       /**< pixels per row of the underlying image */
+    float *depth;       /**< width*height, scratch */
+    double *ray_x;      /**< width, scratch */
+    double *ray_y;      /**< height, scratch */
+} rbsf__canvas;
+
+/** Draw a frame's bodies seen by view into canvas (background, planes,
+ * spheres; nearest surface wins).  Allocates nothing. */
+void rbsf__raster_frame(const rbsf__canvas *canvas, const rbsf__view *view,
+                        const rbs_frame *frame);
+
+/** Draw text (5x7 glyphs: A-Z, a-z shown as capitals, 0-9, space and
+ * . : = - + / ( ) %) at (x, y), each glyph pixel scale x scale, clipped to
+ * width x height.  Unknown characters draw as a box.  Returns the width
+ * drawn, pixels. */
+int rbsf__font_draw(uint32_t *pixels, size_t pitch, int width, int height,
+                    int x, int y, int scale, const char *text, uint32_t argb);
+
+/** Width of text in pixels at scale. */
+int rbsf__font_width(const char *text, int scale);
+
+/** Glyph height in pixels at scale 1. */
+#define RBSF__FONT_HEIGHT 7
+/** Glyph advance in pixels at scale 1. */
+#define RBSF__FONT_ADVANCE 6
+
+/** Darken a rectangle (for text backgrounds), clipped. */
+void rbsf__shade_rect(uint32_t *pixels, size_t pitch, int width, int height,
+                      int x, int y, int w, int h);
+
+#endif /* RBSF_SDL_INTERNAL_H */

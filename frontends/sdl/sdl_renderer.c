@@ -1,0 +1,856 @@
+/*
+ * sdl_renderer.c - the "sdl" renderer class: frames to PNG files (and a
+ * window when a display is there), one folder per view or the views tiled.
+ *
+ * Design notes.
+ *  - Headless first.  Drawing is ray casting into SDL surfaces in memory
+ *    (sdl_raster.c); surfaces need no SDL_Init, and PNG files are written
+ *    with IMG_SavePNG.  SDL video is initialised only for a window, only when
+ *    DISPLAY or WAYLAND_DISPLAY is set, and only on the thread that calls
+ *    draw() (the renderer thread), where the window's events are polled too.
+ *  - Memory.  create() reserves every buffer: the view images, a depth
+ *    buffer, ray tables, the contact sheet's thumbnails and the sheet itself,
+ *    and the file-name buffer.  draw() allocates nothing itself; SDL_image
+ *    allocates inside IMG_SavePNG (its libpng/zlib state and a converted
+ *    copy of the surface), and SDL inside window calls.  finish() makes one
+ *    small SDL_Surface header for the contact sheet.
+ *  - Contact sheet.  The frame count is unknown in advance, so the sheet
+ *    keeps RBSF_SHEET_SLOTS (16) thumbnails of frames 0, s, 2s, ... of the
+ *    frames drawn (s = 1 at first).  When all slots are full and frame 16s
+ *    comes, every other thumbnail is dropped (decimation by 2) and s doubles;
+ *    so the kept frames stay evenly spaced, between 8 and 16 of them.  The
+ *    newest frame is kept in one extra slot and shown last if it is not on
+ *    the grid already, so the sheet always ends with the final frame.
+ *  - Repeated frames (same number as the previous draw, e.g. while the run
+ *    is paused) are drawn again for the window (the camera may have moved)
+ *    but not written again.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include <SDL.h>
+#include <SDL_image.h>
+
+#include "sdl_internal.h"
+#include "sdl_renderer.h"
+
+/* Contact-sheet grid slots (plus one for the newest frame) and columns. */
+#define RBSF_SHEET_SLOTS 16
+#define RBSF_SHEET_COLUMNS 4
+/* Largest thumbnail width, pixels, and the gap between thumbnails. */
+#define RBSF_THUMB_WIDTH 240
+#define RBSF_SHEET_GAP 4
+/* Window controls: degrees per arrow key / per dragged pixel, zoom per key. */
+static const double kKeyDegrees = 5.0;
+static const double kDragDegrees = 0.4;
+static const double kKeyZoom = 1.25;
+static const double kPi = 3.14159265358979323846;
+
+typedef struct sdl_instance {
+    rbsf__config cfg;
+    char *dir;     /* output folder (owned) */
+    char *file;    /* file-name buffer (owned), file_cap bytes */
+    size_t file_cap;
+    char where[320]; /* "file:line:col: sdl: " for messages */
+    void (*control)(void *context, const char *command);
+    void *control_context;
+
+    /* Views: images and where each view sits in its image. */
+    uint32_t views;
+    rbsf__camera cameras[RBSF__VIEWS_MAX];
+    SDL_Surface *images[RBSF__VIEWS_MAX]; /* tiled: images[0] only */
+    uint32_t image_count;
+    uint32_t layout_cols, layout_rows; /* views arranged cols x rows */
+    uint32_t view_image[RBSF__VIEWS_MAX];
+    uint32_t view_x[RBSF__VIEWS_MAX], view_y[RBSF__VIEWS_MAX];
+    float *depth;
+    double *ray_x, *ray_y;
+
+    /* Contact sheet. */
+    uint32_t thumb_w, thumb_h;
+    uint32_t *thumbs; /* (RBSF_SHEET_SLOTS + 1) * thumb_w * thumb_h */
+    uint64_t thumb_number[RBSF_SHEET_SLOTS + 1];
+    uint32_t thumb_count;
+    uint64_t stride, seen;
+    uint32_t *sheet; /* sheet_w * sheet_h pixels */
+    uint32_t sheet_w, sheet_h;
+
+    /* Frames. */
+    int drawn_any;
+    uint64_t last_number;
+    int paused; /* as the newest frame says, toggled by the space key */
+
+    /* Window. */
+    int want_window; /* 1: try at the first draw */
+    int video_on;    /* SDL video subsystem initialised by us */
+    SDL_Window *windows[RBSF__VIEWS_MAX];
+    uint32_t window_count;
+    int drag;        /* 0 none, 1 orbit, 2 pan */
+    uint32_t drag_view;
+    uint32_t selected; /* view for commands */
+} sdl_instance;
+
+/* ------------------------------------------------------------------------- */
+/* Helpers                                                                   */
+/* ------------------------------------------------------------------------- */
+
+static rbs_status say(char *err, size_t errlen, rbs_status st,
+                      const char *where, const char *what)
+{
+    if (err != NULL && errlen > 0) snprintf(err, errlen, "%s%s", where, what);
+    return st;
+}
+
+/* mkdir -p. */
+static int make_dirs(char *path, char *err, size_t errlen, const char *where)
+{
+    size_t i, n = strlen(path);
+    for (i = 1; i <= n; i++) {
+        if (path[i] == '/' || path[i] == '\0') {
+            char c = path[i];
+            struct stat sb;
+            path[i] = '\0';
+            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+                char why[128];
+                char msg[600];
+                int e = errno;
+                if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
+                snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
+                path[i] = c;
+                say(err, errlen, RBS_E_IO, where, msg);
+                return -1;
+            }
+            if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+                char msg[600];
+                snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder", path);
+                path[i] = c;
+                say(err, errlen, RBS_E_IO, where, msg);
+                return -1;
+            }
+            path[i] = c;
+        }
+    }
+    return 0;
+}
+
+static uint32_t *image_pixels(SDL_Surface *s) { return (uint32_t *)s->pixels; }
+static size_t image_pitch(SDL_Surface *s) { return (size_t)s->pitch / 4; }
+
+/* Top-left pixel of view v and its row pitch in pixels. */
+static uint32_t *view_pixels(const sdl_instance *r, uint32_t v, size_t *pitch)
+{
+    SDL_Surface *s = r->images[r->view_image[v]];
+    *pitch = image_pitch(s);
+    return image_pixels(s) + (size_t)r->view_y[v] * *pitch + r->view_x[v];
+}
+
+static void destroy(void *instance);
+
+/* ------------------------------------------------------------------------- */
+/* create                                                                    */
+/* ------------------------------------------------------------------------- */
+
+static int has_display(void)
+{
+    const char *x = getenv("DISPLAY"), *w = getenv("WAYLAND_DISPLAY");
+    return (x != NULL && x[0] != '\0') || (w != NULL && w[0] != '\0');
+}
+
+/* Parse and validate a configuration into r (no files, no SDL): the part
+ * of create() that check() shares. */
+static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
+                          char *err, size_t errlen)
+{
+    char msg[512];
+    rbs_status st;
+    const char *path;
+    if (config->file != NULL && config->line > 0)
+        snprintf(r->where, sizeof r->where, "%s:%d:%d: sdl: ", config->file,
+                 (int)config->line, (int)config->column);
+    else if (config->file != NULL)
+        snprintf(r->where, sizeof r->where, "%s: sdl: ", config->file);
+    else
+        snprintf(r->where, sizeof r->where, "sdl: ");
+    /* The callback fields exist only in configs that are large enough. */
+    if (config->struct_size >= offsetof(rbs_renderer_config, control_context) +
+                                   sizeof(void *)) {
+        r->control = config->control;
+        r->control_context = config->control_context;
+    }
+
+    /* Parse and validate the scene entry. */
+    st = rbsf__config_parse(config->json, &r->cfg, msg, sizeof msg);
+    if (st != RBS_OK) return say(err, errlen, st, r->where, msg);
+    path = config->path != NULL && config->path[0] != '\0' ? config->path : r->cfg.path;
+    if (path == NULL)
+        return say(err, errlen, RBS_E_INVALID, r->where,
+                   "path: missing (the folder the PNG files go to)");
+    r->dir = (char *)malloc(strlen(path) + 1);
+    r->file_cap = strlen(path) + 64;
+    r->file = (char *)malloc(r->file_cap);
+    if (r->dir == NULL || r->file == NULL)
+        return say(err, errlen, RBS_E_MEMORY, r->where, "out of memory");
+    strcpy(r->dir, path);
+
+    /* Window: decided here, opened at the first draw (renderer thread). */
+    if (r->cfg.window == RBSF__WINDOW_ON && !has_display())
+        return say(err, errlen, RBS_E_RENDERER, r->where,
+                   "window: true, but there is no display (DISPLAY and "
+                   "WAYLAND_DISPLAY are unset); use \"auto\" or false");
+    r->want_window = r->cfg.window != RBSF__WINDOW_OFF && has_display();
+    return RBS_OK;
+}
+
+static rbs_status check(void *context, const rbs_renderer_config *config,
+                        const rbs_world *world, char *err, size_t errlen)
+{
+    sdl_instance *r;
+    rbs_status st;
+    (void)context;
+    (void)world;
+    if (config == NULL)
+        return say(err, errlen, RBS_E_INVALID, "sdl: ", "config: NULL");
+    r = (sdl_instance *)calloc(1, sizeof *r);
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "sdl: ", "out of memory");
+    st = prepare(r, config, err, errlen);
+    destroy(r);
+    return st;
+}
+
+static rbs_status create(void *context, const rbs_renderer_config *config,
+                         const rbs_world *world, void **out, char *err,
+                         size_t errlen)
+{
+    sdl_instance *r;
+    char msg[512];
+    rbs_status st;
+    uint32_t v, W = 0, H = 0;
+    (void)context;
+    (void)world;
+    if (out == NULL) return RBS_E_INVALID;
+    *out = NULL;
+    if (config == NULL)
+        return say(err, errlen, RBS_E_INVALID, "sdl: ", "config: NULL");
+    r = (sdl_instance *)calloc(1, sizeof *r);
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "sdl: ", "out of memory");
+    if ((st = prepare(r, config, err, errlen)) != RBS_OK) {
+        destroy(r);
+        return st;
+    }
+
+    /* Views and their images. */
+    W = r->cfg.width;
+    H = r->cfg.height;
+    r->views = r->cfg.view_count;
+    r->layout_cols = r->views >= 2 ? 2 : 1;
+    r->layout_rows = r->views >= 3 ? 2 : 1;
+    for (v = 0; v < r->views; v++)
+        rbsf__camera_init(&r->cameras[v], &r->cfg.cameras[v]);
+    if (r->cfg.tile) {
+        r->image_count = 1;
+        r->images[0] = SDL_CreateRGBSurfaceWithFormat(
+            0, (int)(W * r->layout_cols), (int)(H * r->layout_rows), 32,
+            SDL_PIXELFORMAT_ARGB8888);
+        if (r->images[0] == NULL) goto nomem;
+        SDL_FillRect(r->images[0], NULL, 0xff000000u);
+        for (v = 0; v < r->views; v++) {
+            r->view_image[v] = 0;
+            r->view_x[v] = (v % 2) * W;
+            r->view_y[v] = (v / 2) * H;
+        }
+    } else {
+        r->image_count = r->views;
+        for (v = 0; v < r->views; v++) {
+            r->images[v] = SDL_CreateRGBSurfaceWithFormat(
+                0, (int)W, (int)H, 32, SDL_PIXELFORMAT_ARGB8888);
+            if (r->images[v] == NULL) goto nomem;
+            r->view_image[v] = v;
+        }
+    }
+    r->depth = (float *)malloc((size_t)W * H * sizeof *r->depth);
+    r->ray_x = (double *)malloc((size_t)W * sizeof *r->ray_x);
+    r->ray_y = (double *)malloc((size_t)H * sizeof *r->ray_y);
+    if (r->depth == NULL || r->ray_x == NULL || r->ray_y == NULL) goto nomem;
+
+    /* Contact sheet: thumbnails of the views laid out cols x rows. */
+    if (r->cfg.contact_sheet) {
+        uint64_t cw = (uint64_t)W * r->layout_cols, ch = (uint64_t)H * r->layout_rows;
+        uint32_t rows = (RBSF_SHEET_SLOTS + 1 + RBSF_SHEET_COLUMNS - 1) / RBSF_SHEET_COLUMNS;
+        r->thumb_w = (uint32_t)(cw < RBSF_THUMB_WIDTH ? cw : RBSF_THUMB_WIDTH);
+        r->thumb_h = (uint32_t)((ch * r->thumb_w + cw / 2) / cw);
+        if (r->thumb_h < 1) r->thumb_h = 1;
+        r->thumbs = (uint32_t *)malloc((size_t)(RBSF_SHEET_SLOTS + 1) * r->thumb_w *
+                                       r->thumb_h * sizeof *r->thumbs);
+        r->sheet_w = RBSF_SHEET_COLUMNS * (r->thumb_w + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
+        r->sheet_h = rows * (r->thumb_h + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
+        r->sheet = (uint32_t *)malloc((size_t)r->sheet_w * r->sheet_h * sizeof *r->sheet);
+        if (r->thumbs == NULL || r->sheet == NULL) goto nomem;
+        r->stride = 1;
+    }
+
+    /* Output folders. */
+    if (make_dirs(r->dir, err, errlen, r->where) != 0) {
+        destroy(r);
+        return RBS_E_IO;
+    }
+    if (!r->cfg.tile && r->views > 1) {
+        for (v = 0; v < r->views; v++) {
+            snprintf(r->file, r->file_cap, "%s/view%u", r->dir, v);
+            if (make_dirs(r->file, err, errlen, r->where) != 0) {
+                destroy(r);
+                return RBS_E_IO;
+            }
+        }
+    }
+    *out = r;
+    return RBS_OK;
+
+nomem:
+    snprintf(msg, sizeof msg, "out of memory for %u view%s of %ux%u pixels",
+             r->views, r->views > 1 ? "s" : "", W, H);
+    say(err, errlen, RBS_E_MEMORY, r->where, msg);
+    destroy(r);
+    return RBS_E_MEMORY;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Window                                                                    */
+/* ------------------------------------------------------------------------- */
+
+static void close_windows(sdl_instance *r)
+{
+    uint32_t i;
+    for (i = 0; i < r->window_count; i++)
+        if (r->windows[i] != NULL) SDL_DestroyWindow(r->windows[i]);
+    r->window_count = 0;
+    if (r->video_on) SDL_QuitSubSystem(SDL_INIT_VIDEO);
+    r->video_on = 0;
+}
+
+/* Open one window per image.  Returns RBS_OK, or an error if the window was
+ * required; in "auto" mode a failure means no window (said on stderr once). */
+static rbs_status open_windows(sdl_instance *r, char *err, size_t errlen)
+{
+    uint32_t i;
+    char msg[512];
+    r->want_window = 0;
+    if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
+        snprintf(msg, sizeof msg, "window: cannot start SDL video: %s", SDL_GetError());
+        goto fail;
+    }
+    r->video_on = 1;
+    for (i = 0; i < r->image_count; i++) {
+        char title[64];
+        if (r->image_count > 1) snprintf(title, sizeof title, "rbsim - view %u", i);
+        else snprintf(title, sizeof title, "rbsim");
+        r->windows[i] = SDL_CreateWindow(title, SDL_WINDOWPOS_UNDEFINED,
+                                         SDL_WINDOWPOS_UNDEFINED, r->images[i]->w,
+                                         r->images[i]->h, 0);
+        if (r->windows[i] == NULL) {
+            snprintf(msg, sizeof msg, "window: cannot open: %s", SDL_GetError());
+            goto fail;
+        }
+        r->window_count = i + 1;
+    }
+    return RBS_OK;
+fail:
+    close_windows(r);
+    if (r->cfg.window == RBSF__WINDOW_ON)
+        return say(err, errlen, RBS_E_RENDERER, r->where, msg);
+    fprintf(stderr, "%s%s; writing PNG files only\n", r->where, msg);
+    return RBS_OK;
+}
+
+static void send(sdl_instance *r, const char *command)
+{
+    if (r->control != NULL) r->control(r->control_context, command);
+}
+
+/* The view under window w at pixel (x, y). */
+static uint32_t view_at(const sdl_instance *r, uint32_t w, int x, int y)
+{
+    uint32_t v;
+    if (!r->cfg.tile) return w;
+    for (v = 0; v < r->views; v++)
+        if ((uint32_t)x >= r->view_x[v] && (uint32_t)x < r->view_x[v] + r->cfg.width &&
+            (uint32_t)y >= r->view_y[v] && (uint32_t)y < r->view_y[v] + r->cfg.height)
+            return v;
+    return r->selected;
+}
+
+static uint32_t window_index(const sdl_instance *r, Uint32 id)
+{
+    uint32_t i;
+    for (i = 0; i < r->window_count; i++)
+        if (SDL_GetWindowID(r->windows[i]) == id) return i;
+    return 0;
+}
+
+/* Show a camera reply in the window's title (there is no console here). */
+static void title_reply(sdl_instance *r, uint32_t view, rbs_status st, const char *reply)
+{
+    char title[320];
+    uint32_t w = r->cfg.tile ? 0 : view;
+    if (w >= r->window_count) return;
+    snprintf(title, sizeof title, "rbsim - view %u%s%s", view, st == RBS_OK ? "" : " - ",
+             st == RBS_OK ? "" : reply);
+    SDL_SetWindowTitle(r->windows[w], title);
+}
+
+static void poll_events(sdl_instance *r)
+{
+    SDL_Event e;
+    char reply[256];
+    while (SDL_PollEvent(&e)) {
+        uint32_t v;
+        rbs_status st = RBS_OK;
+        int moved = 0;
+        switch (e.type) {
+        case SDL_QUIT:
+            send(r, "quit");
+            break;
+        case SDL_WINDOWEVENT:
+            if (e.window.event == SDL_WINDOWEVENT_CLOSE) send(r, "quit");
+            break;
+        case SDL_KEYDOWN: {
+            uint32_t w = window_index(r, e.key.windowID);
+            v = r->cfg.tile ? r->selected : w;
+            moved = 1;
+            switch (e.key.keysym.sym) {
+            case SDLK_SPACE:
+                send(r, r->paused ? "resume" : "pause");
+                r->paused = !r->paused;
+                moved = 0;
+                break;
+            case SDLK_q:
+            case SDLK_ESCAPE:
+                send(r, "quit");
+                moved = 0;
+                break;
+            case SDLK_LEFT:
+                st = rbsf__camera_orbit(&r->cameras[v], -kKeyDegrees, 0, reply, sizeof reply);
+                break;
+            case SDLK_RIGHT:
+                st = rbsf__camera_orbit(&r->cameras[v], kKeyDegrees, 0, reply, sizeof reply);
+                break;
+            case SDLK_UP:
+                st = rbsf__camera_orbit(&r->cameras[v], 0, kKeyDegrees, reply, sizeof reply);
+                break;
+            case SDLK_DOWN:
+                st = rbsf__camera_orbit(&r->cameras[v], 0, -kKeyDegrees, reply, sizeof reply);
+                break;
+            case SDLK_PLUS:
+            case SDLK_EQUALS:
+            case SDLK_KP_PLUS:
+                st = rbsf__camera_zoom(&r->cameras[v], kKeyZoom, reply, sizeof reply);
+                break;
+            case SDLK_MINUS:
+            case SDLK_KP_MINUS:
+                st = rbsf__camera_zoom(&r->cameras[v], 1.0 / kKeyZoom, reply, sizeof reply);
+                break;
+            case SDLK_r:
+                st = rbsf__camera_reset(&r->cameras[v], reply, sizeof reply);
+                break;
+            case SDLK_1:
+            case SDLK_2:
+            case SDLK_3:
+            case SDLK_4:
+                if ((uint32_t)(e.key.keysym.sym - SDLK_1) < r->views)
+                    r->selected = (uint32_t)(e.key.keysym.sym - SDLK_1);
+                moved = 0;
+                break;
+            default:
+                moved = 0;
+                break;
+            }
+            if (moved) title_reply(r, v, st, reply);
+            break;
+        }
+        case SDL_MOUSEBUTTONDOWN:
+            r->drag = e.button.button == SDL_BUTTON_LEFT ? 1 : 2;
+            r->drag_view = view_at(r, window_index(r, e.button.windowID), e.button.x,
+                                   e.button.y);
+            break;
+        case SDL_MOUSEBUTTONUP:
+            r->drag = 0;
+            break;
+        case SDL_MOUSEMOTION:
+            if (r->drag == 1) {
+                v = r->drag_view;
+                st = rbsf__camera_orbit(&r->cameras[v], -kDragDegrees * e.motion.xrel,
+                                        kDragDegrees * e.motion.yrel, reply, sizeof reply);
+                title_reply(r, v, st, reply);
+            } else if (r->drag == 2) {
+                rbsf__camera *c = &r->cameras[r->drag_view];
+                double dx = c->position.x - c->target.x, dy = c->position.y - c->target.y,
+                       dz = c->position.z - c->target.z;
+                /* Metres per pixel at the target's distance. */
+                double m = sqrt(dx * dx + dy * dy + dz * dz) * 2.0 *
+                           tan(0.5 * c->fov * kPi / 180.0) / (double)r->cfg.height;
+                st = rbsf__camera_pan(c, -m * e.motion.xrel, m * e.motion.yrel, reply,
+                                      sizeof reply);
+                title_reply(r, r->drag_view, st, reply);
+            }
+            break;
+        case SDL_MOUSEWHEEL:
+            v = view_at(r, window_index(r, e.wheel.windowID), 0, 0);
+            st = rbsf__camera_zoom(&r->cameras[v], pow(1.1, (double)e.wheel.y), reply,
+                                   sizeof reply);
+            title_reply(r, v, st, reply);
+            break;
+        default:
+            break;
+        }
+    }
+}
+
+static void present(sdl_instance *r)
+{
+    uint32_t i;
+    for (i = 0; i < r->window_count; i++) {
+        SDL_Surface *ws = SDL_GetWindowSurface(r->windows[i]);
+        if (ws == NULL) continue;
+        SDL_BlitSurface(r->images[i], NULL, ws, NULL);
+        SDL_UpdateWindowSurface(r->windows[i]);
+    }
+}
+
+/* ------------------------------------------------------------------------- */
+/* Contact sheet                                                             */
+/* ------------------------------------------------------------------------- */
+
+/* Box-filter the views into thumbnail slot k. */
+static void make_thumb(sdl_instance *r, uint32_t k)
+{
+    uint32_t tw = r->thumb_w, th = r->thumb_h, v, W = r->cfg.width, H = r->cfg.height;
+    uint32_t *dst = r->thumbs + (size_t)k * tw * th;
+    uint64_t cw = (uint64_t)W * r->layout_cols, ch = (uint64_t)H * r->layout_rows;
+    uint32_t tx, ty;
+    for (ty = 0; ty < th; ty++)
+        for (tx = 0; tx < tw; tx++) dst[(size_t)ty * tw + tx] = 0xff000000u;
+    for (v = 0; v < r->views; v++) {
+        size_t pitch;
+        const uint32_t *src = view_pixels(r, v, &pitch);
+        uint64_t ox = (uint64_t)(v % 2) * W, oy = (uint64_t)(v / 2) * H;
+        if (r->layout_cols == 1) ox = 0;
+        for (ty = 0; ty < th; ty++) {
+            /* Composite rows [y0, y1) map to thumbnail row ty. */
+            uint64_t y0 = (uint64_t)ty * ch / th, y1 = ((uint64_t)ty + 1) * ch / th;
+            if (y1 <= y0) y1 = y0 + 1;
+            if (y1 <= oy || y0 >= oy + H) continue;
+            for (tx = 0; tx < tw; tx++) {
+                uint64_t x0 = (uint64_t)tx * cw / tw, x1 = ((uint64_t)tx + 1) * cw / tw;
+                uint64_t sr = 0, sg = 0, sb = 0, n = 0, x, y;
+                if (x1 <= x0) x1 = x0 + 1;
+                if (x1 <= ox || x0 >= ox + W) continue;
+                for (y = y0 > oy ? y0 : oy; y < y1 && y < oy + H; y++) {
+                    const uint32_t *row = src + (size_t)(y - oy) * pitch;
+                    for (x = x0 > ox ? x0 : ox; x < x1 && x < ox + W; x++) {
+                        uint32_t p = row[x - ox];
+                        sr += (p >> 16) & 0xff;
+                        sg += (p >> 8) & 0xff;
+                        sb += p & 0xff;
+                        n++;
+                    }
+                }
+                if (n > 0)
+                    dst[(size_t)ty * tw + tx] =
+                        0xff000000u | (uint32_t)((sr + n / 2) / n) << 16 |
+                        (uint32_t)((sg + n / 2) / n) << 8 | (uint32_t)((sb + n / 2) / n);
+            }
+        }
+    }
+}
+
+/* Keep frames 0, s, 2s, ... of those drawn; decimate by 2 when full. */
+static void sheet_add(sdl_instance *r, uint64_t number)
+{
+    uint64_t k = r->seen++;
+    size_t size = (size_t)r->thumb_w * r->thumb_h;
+    if (k % r->stride == 0 && r->thumb_count == RBSF_SHEET_SLOTS) {
+        uint32_t i;
+        for (i = 0; i < RBSF_SHEET_SLOTS / 2; i++) {
+            memmove(r->thumbs + i * size, r->thumbs + 2 * i * size, size * sizeof *r->thumbs);
+            r->thumb_number[i] = r->thumb_number[2 * i];
+        }
+        r->thumb_count = RBSF_SHEET_SLOTS / 2;
+        r->stride *= 2;
+    }
+    if (k % r->stride == 0) {
+        make_thumb(r, r->thumb_count);
+        r->thumb_number[r->thumb_count++] = number;
+    } else {
+        make_thumb(r, RBSF_SHEET_SLOTS); /* the newest, shown last */
+        r->thumb_number[RBSF_SHEET_SLOTS] = number;
+    }
+}
+
+static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
+{
+    uint32_t n = r->thumb_count, i, x, y, rows, h;
+    size_t size = (size_t)r->thumb_w * r->thumb_h;
+    int newest = r->seen > 0 && (r->seen - 1) % r->stride != 0;
+    SDL_Surface *s;
+    int ok;
+    if (newest) n++;
+    rows = (n + RBSF_SHEET_COLUMNS - 1) / RBSF_SHEET_COLUMNS;
+    h = rows * (r->thumb_h + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
+    for (i = 0; i < r->sheet_w * h; i++) r->sheet[i] = 0xff202020u;
+    for (i = 0; i < n; i++) {
+        uint32_t slot = newest && i == n - 1 ? RBSF_SHEET_SLOTS : i;
+        uint32_t x0 = RBSF_SHEET_GAP + (i % RBSF_SHEET_COLUMNS) * (r->thumb_w + RBSF_SHEET_GAP);
+        uint32_t y0 = RBSF_SHEET_GAP + (i / RBSF_SHEET_COLUMNS) * (r->thumb_h + RBSF_SHEET_GAP);
+        const uint32_t *t = r->thumbs + slot * size;
+        char label[32];
+        uint32_t *corner = r->sheet + (size_t)y0 * r->sheet_w + x0;
+        for (y = 0; y < r->thumb_h; y++)
+            for (x = 0; x < r->thumb_w; x++)
+                corner[(size_t)y * r->sheet_w + x] = t[(size_t)y * r->thumb_w + x];
+        snprintf(label, sizeof label, "%llu", (unsigned long long)r->thumb_number[slot]);
+        rbsf__shade_rect(corner, r->sheet_w, (int)r->thumb_w, (int)r->thumb_h, 0, 0,
+                         rbsf__font_width(label, 1) + 4, RBSF__FONT_HEIGHT + 4);
+        rbsf__font_draw(corner, r->sheet_w, (int)r->thumb_w, (int)r->thumb_h, 2, 2, 1,
+                        label, 0xffffffffu);
+    }
+    s = SDL_CreateRGBSurfaceWithFormatFrom(r->sheet, (int)r->sheet_w, (int)h, 32,
+                                           (int)(r->sheet_w * 4), SDL_PIXELFORMAT_ARGB8888);
+    snprintf(r->file, r->file_cap, "%s/contact_sheet.png", r->dir);
+    ok = s != NULL && IMG_SavePNG(s, r->file) == 0;
+    if (s != NULL) SDL_FreeSurface(s);
+    if (!ok) {
+        char msg[600];
+        snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
+        return say(err, errlen, RBS_E_IO, r->where, msg);
+    }
+    return RBS_OK;
+}
+
+/* ------------------------------------------------------------------------- */
+/* draw / finish / destroy                                                   */
+/* ------------------------------------------------------------------------- */
+
+static void legend(sdl_instance *r, uint32_t v, const rbs_frame *frame)
+{
+    char line[3][48];
+    int lines = 2, i, scale = r->cfg.height >= 360 ? 2 : 1, wmax = 0;
+    int pad = 2 * scale, lh = (RBSF__FONT_HEIGHT + 3) * scale;
+    size_t pitch;
+    uint32_t *px = view_pixels(r, v, &pitch);
+    int W = (int)r->cfg.width, H = (int)r->cfg.height;
+    snprintf(line[0], sizeof line[0], "T=%.3f S", frame->time);
+    snprintf(line[1], sizeof line[1], "FRAME %llu", (unsigned long long)frame->number);
+    if (r->views > 1)
+        snprintf(line[1] + strlen(line[1]), sizeof line[1] - strlen(line[1]), " VIEW %u", v);
+    if (frame->paused) snprintf(line[lines++], sizeof line[2], "PAUSED");
+    for (i = 0; i < lines; i++) {
+        int w = rbsf__font_width(line[i], scale);
+        if (w > wmax) wmax = w;
+    }
+    rbsf__shade_rect(px, pitch, W, H, 0, 0, wmax + 2 * pad + 2 * scale,
+                     lines * lh + 2 * pad);
+    for (i = 0; i < lines; i++)
+        rbsf__font_draw(px, pitch, W, H, pad + scale, pad + 2 * scale + i * lh, scale,
+                        line[i], 0xffffffffu);
+}
+
+static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t errlen)
+{
+    sdl_instance *r = (sdl_instance *)instance;
+    uint32_t v;
+    int repeat;
+    rbs_status st;
+    if (r == NULL || frame == NULL)
+        return say(err, errlen, RBS_E_INVALID, "sdl: ", "draw: NULL instance or frame");
+    if (frame->body_count > 0 && frame->bodies == NULL)
+        return say(err, errlen, RBS_E_INVALID, r->where, "frame: bodies is NULL");
+    repeat = r->drawn_any && frame->number == r->last_number;
+    r->paused = frame->paused != 0;
+
+    if (r->want_window && (st = open_windows(r, err, errlen)) != RBS_OK) return st;
+    if (r->window_count > 0) poll_events(r);
+    if (repeat && r->window_count == 0) return RBS_OK;
+
+    /* Draw each view. */
+    for (v = 0; v < r->views; v++) {
+        rbsf__view view;
+        rbsf__canvas cv;
+        char msg[400];
+        if (rbsf__camera_view(&r->cameras[v], frame, r->cfg.width, r->cfg.height, &view,
+                              msg, sizeof msg) != RBS_OK) {
+            char full[480];
+            if (r->views > 1)
+                snprintf(full, sizeof full, "views[%u].%s", v, msg);
+            else
+                snprintf(full, sizeof full, "%s%s", r->cfg.camera_given ? "camera." : "", msg);
+            return say(err, errlen, RBS_E_INVALID, r->where, full);
+        }
+        cv.pixels = view_pixels(r, v, &cv.pitch);
+        cv.depth = r->depth;
+        cv.ray_x = r->ray_x;
+        cv.ray_y = r->ray_y;
+        rbsf__raster_frame(&cv, &view, frame);
+        legend(r, v, frame);
+    }
+    if (r->window_count > 0) present(r);
+    if (repeat) return RBS_OK;
+    r->drawn_any = 1;
+    r->last_number = frame->number;
+
+    /* Write the PNG files. */
+    for (v = 0; v < r->image_count; v++) {
+        if (r->image_count > 1)
+            snprintf(r->file, r->file_cap, "%s/view%u/frame_%06llu.png", r->dir, v,
+                     (unsigned long long)frame->number);
+        else
+            snprintf(r->file, r->file_cap, "%s/frame_%06llu.png", r->dir,
+                     (unsigned long long)frame->number);
+        if (IMG_SavePNG(r->images[v], r->file) != 0) {
+            char msg[600];
+            snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
+            return say(err, errlen, RBS_E_IO, r->where, msg);
+        }
+    }
+    if (r->cfg.contact_sheet) sheet_add(r, frame->number);
+    return RBS_OK;
+}
+
+static rbs_status finish(void *instance, char *err, size_t errlen)
+{
+    sdl_instance *r = (sdl_instance *)instance;
+    if (r == NULL) return RBS_E_INVALID;
+    if (r->cfg.contact_sheet && r->drawn_any) return sheet_write(r, err, errlen);
+    return RBS_OK;
+}
+
+static void destroy(void *instance)
+{
+    sdl_instance *r = (sdl_instance *)instance;
+    uint32_t i;
+    if (r == NULL) return;
+    close_windows(r);
+    for (i = 0; i < RBSF__VIEWS_MAX; i++)
+        if (r->images[i] != NULL) SDL_FreeSurface(r->images[i]);
+    free(r->depth);
+    free(r->ray_x);
+    free(r->ray_y);
+    free(r->thumbs);
+    free(r->sheet);
+    free(r->dir);
+    free(r->file);
+    rbsf__config_free(&r->cfg);
+    free(r);
+}
+
+/* ------------------------------------------------------------------------- */
+/* command                                                                   */
+/* ------------------------------------------------------------------------- */
+
+/* Parse exactly n numbers after the command word; 0 on success. */
+static int numbers(const char *s, double *out, int n)
+{
+    int i;
+    char *end;
+    for (i = 0; i < n; i++) {
+        out[i] = strtod(s, &end);
+        if (end == s) return -1;
+        s = end;
+    }
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+    return *s == '\0' ? 0 : -1;
+}
+
+static rbs_status command(void *instance, const char *line, char *out, size_t outlen)
+{
+    static const char *const usage[] = {
+        "orbit DYAW DPITCH (degrees)", "pan DX DY (metres)",
+        "zoom FACTOR (> 0, 2 = twice as close)", "view N (0..views-1)"};
+    sdl_instance *r = (sdl_instance *)instance;
+    char word[16], reply[400];
+    size_t n = 0;
+    double a[2];
+    rbs_status st;
+    rbsf__camera *cam;
+    if (r == NULL || line == NULL) return RBS_E_INVALID;
+    while (*line == ' ' || *line == '\t') line++;
+    while (line[n] != '\0' && line[n] != ' ' && line[n] != '\t' && line[n] != '\r' &&
+           line[n] != '\n' && n < sizeof word - 1) {
+        word[n] = line[n];
+        n++;
+    }
+    word[n] = '\0';
+    line += n;
+    cam = &r->cameras[r->selected];
+    if (strcmp(word, "orbit") == 0) {
+        if (numbers(line, a, 2) != 0) goto bad_usage_0;
+        st = rbsf__camera_orbit(cam, a[0], a[1], reply, sizeof reply);
+    } else if (strcmp(word, "pan") == 0) {
+        if (numbers(line, a, 2) != 0) goto bad_usage_1;
+        st = rbsf__camera_pan(cam, a[0], a[1], reply, sizeof reply);
+    } else if (strcmp(word, "zoom") == 0) {
+        if (numbers(line, a, 1) != 0) goto bad_usage_2;
+        st = rbsf__camera_zoom(cam, a[0], reply, sizeof reply);
+    } else if (strcmp(word, "reset") == 0) {
+        if (numbers(line, a, 0) != 0) {
+            snprintf(out, outlen, "usage: reset");
+            return RBS_E_INVALID;
+        }
+        st = rbsf__camera_reset(cam, reply, sizeof reply);
+    } else if (strcmp(word, "view") == 0) {
+        if (numbers(line, a, 1) != 0 || !(a[0] >= 0 && a[0] < (double)r->views) ||
+            a[0] != floor(a[0])) {
+            snprintf(out, outlen, "usage: %s; this renderer has %u view%s", usage[3],
+                     r->views, r->views > 1 ? "s" : "");
+            return RBS_E_INVALID;
+        }
+        r->selected = (uint32_t)a[0];
+        cam = &r->cameras[r->selected];
+        rbsf__camera_describe(cam, reply, sizeof reply);
+        st = RBS_OK;
+    } else if (strcmp(word, "camera") == 0) {
+        rbsf__camera_describe(cam, reply, sizeof reply);
+        st = RBS_OK;
+    } else {
+        return RBS_E_NOT_FOUND;
+    }
+    if (out != NULL && outlen > 0) snprintf(out, outlen, "view %u: %s", r->selected, reply);
+    return st;
+
+bad_usage_0:
+    snprintf(out, outlen, "usage: %s", usage[0]);
+    return RBS_E_INVALID;
+bad_usage_1:
+    snprintf(out, outlen, "usage: %s", usage[1]);
+    return RBS_E_INVALID;
+bad_usage_2:
+    snprintf(out, outlen, "usage: %s", usage[2]);
+    return RBS_E_INVALID;
+}
+
+/* ------------------------------------------------------------------------- */
+/* The class                                                                 */
+/* ------------------------------------------------------------------------- */
+
+/* A recorder (flags 0): it must see every kept frame to write it, so it is
+ * not RBS_RENDERER_LIVE (that would allow a latest-only reel to drop frames).
+ * The price: while the run is paused the projector does not call draw(), so
+ * an open window is not refreshed until the run resumes (see README.md). */
+static const rbs_renderer_class kSdlClass = {
+    .struct_size = sizeof(rbs_renderer_class),
+    .name = "sdl",
+    .context = NULL,
+    .create = create,
+    .draw = draw,
+    .finish = finish,
+    .destroy = destroy,
+    .command = command,
+    .flags = 0,
+    .check = check,
+};
+
+const rbs_renderer_class *rbsf_sdl_class(void) { return &kSdlClass; }
