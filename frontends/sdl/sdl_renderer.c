@@ -46,6 +46,8 @@
 /* Largest thumbnail width, pixels, and the gap between thumbnails. */
 #define RBSF_THUMB_WIDTH 240
 #define RBSF_SHEET_GAP 4
+/* Height of the caption strip under each thumbnail, pixels. */
+#define RBSF_SHEET_CAPTION (RBSF__FONT_HEIGHT + 4)
 /* Window controls: degrees per arrow key / per dragged pixel, zoom per key. */
 static const double kKeyDegrees = 5.0;
 static const double kDragDegrees = 0.4;
@@ -76,6 +78,7 @@ typedef struct sdl_instance {
     uint32_t thumb_w, thumb_h;
     uint32_t *thumbs; /* (RBSF_SHEET_SLOTS + 1) * thumb_w * thumb_h */
     uint64_t thumb_number[RBSF_SHEET_SLOTS + 1];
+    double thumb_time[RBSF_SHEET_SLOTS + 1];
     uint32_t thumb_count;
     uint64_t stride, seen;
     uint32_t *sheet; /* sheet_w * sheet_h pixels */
@@ -288,7 +291,7 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
         r->thumbs = (uint32_t *)malloc((size_t)(RBSF_SHEET_SLOTS + 1) * r->thumb_w *
                                        r->thumb_h * sizeof *r->thumbs);
         r->sheet_w = RBSF_SHEET_COLUMNS * (r->thumb_w + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
-        r->sheet_h = rows * (r->thumb_h + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
+        r->sheet_h = rows * (r->thumb_h + RBSF_SHEET_CAPTION + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
         r->sheet = (uint32_t *)malloc((size_t)r->sheet_w * r->sheet_h * sizeof *r->sheet);
         if (r->thumbs == NULL || r->sheet == NULL) goto nomem;
         r->stride = 1;
@@ -569,7 +572,7 @@ static void make_thumb(sdl_instance *r, uint32_t k)
 }
 
 /* Keep frames 0, s, 2s, ... of those drawn; decimate by 2 when full. */
-static void sheet_add(sdl_instance *r, uint64_t number)
+static void sheet_add(sdl_instance *r, uint64_t number, double time)
 {
     uint64_t k = r->seen++;
     size_t size = (size_t)r->thumb_w * r->thumb_h;
@@ -578,15 +581,18 @@ static void sheet_add(sdl_instance *r, uint64_t number)
         for (i = 0; i < RBSF_SHEET_SLOTS / 2; i++) {
             memmove(r->thumbs + i * size, r->thumbs + 2 * i * size, size * sizeof *r->thumbs);
             r->thumb_number[i] = r->thumb_number[2 * i];
+            r->thumb_time[i] = r->thumb_time[2 * i];
         }
         r->thumb_count = RBSF_SHEET_SLOTS / 2;
         r->stride *= 2;
     }
     if (k % r->stride == 0) {
         make_thumb(r, r->thumb_count);
+        r->thumb_time[r->thumb_count] = time;
         r->thumb_number[r->thumb_count++] = number;
     } else {
         make_thumb(r, RBSF_SHEET_SLOTS); /* the newest, shown last */
+        r->thumb_time[RBSF_SHEET_SLOTS] = time;
         r->thumb_number[RBSF_SHEET_SLOTS] = number;
     }
 }
@@ -600,23 +606,24 @@ static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
     int ok;
     if (newest) n++;
     rows = (n + RBSF_SHEET_COLUMNS - 1) / RBSF_SHEET_COLUMNS;
-    h = rows * (r->thumb_h + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
+    h = rows * (r->thumb_h + RBSF_SHEET_CAPTION + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
     for (i = 0; i < r->sheet_w * h; i++) r->sheet[i] = 0xff202020u;
     for (i = 0; i < n; i++) {
         uint32_t slot = newest && i == n - 1 ? RBSF_SHEET_SLOTS : i;
         uint32_t x0 = RBSF_SHEET_GAP + (i % RBSF_SHEET_COLUMNS) * (r->thumb_w + RBSF_SHEET_GAP);
-        uint32_t y0 = RBSF_SHEET_GAP + (i / RBSF_SHEET_COLUMNS) * (r->thumb_h + RBSF_SHEET_GAP);
+        uint32_t y0 = RBSF_SHEET_GAP + (i / RBSF_SHEET_COLUMNS) *
+                                           (r->thumb_h + RBSF_SHEET_CAPTION + RBSF_SHEET_GAP);
         const uint32_t *t = r->thumbs + slot * size;
-        char label[32];
+        char label[64];
         uint32_t *corner = r->sheet + (size_t)y0 * r->sheet_w + x0;
         for (y = 0; y < r->thumb_h; y++)
             for (x = 0; x < r->thumb_w; x++)
                 corner[(size_t)y * r->sheet_w + x] = t[(size_t)y * r->thumb_w + x];
-        snprintf(label, sizeof label, "%llu", (unsigned long long)r->thumb_number[slot]);
-        rbsf__shade_rect(corner, r->sheet_w, (int)r->thumb_w, (int)r->thumb_h, 0, 0,
-                         rbsf__font_width(label, 1) + 4, RBSF__FONT_HEIGHT + 4);
-        rbsf__font_draw(corner, r->sheet_w, (int)r->thumb_w, (int)r->thumb_h, 2, 2, 1,
-                        label, 0xffffffffu);
+        /* Caption under the thumbnail: frame number and time. */
+        snprintf(label, sizeof label, "%llu T=%.3f",
+                 (unsigned long long)r->thumb_number[slot], r->thumb_time[slot]);
+        rbsf__font_draw(corner + (size_t)(r->thumb_h + 2) * r->sheet_w, r->sheet_w,
+                        (int)r->thumb_w, RBSF__FONT_HEIGHT, 0, 0, 1, label, 0xffe0e0e0u);
     }
     s = SDL_CreateRGBSurfaceWithFormatFrom(r->sheet, (int)r->sheet_w, (int)h, 32,
                                            (int)(r->sheet_w * 4), SDL_PIXELFORMAT_ARGB8888);
@@ -716,7 +723,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
             return say(err, errlen, RBS_E_IO, r->where, msg);
         }
     }
-    if (r->cfg.contact_sheet) sheet_add(r, frame->number);
+    if (r->cfg.contact_sheet) sheet_add(r, frame->number, frame->time);
     return RBS_OK;
 }
 

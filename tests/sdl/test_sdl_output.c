@@ -1,0 +1,342 @@
+/*
+ * test_sdl_output.c - the files the "sdl" renderer writes: names and sizes
+ * of the PNG frames, one folder per view or the views tiled, the contact
+ * sheet and its decimation, the legend, and the camera commands.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <cmocka.h>
+
+#include "sdl_test_util.h"
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+static SDL_Surface *load_fmt(const char *fmt, const char *dir, unsigned long long k)
+{
+    char path[1400];
+    snprintf(path, sizeof path, fmt, dir, k);
+    return tu_load(path);
+}
+
+static int is_red(uint32_t c)
+{
+    int r = (c >> 16) & 0xff, g = (c >> 8) & 0xff, b = c & 0xff;
+    return r > 40 && g * 2 < r && b * 2 < r;
+}
+
+/* Frame numbers name the files; every file decodes to width x height. */
+static void test_png_names_and_sizes(void **state)
+{
+    static const uint64_t numbers[3] = {0, 3, 17};
+    const char *json = "{\"type\":\"sdl\",\"width\":200,\"height\":150,"
+                       "\"window\":false,\"contact_sheet\":false}";
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    void *inst = NULL;
+    char err[512], path[1400];
+    int k;
+    (void)state;
+    assert_int_equal(tu_create(json, tu_dir("names"), &inst, err, sizeof err), RBS_OK);
+    for (k = 0; k < 3; k++) {
+        tu_frame f;
+        tu_frame_init(&f, numbers[k], 0.01 * (double)numbers[k]);
+        tu_add_plane(&f, 0, 0, 0, 0, 0, 1, 0x808080);
+        tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030);
+        assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    }
+    assert_int_equal(cls->finish(inst, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    for (k = 0; k < 3; k++) {
+        SDL_Surface *s = load_fmt("%s/frame_%06llu.png", tu_dir("names"), numbers[k]);
+        assert_non_null(s);
+        assert_int_equal(s->w, 200);
+        assert_int_equal(s->h, 150);
+        /* The default camera sees the ball. */
+        assert_true(is_red(tu_pixel(s, 100, 75)));
+        SDL_FreeSurface(s);
+    }
+    snprintf(path, sizeof path, "%s/frame_000001.png", tu_dir("names"));
+    assert_false(exists(path));
+    snprintf(path, sizeof path, "%s/contact_sheet.png", tu_dir("names"));
+    assert_false(exists(path));
+}
+
+/* Four spheres of four colours far apart, one view aimed at each. */
+static const uint32_t kColors[4] = {0xd03030, 0x30c030, 0x3050d0, 0xd0c020};
+static const char *kViews =
+    "\"views\":["
+    "{\"position\":[0,-5,0],\"target\":[0,0,0]},"
+    "{\"position\":[20,-5,0],\"target\":[20,0,0]},"
+    "{\"position\":[40,-5,0],\"target\":[40,0,0]},"
+    "{\"position\":[60,-5,0],\"target\":[60,0,0]}]";
+
+static void four_balls(tu_frame *f, uint64_t number)
+{
+    int i;
+    tu_frame_init(f, number, 0.0);
+    for (i = 0; i < 4; i++) tu_add_sphere(f, "ball", 20.0 * i, 0, 0, 1.0, kColors[i]);
+}
+
+static double hue_gap(uint32_t a, uint32_t b)
+{
+    double d = fabs(tu_hue(a) - tu_hue(b));
+    return d > 180 ? 360 - d : d;
+}
+
+static void test_views_folders(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char json[1024], err[512], fmt[64];
+    void *inst = NULL;
+    tu_frame f;
+    int v;
+    (void)state;
+    snprintf(json, sizeof json, "{\"width\":160,\"height\":120,\"window\":false,%s}", kViews);
+    assert_int_equal(tu_create(json, tu_dir("views"), &inst, err, sizeof err), RBS_OK);
+    four_balls(&f, 5);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->finish(inst, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    for (v = 0; v < 4; v++) {
+        SDL_Surface *s;
+        snprintf(fmt, sizeof fmt, "%%s/view%d/frame_%%06llu.png", v);
+        s = load_fmt(fmt, tu_dir("views"), 5);
+        assert_non_null(s);
+        assert_int_equal(s->w, 160);
+        assert_int_equal(s->h, 120);
+        assert_true(hue_gap(tu_pixel(s, 80, 60), kColors[v]) < 2.0);
+        SDL_FreeSurface(s);
+    }
+}
+
+/* Tiled: one 2W x 2H image per frame, view k in quadrant k (left to right,
+ * top to bottom). */
+static void test_tile(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char json[1024], err[512];
+    void *inst = NULL;
+    tu_frame f;
+    SDL_Surface *s;
+    int v;
+    (void)state;
+    snprintf(json, sizeof json,
+             "{\"width\":160,\"height\":120,\"window\":false,\"tile\":true,%s}", kViews);
+    assert_int_equal(tu_create(json, tu_dir("tile"), &inst, err, sizeof err), RBS_OK);
+    four_balls(&f, 2);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->finish(inst, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    s = load_fmt("%s/frame_%06llu.png", tu_dir("tile"), 2);
+    assert_non_null(s);
+    assert_int_equal(s->w, 320);
+    assert_int_equal(s->h, 240);
+    for (v = 0; v < 4; v++) {
+        int cx = 80 + 160 * (v % 2), cy = 60 + 120 * (v / 2);
+        assert_true(hue_gap(tu_pixel(s, cx, cy), kColors[v]) < 2.0);
+    }
+    SDL_FreeSurface(s);
+}
+
+/* The legend (top left) shows time and frame: it differs between frames
+ * that differ only in those, and is white text on a dark box. */
+static void test_legend(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    const char *json = "{\"width\":320,\"height\":240,\"window\":false,"
+                       "\"contact_sheet\":false}";
+    char err[512];
+    void *inst = NULL;
+    SDL_Surface *a, *b;
+    int x, y, diff = 0, white = 0, rest_diff = 0;
+    tu_frame f;
+    (void)state;
+    assert_int_equal(tu_create(json, tu_dir("legend"), &inst, err, sizeof err), RBS_OK);
+    tu_frame_init(&f, 1, 0.25);
+    tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    f.frame.number = 2;
+    f.frame.time = 0.5;
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    a = load_fmt("%s/frame_%06llu.png", tu_dir("legend"), 1);
+    b = load_fmt("%s/frame_%06llu.png", tu_dir("legend"), 2);
+    assert_non_null(a);
+    assert_non_null(b);
+    for (y = 0; y < 240; y++)
+        for (x = 0; x < 320; x++) {
+            int in = x < 80 && y < 24;
+            if (tu_pixel(a, x, y) != tu_pixel(b, x, y)) {
+                if (in) diff++;
+                else rest_diff++;
+            }
+            if (in && tu_pixel(a, x, y) == 0xffffff) white++;
+        }
+    assert_true(diff > 0);
+    assert_int_equal(rest_diff, 0);
+    assert_true(white > 20);
+    SDL_FreeSurface(a);
+    SDL_FreeSurface(b);
+}
+
+/* The contact sheet after 40 frames: 16 slots, decimated by 2 at frames 16
+ * and 32, keeps frames 0, 4, ..., 36 (10) plus the newest, 39: 11
+ * thumbnails in 4 columns, 3 rows.  Thumbnails are 240 px wide for a 320 px
+ * view (180 px high) with an 11 px caption under each, 4 px apart.  A ball moving right with the frame number
+ * is further right in each thumbnail, in order. */
+static void test_contact_sheet(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    const char *json = "{\"width\":320,\"height\":240,\"window\":false,"
+                       "\"camera\":{\"position\":[0,-12,0],\"target\":[0,0,0]}}";
+    char err[512], path[1400];
+    void *inst = NULL;
+    SDL_Surface *s;
+    int k, last = -1;
+    (void)state;
+    assert_int_equal(tu_create(json, tu_dir("sheet"), &inst, err, sizeof err), RBS_OK);
+    for (k = 0; k < 40; k++) {
+        tu_frame f;
+        tu_frame_init(&f, (uint64_t)k, 0.1 * k);
+        tu_add_sphere(&f, "ball", -4.0 + 0.2 * k, 0, 0, 0.5, 0xd03030);
+        assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    }
+    assert_int_equal(cls->finish(inst, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    snprintf(path, sizeof path, "%s/contact_sheet.png", tu_dir("sheet"));
+    s = tu_load(path);
+    assert_non_null(s);
+    assert_int_equal(s->w, 4 * (240 + 4) + 4);
+    assert_int_equal(s->h, 3 * (180 + 11 + 4) + 4);
+    for (k = 0; k < 11; k++) {
+        int x0 = 4 + (k % 4) * 244, y0 = 4 + (k / 4) * 195, bx0, by0, bx1, by1;
+        assert_true(tu_bbox(s, x0, y0, 240, 180, is_red, &bx0, &by0, &bx1, &by1) > 0);
+        /* Frames 0, 4, ..., 36, 39: the ball moves 0.8 m (or 0.6 m) to the
+         * right between thumbnails, several pixels at this scale. */
+        assert_true(bx0 - x0 > last);
+        last = bx0 - x0;
+        (void)by0;
+        (void)by1;
+        (void)bx1;
+    }
+    SDL_FreeSurface(s);
+}
+
+static void test_io_error(void **state)
+{
+    char err[512], path[1400];
+    void *inst = NULL;
+    FILE *fp;
+    (void)state;
+    /* The output folder's name is taken by a regular file. */
+    assert_int_equal(tu_create("{\"window\":false}", tu_dir("a_file_dir"), &inst, err,
+                               sizeof err),
+                     RBS_OK);
+    rbsf_sdl_class()->destroy(inst);
+    snprintf(path, sizeof path, "%s/blocker", tu_dir("a_file_dir"));
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fclose(fp);
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
+    assert_null(inst);
+    assert_non_null(strstr(err, "path:"));
+    assert_non_null(strstr(err, "blocker"));
+}
+
+/* Camera commands through the class's command hook. */
+static void test_commands(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512], out[512];
+    void *inst = NULL, *fixed = NULL;
+    tu_frame f;
+    SDL_Surface *a, *b, *c;
+    (void)state;
+    /* The default camera is free. */
+    assert_int_equal(tu_create("{\"width\":160,\"height\":120,\"window\":false,"
+                               "\"contact_sheet\":false}",
+                               tu_dir("commands"), &inst, err, sizeof err),
+                     RBS_OK);
+    /* Before the first frame the camera has no place yet. */
+    assert_int_equal(cls->command(inst, "orbit 10 0", out, sizeof out), RBS_E_INVALID);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_plane(&f, 0, 0, 0, 0, 0, 1, 0x808080);
+    tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->command(inst, "orbit 30 10", out, sizeof out), RBS_OK);
+    assert_non_null(strstr(out, "view 0"));
+    f.frame.number = 1;
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->command(inst, "zoom 2", out, sizeof out), RBS_OK);
+    assert_int_equal(cls->command(inst, "pan 0.1 -0.2", out, sizeof out), RBS_OK);
+    assert_int_equal(cls->command(inst, "reset", out, sizeof out), RBS_OK);
+    f.frame.number = 2;
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    /* Bad arguments, other renderers' commands. */
+    assert_int_equal(cls->command(inst, "orbit 10", out, sizeof out), RBS_E_INVALID);
+    assert_non_null(strstr(out, "usage: orbit"));
+    assert_int_equal(cls->command(inst, "zoom 0", out, sizeof out), RBS_E_INVALID);
+    assert_int_equal(cls->command(inst, "zoom x", out, sizeof out), RBS_E_INVALID);
+    assert_int_equal(cls->command(inst, "pan 1 2 3", out, sizeof out), RBS_E_INVALID);
+    assert_int_equal(cls->command(inst, "view 1", out, sizeof out), RBS_E_INVALID);
+    assert_int_equal(cls->command(inst, "status", out, sizeof out), RBS_E_NOT_FOUND);
+    assert_int_equal(cls->command(inst, "camera", out, sizeof out), RBS_OK);
+    assert_non_null(strstr(out, "free"));
+    cls->destroy(inst);
+    a = tu_load(tu_dir("commands/frame_000000.png"));
+    b = tu_load(tu_dir("commands/frame_000001.png"));
+    c = tu_load(tu_dir("commands/frame_000002.png"));
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_non_null(c);
+    {
+        /* Orbit moved the picture; reset brought it back (outside the
+         * legend, which shows the frame number). */
+        int x, y, ab = 0, ac = 0;
+        for (y = 30; y < 120; y++)
+            for (x = 0; x < 160; x++) {
+                ab += tu_pixel(a, x, y) != tu_pixel(b, x, y);
+                ac += tu_pixel(a, x, y) != tu_pixel(c, x, y);
+            }
+        assert_true(ab > 500);
+        assert_int_equal(ac, 0);
+    }
+    SDL_FreeSurface(a);
+    SDL_FreeSurface(b);
+    SDL_FreeSurface(c);
+
+    /* A fixed camera refuses to move and says why. */
+    assert_int_equal(tu_create("{\"window\":false,\"camera\":{\"position\":[0,-5,1],"
+                               "\"target\":[0,0,0]}}",
+                               tu_dir("commands_fixed"), &fixed, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(fixed, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->command(fixed, "orbit 10 0", out, sizeof out), RBS_E_INVALID);
+    assert_non_null(strstr(out, "fixed"));
+    cls->destroy(fixed);
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_png_names_and_sizes),
+        cmocka_unit_test(test_views_folders),
+        cmocka_unit_test(test_tile),
+        cmocka_unit_test(test_legend),
+        cmocka_unit_test(test_contact_sheet),
+        cmocka_unit_test(test_io_error),
+        cmocka_unit_test(test_commands),
+    };
+    tu_set_base(argc > 1 ? argv[1] : ".");
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
