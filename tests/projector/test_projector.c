@@ -1,0 +1,954 @@
+/*
+ * test_projector.c - the projector with test renderers: frames 0..steps in
+ * order with the world's exact state, "every K", several renderers seeing the
+ * same frames, commands (pause, step, resume, speed, status, quit, renderer
+ * commands answered on the renderer thread), control from a renderer,
+ * failures (check, create, draw, finish, a step's numerical failure) that
+ * stop the run with a message, and the registry.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <cmocka.h>
+
+#include "rbsim/reel.h"
+
+#define CHECK_OK(call) assert_int_equal((call), RBS_OK)
+
+/* ---- a world: a floor and three falling spheres ------------------------- */
+
+static rbs_world *make_world(void)
+{
+    rbs_world_def wd;
+    rbs_world *w;
+    rbs_plane_def pd;
+    rbs_sphere_def sd;
+    rbs_body_id id;
+    int i;
+    rbs_world_def_init(&wd);
+    wd.max_bodies = 8;
+    CHECK_OK(rbs_world_create(&wd, &w));
+    rbs_plane_def_init(&pd);
+    pd.name = "floor";
+    CHECK_OK(rbs_world_add_plane(w, &pd, &id));
+    for (i = 0; i < 3; i++) {
+        char name[16];
+        snprintf(name, sizeof name, "ball%d", i);
+        rbs_sphere_def_init(&sd);
+        sd.name = name;
+        sd.radius = 0.1;
+        sd.position.x = 0.5 * i;
+        sd.position.z = 0.3 + 0.1 * i;
+        sd.velocity.x = 0.25 * i;
+        sd.angular_velocity.y = 1.0 + i;
+        CHECK_OK(rbs_world_add_sphere(w, &sd, &id));
+    }
+    return w;
+}
+
+/* ---- a recording renderer ----------------------------------------------- */
+
+typedef struct rec_opts {
+    int fail_check, fail_create, fail_draw_at, fail_finish;
+    int quit_at;          /* send "quit" through control at this frame, -1 */
+    int live;
+    int *created, *destroyed; /* counters shared by the test */
+} rec_opts;
+
+typedef struct rec {
+    rec_opts opts;
+    rbs_renderer_config config;
+    uint64_t *numbers;
+    double *x;           /* ball0 position x per drawn frame */
+    uint64_t count, cap;
+    uint64_t repeats;
+    int lasts, finished, out_of_thread;
+    pthread_t draw_thread;
+    int have_thread;
+    rbs_frame_body final[8];
+    uint32_t final_count;
+} rec;
+
+/* The test reaches the instances through these (single test at a time). */
+typedef struct rec_ctx {
+    rec_opts opts;
+    rec *made[RBS_RENDERERS_MAX];
+    int n;
+} rec_ctx;
+
+static rbs_status rec_check(void *context, const rbs_renderer_config *config,
+                            const rbs_world *world, char *err, size_t errlen)
+{
+    rec_ctx *c = context;
+    (void)config;
+    (void)world;
+    if (c->opts.fail_check) {
+        snprintf(err, errlen, "check says no");
+        return RBS_E_SCENE;
+    }
+    return RBS_OK;
+}
+
+static rbs_status rec_create(void *context, const rbs_renderer_config *config,
+                             const rbs_world *world, void **instance, char *err,
+                             size_t errlen)
+{
+    rec_ctx *c = context;
+    rec *r;
+    (void)world;
+    if (c->opts.fail_create) {
+        snprintf(err, errlen, "cannot create");
+        return RBS_E_IO;
+    }
+    r = calloc(1, sizeof *r);
+    r->opts = c->opts;
+    r->config = *config;
+    r->cap = 1 << 16;
+    r->numbers = calloc(r->cap, sizeof *r->numbers);
+    r->x = calloc(r->cap, sizeof *r->x);
+    if (c->opts.created)
+        (*c->opts.created)++;
+    c->made[c->n++] = r;
+    *instance = r;
+    return RBS_OK;
+}
+
+static rbs_status rec_draw(void *instance, const rbs_frame *f, char *err,
+                           size_t errlen)
+{
+    rec *r = instance;
+    if (!r->have_thread) {
+        r->draw_thread = pthread_self();
+        r->have_thread = 1;
+    } else if (!pthread_equal(r->draw_thread, pthread_self())) {
+        r->out_of_thread++;
+    }
+    if (f->paused && r->count > 0 && r->numbers[r->count - 1] == f->number) {
+        r->repeats++;
+        return RBS_OK;
+    }
+    if (r->opts.fail_draw_at >= 0 && f->number == (uint64_t)r->opts.fail_draw_at) {
+        snprintf(err, errlen, "disk on fire");
+        return RBS_E_IO;
+    }
+    if (r->count < r->cap) {
+        r->numbers[r->count] = f->number;
+        r->x[r->count] = f->body_count > 1 ? f->bodies[1].position[0] : 0;
+        r->count++;
+    }
+    r->lasts += f->last != 0;
+    memcpy(r->final, f->bodies, f->body_count * sizeof *f->bodies);
+    r->final_count = f->body_count;
+    if (r->opts.quit_at >= 0 && f->number == (uint64_t)r->opts.quit_at)
+        r->config.control(r->config.control_context, "quit");
+    return RBS_OK;
+}
+
+static rbs_status rec_finish(void *instance, char *err, size_t errlen)
+{
+    rec *r = instance;
+    r->finished++;
+    if (r->opts.fail_finish) {
+        snprintf(err, errlen, "cannot close");
+        return RBS_E_IO;
+    }
+    return RBS_OK;
+}
+
+static void rec_destroy(void *instance)
+{
+    rec *r = instance;
+    if (r->opts.destroyed)
+        (*r->opts.destroyed)++;
+    free(r->numbers);
+    free(r->x);
+    free(r);
+}
+
+/* Renderer commands: "ping" answers with the thread check. */
+static rbs_status rec_command(void *instance, const char *line, char *out,
+                              size_t outlen)
+{
+    rec *r = instance;
+    if (strncmp(line, "ping", 4) != 0)
+        return RBS_E_NOT_FOUND;
+    snprintf(out, outlen, "pong%s",
+             r->have_thread && !pthread_equal(r->draw_thread, pthread_self())
+                 ? " from another thread"
+                 : "");
+    return RBS_OK;
+}
+
+static rbs_renderer_class rec_class(rec_ctx *ctx, const char *name)
+{
+    rbs_renderer_class c;
+    memset(&c, 0, sizeof c);
+    c.struct_size = sizeof c;
+    c.name = name;
+    c.context = ctx;
+    c.create = rec_create;
+    c.draw = rec_draw;
+    c.finish = rec_finish;
+    c.destroy = rec_destroy;
+    c.command = rec_command;
+    c.check = rec_check;
+    c.flags = ctx->opts.live ? RBS_RENDERER_LIVE : 0;
+    return c;
+}
+
+static void default_opts(rec_ctx *ctx)
+{
+    memset(ctx, 0, sizeof *ctx);
+    ctx->opts.fail_draw_at = -1;
+    ctx->opts.quit_at = -1;
+}
+
+static rbs_renderer_config config_for(const char *type, uint32_t every)
+{
+    rbs_renderer_config c;
+    memset(&c, 0, sizeof c);
+    c.struct_size = sizeof c;
+    c.type = type;
+    c.every = every;
+    return c;
+}
+
+/* ---- tests -------------------------------------------------------------- */
+
+static void registry_finds_and_rejects(void **state)
+{
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    const rbs_renderer_class *found;
+    int i;
+    char names[RBS_RENDERER_TYPES_MAX + 1][16];
+    (void)state;
+    default_opts(&ctx);
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    assert_int_equal(rbs_renderer_register(reg, &c), RBS_E_INVALID); /* taken */
+    CHECK_OK(rbs_renderer_find(reg, "rec", &found));
+    assert_ptr_equal(found->context, &ctx);
+    assert_int_equal(rbs_renderer_find(reg, "nope", &found), RBS_E_NOT_FOUND);
+    assert_null(found);
+    c.name = NULL;
+    assert_int_equal(rbs_renderer_register(reg, &c), RBS_E_INVALID);
+    c.name = "x";
+    c.draw = NULL;
+    assert_int_equal(rbs_renderer_register(reg, &c), RBS_E_INVALID);
+    c = rec_class(&ctx, "rec");
+    for (i = 1; i < RBS_RENDERER_TYPES_MAX; i++) {
+        snprintf(names[i], sizeof names[i], "t%d", i);
+        c.name = names[i];
+        CHECK_OK(rbs_renderer_register(reg, &c));
+    }
+    snprintf(names[0], sizeof names[0], "one-too-many");
+    c.name = names[0];
+    assert_int_equal(rbs_renderer_register(reg, &c), RBS_E_CAPACITY);
+    rbs_renderer_registry_destroy(reg);
+}
+
+/* Run a projector to the end with n recorders of the given every. */
+static rbs_status run_with(rbs_world *w, rec_ctx *ctx, uint32_t n,
+                           const uint32_t *every, uint64_t steps,
+                           rbs_projector **out)
+{
+    rbs_renderer_registry *reg;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg[RBS_RENDERERS_MAX];
+    rbs_projector_def def;
+    rbs_status st;
+    uint32_t i;
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    c = rec_class(ctx, "rec");
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    for (i = 0; i < n; i++)
+        cfg[i] = config_for("rec", every ? every[i] : 1);
+    rbs_projector_def_init(&def);
+    def.steps = steps;
+    def.reel_capacity = 4;
+    st = rbs_projector_create(w, reg, cfg, n, &def, out);
+    if (st == RBS_OK)
+        st = rbs_projector_run(*out);
+    /* The registry must outlive the projector: keep it until destroy. */
+    rbs_projector_destroy(*out);
+    *out = NULL;
+    rbs_renderer_registry_destroy(reg);
+    return st;
+}
+
+static void every_frame_in_order_with_exact_state(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_projector *p;
+    rec_ctx ctx;
+    rec *r;
+    uint64_t k;
+    rbs_state_view v;
+    int created = 0, destroyed = 0;
+    uint32_t b;
+    (void)state;
+    default_opts(&ctx);
+    ctx.opts.created = &created;
+    ctx.opts.destroyed = &destroyed;
+    /* Keep the instance alive past destroy to read it: count via ctx, read
+     * before the projector frees it by running without destroy. */
+    {
+        rbs_renderer_registry *reg;
+        rbs_renderer_class c = rec_class(&ctx, "rec");
+        rbs_renderer_config cfg = config_for("rec", 1);
+        rbs_projector_def def;
+        rbs_run_info info;
+        CHECK_OK(rbs_renderer_registry_create(&reg));
+        CHECK_OK(rbs_renderer_register(reg, &c));
+        rbs_projector_def_init(&def);
+        def.steps = 500;
+        def.reel_capacity = 3;
+        CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+        CHECK_OK(rbs_projector_status(p, &info));
+        assert_int_equal(info.state, RBS_RUN_READY);
+        CHECK_OK(rbs_projector_run(p));
+        assert_int_equal(rbs_projector_wait(p), RBS_OK); /* repeatable */
+        CHECK_OK(rbs_projector_status(p, &info));
+        assert_int_equal(info.state, RBS_RUN_DONE);
+        assert_int_equal(info.result, RBS_OK);
+        assert_int_equal(info.frame, 500);
+        assert_int_equal(info.drawn, 501);
+        assert_int_equal(info.captured, 501);
+        assert_true(info.time == rbs_world_time(w));
+        r = ctx.made[0];
+        assert_int_equal(r->count, 501);
+        for (k = 0; k <= 500; k++)
+            assert_int_equal(r->numbers[k], k);
+        assert_int_equal(r->lasts, 1);
+        assert_int_equal(r->finished, 1);
+        assert_int_equal(r->out_of_thread, 0);
+        /* The last frame holds the world's state bit for bit. */
+        CHECK_OK(rbs_world_state(w, &v));
+        assert_int_equal(r->final_count, 4);
+        for (b = 0; b < r->final_count; b++) {
+            uint32_t s = r->final[b].slot;
+            assert_memory_equal(r->final[b].position, v.position + 3 * s,
+                                3 * sizeof(double));
+            assert_memory_equal(r->final[b].velocity, v.velocity + 3 * s,
+                                3 * sizeof(double));
+            assert_memory_equal(r->final[b].angular_velocity,
+                                v.angular_velocity + 3 * s, 3 * sizeof(double));
+            assert_memory_equal(r->final[b].orientation, v.orientation + 4 * s,
+                                4 * sizeof(double));
+        }
+        assert_string_equal(r->final[1].name, "ball0");
+        assert_int_equal(r->final[0].type, RBS_BODY_PLANE);
+        assert_int_equal(r->final[1].type, RBS_BODY_SPHERE);
+        assert_true(r->final[1].radius == 0.1);
+        rbs_projector_destroy(p);
+        assert_int_equal(destroyed, 1);
+        rbs_renderer_registry_destroy(reg);
+    }
+    assert_int_equal(created, 1);
+    rbs_world_destroy(w);
+}
+
+/* Frame 0 only when steps is 0; its time is 0 and it is the last. */
+static void zero_steps_gives_frame_zero(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    assert_int_equal(ctx.made[0]->count, 1);
+    assert_int_equal(ctx.made[0]->numbers[0], 0);
+    assert_int_equal(ctx.made[0]->lasts, 1);
+    assert_true(rbs_world_time(w) == 0.0);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+static void every_k_keeps_multiples_and_the_last(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg[4];
+    rbs_projector_def def;
+    rbs_projector *p;
+    const uint32_t every[4] = {1, 7, 100, 1000};
+    uint32_t i;
+    uint64_t k;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    for (i = 0; i < 4; i++)
+        cfg[i] = config_for("rec", every[i]);
+    rbs_projector_def_init(&def);
+    def.steps = 250;
+    CHECK_OK(rbs_projector_create(w, reg, cfg, 4, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    for (i = 0; i < 4; i++) {
+        rec *r = ctx.made[i];
+        uint64_t n = 0;
+        for (k = 0; k <= 250; k++)
+            if (k % every[i] == 0 || k == 250) {
+                assert_true(n < r->count);
+                assert_int_equal(r->numbers[n], k);
+                /* Every renderer sees the same frame contents. */
+                assert_memory_equal(&r->x[n], &ctx.made[0]->x[k], sizeof(double));
+                n++;
+            }
+        assert_int_equal(r->count, n);
+    }
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* A run with four renderers ends in the same world state as with none. */
+static void renderers_do_not_change_results(void **state)
+{
+    rbs_world *a = make_world(), *b = make_world();
+    rbs_projector *p = NULL;
+    rec_ctx ctx;
+    (void)state;
+    default_opts(&ctx);
+    CHECK_OK(run_with(a, &ctx, 0, NULL, 300, &p));
+    default_opts(&ctx);
+    CHECK_OK(run_with(b, &ctx, 4, NULL, 300, &p));
+    assert_int_equal(rbs_world_step_count(a), 300);
+    assert_true(rbs_world_hash(a) == rbs_world_hash(b));
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+}
+
+static void failing_check_creates_nothing(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx good, bad;
+    rbs_renderer_class cg, cb;
+    rbs_renderer_config cfg[2];
+    rbs_projector_def def;
+    rbs_projector *p;
+    int created = 0;
+    (void)state;
+    default_opts(&good);
+    default_opts(&bad);
+    good.opts.created = &created;
+    bad.opts.fail_check = 1;
+    cg = rec_class(&good, "good");
+    cb = rec_class(&bad, "bad");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &cg));
+    CHECK_OK(rbs_renderer_register(reg, &cb));
+    cfg[0] = config_for("good", 1);
+    cfg[1] = config_for("bad", 1);
+    cfg[1].file = "scene.json";
+    cfg[1].line = 12;
+    cfg[1].column = 5;
+    rbs_projector_def_init(&def);
+    def.steps = 10;
+    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p), RBS_E_SCENE);
+    assert_non_null(p);
+    assert_int_equal(created, 0); /* the good one was never created */
+    assert_non_null(strstr(rbs_projector_last_error(p), "scene.json:12:5"));
+    assert_non_null(strstr(rbs_projector_last_error(p), "check says no"));
+    assert_int_equal(rbs_projector_start(p), RBS_E_INVALID);
+    rbs_projector_destroy(p);
+
+    /* Unknown type. */
+    cfg[1] = config_for("nonesuch", 1);
+    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p),
+                     RBS_E_NOT_FOUND);
+    assert_non_null(strstr(rbs_projector_last_error(p), "nonesuch"));
+    rbs_projector_destroy(p);
+
+    /* Too many renderers, bad def: plain RBS_E_INVALID, no projector. */
+    assert_int_equal(rbs_projector_create(w, reg, cfg, RBS_RENDERERS_MAX + 1,
+                                          &def, &p),
+                     RBS_E_INVALID);
+    assert_null(p);
+    def.speed = -1;
+    assert_int_equal(rbs_projector_create(w, reg, cfg, 1, &def, &p),
+                     RBS_E_INVALID);
+    assert_non_null(strstr(rbs_projector_last_error(p), "speed"));
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+static void failing_create_destroys_the_others(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx good, bad;
+    rbs_renderer_class cg, cb;
+    rbs_renderer_config cfg[2];
+    rbs_projector_def def;
+    rbs_projector *p;
+    int created = 0, destroyed = 0;
+    (void)state;
+    default_opts(&good);
+    default_opts(&bad);
+    good.opts.created = &created;
+    good.opts.destroyed = &destroyed;
+    bad.opts.fail_create = 1;
+    cg = rec_class(&good, "good");
+    cb = rec_class(&bad, "bad");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &cg));
+    CHECK_OK(rbs_renderer_register(reg, &cb));
+    cfg[0] = config_for("good", 1);
+    cfg[1] = config_for("bad", 1);
+    cfg[1].path = "out.x";
+    rbs_projector_def_init(&def);
+    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(p), "bad renderer 'out.x'"));
+    assert_non_null(strstr(rbs_projector_last_error(p), "cannot create"));
+    assert_int_equal(created, 1);
+    rbs_projector_destroy(p);
+    assert_int_equal(destroyed, 1);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* A renderer failing mid-run stops the run with its message; the other
+ * renderer is finished (complete up to the frames drawn). */
+static void failing_draw_stops_the_run(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx good, bad;
+    rbs_renderer_class cg, cb;
+    rbs_renderer_config cfg[2];
+    rbs_projector_def def;
+    rbs_projector *p;
+    rbs_run_info info;
+    uint64_t k;
+    (void)state;
+    default_opts(&good);
+    default_opts(&bad);
+    bad.opts.fail_draw_at = 40;
+    cg = rec_class(&good, "good");
+    cb = rec_class(&bad, "bad");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &cg));
+    CHECK_OK(rbs_renderer_register(reg, &cb));
+    cfg[0] = config_for("good", 1);
+    cfg[1] = config_for("bad", 1);
+    cfg[1].path = "x.out";
+    rbs_projector_def_init(&def);
+    def.steps = 100000; /* would take long: the failure must stop it */
+    def.reel_capacity = 8;
+    CHECK_OK(rbs_projector_create(w, reg, cfg, 2, &def, &p));
+    assert_int_equal(rbs_projector_run(p), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(p), "bad renderer 'x.out'"));
+    assert_non_null(strstr(rbs_projector_last_error(p), "frame 40"));
+    assert_non_null(strstr(rbs_projector_last_error(p), "disk on fire"));
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_int_equal(info.result, RBS_E_IO);
+    assert_true(info.captured < 100); /* stopped within a reel's worth */
+    /* The good renderer drew 0..40 (the frame the other failed on may be
+     * drawn by it first) and was finished. */
+    assert_true(good.made[0]->count == 40 || good.made[0]->count == 41);
+    for (k = 0; k < good.made[0]->count; k++)
+        assert_int_equal(good.made[0]->numbers[k], k);
+    assert_int_equal(good.made[0]->finished, 1);
+    assert_int_equal(bad.made[0]->finished, 1);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+static void failing_finish_is_reported(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_projector *p = NULL;
+    rec_ctx ctx;
+    (void)state;
+    default_opts(&ctx);
+    ctx.opts.fail_finish = 1;
+    assert_int_equal(run_with(w, &ctx, 1, NULL, 5, &p), RBS_E_IO);
+    rbs_world_destroy(w);
+}
+
+/* A step's failure stops the run with the world's message; frames made
+ * before it are all drawn. */
+static void numerical_failure_stops_the_run(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    rbs_body_id id;
+    rbs_vec3 huge = {1e308, 0, 0};
+    rbs_status st;
+    (void)state;
+    CHECK_OK(rbs_world_find_body(w, "ball0", &id));
+    CHECK_OK(rbs_body_set_force(w, id, huge));
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 100000;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    st = rbs_projector_run(p);
+    if (st == RBS_OK) {
+        /* The core took it: then nothing to see here, but say so. */
+        print_message("core accepted a 1e308 N force for 100000 steps\n");
+        fail();
+    }
+    assert_true(st != RBS_E_CLOSED);
+    assert_non_null(strstr(rbs_projector_last_error(p), "step "));
+    assert_true(ctx.made[0]->count >= 1);
+    assert_int_equal(ctx.made[0]->numbers[ctx.made[0]->count - 1],
+                     ctx.made[0]->count - 1);
+    assert_int_equal(ctx.made[0]->finished, 1);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* Commands while running: pause holds the simulation, step N advances N
+ * frames, status reports, resume goes on, renderer commands are answered on
+ * the renderer thread, quit stops with RBS_E_CLOSED and every frame drawn
+ * up to there. */
+static void commands_steer_the_run(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    rbs_run_info info;
+    char reply[512];
+    uint64_t k, before;
+    struct timespec nap = {0, 30 * 1000 * 1000};
+    int tries;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 1000000;
+    def.start_paused = 1;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_start(p));
+
+    /* Paused after frame 0: wait for it to be drawn, then nothing moves. */
+    for (tries = 0; tries < 200; tries++) {
+        CHECK_OK(rbs_projector_status(p, &info));
+        if (info.drawn == 1)
+            break;
+        nanosleep(&nap, NULL);
+    }
+    assert_int_equal(info.drawn, 1);
+    assert_true(info.paused);
+    nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_int_equal(info.captured, 1);
+
+    /* step 5: exactly five more frames. */
+    CHECK_OK(rbs_projector_command(p, "step 5", reply, sizeof reply));
+    assert_non_null(strstr(reply, "5 frames"));
+    for (tries = 0; tries < 200; tries++) {
+        CHECK_OK(rbs_projector_status(p, &info));
+        if (info.drawn == 6)
+            break;
+        nanosleep(&nap, NULL);
+    }
+    nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_int_equal(info.captured, 6);
+    assert_int_equal(info.frame, 5);
+    CHECK_OK(rbs_projector_command(p, "status", reply, sizeof reply));
+    assert_non_null(strstr(reply, "frame 5 of 1000000"));
+    assert_non_null(strstr(reply, "paused"));
+
+    /* Bad arguments are refused with a reason. */
+    assert_int_equal(rbs_projector_command(p, "step 0", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_non_null(strstr(reply, "step"));
+    assert_int_equal(rbs_projector_command(p, "step 3x", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_int_equal(rbs_projector_command(p, "speed -2", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_int_equal(rbs_projector_command(p, "speed nan", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_int_equal(rbs_projector_command(p, "pause now", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_int_equal(rbs_projector_command(p, "", reply, sizeof reply),
+                     RBS_E_INVALID);
+    CHECK_OK(rbs_projector_command(p, "speed 2.5", reply, sizeof reply));
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_true(info.speed == 2.5);
+
+    /* Renderer commands run on the renderer thread. */
+    CHECK_OK(rbs_projector_command(p, "ping", reply, sizeof reply));
+    assert_string_equal(reply, "pong");
+    assert_int_equal(rbs_projector_command(p, "warp 9", reply, sizeof reply),
+                     RBS_E_NOT_FOUND);
+    assert_non_null(strstr(reply, "unknown command"));
+
+    /* Resume, let it run, quit. */
+    CHECK_OK(rbs_projector_command(p, "resume", reply, sizeof reply));
+    nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_status(p, &info));
+    before = info.captured;
+    assert_true(before > 6);
+    CHECK_OK(rbs_projector_command(p, "ping", reply, sizeof reply));
+    assert_string_equal(reply, "pong");
+    CHECK_OK(rbs_projector_command(p, "quit", reply, sizeof reply));
+    assert_int_equal(rbs_projector_wait(p), RBS_E_CLOSED);
+    assert_true(rbs_projector_finished(p, 0));
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_int_equal(info.state, RBS_RUN_DONE);
+    assert_int_equal(info.result, RBS_E_CLOSED);
+    /* Every frame drawn, in order, none lost, up to the end. */
+    for (k = 0; k < ctx.made[0]->count; k++)
+        assert_int_equal(ctx.made[0]->numbers[k], k);
+    assert_int_equal(ctx.made[0]->count, info.drawn);
+    assert_int_equal(ctx.made[0]->finished, 1);
+    assert_int_equal(ctx.made[0]->lasts, 0);
+    /* After the end, commands still answer. */
+    CHECK_OK(rbs_projector_command(p, "status", reply, sizeof reply));
+    assert_non_null(strstr(reply, "done"));
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* A renderer can send "quit" back through its control hook. */
+static void renderer_control_quits(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    (void)state;
+    default_opts(&ctx);
+    ctx.opts.quit_at = 25;
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 1000000;
+    def.reel_capacity = 4;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
+    /* Frames already in the reel are still drawn: at most a reel more. */
+    assert_true(ctx.made[0]->count >= 26);
+    assert_true(ctx.made[0]->count <= 26 + 4 + 1);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* Destroying a running projector quits and joins. */
+static void destroy_while_running(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.endless = 1;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_start(p));
+    assert_int_equal(rbs_projector_start(p), RBS_E_INVALID); /* once only */
+    assert_false(rbs_projector_finished(p, 0.05));
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* Real time: 200 frames of 1 ms at speed 1 take at least 0.2 s of wall
+ * time (pacing sleeps; the lower bound cannot be met by chance). */
+static void realtime_paces_frames(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    rbs_run_info info;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 200;
+    def.realtime = 1;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    CHECK_OK(rbs_projector_status(p, &info));
+    assert_true(info.wall_time >= 0.2 - 0.002); /* one frame's rounding */
+    assert_int_equal(ctx.made[0]->count, 201);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* Live views only: the latest-only reel; frames increase strictly; while
+ * paused the live view gets repeats flagged paused. */
+static void live_view_gets_repeats_while_paused(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("live", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    struct timespec nap = {0, 200 * 1000 * 1000};
+    uint64_t k;
+    (void)state;
+    default_opts(&ctx);
+    ctx.opts.live = 1;
+    c = rec_class(&ctx, "live");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 1000000;
+    def.policy = RBS_REEL_LATEST_ONLY;
+    def.start_paused = 1;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_start(p));
+    nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_command(p, "step 3", NULL, 0));
+    nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_command(p, "quit", NULL, 0));
+    assert_int_equal(rbs_projector_wait(p), RBS_E_CLOSED);
+    /* ~0.4 s paused at 30 Hz: well over 3 repeats. */
+    assert_true(ctx.made[0]->repeats >= 3);
+    for (k = 1; k < ctx.made[0]->count; k++)
+        assert_true(ctx.made[0]->numbers[k] > ctx.made[0]->numbers[k - 1]);
+    assert_int_equal(ctx.made[0]->numbers[ctx.made[0]->count - 1], 3);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* The reel's contract on one thread. */
+static void reel_contract(void **state)
+{
+    rbs_reel *r;
+    rbs_frame *f, *f2;
+    const rbs_frame *g;
+    int i;
+    (void)state;
+    assert_int_equal(rbs_reel_create(1, 4, RBS_REEL_LOSSLESS, &r), RBS_E_INVALID);
+    assert_null(r);
+    assert_int_equal(rbs_reel_create(2, 0, RBS_REEL_LOSSLESS, &r), RBS_E_INVALID);
+    assert_int_equal(rbs_reel_create(2, 4, (rbs_reel_policy)7, &r), RBS_E_INVALID);
+    CHECK_OK(rbs_reel_create(3, 4, RBS_REEL_LATEST_ONLY, &r));
+    assert_int_equal(rbs_reel_end_write(r), RBS_E_INVALID); /* nothing begun */
+    assert_int_equal(rbs_reel_end_read(r), RBS_E_INVALID);
+    /* The reader holds frame 0; the writer laps the others without touching
+     * it. */
+    CHECK_OK(rbs_reel_begin_write(r, &f));
+    assert_int_equal(rbs_reel_begin_write(r, &f2), RBS_E_INVALID); /* one at a time */
+    assert_null(f2);
+    f->number = 0;
+    CHECK_OK(rbs_reel_end_write(r));
+    CHECK_OK(rbs_reel_begin_read(r, &g));
+    assert_int_equal(g->number, 0);
+    for (i = 1; i <= 10; i++) {
+        CHECK_OK(rbs_reel_begin_write(r, &f));
+        assert_ptr_not_equal(f, g);
+        f->number = (uint64_t)i;
+        CHECK_OK(rbs_reel_end_write(r));
+    }
+    assert_int_equal(g->number, 0);
+    CHECK_OK(rbs_reel_end_read(r));
+    /* The two newest remain, oldest first. */
+    CHECK_OK(rbs_reel_begin_read(r, &g));
+    assert_int_equal(g->number, 9);
+    CHECK_OK(rbs_reel_end_read(r));
+    CHECK_OK(rbs_reel_begin_read(r, &g));
+    assert_int_equal(g->number, 10);
+    CHECK_OK(rbs_reel_end_read(r));
+    assert_int_equal(rbs_reel_dropped(r), 8);
+    /* Closed: published frames drain, then RBS_E_CLOSED; writes refused, a
+     * frame begun before the close is discarded. */
+    CHECK_OK(rbs_reel_begin_write(r, &f));
+    f->number = 11;
+    CHECK_OK(rbs_reel_end_write(r));
+    CHECK_OK(rbs_reel_begin_write(r, &f));
+    rbs_reel_close(r);
+    rbs_reel_close(r); /* idempotent */
+    assert_int_equal(rbs_reel_end_write(r), RBS_E_CLOSED);
+    assert_int_equal(rbs_reel_begin_write(r, &f), RBS_E_CLOSED);
+    CHECK_OK(rbs_reel_begin_read(r, &g));
+    assert_int_equal(g->number, 11);
+    CHECK_OK(rbs_reel_end_read(r));
+    assert_int_equal(rbs_reel_begin_read(r, &g), RBS_E_CLOSED);
+    rbs_reel_destroy(r);
+    rbs_reel_destroy(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(reel_contract),
+        cmocka_unit_test(registry_finds_and_rejects),
+        cmocka_unit_test(every_frame_in_order_with_exact_state),
+        cmocka_unit_test(zero_steps_gives_frame_zero),
+        cmocka_unit_test(every_k_keeps_multiples_and_the_last),
+        cmocka_unit_test(renderers_do_not_change_results),
+        cmocka_unit_test(failing_check_creates_nothing),
+        cmocka_unit_test(failing_create_destroys_the_others),
+        cmocka_unit_test(failing_draw_stops_the_run),
+        cmocka_unit_test(failing_finish_is_reported),
+        cmocka_unit_test(numerical_failure_stops_the_run),
+        cmocka_unit_test(commands_steer_the_run),
+        cmocka_unit_test(renderer_control_quits),
+        cmocka_unit_test(destroy_while_running),
+        cmocka_unit_test(realtime_paces_frames),
+        cmocka_unit_test(live_view_gets_repeats_while_paused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
