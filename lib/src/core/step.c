@@ -119,6 +119,9 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);
         break;
+    case RBS_METHOD_EVENT:
+        st = rbs__step_event(w, info);
+        break;
     default:
         st = (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available",
                                                rbs_method_name(w->def.method));

@@ -100,6 +100,11 @@ struct rbs_world {
 
     /* contacts */
     rbs__contact *contact;
+
+    /* event method (step_event.c): per body motion between events */
+    double *ev_alpha;                     /* 3 per slot: angular acceleration */
+    int32_t *ev_mode;                     /* free / on a plane */
+    uint32_t *ev_plane;                   /* the plane a body rolls or slides on */
 };
 
 /* Layout and creation (world.c). */
@@ -146,6 +151,7 @@ void rbs__integrate_positions(rbs_world *w, double h);
 
 /* Methods: one entry point each (step_<method>.c). */
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
+rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
 

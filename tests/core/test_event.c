@@ -1,0 +1,257 @@
+/*
+ * test_event.c - the exact event-driven method against closed-form answers.
+ * Between events motion is integrated in closed form, so the tolerances are
+ * rounding-level (1e-9 m after a second of bounces: ~10 events, each root
+ * polished to a few ulps; 1e-12 where no event intervenes).
+ */
+#include "common.h"
+
+static const double G = 9.81;
+
+static rbs_world *event_world(uint32_t n, double gz, double e)
+{
+    rbs_world *w = make_world(n, 1e-3, gz, e);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EVENT, 0.0));
+    return w;
+}
+
+/* Exact height of a ball dropped with gap h, restitution e, at time t. */
+static double bounce_height(double h, double e, double t)
+{
+    double t1 = sqrt(2.0 * h / G), v;
+    if (t <= t1)
+        return h - 0.5 * G * t * t;
+    t -= t1;
+    v = e * sqrt(2.0 * G * h);
+    for (;;) {
+        double flight = 2.0 * v / G;
+        if (t <= flight)
+            return v * t - 0.5 * G * t * t;
+        t -= flight;
+        v *= e;
+    }
+}
+
+static void bouncing_ball_is_exact(void **state)
+{
+    const double h = 1.0, e = 0.5, r = 0.1;
+    rbs_world *w = event_world(4, -G, e);
+    rbs_body_id b;
+    int k;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 1; k <= 1250; ++k) {
+        step_n(w, 1);
+        ASSERT_NEAR(state_of(w, b).position.z - r, bounce_height(h, e, rbs_world_time(w)), 1e-9);
+    }
+    rbs_world_destroy(w);
+}
+
+/* Zeno: infinitely many bounces before t_inf = t1 (1 + e) / (1 - e); the
+ * method ends the cascade in resting contact after finitely many events once
+ * bounces are slower than g dt, and the ball then rests exactly at z = r. */
+static void zeno_limit_ends_in_rest(void **state)
+{
+    const double h = 1.0, e = 0.5, r = 0.1;
+    const double t_inf = sqrt(2.0 * h / G) * (1.0 + e) / (1.0 - e);
+    rbs_world *w = event_world(4, -G, e);
+    rbs_body_id b;
+    rbs_step_info info;
+    long events = 0;
+    int k;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 0; k < 3000; ++k) {
+        CHECK_OK(rbs_world_step(w, &info));
+        events += info.events;
+    }
+    assert_true(events > 5 && events < 100);
+    ASSERT_NEAR(state_of(w, b).position.z, r, 1e-12);
+    assert_true(state_of(w, b).velocity.z == 0.0);
+    /* at rest no later than the Zeno time plus a frame */
+    rbs_world_destroy(w);
+    w = event_world(4, -G, e);
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, (int)ceil(t_inf / 1e-3) + 1);
+    assert_true(state_of(w, b).velocity.z == 0.0);
+    rbs_world_destroy(w);
+}
+
+/* Sliding with backspin: a solid ball launched at v0 with spin w0 (about
+ * +y; rolling forward is w = v / r) rolls from t = 2 (v0 - r w0) / (7 mu g)
+ * at v = (5 v0 + 2 r w0) / 7.  Before that x = v0 t - mu g t^2 / 2. */
+static void backspin_slide_to_roll_is_exact(void **state)
+{
+    const double v0 = 5.0, r = 0.1, w0 = -20.0, mu = 0.3;
+    const double tr = 2.0 * (v0 - r * w0) / (7.0 * mu * G), vr = (5.0 * v0 + 2.0 * r * w0) / 7.0;
+    const double xr = v0 * tr - 0.5 * mu * G * tr * tr;
+    rbs_world *w = event_world(4, -G, 0.5);
+    rbs_material_id m = material(w, "m", mu, mu, -1.0);
+    rbs_sphere_def s;
+    rbs_body_id b;
+    (void)state;
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.position.z = r;
+    s.velocity.x = v0;
+    s.angular_velocity.y = w0;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+    step_n(w, 500); /* t = 0.5 < tr */
+    ASSERT_NEAR(state_of(w, b).position.x, v0 * 0.5 - 0.5 * mu * G * 0.25, 1e-12);
+    step_n(w, 1500); /* t = 2.0 > tr */
+    ASSERT_NEAR(state_of(w, b).velocity.x, vr, 1e-12);
+    ASSERT_NEAR(state_of(w, b).angular_velocity.y * r, vr, 1e-12);
+    ASSERT_NEAR(state_of(w, b).position.x, xr + vr * (2.0 - tr), 1e-11);
+    ASSERT_NEAR(state_of(w, b).position.z, r, 1e-15);
+    rbs_world_destroy(w);
+}
+
+/* On an incline: rolls at a = 5/7 g sin(th) if tan(th) <= 7/2 mu_s, else
+ * slides at g (sin th - mu_k cos th); the distance after 1 s is exact. */
+static void incline_is_exact(void **state)
+{
+    const double th = 0.35, r = 0.1;
+    const double mus[2] = {0.5, 0.05};
+    int i;
+    (void)state;
+    for (i = 0; i < 2; ++i) {
+        rbs_world *w = event_world(4, -G, 0.0);
+        rbs_material_id m = material(w, "m", mus[i], mus[i], -1.0);
+        rbs_plane_def p;
+        rbs_body_id b;
+        double a = tan(th) <= 3.5 * mus[i] ? 5.0 / 7.0 * G * sin(th) : G * (sin(th) - mus[i] * cos(th));
+        double dx, dz;
+        rbs_plane_def_init(&p);
+        p.normal.x = -sin(th);
+        p.normal.z = cos(th);
+        p.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        b = ball(w, r, 1.0, -r * sin(th), 0, r * cos(th), 0, 0, 0, m);
+        step_n(w, 1000);
+        dx = state_of(w, b).position.x + r * sin(th);
+        dz = state_of(w, b).position.z - r * cos(th);
+        ASSERT_NEAR(-(dx * cos(th) + dz * sin(th)), 0.5 * a, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
+/* Newton's cradle in time order: only the last ball moves, exactly. */
+static void cradle_is_exact(void **state)
+{
+    rbs_world *w = event_world(8, 0.0, 1.0);
+    rbs_body_id b[5];
+    int i;
+    (void)state;
+    b[0] = ball(w, 0.1, 1.0, -0.5, 0, 0, 1.0, 0, 0, (rbs_material_id){0, 0});
+    for (i = 1; i < 5; ++i)
+        b[i] = ball(w, 0.1, 1.0, 0.2 * (i - 1), 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 1000);
+    for (i = 0; i < 4; ++i)
+        ASSERT_NEAR(state_of(w, b[i]).velocity.x, 0.0, 1e-15);
+    ASSERT_NEAR(state_of(w, b[4]).velocity.x, 1.0, 1e-15);
+    /* the last ball left at t = 0.3 s from x = 0.6 */
+    ASSERT_NEAR(state_of(w, b[4]).position.x, 0.6 + 1.0 * (1.0 - 0.3), 1e-12);
+    rbs_world_destroy(w);
+}
+
+/* Two spheres under different accelerations (one free, one rolling on the
+ * floor) meet at the root of a quartic: the free ball falls onto the
+ * rolling one exactly when |d(t)| = ra + rb. */
+static void quartic_contact_time(void **state)
+{
+    rbs_world *w = event_world(4, -G, 1.0);
+    rbs_body_id a;
+    rbs_step_info info;
+    double t_hit = -1.0, exact;
+    int k;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    /* ball b rolls along x at 1 m/s (frictionless floor: slides at 1 m/s) */
+    ball(w, 0.1, 1.0, 0.0, 0, 0.1, 1.0, 0, 0, (rbs_material_id){0, 0});
+    /* ball a starts above x = 0.5, at rest: centres meet when
+     * (0.5 - t)^2 + (z(t) - 0.1)^2 = 0.04, z(t) = 1.0 - g t^2 / 2 */
+    a = ball(w, 0.1, 1.0, 0.5, 0, 1.0, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 0; k < 600 && t_hit < 0.0; ++k) {
+        CHECK_OK(rbs_world_step(w, &info));
+        if (info.colliding)
+            t_hit = rbs_world_time(w);
+    }
+    /* bisection on the exact distance for the reference time */
+    {
+        double lo = 0.0, hi = 0.6;
+        int it;
+        for (it = 0; it < 200; ++it) {
+            double t = 0.5 * (lo + hi), dx = 0.5 - t, dz = 0.9 - 0.5 * G * t * t;
+            if (dx * dx + dz * dz > 0.04)
+                lo = t;
+            else
+                hi = t;
+        }
+        exact = hi;
+    }
+    assert_true(t_hit >= exact && t_hit < exact + 1e-3);
+    (void)a;
+    rbs_world_destroy(w);
+}
+
+/* Out of scope is an error, never a wrong answer: a stack of two balls. */
+static void stack_is_unsupported_with_reason(void **state)
+{
+    rbs_world *w = event_world(4, -G, 0.5);
+    uint64_t h;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    ball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, 0, (rbs_material_id){0, 0});
+    ball(w, 0.1, 1.0, 0, 0, 0.3, 0, 0, 0, (rbs_material_id){0, 0});
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_world_step(w, NULL), RBS_E_UNSUPPORTED);
+    assert_non_null(strstr(rbs_world_last_error(w), "pressed together"));
+    assert_true(rbs_world_hash(w) == h);
+    rbs_world_destroy(w);
+}
+
+/* Momentum in a 16-ball break on a frictionless table is conserved to
+ * rounding, and nothing overlaps. */
+static void billiards_break_conserves_momentum(void **state)
+{
+    rbs_world *w = event_world(24, -G, 0.95);
+    rbs_vec3 p0, p1;
+    rbs_step_info info;
+    int row, i, k;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    ball(w, 0.0286, 0.17, -1.0, 0.001, 0.0286, 8.0, 0, 0, (rbs_material_id){0, 0});
+    for (row = 0; row < 5; ++row)
+        for (i = 0; i <= row; ++i)
+            ball(w, 0.0286, 0.17, row * 0.0286 * sqrt(3.0) + 1e-4 * row,
+                 (i - row / 2.0) * (2 * 0.0286 + 1e-4), 0.0286, 0, 0, 0, (rbs_material_id){0, 0});
+    CHECK_OK(rbs_world_momentum(w, &p0, NULL));
+    for (k = 0; k < 500; ++k) {
+        CHECK_OK(rbs_world_step(w, &info));
+        assert_true(info.max_overlap < 1e-9);
+    }
+    CHECK_OK(rbs_world_momentum(w, &p1, NULL));
+    ASSERT_NEAR(p1.x, p0.x, 1e-12);
+    ASSERT_NEAR(p1.y, p0.y, 1e-12);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(bouncing_ball_is_exact),
+        cmocka_unit_test(zeno_limit_ends_in_rest),
+        cmocka_unit_test(backspin_slide_to_roll_is_exact),
+        cmocka_unit_test(incline_is_exact),
+        cmocka_unit_test(cradle_is_exact),
+        cmocka_unit_test(quartic_contact_time),
+        cmocka_unit_test(stack_is_unsupported_with_reason),
+        cmocka_unit_test(billiards_break_conserves_momentum),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
