@@ -471,9 +471,9 @@ static rbs_status parse_entry(const cJSON *root, rbsf__config *config,
             i++;
         }
     }
-    if ((uint64_t)config->width * config->height > 64u * 1024u * 1024u)
+    if ((uint64_t)config->width * config->height > 16u * 1024u * 1024u)
         return fail(err, errlen, "width: %u x %u pixels is too large (at most "
-                    "64 Mpixel per view)", config->width, config->height);
+                    "16 Mpixel per view)", config->width, config->height);
     return RBS_OK;
 }
 
