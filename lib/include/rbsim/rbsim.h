@@ -435,6 +435,33 @@ RBS_API rbs_status rbs_world_usage(const rbs_world *world, rbs_usage *out);
  * determinism tests and golden files. */
 RBS_API uint64_t rbs_world_hash(const rbs_world *world);
 
+/* ------------------------------------------------------------------------- */
+/* Checkpoints                                                               */
+/* ------------------------------------------------------------------------- */
+
+/** Bytes a checkpoint of this world takes (0 if world is invalid). */
+RBS_API size_t rbs_world_checkpoint_size(const rbs_world *world);
+
+/** Write the exact state (every double bit for bit, the step count, bodies,
+ * materials and settings) with a format version and a 64-bit checksum into
+ * buf.  RBS_E_MEMORY if size is too small.  written may be NULL. */
+RBS_API rbs_status rbs_world_checkpoint_write(const rbs_world *world, void *buf, size_t size,
+                                              size_t *written);
+
+/** Create a world (one allocation) from a checkpoint.  A corrupt, truncated
+ * or foreign buffer is RBS_E_CORRUPT; another format version RBS_E_VERSION. */
+RBS_API rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size,
+                                                    rbs_world **out);
+
+/** Save a checkpoint to a file atomically: a temporary file beside it,
+ * fsync, rename.  A crash mid-write leaves any previous file intact. */
+RBS_API rbs_status rbs_world_save(const rbs_world *world, const char *path);
+
+/** Load a world saved by rbs_world_save().  On error *out is NULL and, when
+ * message is not NULL, the reason is written there. */
+RBS_API rbs_status rbs_world_load(const char *path, rbs_world **out, char *message,
+                                  size_t message_size);
+
 #ifdef __cplusplus
 }
 #endif

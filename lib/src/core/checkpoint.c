@@ -1,0 +1,318 @@
+/*
+ * checkpoint.c - exact checkpoints of a world.
+ *
+ * A world is one block whose arrays are laid out by its definition alone, so
+ * a checkpoint is: a header (magic, format version, byte order, sizes), the
+ * definition, the world's counters, and the block's arrays verbatim -- every
+ * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
+ * precedes it.  Reading checks everything before it builds anything.
+ *
+ * Format version 1 (little or big endian as written; a reader on the other
+ * byte order rejects it as foreign):
+ *   char     magic[8]   "RBSCKPT\0"
+ *   uint32   version    1
+ *   uint32   endian     0x01020304
+ *   uint32   def_size   sizeof(rbs_world_def)
+ *   uint32   reserved   0
+ *   uint64   arrays     bytes of the arrays region
+ *   rbs_world_def def
+ *   counters (see struct counters)
+ *   arrays
+ *   uint64   checksum
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/world_internal.h"
+
+#define CKPT_VERSION 1u
+static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
+
+typedef struct header {
+    char magic[8];
+    uint32_t version;
+    uint32_t endian;
+    uint32_t def_size;
+    uint32_t reserved;
+    uint64_t arrays;
+} header;
+
+typedef struct counters {
+    uint64_t step_count;
+    uint32_t slots, bodies, free_count, materials, pairs, contacts_high;
+} counters;
+
+static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; ++i) {
+        h ^= p[i];
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+static size_t arrays_offset(void) { return (sizeof(rbs_world) + 15u) & ~(size_t)15u; }
+
+size_t rbs_world_checkpoint_size(const rbs_world *w)
+{
+    if (w == NULL || w->bytes == 0)
+        return 0;
+    return sizeof(header) + sizeof(rbs_world_def) + sizeof(counters) +
+           (w->bytes - arrays_offset()) + sizeof(uint64_t);
+}
+
+rbs_status rbs_world_checkpoint_write(const rbs_world *w, void *buf, size_t size, size_t *written)
+{
+    size_t need = rbs_world_checkpoint_size(w), at = 0;
+    unsigned char *out = (unsigned char *)buf;
+    header h;
+    counters c;
+    uint64_t sum;
+    if (need == 0 || buf == NULL)
+        return RBS_E_INVALID;
+    if (size < need)
+        return RBS_E_MEMORY;
+    memset(&h, 0, sizeof h);
+    memcpy(h.magic, ckpt_magic, sizeof h.magic);
+    h.version = CKPT_VERSION;
+    h.endian = 0x01020304u;
+    h.def_size = (uint32_t)sizeof(rbs_world_def);
+    h.arrays = (uint64_t)(w->bytes - arrays_offset());
+    memset(&c, 0, sizeof c);
+    c.step_count = w->step_count;
+    c.slots = w->slots;
+    c.bodies = w->bodies;
+    c.free_count = w->free_count;
+    c.materials = w->materials;
+    c.pairs = w->pairs;
+    c.contacts_high = w->contacts_high;
+    memcpy(out + at, &h, sizeof h);
+    at += sizeof h;
+    memcpy(out + at, &w->def, sizeof w->def);
+    at += sizeof w->def;
+    memcpy(out + at, &c, sizeof c);
+    at += sizeof c;
+    memcpy(out + at, (const unsigned char *)w + arrays_offset(), (size_t)h.arrays);
+    at += (size_t)h.arrays;
+    sum = fnv1a(14695981039346656037ull, out, at);
+    memcpy(out + at, &sum, sizeof sum);
+    at += sizeof sum;
+    if (written)
+        *written = at;
+    return RBS_OK;
+}
+
+/* Check a checkpoint buffer; on success *def and *c hold its contents. */
+static rbs_status ckpt_check(const unsigned char *in, size_t size, rbs_world_def *def, counters *c,
+                             uint64_t *arrays, char *msg, size_t len)
+{
+    header h;
+    uint64_t sum, want;
+    size_t body, need;
+    if (size < sizeof h) {
+        snprintf(msg, len, "truncated: %zu bytes is shorter than a checkpoint header", size);
+        return RBS_E_CORRUPT;
+    }
+    memcpy(&h, in, sizeof h);
+    if (memcmp(h.magic, ckpt_magic, sizeof h.magic) != 0) {
+        snprintf(msg, len, "not an rbsim checkpoint (bad magic)");
+        return RBS_E_CORRUPT;
+    }
+    if (h.endian != 0x01020304u) {
+        snprintf(msg, len, "written on a machine of the other byte order");
+        return RBS_E_CORRUPT;
+    }
+    if (h.version != CKPT_VERSION) {
+        snprintf(msg, len, "format version %u, this library reads version %u", (unsigned)h.version,
+                 CKPT_VERSION);
+        return RBS_E_VERSION;
+    }
+    if (h.def_size != sizeof(rbs_world_def)) {
+        snprintf(msg, len, "written by a library with another world definition (%u bytes, here %zu)",
+                 (unsigned)h.def_size, sizeof(rbs_world_def));
+        return RBS_E_VERSION;
+    }
+    body = sizeof h + sizeof(rbs_world_def) + sizeof(counters);
+    if (h.arrays > (uint64_t)size || size < body + (size_t)h.arrays + sizeof sum) {
+        snprintf(msg, len, "truncated: %zu bytes, expected %llu", size,
+                 (unsigned long long)(body + h.arrays + sizeof sum));
+        return RBS_E_CORRUPT;
+    }
+    need = body + (size_t)h.arrays;
+    memcpy(&sum, in + need, sizeof sum);
+    want = fnv1a(14695981039346656037ull, in, need);
+    if (sum != want) {
+        snprintf(msg, len, "checksum mismatch: the file is corrupt");
+        return RBS_E_CORRUPT;
+    }
+    if (size != need + sizeof sum) {
+        snprintf(msg, len, "%zu trailing bytes after the checkpoint", size - need - sizeof sum);
+        return RBS_E_CORRUPT;
+    }
+    memcpy(def, in + sizeof h, sizeof *def);
+    memcpy(c, in + sizeof h + sizeof *def, sizeof *c);
+    *arrays = h.arrays;
+    return RBS_OK;
+}
+
+static rbs_status create_from(const void *buf, size_t size, rbs_world **out, char *msg, size_t len)
+{
+    const unsigned char *in = (const unsigned char *)buf;
+    rbs_world_def def;
+    counters c;
+    uint64_t arrays;
+    rbs_world *w;
+    rbs_status st;
+    if (out == NULL || buf == NULL)
+        return RBS_E_INVALID;
+    *out = NULL;
+    st = ckpt_check(in, size, &def, &c, &arrays, msg, len);
+    if (st != RBS_OK)
+        return st;
+    def.struct_size = (uint32_t)sizeof def;
+    st = rbs_world_create(&def, &w);
+    if (st != RBS_OK) {
+        snprintf(msg, len, "its world definition is not valid here (%s)", rbs_status_string(st));
+        return st == RBS_E_MEMORY ? st : RBS_E_CORRUPT;
+    }
+    if (w->bytes - arrays_offset() != arrays || c.slots > def.max_bodies ||
+        c.materials > def.max_materials || c.pairs > def.max_pairs || c.bodies > c.slots ||
+        c.free_count > c.slots) {
+        rbs_world_destroy(w);
+        snprintf(msg, len, "its layout does not match its definition");
+        return RBS_E_CORRUPT;
+    }
+    memcpy((unsigned char *)w + arrays_offset(),
+           in + sizeof(header) + sizeof(rbs_world_def) + sizeof(counters), (size_t)arrays);
+    w->step_count = c.step_count;
+    w->slots = c.slots;
+    w->bodies = c.bodies;
+    w->free_count = c.free_count;
+    w->materials = c.materials;
+    w->pairs = c.pairs;
+    w->contacts_high = c.contacts_high;
+    w->plan_dirty = 1;
+    /* derived lists */
+    {
+        uint32_t i;
+        w->sphere_count = 0;
+        w->plane_count = 0;
+        for (i = 0; i < w->slots; ++i) {
+            if (w->type[i] == RBS_BODY_SPHERE)
+                w->spheres[w->sphere_count++] = i;
+            else if (w->type[i] == RBS_BODY_PLANE)
+                w->planes[w->plane_count++] = i;
+        }
+    }
+    *out = w;
+    return RBS_OK;
+}
+
+rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size, rbs_world **out)
+{
+    char msg[256];
+    return create_from(buf, size, out, msg, sizeof msg);
+}
+
+rbs_status rbs_world_save(const rbs_world *w, const char *path)
+{
+    size_t n = rbs_world_checkpoint_size(w), len;
+    unsigned char *buf;
+    char *tmp;
+    int fd;
+    rbs_status st = RBS_OK;
+    if (n == 0 || path == NULL || path[0] == '\0')
+        return RBS_E_INVALID;
+    len = strlen(path);
+    /* saving is not part of stepping: it may allocate */
+    buf = (unsigned char *)malloc(n);
+    tmp = (char *)malloc(len + 16);
+    if (buf == NULL || tmp == NULL) {
+        free(buf);
+        free(tmp);
+        return RBS_E_MEMORY;
+    }
+    rbs_world_checkpoint_write(w, buf, n, NULL);
+    snprintf(tmp, len + 16, "%s.tmp%ld", path, (long)getpid());
+    fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) {
+        st = RBS_E_IO;
+    } else {
+        size_t at = 0;
+        while (at < n) {
+            ssize_t k = write(fd, buf + at, n - at);
+            if (k < 0 && errno == EINTR)
+                continue;
+            if (k <= 0) {
+                st = RBS_E_IO;
+                break;
+            }
+            at += (size_t)k;
+        }
+        if (st == RBS_OK && fsync(fd) != 0)
+            st = RBS_E_IO;
+        if (close(fd) != 0)
+            st = RBS_E_IO;
+        if (st == RBS_OK && rename(tmp, path) != 0)
+            st = RBS_E_IO;
+        if (st != RBS_OK)
+            unlink(tmp);
+    }
+    free(buf);
+    free(tmp);
+    return st;
+}
+
+rbs_status rbs_world_load(const char *path, rbs_world **out, char *message, size_t message_size)
+{
+    char msg[256] = "";
+    FILE *f;
+    unsigned char *buf = NULL;
+    long n;
+    rbs_status st;
+    if (out)
+        *out = NULL;
+    if (path == NULL || out == NULL)
+        return RBS_E_INVALID;
+    f = fopen(path, "rb");
+    if (f == NULL) {
+        snprintf(msg, sizeof msg, "%s: cannot open: %s", path, strerror(errno));
+        st = RBS_E_IO;
+        goto done;
+    }
+    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        snprintf(msg, sizeof msg, "%s: cannot read", path);
+        st = RBS_E_IO;
+        goto done;
+    }
+    buf = (unsigned char *)malloc(n > 0 ? (size_t)n : 1u);
+    if (buf == NULL) {
+        fclose(f);
+        st = RBS_E_MEMORY;
+        goto done;
+    }
+    if (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        fclose(f);
+        snprintf(msg, sizeof msg, "%s: read error", path);
+        st = RBS_E_IO;
+        goto done;
+    }
+    fclose(f);
+    {
+        char inner[200] = "";
+        st = create_from(buf, (size_t)n, out, inner, sizeof inner);
+        if (st != RBS_OK)
+            snprintf(msg, sizeof msg, "%s: %s", path, inner);
+    }
+done:
+    free(buf);
+    if (message && message_size > 0)
+        snprintf(message, message_size, "%s", msg);
+    return st;
+}

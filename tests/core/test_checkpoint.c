@@ -1,0 +1,97 @@
+/*
+ * test_checkpoint.c - a checkpoint restores the exact state: stepping on
+ * from it gives bit-identical results to never having stopped; corrupt,
+ * truncated and foreign data are rejected with a reason.
+ */
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "common.h"
+
+static rbs_world *scene(void)
+{
+    rbs_world *w = make_world(16, 1e-3, -9.81, 0.7);
+    rbs_material_id m = material(w, "m", 0.4, 0.3, -1.0);
+    rbs_sphere_def s;
+    int i;
+    floor_plane(w, m);
+    for (i = 0; i < 5; ++i)
+        ball(w, 0.1, 1.0 + i, 0.25 * i, 0, 0.3 + 0.1 * i, 1.0 - 0.3 * i, 0.2, 0, m);
+    rbs_sphere_def_init(&s);
+    s.name = "spinner";
+    s.position.x = -1;
+    s.position.z = 0.5;
+    s.angular_velocity.z = 7;
+    s.center_of_mass.y = 0.01;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    return w;
+}
+
+static void resume_is_bit_identical(void **state)
+{
+    char path[] = "/tmp/rbsim-ckpt-XXXXXX";
+    rbs_world *a = scene(), *b;
+    char msg[256];
+    int fd = mkstemp(path);
+    rbs_body_id id;
+    (void)state;
+    assert_true(fd >= 0);
+    close(fd);
+    step_n(a, 700);
+    CHECK_OK(rbs_world_save(a, path));
+    CHECK_OK(rbs_world_load(path, &b, msg, sizeof msg));
+    assert_true(rbs_world_hash(a) == rbs_world_hash(b));
+    assert_int_equal(rbs_world_step_count(b), 700);
+    CHECK_OK(rbs_world_find_body(b, "spinner", &id));
+    step_n(a, 800);
+    step_n(b, 800);
+    assert_true(rbs_world_hash(a) == rbs_world_hash(b));
+    assert_true(rbs_world_time(a) == rbs_world_time(b));
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+    unlink(path);
+}
+
+static void damaged_checkpoints_are_rejected(void **state)
+{
+    rbs_world *a = scene(), *b = NULL;
+    size_t n = rbs_world_checkpoint_size(a), written;
+    unsigned char *buf = malloc(n);
+    char msg[256];
+    (void)state;
+    assert_int_equal(rbs_world_checkpoint_write(a, buf, n - 1, NULL), RBS_E_MEMORY);
+    CHECK_OK(rbs_world_checkpoint_write(a, buf, n, &written));
+    assert_int_equal(written, n);
+    /* truncated */
+    assert_int_equal(rbs_world_create_from_checkpoint(buf, n - 9, &b), RBS_E_CORRUPT);
+    assert_null(b);
+    assert_int_equal(rbs_world_create_from_checkpoint(buf, 10, &b), RBS_E_CORRUPT);
+    /* one flipped bit in a double */
+    buf[n / 2] ^= 0x10;
+    assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_CORRUPT);
+    buf[n / 2] ^= 0x10;
+    /* another format version */
+    buf[8] = 9;
+    assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
+    buf[8] = 1;
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &b));
+    rbs_world_destroy(b);
+    /* a foreign file */
+    assert_int_equal(rbs_world_load("/bin/sh", &b, msg, sizeof msg), RBS_E_CORRUPT);
+    assert_non_null(strstr(msg, "not an rbsim checkpoint"));
+    assert_int_equal(rbs_world_load("/nonexistent/x", &b, msg, sizeof msg), RBS_E_IO);
+    assert_non_null(strstr(msg, "cannot open"));
+    assert_int_equal(rbs_world_save(a, "/nonexistent/dir/x"), RBS_E_IO);
+    free(buf);
+    rbs_world_destroy(a);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(resume_is_bit_identical),
+        cmocka_unit_test(damaged_checkpoints_are_rejected),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
