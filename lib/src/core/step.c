@@ -119,6 +119,12 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);
         break;
+    case RBS_METHOD_VERLET:
+        st = rbs__step_verlet(w, info);
+        break;
+    case RBS_METHOD_RK4:
+        st = rbs__step_rk4(w, info);
+        break;
     case RBS_METHOD_EVENT:
         st = rbs__step_event(w, info);
         break;

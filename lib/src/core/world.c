@@ -236,6 +236,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->pair = carve(base, &at, P * sizeof(rbs__pair));
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
+    x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));
     x->ev_plane = carve(base, &at, B * sizeof(uint32_t));
@@ -273,7 +274,7 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     need = rbs__world_layout(NULL, &d, NULL);
     if (bytes < need)
         return RBS_E_MEMORY;
-    if (d.method != RBS_METHOD_EULER && d.method != RBS_METHOD_EVENT)
+    if (d.method != RBS_METHOD_EULER && d.method != RBS_METHOD_VERLET && d.method != RBS_METHOD_RK4 && d.method != RBS_METHOD_EVENT)
         return RBS_E_UNSUPPORTED;
     memset(buffer, 0, need);
     w = (rbs_world *)buffer;
@@ -973,7 +974,7 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
         FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
     if (isnan(tolerance) || (tolerance > 0.0 && !isfinite(tolerance)))
         FAIL(w, RBS_E_INVALID, "tolerance must be finite");
-    if (method != RBS_METHOD_EULER && method != RBS_METHOD_EVENT)
+    if (method != RBS_METHOD_EULER && method != RBS_METHOD_VERLET && method != RBS_METHOD_RK4 && method != RBS_METHOD_EVENT)
         FAIL(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available in this build", rbs_method_name(method));
     w->def.method = method;
     if (tolerance > 0.0)

@@ -105,6 +105,9 @@ struct rbs_world {
     double *ev_alpha;                     /* 3 per slot: angular acceleration */
     int32_t *ev_mode;                     /* free / on a plane */
     uint32_t *ev_plane;                   /* the plane a body rolls or slides on */
+
+    /* methods (step_verlet.c, step_rk4.c, step_adaptive.c) */
+    double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot */
 };
 
 /* Layout and creation (world.c). */
@@ -151,8 +154,12 @@ void rbs__integrate_positions(rbs_world *w, double h);
 
 /* Methods: one entry point each (step_<method>.c). */
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
+rbs_status rbs__step_verlet(rbs_world *w, rbs_step_info *info);
+rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info);
+void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info);
 rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
+#define RBS__SCRATCH_STRIDE 40 /* doubles per slot of method_scratch */
 
 #endif

@@ -1,0 +1,197 @@
+/*
+ * step_rk4.c - classical Runge-Kutta between contacts (RBS_METHOD_RK4).
+ *
+ * The sub-step loop is Euler's rbs__step_rollback(); this file supplies the
+ * advance.  For the smooth forces the state (x, v) of every moving sphere's
+ * centre of mass is advanced by one classical RK4 step of h with a(x)
+ * (uniform gravity, applied force, mutual gravity at the stage positions):
+ *
+ *   x' = x + h (v1 + 2 v2 + 2 v3 + v4) / 6,  v' = v + h (a1 + 2 a2 + 2 a3 + a4) / 6
+ *
+ * Rotation: a body whose angular velocity cannot change (isotropic inertia,
+ * no applied torque) turns by the exact rotation exp(w h), as in Euler.  A
+ * body with torque or anisotropic inertia (off-centre mass included) has
+ * (q, w) advanced by the same RK4 on  q' = 1/2 (0, w) q,
+ * w' = I^-1 (tau - w x I w)  (world frame), q renormalised afterwards: fourth
+ * order for the torque-free and torqued rigid body.
+ *
+ * Contacts, as in Verlet: the resting pass runs on the mean ("drift")
+ * velocities (v1 + 2 v2 + 2 v3 + v4) / 6 before positions move, and again on
+ * the end velocities; a velocity change made by the first pass moves the
+ * position by dv h and the orientation by exp(dw h), and is carried to the
+ * end velocity.  With constant forces this is the exact constant-acceleration
+ * motion (x' = x + v h + a h^2/2) for free, rolling and sliding bodies.
+ * Four acceleration evaluations per sub-step.
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+/* Per-slot scratch (w->method_scratch, RBS__SCRATCH_STRIDE doubles). */
+enum {
+    S_X0 = 0,    /* COM at the start, 3 */
+    S_V0 = 3,    /* velocity at the start, 3 */
+    S_Q0 = 6,    /* orientation at the start, 4 */
+    S_W0 = 10,   /* angular velocity at the start, 3 */
+    S_SX = 13,   /* sum of b_k v_k, 3 */
+    S_SV = 16,   /* sum of b_k a_k, 3 */
+    S_SW = 19,   /* sum of b_k alpha_k, 3 */
+    S_SWD = 22,  /* sum of b_k w_k, 3 */
+    S_SQ = 25,   /* sum of b_k qdot_k, 4 */
+    S_QR = 29,   /* raw (unnormalised) stage quaternion, 4 */
+    S_SPIN = 33, /* 1: (q, w) integrated by RK4 */
+    S_USED = 34
+};
+
+static quat q_axpy(quat a, quat b, double s)
+{
+    quat r = {a.w + b.w * s, a.x + b.x * s, a.y + b.y * s, a.z + b.z * s};
+    return r;
+}
+
+/* dq/dt = 1/2 (0, w) q for a world-frame w. */
+static quat q_dot(v3 om, quat q)
+{
+    quat o = {0.0, om.x, om.y, om.z}, r = q_mul(o, q);
+    r.w *= 0.5; r.x *= 0.5; r.y *= 0.5; r.z *= 0.5;
+    return r;
+}
+
+/* Angular acceleration I^-1 (tau - w x I w) at orientation q (unit). */
+static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om)
+{
+    v3 dw;
+    if (!w->isotropic[i])
+        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q_load(&w->orient[4 * i]), om)));
+    if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
+        return v3_make(0.0, 0.0, 0.0);
+    rbs__body_inv_inertia_world(w, i, tau, &dw);
+    return dw;
+}
+
+/* Place body i's geometric centre so that its COM is at com for orientation q. */
+static void place(rbs_world *w, uint32_t i, v3 com, quat q)
+{
+    v3 c = v3_load(&w->com_body[3 * i]);
+    if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0)
+        v3_store(&w->pos[3 * i], com);
+    else
+        v3_store(&w->pos[3 * i], v3_sub(com, q_rotate(q, c)));
+}
+
+void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
+{
+    static const double b[4] = {1.0, 2.0, 2.0, 1.0};
+    const double c[3] = {0.5 * h, 0.5 * h, h};
+    rbs_step_info first;
+    uint32_t k;
+    int s;
+
+    /* Start of the sub-step. */
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        v3 a, tau;
+        if (w->fixed[i])
+            continue;
+        v3_store(&S[S_X0], rbs__body_com(w, i));
+        memcpy(&S[S_V0], &w->vel[3 * i], 3 * sizeof(double));
+        memcpy(&S[S_Q0], &w->orient[4 * i], 4 * sizeof(double));
+        memcpy(&S[S_W0], &w->avel[3 * i], 3 * sizeof(double));
+        memcpy(&S[S_QR], &w->orient[4 * i], 4 * sizeof(double));
+        memset(&S[S_SX], 0, (S_QR - S_SX) * sizeof(double));
+        S[S_SPIN] = 0.0;
+        if (w->plan.angular) {
+            v3 om = v3_load(&w->avel[3 * i]);
+            rbs__accelerations(w, i, &a, &tau);
+            if ((tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) ||
+                (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)))
+                S[S_SPIN] = 1.0;
+        }
+    }
+
+    /* Four stages: evaluate at the current stage state, accumulate, move to
+     * the next stage state. */
+    for (s = 0; s < 4; ++s) {
+        if (w->plan.mutual)
+            rbs__mutual_gravity(w);
+        for (k = 0; k < w->sphere_count; ++k) {
+            uint32_t i = w->spheres[k];
+            double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+            v3 a, tau, vs = v3_load(&w->vel[3 * i]);
+            if (w->fixed[i])
+                continue;
+            rbs__accelerations(w, i, &a, &tau);
+            if (w->plan.mutual)
+                a = v3_add(a, v3_load(&w->acc[3 * i]));
+            v3_store(&S[S_SX], v3_mad(v3_load(&S[S_SX]), vs, b[s]));
+            v3_store(&S[S_SV], v3_mad(v3_load(&S[S_SV]), a, b[s]));
+            if (S[S_SPIN] != 0.0) {
+                v3 om = v3_load(&w->avel[3 * i]), al = ang_acc(w, i, tau, om);
+                quat qd = q_dot(om, q_load(&S[S_QR]));
+                v3_store(&S[S_SW], v3_mad(v3_load(&S[S_SW]), al, b[s]));
+                v3_store(&S[S_SWD], v3_mad(v3_load(&S[S_SWD]), om, b[s]));
+                q_store(&S[S_SQ], q_axpy(q_load(&S[S_SQ]), qd, b[s]));
+                if (s < 3) {
+                    quat qr = q_axpy(q_load(&S[S_Q0]), qd, c[s]);
+                    q_store(&S[S_QR], qr);
+                    q_store(&w->orient[4 * i], q_normalize(qr));
+                    v3_store(&w->avel[3 * i], v3_mad(v3_load(&S[S_W0]), al, c[s]));
+                }
+            }
+            if (s < 3) {
+                place(w, i, v3_mad(v3_load(&S[S_X0]), vs, c[s]), q_load(&w->orient[4 * i]));
+                v3_store(&w->vel[3 * i], v3_mad(v3_load(&S[S_V0]), a, c[s]));
+            }
+        }
+    }
+
+    /* Resting pass on the drift velocities. */
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        if (w->fixed[i])
+            continue;
+        v3_store(&w->vel[3 * i], v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0));
+        /* the drift angular velocity: the stage mean, or the (constant) start */
+        if (S[S_SPIN] != 0.0)
+            v3_store(&w->avel[3 * i], v3_scale(v3_load(&S[S_SWD]), 1.0 / 6.0));
+        else
+            memcpy(&w->avel[3 * i], &S[S_W0], 3 * sizeof(double));
+        memcpy(&w->orient[4 * i], &S[S_Q0], 4 * sizeof(double));
+        place(w, i, v3_load(&S[S_X0]), q_load(&S[S_Q0]));
+    }
+    memset(&first, 0, sizeof first);
+    rbs__solve_resting(w, &first);
+    info->sweep_limit += first.sweep_limit;
+
+    /* Drift, then the end velocities plus what the resting pass changed. */
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        v3 v = v3_load(&w->vel[3 * i]), om = v3_load(&w->avel[3 * i]);
+        v3 dv = v3_sub(v, v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0));
+        quat q = q_load(&S[S_Q0]);
+        if (w->fixed[i])
+            continue;
+        if (S[S_SPIN] != 0.0) {
+            v3 dw = v3_sub(om, v3_scale(v3_load(&S[S_SWD]), 1.0 / 6.0));
+            q = q_normalize(q_axpy(q, q_load(&S[S_SQ]), h / 6.0));
+            if (dw.x != 0.0 || dw.y != 0.0 || dw.z != 0.0)
+                q = q_normalize(q_mul(q_from_rotation(dw, h), q));
+            om = v3_add(v3_mad(v3_load(&S[S_W0]), v3_load(&S[S_SW]), h / 6.0), dw);
+        } else if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
+            q = q_normalize(q_mul(q_from_rotation(om, h), q));
+        }
+        q_store(&w->orient[4 * i], q);
+        place(w, i, v3_mad(v3_load(&S[S_X0]), v, h), q);
+        v3_store(&w->vel[3 * i], v3_add(v3_mad(v3_load(&S[S_V0]), v3_load(&S[S_SV]), h / 6.0), dv));
+        v3_store(&w->avel[3 * i], om);
+    }
+    rbs__solve_resting(w, info);
+}
+
+rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info)
+{
+    return rbs__step_rollback(w, info, rbs__rk4_advance);
+}

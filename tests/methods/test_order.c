@@ -1,0 +1,151 @@
+/*
+ * test_order.c - each fixed-step method's measured order of convergence and
+ * its conservation on smooth cases with exact answers (mutual gravity:
+ * two-body circular orbit, figure-eight three-body orbit).
+ *
+ * Order: the position error after a quarter period of the circular orbit
+ * (exact: a rotation by pi/2) for 4 step sizes in ratio 2, fitted as
+ * log(error) against log(dt).  The quarter period is used because at a full
+ * period the first-order error of semi-implicit Euler (a radial velocity
+ * offset of a h / 2, which leaves the energy and hence the period unchanged
+ * to first order) cancels and Euler looks second order.  The step sizes keep
+ * every error far above rounding (RK4's smallest is ~3e-11).  Accepted:
+ * within +-0.3 of the theoretical order (the fit of an asymptotic C h^p
+ * with higher-order terms).
+ */
+#include "methods_common.h"
+
+static void measure_order(rbs_method m, const int *n, double expect)
+{
+    double dt[4], err[4], p;
+    int i;
+    for (i = 0; i < 4; ++i) {
+        dt[i] = 1.0 / n[i];
+        err[i] = circular_error(m, n[i], 0.25, 1e-9);
+    }
+    p = fit_slope(dt, err, 4);
+    print_message("%s: errors %.3e %.3e %.3e %.3e, order %.3f\n", rbs_method_name(m), err[0], err[1],
+                  err[2], err[3], p);
+    ASSERT_NEAR(p, expect, 0.3);
+}
+
+static void euler_is_first_order(void **state)
+{
+    const int n[4] = {50, 100, 200, 400};
+    (void)state;
+    measure_order(RBS_METHOD_EULER, n, 1.0);
+}
+
+static void verlet_is_second_order(void **state)
+{
+    const int n[4] = {50, 100, 200, 400};
+    (void)state;
+    measure_order(RBS_METHOD_VERLET, n, 2.0);
+}
+
+static void rk4_is_fourth_order(void **state)
+{
+    const int n[4] = {25, 50, 100, 200};
+    (void)state;
+    measure_order(RBS_METHOD_RK4, n, 4.0);
+}
+
+/* After one period T = 2 pi sqrt(a^3 / (G (m1 + m2))) the bodies are back
+ * where they started.  Bounds: the methods' error constants at 400 steps
+ * per period (measured orders above; Euler's full-period error is second
+ * order, see the top): Euler and Verlet within 1e-2 (ah^2-size, a = 1),
+ * RK4 within 2e-8 (ten times the leading RK4 phase error of a linear
+ * oscillator over one period, 2 pi (w h)^4 / 120 * r = 1.6e-9). */
+static void circular_orbit_period(void **state)
+{
+    (void)state;
+    assert_true(circular_error(RBS_METHOD_EULER, 400, 1.0, 1e-9) < 1e-2);
+    assert_true(circular_error(RBS_METHOD_VERLET, 400, 1.0, 1e-9) < 1e-2);
+    assert_true(circular_error(RBS_METHOD_RK4, 400, 1.0, 1e-9) < 2e-8);
+}
+
+/* Energy over 10 periods at 100 steps per period.  Euler (semi-implicit,
+ * symplectic) and Verlet (symplectic) have no secular drift: the largest
+ * deviation over 10 periods is at most 1.5 times the largest over the
+ * first.  RK4 drifts, but by O(h^4): below 1e-5 of |E| (h w = 0.063,
+ * (h w)^4 = 1.6e-5). */
+static void energy_per_method(void **state)
+{
+    const rbs_method ms[3] = {RBS_METHOD_EULER, RBS_METHOD_VERLET, RBS_METHOD_RK4};
+    int k;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        const int n = 100;
+        rbs_body_id a, b;
+        rbs_world *w = circular_orbit(ms[k], circular_period() / n, 1e-9, &a, &b);
+        rbs_energy e0, e;
+        double first = 0.0, all = 0.0;
+        int i;
+        CHECK_OK(rbs_world_energy(w, &e0));
+        for (i = 0; i < 10 * n; ++i) {
+            double d;
+            CHECK_OK(rbs_world_step(w, NULL));
+            CHECK_OK(rbs_world_energy(w, &e));
+            d = fabs(e.total - e0.total);
+            if (i < n && d > first)
+                first = d;
+            if (d > all)
+                all = d;
+        }
+        print_message("%s: energy deviation, first period %.3e, ten periods %.3e (E = %.3f)\n",
+                      rbs_method_name(ms[k]), first, all, e0.total);
+        if (ms[k] == RBS_METHOD_RK4)
+            assert_true(all < 1e-5 * fabs(e0.total));
+        else
+            assert_true(all <= 1.5 * first);
+        rbs_world_destroy(w);
+    }
+}
+
+/* The figure-eight returns to its start after one period.  The initial
+ * conditions and the period are given to 8-9 digits, so the orbit itself
+ * closes only to a few 1e-8; bounds: RK4 (2000 steps, h^4 error ~1e-10)
+ * within 2e-7; Verlet (16000 steps, O(h^2)) within 1e-6; Euler (16000 steps,
+ * O(h)) within 2e-3. */
+static void figure_eight_closes(void **state)
+{
+    (void)state;
+    assert_true(figure_eight_error(RBS_METHOD_RK4, 2000, 1e-9) < 2e-7);
+    assert_true(figure_eight_error(RBS_METHOD_VERLET, 16000, 1e-9) < 1e-6);
+    assert_true(figure_eight_error(RBS_METHOD_EULER, 16000, 1e-9) < 2e-3);
+}
+
+/* Momentum and angular momentum of the isolated three-body system are
+ * conserved by every method (pairwise-equal forces: rounding only, 1e-12). */
+static void figure_eight_momentum(void **state)
+{
+    const rbs_method ms[3] = {RBS_METHOD_EULER, RBS_METHOD_VERLET, RBS_METHOD_RK4};
+    int k;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        rbs_body_id id[3];
+        rbs_world *w = figure_eight(ms[k], FIG8_T / 1000, 1e-9, id);
+        rbs_vec3 p0, l0, p1, l1;
+        CHECK_OK(rbs_world_momentum(w, &p0, &l0));
+        step_n(w, 1000);
+        CHECK_OK(rbs_world_momentum(w, &p1, &l1));
+        ASSERT_NEAR(p1.x, p0.x, 1e-12);
+        ASSERT_NEAR(p1.y, p0.y, 1e-12);
+        ASSERT_NEAR(l1.z, l0.z, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(euler_is_first_order),
+        cmocka_unit_test(verlet_is_second_order),
+        cmocka_unit_test(rk4_is_fourth_order),
+        cmocka_unit_test(circular_orbit_period),
+        cmocka_unit_test(energy_per_method),
+        cmocka_unit_test(figure_eight_closes),
+        cmocka_unit_test(figure_eight_momentum),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
