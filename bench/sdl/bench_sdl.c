@@ -110,7 +110,7 @@ int main(int argc, char **argv)
 
         /* Render only, default camera. */
         rbsf__config_defaults(&cfg);
-        rbsf__camera_init(&cam, &cfg.cameras[0]);
+        rbsf__camera_init(&cam, &cfg.cameras[0], 1);
         if (rbsf__camera_view(&cam, &f, WIDTH, HEIGHT, &view, err, sizeof err) != RBS_OK) {
             fprintf(stderr, "bench_sdl: %s\n", err);
             return 1;

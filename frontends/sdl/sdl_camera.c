@@ -64,7 +64,8 @@ static rbs_vec3 direction(rbs_vec3 up, double azimuth, double elevation)
                scale(up, sin(e)));
 }
 
-void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def)
+void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def,
+                       int track)
 {
     memset(camera, 0, sizeof *camera);
     camera->def = def;
@@ -73,6 +74,28 @@ void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def)
     camera->znear = def->znear;
     camera->zfar = def->zfar;
     camera->mount_index = -1;
+    camera->track = track;
+}
+
+/* Bounding box of the spheres with finite places; returns their count. */
+static uint32_t spheres_box(const rbs_frame *frame, rbs_vec3 *lo, rbs_vec3 *hi)
+{
+    uint32_t i, n = 0;
+    *lo = *hi = v3(0, 0, 0);
+    for (i = 0; i < frame->body_count; i++) {
+        const rbs_frame_body *b = &frame->bodies[i];
+        const double *p = b->position;
+        double r = b->radius;
+        if (b->type != RBS_BODY_SPHERE || !isfinite(p[0] + p[1] + p[2] + r)) continue;
+        if (n++ == 0) {
+            *lo = v3(p[0] - r, p[1] - r, p[2] - r);
+            *hi = v3(p[0] + r, p[1] + r, p[2] + r);
+        } else {
+            *lo = v3(fmin(lo->x, p[0] - r), fmin(lo->y, p[1] - r), fmin(lo->z, p[2] - r));
+            *hi = v3(fmax(hi->x, p[0] + r), fmax(hi->y, p[1] + r), fmax(hi->z, p[2] + r));
+        }
+    }
+    return n;
 }
 
 /* Index of the body named name in frame, using and updating the cache. */
@@ -107,22 +130,11 @@ rbs_status rbsf__camera_resolve(rbsf__camera *camera, const rbs_frame *frame,
     if (camera->resolved) return RBS_OK;
 
     /* Bounding box of the spheres. */
-    for (i = 0; i < frame->body_count; i++) {
-        const rbs_frame_body *b = &frame->bodies[i];
-        const double *p = b->position;
-        double r = b->radius;
-        if (b->type != RBS_BODY_SPHERE) continue;
-        if (spheres++ == 0) {
-            lo = v3(p[0] - r, p[1] - r, p[2] - r);
-            hi = v3(p[0] + r, p[1] + r, p[2] + r);
-        } else {
-            lo = v3(fmin(lo.x, p[0] - r), fmin(lo.y, p[1] - r), fmin(lo.z, p[2] - r));
-            hi = v3(fmax(hi.x, p[0] + r), fmax(hi.y, p[1] + r), fmax(hi.z, p[2] + r));
-        }
-    }
+    spheres = spheres_box(frame, &lo, &hi);
     centre = scale(add(lo, hi), 0.5);
     radius = spheres > 0 ? 0.5 * len(sub(hi, lo)) : 1.0;
     if (radius < 0.5) radius = 0.5;
+    camera->track_origin = centre;
     dist = radius / sin(0.4 * def->fov * kPi / 180.0);
     dir = direction(def->up, kDefaultAzimuth, kDefaultElevation);
 
@@ -226,6 +238,16 @@ rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
     } else {
         position = camera->position;
         target = camera->target;
+        if (camera->track) {
+            /* Follow the spheres across up (not along it). */
+            rbs_vec3 lo, hi, shift;
+            if (spheres_box(frame, &lo, &hi) > 0) {
+                shift = sub(scale(add(lo, hi), 0.5), camera->track_origin);
+                shift = sub(shift, scale(camera->up, dot(shift, camera->up)));
+                position = add(position, shift);
+                target = add(target, shift);
+            }
+        }
     }
     if (!(isfinite(position.x) && isfinite(position.y) && isfinite(position.z) &&
           isfinite(target.x) && isfinite(target.y) && isfinite(target.z))) {

@@ -104,6 +104,9 @@ typedef struct rbsf__camera {
     double fov, znear, zfar;     /**< degrees, m, m */
     rbs_vec3 home_position, home_target, home_offset; /**< for "reset" */
     int32_t mount_index;         /**< cached frame index of the body, -1 */
+    int track;                   /**< the default camera: follows the spheres'
+                                      bounding-box centre across up */
+    rbs_vec3 track_origin;       /**< that centre at the first frame, m */
 } rbsf__camera;
 
 /** A camera's pose for one frame: an orthonormal basis and the pinhole. */
@@ -115,8 +118,12 @@ typedef struct rbsf__view {
     uint32_t width, height;  /**< pixels */
 } rbsf__view;
 
-/** Start a camera from its definition (unresolved until the first frame). */
-void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def);
+/** Start a camera from its definition (unresolved until the first frame).
+ * track: nonzero for the default camera (no camera in the scene), which
+ * moves with the centre of the spheres' bounding box, across its up vector
+ * only, so the bodies stay in view and vertical motion stays visible. */
+void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def,
+                       int track);
 
 /** Fill what the scene left out from a frame (default oblique view of the
  * spheres' bounding box; mounted offset from the body's radius) once.

@@ -59,7 +59,7 @@ typedef struct sdl_instance {
     char *dir;     /* output folder (owned) */
     char *file;    /* file-name buffer (owned), file_cap bytes */
     size_t file_cap;
-    char where[320]; /* "file:line:col: sdl: " for messages */
+    char where[8]; /* prefix of messages: empty (the caller adds the place) */
     void (*control)(void *context, const char *command);
     void *control_context;
 
@@ -173,13 +173,9 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     char msg[512];
     rbs_status st;
     const char *path;
-    if (config->file != NULL && config->line > 0)
-        snprintf(r->where, sizeof r->where, "%s:%d:%d: sdl: ", config->file,
-                 (int)config->line, (int)config->column);
-    else if (config->file != NULL)
-        snprintf(r->where, sizeof r->where, "%s: sdl: ", config->file);
-    else
-        snprintf(r->where, sizeof r->where, "sdl: ");
+    /* Messages name the key only: the projector (or the command line) puts
+     * the scene's place and the renderer's name in front. */
+    r->where[0] = '\0';
     /* The callback fields exist only in configs that are large enough. */
     if (config->struct_size >= offsetof(rbs_renderer_config, control_context) +
                                    sizeof(void *)) {
@@ -218,9 +214,9 @@ static rbs_status check(void *context, const rbs_renderer_config *config,
     (void)context;
     (void)world;
     if (config == NULL)
-        return say(err, errlen, RBS_E_INVALID, "sdl: ", "config: NULL");
+        return say(err, errlen, RBS_E_INVALID, "", "config: NULL");
     r = (sdl_instance *)calloc(1, sizeof *r);
-    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "sdl: ", "out of memory");
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "", "out of memory");
     st = prepare(r, config, err, errlen);
     destroy(r);
     return st;
@@ -239,9 +235,9 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     if (out == NULL) return RBS_E_INVALID;
     *out = NULL;
     if (config == NULL)
-        return say(err, errlen, RBS_E_INVALID, "sdl: ", "config: NULL");
+        return say(err, errlen, RBS_E_INVALID, "", "config: NULL");
     r = (sdl_instance *)calloc(1, sizeof *r);
-    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "sdl: ", "out of memory");
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "", "out of memory");
     if ((st = prepare(r, config, err, errlen)) != RBS_OK) {
         destroy(r);
         return st;
@@ -254,7 +250,7 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     r->layout_cols = r->views >= 2 ? 2 : 1;
     r->layout_rows = r->views >= 3 ? 2 : 1;
     for (v = 0; v < r->views; v++)
-        rbsf__camera_init(&r->cameras[v], &r->cfg.cameras[v]);
+        rbsf__camera_init(&r->cameras[v], &r->cfg.cameras[v], !r->cfg.camera_given);
     if (r->cfg.tile) {
         r->image_count = 1;
         r->images[0] = SDL_CreateRGBSurfaceWithFormat(
@@ -366,7 +362,7 @@ fail:
     close_windows(r);
     if (r->cfg.window == RBSF__WINDOW_ON)
         return say(err, errlen, RBS_E_RENDERER, r->where, msg);
-    fprintf(stderr, "%s%s; writing PNG files only\n", r->where, msg);
+    fprintf(stderr, "sdl renderer '%s': %s; writing PNG files only\n", r->dir, msg);
     return RBS_OK;
 }
 
@@ -673,7 +669,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
     int repeat;
     rbs_status st;
     if (r == NULL || frame == NULL)
-        return say(err, errlen, RBS_E_INVALID, "sdl: ", "draw: NULL instance or frame");
+        return say(err, errlen, RBS_E_INVALID, "", "draw: NULL instance or frame");
     if (frame->body_count > 0 && frame->bodies == NULL)
         return say(err, errlen, RBS_E_INVALID, r->where, "frame: bodies is NULL");
     repeat = r->drawn_any && frame->number == r->last_number;

@@ -389,6 +389,45 @@ static void test_scripted_path(void **state)
     }
 }
 
+/* With no camera in the entry, the default camera follows the spheres'
+ * bounding-box centre across its up vector (z): a ball rolling 10 m along x
+ * stays at the same pixels; a ball rising 1 m moves up in the picture. */
+static void test_default_camera_follows(void **state)
+{
+    const char *json = "{\"type\":\"sdl\",\"width\":320,\"height\":240,"
+                       "\"window\":false,\"contact_sheet\":false}";
+    static const double pos[3][3] = {{0, 0, 0.5}, {10, 0, 0.5}, {10, 0, 1.5}};
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    void *inst = NULL;
+    char err[512], path[1400];
+    int k, cx[3], cy[3];
+    (void)state;
+    assert_int_equal(tu_create(json, tu_dir("follow"), &inst, err, sizeof err), RBS_OK);
+    for (k = 0; k < 3; k++) {
+        tu_frame f;
+        tu_frame_init(&f, (uint64_t)k, 0.1 * k);
+        tu_add_plane(&f, 0, 0, 0, 0, 0, 1, 0x808080);
+        tu_add_sphere(&f, "ball", pos[k][0], pos[k][1], pos[k][2], 0.5, 0xd03030);
+        assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    }
+    cls->destroy(inst);
+    for (k = 0; k < 3; k++) {
+        SDL_Surface *s;
+        int x0, y0, x1, y1;
+        snprintf(path, sizeof path, "%s/frame_%06d.png", tu_dir("follow"), k);
+        s = tu_load(path);
+        assert_non_null(s);
+        assert_true(tu_bbox(s, 0, 0, W, H, is_red, &x0, &y0, &x1, &y1) > 0);
+        cx[k] = x0 + x1;
+        cy[k] = y0 + y1;
+        SDL_FreeSurface(s);
+    }
+    /* Same place after the roll (one pixel of rounding) ... */
+    assert_true(abs(cx[1] - cx[0]) <= 2 && abs(cy[1] - cy[0]) <= 2);
+    /* ... higher after the rise (1 m at ~4 m is tens of pixels). */
+    assert_true(cy[0] - cy[2] > 20);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -400,6 +439,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_texture_rotates),
         cmocka_unit_test(test_mounted_camera),
         cmocka_unit_test(test_scripted_path),
+        cmocka_unit_test(test_default_camera_follows),
     };
     tu_set_base(argc > 1 ? argv[1] : ".");
     return cmocka_run_group_tests(tests, NULL, NULL);
