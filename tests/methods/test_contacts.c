@@ -1,0 +1,266 @@
+/*
+ * test_contacts.c - every method resolves impacts and resting contact like
+ * the core: momentum conserved in impacts, the exact impact law, no
+ * tunnelling, a ball at rest stays at rest, sliding turns into rolling at the
+ * exact time and speed.  The scenes are the core physics tests' (tests/core/
+ * test_physics.c), run once per method; a method the library does not
+ * provide (RBS_E_UNSUPPORTED from rbs_world_set_method) is skipped.
+ */
+#include "methods_common.h"
+
+static const rbs_method all_methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_EVENT,
+                                         RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE};
+#define N_METHODS (sizeof all_methods / sizeof all_methods[0])
+
+/* A world of the core tests' kind for method m, or NULL if m is not built. */
+static rbs_world *world_for(rbs_method m, uint32_t n, double dt, double gz, double e)
+{
+    rbs_world *w = make_world(n, dt, gz, e);
+    rbs_status st = rbs_world_set_method(w, m, 1e-10);
+    if (st == RBS_E_UNSUPPORTED) {
+        rbs_world_destroy(w);
+        return NULL;
+    }
+    CHECK_OK(st);
+    return w;
+}
+
+/* Step n frames; a method may refuse a scene outside its scope
+ * (RBS_E_UNSUPPORTED, e.g. the event method): then 0 is returned. */
+static int run(rbs_world *w, int n)
+{
+    int k;
+    for (k = 0; k < n; ++k) {
+        rbs_status st = rbs_world_step(w, NULL);
+        if (st == RBS_E_UNSUPPORTED)
+            return 0;
+        if (st != RBS_OK)
+            fail_msg("step %d: %s: %s", k, rbs_status_name(st), rbs_world_last_error(w));
+    }
+    return 1;
+}
+
+/* Momentum is conserved in sphere-sphere impacts for mass ratios 1 .. 1e9
+ * and the velocities match the exact impact law
+ *   va' = (ma va + mb vb - mb e (va - vb)) / (ma + mb)
+ * (no forces act, so every method's free flight is exact; the impulse is
+ * the same for all: 1e-12 relative, rounding of one impulse). */
+static void momentum_in_impacts(void **state)
+{
+    const double ratios[] = {1.0, 1e3, 1e6, 1e9};
+    size_t i, k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        for (i = 0; i < sizeof ratios / sizeof ratios[0]; ++i) {
+            const double e = 0.5, ma = ratios[i], mb = 1.0, va = 1.0, vb = -2.0;
+            rbs_world *w = world_for(all_methods[k], 4, 1e-3, 0.0, e);
+            rbs_body_id a, b;
+            rbs_vec3 p0, p1;
+            double scale = fabs(ma * va) + fabs(mb * vb);
+            if (w == NULL)
+                break;
+            a = ball(w, 0.1, ma, 0.0, 0, 0, va, 0, 0, (rbs_material_id){0, 0});
+            b = ball(w, 0.1, mb, 0.6, 0, 0, vb, 0, 0, (rbs_material_id){0, 0});
+            CHECK_OK(rbs_world_momentum(w, &p0, NULL));
+            if (run(w, 300)) {
+                CHECK_OK(rbs_world_momentum(w, &p1, NULL));
+                ASSERT_NEAR(p1.x, p0.x, 1e-12 * scale);
+                ASSERT_NEAR(state_of(w, a).velocity.x, (ma * va + mb * vb - mb * e * (va - vb)) / (ma + mb),
+                            1e-12 * (fabs(va) + fabs(vb)));
+                ASSERT_NEAR(state_of(w, b).velocity.x, (ma * va + mb * vb - ma * e * (vb - va)) / (ma + mb),
+                            1e-12 * (fabs(va) + fabs(vb)) * (1.0 + ma / mb * 1e-6));
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
+/* Newton's cradle: five equal balls touching, e = 1, no friction or gravity:
+ * afterwards only the last ball moves, at 1 m/s (1e-9: four impulses). */
+static void newtons_cradle(void **state)
+{
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 8, 1e-3, 0.0, 1.0);
+        rbs_body_id b[5];
+        int i;
+        if (w == NULL)
+            continue;
+        b[0] = ball(w, 0.1, 1.0, -0.5, 0, 0, 1.0, 0, 0, (rbs_material_id){0, 0});
+        for (i = 1; i < 5; ++i)
+            b[i] = ball(w, 0.1, 1.0, 0.2 * (i - 1), 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+        if (run(w, 2000)) {
+            for (i = 0; i < 4; ++i)
+                ASSERT_NEAR(state_of(w, b[i]).velocity.x, 0.0, 1e-9);
+            ASSERT_NEAR(state_of(w, b[4]).velocity.x, 1.0, 1e-9);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* A sphere crossing 10 radii per frame does not pass through a plane, and
+ * one crossing 20 radii per frame hits another sphere instead of passing. */
+static void no_tunnelling(void **state)
+{
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 4, 1e-3, -9.81, 0.5);
+        rbs_body_id b, a;
+        int i;
+        if (w == NULL)
+            continue;
+        floor_plane(w, (rbs_material_id){0, 0});
+        b = ball(w, 0.1, 1.0, 0, 0, 1.05, 0, 0, -1000.0, (rbs_material_id){0, 0});
+        for (i = 0; i < 5; ++i) {
+            if (!run(w, 1))
+                break;
+            assert_true(state_of(w, b).position.z >= 0.1 - 1e-7);
+        }
+        if (i == 5)
+            assert_true(state_of(w, b).velocity.z > 0.0);
+        rbs_world_destroy(w);
+
+        w = world_for(all_methods[k], 4, 1e-3, 0.0, 1.0);
+        a = ball(w, 0.1, 1.0, 0.0, 0, 0, 2000.0, 0, 0, (rbs_material_id){0, 0});
+        b = ball(w, 0.1, 1.0, 1.0, 0, 0, 0.0, 0, 0, (rbs_material_id){0, 0});
+        if (run(w, 1)) {
+            assert_true(state_of(w, a).position.x < state_of(w, b).position.x);
+            ASSERT_NEAR(state_of(w, b).velocity.x, 2000.0, 1e-9);
+            ASSERT_NEAR(state_of(w, a).velocity.x, 0.0, 1e-9);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* A ball at rest on a plane for 10 s moves less than 1e-9 m and ends at
+ * rest (1e-9 m/s). */
+static void rest_stays_rest(void **state)
+{
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 4, 1e-3, -9.81, 0.5);
+        rbs_material_id m;
+        rbs_body_id b;
+        rbs_body_state s;
+        if (w == NULL)
+            continue;
+        m = material(w, "m", 0.5, 0.3, -1.0);
+        floor_plane(w, m);
+        b = ball(w, 0.1, 1.0, 0.3, -0.2, 0.1, 0, 0, 0, m);
+        if (run(w, 10000)) {
+            s = state_of(w, b);
+            ASSERT_NEAR(s.position.x, 0.3, 1e-9);
+            ASSERT_NEAR(s.position.y, -0.2, 1e-9);
+            ASSERT_NEAR(s.position.z, 0.1, 1e-9);
+            ASSERT_NEAR(s.velocity.z, 0.0, 1e-9);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* A solid sphere launched sliding at v0 = 5 m/s, mu = 0.3, rolls from
+ * t = 2 v0 / (7 mu g) at 5/7 v0.  Kinetic friction is a constant
+ * deceleration, integrated exactly by every method, and the switch is an
+ * exact stick impulse: speed within 1e-12 relative, the switch seen in the
+ * frame containing it (within dt). */
+static void sliding_then_rolling(void **state)
+{
+    const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3, g = 9.81;
+    const double t_roll = 2.0 * v0 / (7.0 * mu * g);
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 4, dt, -g, 0.5);
+        rbs_material_id m;
+        rbs_body_id b;
+        double t_seen = -1.0;
+        int i, ok = 1;
+        if (w == NULL)
+            continue;
+        m = material(w, "m", mu, mu, -1.0);
+        floor_plane(w, m);
+        b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
+        for (i = 0; i < 3000 && ok; ++i) {
+            rbs_body_state s;
+            ok = run(w, 1);
+            s = state_of(w, b);
+            if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < 1e-12 * v0)
+                t_seen = rbs_world_time(w);
+        }
+        if (ok) {
+            print_message("%s: rolling from %.6f s (exact %.6f s)\n", rbs_method_name(all_methods[k]),
+                          t_seen, t_roll);
+            assert_true(t_seen >= t_roll && t_seen <= t_roll + dt);
+            ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
+            ASSERT_NEAR(state_of(w, b).position.z, r, 1e-12);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* A ball dropped from a gap h = 1 m with e = 0.5: the apexes are at h e^(2n)
+ * (exact); the apex height is recovered from the frame after it as
+ * z + v^2 / (2 g), exact for free flight.  Verlet, RK4 and adaptive
+ * integrate free flight under constant g exactly, so what is left is where
+ * the impact is resolved: anywhere within the contact margin |gap| <= slop
+ * (1e-6 r = 1e-7 m), which shifts each later apex by at most a few slops:
+ * bound 2e-6 m for three bounces.  Euler lags the exact fall by about
+ * v dt / 2 per bounce: bound 2 sqrt(2 g h) dt. */
+static void bouncing_apexes(void **state)
+{
+    const double h = 1.0, r = 0.1, e = 0.5, dt = 1e-3, g = 9.81;
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 4, dt, -g, e);
+        rbs_material_id m;
+        rbs_body_id b;
+        double prev_v = 0.0, worst = 0.0;
+        int apex = 0, i, ok = 1;
+        if (w == NULL)
+            continue;
+        m = material(w, "m", 0.0, 0.0, -1.0);
+        floor_plane(w, m);
+        b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, m);
+        for (i = 0; i < 3000 && apex < 3 && ok; ++i) {
+            rbs_body_state s;
+            ok = run(w, 1);
+            s = state_of(w, b);
+            if (prev_v > 0.0 && s.velocity.z <= 0.0) {
+                /* the exact apex height over the frame: interpolate back */
+                double top = s.position.z - r + s.velocity.z * s.velocity.z / (2.0 * g);
+                double d = fabs(top - h * pow(e, 2.0 * (apex + 1)));
+                if (d > worst)
+                    worst = d;
+                apex++;
+            }
+            prev_v = s.velocity.z;
+        }
+        if (ok) {
+            print_message("%s: worst apex error %.3e m\n", rbs_method_name(all_methods[k]), worst);
+            assert_int_equal(apex, 3);
+            if (all_methods[k] == RBS_METHOD_VERLET || all_methods[k] == RBS_METHOD_RK4 ||
+                all_methods[k] == RBS_METHOD_ADAPTIVE)
+                assert_true(worst < 2e-6);
+            else
+                assert_true(worst < 2.0 * sqrt(2.0 * g * h) * dt);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(momentum_in_impacts),
+        cmocka_unit_test(newtons_cradle),
+        cmocka_unit_test(no_tunnelling),
+        cmocka_unit_test(rest_stays_rest),
+        cmocka_unit_test(sliding_then_rolling),
+        cmocka_unit_test(bouncing_apexes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

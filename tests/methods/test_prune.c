@@ -1,0 +1,207 @@
+/*
+ * test_prune.c - pruning leaves out only work whose contribution is exactly
+ * zero: for every scene and every method, the world stepped with the pruned
+ * pipeline (def.prune = 1, the default) and with every stage on
+ * (def.prune = 0) has the same rbs_world_hash after N frames, bit for bit.
+ * The scenes cover each pruning decision (see rbs_world_explain):
+ * no spin, frictionless, isotropic and centred, anisotropic, off-centre mass,
+ * a single sphere, fixed spheres, mutual gravity off and on.
+ */
+#include "methods_common.h"
+
+static const rbs_method all_methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_EVENT,
+                                         RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE};
+#define N_METHODS (sizeof all_methods / sizeof all_methods[0])
+
+typedef void (*scene_fn)(rbs_world *w);
+
+static void sphere(rbs_world *w, double r, double x, double y, double z, double vx, double vy, double vz,
+                   double wx, double wy, double wz, rbs_material_id m)
+{
+    rbs_sphere_def s;
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.position.x = x; s.position.y = y; s.position.z = z;
+    s.velocity.x = vx; s.velocity.y = vy; s.velocity.z = vz;
+    s.angular_velocity.x = wx; s.angular_velocity.y = wy; s.angular_velocity.z = wz;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+}
+
+/* no spin, frictionless: a ball bouncing on a plane */
+static void scene_bounce(rbs_world *w)
+{
+    floor_plane(w, (rbs_material_id){0, 0});
+    sphere(w, 0.1, 0, 0, 0.5, 0.3, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+}
+
+/* frictionless, several spheres colliding, no gravity */
+static void scene_billiards(rbs_world *w)
+{
+    sphere(w, 0.1, 0, 0, 0.1, 2.0, 0.1, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    sphere(w, 0.1, 0.5, 0.02, 0.1, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    sphere(w, 0.1, 0.7, -0.1, 0.1, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    floor_plane(w, (rbs_material_id){0, 0});
+}
+
+/* isotropic and centred, with friction: a spinning ball sliding to rolling */
+static void scene_friction(rbs_world *w)
+{
+    rbs_material_id m = material(w, "felt", 0.4, 0.3, 0.2);
+    floor_plane(w, m);
+    sphere(w, 0.1, 0, 0, 0.1, 3.0, 0, 0, 0, -20.0, 5.0, m);
+    sphere(w, 0.1, 1.0, 0.05, 0.1, 0, 0, 0, 0, 0, 0, m);
+}
+
+/* anisotropic inertia and an off-centre mass, spinning freely and on a
+ * plane with friction */
+static void scene_anisotropic(rbs_world *w)
+{
+    rbs_material_id m = material(w, "rubber", 0.8, 0.6, 0.3);
+    rbs_sphere_def s;
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.radius = 0.1;
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 0.002; s.inertia.y = 0.003; s.inertia.z = 0.004;
+    s.position.z = 2.0;
+    s.angular_velocity.x = 3.0; s.angular_velocity.y = 0.1; s.angular_velocity.z = 1.0;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    rbs_sphere_def_init(&s);
+    s.radius = 0.1;
+    s.position.x = 1.0;
+    s.position.z = 0.1;
+    s.center_of_mass.x = 0.03;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+}
+
+/* a single sphere (no sphere pairs) with mutual gravity switched on */
+static void scene_single(rbs_world *w)
+{
+    floor_plane(w, (rbs_material_id){0, 0});
+    sphere(w, 0.1, 0, 0, 0.3, 1.0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+}
+
+/* a fixed sphere and a moving one (one moving body) */
+static void scene_fixed(rbs_world *w)
+{
+    rbs_sphere_def s;
+    rbs_sphere_def_init(&s);
+    s.radius = 0.2;
+    s.fixed = 1;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    sphere(w, 0.1, 0.05, 0, 1.0, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+}
+
+/* three bodies with mutual gravity (the figure-eight) */
+static void scene_three_body(rbs_world *w)
+{
+    int k;
+    for (k = 0; k < 3; ++k)
+        point_mass(w, 1.0, fig8_x[k][0], fig8_x[k][1], fig8_v[k][0], fig8_v[k][1]);
+}
+
+typedef struct scene {
+    const char *name;
+    scene_fn build;
+    double gz;
+    int mutual;
+    double G;
+} scene;
+
+static const scene scenes[] = {
+    {"bounce (no spin, frictionless)", scene_bounce, -9.81, 0, 0.0},
+    {"billiards (frictionless, sphere pairs)", scene_billiards, -9.81, 0, 0.0},
+    {"friction (isotropic, centred, spin)", scene_friction, -9.81, 0, 0.0},
+    {"anisotropic and off-centre", scene_anisotropic, -9.81, 0, 0.0},
+    {"single sphere, mutual gravity on", scene_single, -9.81, 1, 1.0},
+    {"fixed sphere, mutual gravity on", scene_fixed, -9.81, 1, 1.0},
+    {"three bodies, mutual gravity on", scene_three_body, 0.0, 1, 1.0},
+    {"three bodies, mutual gravity off", scene_three_body, 0.0, 0, 1.0},
+};
+
+/* Hash after n frames, or 0 if the method is not built or refuses the
+ * scene (RBS_E_UNSUPPORTED). */
+static uint64_t run(const scene *sc, rbs_method m, int prune, int n, double dt)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_status st;
+    uint64_t h;
+    int k;
+    rbs_world_def_init(&d);
+    d.max_bodies = 8;
+    d.dt = dt;
+    d.gravity.z = sc->gz;
+    d.mutual_gravity = sc->mutual;
+    d.gravity_constant = sc->G;
+    d.tolerance = 1e-8;
+    d.prune = prune;
+    CHECK_OK(rbs_world_create(&d, &w));
+    st = rbs_world_set_method(w, m, 0.0);
+    if (st == RBS_E_UNSUPPORTED) {
+        rbs_world_destroy(w);
+        return 0;
+    }
+    CHECK_OK(st);
+    sc->build(w);
+    for (k = 0; k < n; ++k) {
+        st = rbs_world_step(w, NULL);
+        if (st == RBS_E_UNSUPPORTED) {
+            rbs_world_destroy(w);
+            return 0;
+        }
+        if (st != RBS_OK)
+            fail_msg("%s, %s, prune %d, step %d: %s: %s", sc->name, rbs_method_name(m), prune, k,
+                     rbs_status_name(st), rbs_world_last_error(w));
+    }
+    h = rbs_world_hash(w);
+    rbs_world_destroy(w);
+    return h;
+}
+
+static void pruned_equals_full(void **state)
+{
+    size_t i, k;
+    int failures = 0, compared = 0;
+    (void)state;
+    for (i = 0; i < sizeof scenes / sizeof scenes[0]; ++i) {
+        for (k = 0; k < N_METHODS; ++k) {
+            uint64_t a = run(&scenes[i], all_methods[k], 1, 600, 1e-3);
+            uint64_t b = run(&scenes[i], all_methods[k], 0, 600, 1e-3);
+            if (a == 0 && b == 0)
+                continue;
+            compared++;
+            if (a != b) {
+                print_error("%s, %s: pruned %016llx, full %016llx\n", scenes[i].name,
+                            rbs_method_name(all_methods[k]), (unsigned long long)a, (unsigned long long)b);
+                failures++;
+            }
+        }
+    }
+    print_message("%d scene x method runs compared\n", compared);
+    assert_int_equal(failures, 0);
+    assert_true(compared >= 8 * 3); /* euler, verlet, rk4 at least */
+}
+
+/* The comparison can fail: a change of dt by one unit in the last place,
+ * a rounding-level difference, changes the hash of every scene. */
+static void hash_sees_rounding(void **state)
+{
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof scenes / sizeof scenes[0]; ++i)
+        assert_true(run(&scenes[i], RBS_METHOD_RK4, 1, 600, 1e-3) !=
+                    run(&scenes[i], RBS_METHOD_RK4, 1, 600, nextafter(1e-3, 1.0)));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(pruned_equals_full),
+        cmocka_unit_test(hash_sees_rounding),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
