@@ -2,9 +2,14 @@
  * bench_sdl.c - milliseconds per 640x480 frame of the "sdl" renderer for 10,
  * 100 and 1000 spheres piled above a ground plane (median of RUNS runs).
  *
- * Prints CSV: spheres,render_ms,draw_png_ms
- *   render_ms   - ray casting one view (sdl_raster.c) with the default camera
+ * Prints CSV: spheres,render_ms,draw_png_ms,brute_ms
+ *   render_ms   - ray casting one view (sdl_raster.c) with the default camera:
+ *                 every pixel against the planes, and each sphere only over
+ *                 its exact screen-space bounding box, with a depth test
  *   draw_png_ms - the class's draw(): render + legend + IMG_SavePNG to disk
+ *   brute_ms    - for comparison, the design the renderer avoids: every
+ *                 pixel's ray against every sphere (nearest hit only, no
+ *                 shading, so a lower bound; median of BRUTE_RUNS runs)
  * Usage: bench_sdl [OUTPUT_DIR]   (default ./bench-sdl-out)
  * Not a test: results per machine go to bench/results/sdl.md.
  */
@@ -18,6 +23,7 @@
 #include "sdl_renderer.h"
 
 #define RUNS 15
+#define BRUTE_RUNS 3
 #define WIDTH 640
 #define HEIGHT 480
 
@@ -81,6 +87,41 @@ static void make_frame(rbs_frame *f, rbs_frame_body *b, uint32_t n)
     }
 }
 
+/* Nearest sphere hit for every pixel, all spheres per pixel; returns a
+ * checksum so the work cannot be optimised away. */
+static double brute_force(const rbsf__view *v, const rbs_frame *f)
+{
+    double sum = 0.0;
+    uint32_t i, j, k;
+    for (j = 0; j < v->height; j++) {
+        double ry = (0.5 * v->height - j - 0.5) / v->focal;
+        for (i = 0; i < v->width; i++) {
+            double rx = (i + 0.5 - 0.5 * v->width) / v->focal, best = v->zfar;
+            /* The ray in world coordinates. */
+            double d[3] = {rx * v->right.x + ry * v->up.x + v->fwd.x,
+                           rx * v->right.y + ry * v->up.y + v->fwd.y,
+                           rx * v->right.z + ry * v->up.z + v->fwd.z};
+            double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            for (k = 0; k < f->body_count; k++) {
+                const rbs_frame_body *b = &f->bodies[k];
+                double c[3], dc, cc, disc, t;
+                if (b->type != RBS_BODY_SPHERE) continue;
+                c[0] = b->position[0] - v->eye.x;
+                c[1] = b->position[1] - v->eye.y;
+                c[2] = b->position[2] - v->eye.z;
+                dc = d[0] * c[0] + d[1] * c[1] + d[2] * c[2];
+                cc = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - b->radius * b->radius;
+                disc = dc * dc - dd * cc;
+                if (disc < 0.0) continue;
+                t = (dc - sqrt(disc)) / dd;
+                if (t >= v->znear && t < best) best = t;
+            }
+            sum += best;
+        }
+    }
+    return sum;
+}
+
 int main(int argc, char **argv)
 {
     static const uint32_t counts[] = {10, 100, 1000};
@@ -90,13 +131,13 @@ int main(int argc, char **argv)
     float *depth = malloc((size_t)WIDTH * HEIGHT * sizeof *depth);
     uint32_t *pixels = malloc((size_t)WIDTH * HEIGHT * sizeof *pixels);
     double *rx = malloc(WIDTH * sizeof *rx), *ry = malloc(HEIGHT * sizeof *ry);
-    double render[RUNS], full[RUNS];
+    double render[RUNS], full[RUNS], brute[BRUTE_RUNS], checksum = 0.0;
     size_t c;
     if (!bodies || !depth || !pixels || !rx || !ry) {
         fprintf(stderr, "bench_sdl: out of memory\n");
         return 1;
     }
-    printf("spheres,render_ms,draw_png_ms\n");
+    printf("spheres,render_ms,draw_png_ms,brute_ms\n");
     for (c = 0; c < sizeof counts / sizeof counts[0]; c++) {
         rbs_frame f;
         rbsf__config cfg;
@@ -119,6 +160,11 @@ int main(int argc, char **argv)
             double t0 = now_ms();
             rbsf__raster_frame(&cv, &view, &f);
             render[k] = now_ms() - t0;
+        }
+        for (k = 0; k < BRUTE_RUNS; k++) {
+            double t0 = now_ms();
+            checksum += brute_force(&view, &f);
+            brute[k] = now_ms() - t0;
         }
 
         /* The whole draw() with PNG output. */
@@ -146,9 +192,11 @@ int main(int argc, char **argv)
             full[k] = now_ms() - t0;
         }
         cls->destroy(inst);
-        printf("%u,%.2f,%.2f\n", counts[c], median(render, RUNS), median(full, RUNS));
+        printf("%u,%.2f,%.2f,%.1f\n", counts[c], median(render, RUNS), median(full, RUNS),
+               median(brute, BRUTE_RUNS));
         fflush(stdout);
     }
+    if (checksum == 42.0) printf("#\n"); /* keep the brute force's work */
     free(bodies);
     free(depth);
     free(pixels);
