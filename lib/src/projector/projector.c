@@ -888,8 +888,11 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
              * drawn. */
             if (p->reel)
                 rbs_reel_close(p->reel);
-            reply_to(reply, reply_size, "quitting at frame %llu",
-                     (unsigned long long)info.captured);
+            if (info.captured > 0)
+                reply_to(reply, reply_size, "quitting after frame %llu",
+                         (unsigned long long)info.captured - 1);
+            else
+                reply_to(reply, reply_size, "quitting");
         } else {
             if (p->reel)
                 rbs__reel_kick(p->reel);

@@ -1,0 +1,494 @@
+"""Drive the built rbsim command and check what it writes.
+
+Run as: python test_cli.py SUITE  (SUITE: cli, fault, determinism), with the
+environment variables RBSIM (the rbsim binary) and CSV_TRUTH (the csv_truth
+helper).  Each test works in its own temporary folder.
+"""
+import csv
+import json
+import math
+import os
+import resource
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+RBSIM = os.environ.get("RBSIM", "rbsim")
+CSV_TRUTH = os.environ.get("CSV_TRUTH", "csv_truth")
+
+CSV_HEADER = ("frame,t,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz")
+STATS_HEADER = ("frame,t,kinetic,potential,total,px,py,pz,lx,ly,lz,"
+                "max_overlap,contacts,collisions,substeps,rollbacks")
+
+SCENE = {
+    "format": 1,
+    "simulation": {"steps": 300, "dt": 0.001},
+    "materials": [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3,
+                   "restitution": 0.7}],
+    "bodies": [
+        {"name": "floor", "type": "plane", "point": [0, 0, 0],
+         "normal": [0, 0, 1]},
+        {"name": "a", "type": "sphere", "radius": 0.1, "mass": 1,
+         "position": [0, 0, 0.5], "velocity": [1, 0, 0]},
+        {"name": "b", "type": "sphere", "radius": 0.1, "mass": 1,
+         "position": [0.5, 0, 0.3], "velocity": [-1, 0.2, 0]},
+        {"name": "c", "type": "sphere", "radius": 0.05, "mass": 0.3,
+         "position": [1, 1, 0.05], "angular_velocity": [0, 0, 10]},
+    ],
+}
+BODIES = 4
+
+
+def bits(x):
+    return struct.pack("<d", x)
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix="rbsim-cli-")
+        self.dir = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def scene(self, name="scene.json", **changes):
+        s = json.loads(json.dumps(SCENE))
+        for k, v in changes.items():
+            s[k] = v
+        p = self.path(name)
+        with open(p, "w") as f:
+            json.dump(s, f, indent=1)
+        return p
+
+    def rbsim(self, *args, stdin=subprocess.DEVNULL, timeout=120, **kw):
+        return subprocess.run([RBSIM] + list(args), stdin=stdin,
+                              capture_output=True, text=True, cwd=self.dir,
+                              timeout=timeout, **kw)
+
+    def read_csv(self, p):
+        with open(p, newline="") as f:
+            rows = list(csv.reader(f))
+        self.assertEqual(",".join(rows[0]), CSV_HEADER)
+        return rows[1:]
+
+    def assert_whole_frames(self, p, first=0):
+        """The CSV ends on a newline and holds whole frames first..n, in
+        order, each with every body once."""
+        with open(p, "rb") as f:
+            data = f.read()
+        self.assertTrue(data.endswith(b"\n"), "%s ends mid-line" % p)
+        rows = self.read_csv(p)
+        self.assertEqual(len(rows) % BODIES, 0, "a frame is cut short")
+        for i, r in enumerate(rows):
+            self.assertEqual(len(r), 17, "row %d: %r" % (i, r))
+            self.assertEqual(int(r[0]), first + i // BODIES)
+            self.assertEqual(int(r[2]), i % BODIES)
+        return len(rows) // BODIES
+
+
+class CliTests(Base):
+    def test_version_and_help(self):
+        r = self.rbsim("--version")
+        self.assertEqual(r.returncode, 0)
+        self.assertRegex(r.stdout, r"^rbsim \d+\.\d+\.\d+ \(library ")
+        for args in (["help"], ["--help"], ["help", "run"], ["help", "check"],
+                     ["help", "convert"]):
+            r = self.rbsim(*args)
+            self.assertEqual(r.returncode, 0, args)
+            self.assertIn("usage: rbsim", r.stdout)
+        self.assertIn("--csv FILE", self.rbsim("help", "run").stdout)
+        self.assertIn("step [N]", self.rbsim("help", "run").stdout)
+        self.assertEqual(self.rbsim("help", "nope").returncode, 2)
+        self.assertEqual(self.rbsim().returncode, 2)
+        r = self.rbsim("frobnicate")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unknown command 'frobnicate'", r.stderr)
+
+    def test_usage_errors_write_nothing(self):
+        s = self.scene()
+        cases = [
+            (["--steps", "abc"], "--steps"),
+            (["--steps", "0"], "--steps"),
+            (["--steps=-3"], "--steps"),
+            (["--dt", "-1"], "--dt"),
+            (["--dt", "nan"], "--dt"),
+            (["--method", "leapfrog"], "unknown method 'leapfrog'"),
+            (["--every", "0"], "--every"),
+            (["--reel", "1"], "--reel"),
+            (["--speed", "0"], "--speed"),
+            (["--frobnicate"], "unknown option '--frobnicate'"),
+            (["--csv"], "--csv needs a value"),
+            (["--quiet=1"], "takes no value"),
+            ([s], "one scene at most"),
+            (["--csv", "out.csv", "--json", "no/such/dir/x.jsonl"],
+             "does not exist"),
+            (["--csv", "out.csv", "--stats", self.dir], "is a folder"),
+        ]
+        for extra, msg in cases:
+            r = self.rbsim("run", s, *extra)
+            self.assertEqual(r.returncode, 2, (extra, r.stderr))
+            self.assertIn(msg, r.stderr, extra)
+            self.assertFalse(os.path.exists(self.path("out.csv")), extra)
+
+    def test_too_many_outputs(self):
+        s = self.scene(renderers=[{"type": "csv", "path": "s1.csv"},
+                                  {"type": "json", "path": "s2.jsonl"}])
+        r = self.rbsim("run", s, "--csv", "a.csv", "--json", "b.jsonl",
+                       "--stats", "c.csv")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("at most 4 renderers", r.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["scene.json"])
+
+    def test_scene_errors(self):
+        bad = self.scene(bodies=[{"name": "x", "type": "sphere",
+                                  "radius": -1, "mass": 1,
+                                  "position": [0, 0, 1]},
+                                 {"name": "y", "type": "cube"}])
+        r = self.rbsim("check", bad)
+        self.assertEqual(r.returncode, 3)
+        lines = [l for l in r.stdout.splitlines() if l]
+        self.assertGreaterEqual(len(lines), 2, r.stdout)  # every error
+        self.assertIn("scene.json:", r.stdout)
+        self.assertIn("radius", r.stdout)
+        self.assertIn("cube", r.stdout)
+        r = self.rbsim("run", bad, "--csv", "out.csv")
+        self.assertEqual(r.returncode, 3)
+        self.assertFalse(os.path.exists(self.path("out.csv")))
+        r = self.rbsim("check", self.path("missing.json"))
+        self.assertEqual(r.returncode, 3)
+        r = self.rbsim("run", self.path("missing.json"))
+        self.assertEqual(r.returncode, 3)
+        good = self.scene("good.json")
+        r = self.rbsim("check", good)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("ok", r.stdout)
+        self.assertEqual(self.rbsim("check").returncode, 2)
+
+    def test_scene_output_rejected_writes_nothing(self):
+        s = self.scene(renderers=[{"type": "csv", "path": "good.csv"},
+                                  {"type": "json",
+                                   "path": "nowhere/x.jsonl"}])
+        r = self.rbsim("run", s)
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("nowhere", r.stderr)
+        self.assertIn("scene.json:", r.stderr)
+        self.assertFalse(os.path.exists(self.path("good.csv")))
+        r = self.rbsim("check", s)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("nowhere", r.stdout)
+
+    def test_scene_renderers_and_every(self):
+        s = self.scene(renderers=[{"type": "csv", "path": "all.csv"},
+                                  {"type": "csv", "path": "some.csv",
+                                   "every": 7}])
+        r = self.rbsim("run", s, "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout, "")  # --quiet
+        self.assertEqual(self.assert_whole_frames(self.path("all.csv")), 301)
+        rows = self.read_csv(self.path("some.csv"))
+        frames = sorted({int(x[0]) for x in rows})
+        self.assertEqual(frames, [k for k in range(301) if k % 7 == 0 or
+                                  k == 300])
+        # The kept frames are the same rows as in the full file.
+        full = {(x[0], x[2]): x for x in self.read_csv(self.path("all.csv"))}
+        for x in rows:
+            self.assertEqual(full[(x[0], x[2])], x)
+
+    def test_csv_bit_exact(self):
+        out = self.path("truth.csv")
+        r = subprocess.run([CSV_TRUTH, out, "250"], capture_output=True,
+                           text=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        truth = [l.split() for l in r.stdout.splitlines()]
+        rows = self.read_csv(out)
+        names = ["tilted floor", "plain", "comma,name", 'quote"d',
+                 'both,"x"']
+        self.assertEqual(len(rows), len(truth))
+        self.assertEqual(len(rows), 251 * 5)
+        for row, t in zip(rows, truth):
+            self.assertEqual(row[0], t[0])
+            self.assertEqual(bits(float(row[1])), bits(float.fromhex(t[1])))
+            self.assertEqual(row[2], t[2])
+            self.assertEqual(row[3], names[int(t[2])])
+            for a, b in zip(row[4:], t[3:]):
+                self.assertEqual(bits(float(a)), bits(float.fromhex(b)),
+                                 (row, t))
+        # Shortest form: no number has more digits than it needs.
+        for row in rows[:500]:
+            for a in row[4:]:
+                x = float(a)
+                mantissa = a.lstrip("-").split("e")[0]
+                digits = mantissa.replace(".", "").strip("0")
+                if len(digits) > 1:
+                    shorter = "%.*g" % (len(digits) - 1, x)
+                    self.assertNotEqual(float(shorter), x, a)
+
+    def test_json_lines_valid_and_equal_to_csv(self):
+        s = self.scene()
+        r = self.rbsim("run", s, "--csv", "a.csv", "--json", "a.jsonl",
+                       "--stats", "st.csv", "--steps", "200")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = self.read_csv(self.path("a.csv"))
+        with open(self.path("a.jsonl")) as f:
+            lines = f.read().split("\n")
+        self.assertEqual(lines[-1], "")
+        objs = [json.loads(l) for l in lines[:-1]]  # every line valid
+        self.assertEqual([o["frame"] for o in objs], list(range(201)))
+        i = 0
+        for o in objs:
+            self.assertEqual(len(o["bodies"]), BODIES)
+            for b in o["bodies"]:
+                row = rows[i]
+                i += 1
+                self.assertEqual(int(row[0]), o["frame"])
+                self.assertEqual(bits(float(row[1])), bits(o["t"]))
+                self.assertEqual(row[3], b["name"])
+                vals = (b["position"] + b["orientation"] + b["velocity"] +
+                        b["angular_velocity"])
+                for a, v in zip(row[4:], vals):
+                    self.assertEqual(bits(float(a)), bits(float(v)))
+        with open(self.path("st.csv"), newline="") as f:
+            st = list(csv.reader(f))
+        self.assertEqual(",".join(st[0]), STATS_HEADER)
+        self.assertEqual([int(x[0]) for x in st[1:]], list(range(201)))
+        for x in st[1:]:
+            self.assertEqual(len(x), 16)
+            # total = kinetic + potential, as the world computed it (to
+            # rounding of the sum: 1 ulp of the larger part, times 4).
+            k, p, t = float(x[2]), float(x[3]), float(x[4])
+            self.assertLessEqual(abs(k + p - t),
+                                 4 * math.ulp(max(abs(k), abs(p), 1e-300)))
+
+    def test_stdin_end_does_not_stop_the_run(self):
+        s = self.scene()
+        r = self.rbsim("run", s, "--csv", "a.csv", "--steps", "400")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("a.csv")), 401)
+        # stdin closed outright (not even /dev/null)
+        r = subprocess.run([RBSIM, "run", s, "--csv", "b.csv", "--steps",
+                            "400"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=120,
+                           preexec_fn=lambda: os.close(0))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 401)
+
+    def test_commands_from_stdin(self):
+        s = self.scene()
+        p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
+                              "100000", "--csv", "q.csv"], cwd=self.dir,
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        try:
+            out, err = p.communicate(
+                "help\nbogus 1 2\nstep 0\nspeed fast\npause\nstatus\n"
+                "step 3\nresume\n\nquit\n", timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        self.assertEqual(p.returncode, 0, err)
+        self.assertIn("commands:", out)
+        self.assertIn("unknown command 'bogus'; commands:", out)
+        self.assertIn("step: expected a whole number", out)
+        self.assertIn("speed: expected a factor", out)
+        self.assertIn("paused at frame", out)
+        self.assertIn("stepping 3 frames", out)
+        self.assertIn("stopped at frame", out)
+        n = self.assert_whole_frames(self.path("q.csv"))
+        self.assertLess(n, 100001)  # quit, not the end
+
+    def test_paused_start_and_step(self):
+        s = self.scene()
+        p = subprocess.Popen([RBSIM, "run", s, "--paused", "--steps",
+                              "1000", "--csv", "p.csv"], cwd=self.dir,
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        try:
+            p.stdin.write("step 10\n")
+            p.stdin.flush()
+            time.sleep(0.5)
+            p.stdin.write("status\nquit\n")
+            p.stdin.flush()
+            out, err = p.communicate(timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        self.assertEqual(p.returncode, 0, err)
+        self.assertIn("frame 10 of 1000", out)
+        self.assertEqual(self.assert_whole_frames(self.path("p.csv")), 11)
+
+    def test_convert_round_trip(self):
+        s = self.scene()
+        os.mkdir(self.path("txt"))
+        r = self.rbsim("convert", s, self.path("txt/config.txt"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("check", self.path("txt/config.txt"))
+        self.assertEqual(r.returncode, 0, r.stdout)
+        r = self.rbsim("convert", self.path("txt/config.txt"),
+                       self.path("back.json"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rbsim("convert", s, "x.yaml").returncode, 2)
+        self.assertEqual(self.rbsim("convert", s).returncode, 2)
+        self.assertEqual(self.rbsim("convert", self.path("nope.json"),
+                                    "o.json").returncode, 3)
+        # The converted scenes run to the same bytes.
+        outs = []
+        for i, sc in enumerate((s, self.path("txt/config.txt"),
+                                self.path("back.json"))):
+            r = self.rbsim("run", sc, "--csv", "c%d.csv" % i, "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(self.path("c%d.csv" % i), "rb") as f:
+                outs.append(f.read())
+        self.assertEqual(outs[0], outs[1])
+        self.assertEqual(outs[0], outs[2])
+
+    def test_demo(self):
+        r = self.rbsim("run", timeout=300)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("built-in demonstration", r.stdout)
+        checks = [l for l in r.stdout.splitlines() if l.startswith("check:")]
+        self.assertEqual(len(checks), 2, r.stdout)
+        for l in checks:
+            self.assertTrue(l.endswith("ok"), l)
+        self.assertIn("sqrt(2h/g)", r.stdout)
+        self.assertIn("5/7 v0", r.stdout)
+        for key in ("steps/s", "sub-steps", "rollbacks", "collisions",
+                    "wall time", "drift"):
+            self.assertIn(key, r.stdout)
+        rows = self.read_csv(self.path("rbsim-demo/demo.csv"))
+        self.assertEqual(int(rows[-1][0]), 2000)
+        with open(self.path("rbsim-demo/stats.csv")) as f:
+            self.assertEqual(f.readline().strip(), STATS_HEADER)
+
+
+class FaultTests(Base):
+    def test_dev_full(self):
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        s = self.scene()
+        r = self.rbsim("run", s, "--csv", "/dev/full")
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("'/dev/full'", r.stderr)
+        self.assertIn("No space left on device", r.stderr)
+        r = self.rbsim("run", s, "--csv", "ok.csv", "--json", "/dev/full",
+                       "--steps", "1000")
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("json renderer '/dev/full'", r.stderr)
+        self.assertIn("No space left on device", r.stderr)
+        self.assert_whole_frames(self.path("ok.csv"))
+
+    def test_file_too_large_mid_run(self):
+        # A file size limit makes the CSV fail part way through a frame: the
+        # file must end on the last whole frame, the run stop with exit 4.
+        limit = 60000
+
+        def limit_size():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+        s = self.scene()
+        r = subprocess.run([RBSIM, "run", s, "--csv", "big.csv", "--steps",
+                            "5000"], cwd=self.dir, capture_output=True,
+                           text=True, timeout=120, preexec_fn=limit_size,
+                           stdin=subprocess.DEVNULL)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("big.csv", r.stderr)
+        self.assertIn("File too large", r.stderr)
+        size = os.path.getsize(self.path("big.csv"))
+        self.assertLessEqual(size, limit)
+        self.assertGreater(size, limit - 1000)  # it failed near the limit
+        self.assertGreater(self.assert_whole_frames(self.path("big.csv")), 10)
+
+    def _interrupt(self, sig, code):
+        s = self.scene()
+        p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
+                              "100000", "--csv", "i.csv", "--json", "i.jsonl",
+                              "--stats", "i_stats.csv"], cwd=self.dir,
+                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        try:
+            # Wait until frames are being written, then interrupt.
+            deadline = time.time() + 30
+            while time.time() < deadline:
+                if (os.path.exists(self.path("i.csv")) and
+                        os.path.getsize(self.path("i.csv")) > 2000):
+                    break
+                time.sleep(0.05)
+            p.send_signal(sig)
+            out, err = p.communicate(timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        self.assertEqual(p.returncode, code, err)
+        self.assertIn("stopped at frame", out)
+        n = self.assert_whole_frames(self.path("i.csv"))
+        self.assertGreater(n, 2)
+        self.assertLess(n, 100001)
+        with open(self.path("i.jsonl")) as f:
+            objs = [json.loads(l) for l in f]
+        self.assertEqual([o["frame"] for o in objs], list(range(n)))
+        with open(self.path("i_stats.csv")) as f:
+            self.assertEqual(len(f.read().splitlines()), n + 1)
+
+    def test_sigint(self):
+        self._interrupt(signal.SIGINT, 130)
+
+    def test_sigterm(self):
+        self._interrupt(signal.SIGTERM, 143)
+
+    def test_numerical_failure_exit_4(self):
+        bodies = SCENE["bodies"] + [
+            {"name": "rocket", "type": "sphere", "radius": 0.1, "mass": 1,
+             "position": [5, 5, 1], "force": [1e308, 0, 0]}]
+        s = self.scene(bodies=bodies)
+        r = self.rbsim("run", s, "--csv", "n.csv", "--steps", "100000")
+        if r.returncode == 3:
+            self.skipTest("the scene rejects such a force: " + r.stderr)
+        self.assertEqual(r.returncode, 4, r.stdout + r.stderr)
+        self.assertIn("step ", r.stderr)
+        with open(self.path("n.csv"), "rb") as f:
+            self.assertTrue(f.read().endswith(b"\n"))
+
+
+class DeterminismTests(Base):
+    def test_byte_identical_runs_and_renderer_counts(self):
+        s = self.scene()
+        outs = []
+        runs = [["--csv", "one.csv"],
+                ["--csv", "two.csv"],
+                ["--csv", "four.csv", "--json", "x.jsonl", "--stats",
+                 "x_stats.csv", "--reel", "2"]]
+        s4 = self.scene("four.json",
+                        renderers=[{"type": "csv", "path": "scene4.csv"}])
+        for args in runs:
+            r = self.rbsim("run", s, "--steps", "1500", *args)
+            self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s4, "--steps", "1500", "--csv", "with4.csv",
+                       "--json", "y.jsonl", "--stats", "y_stats.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for name in ("one.csv", "two.csv", "four.csv", "with4.csv",
+                     "scene4.csv"):
+            with open(self.path(name), "rb") as f:
+                outs.append(f.read())
+        self.assertGreater(len(outs[0]), 100000)
+        for o in outs[1:]:
+            self.assertEqual(o, outs[0])
+
+
+SUITES = {"cli": CliTests, "fault": FaultTests,
+          "determinism": DeterminismTests}
+
+if __name__ == "__main__":
+    names = sys.argv[1:] or list(SUITES)
+    suite = unittest.TestSuite()
+    for n in names:
+        suite.addTests(unittest.defaultTestLoader.loadTestsFromTestCase(
+            SUITES[n]))
+    result = unittest.TextTestRunner(verbosity=2).run(suite)
+    sys.exit(0 if result.wasSuccessful() else 1)
