@@ -21,6 +21,8 @@ static rbs_status cmd_help(rbs_projector *projector, const char *line,
                            char *reply, size_t reply_size);
 static rbs_status cmd_forward(rbs_projector *projector, const char *line,
                               char *reply, size_t reply_size);
+static rbs_status cmd_camera(rbs_projector *projector, const char *line,
+                             char *reply, size_t reply_size);
 
 static const rbsf_command commands[] = {
     {"help", "", "list these commands", cmd_help},
@@ -34,14 +36,14 @@ static const rbsf_command commands[] = {
      cmd_forward},
     {"status", "", "frame, simulated time, state and counters", cmd_forward},
     {"orbit", "DYAW DPITCH", "turn the SDL camera about its target, degrees",
-     cmd_forward},
-    {"pan", "DX DY", "move the SDL camera and its target sideways, metres",
-     cmd_forward},
-    {"zoom", "FACTOR", "move the SDL camera closer (> 1) or away (< 1)",
-     cmd_forward},
-    {"reset", "", "put the SDL camera back where it started", cmd_forward},
-    {"camera", "ARGS", "other camera settings of the SDL views (see "
-     "frontends/sdl/README.md)", cmd_forward},
+     cmd_camera},
+    {"pan", "DX DY", "move the SDL camera along the picture, metres",
+     cmd_camera},
+    {"zoom", "FACTOR", "SDL camera distance divided by FACTOR (2: closer)",
+     cmd_camera},
+    {"reset", "", "put the SDL camera back where it started", cmd_camera},
+    {"view", "N", "SDL camera commands act on view N", cmd_camera},
+    {"camera", "", "describe the current SDL camera", cmd_camera},
 };
 
 #define COMMAND_COUNT (sizeof commands / sizeof commands[0])
@@ -86,6 +88,18 @@ static rbs_status cmd_forward(rbs_projector *projector, const char *line,
         reply[n] = '\n';
         reply[n + 1] = '\0';
     }
+    return st;
+}
+
+/* Camera commands go to the renderers; say so when none takes them. */
+static rbs_status cmd_camera(rbs_projector *projector, const char *line,
+                             char *reply, size_t reply_size)
+{
+    rbs_status st = cmd_forward(projector, line, reply, reply_size);
+    if (st == RBS_E_NOT_FOUND)
+        snprintf(reply, reply_size,
+                 "no renderer of this run takes camera commands (they need "
+                 "an sdl renderer with a free or mounted camera)\n");
     return st;
 }
 
