@@ -462,6 +462,22 @@ RBS_API rbs_status rbs_world_save(const rbs_world *world, const char *path);
 RBS_API rbs_status rbs_world_load(const char *path, rbs_world **out, char *message,
                                   size_t message_size);
 
+/* ------------------------------------------------------------------------- */
+/* Methods and pipeline                                                      */
+/* ------------------------------------------------------------------------- */
+
+/** Describe as text the pipeline rbs_world_step() runs for this world as it
+ * is now: bodies, the method and its sub-steps, and each stage in or out
+ * with the reason (the body or material pair that needs it; with
+ * def.prune = 0 every stage runs).  Lines end in '\n'.  Writes at most size
+ * bytes, NUL-terminated when size > 0; buf may be NULL when size is 0.
+ * *needed (may be NULL) receives the full length including the NUL.
+ * Returns RBS_E_MEMORY when the text did not fit (always when size is 0),
+ * RBS_E_INVALID for a NULL or destroyed world.  Does not change the world;
+ * as thread-safe as other read-only calls on it. */
+RBS_API rbs_status rbs_world_explain(const rbs_world *world, char *buf, size_t size,
+                                     size_t *needed);
+
 #ifdef __cplusplus
 }
 #endif

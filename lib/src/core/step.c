@@ -25,7 +25,7 @@ static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2]
 
 /* Decide which stages can change the result.  A stage left out is one whose
  * every contribution would be exactly zero, so results are bit-identical. */
-void rbs__world_plan(rbs_world *w)
+void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
 {
     rbs__plan p;
     uint32_t i, moving = 0;
@@ -53,7 +53,12 @@ void rbs__world_plan(rbs_world *w)
         p.angular = p.gyroscopic = p.friction = p.sphere_pairs = 1;
         p.mutual = w->def.mutual_gravity != 0;
     }
-    w->plan = p;
+    *out = p;
+}
+
+void rbs__world_plan(rbs_world *w)
+{
+    rbs__plan_compute(w, &w->plan);
     w->plan_dirty = 0;
 }
 

@@ -118,6 +118,7 @@ int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 #endif
     ;
 void rbs__world_plan(rbs_world *w);
+void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 
 /* Body helpers (world.c). */
 v3 rbs__body_com(const rbs_world *w, uint32_t i);

@@ -1,0 +1,209 @@
+/*
+ * explain.c - rbs_world_explain(): the pipeline a step runs, as text.
+ *
+ * The stages in or out are read from the same plan the step uses
+ * (rbs__plan_compute in step.c); this file only finds, for each decision,
+ * the body or pair that causes it, so that a user can see why a stage runs.
+ */
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "core/world_internal.h"
+
+/* Text written into a caller buffer, counting what did not fit. */
+typedef struct text {
+    char *buf;
+    size_t size, len;
+} text;
+
+static void put(text *t, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+static void put(text *t, const char *fmt, ...)
+{
+    va_list ap;
+    int n;
+    size_t room = t->len < t->size ? t->size - t->len : 0;
+    va_start(ap, fmt);
+    n = vsnprintf(room > 0 ? t->buf + t->len : NULL, room, fmt, ap);
+    va_end(ap);
+    if (n > 0)
+        t->len += (size_t)n;
+}
+
+static void stage(text *t, int in, const char *name)
+{
+    put(t, "  %-4s %s: ", in ? "in" : "out", name);
+}
+
+/* "name" or "#slot" for unnamed bodies. */
+static void body_name(text *t, const rbs_world *w, uint32_t i)
+{
+    if (w->name[i][0] != '\0')
+        put(t, "sphere \"%s\"", w->name[i]);
+    else
+        put(t, "sphere #%u", (unsigned)i);
+}
+
+static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2] != 0.0; }
+
+static const char *method_summary(rbs_method m)
+{
+    switch (m) {
+    case RBS_METHOD_EULER:
+        return "semi-implicit Euler sub-steps (v += a h, then x += v h); 1 force evaluation per sub-step";
+    case RBS_METHOD_SELECTIVE:
+        return "semi-implicit Euler sub-steps; only the groups of bodies that overlap roll back";
+    case RBS_METHOD_EVENT:
+        return "exact event-driven motion between impacts (closed-form trajectories, root-found events)";
+    case RBS_METHOD_VERLET:
+        return "velocity Verlet sub-steps (kick h/2, drift h, kick h/2); 2 force evaluations per sub-step";
+    case RBS_METHOD_RK4:
+        return "classical Runge-Kutta sub-steps; 4 force evaluations per sub-step";
+    case RBS_METHOD_ADAPTIVE:
+        return "GSL odeiv2 rk8pd with error control between contacts; contact times by Brent root "
+               "finding (GSL roots); frames with resting contact use RK4 sub-steps";
+    default:
+        return "unknown";
+    }
+}
+
+rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t *needed)
+{
+    text t;
+    rbs__plan p;
+    uint32_t i, k, moving = 0, fixed = 0;
+    const char *why;
+    if (needed)
+        *needed = 0;
+    if (w == NULL || w->magic != 0x72627377u || (buf == NULL && size > 0))
+        return RBS_E_INVALID;
+    t.buf = buf;
+    t.size = size;
+    t.len = 0;
+    rbs__plan_compute(w, &p);
+    for (k = 0; k < w->sphere_count; ++k) {
+        if (w->fixed[w->spheres[k]])
+            fixed++;
+        else
+            moving++;
+    }
+
+    /* The world and the method. */
+    put(&t, "world: %u spheres (%u moving, %u fixed), %u planes, %u material pairs\n",
+        (unsigned)w->sphere_count, (unsigned)moving, (unsigned)fixed, (unsigned)w->plane_count,
+        (unsigned)w->pairs);
+    put(&t, "method: %s, dt = %g s, tolerance = %g, pruning %s\n", rbs_method_name(w->def.method),
+        w->def.dt, w->def.tolerance, w->def.prune ? "on" : "off (every stage runs)");
+    put(&t, "  %s\n", method_summary(w->def.method));
+    if (w->def.method != RBS_METHOD_EVENT)
+        put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
+            (unsigned)w->def.max_halvings);
+    why = w->def.prune ? "" : " (pruning off)";
+    put(&t, "stages:\n");
+
+    /* Detection. */
+    stage(&t, moving > 0 && w->plane_count > 0, "contacts sphere-plane");
+    if (moving == 0)
+        put(&t, "no sphere moves\n");
+    else if (w->plane_count == 0)
+        put(&t, "no planes\n");
+    else
+        put(&t, "%u moving spheres x %u planes\n", (unsigned)moving, (unsigned)w->plane_count);
+    stage(&t, p.sphere_pairs, "contacts sphere-sphere");
+    if (w->sphere_count < 2)
+        put(&t, "fewer than two spheres%s\n", why);
+    else if (moving == 0)
+        put(&t, "no sphere moves%s\n", why);
+    else
+        put(&t, "%u spheres, %u moving\n", (unsigned)w->sphere_count, (unsigned)moving);
+    stage(&t, moving > 0, "collision impulses (restitution)");
+    put(&t, moving > 0 ? "contacts approaching faster than one frame of forces builds\n" : "no sphere moves\n");
+
+    /* Friction. */
+    stage(&t, p.friction, "friction, rolling and spinning resistance");
+    for (i = 0; i < w->pairs; ++i) {
+        const rbs__pair *r = &w->pair[i];
+        if (r->mu_s > 0.0 || r->mu_k > 0.0 || r->rolling > 0.0 || r->spinning > 0.0)
+            break;
+    }
+    if (i < w->pairs) {
+        const rbs__pair *r = &w->pair[i];
+        put(&t, "pair \"%s\"/\"%s\" has mu_s %g, mu_k %g, rolling %g, spinning %g m\n",
+            r->a ? w->material_name[r->a - 1] : "*", r->b ? w->material_name[r->b - 1] : "*", r->mu_s,
+            r->mu_k, r->rolling, r->spinning);
+    } else {
+        put(&t, "no material pair has friction or resistance (pairs without a row are "
+                "frictionless)%s\n", why);
+    }
+
+    /* Angular motion. */
+    stage(&t, p.angular, "angular velocity and orientation");
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t s = w->spheres[k];
+        if (w->fixed[s])
+            continue;
+        if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
+            break;
+    }
+    if (k < w->sphere_count) {
+        uint32_t s = w->spheres[k];
+        body_name(&t, w, s);
+        put(&t, nonzero3(&w->avel[3 * s]) ? " spins\n"
+                : nonzero3(&w->torque[3 * s]) ? " has an applied torque\n"
+                : " has an off-centre mass\n");
+    } else if (p.friction && w->def.prune) {
+        put(&t, "friction can make spheres spin\n");
+    } else {
+        put(&t, "no moving sphere spins, has a torque or an off-centre mass, and no friction%s\n", why);
+    }
+    stage(&t, p.gyroscopic, "gyroscopic torque -w x I w");
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t s = w->spheres[k];
+        if (!w->fixed[s] && (!w->isotropic[s] || nonzero3(&w->com_body[3 * s])))
+            break;
+    }
+    if (k < w->sphere_count) {
+        body_name(&t, w, w->spheres[k]);
+        put(&t, " has anisotropic inertia about its centre of mass\n");
+    } else {
+        put(&t, "every moving sphere has isotropic inertia about its centre of mass, so the term is "
+                "zero%s\n", why);
+    }
+
+    /* Forces. */
+    stage(&t, moving > 0, "uniform gravity and applied forces");
+    put(&t, "g = (%g, %g, %g) %s, evaluated for every moving sphere\n", w->def.gravity.x, w->def.gravity.y,
+        w->def.gravity.z, w->def.gravity_mode == RBS_GRAVITY_FORCE ? "N" : "m/s^2");
+    stage(&t, p.mutual, "mutual gravity");
+    if (!w->def.mutual_gravity)
+        put(&t, "def.mutual_gravity is 0\n");
+    else if (!p.mutual)
+        put(&t, "fewer than two spheres or none moves\n");
+    else
+        put(&t, "G = %g m^3/(kg s^2), softening %g m, %u pairs\n", w->def.gravity_constant, w->def.softening,
+            (unsigned)(w->sphere_count * (w->sphere_count - 1) / 2));
+
+    /* Resting contact. */
+    stage(&t, moving > 0 && w->def.method != RBS_METHOD_EVENT, "resting-contact pass");
+    if (w->def.method == RBS_METHOD_VERLET || w->def.method == RBS_METHOD_RK4 ||
+        w->def.method == RBS_METHOD_ADAPTIVE)
+        put(&t, "twice per sub-step (drift and end velocities)\n");
+    else if (w->def.method == RBS_METHOD_EVENT)
+        put(&t, "the event method keeps rolling and sliding in closed form\n");
+    else
+        put(&t, "once per sub-step, after the forces\n");
+
+    if (needed)
+        *needed = t.len + 1;
+    if (size > 0 && t.len >= size) {
+        buf[size - 1] = '\0';
+        return RBS_E_MEMORY;
+    }
+    if (size == 0)
+        return RBS_E_MEMORY;
+    return RBS_OK;
+}

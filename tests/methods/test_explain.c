@@ -1,0 +1,140 @@
+/*
+ * test_explain.c - rbs_world_explain() states each stage in or out with the
+ * body or pair responsible, follows the world as it changes, and handles
+ * buffers like snprintf (truncate, NUL-terminate, report the size needed).
+ */
+#include <stdlib.h>
+
+#include "methods_common.h"
+
+static char text_buf[8192];
+
+static const char *explain(const rbs_world *w)
+{
+    size_t need = 0;
+    CHECK_OK(rbs_world_explain(w, text_buf, sizeof text_buf, &need));
+    assert_int_equal(need, strlen(text_buf) + 1);
+    return text_buf;
+}
+
+#define ASSERT_HAS(text, what)                                                  \
+    do {                                                                        \
+        if (strstr((text), (what)) == NULL)                                     \
+            fail_msg("missing \"%s\" in:\n%s", (what), (text));               \
+    } while (0)
+
+static void single_ball_prunes(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    const char *t;
+    (void)state;
+    floor_plane(w, (rbs_material_id){0, 0});
+    ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    t = explain(w);
+    ASSERT_HAS(t, "method: euler");
+    ASSERT_HAS(t, "in   contacts sphere-plane: 1 moving spheres x 1 planes");
+    ASSERT_HAS(t, "out  contacts sphere-sphere: fewer than two spheres");
+    ASSERT_HAS(t, "out  friction, rolling and spinning resistance: no material pair");
+    ASSERT_HAS(t, "out  angular velocity and orientation");
+    ASSERT_HAS(t, "out  gyroscopic torque");
+    ASSERT_HAS(t, "out  mutual gravity: def.mutual_gravity is 0");
+    rbs_world_destroy(w);
+}
+
+static void stages_name_their_reason(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_material_id m;
+    rbs_sphere_def s;
+    const char *t;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.mutual_gravity = 1;
+    d.method = RBS_METHOD_RK4;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "felt", 0.4, 0.2, -1.0);
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.name = "top";
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
+    s.position.z = 1.0;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    ball(w, 0.1, 1.0, 1, 0, 0.1, 0, 0, 0, m);
+    t = explain(w);
+    ASSERT_HAS(t, "method: rk4");
+    ASSERT_HAS(t, "4 force evaluations");
+    ASSERT_HAS(t, "in   contacts sphere-sphere: 2 spheres, 2 moving");
+    ASSERT_HAS(t, "in   friction, rolling and spinning resistance: pair \"felt\"/\"felt\" has mu_s 0.4");
+    ASSERT_HAS(t, "in   angular velocity and orientation: friction can make spheres spin");
+    ASSERT_HAS(t, "in   gyroscopic torque -w x I w: sphere \"top\" has anisotropic inertia");
+    ASSERT_HAS(t, "in   mutual gravity: G = 6.674e-11");
+    ASSERT_HAS(t, "twice per sub-step");
+    rbs_world_destroy(w);
+}
+
+static void follows_changes_and_prune_off(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id b;
+    const char *t;
+    (void)state;
+    rbs_world_def_init(&d);
+    CHECK_OK(rbs_world_create(&d, &w));
+    b = ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    assert_non_null(strstr(explain(w), "out  angular velocity"));
+    CHECK_OK(rbs_body_set_angular_velocity(w, b, (rbs_vec3){0, 0, 3}));
+    t = explain(w);
+    ASSERT_HAS(t, "in   angular velocity and orientation: sphere #0 spins");
+    rbs_world_destroy(w);
+
+    d.prune = 0;
+    CHECK_OK(rbs_world_create(&d, &w));
+    ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    t = explain(w);
+    ASSERT_HAS(t, "pruning off");
+    ASSERT_HAS(t, "in   contacts sphere-sphere: fewer than two spheres (pruning off)");
+    ASSERT_HAS(t, "in   friction, rolling and spinning resistance: no material pair has friction or "
+                  "resistance (pairs without a row are frictionless) (pruning off)");
+    rbs_world_destroy(w);
+}
+
+static void buffers_like_snprintf(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    char small[16];
+    size_t need = 0, need2 = 0;
+    char *full;
+    (void)state;
+    ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    assert_int_equal(rbs_world_explain(w, NULL, 0, &need), RBS_E_MEMORY);
+    assert_true(need > 100);
+    memset(small, 'x', sizeof small);
+    assert_int_equal(rbs_world_explain(w, small, sizeof small, &need2), RBS_E_MEMORY);
+    assert_int_equal(need2, need);
+    assert_int_equal(strlen(small), sizeof small - 1);
+    full = malloc(need);
+    assert_non_null(full);
+    CHECK_OK(rbs_world_explain(w, full, need, NULL));
+    assert_int_equal(strlen(full), need - 1);
+    assert_memory_equal(full, small, sizeof small - 1);
+    free(full);
+    assert_int_equal(rbs_world_explain(NULL, small, sizeof small, &need), RBS_E_INVALID);
+    assert_int_equal(need, 0);
+    assert_int_equal(rbs_world_explain(w, NULL, 10, NULL), RBS_E_INVALID);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(single_ball_prunes),
+        cmocka_unit_test(stages_name_their_reason),
+        cmocka_unit_test(follows_changes_and_prune_off),
+        cmocka_unit_test(buffers_like_snprintf),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
