@@ -705,23 +705,40 @@ static void *ren_main(void *arg)
 
 rbs_status rbs_projector_start(rbs_projector *p)
 {
+    int ok;
     if (p == NULL)
         return RBS_E_INVALID;
-    if (!p->usable || p->started)
-        return RBS_E_INVALID;
-    p->paused = p->def.start_paused != 0;
-    p->t_start = rbs__now();
-    p->started = 1;
-    if (pthread_create(&p->ren_thread, NULL, ren_main, p) != 0) {
-        p->started = 0;
-        set_error(p, RBS_E_MEMORY, "cannot start the renderer thread");
-        return RBS_E_MEMORY;
+    /* Commands may come from other threads already (a signal's "quit"). */
+    pthread_mutex_lock(&p->mu);
+    ok = p->usable && !p->started;
+    if (ok) {
+        if (p->def.start_paused)
+            p->paused = 1;
+        p->t_start = rbs__now();
+        p->started = 1;
     }
+    pthread_mutex_unlock(&p->mu);
+    if (!ok)
+        return RBS_E_INVALID;
+    pthread_mutex_lock(&p->mu); /* the renderer thread id, before anyone reads it */
+    ok = pthread_create(&p->ren_thread, NULL, ren_main, p) == 0;
+    if (!ok) {
+        p->started = 0;
+        p->sim_done = p->ren_done = 0;
+        set_error(p, RBS_E_MEMORY, "cannot start the renderer thread");
+    }
+    pthread_mutex_unlock(&p->mu);
+    if (!ok)
+        return RBS_E_MEMORY;
     if (pthread_create(&p->sim_thread, NULL, sim_main, p) != 0) {
-        /* Stop the renderer thread we started, then report. */
+        /* Stop the renderer thread we started, then report: the run is
+         * over (done, with this error). */
         fail(p, RBS_E_MEMORY, "cannot start the simulation thread");
         pthread_join(p->ren_thread, NULL);
-        p->started = 0;
+        pthread_mutex_lock(&p->mu);
+        p->sim_done = 1;
+        pthread_mutex_unlock(&p->mu);
+        p->joined = 1;
         return RBS_E_MEMORY;
     }
     return RBS_OK;
