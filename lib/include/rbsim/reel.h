@@ -5,6 +5,11 @@
  *
  * The reel and the projector's command functions are the thread-safe objects
  * of rbsim; everything else follows the world's rule (one thread at a time).
+ * While a projector runs (from rbs_projector_start until rbs_projector_wait
+ * returns) its world belongs to the simulation thread: no other thread may
+ * touch it, not even to read.  Renderers see copies (frames), never the
+ * world.  Declarations avoid function-like macros and varargs, so cffi can
+ * read them (the *_init and _status macros have _sized functions beside).
  * lib/ knows no concrete renderer: CSV, JSON and SDL live in frontends/ and
  * register through rbs_renderer_register().
  */
@@ -25,8 +30,10 @@ typedef struct rbs_frame_body {
     int32_t type;              /**< rbs_body_type */
     uint32_t color;            /**< 0xRRGGBB */
     int32_t texture;           /**< rbs_texture */
-    uint32_t slot;
-    const char *name;          /**< owned by the world, stable for the run */
+    uint32_t slot;             /**< the body's slot index in the world */
+    const char *name;          /**< owned by the world ("" if unnamed), valid
+                                    while the world lives and its bodies are
+                                    not removed */
     double position[3];        /**< sphere centre or plane point, m */
     double orientation[4];     /**< [w x y z] */
     double velocity[3];        /**< m/s */
@@ -47,16 +54,25 @@ typedef struct rbs_frame_stats {
 typedef struct rbs_frame {
     uint64_t number;        /**< k: the frame at t = k dt; 0 is the start */
     double time;            /**< simulated time, s */
-    double target_time;     /**< wall time it should stay on screen, s */
-    int32_t last;           /**< nonzero on the run's last frame */
-    int32_t paused;         /**< nonzero if the run is paused at this frame */
-    uint32_t body_count;
+    double target_time;     /**< wall time it should stay on screen, s
+                                 (dt / speed when it was made) */
+    int32_t last;           /**< nonzero on the run's last frame (a run
+                                 stopped by quit or an error has none) */
+    int32_t paused;         /**< nonzero if the run was paused when this
+                                 frame was made, and on repeats of the held
+                                 frame shown to live views while paused */
+    uint32_t body_count;    /**< occupied slots, in slot order */
     rbs_frame_body *bodies; /**< body_count entries, owned by the reel */
     rbs_frame_stats stats;
 } rbs_frame;
 
-/** Fill a frame (bodies array of at least the world's slot count) from a
- * world: the glue between the core and the reel. */
+/** Fill a frame from a world through the public world API: the glue
+ * between the core and the reel.  frame->bodies must hold bodies_capacity
+ * entries; every occupied slot is copied, in slot order (RBS_E_CAPACITY if
+ * they do not fit).  Sets number (the step count), time, body_count and the
+ * energies and momenta of stats; stats.step is zeroed for the caller to fill;
+ * target_time, last and paused are left alone.  Allocates nothing.  Reads
+ * the world: not concurrently with anything that changes it. */
 RBS_API rbs_status rbs_frame_capture(const rbs_world *world, rbs_frame *frame,
                                      uint32_t bodies_capacity);
 
@@ -64,27 +80,40 @@ RBS_API rbs_status rbs_frame_capture(const rbs_world *world, rbs_frame *frame,
 /* Reel                                                                      */
 /* ------------------------------------------------------------------------- */
 
+/** What the writer does when the ring is full. */
 typedef enum rbs_reel_policy {
     RBS_REEL_LOSSLESS = 0,    /**< the writer waits for the reader */
-    RBS_REEL_LATEST_ONLY = 1, /**< the writer overwrites unread frames */
+    RBS_REEL_LATEST_ONLY = 1, /**< the writer takes back the oldest unread
+                                   frame (never the one being read); the
+                                   reader sees increasing frames, some
+                                   skipped */
     RBS_REEL_POLICY_FORCE32 = 0x7fffffff
 } rbs_reel_policy;
 
+/** A bounded ring of frames between one writer thread and one reader
+ * thread.  Every call below is thread-safe; each side holds at most one slot
+ * at a time (RBS_E_INVALID otherwise).  Opaque. */
 typedef struct rbs_reel rbs_reel;
 
 /** Create a reel of `capacity` frames (>= 2), each with room for
- * `max_bodies` bodies; all memory is reserved here. */
+ * `max_bodies` (>= 1) bodies; all memory is reserved here, none later.
+ * RBS_E_INVALID for bad arguments, RBS_E_MEMORY if out of memory. */
 RBS_API rbs_status rbs_reel_create(uint32_t capacity, uint32_t max_bodies,
                                    rbs_reel_policy policy, rbs_reel **out);
+/** Free a reel (no thread may be using it).  NULL ok. */
 RBS_API void rbs_reel_destroy(rbs_reel *reel);
-/** Writer: get the next free slot (blocks in lossless mode while the ring is
- * full).  RBS_E_CLOSED if the reel was closed. */
+/** Writer: get the next free slot, cleared (blocks in lossless mode while
+ * the ring is full).  RBS_E_CLOSED if the reel was closed, also while
+ * waiting. */
 RBS_API rbs_status rbs_reel_begin_write(rbs_reel *reel, rbs_frame **slot);
-/** Writer: publish the slot got by rbs_reel_begin_write. */
+/** Writer: publish the slot got by rbs_reel_begin_write.  RBS_E_CLOSED (the
+ * frame is discarded) if the reel was closed meanwhile. */
 RBS_API rbs_status rbs_reel_end_write(rbs_reel *reel);
-/** Reader: wait for the next frame.  RBS_E_CLOSED once closed and drained. */
+/** Reader: wait for the next frame (the oldest published).  Frames
+ * published before a close are still delivered; RBS_E_CLOSED once closed and
+ * drained. */
 RBS_API rbs_status rbs_reel_begin_read(rbs_reel *reel, const rbs_frame **frame);
-/** Reader: give the frame back. */
+/** Reader: give the frame back (it must not be used afterwards). */
 RBS_API rbs_status rbs_reel_end_read(rbs_reel *reel);
 /** Close: no more frames; wakes every waiter.  Idempotent. */
 RBS_API void rbs_reel_close(rbs_reel *reel);
@@ -95,15 +124,17 @@ RBS_API uint64_t rbs_reel_dropped(rbs_reel *reel);
 /* Renderer factory                                                          */
 /* ------------------------------------------------------------------------- */
 
-/** Configuration handed to a renderer type's create(). */
+/** Configuration handed to a renderer type's check() and create().  The
+ * strings are borrowed for the call only: copy what you keep. */
 typedef struct rbs_renderer_config {
-    uint32_t struct_size;
+    uint32_t struct_size;  /**< sizeof(rbs_renderer_config) */
     const char *type;      /**< registered name */
     const char *path;      /**< output path (file or folder) or NULL */
-    uint32_t every;        /**< keep every K-th frame (and always the last) */
+    uint32_t every;        /**< keep every K-th frame (and always the last);
+                                the projector does the keeping; 0 means 1 */
     const char *json;      /**< the scene entry as JSON text, or NULL */
     const char *file;      /**< scene file for messages, or NULL */
-    int32_t line, column;
+    int32_t line, column;  /**< place of the entry in file, 1-based, or 0 */
     /** Filled by the projector: lets a renderer send a command line
      * ("quit", "pause", "resume", ...) back to the run, e.g. from a window's
      * keys.  Thread-safe; may be NULL outside a projector. */
@@ -115,9 +146,12 @@ typedef struct rbs_renderer_config {
  * create() makes an instance; draw() is called on the renderer thread for
  * each frame kept; finish() after the last frame (flush, close files);
  * destroy() always.  Each returns RBS_OK or an error and may write a message
- * into err (errlen bytes). */
+ * into err (errlen bytes).  create() and destroy() run on the thread that
+ * creates/destroys the projector; draw(), finish() and command() on its
+ * renderer thread, never two at once.  The frame given to draw() is valid
+ * only during the call.  A renderer must not call into the world. */
 typedef struct rbs_renderer_class {
-    uint32_t struct_size;
+    uint32_t struct_size;  /**< sizeof(rbs_renderer_class) */
     const char *name; /**< unique; copied pointer must outlive the registry */
     void *context;    /**< passed to create() */
     rbs_status (*create)(void *context, const rbs_renderer_config *config,
@@ -160,13 +194,18 @@ typedef enum rbs_renderer_flags {
 #define RBS_RENDERER_TYPES_MAX 32
 typedef struct rbs_renderer_registry rbs_renderer_registry;
 
+/** Make an empty registry (the caller owns it; no globals).  Not
+ * thread-safe: register before runs start. */
 RBS_API rbs_status rbs_renderer_registry_create(rbs_renderer_registry **out);
+/** Free a registry (after every projector using it).  NULL ok. */
 RBS_API void rbs_renderer_registry_destroy(rbs_renderer_registry *registry);
-/** Register a type; RBS_E_INVALID if the name is taken, RBS_E_CAPACITY if
- * full.  The class is copied. */
+/** Register a type; RBS_E_INVALID if the name is taken or the class lacks
+ * a name, create() or draw(); RBS_E_CAPACITY if full.  The class is copied
+ * (its strings and context are borrowed). */
 RBS_API rbs_status rbs_renderer_register(rbs_renderer_registry *registry,
                                          const rbs_renderer_class *cls);
-/** Find a type by name; RBS_E_NOT_FOUND if absent. */
+/** Find a type by name; RBS_E_NOT_FOUND (and *out NULL) if absent.  The
+ * pointer is valid while the registry lives. */
 RBS_API rbs_status rbs_renderer_find(const rbs_renderer_registry *registry,
                                      const char *name,
                                      const rbs_renderer_class **out);
