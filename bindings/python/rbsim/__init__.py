@@ -23,7 +23,7 @@ from typing import Any, List, Optional, Union
 from . import _check
 from . import errors as _e
 from ._native import ffi, lib
-from ._render import Frame, Run, RunInfo
+from ._render import Frame, Run, RunInfo, StopRun
 from .errors import (ArgumentTypeError, BusyError, Error, SceneError,
                      SceneIssue, error_class)
 from .errors import *  # noqa: F401,F403 - the generated classes
@@ -151,6 +151,6 @@ def version() -> str:
 
 
 __all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
-           "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "METHODS",
+           "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "StopRun", "METHODS",
            "load", "parse_json", "version", "Error", "SceneError", "SceneIssue",
            "BusyError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)

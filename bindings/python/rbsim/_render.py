@@ -12,6 +12,9 @@ Each renderer of a run is registered in a fresh registry as its own type
 (``python0``, ``python1``, ...) whose context is a cffi handle to an adapter;
 the C callbacks below (``@ffi.def_extern``) run on the projector's renderer
 thread and take the GIL, which the main thread released while it waits in C.
+A renderer may end the run early and cleanly by raising :class:`StopRun`
+(the projector's "quit": every output is finished; that renderer gets no
+further frames).
 The frame slot is reused by the reel, so a :class:`Frame` holds copies.  An
 exception raised by a renderer is kept, the callback returns
 RBS_E_RENDERER, the projector stops the run, and :meth:`Run.wait` raises the
@@ -74,6 +77,7 @@ class RunInfo:
     """How a run went (from rbs_projector_status)."""
 
     steps: int             #: steps asked
+    endless: bool          #: ran until quit
     captured: int          #: frames captured by the simulation
     drawn: int             #: frames taken from the reel
     frame: int             #: number of the last frame drawn
@@ -85,6 +89,10 @@ class RunInfo:
     energy_initial: float  #: J at frame 0
     energy_last: float     #: J at the last frame captured
     wall_time: float       #: s
+
+
+class StopRun(Exception):
+    """Raise from a renderer's draw() to end the run cleanly ("quit")."""
 
 
 class _Adapter:
@@ -109,6 +117,9 @@ class _Adapter:
         self.live = _check.flag(getattr(obj, "live", False),
                                 "renderers[%d].live" % index)
         self.names: dict = {}
+        self.stopped = False
+        self.control: Any = ffi.NULL
+        self.control_context: Any = ffi.NULL
         self.handle = ffi.new_handle(self)
 
     def frame(self, f: Any) -> Frame:
@@ -156,6 +167,9 @@ def _fail(adapter: _Adapter, exc: BaseException, err: Any, errlen: int) -> int:
 @ffi.def_extern(error=lib.RBS_E_RENDERER)
 def rbs_py_renderer_create(context: Any, config: Any, world: Any, instance: Any,
                            err: Any, errlen: int) -> int:
+    adapter = ffi.from_handle(context)
+    adapter.control = config.control
+    adapter.control_context = config.control_context
     instance[0] = context  # the adapter, kept alive by its Run
     return lib.RBS_OK
 
@@ -163,8 +177,15 @@ def rbs_py_renderer_create(context: Any, config: Any, world: Any, instance: Any,
 @ffi.def_extern(error=lib.RBS_E_RENDERER)
 def rbs_py_renderer_draw(instance: Any, frame: Any, err: Any, errlen: int) -> int:
     adapter = ffi.from_handle(instance)
+    if adapter.stopped:
+        return lib.RBS_OK
     try:
         adapter.draw(adapter.frame(frame))
+    except StopRun:
+        adapter.stopped = True
+        adapter.run._stopped = True
+        if adapter.control != ffi.NULL:
+            adapter.control(adapter.control_context, b"quit")
     except BaseException as exc:  # noqa: B902 - everything goes back to run()
         return _fail(adapter, exc, err, errlen)
     return lib.RBS_OK
@@ -203,8 +224,10 @@ class Run:
 
     def __init__(self, world: World, steps: int, renderers: Sequence[Any],
                  realtime: bool, speed: float, start_paused: bool,
-                 pause_on_collision: bool, reel_capacity: Optional[int]) -> None:
+                 pause_on_collision: bool, reel_capacity: Optional[int],
+                 endless: bool) -> None:
         self._error: Optional[BaseException] = None
+        self._stopped = False
         self._world = world
         self._projector: Any = ffi.NULL
         self._registry: Any = ffi.NULL
@@ -214,13 +237,14 @@ class Run:
         self._cworld = world._acquire()  # held until wait() ends
         try:
             self._make(steps, realtime, speed, start_paused, pause_on_collision,
-                       reel_capacity)
+                       reel_capacity, endless)
         except BaseException:
             self._release()
             raise
 
     def _make(self, steps: int, realtime: bool, speed: float, start_paused: bool,
-              pause_on_collision: bool, reel_capacity: Optional[int]) -> None:
+              pause_on_collision: bool, reel_capacity: Optional[int],
+              endless: bool) -> None:
         n = len(self._adapters)
         reg = ffi.new("rbs_renderer_registry **")
         status = lib.rbs_renderer_registry_create(reg)
@@ -254,6 +278,7 @@ class Run:
         d.speed = speed
         d.start_paused = int(start_paused)
         d.pause_on_collision = int(pause_on_collision)
+        d.endless = int(endless)
         if reel_capacity is not None:
             d.reel_capacity = reel_capacity
         out = ffi.new("rbs_projector **")
@@ -324,6 +349,8 @@ class Run:
         self._close_projector()
         if self._error is not None:
             raise self._error
+        if status == lib.RBS_E_CLOSED and self._stopped:
+            return info  # a renderer raised StopRun: a clean end
         if status != lib.RBS_OK:
             raise _e.error_class(status)(detail)
         return info
@@ -352,7 +379,7 @@ def _text(p: Any) -> str:
 
 
 def _run_info(s: Any) -> RunInfo:
-    return RunInfo(int(s.steps), int(s.captured), int(s.drawn), int(s.frame),
+    return RunInfo(int(s.steps), bool(s.endless), int(s.captured), int(s.drawn), int(s.frame),
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
                    float(s.energy_last), float(s.wall_time))
@@ -362,14 +389,14 @@ def start_world(world: World, steps: Optional[int] = None,
                 renderers: Sequence[Any] = (), *, realtime: bool = False,
                 speed: float = 1.0, start_paused: bool = False,
                 pause_on_collision: Optional[bool] = None,
-                reel_capacity: Optional[int] = None) -> Run:
+                reel_capacity: Optional[int] = None, endless: bool = False) -> Run:
     """Start a run of world; see World.start."""
     if steps is None:
         steps = world._scene_steps
         if steps is None:
             raise _e.error_class(lib.RBS_E_INVALID)(
                 "steps: required (the world was not loaded from a scene)")
-    n = _check.u64(steps, "steps", 1)
+    n = _check.u64(steps, "steps")
     if isinstance(renderers, (str, bytes)) or not isinstance(renderers, Sequence):
         if callable(renderers) or hasattr(renderers, "draw"):
             renderers = [renderers]
@@ -384,15 +411,17 @@ def start_world(world: World, steps: Optional[int] = None,
     cap = None if reel_capacity is None else _check.u32(reel_capacity, "reel_capacity", 2)
     return Run(world, n, list(renderers), _check.flag(realtime, "realtime"),
                _check.real(speed, "speed"), _check.flag(start_paused, "start_paused"),
-               _check.flag(pause_on_collision, "pause_on_collision"), cap)
+               _check.flag(pause_on_collision, "pause_on_collision"), cap,
+               _check.flag(endless, "endless"))
 
 
 def run_world(world: World, steps: Optional[int] = None,
               renderers: Sequence[Any] = (), *, realtime: bool = False,
-              speed: float = 1.0, reel_capacity: Optional[int] = None) -> RunInfo:
+              speed: float = 1.0, reel_capacity: Optional[int] = None,
+              endless: bool = False) -> RunInfo:
     """Run to the end and wait; see World.run.  (Pausing needs someone to
     resume: use World.start and Run.command for that.)"""
     return start_world(world, steps, renderers, realtime=realtime, speed=speed,
                        start_paused=False, pause_on_collision=False,
-                       reel_capacity=reel_capacity).wait()
+                       reel_capacity=reel_capacity, endless=endless).wait()
 

@@ -807,12 +807,13 @@ class World:
 
     def run(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
             realtime: bool = False, speed: float = 1.0,
-            reel_capacity: Optional[int] = None) -> "RunInfo":
+            reel_capacity: Optional[int] = None,
+            endless: bool = False) -> "RunInfo":
         """Run through the projector -- the simulation on one thread, the
         renderers on another -- and wait for the end.
 
         Args:
-            steps: steps to take (frames 0..steps); None: the scene's
+            steps: steps to take (frames 0..steps; 0: frame 0 only); None: the scene's
                 ``simulation.steps`` for a loaded world.
             renderers: Python renderers (at most 4): callables ``f(frame)``
                 or objects with ``draw(frame)`` and optionally ``finish()``,
@@ -820,6 +821,8 @@ class World:
             realtime: pace frame k at k dt / speed of wall time.
             speed: real-time factor (> 0).
             reel_capacity: frames in the reel (>= 2).
+            endless: ignore steps and run until a renderer raises
+                :class:`StopRun`.
 
         Returns:
             a :class:`RunInfo`.  An exception raised by a renderer stops the
@@ -828,13 +831,14 @@ class World:
         """
         from ._render import run_world
         return run_world(self, steps, renderers, realtime=realtime, speed=speed,
-                         reel_capacity=reel_capacity)
+                         reel_capacity=reel_capacity, endless=endless)
 
     def start(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
               realtime: bool = False, speed: float = 1.0,
               start_paused: bool = False,
               pause_on_collision: Optional[bool] = None,
-              reel_capacity: Optional[int] = None) -> "Run":
+              reel_capacity: Optional[int] = None,
+              endless: bool = False) -> "Run":
         """Start a run (as :meth:`run`) and return at once with a
         :class:`Run` to send commands to ("pause", "resume", "step N",
         "speed X", "quit") and to wait on.  pause_on_collision None takes
@@ -843,7 +847,7 @@ class World:
         return start_world(self, steps, renderers, realtime=realtime, speed=speed,
                            start_paused=start_paused,
                            pause_on_collision=pause_on_collision,
-                           reel_capacity=reel_capacity)
+                           reel_capacity=reel_capacity, endless=endless)
 
     @property
     def time(self) -> float:

@@ -1,0 +1,230 @@
+"""Errors become Python exceptions -- never a crash of the interpreter.
+
+Every status code has its class (checked against the header in
+test_build.py); here each error the API can reach is provoked for real, the
+others are mapped through rbsim.errors.raise_status, and a battery of bad
+arguments (None, wrong types, NaN, infinities, huge and negative integers)
+is thrown at every entry point: each must raise an rbsim.Error.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import rbsim
+from rbsim._native import ffi, lib
+
+NAN, INF = float("nan"), float("inf")
+# None is left out: as a keyword it means "the library's default".
+BAD_REALS = ["1.0", NAN, INF, -INF, [1.0], object(), True, 1j]
+BAD_VECTORS = [1.0, "abc", [1.0, 2.0], [1.0, 2.0, 3.0, 4.0, 5.0],
+               [NAN, 0, 0], [0, INF, 0], [0, 0, None], {"x": 1}, object(),
+               np.array([1.0, np.nan, 0.0])]
+BAD_INTS = [-1, 2 ** 40, 1.5, "3", NAN, True]
+
+
+def make_world():
+    w = rbsim.World(max_bodies=8)
+    w.add_plane("ground")
+    w.add_sphere("ball", radius=0.1, position=(0.0, 0.0, 1.0))
+    return w
+
+
+def test_every_status_code_maps_to_its_class():
+    for code, cls in rbsim.errors.BY_STATUS.items():
+        with pytest.raises(cls) as info:
+            rbsim.errors.raise_status(code, "detail")
+        e = info.value
+        assert isinstance(e, rbsim.Error) and e.status == code
+        assert "detail" in str(e)
+        assert ffi.string(lib.rbs_status_string(code)).decode() in str(e)
+    rbsim.errors.raise_status(0)  # RBS_OK raises nothing
+    with pytest.raises(rbsim.Error, match="unknown status"):
+        rbsim.errors.raise_status(-999)
+
+
+def test_builtin_bases():
+    assert issubclass(rbsim.InvalidError, ValueError)
+    assert issubclass(rbsim.NotFoundError, KeyError)
+    assert issubclass(rbsim.IoError, OSError)
+    assert issubclass(rbsim.NumericError, ArithmeticError)
+    assert issubclass(rbsim.ArgumentTypeError, TypeError)
+    assert issubclass(rbsim.errors.GENERATED["MemoryError"], MemoryError)
+
+
+def test_invalid_from_c_names_the_field():
+    w = make_world()
+    with pytest.raises(rbsim.InvalidError, match="radius") as info:
+        w.add_sphere(radius=-0.5)
+    assert info.value.status == lib.RBS_E_INVALID
+    with pytest.raises(rbsim.InvalidError, match="normal"):
+        w.add_plane(normal=(0, 0, 0))
+    with pytest.raises(rbsim.InvalidError, match="already"):
+        w.add_sphere("ball", position=(0, 0, 3))
+    with pytest.raises(rbsim.InvalidError, match="dt"):
+        rbsim.World(dt=-1.0)
+    with pytest.raises(rbsim.InvalidError):
+        rbsim.World(max_bodies=0)
+
+
+def test_capacity_stale_notfound_closed():
+    w = rbsim.World(max_bodies=1)
+    w.add_sphere("a")
+    with pytest.raises(rbsim.CapacityError):
+        w.add_sphere("b", position=(0, 0, 1))
+    body = w.body("a")
+    body.remove()
+    with pytest.raises(rbsim.StaleIdError):
+        body.velocity = (0, 0, 1)
+    with pytest.raises(rbsim.NotFoundError):
+        w.body("a")
+    w.close()
+    with pytest.raises(rbsim.ClosedError):
+        w.add_sphere("c")
+
+
+def test_numeric_from_python_and_from_c():
+    w = make_world()
+    ball = w.bodies["ball"]
+    with pytest.raises(rbsim.NumericError, match="velocity"):
+        ball.velocity = (NAN, 0, 0)
+    # The library checks too: call it directly with a NaN.
+    cid = w._cbody(ball)
+    v = ffi.new("rbs_vec3 *", {"x": NAN, "y": 0.0, "z": 0.0})
+    with pytest.raises(rbsim.NumericError, match="finite"):
+        w._call(lib.rbs_body_set_velocity, cid, v[0])
+    assert ball.velocity.tolist() == [0.0, 0.0, 0.0]  # unchanged
+
+
+def test_io_and_scene_errors(tmp_path):
+    with pytest.raises(rbsim.IoError) as info:
+        rbsim.load(tmp_path / "missing.json")
+    assert "missing.json" in str(info.value)
+    bad = tmp_path / "bad.json"
+    bad.write_text('{\n  "format": 1,\n  "simulation": {"steps": 10},\n'
+                   '  "bodies": [{"type": "sphere", "name": "b", "mass": 1,\n'
+                   '              "position": [0, 0, 1], "radius": -1}]\n}\n')
+    with pytest.raises(rbsim.SceneError) as info:
+        rbsim.load(bad)
+    e = info.value
+    assert e.status == lib.RBS_E_SCENE and e.file.endswith("bad.json")
+    assert len(e.errors) == 1 and e.count == 1
+    assert e.line == 5 and e.column == 48 and "must be > 0" in e.message
+    assert e.path == "bodies[0].radius"
+    assert "bad.json:5:48:" in str(e)
+
+
+def test_scene_error_lists_every_error(tmp_path):
+    bad = tmp_path / "many.json"
+    bad.write_text('{"format": 1, "simulation": {"steps": 10, "dt": -1},\n'
+                   ' "bodies": [{"type": "sphere", "radius": -1},\n'
+                   '            {"type": "sphere", "mass": "heavy"}]}\n')
+    with pytest.raises(rbsim.SceneError) as info:
+        rbsim.load(bad)
+    e = info.value
+    assert len(e.errors) >= 3
+    lines = [x.line for x in e.errors]
+    assert 1 in lines and 2 in lines and 3 in lines
+    for x in e.errors:
+        assert x.file.endswith("many.json") and x.message and x.text
+
+
+def test_busy_when_a_world_is_used_during_its_run():
+    w = make_world()
+
+    def meddle(frame):
+        w.step()
+
+    with pytest.raises(rbsim.BusyError):
+        w.run(5, renderers=[meddle])
+    w.step()  # usable again after the run
+
+
+def check_raises_rbsim(fn, *args, **kw):
+    try:
+        fn(*args, **kw)
+    except rbsim.Error:
+        return
+    pytest.fail("%s(%r, %r) did not raise an rbsim.Error" % (fn, args, kw))
+
+
+def test_bad_arguments_to_the_world_constructor():
+    for key in ("max_bodies", "max_materials", "max_pairs", "max_contacts",
+                "max_halvings", "max_sweeps"):
+        for bad in BAD_INTS:
+            check_raises_rbsim(rbsim.World, **{key: bad})
+    for key in ("dt", "restitution", "tolerance", "slop", "gravity_constant",
+                "softening"):
+        for bad in BAD_REALS:
+            check_raises_rbsim(rbsim.World, **{key: bad})
+    for bad in BAD_VECTORS:
+        check_raises_rbsim(rbsim.World, gravity=bad)
+    for bad in ("sideways", 3, None):
+        if bad is not None:
+            check_raises_rbsim(rbsim.World, gravity_mode=bad)
+        check_raises_rbsim(rbsim.World, method=bad if bad is not None else 7)
+    for bad in ("yes", 2, 0.5):
+        check_raises_rbsim(rbsim.World, prune=bad)
+        check_raises_rbsim(rbsim.World, mutual_gravity=bad)
+
+
+def test_bad_arguments_to_bodies_and_materials():
+    w = make_world()
+    ball = w.bodies["ball"]
+    for key in ("radius", "mass", "density"):
+        for bad in BAD_REALS + [-1.0] + ([0.0] if key != "density" else []):
+            check_raises_rbsim(w.add_sphere, **{key: bad})
+    for key in ("position", "velocity", "angular_velocity", "center_of_mass",
+                "force", "torque", "inertia"):
+        for bad in BAD_VECTORS:
+            check_raises_rbsim(w.add_sphere, **{key: bad})
+    for bad in BAD_VECTORS + [[0, 0, 0, 0]]:
+        check_raises_rbsim(w.add_sphere, orientation=bad)
+        check_raises_rbsim(w.add_plane, normal=bad)
+        check_raises_rbsim(w.add_plane, point=bad)
+    for bad in (3, b"name", "a\0b", "x" * 100):
+        check_raises_rbsim(w.add_sphere, bad)
+        check_raises_rbsim(w.add_material, bad)
+        check_raises_rbsim(w.body, bad)
+    for bad in (-1, 2 ** 24, "red", 1.5):
+        check_raises_rbsim(w.add_sphere, color=bad)
+    for bad in ("plaid", 1):
+        check_raises_rbsim(w.add_sphere, texture=bad)
+        check_raises_rbsim(w.add_sphere, inertia=bad if bad != 1 else "dense")
+    for bad in (5, object(), "nonexistent"):
+        check_raises_rbsim(w.add_sphere, material=bad)
+        check_raises_rbsim(w.set_material, bad, "*")
+    for key in ("static", "kinetic", "restitution", "rolling", "spinning"):
+        for bad in BAD_REALS:
+            check_raises_rbsim(w.set_material, "*", "*", **{key: bad})
+    for attr in ("position", "velocity", "angular_velocity", "force", "torque",
+                 "orientation"):
+        for bad in BAD_VECTORS + [None]:
+            check_raises_rbsim(setattr, ball, attr, bad)
+    for bad in (None, "ball", 3, object()):
+        check_raises_rbsim(w.remove_body, bad)
+    assert ball.position.tolist() == [0.0, 0.0, 1.0]  # nothing got through
+
+
+def test_bad_arguments_to_stepping_and_settings():
+    w = make_world()
+    for bad in [None, -1, 2 ** 64, 1.5, "3", NAN, True]:
+        check_raises_rbsim(w.step, bad)
+    for bad in BAD_REALS + [None, 0.0, -1.0]:
+        check_raises_rbsim(setattr, w, "dt", bad)
+        check_raises_rbsim(setattr, w, "tolerance", bad)
+    for bad in (None, 3, "nope", ""):
+        check_raises_rbsim(setattr, w, "method", bad)
+    for bad in (None, 3, object(), "", "a\0b"):
+        check_raises_rbsim(rbsim.load, bad)
+    check_raises_rbsim(rbsim.load, "x.json", format="xml")
+    check_raises_rbsim(rbsim.parse_json, None)
+    check_raises_rbsim(rbsim.parse_json, "{", name=None)
+    check_raises_rbsim(w.run, -1)
+    check_raises_rbsim(w.run, 5, renderers=[1])
+    check_raises_rbsim(w.run, 5, renderers=3)
+    check_raises_rbsim(w.run, 5, renderers=[print] * 5)
+    check_raises_rbsim(w.run, 5, speed=NAN)
+    check_raises_rbsim(w.run, 5, reel_capacity=1)
+    assert w.step_count == 0 and not math.isnan(w.time)

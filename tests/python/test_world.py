@@ -1,0 +1,255 @@
+"""Building worlds in code, stepping, bodies, materials, settings, diagnostics.
+
+Physics here only checks that the binding passes values through: the core's
+own tests (tests/core) judge the physics.  Free fall is compared with the
+exact answer of semi-implicit Euler, v_n = v0 - g n dt and
+z_n = z0 + v0 n dt - g dt^2 n (n + 1) / 2, to within 1e-12 m: n additions of
+numbers below 10 m lose at most about n * 2.2e-16 * 10 m = 2e-13 m for
+n = 100, so 1e-12 leaves room for rounding and none for a wrong dt, g or
+sign.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import rbsim
+
+G = 9.81
+
+
+def make_world(**kw):
+    w = rbsim.World(dt=0.001, **kw)
+    w.add_plane("ground")
+    w.add_sphere("ball", radius=0.1, mass=2.0, position=(0.0, 0.0, 1.0))
+    return w
+
+
+def test_free_fall_matches_semi_implicit_euler():
+    w = rbsim.World(dt=0.001, gravity=(0, 0, -G))
+    ball = w.add_sphere("ball", radius=0.1, position=(0.0, 0.0, 5.0),
+                        velocity=(0.5, 0.0, 1.0))
+    n = 100
+    info = w.step(n)
+    dt = 0.001
+    assert info.steps == n
+    assert w.step_count == n
+    assert w.time == n * dt  # documented as step count * dt
+    assert ball.velocity[2] == pytest.approx(1.0 - G * n * dt, abs=1e-12)
+    z = 5.0 + 1.0 * n * dt - G * dt * dt * n * (n + 1) / 2
+    assert ball.position[2] == pytest.approx(z, abs=1e-12)
+    assert ball.position[0] == pytest.approx(0.5 * n * dt, abs=1e-12)
+    assert ball.velocity[0] == 0.5
+
+
+def test_step_zero_and_step_info():
+    w = make_world()
+    info = w.step(0)
+    assert info.steps == 0 and w.step_count == 0
+    info = w.step()
+    assert isinstance(info, rbsim.StepInfo) and info.steps == 1
+    assert info.substeps >= 1 and info.rollbacks >= 0
+    # step(n) in one call equals n calls of step() bit for bit.
+    a, b = make_world(), make_world()
+    a.step(700)
+    for _ in range(700):
+        b.step()
+    assert np.array_equal(a.positions, b.positions)
+    assert a.hash() == b.hash()
+
+
+def test_settings_round_trip():
+    w = rbsim.World(max_bodies=5, max_materials=3, max_pairs=7, max_contacts=40,
+                    dt=0.002, gravity=(0.0, -1.0, -3.0), gravity_mode="force",
+                    restitution=0.25, tolerance=1e-7, slop=1e-5,
+                    max_halvings=12, max_sweeps=20, mutual_gravity=True,
+                    gravity_constant=1.5, softening=0.01, prune=False)
+    s = w.settings
+    assert s["max_bodies"] == 5 and s["max_materials"] == 3
+    assert s["max_pairs"] == 7 and s["max_contacts"] == 40
+    assert s["dt"] == 0.002 and s["gravity"] == (0.0, -1.0, -3.0)
+    assert s["gravity_mode"] == "force" and s["restitution"] == 0.25
+    assert s["tolerance"] == 1e-7 and s["slop"] == 1e-5
+    assert s["max_halvings"] == 12 and s["max_sweeps"] == 20
+    assert s["mutual_gravity"] is True and s["gravity_constant"] == 1.5
+    assert s["softening"] == 0.01 and s["prune"] is False
+    assert s["method"] == "euler" == w.method
+    assert list(w.gravity) == [0.0, -1.0, -3.0]
+
+
+def test_defaults_come_from_the_library():
+    from rbsim._native import ffi, lib
+    d = ffi.new("rbs_world_def *")
+    lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
+    s = rbsim.World().settings
+    assert s["max_bodies"] == d.max_bodies and s["dt"] == d.dt
+    assert s["restitution"] == d.restitution and s["tolerance"] == d.tolerance
+
+
+def test_dt_method_and_tolerance_are_settable():
+    w = make_world()
+    w.dt = 0.0005
+    assert w.dt == 0.0005
+    w.step(10)
+    assert w.time == pytest.approx(10 * 0.0005, rel=1e-15)
+    w.tolerance = 1e-6
+    assert w.tolerance == 1e-6
+    w.method = "euler"
+    assert w.method == "euler"
+    assert "euler" in rbsim.METHODS
+    with pytest.raises(rbsim.InvalidError, match="method"):
+        w.method = "leapfrog"
+    with pytest.raises(rbsim.InvalidError, match="tolerance"):
+        w.tolerance = 0.0
+    with pytest.raises(rbsim.InvalidError, match="dt"):
+        w.dt = -1.0
+    assert w.dt == 0.0005 and w.tolerance == 1e-6
+
+
+def test_every_method_is_accepted_or_refused_cleanly():
+    for name in rbsim.METHODS:
+        w = make_world()
+        try:
+            w.method = name
+        except rbsim.UnsupportedError as e:
+            assert name in str(e)
+            assert w.method == "euler"
+            continue
+        assert w.method == name
+        w.step(10)
+
+
+def test_bodies_by_name():
+    w = make_world()
+    anon = w.add_sphere(radius=0.05, position=(1.0, 0.0, 1.0))
+    assert set(w.bodies) == {"ground", "ball"}
+    assert len(w.bodies) == 2
+    assert "ball" in w.bodies and "nope" not in w.bodies
+    ball = w.bodies["ball"]
+    assert ball == w.body("ball") and ball.name == "ball"
+    assert ball.type == "sphere" and w.bodies["ground"].type == "plane"
+    assert ball.radius == 0.1 and ball.mass == 2.0
+    assert list(w.bodies["ground"].normal) == [0.0, 0.0, 1.0]
+    assert anon.name == "" and anon in w.all_bodies()
+    assert len(w.all_bodies()) == 3
+    with pytest.raises(KeyError):
+        w.bodies["nope"]
+    with pytest.raises(rbsim.NotFoundError, match="nope"):
+        w.body("nope")
+
+
+def test_body_setters_and_state():
+    w = make_world()
+    ball = w.bodies["ball"]
+    ball.position = (0.5, 0.0, 2.0)
+    ball.velocity = np.array([1.0, 2.0, 3.0])
+    ball.angular_velocity = [0.0, 0.0, 4.0]
+    ball.force = (0.0, 0.0, 1.0)
+    ball.torque = (0.1, 0.0, 0.0)
+    half = math.sqrt(0.5)
+    ball.orientation = (half, 0.0, 0.0, half)
+    s = ball.state()
+    assert list(s.position) == [0.5, 0.0, 2.0]
+    assert list(s.velocity) == [1.0, 2.0, 3.0]
+    assert list(s.angular_velocity) == [0.0, 0.0, 4.0]
+    assert list(s.force) == [0.0, 0.0, 1.0] and list(s.torque) == [0.1, 0.0, 0.0]
+    assert s.orientation == pytest.approx([half, 0.0, 0.0, half], abs=1e-15)
+    assert s.type == "sphere" and s.radius == 0.1 and not s.fixed
+    assert w.velocities[ball.slot].tolist() == [1.0, 2.0, 3.0]
+
+
+def test_remove_body_makes_handles_stale():
+    w = make_world()
+    ball = w.bodies["ball"]
+    ball.remove()
+    assert "ball" not in w.bodies
+    with pytest.raises(rbsim.StaleIdError):
+        ball.position
+    with pytest.raises(rbsim.StaleIdError):
+        ball.velocity = (0, 0, 0)
+    with pytest.raises(rbsim.StaleIdError):
+        w.remove_body(ball)
+    again = w.add_sphere("ball", position=(0, 0, 3))
+    assert again != ball and again.slot == ball.slot
+    with pytest.raises(rbsim.StaleIdError):
+        ball.position  # the old generation stays stale
+
+
+def test_body_of_another_world_is_refused():
+    a, b = make_world(), make_world()
+    with pytest.raises(rbsim.StaleIdError, match="another world"):
+        b.remove_body(a.bodies["ball"])
+
+
+def test_materials_and_pairs():
+    w = rbsim.World(max_materials=2)
+    rubber = w.add_material("rubber")
+    steel = w.add_material("steel")
+    assert w.material("rubber") == rubber and rubber.name == "rubber"
+    w.set_material(rubber, "steel", static=0.9, kinetic=0.7, restitution=0.8,
+                   rolling=0.01, spinning=0.001)
+    w.set_material("*", None, static=0.5, kinetic=0.4)
+    w.set_material(steel, "*", kinetic=0.1, static=0.2)
+    ball = w.add_sphere("ball", material=rubber)
+    w.add_plane("ground", material="steel")
+    assert ball.name == "ball"
+    with pytest.raises(rbsim.CapacityError):
+        w.add_material("glass")
+    with pytest.raises(rbsim.InvalidError, match="kinetic"):
+        w.set_material(rubber, steel, static=0.1, kinetic=0.5)
+    with pytest.raises(rbsim.InvalidError, match="restitution"):
+        w.set_material(rubber, steel, restitution=1.5)
+    with pytest.raises(rbsim.NotFoundError, match="glass"):
+        w.set_material("glass", steel)
+    other = rbsim.World()
+    with pytest.raises(rbsim.StaleIdError):
+        other.add_sphere(material=rubber)
+
+
+def test_energy_and_momentum():
+    w = rbsim.World(gravity=(0, 0, -G))
+    ball = w.add_sphere("ball", mass=2.0, position=(0.0, 0.0, 3.0))
+    e = w.energy()
+    assert isinstance(e, rbsim.Energy)
+    # Potential relative to the origin: m g z; nothing moves yet.
+    assert e.potential == pytest.approx(2.0 * G * 3.0, rel=1e-15)
+    assert e.kinetic == 0.0 and e.total == pytest.approx(e.potential, rel=1e-15)
+    ball.velocity = (1.0, 0.0, 0.0)
+    ball.position = (0.0, 2.0, 3.0)
+    m = w.momentum()
+    assert m.linear.tolist() == [2.0, 0.0, 0.0]
+    # L = r x p = (0, 2, 3) x (2, 0, 0) = (0, 6, -4)
+    assert m.angular.tolist() == pytest.approx([0.0, 6.0, -4.0], abs=1e-15)
+    assert w.energy().kinetic == pytest.approx(0.5 * 2.0 * 1.0, rel=1e-15)
+
+
+def test_usage_and_hash():
+    w = make_world()
+    u = w.usage()
+    assert u.bodies == 2 and u.bodies_high == 2 and u.bytes > 0
+    h0 = w.hash()
+    w.step()
+    assert w.hash() != h0
+    assert make_world().hash() == h0
+
+
+def test_capacity():
+    w = rbsim.World(max_bodies=2)
+    w.add_plane()
+    w.add_sphere(position=(0, 0, 1))
+    with pytest.raises(rbsim.CapacityError):
+        w.add_sphere(position=(0, 0, 2))
+    assert len(w.all_bodies()) == 2  # unchanged
+
+
+def test_close_and_context_manager():
+    with make_world() as w:
+        w.step(3)
+    assert w.closed
+    with pytest.raises(rbsim.ClosedError):
+        w.step()
+    with pytest.raises(rbsim.ClosedError):
+        w.time
+    w.close()  # idempotent
+    assert repr(w) == "World(<closed>)"
