@@ -56,8 +56,21 @@ static void *input_main(void *arg)
         n = read(in->fd, buf + len, sizeof buf - 1 - len);
         if (n < 0 && (errno == EINTR || errno == EAGAIN))
             continue;
-        if (n <= 0)
-            break; /* end of input: the run goes on by itself */
+        if (n <= 0) {
+            /* End of input: the run goes on by itself.  A run paused now
+             * could never be resumed, so resume it. */
+            rbs_run_info info;
+            if (rbs_projector_status(in->projector, &info) == RBS_OK &&
+                info.state == RBS_RUN_RUNNING && info.paused) {
+                rbs_projector_command(in->projector, "resume", NULL, 0);
+                pthread_mutex_lock(in->reply_lock);
+                fprintf(in->reply, "end of input: resumed (no command could "
+                                   "resume the run later)\n");
+                fflush(in->reply);
+                pthread_mutex_unlock(in->reply_lock);
+            }
+            break;
+        }
         len += (size_t)n;
 
         /* Answer every whole line. */

@@ -82,9 +82,11 @@ int rbsf_help(FILE *out, const char *command)
         fputs(run_text, out);
         rbsf_command_help(list, sizeof list);
         fputs(list, out);
-        fputs("End of input (a pipe, /dev/null) does not stop the run; Ctrl-C "
-              "or SIGTERM stops it\ncleanly (outputs complete up to the last "
-              "frame; exit 130 or 143).\n",
+        fputs("End of input (a pipe, /dev/null) does not stop the run (a "
+              "paused run is resumed:\nnothing could resume it later); "
+              "simulation.pause_on_collision needs a terminal.\nCtrl-C or "
+              "SIGTERM stops the run cleanly (outputs complete up to the last "
+              "frame;\nexit 130 or 143).\n",
               out);
         return 0;
     }

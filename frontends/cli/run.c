@@ -572,6 +572,13 @@ int rbsf_run_main(int argc, char **argv)
     def.speed = o.speed;
     def.start_paused = o.paused;
     def.pause_on_collision = rbs_scene_pause_on_collision(scene);
+    if (def.pause_on_collision && !isatty(STDIN_FILENO)) {
+        /* Only a person at a terminal can resume such pauses. */
+        def.pause_on_collision = 0;
+        if (!o.quiet)
+            fprintf(stderr, "rbsim: note: simulation.pause_on_collision is "
+                            "ignored: standard input is not a terminal\n");
+    }
     st = rbs_projector_create(world, registry, configs, n_out, &def, &projector);
     if (st != RBS_OK) {
         fprintf(stderr, "rbsim: %s\n", projector

@@ -279,6 +279,21 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 401)
 
+    def test_no_input_never_leaves_the_run_paused(self):
+        # --paused, or pauses on collisions, with nothing on stdin: the run
+        # must still complete by itself.
+        s = self.scene()
+        r = self.rbsim("run", s, "--paused", "--csv", "a.csv", timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("end of input: resumed", r.stdout)
+        self.assertEqual(self.assert_whole_frames(self.path("a.csv")), 301)
+        sim = dict(SCENE["simulation"], pause_on_collision=True)
+        s = self.scene("poc.json", simulation=sim)
+        r = self.rbsim("run", s, "--csv", "b.csv", timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("pause_on_collision is ignored", r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 301)
+
     def test_commands_from_stdin(self):
         s = self.scene()
         p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
