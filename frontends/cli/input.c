@@ -21,6 +21,8 @@ static void answer(rbsf_input *in, const char *line)
     if (reply[0] == '\0')
         return;
     pthread_mutex_lock(in->reply_lock);
+    if (isatty(fileno(in->reply)) && isatty(STDERR_FILENO))
+        fputs("\r\033[K", stderr); /* clear a progress bar's line first */
     fputs(reply, in->reply);
     fflush(in->reply);
     pthread_mutex_unlock(in->reply_lock);
