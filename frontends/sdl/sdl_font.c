@@ -1,8 +1,9 @@
 /*
- * sdl_font.c - a 5x7 bitmap font for the legend (SDL2_ttf is not a
- * dependency).  Drawn by hand for rbsim: each glyph is 7 rows of 5 bits,
+ * sdl_font.c - a 5x7 bitmap font and the legend drawn with it (SDL2_ttf is
+ * not a dependency).  Drawn by hand for rbsim: each glyph is 7 rows of 5 bits,
  * bit 4 the leftmost pixel.  Lower-case letters are shown as capitals.
  */
+#include <stdio.h>
 #include <string.h>
 
 #include "sdl_internal.h"
@@ -123,4 +124,27 @@ void rbsf__shade_rect(uint32_t *pixels, size_t pitch, int width, int height,
             row[i] = 0xff000000u | (r << 16) | (g << 8) | b;
         }
     }
+}
+
+void rbsf__legend(uint32_t *pixels, size_t pitch, int width, int height,
+                  const rbs_frame *frame, uint32_t view, uint32_t views)
+{
+    char line[3][48];
+    int lines = 2, i, scale = height >= 360 ? 2 : 1, wmax = 0;
+    int pad = 2 * scale, lh = (RBSF__FONT_HEIGHT + 3) * scale;
+    snprintf(line[0], sizeof line[0], "T=%.3f S", frame->time);
+    snprintf(line[1], sizeof line[1], "FRAME %llu", (unsigned long long)frame->number);
+    if (views > 1)
+        snprintf(line[1] + strlen(line[1]), sizeof line[1] - strlen(line[1]), " VIEW %u",
+                 view);
+    if (frame->paused) snprintf(line[lines++], sizeof line[2], "PAUSED");
+    for (i = 0; i < lines; i++) {
+        int w = rbsf__font_width(line[i], scale);
+        if (w > wmax) wmax = w;
+    }
+    rbsf__shade_rect(pixels, pitch, width, height, 0, 0, wmax + 2 * pad + 2 * scale,
+                     lines * lh + 2 * pad);
+    for (i = 0; i < lines; i++)
+        rbsf__font_draw(pixels, pitch, width, height, pad + scale, pad + 2 * scale + i * lh,
+                        scale, line[i], 0xffffffffu);
 }

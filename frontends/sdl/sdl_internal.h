@@ -192,4 +192,58 @@ int rbsf__font_width(const char *text, int scale);
 void rbsf__shade_rect(uint32_t *pixels, size_t pitch, int width, int height,
                       int x, int y, int w, int h);
 
+/** The legend: "T=<time> S", "FRAME <n>" (+ " VIEW <k>" when views > 1)
+ * and "PAUSED", white on a darkened box at the view's top left. */
+void rbsf__legend(uint32_t *pixels, size_t pitch, int width, int height,
+                  const rbs_frame *frame, uint32_t view, uint32_t views);
+
+/* ------------------------------------------------------------------------- */
+/* Window (sdl_window.c)                                                     */
+/* ------------------------------------------------------------------------- */
+
+/** The live window: a thread of its own that owns SDL video, the windows and
+ * their events, so the window stays responsive whether or not frames come
+ * (e.g. while the run is paused).  Opaque. */
+typedef struct rbsf__window rbsf__window;
+
+/** What the window shows and whom it tells. */
+typedef struct rbsf__window_def {
+    uint32_t image_count;                   /**< windows: 1 tiled, else views */
+    uint32_t image_w[RBSF__VIEWS_MAX];      /**< pixels */
+    uint32_t image_h[RBSF__VIEWS_MAX];
+    uint32_t views, width, height;          /**< views and the size of one */
+    uint32_t view_image[RBSF__VIEWS_MAX];   /**< which image shows view v */
+    uint32_t view_x[RBSF__VIEWS_MAX], view_y[RBSF__VIEWS_MAX];
+    int required;                           /**< "window": true */
+    /** The renderer's cameras, shared: every access from either thread is
+     * made between rbsf__window_lock and rbsf__window_unlock. */
+    rbsf__camera *cameras;
+    void (*control)(void *context, const char *command); /**< may be NULL */
+    void *control_context;
+    const char *label;                      /**< for the note on stderr */
+} rbsf__window_def;
+
+/** Reserve the window's memory (no thread, no SDL yet). */
+rbs_status rbsf__window_create(const rbsf__window_def *def, rbsf__window **out);
+/** Start the thread, which starts SDL video and opens the windows; waits
+ * until they are open.  If that fails: RBS_E_RENDERER with the reason in err
+ * when the window is required, else RBS_OK and a note on stderr (then
+ * rbsf__window_running() is 0 and the renderer goes on without a window). */
+rbs_status rbsf__window_start(rbsf__window *w, char *err, size_t errlen);
+/** Nonzero while the window thread runs. */
+int rbsf__window_running(const rbsf__window *w);
+/** Guard the shared cameras. */
+void rbsf__window_lock(rbsf__window *w);
+void rbsf__window_unlock(rbsf__window *w);
+/** Tell the window a camera moved (call with the lock held): it draws the
+ * last frame again, e.g. after a command while the run is paused. */
+void rbsf__window_moved(rbsf__window *w);
+/** Show a drawn frame: copy the images (pixels[i], pitch[i] in pixels) and
+ * keep the frame (to draw it again when the camera moves).  May allocate
+ * only when a frame has more bodies than any before (RBS_E_MEMORY). */
+rbs_status rbsf__window_publish(rbsf__window *w, const uint32_t *const *pixels,
+                                const size_t *pitch, const rbs_frame *frame);
+/** Stop the thread, close the windows, free everything.  NULL ok. */
+void rbsf__window_destroy(rbsf__window *w);
+
 #endif /* RBSF_SDL_INTERNAL_H */

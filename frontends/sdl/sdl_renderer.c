@@ -6,14 +6,18 @@
  *  - Headless first.  Drawing is ray casting into SDL surfaces in memory
  *    (sdl_raster.c); surfaces need no SDL_Init, and PNG files are written
  *    with IMG_SavePNG.  SDL video is initialised only for a window, only when
- *    DISPLAY or WAYLAND_DISPLAY is set, and only on the thread that calls
- *    draw() (the renderer thread), where the window's events are polled too.
+ *    DISPLAY or WAYLAND_DISPLAY is set, and only on the window's own thread
+ *    (sdl_window.c), started at the first frame; that thread polls the
+ *    window's events, so the window answers even while no frame comes.
+ *    The cameras are shared with it under its lock.
  *  - Memory.  create() reserves every buffer: the view images, a depth
  *    buffer, ray tables, the contact sheet's thumbnails and the sheet itself,
  *    and the file-name buffer.  draw() allocates nothing itself; SDL_image
  *    allocates inside IMG_SavePNG (its libpng/zlib state and a converted
- *    copy of the surface), and SDL inside window calls.  finish() makes one
- *    small SDL_Surface header for the contact sheet.
+ *    copy of the surface).  With a window, the frame is also copied to the
+ *    window thread (its buffers are reserved at create too; the copy of the
+ *    bodies grows only when a frame has more bodies than any before).
+ *    finish() makes one small SDL_Surface header for the contact sheet.
  *  - Contact sheet.  The frame count is unknown in advance, so the sheet
  *    keeps RBSF_SHEET_SLOTS (16) thumbnails of frames 0, s, 2s, ... of the
  *    frames drawn (s = 1 at first).  When all slots are full and frame 16s
@@ -21,9 +25,8 @@
  *    so the kept frames stay evenly spaced, between 8 and 16 of them.  The
  *    newest frame is kept in one extra slot and shown last if it is not on
  *    the grid already, so the sheet always ends with the final frame.
- *  - Repeated frames (same number as the previous draw, e.g. while the run
- *    is paused) are drawn again for the window (the camera may have moved)
- *    but not written again.
+ *  - A repeated frame (same number as the previous one, as a live view
+ *    would get while paused) is neither drawn nor written again.
  */
 #include <errno.h>
 #include <math.h>
@@ -48,11 +51,6 @@
 #define RBSF_SHEET_GAP 4
 /* Height of the caption strip under each thumbnail, pixels. */
 #define RBSF_SHEET_CAPTION (RBSF__FONT_HEIGHT + 4)
-/* Window controls: degrees per arrow key / per dragged pixel, zoom per key. */
-static const double kKeyDegrees = 5.0;
-static const double kDragDegrees = 0.4;
-static const double kKeyZoom = 1.25;
-static const double kPi = 3.14159265358979323846;
 
 typedef struct sdl_instance {
     rbsf__config cfg;
@@ -87,15 +85,11 @@ typedef struct sdl_instance {
     /* Frames. */
     int drawn_any;
     uint64_t last_number;
-    int paused; /* as the newest frame says, toggled by the space key */
 
-    /* Window. */
-    int want_window; /* 1: try at the first draw */
-    int video_on;    /* SDL video subsystem initialised by us */
-    SDL_Window *windows[RBSF__VIEWS_MAX];
-    uint32_t window_count;
-    int drag;        /* 0 none, 1 orbit, 2 pan */
-    uint32_t drag_view;
+    /* Window (its own thread, see sdl_window.c); NULL when there is none. */
+    int want_window; /* decided by prepare() */
+    rbsf__window *window;
+    int window_started;
     uint32_t selected; /* view for commands */
 } sdl_instance;
 
@@ -293,6 +287,31 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
         r->stride = 1;
     }
 
+    /* The window's memory (its thread starts at the first frame). */
+    if (r->want_window) {
+        rbsf__window_def wd;
+        memset(&wd, 0, sizeof wd);
+        wd.image_count = r->image_count;
+        for (v = 0; v < r->image_count; v++) {
+            wd.image_w[v] = (uint32_t)r->images[v]->w;
+            wd.image_h[v] = (uint32_t)r->images[v]->h;
+        }
+        wd.views = r->views;
+        wd.width = W;
+        wd.height = H;
+        for (v = 0; v < r->views; v++) {
+            wd.view_image[v] = r->view_image[v];
+            wd.view_x[v] = r->view_x[v];
+            wd.view_y[v] = r->view_y[v];
+        }
+        wd.required = r->cfg.window == RBSF__WINDOW_ON;
+        wd.cameras = r->cameras;
+        wd.control = r->control;
+        wd.control_context = r->control_context;
+        wd.label = "rbsim: sdl renderer";
+        if (rbsf__window_create(&wd, &r->window) != RBS_OK) goto nomem;
+    }
+
     /* Output folders. */
     if (make_dirs(r->dir, err, errlen, r->where) != 0) {
         destroy(r);
@@ -319,205 +338,17 @@ nomem:
 }
 
 /* ------------------------------------------------------------------------- */
-/* Window                                                                    */
+/* Cameras are shared with the window thread                                 */
 /* ------------------------------------------------------------------------- */
 
-static void close_windows(sdl_instance *r)
+static void cameras_lock(sdl_instance *r)
 {
-    uint32_t i;
-    for (i = 0; i < r->window_count; i++)
-        if (r->windows[i] != NULL) SDL_DestroyWindow(r->windows[i]);
-    r->window_count = 0;
-    if (r->video_on) SDL_QuitSubSystem(SDL_INIT_VIDEO);
-    r->video_on = 0;
+    if (r->window != NULL) rbsf__window_lock(r->window);
 }
 
-/* Open one window per image.  Returns RBS_OK, or an error if the window was
- * required; in "auto" mode a failure means no window (said on stderr once). */
-static rbs_status open_windows(sdl_instance *r, char *err, size_t errlen)
+static void cameras_unlock(sdl_instance *r)
 {
-    uint32_t i;
-    char msg[512];
-    r->want_window = 0;
-    if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
-        snprintf(msg, sizeof msg, "window: cannot start SDL video: %s", SDL_GetError());
-        goto fail;
-    }
-    r->video_on = 1;
-    for (i = 0; i < r->image_count; i++) {
-        char title[64];
-        if (r->image_count > 1) snprintf(title, sizeof title, "rbsim - view %u", i);
-        else snprintf(title, sizeof title, "rbsim");
-        r->windows[i] = SDL_CreateWindow(title, SDL_WINDOWPOS_UNDEFINED,
-                                         SDL_WINDOWPOS_UNDEFINED, r->images[i]->w,
-                                         r->images[i]->h, 0);
-        if (r->windows[i] == NULL) {
-            snprintf(msg, sizeof msg, "window: cannot open: %s", SDL_GetError());
-            goto fail;
-        }
-        r->window_count = i + 1;
-    }
-    return RBS_OK;
-fail:
-    close_windows(r);
-    if (r->cfg.window == RBSF__WINDOW_ON)
-        return say(err, errlen, RBS_E_RENDERER, r->where, msg);
-    fprintf(stderr, "sdl renderer '%s': %s; writing PNG files only\n", r->dir, msg);
-    return RBS_OK;
-}
-
-static void send(sdl_instance *r, const char *command)
-{
-    if (r->control != NULL) r->control(r->control_context, command);
-}
-
-/* The view under window w at pixel (x, y). */
-static uint32_t view_at(const sdl_instance *r, uint32_t w, int x, int y)
-{
-    uint32_t v;
-    if (!r->cfg.tile) return w;
-    for (v = 0; v < r->views; v++)
-        if ((uint32_t)x >= r->view_x[v] && (uint32_t)x < r->view_x[v] + r->cfg.width &&
-            (uint32_t)y >= r->view_y[v] && (uint32_t)y < r->view_y[v] + r->cfg.height)
-            return v;
-    return r->selected;
-}
-
-static uint32_t window_index(const sdl_instance *r, Uint32 id)
-{
-    uint32_t i;
-    for (i = 0; i < r->window_count; i++)
-        if (SDL_GetWindowID(r->windows[i]) == id) return i;
-    return 0;
-}
-
-/* Show a camera reply in the window's title (there is no console here). */
-static void title_reply(sdl_instance *r, uint32_t view, rbs_status st, const char *reply)
-{
-    char title[320];
-    uint32_t w = r->cfg.tile ? 0 : view;
-    if (w >= r->window_count) return;
-    snprintf(title, sizeof title, "rbsim - view %u%s%s", view, st == RBS_OK ? "" : " - ",
-             st == RBS_OK ? "" : reply);
-    SDL_SetWindowTitle(r->windows[w], title);
-}
-
-static void poll_events(sdl_instance *r)
-{
-    SDL_Event e;
-    char reply[256];
-    while (SDL_PollEvent(&e)) {
-        uint32_t v;
-        rbs_status st = RBS_OK;
-        int moved = 0;
-        switch (e.type) {
-        case SDL_QUIT:
-            send(r, "quit");
-            break;
-        case SDL_WINDOWEVENT:
-            if (e.window.event == SDL_WINDOWEVENT_CLOSE) send(r, "quit");
-            break;
-        case SDL_KEYDOWN: {
-            uint32_t w = window_index(r, e.key.windowID);
-            v = r->cfg.tile ? r->selected : w;
-            moved = 1;
-            switch (e.key.keysym.sym) {
-            case SDLK_SPACE:
-                send(r, r->paused ? "resume" : "pause");
-                r->paused = !r->paused;
-                moved = 0;
-                break;
-            case SDLK_q:
-            case SDLK_ESCAPE:
-                send(r, "quit");
-                moved = 0;
-                break;
-            case SDLK_LEFT:
-                st = rbsf__camera_orbit(&r->cameras[v], -kKeyDegrees, 0, reply, sizeof reply);
-                break;
-            case SDLK_RIGHT:
-                st = rbsf__camera_orbit(&r->cameras[v], kKeyDegrees, 0, reply, sizeof reply);
-                break;
-            case SDLK_UP:
-                st = rbsf__camera_orbit(&r->cameras[v], 0, kKeyDegrees, reply, sizeof reply);
-                break;
-            case SDLK_DOWN:
-                st = rbsf__camera_orbit(&r->cameras[v], 0, -kKeyDegrees, reply, sizeof reply);
-                break;
-            case SDLK_PLUS:
-            case SDLK_EQUALS:
-            case SDLK_KP_PLUS:
-                st = rbsf__camera_zoom(&r->cameras[v], kKeyZoom, reply, sizeof reply);
-                break;
-            case SDLK_MINUS:
-            case SDLK_KP_MINUS:
-                st = rbsf__camera_zoom(&r->cameras[v], 1.0 / kKeyZoom, reply, sizeof reply);
-                break;
-            case SDLK_r:
-                st = rbsf__camera_reset(&r->cameras[v], reply, sizeof reply);
-                break;
-            case SDLK_1:
-            case SDLK_2:
-            case SDLK_3:
-            case SDLK_4:
-                if ((uint32_t)(e.key.keysym.sym - SDLK_1) < r->views)
-                    r->selected = (uint32_t)(e.key.keysym.sym - SDLK_1);
-                moved = 0;
-                break;
-            default:
-                moved = 0;
-                break;
-            }
-            if (moved) title_reply(r, v, st, reply);
-            break;
-        }
-        case SDL_MOUSEBUTTONDOWN:
-            r->drag = e.button.button == SDL_BUTTON_LEFT ? 1 : 2;
-            r->drag_view = view_at(r, window_index(r, e.button.windowID), e.button.x,
-                                   e.button.y);
-            break;
-        case SDL_MOUSEBUTTONUP:
-            r->drag = 0;
-            break;
-        case SDL_MOUSEMOTION:
-            if (r->drag == 1) {
-                v = r->drag_view;
-                st = rbsf__camera_orbit(&r->cameras[v], -kDragDegrees * e.motion.xrel,
-                                        kDragDegrees * e.motion.yrel, reply, sizeof reply);
-                title_reply(r, v, st, reply);
-            } else if (r->drag == 2) {
-                rbsf__camera *c = &r->cameras[r->drag_view];
-                double dx = c->position.x - c->target.x, dy = c->position.y - c->target.y,
-                       dz = c->position.z - c->target.z;
-                /* Metres per pixel at the target's distance. */
-                double m = sqrt(dx * dx + dy * dy + dz * dz) * 2.0 *
-                           tan(0.5 * c->fov * kPi / 180.0) / (double)r->cfg.height;
-                st = rbsf__camera_pan(c, -m * e.motion.xrel, m * e.motion.yrel, reply,
-                                      sizeof reply);
-                title_reply(r, r->drag_view, st, reply);
-            }
-            break;
-        case SDL_MOUSEWHEEL:
-            v = view_at(r, window_index(r, e.wheel.windowID), 0, 0);
-            st = rbsf__camera_zoom(&r->cameras[v], pow(1.1, (double)e.wheel.y), reply,
-                                   sizeof reply);
-            title_reply(r, v, st, reply);
-            break;
-        default:
-            break;
-        }
-    }
-}
-
-static void present(sdl_instance *r)
-{
-    uint32_t i;
-    for (i = 0; i < r->window_count; i++) {
-        SDL_Surface *ws = SDL_GetWindowSurface(r->windows[i]);
-        if (ws == NULL) continue;
-        SDL_BlitSurface(r->images[i], NULL, ws, NULL);
-        SDL_UpdateWindowSurface(r->windows[i]);
-    }
+    if (r->window != NULL) rbsf__window_unlock(r->window);
 }
 
 /* ------------------------------------------------------------------------- */
@@ -638,30 +469,6 @@ static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
 /* draw / finish / destroy                                                   */
 /* ------------------------------------------------------------------------- */
 
-static void legend(sdl_instance *r, uint32_t v, const rbs_frame *frame)
-{
-    char line[3][48];
-    int lines = 2, i, scale = r->cfg.height >= 360 ? 2 : 1, wmax = 0;
-    int pad = 2 * scale, lh = (RBSF__FONT_HEIGHT + 3) * scale;
-    size_t pitch;
-    uint32_t *px = view_pixels(r, v, &pitch);
-    int W = (int)r->cfg.width, H = (int)r->cfg.height;
-    snprintf(line[0], sizeof line[0], "T=%.3f S", frame->time);
-    snprintf(line[1], sizeof line[1], "FRAME %llu", (unsigned long long)frame->number);
-    if (r->views > 1)
-        snprintf(line[1] + strlen(line[1]), sizeof line[1] - strlen(line[1]), " VIEW %u", v);
-    if (frame->paused) snprintf(line[lines++], sizeof line[2], "PAUSED");
-    for (i = 0; i < lines; i++) {
-        int w = rbsf__font_width(line[i], scale);
-        if (w > wmax) wmax = w;
-    }
-    rbsf__shade_rect(px, pitch, W, H, 0, 0, wmax + 2 * pad + 2 * scale,
-                     lines * lh + 2 * pad);
-    for (i = 0; i < lines; i++)
-        rbsf__font_draw(px, pitch, W, H, pad + scale, pad + 2 * scale + i * lh, scale,
-                        line[i], 0xffffffffu);
-}
-
 static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t errlen)
 {
     sdl_instance *r = (sdl_instance *)instance;
@@ -673,19 +480,30 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
     if (frame->body_count > 0 && frame->bodies == NULL)
         return say(err, errlen, RBS_E_INVALID, r->where, "frame: bodies is NULL");
     repeat = r->drawn_any && frame->number == r->last_number;
-    r->paused = frame->paused != 0;
 
-    if (r->want_window && (st = open_windows(r, err, errlen)) != RBS_OK) return st;
-    if (r->window_count > 0) poll_events(r);
-    if (repeat && r->window_count == 0) return RBS_OK;
+    /* The window opens at the first frame, on its own thread. */
+    if (r->window != NULL && !r->window_started) {
+        r->window_started = 1;
+        if ((st = rbsf__window_start(r->window, err, errlen)) != RBS_OK) return st;
+        if (!rbsf__window_running(r->window)) {
+            rbsf__window_destroy(r->window); /* "auto" and no display after all */
+            r->window = NULL;
+        }
+    }
+    /* A frame seen before (a live view's repeat) is neither drawn nor
+     * written again; the window thread redraws on its own. */
+    if (repeat) return RBS_OK;
 
-    /* Draw each view. */
+    /* Place the cameras (shared with the window thread), then draw. */
     for (v = 0; v < r->views; v++) {
         rbsf__view view;
         rbsf__canvas cv;
         char msg[400];
-        if (rbsf__camera_view(&r->cameras[v], frame, r->cfg.width, r->cfg.height, &view,
-                              msg, sizeof msg) != RBS_OK) {
+        cameras_lock(r);
+        st = rbsf__camera_view(&r->cameras[v], frame, r->cfg.width, r->cfg.height, &view,
+                               msg, sizeof msg);
+        cameras_unlock(r);
+        if (st != RBS_OK) {
             char full[480];
             if (r->views > 1)
                 snprintf(full, sizeof full, "views[%u].%s", v, msg);
@@ -698,10 +516,20 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
         cv.ray_x = r->ray_x;
         cv.ray_y = r->ray_y;
         rbsf__raster_frame(&cv, &view, frame);
-        legend(r, v, frame);
+        rbsf__legend(cv.pixels, cv.pitch, (int)r->cfg.width, (int)r->cfg.height, frame, v,
+                     r->views);
     }
-    if (r->window_count > 0) present(r);
-    if (repeat) return RBS_OK;
+    if (r->window != NULL) {
+        const uint32_t *px[RBSF__VIEWS_MAX];
+        size_t pitch[RBSF__VIEWS_MAX];
+        for (v = 0; v < r->image_count; v++) {
+            px[v] = image_pixels(r->images[v]);
+            pitch[v] = image_pitch(r->images[v]);
+        }
+        if (rbsf__window_publish(r->window, px, pitch, frame) != RBS_OK)
+            return say(err, errlen, RBS_E_MEMORY, r->where,
+                       "window: out of memory for the shown frame's bodies");
+    }
     r->drawn_any = 1;
     r->last_number = frame->number;
 
@@ -736,7 +564,7 @@ static void destroy(void *instance)
     sdl_instance *r = (sdl_instance *)instance;
     uint32_t i;
     if (r == NULL) return;
-    close_windows(r);
+    rbsf__window_destroy(r->window); /* first: its thread uses the cameras */
     for (i = 0; i < RBSF__VIEWS_MAX; i++)
         if (r->images[i] != NULL) SDL_FreeSurface(r->images[i]);
     free(r->depth);
@@ -772,11 +600,11 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
 {
     static const char *const usage[] = {
         "orbit DYAW DPITCH (degrees)", "pan DX DY (metres)",
-        "zoom FACTOR (> 0, 2 = twice as close)", "view N (0..views-1)"};
+        "zoom FACTOR (> 0, 2 = twice as close)"};
     sdl_instance *r = (sdl_instance *)instance;
     char word[16], reply[400];
     size_t n = 0;
-    double a[2];
+    double a[2] = {0.0, 0.0};
     rbs_status st;
     rbsf__camera *cam;
     if (r == NULL || line == NULL) return RBS_E_INVALID;
@@ -789,49 +617,52 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
     word[n] = '\0';
     line += n;
     cam = &r->cameras[r->selected];
-    if (strcmp(word, "orbit") == 0) {
-        if (numbers(line, a, 2) != 0) goto bad_usage_0;
-        st = rbsf__camera_orbit(cam, a[0], a[1], reply, sizeof reply);
-    } else if (strcmp(word, "pan") == 0) {
-        if (numbers(line, a, 2) != 0) goto bad_usage_1;
-        st = rbsf__camera_pan(cam, a[0], a[1], reply, sizeof reply);
-    } else if (strcmp(word, "zoom") == 0) {
-        if (numbers(line, a, 1) != 0) goto bad_usage_2;
-        st = rbsf__camera_zoom(cam, a[0], reply, sizeof reply);
-    } else if (strcmp(word, "reset") == 0) {
-        if (numbers(line, a, 0) != 0) {
-            snprintf(out, outlen, "usage: reset");
-            return RBS_E_INVALID;
-        }
-        st = rbsf__camera_reset(cam, reply, sizeof reply);
-    } else if (strcmp(word, "view") == 0) {
-        if (numbers(line, a, 1) != 0 || !(a[0] >= 0 && a[0] < (double)r->views) ||
-            a[0] != floor(a[0])) {
-            snprintf(out, outlen, "usage: %s; this renderer has %u view%s", usage[3],
-                     r->views, r->views > 1 ? "s" : "");
-            return RBS_E_INVALID;
-        }
-        r->selected = (uint32_t)a[0];
-        cam = &r->cameras[r->selected];
-        rbsf__camera_describe(cam, reply, sizeof reply);
-        st = RBS_OK;
-    } else if (strcmp(word, "camera") == 0) {
-        rbsf__camera_describe(cam, reply, sizeof reply);
-        st = RBS_OK;
+    /* Check the arguments first, then act on the camera under the lock it
+     * shares with the window thread. */
+    if (strcmp(word, "orbit") == 0 || strcmp(word, "pan") == 0) {
+        if (numbers(line, a, 2) != 0) goto bad_usage;
+    } else if (strcmp(word, "zoom") == 0 || strcmp(word, "view") == 0) {
+        if (numbers(line, a, 1) != 0) goto bad_usage;
+    } else if (strcmp(word, "reset") == 0 || strcmp(word, "camera") == 0) {
+        if (numbers(line, a, 0) != 0) goto bad_usage;
     } else {
         return RBS_E_NOT_FOUND;
     }
+    if (strcmp(word, "view") == 0) {
+        if (!(a[0] >= 0 && a[0] < (double)r->views) || a[0] != floor(a[0])) goto bad_usage;
+        r->selected = (uint32_t)a[0];
+        cam = &r->cameras[r->selected];
+    }
+    st = RBS_OK;
+    cameras_lock(r);
+    if (strcmp(word, "orbit") == 0)
+        st = rbsf__camera_orbit(cam, a[0], a[1], reply, sizeof reply);
+    else if (strcmp(word, "pan") == 0)
+        st = rbsf__camera_pan(cam, a[0], a[1], reply, sizeof reply);
+    else if (strcmp(word, "zoom") == 0)
+        st = rbsf__camera_zoom(cam, a[0], reply, sizeof reply);
+    else if (strcmp(word, "reset") == 0)
+        st = rbsf__camera_reset(cam, reply, sizeof reply);
+    else
+        rbsf__camera_describe(cam, reply, sizeof reply);
+    if (st == RBS_OK && r->window != NULL) rbsf__window_moved(r->window);
+    cameras_unlock(r);
     if (out != NULL && outlen > 0) snprintf(out, outlen, "view %u: %s", r->selected, reply);
     return st;
 
-bad_usage_0:
-    snprintf(out, outlen, "usage: %s", usage[0]);
-    return RBS_E_INVALID;
-bad_usage_1:
-    snprintf(out, outlen, "usage: %s", usage[1]);
-    return RBS_E_INVALID;
-bad_usage_2:
-    snprintf(out, outlen, "usage: %s", usage[2]);
+bad_usage:
+    if (out != NULL && outlen > 0) {
+        if (strcmp(word, "view") == 0)
+            snprintf(out, outlen, "usage: view N (0..%u)", r->views - 1);
+        else if (strcmp(word, "orbit") == 0)
+            snprintf(out, outlen, "usage: %s", usage[0]);
+        else if (strcmp(word, "pan") == 0)
+            snprintf(out, outlen, "usage: %s", usage[1]);
+        else if (strcmp(word, "zoom") == 0)
+            snprintf(out, outlen, "usage: %s", usage[2]);
+        else
+            snprintf(out, outlen, "usage: %s (no arguments)", word);
+    }
     return RBS_E_INVALID;
 }
 
@@ -841,8 +672,8 @@ bad_usage_2:
 
 /* A recorder (flags 0): it must see every kept frame to write it, so it is
  * not RBS_RENDERER_LIVE (that would allow a latest-only reel to drop frames).
- * The price: while the run is paused the projector does not call draw(), so
- * an open window is not refreshed until the run resumes (see README.md). */
+ * While the run is paused no frame comes; the window thread keeps the window
+ * alive and redraws the last frame when the camera moves. */
 static const rbs_renderer_class kSdlClass = {
     .struct_size = sizeof(rbs_renderer_class),
     .name = "sdl",

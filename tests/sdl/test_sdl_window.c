@@ -1,9 +1,12 @@
 /*
  * test_sdl_window.c - the live window, without a real display: SDL's
  * "offscreen" video driver (SDL_VIDEODRIVER=offscreen) with DISPLAY set to a
- * name that is never connected to.  Events are pushed with SDL_PushEvent and
- * must come back through the control callback ("pause", "resume", "quit")
- * or move the free camera.
+ * name that is never connected to.  Events are pushed with SDL_PushEvent;
+ * the window's own thread must turn them into control commands ("pause",
+ * "resume", "quit") or camera moves, also while no frame comes (a paused
+ * run).  The thread answers asynchronously, so the test waits for each
+ * effect, at most 5 s (a bound, not a timing: a working window answers in
+ * about 30 ms).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,10 +17,12 @@
 #include <sys/stat.h>
 
 #include <cmocka.h>
+#include <pthread.h>
 
 #include "sdl_test_util.h"
 
 typedef struct cmd_log {
+    pthread_mutex_t mu; /* the window thread writes, the test reads */
     char lines[16][32];
     int count;
 } cmd_log;
@@ -25,7 +30,36 @@ typedef struct cmd_log {
 static void control(void *context, const char *command)
 {
     cmd_log *l = (cmd_log *)context;
+    pthread_mutex_lock(&l->mu);
     if (l->count < 16) snprintf(l->lines[l->count++], sizeof l->lines[0], "%s", command);
+    pthread_mutex_unlock(&l->mu);
+}
+
+/* Wait until the log holds n commands (or 5 s pass); returns the count. */
+static int wait_count(cmd_log *l, int n)
+{
+    int k, count = 0;
+    for (k = 0; k < 1000; k++) {
+        pthread_mutex_lock(&l->mu);
+        count = l->count;
+        pthread_mutex_unlock(&l->mu);
+        if (count >= n) break;
+        SDL_Delay(5);
+    }
+    return count;
+}
+
+/* Wait until the "camera" command's reply differs from before. */
+static int wait_camera_change(void *inst, const char *before)
+{
+    char now[512];
+    int k;
+    for (k = 0; k < 1000; k++) {
+        assert_int_equal(rbsf_sdl_class()->command(inst, "camera", now, sizeof now), RBS_OK);
+        if (strcmp(now, before) != 0) return 1;
+        SDL_Delay(5);
+    }
+    return 0;
 }
 
 static void key(SDL_Keycode sym)
@@ -54,13 +88,14 @@ static void offscreen(void)
 static void test_keys_and_mouse(void **state)
 {
     const rbs_renderer_class *cls = rbsf_sdl_class();
-    char err[512], before[512], after[512];
+    char err[512], before[512];
     void *inst = NULL;
     cmd_log l;
     tu_frame f;
     SDL_Event e;
     (void)state;
     memset(&l, 0, sizeof l);
+    pthread_mutex_init(&l.mu, NULL);
     offscreen();
     assert_int_equal(tu_create_full("{\"window\":true,\"width\":160,\"height\":120}",
                                     tu_dir("keys"), NULL, 0, 0, control, &l, &inst, err,
@@ -68,27 +103,28 @@ static void test_keys_and_mouse(void **state)
                      RBS_OK);
     frame(&f, 0, 0);
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    assert_int_equal(l.count, 0);
+    assert_int_equal(wait_count(&l, 0), 0);
 
-    /* Space pauses (the frame says running). */
+    /* Space pauses; with no frame drawn since, space again resumes: the
+     * window answers while the run is paused. */
     key(SDLK_SPACE);
-    frame(&f, 1, 0);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    assert_int_equal(l.count, 1);
+    assert_int_equal(wait_count(&l, 1), 1);
     assert_string_equal(l.lines[0], "pause");
-    /* Space resumes when the frame says paused. */
     key(SDLK_SPACE);
-    frame(&f, 2, 1);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(wait_count(&l, 2), 2);
     assert_string_equal(l.lines[1], "resume");
+    /* A frame that says "paused" makes the next space a "resume". */
+    frame(&f, 1, 1);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    key(SDLK_SPACE);
+    assert_int_equal(wait_count(&l, 3), 3);
+    assert_string_equal(l.lines[2], "resume");
 
-    /* Arrows and a left-button drag orbit the free camera. */
+    /* Arrows and a left-button drag orbit the free camera, no frame needed. */
     assert_int_equal(cls->command(inst, "camera", before, sizeof before), RBS_OK);
     key(SDLK_RIGHT);
-    frame(&f, 3, 0);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    assert_int_equal(cls->command(inst, "camera", after, sizeof after), RBS_OK);
-    assert_string_not_equal(before, after);
+    assert_true(wait_camera_change(inst, before));
+    assert_int_equal(cls->command(inst, "camera", before, sizeof before), RBS_OK);
     memset(&e, 0, sizeof e);
     e.type = SDL_MOUSEBUTTONDOWN;
     e.button.button = SDL_BUTTON_LEFT;
@@ -98,10 +134,13 @@ static void test_keys_and_mouse(void **state)
     e.motion.xrel = 25;
     e.motion.yrel = -5;
     assert_int_equal(SDL_PushEvent(&e), 1);
-    frame(&f, 4, 0);
+    assert_true(wait_camera_change(inst, before));
+    memset(&e, 0, sizeof e);
+    e.type = SDL_MOUSEBUTTONUP;
+    assert_int_equal(SDL_PushEvent(&e), 1);
+    /* The moved camera draws the next frame. */
+    frame(&f, 2, 0);
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    assert_int_equal(cls->command(inst, "camera", before, sizeof before), RBS_OK);
-    assert_string_not_equal(before, after);
 
     /* q, Escape, closing the window: quit. */
     key(SDLK_q);
@@ -109,18 +148,16 @@ static void test_keys_and_mouse(void **state)
     memset(&e, 0, sizeof e);
     e.type = SDL_QUIT;
     assert_int_equal(SDL_PushEvent(&e), 1);
-    frame(&f, 5, 0);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    assert_int_equal(l.count, 5);
-    assert_string_equal(l.lines[2], "quit");
+    assert_int_equal(wait_count(&l, 6), 6);
     assert_string_equal(l.lines[3], "quit");
     assert_string_equal(l.lines[4], "quit");
+    assert_string_equal(l.lines[5], "quit");
 
-    /* A repeated frame (same number) is shown but not written again. */
+    /* A repeated frame (same number) is not written again. */
     {
         char path[1400];
         struct stat sb;
-        snprintf(path, sizeof path, "%s/frame_000005.png", tu_dir("keys"));
+        snprintf(path, sizeof path, "%s/frame_000002.png", tu_dir("keys"));
         assert_int_equal(stat(path, &sb), 0);
         assert_int_equal(remove(path), 0);
         f.frame.paused = 1;
@@ -129,6 +166,7 @@ static void test_keys_and_mouse(void **state)
     }
     assert_int_equal(cls->finish(inst, err, sizeof err), RBS_OK);
     cls->destroy(inst);
+    pthread_mutex_destroy(&l.mu);
 }
 
 /* No usable video driver: "auto" draws PNG files without a window; true
