@@ -84,7 +84,7 @@ static int parse_positive(const char *s, double *out)
 /* Options take their value as the next argument or after '='. */
 static int parse_run_args(int argc, char **argv, run_options *o)
 {
-    int i;
+    int i, seen_reel = 0, seen_speed = 0;
     memset(o, 0, sizeof *o);
     o->speed = 1.0;
     o->reel = 64;
@@ -132,6 +132,19 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             strcmp(name, "--png") && strcmp(name, "--every") &&
             strcmp(name, "--reel") && strcmp(name, "--speed"))
             return usage_error("unknown option '%s'%s", name, "");
+        if ((strcmp(name, "--steps") == 0 && o->steps) ||
+            (strcmp(name, "--dt") == 0 && o->dt > 0) ||
+            (strcmp(name, "--method") == 0 && o->method) ||
+            (strcmp(name, "--csv") == 0 && o->csv) ||
+            (strcmp(name, "--json") == 0 && o->json) ||
+            (strcmp(name, "--stats") == 0 && o->stats) ||
+            (strcmp(name, "--png") == 0 && o->png) ||
+            (strcmp(name, "--every") == 0 && o->every) ||
+            (strcmp(name, "--reel") == 0 && seen_reel) ||
+            (strcmp(name, "--speed") == 0 && seen_speed))
+            return usage_error("%s given twice%s", name, "");
+        seen_reel |= strcmp(name, "--reel") == 0;
+        seen_speed |= strcmp(name, "--speed") == 0;
         if (eq)
             value = eq + 1;
         else if (i + 1 < argc)

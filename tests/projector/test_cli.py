@@ -125,6 +125,8 @@ class CliTests(Base):
             (["--speed", "0"], "--speed"),
             (["--frobnicate"], "unknown option '--frobnicate'"),
             (["--csv"], "--csv needs a value"),
+            (["--csv", "out.csv", "--csv", "x.csv"], "--csv given twice"),
+            (["--steps", "5", "--steps=6"], "--steps given twice"),
             (["--quiet=1"], "takes no value"),
             ([s], "one scene at most"),
             (["--csv", "out.csv", "--json", "no/such/dir/x.jsonl"],
