@@ -40,6 +40,8 @@ def bounce_scene(steps=2000, dt=0.001, height=1.0, restitution=0.9, radius=0.1):
         "description": "a ball bouncing on the ground",
         "simulation": {"steps": steps, "dt": dt, "gravity": [0, 0, -9.81],
                        "restitution": restitution},
+        "materials": [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3,
+                       "restitution": restitution}],
         "bodies": [
             {"type": "plane", "name": "ground", "point": [0, 0, 0],
              "normal": [0, 0, 1]},

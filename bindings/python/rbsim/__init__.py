@@ -89,6 +89,10 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         raise error_class(status)("%s: %s" % (name, detail))
     world._scene_steps = int(lib.rbs_scene_steps(scene))
     world._scene_pause_on_collision = bool(lib.rbs_scene_pause_on_collision(scene))
+    describe = getattr(lib, "rbs_scene_description", None)
+    if describe is not None:
+        text = describe(scene)
+        world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
     return world
 
 

@@ -76,8 +76,13 @@ class Frame:
 class RunInfo:
     """How a run went (from rbs_projector_status)."""
 
+    state: str             #: "ready", "running" or "done"
+    paused: bool           #: paused now
+    quit: bool             #: quit was asked
+    realtime: bool         #: paced to the wall clock
+    speed: float           #: real-time factor
     steps: int             #: steps asked
-    endless: bool          #: ran until quit
+    endless: bool          #: runs until quit
     captured: int          #: frames captured by the simulation
     drawn: int             #: frames taken from the reel
     frame: int             #: number of the last frame drawn
@@ -374,12 +379,18 @@ class Run:
             self._close_projector()
 
 
+_STATES = {v: k[len("RBS_RUN_"):].lower()
+           for v, k in ffi.typeof("rbs_run_state").elements.items()}
+
+
 def _text(p: Any) -> str:
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
 
 
 def _run_info(s: Any) -> RunInfo:
-    return RunInfo(int(s.steps), bool(s.endless), int(s.captured), int(s.drawn), int(s.frame),
+    return RunInfo(_STATES.get(int(s.state), str(int(s.state))), bool(s.paused),
+                   bool(s.quit), bool(s.realtime), float(s.speed),
+                   int(s.steps), bool(s.endless), int(s.captured), int(s.drawn), int(s.frame),
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
                    float(s.energy_last), float(s.wall_time))

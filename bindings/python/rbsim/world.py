@@ -414,6 +414,8 @@ class World:
         self._lock = threading.Lock()
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
+        #: the scene's description ("" for a world built in code)
+        self.description = ""
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
@@ -468,6 +470,8 @@ class World:
         self._lock = threading.Lock()
         self._scene_steps = None
         self._scene_pause_on_collision = False
+        #: the scene's description ("" for a world built in code)
+        self.description = ""
         self._create(d)
         return self
 

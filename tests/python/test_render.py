@@ -1,0 +1,203 @@
+"""Python renderers through the projector: every frame, in order, with the
+state; exceptions stop the run and come out of world.run()."""
+
+import threading
+
+import numpy as np
+import pytest
+
+import rbsim
+
+
+def make_world(dt=0.001):
+    w = rbsim.World(dt=dt, restitution=0.8)
+    w.add_plane("ground")
+    w.add_sphere("ball", radius=0.1, position=(0.0, 0.0, 0.5),
+                 velocity=(0.3, 0.0, 0.0))
+    w.add_sphere(radius=0.05, position=(1.0, 0.0, 0.2))  # unnamed
+    return w
+
+
+class Recorder:
+    def __init__(self, every=1):
+        self.every = every
+        self.frames = []
+        self.finished = 0
+        self.closed = 0
+        self.threads = set()
+
+    def draw(self, frame):
+        self.threads.add(threading.get_ident())
+        self.frames.append(frame)
+
+    def finish(self):
+        self.finished += 1
+
+    def close(self):
+        self.closed += 1
+
+
+def test_a_renderer_sees_every_frame_with_the_state():
+    steps = 600
+    w = make_world()
+    rec = Recorder()
+    info = w.run(steps, renderers=[rec])
+    assert [f.number for f in rec.frames] == list(range(steps + 1))
+    assert info.drawn == steps + 1 and info.captured == steps + 1
+    assert rec.finished == 1 and rec.closed == 1
+    assert rec.frames[-1].last and not any(f.last for f in rec.frames[:-1])
+    assert threading.get_ident() not in rec.threads  # the renderer thread
+    # Each frame equals the state of a twin world stepped by hand, bit for bit.
+    twin = make_world()
+    for f in rec.frames:
+        assert f.time == twin.time
+        assert f.names == ("ground", "ball", "")
+        assert f.slots.tolist() == [0, 1, 2] and f.types.tolist() == [2, 1, 1]
+        assert f.positions.shape == (3, 3) and f.orientations.shape == (3, 4)
+        assert np.array_equal(f.positions, twin.positions)
+        assert np.array_equal(f.velocities, twin.velocities)
+        assert np.array_equal(f.angular_velocities, twin.angular_velocities)
+        assert np.array_equal(f.orientations, twin.orientations)
+        e = twin.energy()
+        assert f.energy == e
+        assert np.array_equal(f.momentum.linear, twin.momentum().linear)
+        if f.number < steps:
+            twin.step()
+    assert w.hash() == twin.hash()
+    assert rec.frames[0].radii.tolist() == [0.0, 0.1, 0.05]
+    assert rec.frames[0].normals[0].tolist() == [0.0, 0.0, 1.0]
+
+
+def test_frames_are_copies():
+    w = make_world()
+    frames = []
+    w.run(50, renderers=[frames.append])
+    z = [f.positions[1, 2] for f in frames]
+    assert len(set(z)) > 40  # not all the same reused slot
+    assert all(f.positions.flags.owndata or f.positions.base is not None
+               for f in frames)
+
+
+def test_every_keeps_every_kth_and_the_last():
+    w = make_world()
+    a, b, c = Recorder(every=7), Recorder(), Recorder(every=100)
+    w.run(50, renderers=[a, b, c])
+    assert [f.number for f in a.frames] == list(range(0, 50, 7)) + [50]
+    assert [f.number for f in b.frames] == list(range(51))
+    assert [f.number for f in c.frames] == [0, 50]
+
+
+def test_a_plain_callable_and_four_renderers():
+    w = make_world()
+    seen = [[] for _ in range(4)]
+    renderers = [lambda f, i=i: seen[i].append(f.number) for i in range(4)]
+    w.run(20, renderers=renderers)
+    assert all(s == list(range(21)) for s in seen)
+
+
+def test_an_exception_stops_the_run_and_propagates():
+    w = make_world()
+    boom = ValueError("boom at frame 30")
+    seen = []
+    other = Recorder()
+
+    def bad(frame):
+        seen.append(frame.number)
+        if frame.number == 30:
+            raise boom
+
+    with pytest.raises(ValueError) as info:
+        w.run(100000, renderers=[bad, other])
+    assert info.value is boom
+    assert seen == list(range(31))
+    # The run stopped early: far fewer than 100000 steps were made.
+    assert w.step_count < 100000
+    assert other.finished == 1 and other.closed == 1  # outputs finished
+    w.step()  # the world is usable again
+
+
+def test_an_exception_in_finish_propagates():
+    class BadFinish(Recorder):
+        def finish(self):
+            raise RuntimeError("cannot flush")
+
+    with pytest.raises(RuntimeError, match="cannot flush"):
+        make_world().run(5, renderers=[BadFinish()])
+
+
+def test_keyboard_interrupt_in_a_renderer_propagates():
+    def interrupt(frame):
+        if frame.number == 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        make_world().run(1000, renderers=[interrupt])
+
+
+def test_stop_run_ends_cleanly():
+    w = make_world()
+    seen = []
+
+    def until(frame):
+        seen.append(frame.number)
+        if frame.number == 25:
+            raise rbsim.StopRun
+
+    info = w.run(endless=True, steps=0, renderers=[until])
+    # That renderer gets no frame after StopRun; frames already made still
+    # go through the reel (to other renderers) before the run ends.
+    assert seen == list(range(26))
+    assert info.endless and info.quit and info.state == "done"
+    assert info.frame >= 25 and w.step_count >= info.frame
+
+
+def test_steps_zero_gives_frame_zero_only():
+    frames = []
+    make_world().run(0, renderers=[frames.append])
+    assert [f.number for f in frames] == [0]
+
+
+def test_no_renderers():
+    w = make_world()
+    info = w.run(10)
+    assert w.step_count == 10 and info.steps == 10
+
+
+def test_run_without_steps_needs_a_scene():
+    with pytest.raises(rbsim.InvalidError, match="steps"):
+        make_world().run()
+
+
+def test_start_with_commands():
+    w = make_world()
+    rec = Recorder()
+    run = w.start(1000, renderers=[rec], start_paused=True)
+    with pytest.raises(rbsim.BusyError):
+        w.step()  # the world belongs to the simulation thread now
+    assert run.status().state == "running" and not run.finished(0)
+    while not run.status().paused:
+        run.finished(0.01)
+    assert run.status().captured == 1  # paused after frame 0
+    run.command("step 4")
+    while run.status().captured < 5:
+        run.finished(0.01)
+    assert run.status().paused and run.status().captured == 5
+    assert run.command("status")
+    run.command("resume")
+    info = run.wait()
+    assert [f.number for f in rec.frames] == list(range(1001))
+    assert info.drawn == 1001
+    with pytest.raises(rbsim.ClosedError):
+        run.command("pause")
+    w.step()
+
+
+def test_frame_step_info():
+    w = rbsim.World(dt=0.001, restitution=1.0)
+    w.add_plane("ground")
+    w.add_sphere("ball", radius=0.1, position=(0, 0, 0.1005),
+                 velocity=(0, 0, -1.0))
+    frames = []
+    w.run(20, renderers=[frames.append])
+    assert sum(f.step.colliding for f in frames) >= 1
+    assert frames[0].step.steps == 1

@@ -1,0 +1,104 @@
+"""Loading scenes: rbsim.load (JSON and the seed's text format),
+rbsim.parse_json, overrides, and scene errors with their places."""
+
+import numpy as np
+import pytest
+
+from conftest import SOURCE_DIR, bounce_scene
+
+import rbsim
+
+SCENES = SOURCE_DIR / "scenes"
+
+
+def test_load_builds_the_scene(write_scene):
+    path = write_scene(bounce_scene(steps=123, dt=0.002, restitution=0.7))
+    w = rbsim.load(path)
+    assert set(w.bodies) == {"ground", "ball"}
+    s = w.settings
+    assert s["dt"] == 0.002 and s["restitution"] == 0.7
+    assert s["gravity"] == (0.0, 0.0, -9.81)
+    assert w.bodies["ball"].position.tolist() == [0.0, 0.0, 1.1]
+    assert w.bodies["ball"].radius == 0.1
+    assert w.description == "a ball bouncing on the ground"
+    frames = []
+    info = w.run(renderers=[lambda f: frames.append(f.number)])
+    assert frames == list(range(124)) and info.steps == 123  # the scene's steps
+    assert w.step_count == 123
+
+
+def test_load_accepts_pathlike_and_str(write_scene):
+    path = write_scene(bounce_scene())
+    assert rbsim.load(str(path)).hash() == rbsim.load(path).hash()
+
+
+def test_json_and_text_formats_give_the_same_world():
+    json_path = SCENES / "bouncing_sphere.json"
+    text_path = SCENES / "bouncing_sphere" / "config.txt"
+    if not json_path.exists() or not text_path.exists():
+        pytest.fail("the repository's scenes are missing: %s" % SCENES)
+    a = rbsim.load(json_path)
+    b = rbsim.load(text_path, format="text")
+    c = rbsim.load(text_path)  # auto
+    assert a.settings == b.settings == c.settings
+    assert a.hash() == b.hash() == c.hash()
+    a.step(500)
+    b.step(500)
+    assert np.array_equal(a.positions, b.positions)
+
+
+def test_every_repository_scene_loads_and_steps():
+    paths = sorted(SCENES.glob("*.json"))
+    assert paths, "no scenes in %s" % SCENES
+    for path in paths:
+        w = rbsim.load(path)
+        assert len(w.all_bodies()) > 0, path
+        w.step(20)
+        assert np.isfinite(w.positions).all(), path
+
+
+def test_overrides(write_scene):
+    path = write_scene(bounce_scene(steps=1000, dt=0.001))
+    w = rbsim.load(path, steps=7, dt=0.0005, method="euler")
+    assert w.dt == 0.0005 and w.method == "euler"
+    assert w.run().steps == 7
+    with pytest.raises(rbsim.SceneError, match="method"):
+        rbsim.load(path, method="nope")
+    with pytest.raises(rbsim.InvalidError, match="dt"):
+        rbsim.load(path, dt=0.0)
+    with pytest.raises(rbsim.InvalidError, match="steps"):
+        rbsim.load(path, steps=0)
+
+
+def test_parse_json():
+    import json
+    w = rbsim.parse_json(json.dumps(bounce_scene()), "inline")
+    assert set(w.bodies) == {"ground", "ball"}
+    with pytest.raises(rbsim.SceneError) as info:
+        rbsim.parse_json('{"format": 1,\n "simulation": {"steps": 3}', "trunc")
+    e = info.value
+    assert e.file == "trunc" and e.line == 2 and e.column > 1
+    assert "truncated" in e.message or "end of input" in e.message
+
+
+def test_unknown_key_error_points_at_it(write_scene):
+    scene = bounce_scene()
+    scene["bodies"][1]["radius_m"] = 0.2
+    path = write_scene(scene)
+    with pytest.raises(rbsim.SceneError) as info:
+        rbsim.load(path)
+    e = info.value
+    assert e.file == str(path) and e.line > 1 and e.column > 1
+    assert "radius_m" in e.message or "radius_m" in e.path
+    assert str(path) in str(e)
+
+
+def test_text_format_errors_carry_places(tmp_path):
+    (tmp_path / "config.txt").write_text(
+        "steps = 10\ndt = -1\nmaterials = materials.txt\nobjects = objects.txt\n")
+    (tmp_path / "materials.txt").write_text("")
+    (tmp_path / "objects.txt").write_text("")
+    with pytest.raises(rbsim.SceneError) as info:
+        rbsim.load(tmp_path / "config.txt")
+    e = info.value
+    assert any(x.line == 2 and x.file.endswith("config.txt") for x in e.errors)
