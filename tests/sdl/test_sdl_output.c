@@ -326,6 +326,76 @@ static void test_commands(void **state)
     cls->destroy(fixed);
 }
 
+/* Where the commands put a free camera, checked through the picture: a
+ * small ball must appear where the pinhole formula puts it for the camera
+ * the commands should have made (computed here by hand).  Start: eye
+ * (5, 0, 1) looking at (0, 0, 1), up z.  "orbit 90 0": yaw +90 degrees about
+ * z (counter-clockwise seen from above): eye (0, 5, 1).  "orbit 0 30":
+ * elevation 30 degrees: eye (0, 5 cos 30, 1 + 5 sin 30).  "zoom 2": half the
+ * distance.  "pan 0.5 0.2": eye and target move by 0.5 right + 0.2 up of the
+ * picture. */
+static void test_camera_commands_exact(void **state)
+{
+    static const double ball[3] = {0.4, -0.3, 1.2}, zup[3] = {0, 0, 1};
+    const char *cmds[4] = {"orbit 90 0", "orbit 0 30", "zoom 2", "pan 0.5 0.2"};
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    const double c30 = sqrt(3.0) / 2.0, s30 = 0.5;
+    double eye[4][3] = {{0, 5, 1}, {0, 5 * c30, 1 + 5 * s30}, {0, 2.5 * c30, 1 + 2.5 * s30}};
+    double target[4][3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    char err[512], out[512];
+    void *inst = NULL;
+    tu_frame f;
+    int k, i;
+    (void)state;
+    /* Pan: right = fwd x up, picture up = right x fwd, from eye[2]. */
+    {
+        double fwd[3], right[3], up[3], l;
+        for (i = 0; i < 3; i++) fwd[i] = target[2][i] - eye[2][i];
+        l = sqrt(fwd[0] * fwd[0] + fwd[1] * fwd[1] + fwd[2] * fwd[2]);
+        for (i = 0; i < 3; i++) fwd[i] /= l;
+        right[0] = fwd[1] * zup[2] - fwd[2] * zup[1];
+        right[1] = fwd[2] * zup[0] - fwd[0] * zup[2];
+        right[2] = fwd[0] * zup[1] - fwd[1] * zup[0];
+        l = sqrt(right[0] * right[0] + right[1] * right[1] + right[2] * right[2]);
+        for (i = 0; i < 3; i++) right[i] /= l;
+        up[0] = right[1] * fwd[2] - right[2] * fwd[1];
+        up[1] = right[2] * fwd[0] - right[0] * fwd[2];
+        up[2] = right[0] * fwd[1] - right[1] * fwd[0];
+        for (i = 0; i < 3; i++) {
+            eye[3][i] = eye[2][i] + 0.5 * right[i] + 0.2 * up[i];
+            target[3][i] = target[2][i] + 0.5 * right[i] + 0.2 * up[i];
+        }
+    }
+    assert_int_equal(tu_create("{\"width\":320,\"height\":240,\"window\":false,"
+                               "\"contact_sheet\":false,\"camera\":{\"mode\":\"free\","
+                               "\"position\":[5,0,1],\"target\":[0,0,1]}}",
+                               tu_dir("exact"), &inst, err, sizeof err),
+                     RBS_OK);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_sphere(&f, "ball", ball[0], ball[1], ball[2], 0.08, 0xd03030);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    for (k = 0; k < 4; k++) {
+        assert_int_equal(cls->command(inst, cmds[k], out, sizeof out), RBS_OK);
+        f.frame.number = (uint64_t)k + 1;
+        assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    }
+    cls->destroy(inst);
+    for (k = 0; k < 4; k++) {
+        SDL_Surface *s = load_fmt("%s/frame_%06llu.png", tu_dir("exact"),
+                                  (unsigned long long)k + 1);
+        double u, v, z;
+        int x0, y0, x1, y1;
+        assert_non_null(s);
+        assert_true(tu_project(eye[k], target[k], zup, 50.0, 320, 240, ball, &u, &v, &z));
+        assert_true(tu_bbox(s, 0, 30, 320, 210, is_red, &x0, &y0, &x1, &y1) > 0);
+        /* A small ball: the ellipse's offset from the projected centre is
+         * under 0.1 px; one pixel for sampling. */
+        assert_true(fabs((x0 + x1 + 1) / 2.0 - u) <= 1.0);
+        assert_true(fabs((y0 + y1 + 1) / 2.0 - v) <= 1.0);
+        SDL_FreeSurface(s);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -336,6 +406,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_contact_sheet),
         cmocka_unit_test(test_io_error),
         cmocka_unit_test(test_commands),
+        cmocka_unit_test(test_camera_commands_exact),
     };
     tu_set_base(argc > 1 ? argv[1] : ".");
     return cmocka_run_group_tests(tests, NULL, NULL);
