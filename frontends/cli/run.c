@@ -352,6 +352,85 @@ static int make_dir(const char *path)
     return -1;
 }
 
+/* Two names for one file (the same text, or an existing file reached twice,
+ * e.g. "a.csv" and "./a.csv"). */
+/* Where a path leads: an existing file's device and inode; for a new file,
+ * its folder's, plus the name.  0 if neither can be found. */
+typedef struct file_key {
+    dev_t dev;
+    ino_t ino;
+    const char *name; /* NULL for an existing file */
+} file_key;
+
+static int key_of(const char *path, file_key *k)
+{
+    struct stat sb;
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    size_t n = slash ? (size_t)(slash - path) : 0;
+    if (stat(path, &sb) == 0) {
+        k->dev = sb.st_dev;
+        k->ino = sb.st_ino;
+        k->name = NULL;
+        return 1;
+    }
+    if (n >= sizeof dir)
+        return 0;
+    if (slash == NULL)
+        strcpy(dir, ".");
+    else if (n == 0)
+        strcpy(dir, "/");
+    else {
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    if (stat(dir, &sb) != 0)
+        return 0;
+    k->dev = sb.st_dev;
+    k->ino = sb.st_ino;
+    k->name = slash ? slash + 1 : path;
+    return 1;
+}
+
+static int same_file(const char *a, const char *b)
+{
+    file_key ka, kb;
+    if (strcmp(a, b) == 0)
+        return 1;
+    if (!key_of(a, &ka) || !key_of(b, &kb))
+        return 0;
+    return ka.dev == kb.dev && ka.ino == kb.ino &&
+           ((ka.name == NULL && kb.name == NULL) ||
+            (ka.name != NULL && kb.name != NULL &&
+             strcmp(ka.name, kb.name) == 0));
+}
+
+/* No two outputs may write one file, and none may overwrite the scene. */
+static int check_distinct(const output *outs, uint32_t n, const char *scene)
+{
+    uint32_t i, j;
+    for (i = 0; i < n; i++) {
+        const char *a = outs[i].config.path;
+        if (a == NULL || strcmp(a, "-") == 0)
+            continue;
+        if (scene != NULL && same_file(a, scene)) {
+            fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
+                            "scene\n", outs[i].config.type, a);
+            return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+        }
+        for (j = 0; j < i; j++) {
+            const char *b = outs[j].config.path;
+            if (b == NULL || strcmp(b, "-") == 0 || !same_file(a, b))
+                continue;
+            fprintf(stderr, "rbsim run: the %s and %s outputs both write '%s'\n",
+                    outs[j].config.type, outs[i].config.type, a);
+            return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
+                                                            : RBSF_EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
 /* ---- progress and summary ----------------------------------------------- */
 
 static void progress(const rbs_run_info *info)
@@ -531,6 +610,9 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 4. Check every output before any is opened: a rejected run writes
      * nothing.  (The demonstration's folder is made first: it is ours.) */
+    code = check_distinct(outs, n_out, o.scene);
+    if (code != 0)
+        goto out;
     if (demo && (make_dir(DEMO_DIR) != 0 ||
                  (o.png && strcmp(o.png, DEMO_DIR "/png") == 0 &&
                   make_dir(DEMO_DIR "/png") != 0))) {
