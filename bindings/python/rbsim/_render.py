@@ -310,6 +310,8 @@ class Run:
         if self._projector == ffi.NULL:
             raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
         reply = ffi.new("char[]", 512)
+        if line.split()[:1] == ["quit"]:
+            self._stopped = True  # wait() then treats RBS_E_CLOSED as the end
         status = lib.rbs_projector_command(self._projector, raw, reply, 512)
         text = _text(reply)
         if status != lib.RBS_OK:
@@ -355,7 +357,7 @@ class Run:
         if self._error is not None:
             raise self._error
         if status == lib.RBS_E_CLOSED and self._stopped:
-            return info  # a renderer raised StopRun: a clean end
+            return info  # StopRun or a "quit" command: a clean end
         if status != lib.RBS_OK:
             raise _e.error_class(status)(detail)
         return info
