@@ -271,6 +271,18 @@ class CliTests(Base):
             self.assertLessEqual(abs(k + p - t),
                                  4 * math.ulp(max(abs(k), abs(p), 1e-300)))
 
+    def test_stdout_output_and_zero_steps(self):
+        # "-" writes to stdout; the summary then goes to stderr.
+        sim = dict(SCENE["simulation"], steps=0)
+        s = self.scene(simulation=sim)
+        r = self.rbsim("run", s, "--json", "-")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        lines = r.stdout.splitlines()
+        self.assertEqual(len(lines), 1)  # frame 0 only
+        self.assertEqual(json.loads(lines[0])["frame"], 0)
+        self.assertEqual(json.loads(lines[0])["t"], 0)
+        self.assertIn("simulated 0 s", r.stderr)
+
     def test_stdin_end_does_not_stop_the_run(self):
         s = self.scene()
         r = self.rbsim("run", s, "--csv", "a.csv", "--steps", "400")
