@@ -148,7 +148,18 @@ const char *rbs__suggest(const char *word, const char *const *candidates, size_t
             best = candidates[i];
         }
     }
-    return best_d <= limit ? best : NULL;
+    if (best_d <= limit) {
+        return best;
+    }
+    /* an abbreviation ("accel" for "acceleration") */
+    if (strlen(word) >= 3) {
+        for (i = 0; i < n; i++) {
+            if (strncmp(word, candidates[i], strlen(word)) == 0) {
+                return candidates[i];
+            }
+        }
+    }
+    return NULL;
 }
 
 rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,

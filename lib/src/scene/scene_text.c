@@ -429,12 +429,14 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
         /* the value runs to the next blank outside quotes */
         {
             size_t vstart = i, vend;
-            int inq = 0;
+            int inq = 0, comma = 0;
             while (i < end && (inq || !is_blank(s[i]))) {
                 if (s[i] == '"') {
                     inq = !inq;
                 } else if (inq && s[i] == '\\' && i + 1 < end) {
                     i++;
+                } else if (!inq && s[i] == ',') {
+                    comma = 1;
                 }
                 i++;
             }
@@ -458,7 +460,7 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
                                  "missing value after \"%.*s=\"", (int)key_len, s + key_off);
                 return;
             }
-            if (n == 1 && memchr(s + vstart, ',', vend - vstart) == NULL) {
+            if (n == 1 && !comma) {
                 value = tok_value(t, s, toks[0].off, toks[0].len, toks[0].quoted, 1,
                                   key_off);
             } else {

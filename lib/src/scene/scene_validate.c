@@ -577,7 +577,7 @@ static void check_materials(vctx *v, const cJSON *mats)
         size_t saved = push_index(v, i), inner;
         const cJSON *c;
         rbs__scene_pair p;
-        int bad = 0;
+        int bad = 0, static_ok = 0;
         uint32_t k;
         memset(&p, 0, sizeof p);
         p.restitution = -1.0;
@@ -630,7 +630,8 @@ static void check_materials(vctx *v, const cJSON *mats)
         }
         if ((c = member(row, "static")) != NULL) {
             inner = push_key(v, "static");
-            bad |= get_ranged(v, c, R_NONNEG, &p.static_friction) != 0;
+            static_ok = get_ranged(v, c, R_NONNEG, &p.static_friction) == 0;
+            bad |= !static_ok;
             pop(v, inner);
         } else {
             missing(v, row, "static", "the static friction coefficient, >= 0");
@@ -640,9 +641,7 @@ static void check_materials(vctx *v, const cJSON *mats)
             inner = push_key(v, "kinetic");
             if (get_ranged(v, c, R_NONNEG, &p.kinetic_friction) != 0) {
                 bad = 1;
-            } else if (member(row, "static") != NULL &&
-                       p.kinetic_friction > p.static_friction &&
-                       cJSON_IsNumber(member(row, "static"))) {
+            } else if (static_ok && p.kinetic_friction > p.static_friction) {
                 char g[64];
                 got(v, c, g, sizeof g);
                 err(v, loc_value(v, c),

@@ -1,0 +1,541 @@
+/*
+ * test_scene_errors.c - every validation rule has a bad file under bad/
+ * (its name says what is wrong) and the exact error text is checked:
+ * "file:line:col: path: message".
+ *
+ * The expected line and column are not taken from the code under test: each
+ * case names a marker (a piece of the bad file's text) and an offset into it;
+ * the test finds the marker with a plain string search and computes the line
+ * and column itself.  The messages are written out in full here.
+ */
+#include "scene_test.h"
+
+typedef struct expect {
+    const char *marker; /* text at the error; NULL = end of file */
+    int occurrence;     /* 1 = first occurrence of the marker */
+    int offset;         /* bytes from the marker's start */
+    const char *in;     /* file holding the marker if not the loaded one */
+    const char *rest;   /* "path: message" */
+} expect;
+
+typedef struct bad_case {
+    const char *file;
+    rbs_status status;
+    expect errors[6];
+} bad_case;
+
+#define E(marker, occ, off, rest) {marker, occ, off, NULL, rest}
+#define EIN(in, marker, occ, off, rest) {marker, occ, off, in, rest}
+
+static const bad_case cases[] = {
+    /* malformed, truncated and odd JSON */
+    {"bad/malformed_missing_comma.json", RBS_E_SCENE,
+     {E("\"dt\"", 1, 0,
+        "simulation: expected ',' or '}' after an object member, got '\"'")}},
+    {"bad/truncated.json", RBS_E_SCENE,
+     {E(NULL, 1, 0, "bodies[0].radius: expected a value, got end of input (truncated JSON?)")}},
+    {"bad/trailing_text.json", RBS_E_SCENE,
+     {E("extra", 1, 0, "unexpected 'e' after the end of the JSON value")}},
+    {"bad/empty.json", RBS_E_SCENE, {E(NULL, 1, 0, "empty input: expected a JSON object")}},
+    {"bad/binary.json", RBS_E_SCENE,
+     {E("", 1, 0,
+        "expected a value (object, array, string, number, true, false or null), got "
+        "byte 0x00")}},
+    {"bad/too_deep.json", RBS_E_SCENE,
+     {E("[[[", 64, 0,
+        "description[0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0]"
+        "[0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0]"
+        "[0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0]: nesting deeper than 64 "
+        "levels")}},
+    {"bad/bad_escape.json", RBS_E_SCENE,
+     {E("\\q", 1, 0, "bodies[0].name: invalid escape in string: \\ followed by 'q'")}},
+    {"bad/leading_zero.json", RBS_E_SCENE,
+     {E("010", 1, 0, "simulation.steps: invalid number: leading zeros are not allowed")}},
+    {"bad/nan_literal.json", RBS_E_SCENE,
+     {E("NaN", 1, 0,
+        "bodies[0].position[1]: NaN and Infinity are not JSON numbers; numbers must be "
+        "finite")}},
+    {"bad/infinity_literal.json", RBS_E_SCENE,
+     {E("-Infinity", 1, 0,
+        "bodies[0].position[2]: NaN and Infinity are not JSON numbers; numbers must be "
+        "finite")}},
+    {"bad/top_level_array.json", RBS_E_SCENE,
+     {E("[1", 1, 0, "a scene must be a JSON object, got an array of 3 elements")}},
+    {"bad/format_version_2.json", RBS_E_SCENE,
+     {E("2,", 1, 0, "format: must be 1 (this library reads format version 1), got 2")}},
+    /* keys */
+    {"bad/unknown_key_radus.json", RBS_E_SCENE,
+     {E("\"radus\"", 1, 0, "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)"),
+      E("{\"name\": \"ball\"", 1, 0, "bodies[0]: missing required key \"radius\" (m, > 0)")}},
+    {"bad/plane_with_radius.json", RBS_E_SCENE,
+     {E("\"radius\": 1}", 1, 0,
+        "bodies[1].radius: unknown key in a plane; expected one of: name, type, point, "
+        "normal, material, color, texture")}},
+    {"bad/duplicate_key.json", RBS_E_SCENE,
+     {E("\"mass\"", 2, 0, "bodies[0].mass: duplicate key (first given at line 5, column 55)")}},
+    {"bad/missing_steps.json", RBS_E_SCENE,
+     {E("{\"dt\"", 1, 0,
+        "simulation: missing required key \"steps\" (the number of steps to run, an "
+        "integer >= 0)")}},
+    {"bad/missing_mass.json", RBS_E_SCENE,
+     {E("{\"name\": \"ball\"", 1, 0,
+        "bodies[0]: missing required key \"mass\" (kg, > 0; or give \"density\" in "
+        "kg/m^3)")}},
+    {"bad/mass_and_density.json", RBS_E_SCENE,
+     {E("\"density\"", 1, 0, "bodies[0].density: give either \"mass\" or \"density\", not both")}},
+    /* types and numbers */
+    {"bad/wrong_type_radius_string.json", RBS_E_SCENE,
+     {E("\"0.1\"", 1, 0, "bodies[0].radius: must be a number, got \"0.1\"")}},
+    {"bad/overflow_1e999.json", RBS_E_SCENE,
+     {E("1e999", 1, 0,
+        "bodies[0].position[2]: number out of range (overflows a double), got 1e999")}},
+    {"bad/underflow_1e-999.json", RBS_E_SCENE,
+     {E("1e-999", 1, 0, "bodies[0].mass: number out of range (underflows to 0), got 1e-999")}},
+    {"bad/vector_too_short.json", RBS_E_SCENE,
+     {E("[0, 1]", 1, 0,
+        "bodies[0].position: must be an array of 3 numbers [x, y, z], got an array of 2 "
+        "elements")}},
+    {"bad/zero_mass.json", RBS_E_SCENE,
+     {E("\"mass\": 0", 1, 8, "bodies[0].mass: must be > 0, got 0")}},
+    {"bad/negative_radius.json", RBS_E_SCENE,
+     {E("-0.1", 1, 0, "bodies[0].radius: must be > 0, got -0.1")}},
+    {"bad/zero_dt.json", RBS_E_SCENE, {E("\"dt\": 0", 1, 6, "simulation.dt: must be > 0, got 0")}},
+    {"bad/zero_normal.json", RBS_E_SCENE,
+     {E("\"normal\": [0, 0, 0]", 1, 10,
+        "bodies[1].normal: must be a nonzero vector of finite length, got [0, 0, 0]")}},
+    {"bad/zero_quaternion.json", RBS_E_SCENE,
+     {E("[0, 0, 0, 0]", 1, 0,
+        "bodies[0].orientation: must be a nonzero quaternion [w, x, y, z] of finite "
+        "length")}},
+    {"bad/inertia_triangle.json", RBS_E_SCENE,
+     {E("[0.001", 1, 0,
+        "bodies[0].inertia: principal moments must satisfy the triangle inequality (each "
+        "<= the sum of the other two), got [0.001, 0.001, 0.003]")}},
+    {"bad/center_of_mass_outside.json", RBS_E_SCENE,
+     {E("[0, 0, 0.1]", 1, 0,
+        "bodies[0].center_of_mass: must lie inside the sphere: |offset| = 0.1 m, radius "
+        "0.1 m")}},
+    {"bad/restitution_above_1.json", RBS_E_SCENE,
+     {E("1.5", 1, 0, "simulation.restitution: must be in [0, 1], got 1.5")}},
+    {"bad/pair_restitution_negative.json", RBS_E_SCENE,
+     {E("-0.2", 1, 0, "materials[0].restitution: must be in [0, 1], got -0.2")}},
+    {"bad/negative_friction.json", RBS_E_SCENE,
+     {E("-0.3", 1, 0, "materials[0].kinetic: must be >= 0, got -0.3")}},
+    {"bad/kinetic_above_static.json", RBS_E_SCENE,
+     {E("0.7", 1, 0,
+        "materials[0].kinetic: must not exceed the static friction (0.5), got 0.7")}},
+    {"bad/steps_fraction.json", RBS_E_SCENE,
+     {E("10.5", 1, 0,
+        "simulation.steps: must be a non-negative integer (at most 2^53), got 10.5")}},
+    {"bad/steps_negative.json", RBS_E_SCENE,
+     {E("-1", 1, 0, "simulation.steps: must be a non-negative integer (at most 2^53), got -1")}},
+    {"bad/steps_too_large.json", RBS_E_SCENE,
+     {E("18446744073709551616", 1, 0,
+        "simulation.steps: must be a non-negative integer (at most 2^53), got "
+        "18446744073709551616")}},
+    {"bad/steps_dt_overflow.json", RBS_E_SCENE,
+     {E("9007199254740992", 1, 0,
+        "simulation.steps: steps * dt overflows (9007199254740992 * 1e+300 s)")}},
+    /* names and choices */
+    {"bad/unknown_method.json", RBS_E_SCENE,
+     {E("\"rk45\"", 1, 0,
+        "simulation.method: must be \"euler\", \"selective\", \"event\", \"verlet\", "
+        "\"rk4\" or \"adaptive\", got \"rk45\" (did you mean \"rk4\"?)")}},
+    {"bad/unknown_gravity_mode.json", RBS_E_SCENE,
+     {E("\"accel\"", 1, 0,
+        "simulation.gravity_mode: must be \"acceleration\" or \"force\", got \"accel\" "
+        "(did you mean \"acceleration\"?)")}},
+    {"bad/unknown_texture.json", RBS_E_SCENE,
+     {E("\"chequer\"", 1, 0,
+        "bodies[1].texture: must be \"none\", \"stripes\" or \"checker\", got "
+        "\"chequer\" (did you mean \"checker\"?)")}},
+    {"bad/bad_color.json", RBS_E_SCENE,
+     {E("\"#12345g\"", 1, 0,
+        "bodies[0].color: must be \"#rrggbb\" or three numbers in [0, 1] (red, green, "
+        "blue), got \"#12345g\"")}},
+    {"bad/color_component_above_1.json", RBS_E_SCENE,
+     {E("[1, 0.5, 2]", 1, 9, "bodies[0].color[2]: must be in [0, 1], got 2")}},
+    {"bad/name_with_space.json", RBS_E_SCENE,
+     {E("\"my ball\"", 1, 0,
+        "bodies[0].name: a name must not contain spaces, control characters, '#', '\"', "
+        "'=' or ',', got \"my ball\"")}},
+    {"bad/duplicate_body_name.json", RBS_E_SCENE,
+     {E("\"ball\"", 2, 0,
+        "bodies[1].name: duplicate body name \"ball\" (first used by bodies[0])")}},
+    {"bad/undefined_material.json", RBS_E_SCENE,
+     {E("\"rubbr\"", 1, 0,
+        "bodies[0].material: undefined material \"rubbr\" (did you mean \"rubber\"?)")}},
+    {"bad/missing_material_pair.json", RBS_E_SCENE,
+     {E("\"material\": \"concrete\"", 1, 12,
+        "bodies[1].material: no material pair for [\"rubber\", \"concrete\"]: bodies "
+        "\"ball\" and \"floor\" could touch; add the pair or a \"*\" row to "
+        "\"materials\"")}},
+    /* bodies at the start */
+    {"bad/overlap_spheres.json", RBS_E_SCENE,
+     {E("[0, 0.15, 1]", 1, 0,
+        "bodies[1].position: \"ball2\" overlaps \"ball\" (bodies[0]) by 0.05 m at the "
+        "start")}},
+    {"bad/sphere_behind_plane.json", RBS_E_SCENE,
+     {E("[0, 0, 0.05]", 1, 0,
+        "bodies[0].position: \"ball\" starts behind (inside) plane \"floor\" (bodies[1]) "
+        "by 0.05 m at the start")}},
+    /* renderers */
+    {"bad/too_many_renderers.json", RBS_E_SCENE,
+     {E("{\"type\": \"csv\", \"path\": \"out/4.csv\"}", 1, 0,
+        "renderers[4]: at most 4 renderers may be attached, this is number 5")}},
+    {"bad/renderer_every_zero.json", RBS_E_SCENE,
+     {E("0}", 1, 0, "renderers[0].every: must be an integer >= 1, got 0")}},
+    {"bad/renderer_missing_type.json", RBS_E_SCENE,
+     {E("{\"path\"", 1, 0,
+        "renderers[0]: missing required key \"type\" (the renderer type, e.g. \"csv\", "
+        "\"json\" or \"sdl\")")}},
+    {"bad/renderer_csv_unknown_key.json", RBS_E_SCENE,
+     {E("\"evrey\"", 1, 0, "renderers[0].evrey: unknown key in csv (did you mean \"every\"?)")}},
+    {"bad/renderer_sdl_bad_width.json", RBS_E_SCENE,
+     {E("8}", 1, 0, "renderers[0].width: must be an integer in 16..8192 (pixels), got 8")}},
+    {"bad/camera_up_parallel.json", RBS_E_SCENE,
+     {E("\"up\": [", 1, 6,
+        "renderers[0].camera.up: must be nonzero and not parallel to the view direction "
+        "(target - position)")}},
+    {"bad/camera_bad_fov_and_far.json", RBS_E_SCENE,
+     {E("180", 1, 0, "renderers[0].camera.fov: must be in (0, 180) degrees, got 180"),
+      E("0.5}", 1, 0, "renderers[0].camera.far: must be > near (1), got 0.5")}},
+    {"bad/camera_mount_unknown.json", RBS_E_SCENE,
+     {E("\"bal\"", 1, 0,
+        "renderers[0].camera.mount: no sphere named \"bal\" (did you mean \"ball\"?)")}},
+    {"bad/camera_and_views.json", RBS_E_SCENE,
+     {E("\"views\"", 1, 0, "renderers[0].views: give either \"camera\" or \"views\", not both")}},
+    {"bad/camera_path_time_decreasing.json", RBS_E_SCENE,
+     {E("\"t\": 0.5", 1, 5, "renderers[0].camera.path[1].t: times must increase, got 0.5 after 1")}},
+    {"bad/views_too_many.json", RBS_E_SCENE,
+     {E("[{}, {}", 1, 0, "renderers[0].views: must have 1 to 4 cameras, got 5")}},
+    /* several errors in one file: all are reported, in document order */
+    {"bad/many_errors.json", RBS_E_SCENE,
+     {E("-1", 1, 0, "simulation.dt: must be > 0, got -1"),
+      E("\"mas\"", 1, 0, "bodies[0].mas: unknown key in a sphere (did you mean \"mass\"?)"),
+      E("\"radius\": 0", 1, 10, "bodies[0].radius: must be > 0, got 0"),
+      E("{\"name\": \"ball\"", 1, 0,
+        "bodies[0]: missing required key \"mass\" (kg, > 0; or give \"density\" in "
+        "kg/m^3)"),
+      E("\"red\"", 1, 0,
+        "bodies[1].color: must be \"#rrggbb\" or three numbers in [0, 1] (red, green, "
+        "blue), got \"red\"")}},
+    /* the text format: same rules, places in the file that holds the value */
+    {"bad/text_unknown_key/config.txt", RBS_E_SCENE,
+     {EIN("bad/text_unknown_key/objects.txt", "radus", 1, 0,
+          "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)"),
+      EIN("bad/text_unknown_key/objects.txt", "sphere", 1, 0,
+          "bodies[0]: missing required key \"radius\" (m, > 0)")}},
+    {"bad/text_bad_material_row/config.txt", RBS_E_SCENE,
+     {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
+          "expected 4 to 7 columns: material_a material_b static kinetic [restitution "
+          "[rolling [spinning]]], got 3")}},
+    {"bad/text_no_block/config.txt", RBS_E_SCENE,
+     {EIN("bad/text_no_block/objects.txt", "radius", 1, 0,
+          "expected \"sphere NAME\" or \"plane NAME\" to start a body, got \"radius\"")}},
+    {"bad/text_missing_objects_file/config.txt", RBS_E_IO,
+     {E("nothere.txt", 1, 0,
+        "cannot open 'bad/text_missing_objects_file/nothere.txt': No such file or "
+        "directory")}},
+    {"bad/text_bad_values/config.txt", RBS_E_SCENE,
+     {E("abc", 1, 0,
+        "simulation.steps: must be a non-negative integer (at most 2^53), got \"abc\""),
+      E("1e999", 1, 0, "simulation.dt: number out of range (overflows a double), got 1e999"),
+      E("0 0", 1, 0,
+        "simulation.gravity: must be an array of 3 numbers [x, y, z], got an array of 2 "
+        "elements"),
+      E("-1", 1, 0, "simulation.mutual_gravity.G: must be > 0, got -1"),
+      EIN("bad/text_bad_values/objects.txt", "nan", 1, 0,
+          "bodies[0].position[2]: must be a number, got \"nan\""),
+      E("every=0", 1, 6, "renderers[0].every: must be an integer >= 1, got 0")}},
+};
+
+#define CASE_COUNT (sizeof cases / sizeof *cases)
+
+/* The exact text expected for one error. */
+static void expected_text(const bad_case *c, const expect *x, char *out, size_t n)
+{
+    const char *in = x->in != NULL ? x->in : c->file;
+    size_t len = 0, off;
+    char *text = read_all(in, &len);
+    int line, col;
+    assert_non_null(text);
+    if (x->marker == NULL) {
+        off = len;
+    } else if (x->marker[0] == '\0') {
+        off = 0;
+    } else {
+        const char *p = text;
+        int k;
+        for (k = 0; k < x->occurrence; k++) {
+            p = strstr(k == 0 ? p : p + 1, x->marker);
+            if (p == NULL) {
+                fail_msg("marker '%s' (#%d) not in %s", x->marker, x->occurrence, in);
+            }
+        }
+        off = (size_t)(p - text) + (size_t)x->offset;
+    }
+    line_col(text, off, &line, &col);
+    free(text);
+    snprintf(out, n, "%s:%d:%d: %s", in, line, col, x->rest);
+}
+
+static void test_bad_files(void **state)
+{
+    size_t i;
+    int failures = 0;
+    (void)state;
+    for (i = 0; i < CASE_COUNT; i++) {
+        const bad_case *c = &cases[i];
+        rbs_scene *scene = NULL;
+        rbs_status st = rbs_scene_load(c->file, RBS_SCENE_AUTO, &scene);
+        uint32_t k, want = 0;
+        int ok = 1;
+        while (want < 6 && c->errors[want].rest != NULL) {
+            want++;
+        }
+        if (st != c->status || scene == NULL || rbs_scene_error_count(scene) != want) {
+            ok = 0;
+        }
+        for (k = 0; ok && k < want; k++) {
+            char expected[1024];
+            rbs_scene_error e;
+            expected_text(c, &c->errors[k], expected, sizeof expected);
+            if (rbs_scene_error_get(scene, k, &e) != RBS_OK || strcmp(e.text, expected) != 0) {
+                fprintf(stderr, "%s: error %u\n  expected: %s\n  got:      %s\n", c->file, k,
+                        expected, rbs_scene_error_get(scene, k, &e) == RBS_OK ? e.text : "-");
+                ok = 0;
+            }
+        }
+        if (!ok) {
+            fprintf(stderr, "FAIL %s: status %s (want %s), %u errors (want %u):\n", c->file,
+                    rbs_status_name(st), rbs_status_name(c->status),
+                    rbs_scene_error_count(scene), want);
+            print_errors(scene);
+            failures++;
+        } else {
+            /* nothing runs: a rejected scene builds no world */
+            rbs_world *world = NULL;
+            rbs_world_def def;
+            if (rbs_scene_build(scene, &world) != RBS_E_SCENE || world != NULL ||
+                rbs_scene_world_def(scene, &def) != RBS_E_SCENE) {
+                fprintf(stderr, "FAIL %s: a rejected scene built a world\n", c->file);
+                failures++;
+            }
+            rbs_world_destroy(world);
+        }
+        rbs_scene_free(scene);
+    }
+    assert_int_equal(failures, 0);
+}
+
+/* The parts of an error are consistent with its text. */
+static void test_error_fields(void **state)
+{
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_int_equal(rbs_scene_load("bad/negative_radius.json", RBS_SCENE_JSON, &scene),
+                     RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.file, "bad/negative_radius.json");
+    assert_string_equal(e.path, "bodies[0].radius");
+    assert_string_equal(e.message, "must be > 0, got -0.1");
+    /* line 5, column 50: counted by hand in the file */
+    assert_int_equal(e.line, 5);
+    assert_int_equal(e.column, 50);
+    assert_string_equal(e.text, "bad/negative_radius.json:5:50: bodies[0].radius: must be > 0, got -0.1");
+    assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_scene_error_get(NULL, 0, &e), RBS_E_INVALID);
+    rbs_scene_free(scene);
+}
+
+/* Unreadable files: missing, a folder, and a folder without config.txt. */
+static void test_unreadable(void **state)
+{
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_int_equal(rbs_scene_load("bad/no_such_file.json", RBS_SCENE_AUTO, &scene), RBS_E_IO);
+    assert_non_null(scene);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "bad/no_such_file.json: cannot open 'bad/no_such_file.json': "
+                                "No such file or directory");
+    rbs_scene_free(scene);
+
+    assert_int_equal(rbs_scene_load("bad", RBS_SCENE_JSON, &scene), RBS_E_IO);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "bad: cannot read 'bad': is a directory");
+    rbs_scene_free(scene);
+
+    /* a folder stands for its config.txt */
+    assert_int_equal(rbs_scene_load("bad", RBS_SCENE_AUTO, &scene), RBS_E_IO);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "bad/config.txt: cannot open 'bad/config.txt': No such file "
+                                "or directory");
+    rbs_scene_free(scene);
+
+    assert_int_equal(rbs_scene_load(NULL, RBS_SCENE_AUTO, &scene), RBS_E_INVALID);
+    assert_null(scene);
+    assert_int_equal(rbs_scene_load("x.json", RBS_SCENE_AUTO, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_scene_load("x.json", (rbs_scene_format)7, &scene), RBS_E_INVALID);
+}
+
+/* More errors than RBS_SCENE_ERRORS_MAX: all are counted, the first kept. */
+static void test_error_limit(void **state)
+{
+    char *text = malloc(200000);
+    size_t n = 0;
+    int i;
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_non_null(text);
+    n += (size_t)sprintf(text + n, "{\"simulation\": {\"steps\": 1},\n\"bodies\": [\n");
+    for (i = 0; i < 60; i++) {
+        n += (size_t)sprintf(text + n,
+                             "%s{\"name\": \"b%d\", \"type\": \"sphere\", \"radius\": -1, "
+                             "\"mass\": 1, \"position\": [%d, 0, 0]}\n",
+                             i ? "," : "", i, 10 * i);
+    }
+    n += (size_t)sprintf(text + n, "]}\n");
+    assert_int_equal(rbs_scene_parse_json(text, n, "many", &scene), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 60);
+    assert_int_equal(rbs_scene_error_get(scene, RBS_SCENE_ERRORS_MAX - 1, &e), RBS_OK);
+    /* the 50th body (bodies[49]) is on line 52: ",{\"name\": \"b49\", \"type\":
+     * \"sphere\", \"radius\": -1": the value starts at column 46 */
+    assert_string_equal(e.text, "many:52:46: bodies[49].radius: must be > 0, got -1");
+    assert_int_equal(rbs_scene_error_get(scene, RBS_SCENE_ERRORS_MAX, &e), RBS_E_NOT_FOUND);
+    rbs_scene_free(scene);
+    free(text);
+}
+
+/* Command-line overrides are validated like the file's values. */
+static void test_override(void **state)
+{
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    rbs_world_def def;
+    (void)state;
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_steps(scene), 3000);
+    assert_int_equal(rbs_scene_override(scene, 0, 0.0, NULL), RBS_OK);
+    assert_int_equal(rbs_scene_steps(scene), 3000);
+    assert_int_equal(rbs_scene_override(scene, 10, 0.002, "rk4"), RBS_OK);
+    assert_int_equal(rbs_scene_steps(scene), 10);
+    assert_true(rbs_scene_dt(scene) == 0.002);
+    assert_int_equal(rbs_scene_world_def(scene, &def), RBS_OK);
+    assert_int_equal(def.method, RBS_METHOD_RK4);
+    assert_true(def.dt == 0.002);
+
+    /* bad values: an error each, the scene unchanged, and nothing runs */
+    assert_int_equal(rbs_scene_override(scene, 0, 1.0 / 0.0, "rk5"), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 2);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --dt: must be a finite number > 0, got inf");
+    assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --method: unknown method \"rk5\" (did you mean "
+                                "\"rk4\"?); expected euler, selective, event, verlet, rk4 or "
+                                "adaptive");
+    assert_int_equal(rbs_scene_steps(scene), 10);
+    assert_true(rbs_scene_dt(scene) == 0.002);
+    assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);
+    rbs_scene_free(scene);
+
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_override(scene, UINT64_MAX, 0.0, NULL), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --steps: must be at most 2^53, got "
+                                "18446744073709551615");
+    rbs_scene_free(scene);
+
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_override(scene, 9007199254740992ULL, 1e300, NULL), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --steps: steps * dt overflows "
+                                "(9007199254740992 * 1e+300)");
+    rbs_scene_free(scene);
+    assert_int_equal(rbs_scene_override(NULL, 1, 1, NULL), RBS_E_INVALID);
+}
+
+/* Renderer entries come back as JSON text; unknown types keep their keys. */
+static void test_renderers(void **state)
+{
+    static const char text[] =
+        "{\"simulation\": {\"steps\": 1},\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 1, \"mass\": 1,"
+        " \"position\": [0, 0, 0]}],\n"
+        " \"renderers\": [\n"
+        "  {\"type\": \"csv\", \"path\": \"out/a.csv\"},\n"
+        "  {\"type\": \"plotter\", \"pen\": \"blue\", \"nested\": {\"a\": [1, 2.5]}},\n"
+        "  {\"type\": \"sdl\", \"views\": [{\"mount\": \"ball\", \"offset\": [0, 0, 2]},"
+        " {\"mode\": \"free\", \"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}]}]}\n"
+        " ]}\n";
+    rbs_scene *scene = NULL;
+    rbs_scene_renderer r;
+    (void)state;
+    assert_int_equal(rbs_scene_parse_json(text, sizeof text - 1, "r.json", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_renderer_count(scene), 3);
+    assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
+    assert_string_equal(r.type, "csv");
+    assert_string_equal(r.json, "{\"type\":\"csv\",\"path\":\"out/a.csv\"}");
+    assert_string_equal(r.file, "r.json");
+    assert_int_equal(r.line, 4);
+    assert_int_equal(r.column, 3);
+    assert_int_equal(rbs_scene_renderer_get(scene, 1, &r), RBS_OK);
+    assert_string_equal(r.type, "plotter");
+    assert_string_equal(r.json, "{\"type\":\"plotter\",\"pen\":\"blue\",\"nested\":{\"a\":[1,2.5]}}");
+    assert_int_equal(rbs_scene_renderer_get(scene, 2, &r), RBS_OK);
+    assert_string_equal(r.type, "sdl");
+    assert_int_equal(rbs_scene_renderer_get(scene, 3, &r), RBS_E_NOT_FOUND);
+    rbs_scene_free(scene);
+}
+
+/* Materials: "*" rows cover missing pairs; a body without material matches
+ * only "*" rows; a sphere resting on a plane (gap 0) is not an overlap. */
+static void test_material_rules(void **state)
+{
+    static const char ok_text[] =
+        "{\"simulation\": {\"steps\": 1},\n"
+        " \"materials\": [{\"pair\": [\"rubber\", \"*\"], \"static\": 1, \"kinetic\": 0.5}],\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 0.5, \"mass\": 1,"
+        " \"position\": [0, 0, 0.5], \"material\": \"rubber\"},\n"
+        " {\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 2]}]}\n";
+    static const char bad_text[] =
+        "{\"simulation\": {\"steps\": 1},\n"
+        " \"materials\": [{\"pair\": [\"rubber\", \"rubber\"], \"static\": 1, \"kinetic\": 0.5}],\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 0.5, \"mass\": 1,"
+        " \"position\": [0, 0, 0.5], \"material\": \"rubber\"},\n"
+        " {\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1]}]}\n";
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_int_equal(rbs_scene_parse_json(ok_text, sizeof ok_text - 1, "ok", &scene), RBS_OK);
+    rbs_scene_free(scene);
+    assert_int_equal(rbs_scene_parse_json(bad_text, sizeof bad_text - 1, "bad", &scene),
+                     RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "bad:4:2: bodies[1].name: no material pair for [\"rubber\", "
+                                "\"(no material)\"]: bodies \"ball\" and \"floor\" could touch; "
+                                "add the pair or a \"*\" row to \"materials\"");
+    rbs_scene_free(scene);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields),
+        cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
+        cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers),
+        cmocka_unit_test(test_material_rules),
+    };
+    if (enter_test_dir() != 0) {
+        return 1;
+    }
+    return cmocka_run_group_tests_name("scene_errors", tests, NULL, NULL);
+}
