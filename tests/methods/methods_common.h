@@ -108,4 +108,55 @@ static inline double figure_eight_error(rbs_method m, int n, double tol)
     return worst;
 }
 
+/* A two-body Kepler orbit: masses 1/2 and 1/2, G = 1 (mu = G (m1 + m2) = 1),
+ * semi-major axis 1, eccentricity e, starting at pericentre; period 2 pi.
+ * Body 1 sits at +r/2 of the relative vector, body 2 at -r/2. */
+static inline rbs_world *kepler_orbit(rbs_method m, double e, double dt, double tol, rbs_body_id *b1,
+                                      rbs_body_id *b2)
+{
+    rbs_world *w = orbit_world(m, dt, 1.0, tol);
+    double rp = 1.0 - e, vp = sqrt((1.0 + e) / (1.0 - e));
+    *b1 = point_mass(w, 0.5, 0.5 * rp, 0.0, 0.0, 0.5 * vp);
+    *b2 = point_mass(w, 0.5, -0.5 * rp, 0.0, 0.0, -0.5 * vp);
+    return w;
+}
+
+/* Exact position of body 1 at time t: Kepler's equation E - e sin E = t
+ * (mean motion 1) solved by Newton's method to rounding, then
+ * r = (cos E - e, sqrt(1 - e^2) sin E) and body 1 at r / 2. */
+static inline void kepler_position(double e, double t, double *x, double *y)
+{
+    double M = fmod(t, 2.0 * PI_), E = e < 0.8 ? M : PI_;
+    int k;
+    for (k = 0; k < 100; ++k) {
+        double d = (E - e * sin(E) - M) / (1.0 - e * cos(E));
+        E -= d;
+        if (fabs(d) < 1e-16)
+            break;
+    }
+    *x = 0.5 * (cos(E) - e);
+    *y = 0.5 * sqrt(1.0 - e * e) * sin(E);
+}
+
+/* Largest position error of body 1 over n frames per period, one period. */
+static inline double kepler_error(rbs_method m, double e, int n, double tol)
+{
+    rbs_body_id b1, b2;
+    rbs_world *w = kepler_orbit(m, e, 2.0 * PI_ / n, tol, &b1, &b2);
+    double worst = 0.0;
+    int k;
+    for (k = 1; k <= n; ++k) {
+        rbs_body_state s;
+        double x, y, d;
+        step_n(w, 1);
+        s = state_of(w, b1);
+        kepler_position(e, rbs_world_time(w), &x, &y);
+        d = hypot(s.position.x - x, s.position.y - y);
+        if (d > worst)
+            worst = d;
+    }
+    rbs_world_destroy(w);
+    return worst;
+}
+
 #endif

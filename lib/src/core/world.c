@@ -237,6 +237,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
     x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
+    x->method_state = carve(base, &at, 8 * sizeof(double));
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));
     x->ev_plane = carve(base, &at, B * sizeof(uint32_t));
@@ -274,7 +275,7 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     need = rbs__world_layout(NULL, &d, NULL);
     if (bytes < need)
         return RBS_E_MEMORY;
-    if (d.method != RBS_METHOD_EULER && d.method != RBS_METHOD_VERLET && d.method != RBS_METHOD_RK4 && d.method != RBS_METHOD_EVENT)
+    if (d.method != RBS_METHOD_EULER && d.method != RBS_METHOD_VERLET && d.method != RBS_METHOD_RK4 && d.method != RBS_METHOD_ADAPTIVE && d.method != RBS_METHOD_EVENT)
         return RBS_E_UNSUPPORTED;
     memset(buffer, 0, need);
     w = (rbs_world *)buffer;
@@ -284,6 +285,12 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     rbs__world_layout(w, &d, (unsigned char *)buffer);
     rebuild_pair_table(w);
     w->plan_dirty = 1;
+    /* the adaptive method's GSL workspaces: the one allocation outside the
+     * block (docs/methods.md) */
+    if (d.method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK) {
+        w->magic = 0;
+        return RBS_E_MEMORY;
+    }
     *out = w;
     return RBS_OK;
 }
@@ -319,6 +326,7 @@ void rbs_world_destroy(rbs_world *w)
 {
     if (w == NULL || w->magic != WORLD_MAGIC)
         return;
+    rbs__adaptive_release(w);
     w->magic = 0;
     if (w->owns_memory)
         free(w);
@@ -974,8 +982,10 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
         FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
     if (isnan(tolerance) || (tolerance > 0.0 && !isfinite(tolerance)))
         FAIL(w, RBS_E_INVALID, "tolerance must be finite");
-    if (method != RBS_METHOD_EULER && method != RBS_METHOD_VERLET && method != RBS_METHOD_RK4 && method != RBS_METHOD_EVENT)
+    if (method != RBS_METHOD_EULER && method != RBS_METHOD_VERLET && method != RBS_METHOD_RK4 && method != RBS_METHOD_ADAPTIVE && method != RBS_METHOD_EVENT)
         FAIL(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available in this build", rbs_method_name(method));
+    if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
+        FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;
     if (tolerance > 0.0)
         w->def.tolerance = tolerance;

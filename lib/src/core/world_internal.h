@@ -108,6 +108,8 @@ struct rbs_world {
 
     /* methods (step_verlet.c, step_rk4.c, step_adaptive.c) */
     double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot */
+    double *method_state;                 /* 8: adaptive's step-size suggestion, ... */
+    struct rbs__adaptive *adaptive;       /* GSL workspaces (malloc'd); NULL unless reserved */
 };
 
 /* Layout and creation (world.c). */
@@ -158,6 +160,12 @@ rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
 rbs_status rbs__step_verlet(rbs_world *w, rbs_step_info *info);
 rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info);
 void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info);
+rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info);
+/* GSL workspaces of the adaptive method: allocated once (creation or
+ * set_method), freed by rbs_world_destroy (step_adaptive.c). */
+typedef struct rbs__adaptive rbs__adaptive;
+rbs_status rbs__adaptive_reserve(rbs_world *w);
+void rbs__adaptive_release(rbs_world *w);
 rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13

@@ -1,0 +1,584 @@
+/*
+ * step_adaptive.c - GSL odeiv2 with error control between contacts
+ * (RBS_METHOD_ADAPTIVE).
+ *
+ * State: every moving sphere's centre of mass x, velocity v, orientation q
+ * (4 components, renormalised after every accepted step) and angular
+ * velocity w, packed 13 doubles a sphere into one vector of 13 * max_bodies
+ * (unused tail entries stay zero and cost no error).  The right-hand side is
+ *   x' = v,  v' = g + F/m + mutual gravity,  q' = 1/2 (0, w) q,
+ *   w' = I^-1 (tau - w x I w)          (world frame)
+ * integrated by GSL's Prince-Dormand 8(9) (gsl_odeiv2_step_rk8pd) under
+ * gsl_odeiv2_evolve_apply with the standard control on y, absolute and
+ * relative tolerance def.tolerance.  The step-size suggestion is carried
+ * from frame to frame (in the world block, so checkpoints keep it); frames
+ * still end exactly at k dt (GSL clips the last step).
+ *
+ * Contacts.  After every accepted step [t0, t1] the gap of every pair that
+ * was apart at t0 is checked at t1 (sphere pairs also along the straight
+ * path between the two states, the swept test of the rollback methods).  A
+ * pair that went through zero brackets an event; its time is found by
+ * Brent's method (gsl_root_fsolver_brent) on the smallest gap, each trial
+ * time s evaluated by re-integrating from the state at t0 with one rk8pd
+ * step of s - t0 (no longer than the accepted step, so within tolerance).
+ * The contact time is accepted when the gap is within 1e-3 of the pair's
+ * slop.  There the core's impulses are applied (rbs__detect,
+ * rbs__solve_collisions) and integration goes on.  A contact that after the
+ * collision pass does not separate faster than one frame of forces builds
+ * (resting, rolling or sliding, a Zeno cascade) cannot be integrated by a
+ * smooth ODE: the rest of that frame is stepped with the RK4 rollback
+ * sub-steps (rbs__rk4_advance), which keep the resting pass.
+ *
+ * Limits (docs/methods.md): a pair that touches and parts again inside one
+ * accepted step along a curved path is not seen (the swept test assumes
+ * straight motion over the step).
+ *
+ * Memory: GSL's workspaces come from GSL's own allocator (malloc).  They are
+ * allocated once, when a world is created with, or switched to, the
+ * adaptive method (rbs__adaptive_reserve), and freed by rbs_world_destroy;
+ * stepping allocates nothing.  This is the one exception to "a world takes
+ * no memory but its block", documented in docs/methods.md.
+ *
+ * GSL errors: GSL's default error handler aborts, and replacing it is
+ * process-global state, so this file never calls GSL in a way that can
+ * raise one: the system's dimension always matches, the root finder is
+ * only started on a checked bracket, and the functions it calls always
+ * return finite values (a non-finite state is reported as RBS_E_NUMERIC).
+ */
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <gsl/gsl_roots.h>
+
+#include "core/world_internal.h"
+
+#define STRIDE 13            /* doubles per sphere in the ODE state */
+#define MAX_EVENTS 100000u   /* events in one frame before giving up */
+#define MAX_STEPS 10000000u  /* accepted steps in one frame before giving up */
+
+struct rbs__adaptive {
+    size_t dim;
+    gsl_odeiv2_step *step;
+    gsl_odeiv2_control *control;
+    gsl_odeiv2_evolve *evolve;
+    gsl_root_fsolver *root;
+    gsl_odeiv2_system sys;
+    double tol;        /* tolerance the control was set up with */
+    rbs_world *w;
+    uint32_t n;        /* packed moving spheres */
+    uint32_t *map;     /* slot of each packed sphere (max_bodies) */
+    int32_t *index;    /* packed index of each slot, -1 if not packed */
+    double *y, *y0, *yt, *yerr;  /* dim each */
+    uint32_t *flag;    /* flagged pairs: (a, b) slots, 2 * max_contacts */
+    uint32_t flagged;
+    uint32_t flag_cap;
+    double t0;         /* start of the step being searched */
+    int bad;           /* a non-finite state was met while root finding */
+};
+
+/* ------------------------------------------------------------------------- */
+/* Workspaces                                                                */
+/* ------------------------------------------------------------------------- */
+
+static int rhs(double t, const double y[], double dydt[], void *params);
+
+void rbs__adaptive_release(rbs_world *w)
+{
+    rbs__adaptive *a = w->adaptive;
+    if (a == NULL)
+        return;
+    if (a->root)
+        gsl_root_fsolver_free(a->root);
+    if (a->evolve)
+        gsl_odeiv2_evolve_free(a->evolve);
+    if (a->control)
+        gsl_odeiv2_control_free(a->control);
+    if (a->step)
+        gsl_odeiv2_step_free(a->step);
+    free(a);
+    w->adaptive = NULL;
+}
+
+rbs_status rbs__adaptive_reserve(rbs_world *w)
+{
+    rbs__adaptive *a;
+    size_t B = w->def.max_bodies, C = w->def.max_contacts, dim = STRIDE * B, bytes;
+    unsigned char *p;
+    if (w->adaptive != NULL)
+        return RBS_OK;
+    /* the struct, then the arrays, in one allocation */
+    bytes = sizeof *a + 4 * dim * sizeof(double) + B * sizeof(uint32_t) + B * sizeof(int32_t) +
+            2 * C * sizeof(uint32_t);
+    p = calloc(1, bytes);
+    if (p == NULL)
+        return RBS_E_MEMORY;
+    a = (rbs__adaptive *)p;
+    p += sizeof *a;
+    a->y = (double *)p;
+    a->y0 = a->y + dim;
+    a->yt = a->y0 + dim;
+    a->yerr = a->yt + dim;
+    a->map = (uint32_t *)(a->yerr + dim);
+    a->index = (int32_t *)(a->map + B);
+    a->flag = (uint32_t *)(a->index + B);
+    a->flag_cap = (uint32_t)C;
+    a->dim = dim;
+    a->w = w;
+    a->tol = w->def.tolerance;
+    a->sys.function = rhs;
+    a->sys.jacobian = NULL;
+    a->sys.dimension = dim;
+    a->sys.params = a;
+    w->adaptive = a;
+    a->step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dim);
+    a->control = gsl_odeiv2_control_y_new(a->tol, a->tol);
+    a->evolve = gsl_odeiv2_evolve_alloc(dim);
+    a->root = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (!a->step || !a->control || !a->evolve || !a->root) {
+        rbs__adaptive_release(w);
+        return RBS_E_MEMORY;
+    }
+    return RBS_OK;
+}
+
+/* ------------------------------------------------------------------------- */
+/* State vector                                                              */
+/* ------------------------------------------------------------------------- */
+
+/* Pack the moving spheres of the world into a->y (and build the map). */
+static void pack(rbs__adaptive *a)
+{
+    rbs_world *w = a->w;
+    uint32_t k, n = 0;
+    for (k = 0; k < w->slots; ++k)
+        a->index[k] = -1;
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *y;
+        if (w->fixed[i])
+            continue;
+        a->map[n] = i;
+        a->index[i] = (int32_t)n;
+        y = &a->y[STRIDE * n];
+        v3_store(y, rbs__body_com(w, i));
+        memcpy(y + 3, &w->vel[3 * i], 3 * sizeof(double));
+        memcpy(y + 6, &w->orient[4 * i], 4 * sizeof(double));
+        memcpy(y + 10, &w->avel[3 * i], 3 * sizeof(double));
+        n++;
+    }
+    /* entries past the packed spheres stay zero */
+    memset(&a->y[STRIDE * n], 0, (a->dim - STRIDE * n) * sizeof(double));
+    a->n = n;
+}
+
+/* Geometric centre of packed sphere k in state y. */
+static v3 centre_of(const rbs_world *w, uint32_t i, const double *y)
+{
+    v3 c = v3_load(&w->com_body[3 * i]);
+    if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0)
+        return v3_load(y);
+    return v3_sub(v3_load(y), q_rotate(q_normalize(q_load(y + 6)), c));
+}
+
+/* Write state y back into the world (orientations renormalised). */
+static void unpack(rbs__adaptive *a, const double *y)
+{
+    rbs_world *w = a->w;
+    uint32_t k;
+    for (k = 0; k < a->n; ++k) {
+        uint32_t i = a->map[k];
+        const double *s = &y[STRIDE * k];
+        quat q = q_normalize(q_load(s + 6));
+        q_store(&w->orient[4 * i], q);
+        v3_store(&w->pos[3 * i], centre_of(w, i, s));
+        memcpy(&w->vel[3 * i], s + 3, 3 * sizeof(double));
+        memcpy(&w->avel[3 * i], s + 10, 3 * sizeof(double));
+    }
+}
+
+/* The right-hand side.  Every "zero" shortcut tests the values, so the
+ * pruned and the full pipeline compute the same bits. */
+static int rhs(double t, const double y[], double dydt[], void *params)
+{
+    rbs__adaptive *a = (rbs__adaptive *)params;
+    const rbs_world *w = a->w;
+    uint32_t k, j;
+    (void)t;
+    memset(dydt, 0, a->dim * sizeof(double));
+    for (k = 0; k < a->n; ++k) {
+        uint32_t i = a->map[k];
+        const double *s = &y[STRIDE * k];
+        double *d = &dydt[STRIDE * k];
+        v3 acc, tau, om = v3_load(s + 10);
+        rbs__accelerations(w, i, &acc, &tau);
+        memcpy(d, s + 3, 3 * sizeof(double));
+        v3_store(d + 3, acc);
+        if (w->plan.angular && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0 || tau.x != 0.0 ||
+                                tau.y != 0.0 || tau.z != 0.0)) {
+            quat q = q_load(s + 6), qn = q_normalize(q), o = {0.0, om.x, om.y, om.z}, qd;
+            v3 al;
+            if (!w->isotropic[i])
+                tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], qn, om)));
+            if (tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) {
+                if (w->isotropic[i])
+                    al = v3_scale(tau, w->inv_inertia[9 * i]);
+                else
+                    al = m3_mul_world(&w->inv_inertia[9 * i], qn, tau);
+                v3_store(d + 10, al);
+            }
+            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
+                qd = q_mul(o, q);
+                d[6] = 0.5 * qd.w; d[7] = 0.5 * qd.x; d[8] = 0.5 * qd.y; d[9] = 0.5 * qd.z;
+            }
+        }
+    }
+    /* Mutual gravity: moving pairs from y, fixed spheres from the world. */
+    if (w->plan.mutual) {
+        double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+        for (k = 0; k < w->sphere_count; ++k) {
+            uint32_t ia = w->spheres[k];
+            int32_t pa = a->index[ia];
+            v3 xa = pa >= 0 ? v3_load(&y[STRIDE * pa]) : rbs__body_com(w, ia);
+            for (j = k + 1; j < w->sphere_count; ++j) {
+                uint32_t ib = w->spheres[j];
+                int32_t pb = a->index[ib];
+                v3 d = v3_sub(pb >= 0 ? v3_load(&y[STRIDE * pb]) : rbs__body_com(w, ib), xa);
+                double r2 = v3_dot(d, d) + eps2, inv3;
+                if (!(r2 > 0.0) || (pa < 0 && pb < 0))
+                    continue;
+                inv3 = G / (r2 * sqrt(r2));
+                if (pa >= 0)
+                    v3_store(&dydt[STRIDE * pa + 3], v3_mad(v3_load(&dydt[STRIDE * pa + 3]), d, inv3 * w->mass[ib]));
+                if (pb >= 0)
+                    v3_store(&dydt[STRIDE * pb + 3], v3_mad(v3_load(&dydt[STRIDE * pb + 3]), d, -inv3 * w->mass[ia]));
+            }
+        }
+    }
+    for (k = 0; k < STRIDE * a->n; ++k)
+        if (!isfinite(dydt[k]))
+            return GSL_EBADFUNC;
+    return GSL_SUCCESS;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Gaps and events                                                           */
+/* ------------------------------------------------------------------------- */
+
+/* Centre of slot i in state y (fixed spheres from the world). */
+static v3 centre_in(const rbs__adaptive *a, uint32_t i, const double *y)
+{
+    int32_t p = a->index[i];
+    return p >= 0 ? centre_of(a->w, i, &y[STRIDE * p]) : v3_load(&a->w->pos[3 * i]);
+}
+
+/* Gap of pair (i, b) in state y: b is a plane or a sphere. */
+static double pair_gap(const rbs__adaptive *a, uint32_t i, uint32_t b, const double *y)
+{
+    const rbs_world *w = a->w;
+    v3 pa = centre_in(a, i, y);
+    if (w->type[b] == RBS_BODY_PLANE)
+        return v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), v3_load(&w->normal[3 * b])) - w->radius[i];
+    return v3_len(v3_sub(pa, centre_in(a, b, y))) - w->radius[i] - w->radius[b];
+}
+
+/* Smallest gap over the flagged pairs in state y. */
+static double min_gap(const rbs__adaptive *a, const double *y)
+{
+    double g = HUGE_VAL;
+    uint32_t k;
+    for (k = 0; k < a->flagged; ++k) {
+        double d = pair_gap(a, a->flag[2 * k], a->flag[2 * k + 1], y);
+        if (d < g)
+            g = d;
+    }
+    return g;
+}
+
+/* The state at time s of the step that started at a->t0 in a->y0, in a->yt:
+ * one rk8pd step of s - t0.  Returns 0 on failure (non-finite). */
+static int state_at(rbs__adaptive *a, double s)
+{
+    int st;
+    memcpy(a->yt, a->y0, a->dim * sizeof(double));
+    if (s == a->t0)
+        return 1;
+    gsl_odeiv2_step_reset(a->step);
+    st = gsl_odeiv2_step_apply(a->step, a->t0, s - a->t0, a->yt, a->yerr, NULL, NULL, &a->sys);
+    return st == GSL_SUCCESS;
+}
+
+/* The function Brent's method sees: the smallest flagged gap at time s.
+ * Always finite (GSL aborts on a non-finite value); failure sets a->bad. */
+static double gap_at(double s, void *params)
+{
+    rbs__adaptive *a = (rbs__adaptive *)params;
+    double g;
+    if (!state_at(a, s)) {
+        a->bad = 1;
+        return 1.0;
+    }
+    g = min_gap(a, a->yt);
+    if (!isfinite(g)) {
+        a->bad = 1;
+        return 1.0;
+    }
+    return g;
+}
+
+static rbs_status flag_pair(rbs__adaptive *a, uint32_t i, uint32_t b)
+{
+    if (a->flagged >= a->flag_cap)
+        return (rbs_status)rbs__world_set_error(a->w, RBS_E_CAPACITY,
+            "adaptive: more than max_contacts = %u pairs meet in one step", (unsigned)a->flag_cap);
+    a->flag[2 * a->flagged] = i;
+    a->flag[2 * a->flagged + 1] = b;
+    a->flagged++;
+    return RBS_OK;
+}
+
+/* Flag the pairs that were apart at the step's start (a->y0) and touch at
+ * its end (a->y) or, for sphere pairs, along the straight path between.
+ * *t_end gets the earliest time at which a flagged pair is seen overlapping
+ * (t1, or the time of the deepest point of a swept path). */
+static rbs_status find_crossings(rbs__adaptive *a, double t1, double *t_end)
+{
+    const rbs_world *w = a->w;
+    uint32_t k, j, p;
+    rbs_status st;
+    a->flagged = 0;
+    *t_end = t1;
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        int moves = !w->fixed[i];
+        if (moves) {
+            for (p = 0; p < w->plane_count; ++p) {
+                uint32_t b = w->planes[p];
+                if (pair_gap(a, i, b, a->y0) > 0.0 && pair_gap(a, i, b, a->y) < 0.0)
+                    if ((st = flag_pair(a, i, b)) != RBS_OK)
+                        return st;
+            }
+        }
+        for (j = k + 1; j < w->sphere_count; ++j) {
+            uint32_t b = w->spheres[j];
+            v3 a0, a1, b0, b1, d0, dd;
+            double rs, l2, s = 1.0, dmin;
+            if (!moves && w->fixed[b])
+                continue;
+            if (!(pair_gap(a, i, b, a->y0) > 0.0))
+                continue;
+            a0 = centre_in(a, i, a->y0); a1 = centre_in(a, i, a->y);
+            b0 = centre_in(a, b, a->y0); b1 = centre_in(a, b, a->y);
+            rs = w->radius[i] + w->radius[b];
+            d0 = v3_sub(a0, b0);
+            dd = v3_sub(v3_sub(a1, b1), d0);
+            l2 = v3_dot(dd, dd);
+            if (l2 > 0.0) {
+                s = -v3_dot(d0, dd) / l2;
+                s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
+            }
+            dmin = v3_len(v3_mad(d0, dd, s));
+            if (v3_len(v3_add(d0, dd)) < rs) {
+                if ((st = flag_pair(a, i, b)) != RBS_OK)
+                    return st;
+            } else if (dmin < rs) {
+                /* passes through inside the step: bracket at the deepest point */
+                double ts = a->t0 + s * (t1 - a->t0);
+                if ((st = flag_pair(a, i, b)) != RBS_OK)
+                    return st;
+                if (ts < *t_end && ts > a->t0)
+                    *t_end = ts;
+            }
+        }
+    }
+    return RBS_OK;
+}
+
+/* Smallest slop over the flagged pairs, m. */
+static double flagged_slop(const rbs__adaptive *a)
+{
+    const rbs_world *w = a->w;
+    double s = HUGE_VAL;
+    uint32_t k;
+    for (k = 0; k < a->flagged; ++k) {
+        uint32_t i = a->flag[2 * k], b = a->flag[2 * k + 1];
+        double r = w->radius[i];
+        if (w->type[b] == RBS_BODY_SPHERE && w->radius[b] < r)
+            r = w->radius[b];
+        if (w->def.slop * r < s)
+            s = w->def.slop * r;
+    }
+    return s;
+}
+
+/* Locate the first contact in [t0, t_end] (gap(t0) > 0 > gap(t_end)) by
+ * Brent's method; leaves the state at the contact time in a->yt and the
+ * time in *te. */
+static rbs_status locate(rbs__adaptive *a, double t_end, double *te)
+{
+    gsl_function F;
+    double lo = a->t0, hi = t_end, r = t_end, tol_gap = 1e-3 * flagged_slop(a), g;
+    int it, st;
+    F.function = gap_at;
+    F.params = a;
+    a->bad = 0;
+    st = gsl_root_fsolver_set(a->root, &F, lo, hi);
+    for (it = 0; st == GSL_SUCCESS && it < 200; ++it) {
+        st = gsl_root_fsolver_iterate(a->root);
+        r = gsl_root_fsolver_root(a->root);
+        lo = gsl_root_fsolver_x_lower(a->root);
+        hi = gsl_root_fsolver_x_upper(a->root);
+        if (a->bad)
+            break;
+        g = gap_at(r, a);
+        if (fabs(g) <= tol_gap || hi - lo <= 4.0 * DBL_EPSILON * (fabs(hi) + a->w->def.dt))
+            break;
+    }
+    if (a->bad || st != GSL_SUCCESS)
+        return (rbs_status)rbs__world_set_error(a->w, RBS_E_NUMERIC,
+            "adaptive: locating a contact in [%.17g, %.17g] s of the frame failed (%s)", a->t0, t_end,
+            a->bad ? "the state became NaN or infinite" : gsl_strerror(st));
+    /* take the root if its gap is within tolerance, else the last time
+     * before the crossing */
+    g = gap_at(r, a);
+    if (!(fabs(g) <= tol_gap)) {
+        r = lo;
+        gap_at(r, a);
+    }
+    *te = r;
+    return RBS_OK;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Stepping                                                                  */
+/* ------------------------------------------------------------------------- */
+
+/* Does a contact (after the collision pass) stay closed: approach or part
+ * slower than the speed one frame of forces builds? */
+static int resting_contact(const rbs_world *w)
+{
+    uint32_t k;
+    for (k = 0; k < w->contact_count; ++k) {
+        const rbs__contact *c = &w->contact[k];
+        double vn = v3_dot(v3_sub(rbs__point_velocity(w, c->a, c->ra), rbs__point_velocity(w, c->b, c->rb)),
+                           c->n);
+        if (vn <= c->thr)
+            return 1;
+    }
+    return 0;
+}
+
+/* The rest of the frame, [t, dt], with RK4 rollback sub-steps. */
+static rbs_status finish_with_rk4(rbs_world *w, rbs_step_info *info, double remaining)
+{
+    double dt = w->def.dt;
+    rbs_status st;
+    w->def.dt = remaining;
+    st = rbs__step_rollback(w, info, rbs__rk4_advance);
+    w->def.dt = dt;
+    return st;
+}
+
+rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
+{
+    rbs__adaptive *a = w->adaptive;
+    const double T = w->def.dt;
+    double t = 0.0, *hmem = &w->method_state[0];
+    uint32_t steps = 0, events = 0, substeps = 0;
+    rbs_status st;
+
+    if (a == NULL)
+        return (rbs_status)rbs__world_set_error(w, RBS_E_MEMORY,
+            "adaptive: GSL workspaces were not reserved (create the world with, or switch to, "
+            "the adaptive method through rbs_world_set_method)");
+    if (a->tol != w->def.tolerance) {
+        gsl_odeiv2_control_init(a->control, w->def.tolerance, w->def.tolerance, 1.0, 0.0);
+        a->tol = w->def.tolerance;
+    }
+    if (!(*hmem > 0.0) || *hmem > T)
+        *hmem = T;
+
+    while (t < T) {
+        double h, t_end = T, te = T;
+        int gs;
+        /* contacts at the start of the segment: impacts, then either free
+         * flight or, with a closed contact, RK4 sub-steps to the frame end */
+        st = rbs__detect(w, T);
+        if (st != RBS_OK)
+            return st;
+        rbs__solve_collisions(w, info);
+        if (resting_contact(w)) {
+            info->substeps += substeps;
+            return finish_with_rk4(w, info, T - t);
+        }
+        pack(a);
+        memcpy(a->y0, a->y, a->dim * sizeof(double));
+        a->t0 = t;
+        gsl_odeiv2_evolve_reset(a->evolve);
+        gsl_odeiv2_step_reset(a->step);
+        /* free flight until an event or the frame end */
+        for (;;) {
+            double h_in = *hmem;
+            h = h_in;
+            gs = gsl_odeiv2_evolve_apply(a->evolve, a->control, a->step, &a->sys, &t, T, &h, a->y);
+            if (gs != GSL_SUCCESS)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                    "adaptive: the integrator failed at %.17g s into the frame (%s)", t,
+                    gs == GSL_EBADFUNC ? "forces became NaN or infinite" : gsl_strerror(gs));
+            /* keep the step-size suggestion unless GSL clipped it to the frame end */
+            *hmem = (t == T && h < h_in) ? h_in : h;
+            if (++steps > MAX_STEPS)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                    "adaptive: more than %u steps in one frame (tolerance %g too tight?)",
+                    MAX_STEPS, w->def.tolerance);
+            substeps++;
+            st = find_crossings(a, t, &t_end);
+            if (st != RBS_OK)
+                return st;
+            if (a->flagged > 0) {
+                if (t_end < t && !(gap_at(t_end, a) < 0.0)) {
+                    /* a swept path looked close but the curved one stays
+                     * apart: look only at the end of the step */
+                    t_end = t;
+                }
+                if (gap_at(t_end, a) < 0.0 && !a->bad)
+                    break;
+                if (a->bad)
+                    return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                        "adaptive: the state became NaN or infinite near %.17g s into the frame", t);
+            }
+            unpack(a, a->y);
+            memcpy(a->y0, a->y, a->dim * sizeof(double));
+            a->t0 = t;
+            if (t >= T)
+                break;
+        }
+        if (t >= T && a->flagged == 0)
+            break;
+        if (a->flagged > 0 && t > a->t0) {
+            /* an event inside [t0, t_end]: move there and resolve it */
+            st = locate(a, t_end, &te);
+            if (st != RBS_OK)
+                return st;
+            unpack(a, a->yt);
+            t = te;
+            info->events++;
+            if (++events > MAX_EVENTS)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                    "adaptive: more than %u contact events in one frame", MAX_EVENTS);
+            if (t >= T) {
+                /* the contact is at the frame end: resolve it now */
+                st = rbs__detect(w, T);
+                if (st != RBS_OK)
+                    return st;
+                rbs__solve_collisions(w, info);
+            }
+        }
+    }
+    info->substeps += substeps;
+    info->contacts = w->contact_count;
+    info->max_overlap = rbs__max_overlap(w);
+    return RBS_OK;
+}

@@ -1,0 +1,239 @@
+/*
+ * test_adaptive.c - the adaptive method (GSL rk8pd with error control)
+ * against exact orbits, its contact events, its settings and its failures.
+ *
+ * Tolerance of the orbit tests: GSL's control keeps each step's local error
+ * below tol (absolute + relative to |y|, with |y| ~ 1 here); the global
+ * error is the sum of the local errors of the steps of one period - some
+ * tens for rk8pd at these tolerances - plus their growth along the orbit,
+ * so it is bounded by a modest multiple of tol: we require 100 x tol
+ * (measured: 1 x to 20 x).
+ */
+#include <stdlib.h>
+
+#include "methods_common.h"
+
+/* Circular orbit, 10 frames per period (so the integrator, not the frame
+ * grid, chooses the steps): back at the start within 100 x tol. */
+static void circular_orbit_within_tolerance(void **state)
+{
+    const double tols[3] = {1e-6, 1e-8, 1e-10};
+    double err[3];
+    int k;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        err[k] = circular_error(RBS_METHOD_ADAPTIVE, 10, 1.0, tols[k]);
+        print_message("tol %g: error after one period %.3e\n", tols[k], err[k]);
+        assert_true(err[k] < 100.0 * tols[k]);
+    }
+    /* the tolerance is honoured, not a constant accuracy: 1e4 tighter
+     * tolerance, at least 1e2 smaller error */
+    assert_true(err[2] < 1e-2 * err[0]);
+}
+
+/* Eccentric Kepler orbits (e = 0.6 and 0.9; the pericentre passage of
+ * e = 0.9 is 19 times faster than the apocentre) against the exact position
+ * from Kepler's equation at every frame of one period: within 100 x tol. */
+static void eccentric_orbit_within_tolerance(void **state)
+{
+    const double tols[2] = {1e-8, 1e-11};
+    const double es[2] = {0.6, 0.9};
+    int i, k;
+    (void)state;
+    for (i = 0; i < 2; ++i) {
+        for (k = 0; k < 2; ++k) {
+            double err = kepler_error(RBS_METHOD_ADAPTIVE, es[i], 20, tols[k]);
+            print_message("e %.1f tol %g: largest error over one period %.3e\n", es[i], tols[k], err);
+            assert_true(err < 100.0 * tols[k]);
+        }
+    }
+}
+
+/* The figure-eight returns to its start (data given to 8-9 digits: the
+ * orbit closes to a few 1e-8; bound 2e-7). */
+static void figure_eight_closes(void **state)
+{
+    (void)state;
+    assert_true(figure_eight_error(RBS_METHOD_ADAPTIVE, 10, 1e-12) < 2e-7);
+}
+
+/* Energy of the circular orbit over 10 periods drifts by at most 100 x tol
+ * per period (|E| = 0.5). */
+static void energy_drift_bounded_by_tolerance(void **state)
+{
+    const double tol = 1e-9;
+    rbs_body_id a, b;
+    rbs_world *w = circular_orbit(RBS_METHOD_ADAPTIVE, circular_period() / 10, tol, &a, &b);
+    rbs_energy e0, e1;
+    (void)state;
+    CHECK_OK(rbs_world_energy(w, &e0));
+    step_n(w, 100);
+    CHECK_OK(rbs_world_energy(w, &e1));
+    print_message("energy change over 10 periods %.3e\n", e1.total - e0.total);
+    assert_true(fabs(e1.total - e0.total) < 10 * 100.0 * tol);
+    rbs_world_destroy(w);
+}
+
+/* Contact events: a ball dropped from a gap h onto a plane with e = 1 and
+ * frames of 0.1 s (longer than much of the motion) bounces back to h;
+ * impacts are events, found by root finding: after 3 bounces the apex is h
+ * within 1e-9 m (event times to 1e-3 slop, rk8pd exact on a parabola), and
+ * the world reports its events. */
+static void events_are_located(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id b;
+    rbs_step_info info;
+    const double h = 1.0, r = 0.1, g = 9.81, T = 2.0 * sqrt(2.0 * h / g);
+    double top = 0.0;
+    uint32_t events = 0;
+    int k;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.dt = 0.1;
+    d.restitution = 1.0;
+    d.method = RBS_METHOD_ADAPTIVE;
+    d.tolerance = 1e-10;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 0; k < (int)(3.5 * T / d.dt); ++k) {
+        rbs_body_state s;
+        CHECK_OK(rbs_world_step(w, &info));
+        events += info.events;
+        s = state_of(w, b);
+        assert_true(s.position.z >= r - 1e-7);
+        /* apex height from any frame of free flight: z + v^2 / (2 g) */
+        if (s.position.z > r + 0.01) {
+            double apex = s.position.z - r + s.velocity.z * s.velocity.z / (2.0 * g);
+            ASSERT_NEAR(apex, h, 1e-9);
+            if (apex > top)
+                top = apex;
+        }
+    }
+    assert_int_equal(events, 3);
+    assert_true(top > 0.99);
+    rbs_world_destroy(w);
+}
+
+/* Two spheres approaching head-on at 20 m/s each, frames of 0.1 s (they
+ * would pass through each other within one frame): the impact is an event;
+ * e = 1 and equal masses exchange velocities exactly (1e-12). */
+static void sphere_event_inside_a_frame(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id a, b;
+    rbs_step_info info;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.dt = 0.1;
+    d.gravity.z = 0.0;
+    d.restitution = 1.0;
+    d.method = RBS_METHOD_ADAPTIVE;
+    CHECK_OK(rbs_world_create(&d, &w));
+    a = ball(w, 0.1, 1.0, -1.0, 0, 0, 20.0, 0, 0, (rbs_material_id){0, 0});
+    b = ball(w, 0.1, 1.0, 1.0, 0, 0, -20.0, 0, 0, (rbs_material_id){0, 0});
+    CHECK_OK(rbs_world_step(w, &info));
+    assert_int_equal(info.events, 1);
+    ASSERT_NEAR(state_of(w, a).velocity.x, -20.0, 1e-12);
+    ASSERT_NEAR(state_of(w, b).velocity.x, 20.0, 1e-12);
+    /* contact at t = 0.045 s (gap 1.8 m closed at 40 m/s), then 0.055 s apart */
+    ASSERT_NEAR(state_of(w, a).position.x, -0.1 - 20.0 * 0.055, 1e-9);
+    rbs_world_destroy(w);
+}
+
+/* Changing the tolerance with rbs_world_set_method takes effect. */
+static void tolerance_can_change(void **state)
+{
+    rbs_body_id a, b;
+    rbs_world *w = circular_orbit(RBS_METHOD_ADAPTIVE, circular_period() / 10, 1e-5, &a, &b);
+    rbs_world_def d;
+    rbs_body_state s;
+    double err;
+    (void)state;
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_ADAPTIVE, 1e-11));
+    d.struct_size = sizeof d;
+    CHECK_OK(rbs_world_get_def(w, &d));
+    assert_true(d.tolerance == 1e-11);
+    step_n(w, 10);
+    s = state_of(w, a);
+    err = hypot(s.position.x - 0.5, s.position.y);
+    assert_true(err < 100.0 * 1e-11);
+    /* tolerance <= 0 keeps the current; NaN is refused */
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_ADAPTIVE, 0.0));
+    CHECK_OK(rbs_world_get_def(w, &d));
+    assert_true(d.tolerance == 1e-11);
+    assert_int_equal(rbs_world_set_method(w, RBS_METHOD_ADAPTIVE, NAN), RBS_E_INVALID);
+    rbs_world_destroy(w);
+}
+
+/* Switching methods mid-run: adaptive -> rk4 -> adaptive keeps working. */
+static void switch_methods(void **state)
+{
+    rbs_body_id a, b;
+    rbs_world *w = circular_orbit(RBS_METHOD_EULER, circular_period() / 400, 1e-10, &a, &b);
+    (void)state;
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_ADAPTIVE, 0.0));
+    step_n(w, 100);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_RK4, 0.0));
+    step_n(w, 100);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_ADAPTIVE, 0.0));
+    step_n(w, 200);
+    /* one period: rk4 at 400 steps per period contributes < 2e-8 */
+    ASSERT_NEAR(state_of(w, a).position.x, 0.5, 1e-7);
+    ASSERT_NEAR(state_of(w, a).position.y, 0.0, 1e-7);
+    rbs_world_destroy(w);
+}
+
+/* A world in caller memory with the adaptive method works; forces that
+ * overflow give RBS_E_NUMERIC with the reason, and the world stays at its
+ * last good state. */
+static void create_in_and_numeric_failure(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id b;
+    rbs_body_state s0, s1;
+    size_t n;
+    void *mem;
+    rbs_status st;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.method = RBS_METHOD_ADAPTIVE;
+    n = rbs_world_memory_size(&d);
+    assert_true(n > 0);
+    assert_int_equal(posix_memalign(&mem, 16, n), 0);
+    CHECK_OK(rbs_world_create_in(mem, n, &d, &w));
+    b = ball(w, 0.1, 1.0, 0, 0, 10, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 10);
+    CHECK_OK(rbs_body_set_force(w, b, (rbs_vec3){0, 0, 1e308}));
+    CHECK_OK(rbs_body_set_velocity(w, b, (rbs_vec3){0, 0, 1e308}));
+    s0 = state_of(w, b);
+    st = rbs_world_step(w, NULL);
+    assert_int_equal(st, RBS_E_NUMERIC);
+    assert_true(strlen(rbs_world_last_error(w)) > 10);
+    print_message("error: %s\n", rbs_world_last_error(w));
+    s1 = state_of(w, b);
+    assert_memory_equal(&s0.position, &s1.position, sizeof s0.position);
+    assert_int_equal(rbs_world_step_count(w), 10);
+    rbs_world_destroy(w);
+    free(mem);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(circular_orbit_within_tolerance),
+        cmocka_unit_test(eccentric_orbit_within_tolerance),
+        cmocka_unit_test(figure_eight_closes),
+        cmocka_unit_test(energy_drift_bounded_by_tolerance),
+        cmocka_unit_test(events_are_located),
+        cmocka_unit_test(sphere_event_inside_a_frame),
+        cmocka_unit_test(tolerance_can_change),
+        cmocka_unit_test(switch_methods),
+        cmocka_unit_test(create_in_and_numeric_failure),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
