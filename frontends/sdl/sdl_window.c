@@ -145,6 +145,14 @@ static void close_windows(rbsf__window *w)
 static int open_windows(rbsf__window *w)
 {
     uint32_t i;
+    /* SDL has one event queue per process, read by the thread that started
+     * video: a second window thread would take the first one's events. */
+    if (SDL_WasInit(SDL_INIT_VIDEO) != 0) {
+        snprintf(w->error, sizeof w->error,
+                 "window: SDL video is already in use in this process (one "
+                 "window per run)");
+        return -1;
+    }
     if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
         snprintf(w->error, sizeof w->error, "window: cannot start SDL video: %s",
                  SDL_GetError());

@@ -198,11 +198,41 @@ static void test_video_failure(void **state)
     cls->destroy(inst);
 }
 
+/* Two windowed renderers in one process: SDL has one event queue, so the
+ * second is refused ("window": true) or goes without a window ("auto"). */
+static void test_one_window_per_process(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512];
+    void *a = NULL, *b = NULL, *c = NULL;
+    tu_frame f;
+    (void)state;
+    offscreen();
+    frame(&f, 0, 0);
+    assert_int_equal(tu_create("{\"window\":true,\"width\":64,\"height\":48}",
+                               tu_dir("first"), &a, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(a, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(tu_create("{\"window\":true,\"width\":64,\"height\":48}",
+                               tu_dir("second"), &b, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(b, &f.frame, err, sizeof err), RBS_E_RENDERER);
+    assert_non_null(strstr(err, "already in use"));
+    assert_int_equal(tu_create("{\"window\":\"auto\",\"width\":64,\"height\":48}",
+                               tu_dir("third"), &c, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(c, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(c);
+    cls->destroy(b);
+    cls->destroy(a);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_keys_and_mouse),
         cmocka_unit_test(test_video_failure),
+        cmocka_unit_test(test_one_window_per_process),
     };
     int failed;
     tu_set_base(argc > 1 ? argv[1] : ".");
