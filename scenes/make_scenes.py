@@ -178,13 +178,14 @@ r = 0.1
 mu_roll, mu_slide = 0.5, 0.05
 write("incline",
       "Two solid balls (r = 0.1 m) released from rest on a plane tilted 30 degrees "
-      "(downhill is +x and -z). A solid sphere rolls without slipping iff "
+      "(downhill is +x and -z). Look at the distance s along the slope and the "
+      "spin of each ball. Exact answers: a solid sphere rolls without slipping iff "
       "tan(theta) <= 7/2 mu_s. 'roller' (rubber on the ramp, mu_s = 0.5: 0.577 <= "
       "1.75) rolls with acceleration 5/7 g sin(theta) = %.6f m/s^2 along the slope; "
       "'slider' (ice, mu_s = mu_k = 0.05: 0.577 > 0.175) slides with acceleration "
       "g (sin(theta) - mu_k cos(theta)) = %.6f m/s^2 while its spin grows at "
-      "5 mu_k g cos(theta)/(2 r) = %.6f rad/s^2. Look at the distance along the "
-      "slope: s = a t^2/2." % (5 / 7 * G * math.sin(th),
+      "5 mu_k g cos(theta)/(2 r) = %.6f rad/s^2; both start from rest, so "
+      "s = a t^2/2." % (5 / 7 * G * math.sin(th),
                                G * (math.sin(th) - mu_slide * math.cos(th)),
                                5 * mu_slide * G * math.cos(th) / (2 * r)),
       {"steps": 1000, "dt": 0.001, "gravity": [0, 0, -G]},
