@@ -220,7 +220,8 @@ typedef struct rbsf__window_def {
     rbsf__camera *cameras;
     void (*control)(void *context, const char *command); /**< may be NULL */
     void *control_context;
-    const char *label;                      /**< for the note on stderr */
+    const char *label;                      /**< output folder, for the note
+                                                 on stderr; must outlive w */
 } rbsf__window_def;
 
 /** Reserve the window's memory (no thread, no SDL yet). */

@@ -57,7 +57,6 @@ typedef struct sdl_instance {
     char *dir;     /* output folder (owned) */
     char *file;    /* file-name buffer (owned), file_cap bytes */
     size_t file_cap;
-    char where[8]; /* prefix of messages: empty (the caller adds the place) */
     void (*control)(void *context, const char *command);
     void *control_context;
 
@@ -97,15 +96,16 @@ typedef struct sdl_instance {
 /* Helpers                                                                   */
 /* ------------------------------------------------------------------------- */
 
-static rbs_status say(char *err, size_t errlen, rbs_status st,
-                      const char *where, const char *what)
+/* Write a message (the key and what is wrong; the projector or the command
+ * line puts the scene's place and the renderer's name in front). */
+static rbs_status say(char *err, size_t errlen, rbs_status st, const char *what)
 {
-    if (err != NULL && errlen > 0) snprintf(err, errlen, "%s%s", where, what);
+    if (err != NULL && errlen > 0) snprintf(err, errlen, "%s", what);
     return st;
 }
 
 /* mkdir -p. */
-static int make_dirs(char *path, char *err, size_t errlen, const char *where)
+static int make_dirs(char *path, char *err, size_t errlen)
 {
     size_t i, n = strlen(path);
     for (i = 1; i <= n; i++) {
@@ -120,14 +120,14 @@ static int make_dirs(char *path, char *err, size_t errlen, const char *where)
                 if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
                 snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
                 path[i] = c;
-                say(err, errlen, RBS_E_IO, where, msg);
+                say(err, errlen, RBS_E_IO, msg);
                 return -1;
             }
             if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
                 char msg[600];
                 snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder", path);
                 path[i] = c;
-                say(err, errlen, RBS_E_IO, where, msg);
+                say(err, errlen, RBS_E_IO, msg);
                 return -1;
             }
             path[i] = c;
@@ -167,9 +167,6 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     char msg[512];
     rbs_status st;
     const char *path;
-    /* Messages name the key only: the projector (or the command line) puts
-     * the scene's place and the renderer's name in front. */
-    r->where[0] = '\0';
     /* The callback fields exist only in configs that are large enough. */
     if (config->struct_size >= offsetof(rbs_renderer_config, control_context) +
                                    sizeof(void *)) {
@@ -179,21 +176,21 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
 
     /* Parse and validate the scene entry. */
     st = rbsf__config_parse(config->json, &r->cfg, msg, sizeof msg);
-    if (st != RBS_OK) return say(err, errlen, st, r->where, msg);
+    if (st != RBS_OK) return say(err, errlen, st, msg);
     path = config->path != NULL && config->path[0] != '\0' ? config->path : r->cfg.path;
     if (path == NULL)
-        return say(err, errlen, RBS_E_INVALID, r->where,
+        return say(err, errlen, RBS_E_INVALID,
                    "path: missing (the folder the PNG files go to)");
     r->dir = (char *)malloc(strlen(path) + 1);
     r->file_cap = strlen(path) + 64;
     r->file = (char *)malloc(r->file_cap);
     if (r->dir == NULL || r->file == NULL)
-        return say(err, errlen, RBS_E_MEMORY, r->where, "out of memory");
+        return say(err, errlen, RBS_E_MEMORY, "out of memory");
     strcpy(r->dir, path);
 
-    /* Window: decided here, opened at the first draw (renderer thread). */
+    /* Window: decided here, opened at the first draw (on its own thread). */
     if (r->cfg.window == RBSF__WINDOW_ON && !has_display())
-        return say(err, errlen, RBS_E_RENDERER, r->where,
+        return say(err, errlen, RBS_E_RENDERER,
                    "window: true, but there is no display (DISPLAY and "
                    "WAYLAND_DISPLAY are unset); use \"auto\" or false");
     r->want_window = r->cfg.window != RBSF__WINDOW_OFF && has_display();
@@ -208,9 +205,9 @@ static rbs_status check(void *context, const rbs_renderer_config *config,
     (void)context;
     (void)world;
     if (config == NULL)
-        return say(err, errlen, RBS_E_INVALID, "", "config: NULL");
+        return say(err, errlen, RBS_E_INVALID, "config: NULL");
     r = (sdl_instance *)calloc(1, sizeof *r);
-    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "", "out of memory");
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "out of memory");
     st = prepare(r, config, err, errlen);
     destroy(r);
     return st;
@@ -229,9 +226,9 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     if (out == NULL) return RBS_E_INVALID;
     *out = NULL;
     if (config == NULL)
-        return say(err, errlen, RBS_E_INVALID, "", "config: NULL");
+        return say(err, errlen, RBS_E_INVALID, "config: NULL");
     r = (sdl_instance *)calloc(1, sizeof *r);
-    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "", "out of memory");
+    if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "out of memory");
     if ((st = prepare(r, config, err, errlen)) != RBS_OK) {
         destroy(r);
         return st;
@@ -308,19 +305,19 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
         wd.cameras = r->cameras;
         wd.control = r->control;
         wd.control_context = r->control_context;
-        wd.label = "rbsim: sdl renderer";
+        wd.label = r->dir;
         if (rbsf__window_create(&wd, &r->window) != RBS_OK) goto nomem;
     }
 
     /* Output folders. */
-    if (make_dirs(r->dir, err, errlen, r->where) != 0) {
+    if (make_dirs(r->dir, err, errlen) != 0) {
         destroy(r);
         return RBS_E_IO;
     }
     if (!r->cfg.tile && r->views > 1) {
         for (v = 0; v < r->views; v++) {
             snprintf(r->file, r->file_cap, "%s/view%u", r->dir, v);
-            if (make_dirs(r->file, err, errlen, r->where) != 0) {
+            if (make_dirs(r->file, err, errlen) != 0) {
                 destroy(r);
                 return RBS_E_IO;
             }
@@ -332,7 +329,7 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
 nomem:
     snprintf(msg, sizeof msg, "out of memory for %u view%s of %ux%u pixels",
              r->views, r->views > 1 ? "s" : "", W, H);
-    say(err, errlen, RBS_E_MEMORY, r->where, msg);
+    say(err, errlen, RBS_E_MEMORY, msg);
     destroy(r);
     return RBS_E_MEMORY;
 }
@@ -460,7 +457,7 @@ static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
     if (!ok) {
         char msg[600];
         snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
-        return say(err, errlen, RBS_E_IO, r->where, msg);
+        return say(err, errlen, RBS_E_IO, msg);
     }
     return RBS_OK;
 }
@@ -476,9 +473,9 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
     int repeat;
     rbs_status st;
     if (r == NULL || frame == NULL)
-        return say(err, errlen, RBS_E_INVALID, "", "draw: NULL instance or frame");
+        return say(err, errlen, RBS_E_INVALID, "draw: NULL instance or frame");
     if (frame->body_count > 0 && frame->bodies == NULL)
-        return say(err, errlen, RBS_E_INVALID, r->where, "frame: bodies is NULL");
+        return say(err, errlen, RBS_E_INVALID, "frame: bodies is NULL");
     repeat = r->drawn_any && frame->number == r->last_number;
 
     /* The window opens at the first frame, on its own thread. */
@@ -509,7 +506,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
                 snprintf(full, sizeof full, "views[%u].%s", v, msg);
             else
                 snprintf(full, sizeof full, "%s%s", r->cfg.camera_given ? "camera." : "", msg);
-            return say(err, errlen, RBS_E_INVALID, r->where, full);
+            return say(err, errlen, RBS_E_INVALID, full);
         }
         cv.pixels = view_pixels(r, v, &cv.pitch);
         cv.depth = r->depth;
@@ -527,7 +524,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
             pitch[v] = image_pitch(r->images[v]);
         }
         if (rbsf__window_publish(r->window, px, pitch, frame) != RBS_OK)
-            return say(err, errlen, RBS_E_MEMORY, r->where,
+            return say(err, errlen, RBS_E_MEMORY,
                        "window: out of memory for the shown frame's bodies");
     }
     r->drawn_any = 1;
@@ -544,7 +541,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
         if (IMG_SavePNG(r->images[v], r->file) != 0) {
             char msg[600];
             snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
-            return say(err, errlen, RBS_E_IO, r->where, msg);
+            return say(err, errlen, RBS_E_IO, msg);
         }
     }
     if (r->cfg.contact_sheet) sheet_add(r, frame->number, frame->time);

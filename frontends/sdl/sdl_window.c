@@ -417,7 +417,8 @@ rbs_status rbsf__window_start(rbsf__window *w, char *err, size_t errlen)
         if (err != NULL && errlen > 0) snprintf(err, errlen, "%s", w->error);
         return RBS_E_RENDERER;
     }
-    fprintf(stderr, "%s: %s; writing PNG files only\n", w->def.label, w->error);
+    fprintf(stderr, "rbsim: sdl renderer '%s': %s; writing PNG files only\n",
+            w->def.label, w->error);
     return RBS_OK;
 }
 
