@@ -7,7 +7,7 @@ The extension rbsim._rbsim (cffi, API mode) needs librbsim.  It is found:
    linked dynamically, with a run-time path to its folder;
 2. otherwise by building the library with Meson from the source tree this
    package sits in (``../..``): a static librbsim.a in
-   ``bindings/python/build/meson``, linked into the extension, so the
+   ``<build_temp>/meson``, linked into the extension, so the
    installed package needs only GSL and cJSON from the system.
 
 RBSIM_LIBRARY=pkg-config or RBSIM_LIBRARY=meson forces one way.  The cdef is
@@ -90,7 +90,7 @@ def _from_meson(build_temp):
             "rbsim: librbsim was not found by pkg-config and Meson is not "
             "installed to build it from %s (apt install meson ninja-build)"
             % SOURCE_ROOT)
-    builddir = os.path.join(HERE, "build", "meson")
+    builddir = os.path.abspath(os.path.join(build_temp, "meson"))
     if not os.path.isfile(os.path.join(builddir, "build.ninja")):
         subprocess.run([meson, "setup", builddir, SOURCE_ROOT,
                         "-Ddefault_library=static", "--buildtype=release",
