@@ -1,0 +1,167 @@
+/*
+ * drive_ode.c - runs a peers scene in the Open Dynamics Engine (ODE, C API,
+ * Debian's libode-dev, double precision) and reports time and counters.
+ *
+ *   peers_ode --scene FILE [--steps K] [--max-wall S] [--state-out FILE]
+ *
+ * Settings (stated in bench/results/peers.md):
+ *  - dHashSpace, levels 2^-5 .. 2^0 m (cells 3 cm .. 1 m); planes are
+ *    non-placeable geoms that the space tests against every sphere.
+ *  - dWorldQuickStep, 20 iterations, ERP 0.2, CFM 1e-5, contact surface layer
+ *    0, no auto-disable (every body simulated every step, as in rbsim).
+ *  - One contact point per touching pair (dCollide flags 1), surface mode
+ *    dContactBounce | dContactApprox1 (friction pyramid with mu as a Coulomb
+ *    coefficient), mu = friction, bounce = restitution, bounce_vel 0.01 m/s
+ *    (about g dt, rbsim's resting threshold).
+ *  - Spheres: dMassSetSphereTotal (solid), no damping.
+ * Only the stepping loop (collide + quickstep + empty the contact group) is
+ * timed; creation is setup time.
+ */
+#include <ode/ode.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "peers_io.h"
+
+static const char usage[] =
+    "usage: peers_ode --scene FILE [--steps K] [--max-wall S] [--state-out FILE]\n";
+
+typedef struct near_ctx {
+    dWorldID world;
+    dJointGroupID group;
+    double mu, bounce;
+    unsigned long contacts;
+} near_ctx;
+
+static void near_callback(void *data, dGeomID o1, dGeomID o2)
+{
+    near_ctx *ctx = data;
+    dContact c;
+    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
+    if (b1 == NULL && b2 == NULL)
+        return;
+    memset(&c, 0, sizeof c);
+    if (dCollide(o1, o2, 1, &c.geom, sizeof(dContact)) > 0) {
+        dJointID j;
+        c.surface.mode = dContactBounce | dContactApprox1;
+        c.surface.mu = ctx->mu;
+        c.surface.bounce = ctx->bounce;
+        c.surface.bounce_vel = 0.01;
+        j = dJointCreateContact(ctx->world, ctx->group, &c);
+        dJointAttach(j, b1, b2);
+        ctx->contacts++;
+    }
+}
+
+int main(int argc, char **argv)
+{
+    peers_options opt;
+    peers_scene sc;
+    dWorldID world;
+    dSpaceID space;
+    dBodyID *body;
+    near_ctx ctx;
+    peers_apex apex;
+    double t0, t1, t_setup, last = 0.0;
+    long steps, k;
+    size_t i;
+    unsigned long contacts_max = 0;
+
+    if (peers_parse_args(argc, argv, &opt, usage) || peers_scene_read(opt.scene_path, &sc))
+        return 2;
+    if (opt.extra != NULL) {
+        fprintf(stderr, "peers_ode: --method is not an ODE option\n");
+        return 2;
+    }
+    steps = opt.steps >= 0 ? opt.steps : sc.steps;
+
+    t0 = peers_now();
+    dInitODE2(0);
+    world = dWorldCreate();
+    dWorldSetGravity(world, 0, 0, sc.gravity_z);
+    dWorldSetERP(world, 0.2);
+    dWorldSetCFM(world, 1e-5);
+    dWorldSetQuickStepNumIterations(world, 20);
+    dWorldSetContactSurfaceLayer(world, 0.0);
+    dWorldSetAutoDisableFlag(world, 0);
+    space = dHashSpaceCreate(0);
+    dHashSpaceSetLevels(space, -5, 0);
+    for (i = 0; i < sc.n_planes; ++i) {
+        const double *q = &sc.planes[6 * i];
+        /* ODE's plane: n . x = d */
+        dCreatePlane(space, q[3], q[4], q[5], q[0] * q[3] + q[1] * q[4] + q[2] * q[5]);
+    }
+    body = malloc((sc.n + 1) * sizeof *body);
+    if (body == NULL) {
+        fprintf(stderr, "peers_ode: out of memory\n");
+        return 2;
+    }
+    for (i = 0; i < sc.n; ++i) {
+        const double *q = &sc.spheres[8 * i];
+        dMass m;
+        dGeomID g = dCreateSphere(space, q[0]);
+        body[i] = dBodyCreate(world);
+        dMassSetSphereTotal(&m, q[1], q[0]);
+        dBodySetMass(body[i], &m);
+        dBodySetPosition(body[i], q[2], q[3], q[4]);
+        dBodySetLinearVel(body[i], q[5], q[6], q[7]);
+        dGeomSetBody(g, body[i]);
+    }
+    peers_scene_free(&sc); /* keeps the counts */
+    ctx.world = world;
+    ctx.group = dJointGroupCreate(0);
+    ctx.mu = sc.friction;
+    ctx.bounce = sc.restitution;
+    ctx.contacts = 0;
+    peers_apex_init(&apex, sc.gravity_z);
+    t1 = peers_now();
+    t_setup = t1 - t0;
+
+    t0 = peers_now();
+    for (k = 0; k < steps; ++k) {
+        double wall;
+        ctx.contacts = 0;
+        dSpaceCollide(space, &ctx, near_callback);
+        if (ctx.contacts > contacts_max)
+            contacts_max = ctx.contacts;
+        dWorldQuickStep(world, sc.dt);
+        dJointGroupEmpty(ctx.group);
+        if (sc.track_apex && sc.n > 0)
+            peers_apex_feed(&apex, dBodyGetPosition(body[0])[2], dBodyGetLinearVel(body[0])[2]);
+        wall = peers_now() - t0;
+        peers_progress(k + 1, wall, &last);
+        if (opt.max_wall > 0.0 && wall >= opt.max_wall) {
+            ++k;
+            break;
+        }
+    }
+    t1 = peers_now();
+
+    if (opt.state_path) {
+        double *out = malloc(9 * sc.n * sizeof(double) + 1);
+        if (out == NULL) {
+            fprintf(stderr, "peers_ode: out of memory for the state\n");
+            return 2;
+        }
+        for (i = 0; i < sc.n; ++i) {
+            memcpy(&out[9 * i], dBodyGetPosition(body[i]), 3 * sizeof(double));
+            memcpy(&out[9 * i + 3], dBodyGetLinearVel(body[i]), 3 * sizeof(double));
+            memcpy(&out[9 * i + 6], dBodyGetAngularVel(body[i]), 3 * sizeof(double));
+        }
+        if (peers_state_write(opt.state_path, sc.n, out))
+            return 2;
+        free(out);
+    }
+    printf("RESULT {\"engine\": \"ode\", \"version\": \"%s\", \"n\": %zu, "
+           "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
+           "\"contacts_max\": %lu, \"apex\": ",
+           dGetConfiguration(), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0, t_setup, contacts_max);
+    peers_print_apex(stdout, &apex);
+    printf(", \"error\": \"\"}\n");
+    dJointGroupDestroy(ctx.group);
+    dSpaceDestroy(space);
+    dWorldDestroy(world);
+    dCloseODE();
+    free(body);
+    return 0;
+}

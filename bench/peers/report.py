@@ -1,0 +1,389 @@
+"""Writes bench/results/peers.md from peers.csv and peers_meta.json.
+
+    report.py RESULTS_DIR     (run.py calls it; rerun it to re-render)
+"""
+import csv
+import json
+import math
+import os
+import statistics
+import sys
+
+import plot
+
+ENGINES = ["rbsim", "ode", "bullet", "mujoco"]
+R_BALL, H_BALL, E_BALL = 0.1, 1.0, 0.5
+
+
+def f(x):
+    try:
+        v = float(x)
+        return v if math.isfinite(v) else None
+    except (TypeError, ValueError):
+        return None
+
+
+def med(vals):
+    vals = [v for v in vals if v is not None]
+    return statistics.median(vals) if vals else None
+
+
+def fmt(v, digits=3):
+    if v is None:
+        return "–"
+    if v == 0:
+        return "0"
+    if abs(v) >= 1e5 or abs(v) < 1e-3:
+        return f"{v:.{digits - 1}e}"
+    return f"{v:.{digits}g}"
+
+
+def sel(rows, scene, n=None, engine=None):
+    return [r for r in rows if r["scene"] == scene and (n is None or int(r["n"]) == n)
+            and (engine is None or r["engine"] == engine)]
+
+
+def status_note(rs):
+    st = sorted({r["status"] for r in rs})
+    return ", ".join(st)
+
+
+def ratio_median(rows, scene, n, engine, field="wall_per_sim_s"):
+    """Median over repeats of engine's cost / rbsim's cost in the same repeat."""
+    out = []
+    for r in sel(rows, scene, n, engine):
+        base = [b for b in sel(rows, scene, n, "rbsim") if b["rep"] == r["rep"]]
+        if base and f(base[0][field]) and f(r[field]):
+            out.append(f(r[field]) / f(base[0][field]))
+    return med(out), len(out)
+
+
+def peers_tables(rows, meta):
+    L = []
+    configs = []
+    for r in rows:
+        key = (r["scene"], int(r["n"]))
+        if r["scene"] in ("ball", "billiards", "pile") and key not in configs:
+            configs.append(key)
+    engines = [e for e in ENGINES if any(r["engine"] == e for r in rows)]
+
+    L.append("### Speed\n")
+    L.append("Medians over repeats.  *cost* = wall seconds per simulated second; "
+             "*speed-up* = the engine's cost / rbsim's cost in the same repeat (median), "
+             "so above 1 means rbsim is faster.  *simulated* = the simulated time a run covered "
+             "(less than planned when the run hit its wall-time cap; then costs come from "
+             "different phases of the motion and the ratio is marked †).\n")
+    L.append("| scene | N | engine | runs | simulated (s) | cost (s/s) | body-steps/s | ns/body-step | speed-up of rbsim | status |")
+    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|---|")
+    for scene, n in configs:
+        sims = {}
+        for e in engines:
+            rs = sel(rows, scene, n, e)
+            if rs:
+                sims[e] = med([f(r["sim_time"]) for r in rs])
+        for e in engines:
+            rs = sel(rows, scene, n, e)
+            if not rs:
+                continue
+            ratio, cnt = ratio_median(rows, scene, n, e) if e != "rbsim" else (None, 0)
+            dagger = ""
+            if e != "rbsim" and sims.get("rbsim") is not None and sims.get(e) is not None \
+                    and abs(sims["rbsim"] - sims[e]) > 1e-9:
+                dagger = " †"
+            L.append(f"| {scene} | {n} | {e} | {len(rs)} | {fmt(sims.get(e))} | "
+                     f"{fmt(med([f(r['wall_per_sim_s']) for r in rs]))} | "
+                     f"{fmt(med([f(r['body_steps_per_s']) for r in rs]))} | "
+                     f"{fmt(med([f(r['ns_per_body_step']) for r in rs]))} | "
+                     f"{(fmt(ratio) + dagger) if e != 'rbsim' else '1'} | {status_note(rs)} |")
+    L.append("")
+
+    L.append("### Memory\n")
+    L.append("Peak resident memory of each run's process (getrusage ru_maxrss, by peers_spawn, a small C launcher: a process forked straight from the Python runner would inherit the runner's high-water mark), "
+             "median.  *per body* = (peak − the same engine's peak on the one-sphere ball "
+             "scene) / N: what each extra sphere costs, without the interpreter and the "
+             "libraries.  Python engines carry the interpreter (~50–70 MB) in their peak.\n")
+    L.append("| N | engine | peak (MB) | per body (bytes) | per body / ODE's |")
+    L.append("|---:|---|---:|---:|---:|")
+    base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, e)]) for e in engines}
+    for scene, n in configs:
+        if scene != "pile":
+            continue
+        per = {}
+        for e in engines:
+            rs = sel(rows, scene, n, e)
+            pk = med([f(r["maxrss_kb"]) for r in rs])
+            if pk is not None and base.get(e) is not None:
+                per[e] = (pk - base[e]) * 1024.0 / n
+        for e in engines:
+            rs = sel(rows, scene, n, e)
+            if not rs:
+                continue
+            pk = med([f(r["maxrss_kb"]) for r in rs])
+            rel = per[e] / per["ode"] if (per.get("ode") or 0) > 0 and e in per else None
+            L.append(f"| {n} | {e} | {fmt(pk / 1024 if pk else None)} | {fmt(per.get(e), 4)} | {fmt(rel)} |")
+    L.append("")
+
+    L.append("### Quality at the end of the run\n")
+    L.append("From the final state, the same program for every engine (peers_quality): "
+             "*escaped* = centres behind a plane (outside the box or through the floor) or not "
+             "finite; worst overlaps relative to the radius (sphere–sphere: relative to the "
+             "smaller radius); *> 1 %* = pairs / sphere–plane contacts overlapping by more than "
+             "1 % of the radius; energy = kinetic + rotational + m g z at the end (J).  Medians "
+             "over repeats (worst case for escaped).\n")
+    L.append("| scene | N | engine | simulated (s) | escaped | worst s–s overlap | worst s–plane overlap | s–s > 1 % | s–plane > 1 % | energy (J) |")
+    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|")
+    for scene, n in configs:
+        for e in engines:
+            rs = [r for r in sel(rows, scene, n, e) if r.get("escaped") not in (None, "")]
+            if not rs:
+                continue
+            esc = max(int(float(r["escaped"])) for r in rs)
+            ss = med([f(r["max_ss_overlap_rel"]) for r in rs])
+            sp = med([f(r["max_sp_overlap_rel"]) for r in rs])
+            L.append(f"| {scene} | {n} | {e} | {fmt(med([f(r['sim_time']) for r in rs]))} | {esc} | "
+                     f"{fmt(100 * ss if ss is not None else None)} % | "
+                     f"{fmt(100 * sp if sp is not None else None)} % | "
+                     f"{fmt(med([f(r['ss_over_1pct']) for r in rs]))} | "
+                     f"{fmt(med([f(r['sp_over_1pct']) for r in rs]))} | "
+                     f"{fmt(med([f(r['energy']) for r in rs]), 6)} |")
+    L.append("")
+
+    # bouncing ball
+    L.append("### Bouncing ball: apex heights\n")
+    L.append(f"Ball of radius {R_BALL} m dropped from rest with its lowest point {H_BALL} m above "
+             f"the floor, e = {E_BALL}.  Apex n (height of the lowest point) should be "
+             "h e^(2n): 0.25, 0.0625, 0.015625 m.  Relative errors in brackets; first repeat "
+             "(every repeat is identical for a deterministic engine).\n")
+    L.append("| engine | apex 1 (m) | apex 2 (m) | apex 3 (m) |")
+    L.append("|---|---:|---:|---:|")
+    for e in engines:
+        rs = sel(rows, "ball", 1, e)
+        if not rs:
+            continue
+        ap = [float(x) - R_BALL for x in rs[0].get("apex", "").split(";") if x]
+        cells = []
+        for k in range(3):
+            exact = H_BALL * E_BALL ** (2 * (k + 1))
+            if k < len(ap):
+                cells.append(f"{ap[k]:.5f} ({100 * (ap[k] - exact) / exact:+.1f} %)")
+            else:
+                cells.append("no bounce")
+        L.append(f"| {e} | " + " | ".join(cells) + " |")
+    L.append("")
+    return L
+
+
+def machine_limit(rows, meta):
+    L = []
+    st, lay = meta["stream"], meta["layout"]
+    bw = st["triad_gbs"] * 1e9
+    gf = st["gflops_scalar"] * 1e9
+    cb = lay["contact_bytes"]
+    state_b = 2 * 13 * 8 + 3 * 8
+    L.append("### How close rbsim comes to the machine's limit\n")
+    L.append(f"Measured on one core by `peers_stream` (STREAM-like, 128 MB arrays, best of 10): "
+             f"copy {st['copy_gbs']:.1f} GB/s, triad {st['triad_gbs']:.1f} GB/s; "
+             f"{st['gflops_scalar']:.1f} GFLOP/s for 8 independent multiply-add chains.\n")
+    L.append("Bytes a body-step must move at the least, from rbsim's state layout "
+             "(`lib/src/core/world_internal.h`, structure of arrays of doubles): position 3, "
+             "velocity 3, angular velocity 3, orientation 4 doubles read and written once "
+             f"(2 × 104 B) plus radius, inverse mass and inverse inertia read (24 B) = {state_b} B; "
+             f"each contact slot ({cb:.0f} B, measured from `rbs_world_memory_size` by "
+             "`peers_rbsim --layout`) written once when found and read once by the solver, "
+             f"{2 * cb:.0f} B per contact.  The world holds {lay['body_bytes']:.0f} B per body "
+             f"plus {cb:.0f} B per contact slot ({lay['body_bytes_with_default_contacts']:.0f} B "
+             "per body with the default 4 contact slots per body).  This is a floor: the "
+             "rollback's two state saves, the broad phase's arrays and every extra solver sweep "
+             "add to it.  Arithmetic floor: ~60 flops per body (integration, quaternion), ~120 "
+             "per contact (one normal + friction impulse), rough.\n")
+    L.append("| scene | N | contacts per body | bytes/body-step (floor) | bound from bandwidth (body-steps/s) | bound from arithmetic | rbsim measured | fraction of the tighter bound |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for scene in ("pile", "lattice", "stack"):
+        ns = sorted({int(r["n"]) for r in sel(rows, scene, engine="rbsim")})
+        for n in ns:
+            rs = sel(rows, scene, n, "rbsim")
+            meas = med([f(r["body_steps_per_s"]) for r in rs])
+            cpb = []
+            for r in rs:
+                try:
+                    x = json.loads(r["extra"] or "{}")
+                    cpb.append(x.get("contacts_max", 0) / n)
+                except ValueError:
+                    pass
+            c = med(cpb) or 0.0
+            bytes_ = state_b + c * 2 * cb
+            bbw = bw / bytes_
+            bfl = gf / (60 + 120 * c)
+            tight = min(bbw, bfl)
+            L.append(f"| {scene} | {n} | {fmt(c)} | {fmt(bytes_, 4)} | {fmt(bbw)} | {fmt(bfl)} | "
+                     f"{fmt(meas)} | {fmt(meas / tight if meas else None)} |")
+    L.append("")
+    return L
+
+
+def scaling_table(rows):
+    L = []
+    if not any(r["scene"] in ("lattice", "stack") for r in rows):
+        return L
+    L.append("### rbsim alone from 10^3 to 10^6 spheres\n")
+    L.append("20 steps (dt = 1 ms) of a falling lattice (10 layers, spacing 0.12 m, no contacts "
+             "yet) and of a settled stack (10 layers of touching spheres on the floor, walls "
+             "touching: every sphere in resting contact).  Target: flat cost per body-step.  "
+             "One run each; a run that hits its cap stops the larger sizes of that scene.\n")
+    L.append("| scene | N | status | steps | wall (s) | setup (s) | ns/body-step | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
+    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for scene in ("lattice", "stack"):
+        first = None
+        for r in sorted(sel(rows, scene, engine="rbsim"), key=lambda r: int(r["n"])):
+            n = int(r["n"])
+            c = f(r["ns_per_body_step"])
+            if first is None and c:
+                first = c
+            try:
+                x = json.loads(r["extra"] or "{}")
+            except ValueError:
+                x = {}
+            pk = f(r["maxrss_kb"])
+            L.append(f"| {scene} | {n} | {r['status']} | {r['steps'] or '–'} | {fmt(f(r['wall']))} | "
+                     f"{fmt(f(r['setup_wall']))} | {fmt(c)} | {fmt(c / first if c and first else None)} | "
+                     f"{fmt(pk / 1024 if pk else None)} | {fmt(pk * 1024 / n if pk else None, 4)} | "
+                     f"{x.get('substeps', '–')} | {x.get('rollbacks', '–')} | {x.get('contacts_max', '–')} |")
+    L.append("")
+    L.append("![rbsim scaling](scaling.png)\n")
+    return L
+
+
+def targets(rows, meta):
+    L = ["### Against the targets of issue 9\n"]
+    def ratio_at(n):
+        r, cnt = ratio_median(rows, "pile", n, "ode")
+        return r
+    for n in (1000, 8000):
+        r = ratio_at(n)
+        verdict = "not measured" if r is None else ("met" if r >= 10 else "NOT met")
+        L.append(f"- rbsim at least 10× ODE's speed at N = {n}: measured {fmt(r)}× — {verdict}.")
+    sc = []
+    for scene in ("lattice", "stack"):
+        pts = [(int(r["n"]), f(r["ns_per_body_step"]), r["status"]) for r in sel(rows, scene, engine="rbsim")]
+        pts = sorted(p for p in pts if p[1])
+        if pts:
+            ok_pts = [p for p in pts if p[2] == "ok"]
+            spread = max(p[1] for p in pts) / min(p[1] for p in pts)
+            sc.append(f"{scene}: {fmt(pts[0][1])} ns at N = {pts[0][0]} to {fmt(pts[-1][1])} ns at "
+                      f"N = {pts[-1][0]} (max/min {fmt(spread)}; largest N completed: "
+                      f"{ok_pts[-1][0] if ok_pts else 'none'})")
+    L.append("- cost per body-step flat from 10^3 to 10^6: " + ("; ".join(sc) if sc else "not measured") + ".")
+    base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, e)]) for e in ("rbsim", "ode")}
+    for n in (1000, 8000, 27000):
+        pr = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, "rbsim")])
+        po = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, "ode")])
+        if pr and po and base["rbsim"] and base["ode"] and po - base["ode"] > 0:
+            rel = (pr - base["rbsim"]) / (po - base["ode"])
+            L.append(f"- peak memory per body at most 1/5 of ODE's, N = {n}: rbsim/ODE = {fmt(rel)} "
+                     f"— {'met' if rel <= 0.2 else 'NOT met'}.")
+    for n in (1000, 8000, 27000):
+        rs = [r for r in sel(rows, "pile", n, "rbsim") if r.get("escaped") not in (None, "")]
+        if rs:
+            esc = max(int(float(r["escaped"])) for r in rs)
+            ss = max(f(r["max_ss_overlap_rel"]) or 0 for r in rs)
+            sp = max(f(r["max_sp_overlap_rel"]) or 0 for r in rs)
+            ok = esc == 0 and ss <= 0.01 and sp <= 0.01
+            L.append(f"- no sphere escaping or overlapping by more than 1 % of its radius, N = {n} "
+                     f"(rbsim, worst repeat): escaped {esc}, sphere–sphere {100 * ss:.3g} %, "
+                     f"sphere–plane {100 * sp:.3g} % — {'met' if ok else 'NOT met'}.")
+    L.append("")
+    return L
+
+
+HEADER = """# Peer benchmark: rbsim against ODE, Bullet and MuJoCo
+
+**Command** (from the repository root; builds what it needs with meson in `./build`):
+
+    bench/peers/run.sh            # full run, < 40 minutes on this 2-core machine
+    bench/peers/run.sh --quick    # N = 1000 only, 0.5 s simulated, one repeat (~1 minute)
+
+**Installs it needs** (not part of the test setup):
+
+    apt-get install -y libode-dev
+    .venv/bin/python -m pip install pybullet mujoco matplotlib      # .venv made by `bash .ci/setup`
+
+Files: `peers.csv` (every run), `peers_meta.json` (machine, bandwidth, layout), this file,
+`peers.png`, `scaling.png`.  Sources and the exact settings of every engine: `bench/peers/`.
+"""
+
+SETTINGS = """### The scenes and each engine's settings
+
+Scenes (one file per scene, written by `bench/peers/scenes.py`, read by all four drivers):
+
+- **pile N**: N spheres (r = 0.05 m, m = 0.1 kg) on a lattice of spacing 0.12 m, at most
+  16 × 16 per layer (so N = 8000 is 32 layers, 27,000 is 106 layers), lowest centres at
+  z = 0.1 m, each coordinate jittered by up to ±5 mm (splitmix64 of the index, deterministic),
+  dropped at rest into a 2 m × 2 m box (floor z = 0, walls x, y = ±1 facing inward).
+  N = 1000 and 8000: 2 s simulated.  **N = 27,000: 0.1 s simulated** (ODE alone needs minutes
+  per simulated second); in 0.1 s only the lowest layers have landed.
+- **billiards**: 16 balls (r = 0.0286 m, m = 0.17 kg) on a floor, a triangle of 15 with
+  0.1 mm gaps and the cue ball at 8 m/s; 2 s.
+- **ball**: r = 0.1 m, 1 kg, dropped from 1 m (lowest point), 2 s.
+- Every contact: restitution e = 0.5, friction μ = 0.5; gravity 9.81 m/s²; dt = 1 ms; no
+  damping anywhere.  Only the stepping loop is timed (creation is reported as setup).
+
+Engines:
+
+- **rbsim** (this repository, the commit named below): `rbs_world_def` defaults (method Euler,
+  slop 1e-6 r, max_halvings 30, max_sweeps 64, contact slots 4 per body + 16), one "*"/"*"
+  material pair with μs = μk = 0.5, e = 0.5.
+- **ODE** (Debian libode-dev, double precision, C API): dHashSpace (levels 2^-5..2^0 m),
+  dWorldQuickStep with 20 iterations, ERP 0.2, CFM 1e-5, contact surface layer 0, no
+  auto-disable; one contact point per pair, dContactBounce | dContactApprox1 (friction pyramid,
+  μ as a Coulomb coefficient), μ = 0.5, bounce 0.5, bounce_vel 0.01 m/s (≈ g dt).
+- **Bullet** (PyPI pybullet, DIRECT mode): setTimeStep(0.001), pybullet's defaults otherwise
+  (50 solver iterations, sleeping allowed after 2 s at rest); spheres as rigid bodies
+  (useMaximalCoordinates) made in batches from one shape; planes as static GEOM_PLANE.  Bullet
+  multiplies the two bodies' coefficients, so each body gets restitution and lateral friction
+  √0.5 — each contact then has exactly 0.5; rolling/spinning friction 0, damping 0 (pybullet's
+  default damping is 0.04).
+- **MuJoCo** (PyPI mujoco): MJCF generated by the driver, one free body + sphere geom per
+  sphere, plane geoms for floor and walls; timestep 0.001, Euler, pyramidal cone, condim 3,
+  default solver (Newton, 100 iterations); soft contacts with solref = (0.02 s, 0.2154):
+  MuJoCo's default time constant and the damping ratio ζ whose spring-damper bounce gives
+  e = exp(−πζ/√(1−ζ²)) = 0.5; solimp default.  This approximates restitution only (see the
+  bouncing ball).
+"""
+
+
+def write(results, meta=None):
+    if meta is None:
+        with open(os.path.join(results, "peers_meta.json")) as fh:
+            meta = json.load(fh)
+    with open(os.path.join(results, "peers.csv"), newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    m = meta["machine"]
+    L = [HEADER]
+    L.append(f"**This run**: {meta.get('date', '?')}, rbsim commit {meta.get('commit', '?')}, "
+             f"{'QUICK mode' if meta.get('quick') else 'full mode'}, {meta['total_s']:.0f} s in all.\n")
+    L.append(f"**Machine**: {m['cpu']} ({m.get('simd', '')}), `nproc` = {m['nproc']}, "
+             f"{m['memory']} memory, cache {m.get('cache', '?')}, Linux {m['kernel']}, {m['cc']}, "
+             f"Python {m['python']}; versions: "
+             + ", ".join(f"{k} {v}" for k, v in sorted(m.get("versions", {}).items()))
+             + ".  A shared 2-core virtual machine: expect ±10–20 % noise between runs.\n")
+    L.append("## Results\n")
+    L.append("![cost against N](peers.png)\n")
+    L += targets(rows, meta)
+    L += peers_tables(rows, meta)
+    L += machine_limit(rows, meta)
+    L += scaling_table(rows)
+    L.append(SETTINGS)
+    notes = meta.get("notes")
+    if notes:
+        L.append("### Notes\n")
+        L += [f"- {x}" for x in notes]
+        L.append("")
+    with open(os.path.join(results, "peers.md"), "w") as fh:
+        fh.write("\n".join(L))
+    plot.main(results)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: report.py RESULTS_DIR")
+    write(sys.argv[1])
