@@ -172,6 +172,8 @@ static int open_windows(rbsf__window *w)
             snprintf(w->error, sizeof w->error, "window: cannot open: %s", SDL_GetError());
             return -1;
         }
+        /* Copy, do not blend: the pictures are opaque. */
+        SDL_SetSurfaceBlendMode(w->surfaces[i], SDL_BLENDMODE_NONE);
         w->window_count = i + 1;
     }
     return 0;

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 #include <pthread.h>
@@ -198,6 +199,117 @@ static void test_video_failure(void **state)
     cls->destroy(inst);
 }
 
+/* Newest "SDL_window<id>-<n>.bmp" the offscreen driver saved in the
+ * current folder (SDL_VIDEO_OFFSCREEN_SAVE_FRAMES), by number; 0 if none. */
+static int newest_bmp(char *name, size_t n)
+{
+    int k, found = 0, id;
+    for (id = 1; id < 16; id++)
+        for (k = 1; k < 100000; k++) {
+            char try_name[64];
+            struct stat sb;
+            snprintf(try_name, sizeof try_name, "SDL_window%d-%08d.bmp", id, k);
+            if (stat(try_name, &sb) != 0) break;
+            if (k > found) {
+                found = k;
+                snprintf(name, n, "%s", try_name);
+            }
+        }
+    return found;
+}
+
+/* Remove saved pictures of an earlier run of this test. */
+static void remove_bmps(void)
+{
+    int k, id;
+    for (id = 1; id < 16; id++)
+        for (k = 1; k < 100000; k++) {
+            char name[64];
+            snprintf(name, sizeof name, "SDL_window%d-%08d.bmp", id, k);
+            if (remove(name) != 0) break;
+        }
+}
+
+static long rgb_differences(SDL_Surface *a, SDL_Surface *b)
+{
+    long d = 0;
+    int x, y;
+    if (a->w != b->w || a->h != b->h) return -1;
+    for (y = 0; y < a->h; y++)
+        for (x = 0; x < a->w; x++)
+            d += tu_pixel(a, x, y) != tu_pixel(b, x, y);
+    return d;
+}
+
+/* The newest saved window picture, as ARGB8888 (NULL if none yet). */
+static SDL_Surface *newest_shown(void)
+{
+    char name[64];
+    SDL_Surface *raw, *s;
+    if (newest_bmp(name, sizeof name) == 0) return NULL;
+    raw = SDL_LoadBMP(name);
+    if (raw == NULL) return NULL; /* being written: try again */
+    s = SDL_ConvertSurfaceFormat(raw, SDL_PIXELFORMAT_ARGB8888, 0);
+    SDL_FreeSurface(raw);
+    return s;
+}
+
+/* Wait (at most 5 s) until the window shows a picture that differs from
+ * ref in at least min pixels (min > 0) or equals it (min == 0). */
+static int wait_shown(SDL_Surface *ref, long min)
+{
+    int k;
+    for (k = 0; k < 500; k++) {
+        SDL_Surface *s = newest_shown();
+        if (s != NULL) {
+            long d = rgb_differences(s, ref);
+            SDL_FreeSurface(s);
+            if (min == 0 ? d == 0 : d >= min) return 1;
+        }
+        SDL_Delay(10);
+    }
+    return 0;
+}
+
+/* What the window shows, read back from the offscreen driver's saved
+ * frames: the frame drawn (equal to its PNG file), and, with no frame
+ * coming (a paused run), the same frame from the new place after an arrow
+ * key or a camera command. */
+static void test_window_shows_and_redraws(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512], cwd[1400], reply[512];
+    void *inst = NULL;
+    tu_frame f;
+    SDL_Surface *file0;
+    (void)state;
+    assert_non_null(getcwd(cwd, sizeof cwd));
+    assert_int_equal(tu_create("{\"window\":true,\"width\":160,\"height\":120}",
+                               tu_dir("shown"), &inst, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(chdir(tu_dir("shown")), 0);
+    remove_bmps();
+    offscreen();
+    setenv("SDL_VIDEO_OFFSCREEN_SAVE_FRAMES", "1", 1);
+    frame(&f, 0, 0);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    file0 = tu_load("frame_000000.png");
+    assert_non_null(file0);
+    /* The window shows the frame written. */
+    assert_true(wait_shown(file0, 0));
+    /* No frame comes; an arrow key moves the free camera: a new picture. */
+    key(SDLK_LEFT);
+    assert_true(wait_shown(file0, 500));
+    /* A typed camera command redraws too: back to the start. */
+    assert_int_equal(cls->command(inst, "reset", reply, sizeof reply), RBS_OK);
+    assert_true(wait_shown(file0, 0));
+
+    cls->destroy(inst);
+    unsetenv("SDL_VIDEO_OFFSCREEN_SAVE_FRAMES");
+    assert_int_equal(chdir(cwd), 0);
+    SDL_FreeSurface(file0);
+}
+
 /* Two windowed renderers in one process: SDL has one event queue, so the
  * second is refused ("window": true) or goes without a window ("auto"). */
 static void test_one_window_per_process(void **state)
@@ -233,6 +345,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_keys_and_mouse),
         cmocka_unit_test(test_video_failure),
         cmocka_unit_test(test_one_window_per_process),
+        cmocka_unit_test(test_window_shows_and_redraws),
     };
     int failed;
     tu_set_base(argc > 1 ? argv[1] : ".");
