@@ -1,0 +1,809 @@
+/*
+ * cases.c - extreme cases (see cases.h).  Every case states its bound and
+ * why; EPS below is the double-precision unit round-off 2^-52.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cases.h"
+
+#define EPS 2.220446049250313e-16
+#define G 9.81
+
+/* ------------------------------------------------------------------------- */
+/* Helpers                                                                   */
+/* ------------------------------------------------------------------------- */
+
+static void note(xres *r, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->note, sizeof r->note, fmt, ap);
+    va_end(ap);
+}
+
+/* Record an unexpected status; RBS_E_UNSUPPORTED marks the case skipped. */
+static int bad(xres *r, rbs_world *w, rbs_status st, const char *what)
+{
+    if (st == RBS_OK)
+        return 0;
+    if (st == RBS_E_UNSUPPORTED) {
+        r->skipped = 1;
+        note(r, "%s", w ? rbs_world_last_error(w) : "unsupported");
+    } else {
+        r->failed = 1;
+        note(r, "%s: %s: %s", what, rbs_status_name(st), w ? rbs_world_last_error(w) : "");
+    }
+    return 1;
+}
+
+/* A world for a method: n bodies, dt, gravity along z, world restitution e. */
+static rbs_world *xworld(xres *r, rbs_method m, uint32_t n, double dt, double gz, double e)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_status st;
+    rbs_world_def_init(&d);
+    d.max_bodies = n;
+    d.dt = dt;
+    d.gravity.z = gz;
+    d.restitution = e;
+    st = rbs_world_create(&d, &w);
+    if (bad(r, NULL, st, "create"))
+        return NULL;
+    st = rbs_world_set_method(w, m, 0.0);
+    if (bad(r, w, st, "set_method")) {
+        rbs_world_destroy(w);
+        return NULL;
+    }
+    return w;
+}
+
+static rbs_material_id xmaterial(rbs_world *w, double mu_s, double mu_k, double e)
+{
+    rbs_material_id m = {0, 0};
+    rbs_pair_def p;
+    rbs_world_add_material(w, "m", &m);
+    rbs_pair_def_init(&p);
+    p.a = m;
+    p.b = m;
+    p.static_friction = mu_s;
+    p.kinetic_friction = mu_k;
+    p.restitution = e;
+    rbs_world_set_pair(w, &p);
+    return m;
+}
+
+static rbs_body_id xplane(rbs_world *w, rbs_material_id m, double px, double py, double pz, double nx,
+                          double ny, double nz)
+{
+    rbs_plane_def p;
+    rbs_body_id id = {0, 0};
+    rbs_plane_def_init(&p);
+    p.point.x = px; p.point.y = py; p.point.z = pz;
+    p.normal.x = nx; p.normal.y = ny; p.normal.z = nz;
+    p.material = m;
+    rbs_world_add_plane(w, &p, &id);
+    return id;
+}
+
+static rbs_body_id xball(rbs_world *w, double r, double mass, double x, double y, double z, double vx,
+                         double vy, double vz, rbs_material_id m)
+{
+    rbs_sphere_def s;
+    rbs_body_id id = {0, 0};
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.mass = mass;
+    s.position.x = x; s.position.y = y; s.position.z = z;
+    s.velocity.x = vx; s.velocity.y = vy; s.velocity.z = vz;
+    s.material = m;
+    rbs_world_add_sphere(w, &s, &id);
+    return id;
+}
+
+static rbs_body_state xstate(const rbs_world *w, rbs_body_id id)
+{
+    rbs_body_state s;
+    memset(&s, 0, sizeof s);
+    rbs_body_get_state(w, id, &s);
+    return s;
+}
+
+/* Work one step may take: sub-steps + rollbacks (see the collapse case for
+ * the reason of the number).  A step above it fails the case: the work of a
+ * step must stay bounded (a runaway rollback cascade grows to 2^30 sub-steps
+ * per step, a hang to the user). */
+#define WORK_CAP 6200u
+
+/* Step n times; accumulate counters into sum (may be NULL).  0 on success. */
+static int xsteps(xres *r, rbs_world *w, long n, rbs_step_info *sum)
+{
+    long k;
+    char what[64];
+    for (k = 0; k < n; ++k) {
+        rbs_step_info info;
+        rbs_status st = rbs_world_step(w, &info);
+        if (st != RBS_OK) {
+            snprintf(what, sizeof what, "step %ld", k + 1);
+            bad(r, w, st, what);
+            return 1;
+        }
+        if (info.substeps + info.rollbacks > WORK_CAP) {
+            r->failed = 1;
+            note(r, "step %ld (t = %.3f s) took %u sub-steps + %u rollbacks (> %u; sweep limit hit %u "
+                 "times): unbounded work, stopped", k + 1, rbs_world_time(w), (unsigned)info.substeps,
+                 (unsigned)info.rollbacks, WORK_CAP, (unsigned)info.sweep_limit);
+            return 1;
+        }
+        if (sum) {
+            sum->substeps += info.substeps;
+            sum->rollbacks += info.rollbacks;
+            sum->floor_hits += info.floor_hits;
+            sum->sweep_limit += info.sweep_limit;
+            sum->events += info.events;
+            sum->colliding += info.colliding;
+            if (info.max_overlap > sum->max_overlap)
+                sum->max_overlap = info.max_overlap;
+        }
+    }
+    return 0;
+}
+
+static double vdist(rbs_vec3 a, rbs_vec3 b)
+{
+    double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+static double vlen(rbs_vec3 a) { return sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
+
+static double maxd(double a, double b) { return a > b ? a : b; }
+
+/* A tiny deterministic generator (64-bit LCG, Knuth's MMIX constants). */
+static double lcg(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) / 9007199254740992.0; /* [0, 1) */
+}
+
+#define M(x) (1u << (x))
+
+/* ------------------------------------------------------------------------- */
+/* Mass and radius ratios                                                    */
+/* ------------------------------------------------------------------------- */
+
+/* A 1e9 kg ball at 1 m/s hits a resting 1 kg ball head on, e = 1, no
+ * gravity.  Exact: light ball leaves at 2 m1/(m1+m2) = 2/(1+1e-9) m/s.
+ * Measured: relative error of the light ball's velocity after 1 s. */
+static void mass_ratio(rbs_method m, xres *r)
+{
+    const double m1 = 1e9, m2 = 1.0;
+    rbs_world *w = xworld(r, m, 4, 1e-3, 0.0, 1.0);
+    rbs_material_id mat;
+    rbs_body_id light;
+    double exact = 2.0 * m1 / (m1 + m2);
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 1.0);
+    xball(w, 0.1, m1, -0.5, 0, 0, 1.0, 0, 0, mat);
+    light = xball(w, 0.1, m2, 0.0, 0, 0, 0, 0, 0, mat);
+    if (xsteps(r, w, 1000, NULL) == 0)
+        r->value = fabs(xstate(w, light).velocity.x - exact) / exact;
+    r->bound = 1e-12;
+    rbs_world_destroy(w);
+}
+
+/* A 1e9 kg ball rests on a 1 kg ball on the floor (a two-ball stack,
+ * g = 9.81, r = 0.1 m).  Measured: how far the heavy ball moved in 10 s.
+ * Bound: the contact slop of both contacts, 2 * 1e-6 * r = 2e-7 m, plus
+ * rounding at its height: the pile may settle by the slop, never creep. */
+static void mass_ratio_stack(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id heavy;
+    rbs_vec3 p0;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    xball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, 0, mat);
+    heavy = xball(w, 0.1, 1e9, 0, 0, 0.3, 0, 0, 0, mat);
+    p0 = xstate(w, heavy).position;
+    r->bound = 2e-7 + 1e3 * EPS;
+    if (xsteps(r, w, 10000, NULL) == 0)
+        r->value = vdist(xstate(w, heavy).position, p0);
+    rbs_world_destroy(w);
+}
+
+/* A 1 mm ball falls 10 mm onto the top of a fixed 1 km ball (radius ratio
+ * 1e6), e = 0.5.  Exact: it lands at sqrt(2 h / g) with sqrt(2 g h) =
+ * 0.442945 m/s and leaves at half that; on the ball's axis it then stays
+ * at rest on top.  Measured: |z - (R + r)| after 2 s, m.  Bound: the slop
+ * 1e-6 * r = 1e-9 m plus rounding of a distance of 1e3 m (1e3 * 4 EPS). */
+static void radius_ratio(rbs_method m, xres *r)
+{
+    const double R = 1e3, rs = 1e-3;
+    rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_sphere_def s;
+    rbs_body_id small;
+    double vmax = 0.0;
+    long k;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 0.5);
+    rbs_sphere_def_init(&s);
+    s.radius = R;
+    s.position.z = -R;
+    s.fixed = 1;
+    s.material = mat;
+    rbs_world_add_sphere(w, &s, NULL);
+    small = xball(w, rs, 1e-3, 0, 0, rs + 0.01, 0, 0, 0, mat);
+    r->bound = 1e-6 * rs + 4.0 * R * EPS;
+    for (k = 0; k < 2000; ++k) {
+        rbs_body_state st;
+        if (xsteps(r, w, 1, NULL))
+            break;
+        st = xstate(w, small);
+        if (st.velocity.z > vmax)
+            vmax = st.velocity.z;
+    }
+    if (!r->failed && !r->skipped) {
+        r->value = fabs(xstate(w, small).position.z - rs);
+        /* the first rebound speed, for the note (exact 0.2214726 m/s) */
+        r->extra = vmax;
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Speed                                                                     */
+/* ------------------------------------------------------------------------- */
+
+/* A 1 cm ball at 1000 m/s (100 radii per 1 ms step) meets a wall 5 m away,
+ * e = 1, no gravity; and two such balls meet head on at 500 m/s each.
+ * Exact: the ball is back at x = 4.99 - 1000 (0.02 - 0.00499) after 20
+ * steps; the equal balls swap velocities.  Measured: the larger position
+ * error, m.  Bound: the impact instant is found to the rollback floor
+ * dt/2^30 (9.3e-13 s), worth 1000 m/s * 2 * 9.3e-13 s = 1.9e-9 m, plus
+ * rounding of ~40 position updates at 10 m (40 * 10 * EPS); events are exact
+ * to rounding.  Tunnelling would be off by metres. */
+static void fast_balls(rbs_method m, xres *r)
+{
+    const double v = 1000.0, rad = 0.01, dt = 1e-3;
+    rbs_world *w = xworld(r, m, 4, dt, 0.0, 1.0);
+    rbs_material_id mat;
+    rbs_body_id a;
+    double t = 20 * dt, err;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 1.0);
+    xplane(w, mat, 5.0, 0, 0, -1, 0, 0);
+    a = xball(w, rad, 1.0, 0, 0, 0, v, 0, 0, mat);
+    r->bound = 2.0 * v * dt / 1073741824.0 + 40 * 10.0 * EPS;
+    if (xsteps(r, w, 20, NULL) == 0) {
+        double tc = (5.0 - rad) / v;
+        err = fabs(xstate(w, a).position.x - ((5.0 - rad) - v * (t - tc)));
+        r->value = err;
+    }
+    rbs_world_destroy(w);
+    if (r->failed || r->skipped)
+        return;
+    /* two balls head on, 2 m apart (gap 1.98 m), closing at 1000 m/s */
+    w = xworld(r, m, 4, dt, 0.0, 1.0);
+    if (!w)
+        return;
+    {
+        rbs_body_id b1, b2;
+        double tc = (2.0 - 2 * rad) / v, x1; /* closing at v */
+        mat = xmaterial(w, 0.0, 0.0, 1.0);
+        b1 = xball(w, rad, 1.0, -1.0, 0, 0, v / 2, 0, 0, mat);
+        b2 = xball(w, rad, 1.0, 1.0, 0, 0, -v / 2, 0, 0, mat);
+        if (xsteps(r, w, 20, NULL) == 0) {
+            x1 = (-1.0 + v / 2 * tc) - v / 2 * (t - tc);
+            err = maxd(fabs(xstate(w, b1).position.x - x1), fabs(xstate(w, b2).position.x + x1));
+            r->value = maxd(r->value, err);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Step sizes                                                                */
+/* ------------------------------------------------------------------------- */
+
+/* Free fall from rest for n = 1e4 steps of dt.  Exact z = z0 - g T^2/2.
+ * Bound: Euler (semi-implicit) lags by exactly g T dt / 2 (its discrete
+ * solution is z0 - g dt^2 n(n+1)/2); Verlet, RK4 and the event method are
+ * exact for constant acceleration, so only rounding remains: n steps of
+ * updates of |z| <= z0 + g T^2/2, 4 n EPS |z|. */
+static void free_fall_dt(rbs_method m, xres *r, double dt)
+{
+    const long n = 10000;
+    double T = n * dt, z0 = 1.0, zmax = z0 + 0.5 * G * T * T;
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.5);
+    rbs_body_id b;
+    if (!w)
+        return;
+    b = xball(w, 0.1, 1.0, 0, 0, z0, 0, 0, 0, (rbs_material_id){0, 0});
+    r->bound = 4.0 * n * EPS * zmax;
+    if (m == RBS_METHOD_EULER || m == RBS_METHOD_SELECTIVE)
+        r->bound += 0.5 * G * T * dt;
+    if (xsteps(r, w, n, NULL) == 0)
+        r->value = fabs(xstate(w, b).position.z - (z0 - 0.5 * G * T * T));
+    rbs_world_destroy(w);
+}
+
+static void free_fall_1e7(rbs_method m, xres *r) { free_fall_dt(m, r, 1e-7); }
+static void free_fall_1e5(rbs_method m, xres *r) { free_fall_dt(m, r, 1e-5); }
+static void free_fall_1e3(rbs_method m, xres *r) { free_fall_dt(m, r, 1e-3); }
+static void free_fall_1e1(rbs_method m, xres *r) { free_fall_dt(m, r, 1e-1); }
+
+/* A ball resting on the floor (r = 0.1 m, mu = 0.5) for 1e4 steps of dt.
+ * Exact: it stays.  Measured: |position - start|, m.  Bound: the slop
+ * 1e-6 r = 1e-7 m (a resting contact may settle into its slop, not creep
+ * out of it). */
+static void rest_dt(rbs_method m, xres *r, double dt)
+{
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_vec3 p0;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, 0, mat);
+    p0 = xstate(w, b).position;
+    r->bound = 1e-7;
+    if (xsteps(r, w, 10000, NULL) == 0)
+        r->value = vdist(xstate(w, b).position, p0);
+    rbs_world_destroy(w);
+}
+
+static void rest_1e7(rbs_method m, xres *r) { rest_dt(m, r, 1e-7); }
+static void rest_1e1(rbs_method m, xres *r) { rest_dt(m, r, 1e-1); }
+
+/* ------------------------------------------------------------------------- */
+/* Far from the origin                                                       */
+/* ------------------------------------------------------------------------- */
+
+/* A scene run at the origin and again shifted by (1e6, -1e6, 1e6) m: a ball
+ * dropped with a sideways speed and spin onto a floor with friction (slides,
+ * bounces, rolls) and hits a second ball; 2000 steps of 1 ms.  Measured: the
+ * largest difference of the shifted run's positions (minus the shift) from
+ * the origin run's, m.  Bound: every sub-step rounds each coordinate once at
+ * 1e6 m, at most 1e6 * EPS / 2 = 1.1e-10 m; over N sub-steps (counted) these
+ * add up to at most 4 N 1e6 EPS (the factor 4: position update, contact
+ * gap and separation each round). */
+static void far_run(rbs_method m, xres *r, double off, rbs_vec3 *out, uint32_t *substeps)
+{
+    rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id a, b;
+    rbs_sphere_def s;
+    rbs_step_info sum;
+    memset(&sum, 0, sizeof sum);
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.4, 0.3, 0.6);
+    xplane(w, mat, off, -off, off, 0, 0, 1);
+    rbs_sphere_def_init(&s);
+    s.radius = 0.1;
+    s.position.x = off;
+    s.position.y = -off;
+    s.position.z = off + 0.5;
+    s.velocity.x = 1.5;
+    s.angular_velocity.y = -20.0;
+    s.material = mat;
+    rbs_world_add_sphere(w, &s, &a);
+    b = xball(w, 0.1, 2.0, off + 1.5, -off + 0.0, off + 0.1, 0, 0, 0, mat);
+    if (xsteps(r, w, 2000, &sum) == 0) {
+        out[0] = xstate(w, a).position;
+        out[1] = xstate(w, b).position;
+        *substeps = sum.substeps;
+    }
+    rbs_world_destroy(w);
+}
+
+static void far_from_origin(rbs_method m, xres *r)
+{
+    const double off = 1e6;
+    rbs_vec3 p0[2], p1[2];
+    uint32_t n0 = 0, n1 = 0;
+    int k;
+    far_run(m, r, 0.0, p0, &n0);
+    if (r->failed || r->skipped)
+        return;
+    far_run(m, r, off, p1, &n1);
+    if (r->failed || r->skipped)
+        return;
+    r->value = 0.0;
+    for (k = 0; k < 2; ++k) {
+        p1[k].x -= off;
+        p1[k].y += off;
+        p1[k].z -= off;
+        r->value = maxd(r->value, vdist(p0[k], p1[k]));
+    }
+    r->bound = 4.0 * (double)(n0 > n1 ? n0 : n1) * off * EPS;
+    r->extra = (double)n1;
+}
+
+/* ------------------------------------------------------------------------- */
+/* Long runs                                                                 */
+/* ------------------------------------------------------------------------- */
+
+/* A ball bouncing elastically (e = 1, no friction, r = 0.1 m) from a 1 m
+ * drop for 1e7 steps of 1 ms (1e4 s, ~11000 bounces).  Measured: the largest
+ * |E - E0| / E0 seen (checked every 1000 steps).  Bound: one step's energy
+ * scale g v dt / (g h) with v = sqrt(2 g h): a method may misplace one
+ * impact by up to a step, which shifts the energy by m g v dt; it must not
+ * accumulate (2e-2 relative for dt = 1 ms).  Event is exact: 1e-9. */
+static void long_bounce(rbs_method m, xres *r)
+{
+    const double h = 1.0, dt = 1e-3;
+    rbs_world *w = xworld(r, m, 2, dt, -G, 1.0);
+    rbs_material_id mat;
+    rbs_energy e0, e;
+    double worst = 0.0;
+    long k;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 1.0);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    xball(w, 0.1, 1.0, 0, 0, 0.1 + h, 0, 0, 0, mat);
+    rbs_world_energy(w, &e0);
+    e0.total -= 1.0 * G * 0.1; /* energy above the resting level */
+    for (k = 0; k < 10000; ++k) {
+        double rel;
+        if (xsteps(r, w, 1000, NULL))
+            break;
+        rbs_world_energy(w, &e);
+        rel = fabs(e.total - G * 0.1 - e0.total) / e0.total;
+        if (rel > worst)
+            worst = rel;
+    }
+    r->value = worst;
+    r->extra = fabs(e.total - G * 0.1 - e0.total) / e0.total;
+    r->bound = m == RBS_METHOD_EVENT ? 1e-9 : 2.0 * sqrt(2.0 * G * h) * dt / h;
+    rbs_world_destroy(w);
+}
+
+/* A ball resting on the floor for 1e7 steps of 1 ms (1e4 s).  Measured:
+ * |position - start|, m.  Bound: the slop 1e-6 r = 1e-7 m. */
+static void long_rest(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 2, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_vec3 p0;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, 0, mat);
+    p0 = xstate(w, b).position;
+    r->bound = 1e-7;
+    if (xsteps(r, w, 10000000L, NULL) == 0)
+        r->value = vdist(xstate(w, b).position, p0);
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Resting stacks and rows                                                   */
+/* ------------------------------------------------------------------------- */
+
+/* Measured: the largest displacement of any ball over 10 s (1e4 steps).
+ * Bound: each ball may settle into the slop of the contacts below it, at
+ * most (contacts under it) * 1e-6 * r, never creep further. */
+static void rest_row(rbs_method m, xres *r)
+{
+    enum { N = 10 };
+    rbs_world *w = xworld(r, m, N + 1, 1e-3, -G, 0.3);
+    rbs_material_id mat;
+    rbs_body_id id[N];
+    rbs_vec3 p0[N];
+    int k;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.3);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    for (k = 0; k < N; ++k) {
+        id[k] = xball(w, 0.1, 1.0, 0.2 * k, 0, 0.1, 0, 0, 0, mat);
+        p0[k] = xstate(w, id[k]).position;
+    }
+    r->bound = 1e-7;
+    if (xsteps(r, w, 10000, NULL) == 0)
+        for (k = 0; k < N; ++k)
+            r->value = maxd(r->value, vdist(xstate(w, id[k]).position, p0[k]));
+    rbs_world_destroy(w);
+}
+
+static void rest_stack(rbs_method m, xres *r)
+{
+    enum { N = 5 };
+    rbs_world *w = xworld(r, m, N + 1, 1e-3, -G, 0.3);
+    rbs_material_id mat;
+    rbs_body_id id[N];
+    rbs_vec3 p0[N];
+    int k;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.3);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    for (k = 0; k < N; ++k) {
+        id[k] = xball(w, 0.1, 1.0, 0, 0, 0.1 + 0.2 * k, 0, 0, 0, mat);
+        p0[k] = xstate(w, id[k]).position;
+    }
+    r->bound = N * 1e-7;
+    if (xsteps(r, w, 10000, NULL) == 0)
+        for (k = 0; k < N; ++k)
+            r->value = maxd(r->value, vdist(xstate(w, id[k]).position, p0[k]));
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Zeno and collapse                                                         */
+/* ------------------------------------------------------------------------- */
+
+/* A ball (r = 0.1 m) dropped from 1 m with e = 0.5 bounces infinitely often
+ * in the finite time t1 (1 + 2e/(1-e)) = 3 t1 = 1.35 s.  After 5 s it must
+ * rest: measured |v| + |z - r| / dt (m/s).  Bound: one step of gravity's
+ * speed, g dt, plus the slop 1e-7 m over dt.  Extra: events (event method;
+ * the Zeno cut-off makes them finite: bounces until e^n v0 < g dt, n = 9,
+ * so at most 2 (9 + 1) events). */
+static void zeno(rbs_method m, xres *r)
+{
+    const double dt = 1e-3;
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_step_info sum;
+    memset(&sum, 0, sizeof sum);
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, 0.1, 1.0, 0, 0, 1.1, 0, 0, 0, mat);
+    r->bound = G * dt + 1e-7 / dt;
+    if (xsteps(r, w, 5000, &sum) == 0) {
+        rbs_body_state s = xstate(w, b);
+        r->value = vlen(s.velocity) + fabs(s.position.z - 0.1) / dt;
+        r->extra = m == RBS_METHOD_EVENT ? (double)sum.events : (double)sum.colliding;
+        if (m == RBS_METHOD_EVENT && sum.events > 20) {
+            r->failed = 1;
+            note(r, "%u events: more than 2 (9 + 1)", (unsigned)sum.events);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+/* 50 balls (r = 0.05 m, e = 0.1, no friction) in a closed 1 m box of six
+ * planes without gravity, random speeds up to 5 m/s: inelastic collapse.
+ * Every step must return with bounded work.  Measured: the most sub-steps +
+ * rollbacks of any one step (or events, for the event method).  Bound:
+ * 4 (max_halvings + 1) * 50 = 6200: each of 50 bodies may force a halving
+ * cascade of 31 levels twice per step; a hang would be 2^30.  Extra: steps
+ * that hit the sweep limit or the rollback floor (reported, not bounded). */
+static void collapse(rbs_method m, xres *r)
+{
+    enum { N = 50 };
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id mat;
+    uint64_t seed = 12345;
+    uint32_t worst = 0, limited = 0;
+    int k;
+    rbs_world_def_init(&d);
+    d.max_bodies = N + 6;
+    d.dt = 1e-3;
+    d.gravity.z = 0.0;
+    d.restitution = 0.1;
+    if (bad(r, NULL, rbs_world_create(&d, &w), "create"))
+        return;
+    if (bad(r, w, rbs_world_set_method(w, m, 0.0), "set_method")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    mat = xmaterial(w, 0.0, 0.0, 0.1);
+    xplane(w, mat, 0, 0, -0.5, 0, 0, 1);
+    xplane(w, mat, 0, 0, 0.5, 0, 0, -1);
+    xplane(w, mat, -0.5, 0, 0, 1, 0, 0);
+    xplane(w, mat, 0.5, 0, 0, -1, 0, 0);
+    xplane(w, mat, 0, -0.5, 0, 0, 1, 0);
+    xplane(w, mat, 0, 0.5, 0, 0, -1, 0);
+    for (k = 0; k < N; ++k) {
+        /* a 4 x 4 x 4 grid of 0.22 m cells, 50 of them filled */
+        double x = -0.33 + 0.22 * (k % 4), y = -0.33 + 0.22 * ((k / 4) % 4), z = -0.33 + 0.22 * (k / 16);
+        xball(w, 0.05, 1.0, x, y, z, 10 * (lcg(&seed) - 0.5), 10 * (lcg(&seed) - 0.5),
+              10 * (lcg(&seed) - 0.5), mat);
+    }
+    r->bound = WORK_CAP; /* = 4 (max_halvings + 1) N for the default 30 halvings */
+    for (k = 0; k < 3000; ++k) {
+        rbs_step_info info;
+        uint32_t work;
+        rbs_status st = rbs_world_step(w, &info);
+        if (st != RBS_OK) {
+            char what[32];
+            snprintf(what, sizeof what, "step %d", k + 1);
+            bad(r, w, st, what);
+            break;
+        }
+        work = m == RBS_METHOD_EVENT ? info.events : info.substeps + info.rollbacks;
+        if (work > worst)
+            worst = work;
+        if (info.sweep_limit || info.floor_hits)
+            limited++;
+        if (work > 10 * WORK_CAP) {
+            r->failed = 1;
+            note(r, "step %d took %u sub-steps + rollbacks: stopped", k + 1, (unsigned)work);
+            break;
+        }
+    }
+    r->value = worst;
+    r->extra = limited;
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Every body touching; denormals                                            */
+/* ------------------------------------------------------------------------- */
+
+/* 27 balls (r = 0.1 m) in a 3 x 3 x 3 simple cubic packing, every neighbour
+ * touching, the bottom layer on the floor, with one extra ball placed
+ * exactly on top of another (coincident centres), e = 0.3, friction 0.5;
+ * 2 s.  Measured: the largest rise of total energy above its start, J
+ * (contacts must not create energy from touching or coincident starts).
+ * Bound: the energy of pushing the coincident pair apart, at most
+ * m g (2 r) = 1.962 J, with no overlap left deeper than the slop. */
+static void all_touching(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 40, 1e-3, -G, 0.3);
+    rbs_material_id mat;
+    rbs_energy e0, e;
+    double worst = 0.0;
+    int i, j, k;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.3);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            for (k = 0; k < 3; ++k)
+                xball(w, 0.1, 1.0, 0.2 * i, 0.2 * j, 0.1 + 0.2 * k, 0, 0, 0, mat);
+    xball(w, 0.1, 1.0, 0.2, 0.2, 0.5, 0, 0, 0, mat); /* coincident with (1,1,2) */
+    rbs_world_energy(w, &e0);
+    r->bound = 1.0 * G * 0.2;
+    for (k = 0; k < 2000; ++k) {
+        rbs_step_info info;
+        memset(&info, 0, sizeof info);
+        if (xsteps(r, w, 1, &info))
+            break;
+        rbs_world_energy(w, &e);
+        worst = maxd(worst, e.total - e0.total);
+        r->extra = info.max_overlap;
+    }
+    r->value = worst;
+    rbs_world_destroy(w);
+}
+
+/* Two balls placed overlapping by half a radius, and two with coincident
+ * centres, no gravity, at rest.  rbsim.h promises that a body moved into
+ * overlap is separated by the next step.  Measured: the deepest overlap
+ * after 10 steps, m.  Bound: the slop 1e-6 r = 1e-7 m. */
+static void overlap_start(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 8, 1e-3, 0.0, 0.5);
+    rbs_step_info info;
+    if (!w)
+        return;
+    xball(w, 0.1, 1.0, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    xball(w, 0.1, 1.0, 0.15, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    xball(w, 0.1, 1.0, 5, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    xball(w, 0.1, 1.0, 5, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    r->bound = 1e-7;
+    memset(&info, 0, sizeof info);
+    if (xsteps(r, w, 10, &info) == 0)
+        r->value = info.max_overlap;
+    rbs_world_destroy(w);
+}
+
+/* A ball drifting at 1e-310 m/s (a subnormal) through empty space for 1000
+ * steps of 1 ms, and one at rest on the floor approaching it at -1e-310 m/s.
+ * Exact: x = 1e-310 * 1 s (subnormal products round to the subnormal grid
+ * 4.9e-324, one rounding per step); the resting ball stays.  Measured: the
+ * drifting ball's |x - v T| plus the resting ball's displacement, m, and
+ * the drifting ball's velocity must stay exactly 1e-310.  Bound: 1000
+ * roundings of 4.9e-324 plus the slop 1e-7 m for the resting ball. */
+static void denormal(rbs_method m, xres *r)
+{
+    const double v = 1e-310;
+    rbs_world *w = xworld(r, m, 4, 1e-3, 0.0, 0.5);
+    rbs_body_id b;
+    if (!w)
+        return;
+    b = xball(w, 0.1, 1.0, 0, 0, 0, v, 0, 0, (rbs_material_id){0, 0});
+    r->bound = 1000 * 4.9406564584124654e-324;
+    if (xsteps(r, w, 1000, NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        r->value = fabs(s.position.x - v * 1.0);
+        if (s.velocity.x != v) {
+            r->failed = 1;
+            note(r, "velocity changed to %.17g", s.velocity.x);
+        }
+    }
+    rbs_world_destroy(w);
+    if (r->failed || r->skipped)
+        return;
+    w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    if (!w)
+        return;
+    {
+        rbs_material_id mat = xmaterial(w, 0.5, 0.4, 0.5);
+        xplane(w, mat, 0, 0, 0, 0, 0, 1);
+        b = xball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, -v, mat);
+        r->bound += 1e-7;
+        if (xsteps(r, w, 1000, NULL) == 0)
+            r->value += fabs(xstate(w, b).position.z - 0.1);
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* The table                                                                 */
+/* ------------------------------------------------------------------------- */
+
+static const xcase cases[] = {
+    {"mass_ratio_1e9", "relative error of the light ball's speed after a 1e9:1 head-on elastic impact",
+     "1e-12 (one impulse: a few roundings)", NULL, 0, mass_ratio, 0, NULL},
+    {"mass_ratio_stack", "displacement (m) of a 1e9 kg ball resting on a 1 kg ball on the floor, 10 s",
+     "2e-7 m (slop of two contacts)", NULL, 0, mass_ratio_stack, 0, NULL},
+    {"radius_ratio_1e6", "|z - r| (m) of a 1 mm ball come to rest on top of a fixed 1 km ball, 2 s",
+     "1e-9 m slop + 4 EPS 1e3 m", "first rebound speed, m/s (exact 0.22147)", 0, radius_ratio, 0, NULL},
+    {"fast_100_radii_per_step", "position error (m) after a 1000 m/s ball (100 radii/step) bounces off a wall; two such balls head on",
+     "1.9e-9 m (impact found to dt/2^30) + rounding", NULL, 0, fast_balls, 0, NULL},
+    {"free_fall_dt_1e-7", "|z - exact| (m) after 1e4 steps of free fall, dt = 1e-7 s",
+     "Euler g T dt/2; others 4 n EPS |z| (rounding)", NULL, 0, free_fall_1e7, 0, NULL},
+    {"free_fall_dt_1e-5", "|z - exact| (m) after 1e4 steps of free fall, dt = 1e-5 s",
+     "Euler g T dt/2; others 4 n EPS |z|", NULL, 0, free_fall_1e5, 0, NULL},
+    {"free_fall_dt_1e-3", "|z - exact| (m) after 1e4 steps of free fall, dt = 1e-3 s",
+     "Euler g T dt/2; others 4 n EPS |z|", NULL, 0, free_fall_1e3, 0, NULL},
+    {"free_fall_dt_1e-1", "|z - exact| (m) after 1e4 steps of free fall, dt = 1e-1 s",
+     "Euler g T dt/2; others 4 n EPS |z|", NULL, 0, free_fall_1e1, 0, NULL},
+    {"rest_dt_1e-7", "displacement (m) of a ball resting on the floor, 1e4 steps of 1e-7 s",
+     "1e-7 m (slop)", NULL, 0, rest_1e7, 0, NULL},
+    {"rest_dt_1e-1", "displacement (m) of a ball resting on the floor, 1e4 steps of 0.1 s",
+     "1e-7 m (slop)", NULL, 0, rest_1e1, 0, NULL},
+    {"far_1e6", "largest position difference (m) of a slide/bounce/roll/impact scene run at the origin and shifted by 1e6 m",
+     "4 N 1e6 EPS (N sub-steps; one rounding at 1e6 m each)", "sub-steps N", 0, far_from_origin, 0, NULL},
+    {"rest_row_10", "largest displacement (m) of 10 touching balls in a row on the floor, 10 s",
+     "1e-7 m (slop)", NULL, 0, rest_row, 0, NULL},
+    {"rest_stack_5", "largest displacement (m) of a stack of 5 balls on the floor, 10 s",
+     "5e-7 m (5 slops)", NULL, 0, rest_stack, 0, NULL},
+    {"zeno_bounce", "|v| + |z - r|/dt (m/s) of a ball 5 s after a 1 m drop, e = 0.5 (Zeno time 1.35 s)",
+     "g dt + slop/dt", "events (event) or impacts resolved (others)", 0, zeno, 0, NULL},
+    {"inelastic_collapse_50", "most sub-steps + rollbacks (events for event) in one step, 50 balls e = 0.1 in a box, 3000 steps",
+     "6200 = 4 (max_halvings + 1) 50", "steps at the sweep limit or rollback floor", 0, collapse, 0, NULL},
+    {"all_touching_27", "largest energy rise (J) of 27 touching balls in a cube on the floor plus one coincident ball, 2 s",
+     "1.962 J (m g 2r: separating the coincident pair)", "overlap at the end, m", 0, all_touching, 0, NULL},
+    {"overlap_start", "deepest overlap (m) 10 steps after two balls start half a radius deep and two coincident",
+     "1e-7 m (slop; rbsim.h: the next step separates)", NULL, 0, overlap_start, 0, NULL},
+    {"denormal_speed", "|x - v T| (m) of a ball at 1e-310 m/s for 1 s, plus drift of a resting ball nudged at 1e-310 m/s",
+     "1000 subnormal roundings + 1e-7 m", NULL, 0, denormal, 0, NULL},
+    {"long_bounce_1e7", "largest |E - E0|/E0 over 1e7 steps (1e4 s) of an elastic bouncing ball",
+     "2 v dt / h = 8.9e-3 (one step's energy; event 1e-9)", "|E - E0|/E0 at the end", 1, long_bounce, 0, NULL},
+    {"long_rest_1e7", "displacement (m) of a ball resting on the floor for 1e7 steps (1e4 s)",
+     "1e-7 m (slop)", NULL, 1, long_rest, 0, NULL},
+};
+
+const xcase *xcases(uint32_t *n)
+{
+    *n = (uint32_t)(sizeof cases / sizeof cases[0]);
+    return cases;
+}
+
+int xres_pass(const xres *r) { return !r->failed && !r->skipped && r->value <= r->bound; }
