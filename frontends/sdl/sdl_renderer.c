@@ -187,6 +187,15 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     if (r->dir == NULL || r->file == NULL)
         return say(err, errlen, RBS_E_MEMORY, "out of memory");
     strcpy(r->dir, path);
+    {
+        /* A folder's name taken by a file is found before anything is made. */
+        struct stat sb;
+        if (stat(path, &sb) == 0 && !S_ISDIR(sb.st_mode)) {
+            char m[600];
+            snprintf(m, sizeof m, "path: \"%s\" exists and is not a folder", path);
+            return say(err, errlen, RBS_E_IO, m);
+        }
+    }
 
     /* Window: decided here, opened at the first draw (on its own thread). */
     if (r->cfg.window == RBSF__WINDOW_ON && !has_display())

@@ -250,6 +250,22 @@ static void test_io_error(void **state)
     assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
     assert_null(inst);
     assert_non_null(strstr(err, "path:"));
+    /* check() finds it too, before anything is made. */
+    {
+        rbs_renderer_config c;
+        memset(&c, 0, sizeof c);
+        c.struct_size = sizeof c;
+        c.type = "sdl";
+        c.path = path;
+        c.json = "{\"window\":false}";
+        err[0] = '\0';
+        assert_int_equal(rbsf_sdl_class()->check(NULL, &c, NULL, err, sizeof err), RBS_E_IO);
+    }
+    /* And a file in the way deeper down. */
+    snprintf(path, sizeof path, "%s/blocker/sub", tu_dir("a_file_dir"));
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
+    assert_null(inst);
+    assert_non_null(strstr(err, "path:"));
     assert_non_null(strstr(err, "blocker"));
 }
 
