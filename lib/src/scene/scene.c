@@ -22,6 +22,20 @@ char *rbs__strdup(const char *s)
     return d;
 }
 
+void rbs__c_locale_push(rbs__locale *l)
+{
+    l->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+    l->old = l->c != (locale_t)0 ? uselocale(l->c) : (locale_t)0;
+}
+
+void rbs__c_locale_pop(rbs__locale *l)
+{
+    if (l->c != (locale_t)0) {
+        uselocale(l->old);
+        freelocale(l->c);
+    }
+}
+
 rbs_scene *rbs__scene_new(void)
 {
     rbs_scene *scene = calloc(1, sizeof *scene);
@@ -259,8 +273,8 @@ static rbs_status scene_result(rbs_scene *scene, rbs_status io, rbs_scene **out)
     return scene->error_count > 0 ? RBS_E_SCENE : RBS_OK;
 }
 
-rbs_status rbs_scene_parse_json(const char *text, size_t len, const char *name,
-                                rbs_scene **out)
+static rbs_status scene_parse_json(const char *text, size_t len, const char *name,
+                                   rbs_scene **out)
 {
     rbs_scene *scene;
     int32_t file;
@@ -290,7 +304,7 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
-rbs_status rbs_scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
+static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
 {
     rbs_scene *scene;
     struct stat st;
@@ -538,8 +552,8 @@ int32_t rbs_scene_pause_on_collision(const rbs_scene *scene)
     return scene != NULL ? scene->pause_on_collision : 0;
 }
 
-rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
-                              const char *method)
+static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
+                                 const char *method)
 {
     rbs__loc none = {-1, 0, 0};
     uint64_t new_steps;
@@ -621,8 +635,8 @@ rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
     return RBS_OK;
 }
 
-rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
-                          rbs_scene_format format)
+static rbs_status scene_save(const rbs_scene *scene, const char *path,
+                             rbs_scene_format format)
 {
     if (scene == NULL || path == NULL) {
         return RBS_E_INVALID;
@@ -641,4 +655,49 @@ rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
         return rbs__scene_save_text(scene, path);
     }
     return RBS_E_INVALID;
+}
+
+/* The public entry points that read or write numbers, in the "C" locale. */
+
+rbs_status rbs_scene_parse_json(const char *text, size_t len, const char *name,
+                                rbs_scene **out)
+{
+    rbs__locale l;
+    rbs_status st;
+    rbs__c_locale_push(&l);
+    st = scene_parse_json(text, len, name, out);
+    rbs__c_locale_pop(&l);
+    return st;
+}
+
+rbs_status rbs_scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
+{
+    rbs__locale l;
+    rbs_status st;
+    rbs__c_locale_push(&l);
+    st = scene_load(path, format, out);
+    rbs__c_locale_pop(&l);
+    return st;
+}
+
+rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
+                          rbs_scene_format format)
+{
+    rbs__locale l;
+    rbs_status st;
+    rbs__c_locale_push(&l);
+    st = scene_save(scene, path, format);
+    rbs__c_locale_pop(&l);
+    return st;
+}
+
+rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
+                              const char *method)
+{
+    rbs__locale l;
+    rbs_status st;
+    rbs__c_locale_push(&l);
+    st = scene_override(scene, steps, dt, method);
+    rbs__c_locale_pop(&l);
+    return st;
 }

@@ -12,6 +12,7 @@
 #define RBS_SCENE_INTERNAL_H
 
 #include <cjson/cJSON.h>
+#include <locale.h>
 
 #include "rbsim/reel.h"
 #include "rbsim/scene.h"
@@ -162,6 +163,19 @@ const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item);
  * file).  On a syntax error records it and returns nonzero. */
 int rbs__json_parse(rbs_scene *scene, const rbs__src *src, int32_t file,
                     rbs__posmap *map, cJSON **tree);
+
+/** Parse JSON text (strict, as above) without positions or messages; NULL
+ * if invalid.  For re-reading text this module wrote. */
+cJSON *rbs__json_tree(const char *text, size_t len);
+
+/* scene.c: numbers are read and written in the "C" locale whatever the
+ * process's LC_NUMERIC; per thread (uselocale), so other threads are not
+ * affected. */
+typedef struct rbs__locale {
+    locale_t c, old;
+} rbs__locale;
+void rbs__c_locale_push(rbs__locale *l);
+void rbs__c_locale_pop(rbs__locale *l);
 
 /* scene_text.c: config.txt + materials.txt + objects.txt -> tree + positions */
 rbs_status rbs__text_load(rbs_scene *scene, const char *path);

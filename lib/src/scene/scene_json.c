@@ -1,14 +1,15 @@
 /*
  * scene_json.c - JSON text to a cJSON tree plus the place of every value.
  *
- * cJSON keeps no positions, so a small scanner of our own first walks the raw
- * text in document order.  It checks the grammar strictly (RFC 8259: no
- * trailing text, no NaN, no raw control characters, paired surrogates),
- * limits nesting to RBS__SCENE_DEPTH_MAX before anything recurses deeply, and
- * records the byte offset of every value and key.  cJSON then builds the tree
- * from the same text; since it keeps members in document order, a pre-order
- * walk of the tree meets the items in the order the scanner saw them, which
- * maps every item to its offset.  No cJSON global state is read or set.
+ * cJSON keeps no positions, and its parser writes a global error variable on
+ * every call (a data race when two threads load scenes).  So the text is read
+ * by a small recursive-descent parser of our own, which checks the grammar
+ * strictly (RFC 8259: no trailing text, no NaN, no raw control characters,
+ * paired surrogates), limits nesting to RBS__SCENE_DEPTH_MAX before it
+ * recurses deeply, builds the cJSON tree with cJSON's constructors (which
+ * touch no global state), and records the byte offset of every value and key
+ * in the position map as it goes.  Numbers are converted by strtod under the
+ * "C" locale (set per thread by the callers, see rbs__c_locale_push).
  */
 #include "scene/scene_internal.h"
 
@@ -16,18 +17,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct json_event {
-    uint32_t off, len; /* token start and length (strings: with quotes) */
-    int32_t is_key;
-} json_event;
-
 typedef struct json_scan {
     const char *s;
     size_t len, i;
-    json_event *ev;
-    size_t ev_count, ev_cap;
-    int failed;  /* a syntax error was found */
-    int nomem;
+    rbs__posmap *map; /* NULL: no positions */
+    int32_t file;
+    int failed; /* a syntax error was found (or memory ran out) */
     size_t err_off;
     char err[160];
     char path[256];
@@ -44,23 +39,26 @@ static void scan_fail(json_scan *sc, size_t off, const char *msg)
     snprintf(sc->err, sizeof sc->err, "%s", msg);
 }
 
-static int scan_event(json_scan *sc, size_t off, size_t len, int is_key)
+/* Record where an item came from. */
+static int scan_record(json_scan *sc, const cJSON *item, size_t off, size_t len,
+                       int has_key, size_t key_off)
 {
-    if (sc->ev_count == sc->ev_cap) {
-        size_t cap = sc->ev_cap ? sc->ev_cap * 2 : 256;
-        json_event *ev = realloc(sc->ev, cap * sizeof *ev);
-        if (ev == NULL) {
-            sc->nomem = 1;
-            scan_fail(sc, off, "out of memory");
-            return -1;
-        }
-        sc->ev = ev;
-        sc->ev_cap = cap;
+    rbs__pos pos;
+    if (sc->map == NULL) {
+        return 0;
     }
-    sc->ev[sc->ev_count].off = (uint32_t)off;
-    sc->ev[sc->ev_count].len = (uint32_t)len;
-    sc->ev[sc->ev_count].is_key = is_key;
-    sc->ev_count++;
+    memset(&pos, 0, sizeof pos);
+    pos.item = item;
+    pos.file = sc->file;
+    pos.value_off = (uint32_t)off;
+    pos.raw_off = (uint32_t)off;
+    pos.raw_len = (uint32_t)len;
+    pos.has_key = has_key;
+    pos.key_off = (uint32_t)key_off;
+    if (rbs__posmap_put(sc->map, &pos) != 0) {
+        scan_fail(sc, off, "out of memory");
+        return -1;
+    }
     return 0;
 }
 
@@ -137,21 +135,62 @@ static long scan_u4(json_scan *sc)
     return v;
 }
 
-static int scan_string(json_scan *sc, int is_key)
+/* Append code point u as UTF-8. */
+static size_t put_utf8(char *out, unsigned long u)
 {
-    size_t start = sc->i;
+    if (u < 0x80) {
+        out[0] = (char)u;
+        return 1;
+    }
+    if (u < 0x800) {
+        out[0] = (char)(0xC0 | (u >> 6));
+        out[1] = (char)(0x80 | (u & 0x3F));
+        return 2;
+    }
+    if (u < 0x10000) {
+        out[0] = (char)(0xE0 | (u >> 12));
+        out[1] = (char)(0x80 | ((u >> 6) & 0x3F));
+        out[2] = (char)(0x80 | (u & 0x3F));
+        return 3;
+    }
+    out[0] = (char)(0xF0 | (u >> 18));
+    out[1] = (char)(0x80 | ((u >> 12) & 0x3F));
+    out[2] = (char)(0x80 | ((u >> 6) & 0x3F));
+    out[3] = (char)(0x80 | (u & 0x3F));
+    return 4;
+}
+
+/* A string token at sc->i (the opening quote), decoded into a new buffer
+ * (*out, NUL-terminated; never longer than the token). */
+static int scan_string(json_scan *sc, char **out)
+{
+    size_t start = sc->i, k = 0, j = start + 1;
+    char *buf;
+    *out = NULL;
+    /* the decoded text is never longer than the raw token */
+    while (j < sc->len && sc->s[j] != '"') {
+        j += sc->s[j] == '\\' ? 2 : 1;
+    }
+    buf = malloc((j < sc->len ? j : sc->len) - start + 1);
+    if (buf == NULL) {
+        scan_fail(sc, start, "out of memory");
+        return -1;
+    }
     sc->i++; /* opening quote */
     while (sc->i < sc->len) {
         unsigned char c = (unsigned char)sc->s[sc->i];
         if (c == '"') {
             sc->i++;
-            return scan_event(sc, start, sc->i - start, is_key);
+            buf[k] = '\0';
+            *out = buf;
+            return 0;
         }
         if (c < 0x20) {
             scan_fail(sc, sc->i, c == '\n' ? "unterminated string (newline inside "
                                              "a string)"
                                            : "control character inside a string "
                                              "(write it as an escape)");
+            free(buf);
             return -1;
         }
         if (c == '\\') {
@@ -161,28 +200,31 @@ static int scan_string(json_scan *sc, int is_key)
             }
             e = sc->s[sc->i + 1];
             if (e == 'u') {
-                long u;
+                long u, lo;
                 sc->i++;
                 u = scan_u4(sc);
                 if (u < 0) {
                     scan_fail(sc, sc->i - 1, "invalid \\u escape: expected 4 hex digits");
+                    free(buf);
                     return -1;
                 }
                 if (u == 0) {
                     scan_fail(sc, sc->i - 1, "\\u0000 is not allowed in strings");
+                    free(buf);
                     return -1;
                 }
                 if (u >= 0xDC00 && u <= 0xDFFF) {
                     scan_fail(sc, sc->i - 1, "invalid \\u escape: unpaired low surrogate");
+                    free(buf);
                     return -1;
                 }
                 sc->i += 5;
                 if (u >= 0xD800 && u <= 0xDBFF) {
-                    long lo;
                     if (sc->i + 1 >= sc->len || sc->s[sc->i] != '\\' ||
                         sc->s[sc->i + 1] != 'u') {
                         scan_fail(sc, sc->i - 6,
                                   "invalid \\u escape: unpaired high surrogate");
+                        free(buf);
                         return -1;
                     }
                     sc->i++;
@@ -190,36 +232,55 @@ static int scan_string(json_scan *sc, int is_key)
                     if (lo < 0xDC00 || lo > 0xDFFF) {
                         scan_fail(sc, sc->i - 7,
                                   "invalid \\u escape: unpaired high surrogate");
+                        free(buf);
                         return -1;
                     }
                     sc->i += 5;
+                    u = 0x10000 + ((u - 0xD800) << 10) + (lo - 0xDC00);
                 }
+                k += put_utf8(buf + k, (unsigned long)u);
                 continue;
             }
-            if (strchr("\"\\/bfnrt", e) == NULL || e == '\0') {
+            switch (e) {
+            case '"': buf[k++] = '"'; break;
+            case '\\': buf[k++] = '\\'; break;
+            case '/': buf[k++] = '/'; break;
+            case 'b': buf[k++] = '\b'; break;
+            case 'f': buf[k++] = '\f'; break;
+            case 'n': buf[k++] = '\n'; break;
+            case 'r': buf[k++] = '\r'; break;
+            case 't': buf[k++] = '\t'; break;
+            default: {
                 char msg[80];
                 char got[32];
                 describe_char(sc, sc->i + 1, got, sizeof got);
                 snprintf(msg, sizeof msg, "invalid escape in string: \\ followed by %s",
                          got);
                 scan_fail(sc, sc->i, msg);
+                free(buf);
                 return -1;
+            }
             }
             sc->i += 2;
             continue;
         }
+        buf[k++] = (char)c;
         sc->i++;
     }
     scan_fail(sc, start, "unterminated string (truncated JSON?)");
+    free(buf);
     return -1;
 }
 
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 
-static int scan_number(json_scan *sc)
+/* A number token; *value gets strtod's reading (inf on overflow: the
+ * validator reports it with the raw text). */
+static int scan_number(json_scan *sc, double *value)
 {
     size_t start = sc->i;
     const char *s = sc->s;
+    char buf[RBS__SCENE_NUMBER_MAX + 1];
     if (sc->i < sc->len && s[sc->i] == '-') {
         sc->i++;
     }
@@ -271,20 +332,22 @@ static int scan_number(json_scan *sc)
         scan_fail(sc, start, "number literal longer than 63 characters");
         return -1;
     }
-    return scan_event(sc, start, sc->i - start, 0);
+    memcpy(buf, s + start, sc->i - start);
+    buf[sc->i - start] = '\0';
+    *value = strtod(buf, NULL);
+    return 0;
 }
 
 static int scan_literal(json_scan *sc, const char *word)
 {
     size_t n = strlen(word);
-    size_t start = sc->i;
     if (sc->len - sc->i < n || memcmp(sc->s + sc->i, word, n) != 0) {
         fail_expected(sc, "a value (object, array, string, number, true, false "
                           "or null)");
         return -1;
     }
     sc->i += n;
-    return scan_event(sc, start, n, 0);
+    return 0;
 }
 
 static void path_index(json_scan *sc, size_t *saved, unsigned long index)
@@ -302,19 +365,14 @@ static void path_index(json_scan *sc, size_t *saved, unsigned long index)
     }
 }
 
-static void path_key(json_scan *sc, size_t *saved, size_t key_off, size_t key_len)
+static void path_key(json_scan *sc, size_t *saved, const char *key)
 {
-    size_t k;
     *saved = sc->path_len;
     if (sc->path_len > 0 && sc->path_len + 1 < sizeof sc->path) {
         sc->path[sc->path_len++] = '.';
     }
-    /* the raw key without quotes (escapes kept as written) */
-    for (k = key_off + 1; k + 1 < key_off + key_len; k++) {
-        if (sc->path_len + 1 >= sizeof sc->path) {
-            break;
-        }
-        sc->path[sc->path_len++] = sc->s[k];
+    for (; *key != '\0' && sc->path_len + 1 < sizeof sc->path; key++) {
+        sc->path[sc->path_len++] = *key;
     }
     sc->path[sc->path_len] = '\0';
 }
@@ -325,9 +383,21 @@ static void path_restore(json_scan *sc, size_t saved)
     sc->path[saved] = '\0';
 }
 
-static int scan_value(json_scan *sc, int depth);
+static cJSON *scan_value(json_scan *sc, int depth, int has_key, size_t key_off);
 
-static int scan_object(json_scan *sc, int depth)
+/* Attach item to parent (array if key is NULL); on failure frees item. */
+static int attach(json_scan *sc, cJSON *parent, const char *key, cJSON *item)
+{
+    if (key != NULL ? !cJSON_AddItemToObject(parent, key, item)
+                    : !cJSON_AddItemToArray(parent, item)) {
+        cJSON_Delete(item);
+        scan_fail(sc, sc->i, "out of memory");
+        return -1;
+    }
+    return 0;
+}
+
+static int scan_object(json_scan *sc, int depth, cJSON *obj)
 {
     sc->i++; /* { */
     skip_ws(sc);
@@ -337,25 +407,31 @@ static int scan_object(json_scan *sc, int depth)
     }
     for (;;) {
         size_t key_off, saved;
+        char *key;
+        cJSON *item;
         skip_ws(sc);
         if (sc->i >= sc->len || sc->s[sc->i] != '"') {
             fail_expected(sc, "a string key in double quotes");
             return -1;
         }
         key_off = sc->i;
-        if (scan_string(sc, 1) != 0) {
+        if (scan_string(sc, &key) != 0) {
             return -1;
         }
-        path_key(sc, &saved, key_off, sc->i - key_off);
+        path_key(sc, &saved, key);
         skip_ws(sc);
         if (sc->i >= sc->len || sc->s[sc->i] != ':') {
             fail_expected(sc, "':' after the key");
+            free(key);
             return -1;
         }
         sc->i++;
-        if (scan_value(sc, depth) != 0) {
+        item = scan_value(sc, depth, 1, key_off);
+        if (item == NULL || attach(sc, obj, key, item) != 0) {
+            free(key);
             return -1;
         }
+        free(key);
         path_restore(sc, saved);
         skip_ws(sc);
         if (sc->i < sc->len && sc->s[sc->i] == ',') {
@@ -371,7 +447,7 @@ static int scan_object(json_scan *sc, int depth)
     }
 }
 
-static int scan_array(json_scan *sc, int depth)
+static int scan_array(json_scan *sc, int depth, cJSON *arr)
 {
     unsigned long index = 0;
     sc->i++; /* [ */
@@ -382,8 +458,10 @@ static int scan_array(json_scan *sc, int depth)
     }
     for (;;) {
         size_t saved;
+        cJSON *item;
         path_index(sc, &saved, index++);
-        if (scan_value(sc, depth) != 0) {
+        item = scan_value(sc, depth, 0, 0);
+        if (item == NULL || attach(sc, arr, NULL, item) != 0) {
             return -1;
         }
         path_restore(sc, saved);
@@ -401,177 +479,150 @@ static int scan_array(json_scan *sc, int depth)
     }
 }
 
-static int scan_value(json_scan *sc, int depth)
+/* One value at sc->i: a new item (recorded), or NULL after scan_fail. */
+static cJSON *scan_value(json_scan *sc, int depth, int has_key, size_t key_off)
 {
     char c;
+    size_t start;
+    cJSON *item = NULL;
     skip_ws(sc);
     if (sc->i >= sc->len) {
         fail_expected(sc, "a value");
-        return -1;
+        return NULL;
     }
+    start = sc->i;
     c = sc->s[sc->i];
     if (c == '{' || c == '[') {
+        int r;
         if (depth >= RBS__SCENE_DEPTH_MAX) {
             char msg[80];
             snprintf(msg, sizeof msg, "nesting deeper than %d levels",
                      RBS__SCENE_DEPTH_MAX);
             scan_fail(sc, sc->i, msg);
-            return -1;
+            return NULL;
         }
-        if (scan_event(sc, sc->i, 1, 0) != 0) {
-            return -1;
+        item = c == '{' ? cJSON_CreateObject() : cJSON_CreateArray();
+        if (item == NULL) {
+            scan_fail(sc, start, "out of memory");
+            return NULL;
         }
-        return c == '{' ? scan_object(sc, depth + 1) : scan_array(sc, depth + 1);
+        if (scan_record(sc, item, start, 1, has_key, key_off) != 0) {
+            cJSON_Delete(item);
+            return NULL;
+        }
+        r = c == '{' ? scan_object(sc, depth + 1, item) : scan_array(sc, depth + 1, item);
+        if (r != 0) {
+            cJSON_Delete(item);
+            return NULL;
+        }
+        return item;
     }
     if (c == '"') {
-        return scan_string(sc, 0);
-    }
-    if (c == '-' || is_digit(c)) {
-        return scan_number(sc);
-    }
-    if (c == 'N' || c == 'I') {
+        char *str;
+        if (scan_string(sc, &str) != 0) {
+            return NULL;
+        }
+        item = cJSON_CreateString(str);
+        free(str);
+    } else if (c == '-' || is_digit(c)) {
+        double x;
+        if (scan_number(sc, &x) != 0) {
+            return NULL;
+        }
+        item = cJSON_CreateNumber(x);
+    } else if (c == 'N' || c == 'I') {
         scan_fail(sc, sc->i, "NaN and Infinity are not JSON numbers; numbers must "
                              "be finite");
-        return -1;
-    }
-    if (c == 't') {
-        return scan_literal(sc, "true");
-    }
-    if (c == 'f') {
-        return scan_literal(sc, "false");
-    }
-    if (c == 'n') {
-        return scan_literal(sc, "null");
-    }
-    if (c == '}' || c == ']') {
+        return NULL;
+    } else if (c == 't' || c == 'f' || c == 'n') {
+        const char *word = c == 't' ? "true" : c == 'f' ? "false" : "null";
+        if (scan_literal(sc, word) != 0) {
+            return NULL;
+        }
+        item = c == 't' ? cJSON_CreateTrue() : c == 'f' ? cJSON_CreateFalse()
+                                                        : cJSON_CreateNull();
+    } else if (c == '}' || c == ']') {
         fail_expected(sc, "a value (trailing comma?)");
-        return -1;
+        return NULL;
+    } else {
+        fail_expected(sc, "a value (object, array, string, number, true, false or "
+                          "null)");
+        return NULL;
     }
-    fail_expected(sc, "a value (object, array, string, number, true, false or "
-                      "null)");
-    return -1;
+    if (item == NULL) {
+        scan_fail(sc, start, "out of memory");
+        return NULL;
+    }
+    if (scan_record(sc, item, start, sc->i - start, has_key, key_off) != 0) {
+        cJSON_Delete(item);
+        return NULL;
+    }
+    return item;
 }
 
-/* Pre-order walk of the tree, taking one scanner event per value and key. */
-typedef struct json_walk {
-    const json_scan *sc;
-    size_t next;
-    rbs__posmap *map;
-    int32_t file;
-    int failed;
-} json_walk;
-
-static void walk_item(json_walk *w, const cJSON *item, const json_event *key)
+/* Parse a whole text; NULL after scan_fail. */
+static cJSON *scan_document(json_scan *sc)
 {
-    rbs__pos pos;
-    const json_event *ev;
-    const cJSON *child;
-    if (w->failed) {
-        return;
+    cJSON *root;
+    /* a UTF-8 byte order mark is skipped */
+    if (sc->len >= 3 && memcmp(sc->s, "\xEF\xBB\xBF", 3) == 0) {
+        sc->i = 3;
     }
-    if (w->next >= w->sc->ev_count || w->sc->ev[w->next].is_key) {
-        w->failed = 1;
-        return;
+    skip_ws(sc);
+    if (sc->i >= sc->len) {
+        scan_fail(sc, sc->i, "empty input: expected a JSON object");
+        return NULL;
     }
-    ev = &w->sc->ev[w->next++];
-    memset(&pos, 0, sizeof pos);
-    pos.item = item;
-    pos.file = w->file;
-    pos.value_off = ev->off;
-    pos.raw_off = ev->off;
-    pos.raw_len = ev->len;
-    if (key != NULL) {
-        pos.key_off = key->off;
-        pos.has_key = 1;
+    root = scan_value(sc, 0, 0, 0);
+    if (root == NULL) {
+        return NULL;
     }
-    if (rbs__posmap_put(w->map, &pos) != 0) {
-        w->failed = 1;
-        return;
+    skip_ws(sc);
+    if (sc->i < sc->len) {
+        char got[32], msg[96];
+        describe_char(sc, sc->i, got, sizeof got);
+        snprintf(msg, sizeof msg, "unexpected %s after the end of the JSON value", got);
+        scan_fail(sc, sc->i, msg);
+        cJSON_Delete(root);
+        return NULL;
     }
-    for (child = item->child; child != NULL; child = child->next) {
-        const json_event *k = NULL;
-        if (cJSON_IsObject(item)) {
-            if (w->next >= w->sc->ev_count || !w->sc->ev[w->next].is_key) {
-                w->failed = 1;
-                return;
-            }
-            k = &w->sc->ev[w->next++];
-        }
-        walk_item(w, child, k);
-    }
+    return root;
 }
 
 int rbs__json_parse(rbs_scene *scene, const rbs__src *src, int32_t file,
                     rbs__posmap *map, cJSON **tree)
 {
     json_scan sc;
-    const char *end = NULL;
-    cJSON *root;
-    json_walk w;
     *tree = NULL;
     memset(&sc, 0, sizeof sc);
     sc.s = src->text;
     sc.len = src->len;
+    sc.map = map;
+    sc.file = file;
     if (src->len > RBS__SCENE_FILE_MAX) {
         rbs__scene_error(scene, rbs__src_loc(src, file, 0), "",
                          "scene is larger than %lu bytes",
                          (unsigned long)RBS__SCENE_FILE_MAX);
         return -1;
     }
-    /* a UTF-8 byte order mark is skipped, as cJSON does */
-    if (sc.len >= 3 && memcmp(sc.s, "\xEF\xBB\xBF", 3) == 0) {
-        sc.i = 3;
+    if (rbs__posmap_init(map, src->len / 8 + 16) != 0) {
+        rbs__scene_error(scene, rbs__src_loc(src, file, 0), "", "out of memory");
+        return -1;
     }
-    skip_ws(&sc);
-    if (sc.i >= sc.len) {
-        scan_fail(&sc, sc.i, "empty input: expected a JSON object");
-    } else if (scan_value(&sc, 0) == 0) {
-        skip_ws(&sc);
-        if (sc.i < sc.len) {
-            char got[32], msg[96];
-            describe_char(&sc, sc.i, got, sizeof got);
-            snprintf(msg, sizeof msg, "unexpected %s after the end of the JSON value",
-                     got);
-            scan_fail(&sc, sc.i, msg);
-        }
-    }
-    if (sc.failed) {
+    *tree = scan_document(&sc);
+    if (*tree == NULL) {
         rbs__scene_error(scene, rbs__src_loc(src, file, sc.err_off), sc.path, "%s",
                          sc.err);
-        free(sc.ev);
         return -1;
     }
-    root = cJSON_ParseWithLengthOpts(src->text, src->len, &end, 0);
-    if (root == NULL) {
-        size_t off = end != NULL && end >= src->text && end <= src->text + src->len
-                         ? (size_t)(end - src->text)
-                         : 0;
-        rbs__scene_error(scene, rbs__src_loc(src, file, off), "",
-                         "malformed JSON (or out of memory)");
-        free(sc.ev);
-        return -1;
-    }
-    if (rbs__posmap_init(map, sc.ev_count) != 0) {
-        rbs__scene_error(scene, rbs__src_loc(src, file, 0), "", "out of memory");
-        cJSON_Delete(root);
-        free(sc.ev);
-        return -1;
-    }
-    w.sc = &sc;
-    w.next = 0;
-    w.map = map;
-    w.file = file;
-    w.failed = 0;
-    walk_item(&w, root, NULL);
-    if (w.failed || w.next != sc.ev_count) {
-        rbs__scene_error(scene, rbs__src_loc(src, file, 0), "",
-                         "internal error: positions do not match the parsed tree "
-                         "(or out of memory)");
-        cJSON_Delete(root);
-        free(sc.ev);
-        return -1;
-    }
-    free(sc.ev);
-    *tree = root;
     return 0;
+}
+
+cJSON *rbs__json_tree(const char *text, size_t len)
+{
+    json_scan sc;
+    memset(&sc, 0, sizeof sc);
+    sc.s = text;
+    sc.len = len;
+    return scan_document(&sc);
 }

@@ -365,7 +365,7 @@ static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *
 
 static rbs_status put_renderer(FILE *f, const rbs__scene_renderer *r)
 {
-    cJSON *root = cJSON_Parse(r->json);
+    cJSON *root = rbs__json_tree(r->json, strlen(r->json));
     const cJSON *c;
     char prefix[512];
     rbs_status st = RBS_OK;
