@@ -1,0 +1,356 @@
+/*
+ * test_badvalues.c - bad values at run time, for every method.
+ *
+ * A NaN or infinite value arriving through the API is refused (RBS_E_NUMERIC
+ * or RBS_E_INVALID) and leaves the world bit-identical; a step whose result
+ * overflows returns RBS_E_NUMERIC and leaves the world at its last good state
+ * (same hash, same step count, every state value finite), and keeps doing so
+ * when stepped again; NaN never reaches an output (state view, body state,
+ * energy, momentum, checkpoint).
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "rbsim/rbsim.h"
+
+#define CHECK_OK(call)                                                          \
+    do {                                                                        \
+        rbs_status st_ = (call);                                                \
+        if (st_ != RBS_OK)                                                      \
+            fail_msg("%s -> %s", #call, rbs_status_name(st_));                  \
+    } while (0)
+
+static rbs_world *new_world(rbs_method m, double gz, int mutual)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_status st;
+    rbs_world_def_init(&d);
+    d.max_bodies = 8;
+    d.gravity.z = gz;
+    d.restitution = 1.0;
+    d.mutual_gravity = mutual;
+    d.gravity_constant = 1.0;
+    CHECK_OK(rbs_world_create(&d, &w));
+    st = rbs_world_set_method(w, m, 0.0);
+    if (st == RBS_E_UNSUPPORTED) {
+        rbs_world_destroy(w);
+        return NULL;
+    }
+    CHECK_OK(st);
+    return w;
+}
+
+static rbs_body_id add_ball(rbs_world *w, double r, double mass, rbs_vec3 p, rbs_vec3 v, rbs_vec3 f)
+{
+    rbs_sphere_def s;
+    rbs_body_id id;
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.mass = mass;
+    s.position = p;
+    s.velocity = v;
+    s.force = f;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    return id;
+}
+
+static rbs_vec3 V(double x, double y, double z)
+{
+    rbs_vec3 v;
+    v.x = x;
+    v.y = y;
+    v.z = z;
+    return v;
+}
+
+/* Every double of the state is finite; with diagnostics, energy and
+ * momentum are an error or a number, never NaN. */
+static void assert_outputs_clean_ex(const rbs_world *w, const char *where, int diagnostics)
+{
+    rbs_state_view v;
+    rbs_energy e;
+    rbs_vec3 p, l;
+    uint32_t i;
+    int k;
+    CHECK_OK(rbs_world_state(w, &v));
+    for (i = 0; i < v.slots; ++i) {
+        for (k = 0; k < 3; ++k)
+            if (!isfinite(v.position[3 * i + k]) || !isfinite(v.velocity[3 * i + k]) ||
+                !isfinite(v.angular_velocity[3 * i + k]))
+                fail_msg("%s: state view slot %u holds a non-finite value", where, (unsigned)i);
+        for (k = 0; k < 4; ++k)
+            if (!isfinite(v.orientation[4 * i + k]))
+                fail_msg("%s: orientation of slot %u is not finite", where, (unsigned)i);
+    }
+    if (!diagnostics)
+        return;
+    /* diagnostics: an error or a number, never NaN */
+    if (rbs_world_energy(w, &e) == RBS_OK && (isnan(e.kinetic) || isnan(e.potential) || isnan(e.total)))
+        fail_msg("%s: rbs_world_energy returned RBS_OK with NaN (kinetic %g, potential %g, total %g)", where,
+                 e.kinetic, e.potential, e.total);
+    if (rbs_world_momentum(w, &p, &l) == RBS_OK &&
+        (isnan(p.x) || isnan(p.y) || isnan(p.z) || isnan(l.x) || isnan(l.y) || isnan(l.z)))
+        fail_msg("%s: rbs_world_momentum returned RBS_OK with NaN (P %g %g %g, L %g %g %g)", where, p.x, p.y,
+                 p.z, l.x, l.y, l.z);
+}
+
+static void assert_outputs_clean(const rbs_world *w, const char *where)
+{
+    assert_outputs_clean_ex(w, where, 1);
+}
+
+/* Step up to n times.  Each step is RBS_OK or RBS_E_NUMERIC; a failing step
+ * leaves hash and step count as they were, repeats the failure when stepped
+ * again, and names the body.  Returns the number of failed steps seen (the
+ * loop stops at the first). */
+static int unnamed_errors; /* test-local tally: errors that name no body */
+
+static int step_guarded(rbs_world *w, int n, const char *what)
+{
+    int k;
+    for (k = 0; k < n; ++k) {
+        uint64_t h = rbs_world_hash(w), c = rbs_world_step_count(w);
+        rbs_status st = rbs_world_step(w, NULL);
+        if (st == RBS_OK) {
+            assert_outputs_clean_ex(w, what, 0); /* diagnostics: see diagnostics_never_nan */
+            continue;
+        }
+        if (st == RBS_E_UNSUPPORTED) {
+            print_message("[ SKIP     ] %s: %s\n", what, rbs_world_last_error(w));
+            return -1;
+        }
+        if (st != RBS_E_NUMERIC)
+            fail_msg("%s: step %d returned %s (%s), expected OK or E_NUMERIC", what, k + 1, rbs_status_name(st),
+                     rbs_world_last_error(w));
+        if (rbs_world_hash(w) != h || rbs_world_step_count(w) != c)
+            fail_msg("%s: failed step %d changed the world", what, k + 1);
+        if (strstr(rbs_world_last_error(w), "body") == NULL) {
+            print_error("%s: error text does not name the body: \"%s\"\n", what, rbs_world_last_error(w));
+            unnamed_errors++;
+        }
+        assert_outputs_clean_ex(w, what, 0);
+        /* stepping again fails again, the world still unchanged */
+        assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+        assert_true(rbs_world_hash(w) == h);
+        return 1;
+    }
+    return 0;
+}
+
+static const double bad_values[] = {NAN, INFINITY, -INFINITY};
+
+/* Setters and definitions refuse NaN and infinity; the world is unchanged. */
+static void setters_refuse_non_finite(void **state)
+{
+    int m;
+    (void)state;
+    for (m = 0; m < RBS_METHOD_COUNT; ++m) {
+        rbs_world *w = new_world((rbs_method)m, -9.81, 0);
+        rbs_body_id b;
+        rbs_sphere_def s;
+        rbs_plane_def p;
+        rbs_pair_def pd;
+        rbs_quat q;
+        size_t k;
+        uint64_t h;
+        if (!w)
+            continue;
+        b = add_ball(w, 0.1, 1.0, V(0, 0, 1), V(1, 0, 0), V(0, 0, 0));
+        CHECK_OK(rbs_world_step(w, NULL));
+        h = rbs_world_hash(w);
+        for (k = 0; k < sizeof bad_values / sizeof bad_values[0]; ++k) {
+            double x = bad_values[k];
+            int c;
+            for (c = 0; c < 3; ++c) {
+                rbs_vec3 v = V(0, 0, 0);
+                if (c == 0) v.x = x; else if (c == 1) v.y = x; else v.z = x;
+                assert_int_equal(rbs_body_set_position(w, b, v), RBS_E_NUMERIC);
+                assert_int_equal(rbs_body_set_velocity(w, b, v), RBS_E_NUMERIC);
+                assert_int_equal(rbs_body_set_angular_velocity(w, b, v), RBS_E_NUMERIC);
+                assert_int_equal(rbs_body_set_force(w, b, v), RBS_E_NUMERIC);
+                assert_int_equal(rbs_body_set_torque(w, b, v), RBS_E_NUMERIC);
+            }
+            q.w = x; q.x = 0; q.y = 0; q.z = 0;
+            assert_true(rbs_body_set_orientation(w, b, q) != RBS_OK);
+            assert_true(rbs_world_set_dt(w, x) != RBS_OK);
+            /* definitions */
+            rbs_sphere_def_init(&s);
+            s.radius = x;
+            assert_true(rbs_world_add_sphere(w, &s, NULL) != RBS_OK);
+            rbs_sphere_def_init(&s);
+            s.mass = x;
+            assert_true(rbs_world_add_sphere(w, &s, NULL) != RBS_OK);
+            rbs_sphere_def_init(&s);
+            s.position.y = x;
+            assert_true(rbs_world_add_sphere(w, &s, NULL) != RBS_OK);
+            rbs_sphere_def_init(&s);
+            s.angular_velocity.x = x;
+            assert_true(rbs_world_add_sphere(w, &s, NULL) != RBS_OK);
+            rbs_sphere_def_init(&s);
+            s.density = x;
+            assert_true(rbs_world_add_sphere(w, &s, NULL) != RBS_OK);
+            rbs_plane_def_init(&p);
+            p.normal.z = x;
+            assert_true(rbs_world_add_plane(w, &p, NULL) != RBS_OK);
+            rbs_plane_def_init(&p);
+            p.point.x = x;
+            assert_true(rbs_world_add_plane(w, &p, NULL) != RBS_OK);
+            rbs_pair_def_init(&pd);
+            pd.static_friction = x;
+            assert_true(rbs_world_set_pair(w, &pd) != RBS_OK);
+            /* (restitution -inf is "negative: the world's", accepted by design) */
+            rbs_pair_def_init(&pd);
+            pd.restitution = x;
+            assert_true(rbs_world_set_pair(w, &pd) != RBS_OK || x < 0.0);
+            assert_true(rbs_world_set_method(w, (rbs_method)m, x) != RBS_OK || isinf(x));
+        }
+        assert_true(rbs_world_hash(w) == h);
+        assert_int_equal(rbs_world_step_count(w), 1);
+        CHECK_OK(rbs_world_step(w, NULL));
+        assert_outputs_clean(w, "after refused setters");
+        rbs_world_destroy(w);
+    }
+}
+
+/* Overflow inside a step: huge force, huge speed, tiny mass, 1e308
+ * positions, a collision at 1e308 m/s, mutual gravity across 2e308 m. */
+static void overflow_restores_last_good_state(void **state)
+{
+    int m;
+    (void)state;
+    for (m = 0; m < RBS_METHOD_COUNT; ++m) {
+        rbs_world *w;
+        char what[96];
+        const char *name = rbs_method_name((rbs_method)m);
+
+        /* 1e308 N on 1 kg: v grows by 1e305 m/s per step, x overflows */
+        if ((w = new_world((rbs_method)m, 0.0, 0)) == NULL) {
+            print_message("[ SKIP     ] %s: method not available\n", name);
+            continue;
+        }
+        add_ball(w, 0.1, 1.0, V(0, 0, 0), V(0, 0, 0), V(1e308, 0, 0));
+        snprintf(what, sizeof what, "%s: huge force", name);
+        if (step_guarded(w, 3000, what) == 0)
+            fail_msg("%s: never overflowed", what);
+        rbs_world_destroy(w);
+
+        /* 1e308 m/s from x = 1e308: x overflows after ~800 steps */
+        w = new_world((rbs_method)m, 0.0, 0);
+        add_ball(w, 0.1, 1.0, V(1e308, 0, 0), V(1e308, 0, 0), V(0, 0, 0));
+        snprintf(what, sizeof what, "%s: huge speed", name);
+        if (step_guarded(w, 3000, what) == 0)
+            fail_msg("%s: never overflowed", what);
+        rbs_world_destroy(w);
+
+        /* 1e-300 kg pushed by 1e10 N: a = 1e310 m/s^2 is infinite at once */
+        w = new_world((rbs_method)m, 0.0, 0);
+        add_ball(w, 0.1, 1e-300, V(0, 0, 0), V(0, 0, 0), V(1e10, 0, 0));
+        snprintf(what, sizeof what, "%s: tiny mass", name);
+        if (step_guarded(w, 10, what) == 0)
+            fail_msg("%s: never overflowed", what);
+        rbs_world_destroy(w);
+
+        /* two balls at +-1e308 m/s meet: the relative speed overflows */
+        w = new_world((rbs_method)m, 0.0, 0);
+        add_ball(w, 0.1, 1.0, V(-0.11, 0, 0), V(1e308, 0, 0), V(0, 0, 0));
+        add_ball(w, 0.1, 1.0, V(0.11, 0, 0), V(-1e308, 0, 0), V(0, 0, 0));
+        snprintf(what, sizeof what, "%s: collision at 1e308 m/s", name);
+        step_guarded(w, 10, what);
+        rbs_world_destroy(w);
+
+        /* mutual gravity between bodies 2e308 m apart (the distance is inf) */
+        w = new_world((rbs_method)m, 0.0, 1);
+        if (w) {
+            add_ball(w, 0.1, 1.0, V(-1e308, 0, 0), V(0, 0, 0), V(0, 0, 0));
+            add_ball(w, 0.1, 1.0, V(1e308, 0, 0), V(0, 0, 0), V(0, 0, 0));
+            snprintf(what, sizeof what, "%s: mutual gravity across 2e308 m", name);
+            step_guarded(w, 10, what);
+            rbs_world_destroy(w);
+        }
+
+        /* a ball at 1e308 m resting on a plane through it under gravity */
+        w = new_world((rbs_method)m, -9.81, 0);
+        {
+            rbs_plane_def p;
+            rbs_plane_def_init(&p);
+            p.point = V(1e308, 1e308, 1e308);
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        }
+        add_ball(w, 0.1, 1.0, V(1e308, 1e308, 1e308), V(0, 0, 0), V(0, 0, 0));
+        snprintf(what, sizeof what, "%s: resting at 1e308 m", name);
+        step_guarded(w, 100, what);
+        rbs_world_destroy(w);
+    }
+    if (unnamed_errors)
+        fail_msg("%d overflow errors do not say which body overflowed", unnamed_errors);
+}
+
+/* Large but finite states must not turn diagnostics into NaN: a ball far
+ * below the origin (z = -1e308) moving fast (1e155 m/s, so v^2 overflows)
+ * has infinite kinetic and minus infinite potential energy; the sum is NaN
+ * unless the library guards it.  Likewise momentum of 1e200 kg at 1e200 m/s
+ * at x = 1 (0 * inf in the cross product). */
+static void diagnostics_never_nan(void **state)
+{
+    rbs_world *w = new_world(RBS_METHOD_EULER, -9.81, 0);
+    rbs_body_id b;
+    (void)state;
+    b = add_ball(w, 0.1, 1.0, V(0, 0, -1e308), V(0, 0, -1e155), V(0, 0, 0));
+    (void)b;
+    assert_outputs_clean(w, "energy at z = -1e308, v = 1e155");
+    rbs_world_destroy(w);
+    w = new_world(RBS_METHOD_EULER, 0.0, 0);
+    add_ball(w, 0.1, 1e200, V(1, 0, 0), V(1e200, 0, 0), V(0, 0, 0));
+    assert_outputs_clean(w, "momentum of 1e200 kg at 1e200 m/s");
+    rbs_world_destroy(w);
+    /* the state a huge force drives a ball into, one step before overflow */
+    w = new_world(RBS_METHOD_EULER, 0.0, 0);
+    add_ball(w, 0.1, 1.0, V(0, 0, 0), V(0, 0, 0), V(1e308, 0, 0));
+    while (rbs_world_step(w, NULL) == RBS_OK)
+        ;
+    assert_outputs_clean(w, "last good state under a 1e308 N force");
+    rbs_world_destroy(w);
+}
+
+/* A checkpoint of an extreme (finite) state restores it bit for bit, and
+ * the restored world fails the overflowing step the same way. */
+static void checkpoint_of_extreme_state(void **state)
+{
+    rbs_world *w = new_world(RBS_METHOD_EULER, 0.0, 0), *b = NULL;
+    size_t n;
+    unsigned char *buf;
+    (void)state;
+    add_ball(w, 1e-100, 1e-100, V(1.7976931348623157e308, -1.7e308, 4.9e-324), V(1e308, 0, -1e-310), V(0, 0, 0));
+    add_ball(w, 1e100, 1e100, V(0, 0, 0), V(0, 0, 0), V(0, 0, 0));
+    n = rbs_world_checkpoint_size(w);
+    buf = malloc(n);
+    assert_non_null(buf);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, n, NULL));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &b));
+    assert_true(rbs_world_hash(w) == rbs_world_hash(b));
+    assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+    assert_int_equal(rbs_world_step(b, NULL), RBS_E_NUMERIC);
+    assert_true(rbs_world_hash(w) == rbs_world_hash(b));
+    free(buf);
+    rbs_world_destroy(w);
+    rbs_world_destroy(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(setters_refuse_non_finite),
+        cmocka_unit_test(overflow_restores_last_good_state),
+        cmocka_unit_test(checkpoint_of_extreme_state),
+        cmocka_unit_test(diagnostics_never_nan),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
