@@ -128,7 +128,7 @@ int main(int argc, char **argv)
     const char *dir = argc > 1 ? argv[1] : "bench-sdl-out";
     const rbs_renderer_class *cls = rbsf_sdl_class();
     rbs_frame_body *bodies = malloc(1001 * sizeof *bodies);
-    float *depth = malloc((size_t)WIDTH * HEIGHT * sizeof *depth);
+    double *depth = malloc((size_t)WIDTH * HEIGHT * sizeof *depth);
     uint32_t *pixels = malloc((size_t)WIDTH * HEIGHT * sizeof *pixels);
     double *rx = malloc(WIDTH * sizeof *rx), *ry = malloc(HEIGHT * sizeof *ry);
     double render[RUNS], full[RUNS], brute[BRUTE_RUNS], checksum = 0.0;

@@ -163,7 +163,7 @@ void rbsf__camera_describe(const rbsf__camera *camera, char *out,
 typedef struct rbsf__canvas {
     uint32_t *pixels;   /**< top-left pixel of the view */
     size_t pitch;       /**< pixels per row of the underlying image */
-    float *depth;       /**< width*height, scratch */
+    double *depth;       /**< width*height, scratch */
     double *ray_x;      /**< width, scratch */
     double *ray_y;      /**< height, scratch */
 } rbsf__canvas;

@@ -123,10 +123,10 @@ static void clear(const rbsf__canvas *cv, uint32_t w, uint32_t h)
             (1 - s) * ((kSkyTop >> 8) & 0xff) + s * ((kSkyBottom >> 8) & 0xff),
             (1 - s) * (kSkyTop & 0xff) + s * (kSkyBottom & 0xff));
         uint32_t *row = cv->pixels + (size_t)j * cv->pitch;
-        float *depth = cv->depth + (size_t)j * w;
+        double *depth = cv->depth + (size_t)j * w;
         for (i = 0; i < w; i++) {
             row[i] = c;
-            depth[i] = FLT_MAX;
+            depth[i] = DBL_MAX;
         }
     }
 }
@@ -195,16 +195,16 @@ static void draw_plane(const rbsf__canvas *cv, const rbsf__view *v,
         double ry = cv->ray_y[j];
         double dny = ry * nc.y + nc.z;
         uint32_t *row = cv->pixels + (size_t)j * cv->pitch;
-        float *depth = cv->depth + (size_t)j * w;
+        double *depth = cv->depth + (size_t)j * w;
         for (i = 0; i < w; i++) {
             double rx = cv->ray_x[i];
             double den = rx * nc.x + dny, t, s, u, cells;
             int dark;
             if (den == 0.0) continue;
             t = num / den;
-            if (!(t >= v->znear && t <= v->zfar) || t >= (double)depth[i])
+            if (!(t >= v->znear && t <= v->zfar) || t >= depth[i])
                 continue;
-            depth[i] = (float)t;
+            depth[i] = t;
             /* The pixel's footprint on the plane, in cells: distance / focal
              * stretched by the slant, t |d|^2 / (f |d.n|).  Where a pixel
              * spans more than a quarter of a cell the checker would alias
@@ -302,7 +302,7 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
     for (j = j0; j <= j1; j++) {
         double ry = cv->ray_y[j];
         uint32_t *row = cv->pixels + (size_t)j * cv->pitch;
-        float *depth = cv->depth + (size_t)j * (size_t)w;
+        double *depth = cv->depth + (size_t)j * (size_t)w;
         for (i = i0; i <= i1; i++) {
             double rx = cv->ray_x[i];
             double dd = rx * rx + ry * ry + 1.0;
@@ -318,7 +318,7 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
                 t = (dc + sq) / dd;
                 inside = 1;
             }
-            if (t < v->znear || t > v->zfar || t >= (double)depth[i]) continue;
+            if (t < v->znear || t > v->zfar || t >= depth[i]) continue;
             /* Unit normal in camera space, facing the eye. */
             k = (inside ? -1.0 : 1.0) / r;
             n.x = (t * rx - c.x) * k;
@@ -336,7 +336,7 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
                     col = dark;
             }
             row[i] = pack(lum * col[0], lum * col[1], lum * col[2]);
-            depth[i] = (float)t;
+            depth[i] = t;
         }
     }
 }

@@ -68,7 +68,7 @@ typedef struct sdl_instance {
     uint32_t layout_cols, layout_rows; /* views arranged cols x rows */
     uint32_t view_image[RBSF__VIEWS_MAX];
     uint32_t view_x[RBSF__VIEWS_MAX], view_y[RBSF__VIEWS_MAX];
-    float *depth;
+    double *depth;
     double *ray_x, *ray_y;
 
     /* Contact sheet. */
@@ -272,7 +272,7 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
             r->view_image[v] = v;
         }
     }
-    r->depth = (float *)malloc((size_t)W * H * sizeof *r->depth);
+    r->depth = (double *)malloc((size_t)W * H * sizeof *r->depth);
     r->ray_x = (double *)malloc((size_t)W * sizeof *r->ray_x);
     r->ray_y = (double *)malloc((size_t)H * sizeof *r->ray_y);
     if (r->depth == NULL || r->ray_x == NULL || r->ray_y == NULL) goto nomem;

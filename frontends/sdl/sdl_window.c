@@ -64,7 +64,7 @@ struct rbsf__window {
     SDL_Window *windows[RBSF__VIEWS_MAX];
     SDL_Surface *surfaces[RBSF__VIEWS_MAX]; /* over shown[] */
     uint32_t window_count;
-    float *depth;
+    double *depth;
     double *ray_x, *ray_y;
     int drag;          /* 0 none, 1 orbit, 2 pan */
     uint32_t drag_view;
@@ -85,7 +85,7 @@ rbs_status rbsf__window_create(const rbsf__window_def *def, rbsf__window **out)
                                          sizeof *w->shown[i]);
         if (w->shown[i] == NULL) goto nomem;
     }
-    w->depth = (float *)malloc((size_t)def->width * def->height * sizeof *w->depth);
+    w->depth = (double *)malloc((size_t)def->width * def->height * sizeof *w->depth);
     w->ray_x = (double *)malloc(def->width * sizeof *w->ray_x);
     w->ray_y = (double *)malloc(def->height * sizeof *w->ray_y);
     if (w->depth == NULL || w->ray_x == NULL || w->ray_y == NULL) goto nomem;
