@@ -266,6 +266,11 @@ static void scene_parse_json_into(rbs_scene *scene, const char *text, size_t len
 
 static rbs_status scene_result(rbs_scene *scene, rbs_status io, rbs_scene **out)
 {
+    if (io != RBS_OK && io != RBS_E_IO && io != RBS_E_SCENE) {
+        rbs_scene_free(scene); /* e.g. RBS_E_MEMORY: no scene, as documented */
+        *out = NULL;
+        return io;
+    }
     *out = scene;
     if (io != RBS_OK) {
         return io;
@@ -359,10 +364,6 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
         status = rbs__text_load(scene, path);
     }
     free(dirpath);
-    if (status == RBS_E_MEMORY && scene->error_count == 0) {
-        rbs_scene_free(scene);
-        return RBS_E_MEMORY;
-    }
     return scene_result(scene, status, out);
 }
 

@@ -1131,8 +1131,10 @@ static void check_pairs(vctx *v)
     /* per material (index m-1 = none): first movable sphere, first other body */
     int64_t *dyn = malloc(m * sizeof *dyn), *other = malloc(m * sizeof *other);
     if (dyn == NULL || other == NULL) {
+        rbs__loc none = {0, 0, 0};
         free(dyn);
         free(other);
+        rbs__scene_error(s, none, "", "out of memory (checking material pairs)");
         return;
     }
     for (i = 0; i < m; i++) {
@@ -1235,6 +1237,8 @@ static void check_overlap(vctx *v)
     rbs_world_def_init(&def);
     rec = malloc((s->body_count + 1) * sizeof *rec);
     if (rec == NULL) {
+        rbs__loc none = {0, 0, 0};
+        rbs__scene_error(s, none, "", "out of memory (checking overlaps)");
         return;
     }
     for (i = 0; i < s->body_count; i++) {
@@ -1684,6 +1688,9 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
         saved = push_key(&v, "description");
         if (get_string(&v, c, &d) == 0) {
             scene->description = rbs__strdup(d);
+            if (scene->description == NULL) {
+                err(&v, loc_value(&v, c), "out of memory");
+            }
         }
         pop(&v, saved);
     }
