@@ -416,11 +416,7 @@ static void *sim_main(void *arg)
     const uint64_t steps = p->def.steps;
     const int endless = p->def.endless != 0;
 
-    memset(&info, 0, sizeof info);
-    /* Frame 0: the initial state. */
-    if (publish(p, &info, !endless && steps == 0) != 0)
-        goto done;
-
+    /* Frame 0 (the initial state) was published by rbs_projector_start. */
     for (k = 1; endless || k <= steps; k++) {
         rbs_status st;
         /* Wait while paused, unless "step N" gave a budget. */
@@ -449,7 +445,6 @@ static void *sim_main(void *arg)
             break;
     }
 
-done:
     /* No more frames: the reader drains what was published, then ends. */
     rbs_reel_close(p->reel);
     pthread_mutex_lock(&p->mu);
@@ -720,6 +715,25 @@ rbs_status rbs_projector_start(rbs_projector *p)
     pthread_mutex_unlock(&p->mu);
     if (!ok)
         return RBS_E_INVALID;
+
+    /* Frame 0, the initial state, on the caller's thread (the world is
+     * still the caller's): when start returns it is in the reel, so a run
+     * started paused is paused after frame 0. */
+    {
+        rbs_step_info none;
+        memset(&none, 0, sizeof none);
+        if (publish(p, &none, !p->def.endless && p->def.steps == 0) != 0) {
+            rbs_status st;
+            pthread_mutex_lock(&p->mu);
+            p->sim_done = p->ren_done = 1; /* no threads: over already */
+            p->t_end = rbs__now();
+            st = p->result;
+            pthread_mutex_unlock(&p->mu);
+            p->joined = 1;
+            return st != RBS_OK ? st : RBS_E_CLOSED;
+        }
+    }
+
     pthread_mutex_lock(&p->mu); /* the renderer thread id, before anyone reads it */
     ok = pthread_create(&p->ren_thread, NULL, ren_main, p) == 0;
     if (!ok) {
