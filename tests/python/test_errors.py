@@ -93,7 +93,7 @@ def test_numeric_from_python_and_from_c():
     cid = w._cbody(ball)
     v = ffi.new("rbs_vec3 *", {"x": NAN, "y": 0.0, "z": 0.0})
     with pytest.raises(rbsim.NumericError, match="finite"):
-        w._call(lib.rbs_body_set_velocity, cid, v[0])
+        w._call(lib.rbs_body_set_velocity, cid[0], v[0])
     assert ball.velocity.tolist() == [0.0, 0.0, 0.0]  # unchanged
 
 

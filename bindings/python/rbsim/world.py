@@ -59,6 +59,11 @@ _INERTIA = _enum_names("rbs_inertia_kind", "RBS_INERTIA_")
 _BODY_TYPES = {v: k for k, v in _enum_names("rbs_body_type", "RBS_BODY_").items()}
 
 
+# cffi pitfall: a struct field of an owning cdata (ffi.new) does not keep its
+# owner alive, so `_vec3(make().field)` may read freed memory.  Always bind
+# the owner to a name first (s = ...; _vec3(s.field)).
+
+
 def _vec3(v: Any) -> np.ndarray:
     return np.array([v.x, v.y, v.z], dtype=np.float64)
 
@@ -244,7 +249,8 @@ class Body:
     @property
     def normal(self) -> np.ndarray:
         """Outward unit normal (planes)."""
-        return _vec3(self._world._body_state(self._bid()).normal)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.normal)
 
     @property
     def fixed(self) -> bool:
@@ -254,7 +260,8 @@ class Body:
     @property
     def position(self) -> np.ndarray:
         """Sphere centre or plane point, m (a copy; assign to move)."""
-        return _vec3(self._world._body_state(self._bid()).position)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.position)
 
     @position.setter
     def position(self, value: Vector) -> None:
@@ -263,7 +270,8 @@ class Body:
     @property
     def velocity(self) -> np.ndarray:
         """Velocity of the centre of mass, m/s."""
-        return _vec3(self._world._body_state(self._bid()).velocity)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.velocity)
 
     @velocity.setter
     def velocity(self, value: Vector) -> None:
@@ -272,7 +280,8 @@ class Body:
     @property
     def angular_velocity(self) -> np.ndarray:
         """Angular velocity, rad/s, world frame."""
-        return _vec3(self._world._body_state(self._bid()).angular_velocity)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.angular_velocity)
 
     @angular_velocity.setter
     def angular_velocity(self, value: Vector) -> None:
@@ -282,7 +291,8 @@ class Body:
     @property
     def orientation(self) -> np.ndarray:
         """Unit quaternion [w, x, y, z] (body frame to world frame)."""
-        return _quat(self._world._body_state(self._bid()).orientation)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _quat(s.orientation)
 
     @orientation.setter
     def orientation(self, value: Vector) -> None:
@@ -290,12 +300,13 @@ class Body:
         cid = self._world._cbody(self)
         cq = ffi.new("rbs_quat *")
         cq.w, cq.x, cq.y, cq.z = q
-        self._world._call(lib.rbs_body_set_orientation, cid, cq[0])
+        self._world._call(lib.rbs_body_set_orientation, cid[0], cq[0])
 
     @property
     def force(self) -> np.ndarray:
         """Constant applied force at the centre of mass, N, world frame."""
-        return _vec3(self._world._body_state(self._bid()).force)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.force)
 
     @force.setter
     def force(self, value: Vector) -> None:
@@ -304,7 +315,8 @@ class Body:
     @property
     def torque(self) -> np.ndarray:
         """Constant applied torque, N m, world frame."""
-        return _vec3(self._world._body_state(self._bid()).torque)
+        s = self._world._body_state(self._bid())  # keep the owner alive
+        return _vec3(s.torque)
 
     @torque.setter
     def torque(self, value: Vector) -> None:
@@ -554,7 +566,7 @@ class World:
                                                      % body)
         cid = ffi.new("rbs_body_id *")
         cid.index, cid.generation = body._bid()
-        return cid[0]
+        return cid  # the owner: use cid[0] while cid is alive
 
     def _body_state(self, bid: Tuple[int, int]) -> Any:
         cid = ffi.new("rbs_body_id *")
@@ -569,7 +581,7 @@ class World:
         cid = self._cbody(body)
         cv = ffi.new("rbs_vec3 *")
         _set_vec3(cv, v)
-        self._call(fn, cid, cv[0])
+        self._call(fn, cid[0], cv[0])
 
     # -- materials ----------------------------------------------------------
 
@@ -591,7 +603,7 @@ class World:
     def _cmaterial(self, m: Union[Material, str, None], what: str) -> Any:
         out = ffi.new("rbs_material_id *")
         if m is None or (isinstance(m, str) and m == "*"):
-            return out[0]  # null: "*", any material
+            return out  # null: "*", any material (the owner; use out[0])
         if isinstance(m, str):
             m = self.material(m)
         if not isinstance(m, Material):
@@ -601,7 +613,7 @@ class World:
             raise _e.error_class(lib.RBS_E_STALE_ID)(
                 "%s: material %r belongs to another world" % (what, m.name))
         out.index, out.generation = m._cid()
-        return out[0]
+        return out  # the owner: use out[0] while out is alive
 
     def set_material(self, a: Union[Material, str, None],
                      b: Union[Material, str, None], *,
@@ -622,8 +634,9 @@ class World:
         """
         d = ffi.new("rbs_pair_def *")
         lib.rbs_pair_def_init_sized(d, ffi.sizeof("rbs_pair_def"))
-        d.a = self._cmaterial(a, "a")
-        d.b = self._cmaterial(b, "b")
+        ma = self._cmaterial(a, "a")
+        mb = self._cmaterial(b, "b")
+        d.a, d.b = ma[0], mb[0]
         for key, field, value in (("static", "static_friction", static),
                                   ("kinetic", "kinetic_friction", kinetic),
                                   ("restitution", "restitution", restitution),
@@ -699,7 +712,8 @@ class World:
                 d.inertia_kind = _INERTIA["principal"]
                 _set_vec3(d.inertia, _check.vector(inertia, "inertia"))
         if material is not None:
-            d.material = self._cmaterial(material, "material")
+            mat = self._cmaterial(material, "material")
+            d.material = mat[0]
         if color is not None:
             d.color = _check.integer(color, "color", 0, 0xFFFFFF)
         if texture is not None:
@@ -730,7 +744,8 @@ class World:
         if normal is not None:
             _set_vec3(d.normal, _check.vector(normal, "normal"))
         if material is not None:
-            d.material = self._cmaterial(material, "material")
+            mat = self._cmaterial(material, "material")
+            d.material = mat[0]
         if color is not None:
             d.color = _check.integer(color, "color", 0, 0xFFFFFF)
         if texture is not None:
@@ -741,7 +756,8 @@ class World:
 
     def remove_body(self, body: Body) -> None:
         """Remove a body; its handle becomes stale."""
-        self._call(lib.rbs_world_remove_body, self._cbody(body))
+        cid = self._cbody(body)
+        self._call(lib.rbs_world_remove_body, cid[0])
 
     def body(self, name: str) -> Body:
         """The body of that name (NotFoundError, a KeyError, if none)."""
@@ -903,7 +919,8 @@ class World:
     @property
     def gravity(self) -> np.ndarray:
         """Gravity, m/s^2 (or N in force mode)."""
-        return _vec3(self._def().gravity)
+        d = self._def()  # keep the owner alive while reading
+        return _vec3(d.gravity)
 
     @property
     def settings(self) -> Dict[str, Any]:
