@@ -158,6 +158,8 @@ static void draw_plane(const rbsf__canvas *cv, const rbsf__view *v,
     double l = sqrt(dot3(n, n)), num, diffuse, s0, t0, lum;
     double sR, sU, sF, tR, tU, tF;
     uint32_t col[2], mean;
+    /* NONE (and any unknown value) is plain, as for spheres. */
+    int patterned = b->texture == RBS_TEXTURE_STRIPES || b->texture == RBS_TEXTURE_CHECKER;
     if (!(l > 0.0) || !isfinite(l)) return; /* not a plane: nothing to draw */
     n.x /= l;
     n.y /= l;
@@ -210,8 +212,8 @@ static void draw_plane(const rbsf__canvas *cv, const rbsf__view *v,
              * spans more than a quarter of a cell the checker would alias
              * (moire), so it fades to the cells' mean colour. */
             cells = t * (rx * rx + ry * ry + 1.0) / (v->focal * fabs(den) * RBSF__PLANE_CELL);
-            if (b->texture == RBS_TEXTURE_NONE || cells >= 0.75) {
-                row[i] = b->texture == RBS_TEXTURE_NONE ? col[0] : mean;
+            if (!patterned || cells >= 0.75) {
+                row[i] = patterned ? mean : col[0];
                 continue;
             }
             s = s0 + t * (rx * sR + ry * sU + sF);
@@ -326,7 +328,7 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
             n.z = (t - c.z) * k;
             lum = kAmbient + (1.0 - kAmbient) * fmax(0.0, dot3(n, light));
             col = base;
-            if (b->texture != RBS_TEXTURE_NONE) {
+            if (b->texture == RBS_TEXTURE_STRIPES || b->texture == RBS_TEXTURE_CHECKER) {
                 /* Outward normal in world, then in the body frame. */
                 double o = inside ? -1.0 : 1.0;
                 nw.x = o * (n.x * v->right.x + n.y * v->up.x + n.z * v->fwd.x);
