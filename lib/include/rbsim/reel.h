@@ -294,7 +294,10 @@ RBS_API rbs_status rbs_projector_create(rbs_world *world,
                                         const rbs_projector_def *def,
                                         rbs_projector **out);
 
-/** Start the simulation and renderer threads.  Once only. */
+/** Capture frame 0 (the initial state) into the reel on the calling thread,
+ * then start the simulation and renderer threads; from here the world
+ * belongs to the simulation thread.  Once only (RBS_E_INVALID again, or on a
+ * projector whose create failed). */
 RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
 
 /** Send a command line, as typed by a user.  Thread-safe (any thread, also
