@@ -3,7 +3,8 @@
 
 The JSON files are the source of truth; the text versions NAME/config.txt,
 materials.txt and objects.txt are written from them with `rbsim convert`
-(rbs_scene_save), and tests/scene checks that both load to the same scene.
+(rbs_scene_save) -- except bouncing_sphere/, kept by hand with comments as an
+example -- and tests/scene checks that both load to the same world.
 Run from anywhere: python3 scenes/make_scenes.py
 """
 import json
