@@ -27,6 +27,7 @@ import re
 import shutil
 import subprocess
 import sys
+import sysconfig
 import tempfile
 from typing import Iterable, List, Optional, Sequence
 
@@ -114,7 +115,8 @@ _MACRO_NAME = re.compile(r"^RBS_[A-Z0-9_]+$")
 def _preprocess(include_dirs: Sequence[str], cc: Optional[str]) -> str:
     """Run the C preprocessor over the public headers; return its output
     with macro definitions (-dD) and without line markers (-P)."""
-    compiler = cc or os.environ.get("CC") or "cc"
+    compiler = (cc or os.environ.get("CC") or sysconfig.get_config_var("CC")
+                or "cc")
     if shutil.which(compiler.split()[0]) is None:
         raise RuntimeError(
             "rbsim: no C compiler '%s' to preprocess the headers (set CC)" % compiler)
@@ -228,18 +230,20 @@ def _main(argv: Optional[Iterable[str]] = None) -> int:
                              "the run-time search path)")
     parser.add_argument("--output", help="where to put the extension module")
     parser.add_argument("--tmpdir", help="scratch folder for the C file and objects")
+    parser.add_argument("--cc", help="C compiler (preprocessor) to run; default "
+                        "$CC, else Python's, else cc")
     parser.add_argument("--print-cdef", action="store_true",
                         help="print the generated cdef and exit")
     args = parser.parse_args(list(argv) if argv is not None else None)
 
     if args.print_cdef:
-        sys.stdout.write(generate_cdef(args.include))
+        sys.stdout.write(generate_cdef(args.include, args.cc))
         return 0
     if not args.library or not args.output:
         parser.error("--library and --output are required to build")
     libdir = os.path.dirname(os.path.abspath(args.library))
     ffibuilder = make_ffi(args.include, library_dirs=[libdir],
-                          runtime_library_dirs=[libdir])
+                          runtime_library_dirs=[libdir], cc=args.cc)
     tmpdir = args.tmpdir or tempfile.mkdtemp(prefix="rbsim-ffi-")
     os.makedirs(tmpdir, exist_ok=True)
     built = ffibuilder.compile(tmpdir=tmpdir, verbose=False)
