@@ -197,18 +197,7 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     w->pairs = c.pairs;
     w->contacts_high = c.contacts_high;
     w->plan_dirty = 1;
-    /* derived lists */
-    {
-        uint32_t i;
-        w->sphere_count = 0;
-        w->plane_count = 0;
-        for (i = 0; i < w->slots; ++i) {
-            if (w->type[i] == RBS_BODY_SPHERE)
-                w->spheres[w->sphere_count++] = i;
-            else if (w->type[i] == RBS_BODY_PLANE)
-                w->planes[w->plane_count++] = i;
-        }
-    }
+    rbs__rebuild_lists(w); /* derived lists */
     *out = w;
     return RBS_OK;
 }

@@ -52,7 +52,7 @@ static double inv_mass_along(const rbs_world *w, uint32_t a, v3 ra, uint32_t b, 
 }
 
 /* Fill material properties and thresholds of a new contact. */
-static void contact_finish(rbs_world *w, rbs__contact *c, double dt)
+void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
 {
     uint32_t n = w->def.max_materials + 1;
     int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
@@ -81,94 +81,115 @@ static void contact_finish(rbs_world *w, rbs__contact *c, double dt)
     c->jspin = 0.0;
 }
 
+/* Detection state passed through the broad phase. */
+typedef struct detect_ctx {
+    rbs_world *w;
+    double dt;
+    rbs_status status;
+} detect_ctx;
+
+static rbs__contact *contact_new(rbs_world *w, rbs_status *status)
+{
+    if (w->contact_count >= w->def.max_contacts) {
+        if (*status == RBS_OK)
+            *status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
+                "more than max_contacts = %u contacts in one step", (unsigned)w->def.max_contacts);
+        return NULL;
+    }
+    return &w->contact[w->contact_count++];
+}
+
+static void detect_pair(void *vctx, uint32_t i, uint32_t j)
+{
+    detect_ctx *ctx = (detect_ctx *)vctx;
+    rbs_world *w = ctx->w;
+    uint32_t a = w->spheres[i], b = w->spheres[j];
+    double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, slop, dist, gap;
+    v3 pa, d, cp;
+    rbs__contact *c;
+    if (w->fixed[a] && w->fixed[b])
+        return;
+    pa = v3_load(&w->pos[3 * a]);
+    d = v3_sub(pa, v3_load(&w->pos[3 * b]));
+    slop = w->def.slop * rmin;
+    dist = v3_len(d);
+    gap = dist - ra - rb;
+    if (gap > slop)
+        return;
+    c = contact_new(w, &ctx->status);
+    if (c == NULL)
+        return;
+    c->a = a;
+    c->b = b;
+    /* Coincident centres have no normal: pick +z (documented). */
+    c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+    c->gap = gap;
+    c->slop = slop;
+    c->radius = ra * rb / (ra + rb);
+    cp = v3_mad(pa, c->n, -ra);
+    c->ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
+    c->rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
+    rbs__contact_finish(w, c, ctx->dt);
+}
+
 rbs_status rbs__detect(rbs_world *w, double dt)
 {
-    uint32_t i, j, k;
-    uint32_t count = 0, cap = w->def.max_contacts;
+    uint32_t i, k;
     double slop_rel = w->def.slop;
+    detect_ctx ctx;
+    ctx.w = w;
+    ctx.dt = dt;
+    ctx.status = RBS_OK;
+    w->contact_count = 0;
 
+    /* sphere - plane */
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         v3 pa = v3_load(&w->pos[3 * a]);
         double ra = w->radius[a];
-        int a_moves = !w->fixed[a];
-        v3 ca = a_moves ? rbs__body_com(w, a) : pa;
-        /* sphere - plane */
-        if (a_moves) {
-            for (k = 0; k < w->plane_count; ++k) {
-                uint32_t b = w->planes[k];
-                v3 n = v3_load(&w->normal[3 * b]);
-                double gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n) - ra;
-                double slop = slop_rel * ra;
-                rbs__contact *c;
-                v3 cp;
-                if (gap > slop)
-                    continue;
-                if (count >= cap)
-                    return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
-                        "more than max_contacts = %u contacts in one step", (unsigned)cap);
-                c = &w->contact[count++];
-                c->a = a;
-                c->b = b;
-                c->n = n;
-                c->gap = gap;
-                c->slop = slop;
-                c->radius = ra;
-                cp = v3_mad(pa, n, -ra);
-                c->ra = v3_sub(cp, ca);
-                c->rb = v3_make(0, 0, 0);
-                contact_finish(w, c, dt);
-            }
-        }
-        /* sphere - sphere */
-        for (j = i + 1; j < w->sphere_count; ++j) {
-            uint32_t b = w->spheres[j];
-            double rb = w->radius[b], d2, dist, gap, rmin, slop, reach;
-            v3 d;
+        if (w->fixed[a])
+            continue;
+        for (k = 0; k < w->plane_count; ++k) {
+            uint32_t b = w->planes[k];
+            v3 n = v3_load(&w->normal[3 * b]);
+            double gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n) - ra;
+            double slop = slop_rel * ra;
             rbs__contact *c;
-            if (!a_moves && w->fixed[b])
-                continue;
-            d = v3_sub(pa, v3_load(&w->pos[3 * b]));
-            rmin = ra < rb ? ra : rb;
-            slop = slop_rel * rmin;
-            reach = ra + rb + slop;
-            d2 = v3_dot(d, d);
-            if (d2 > reach * reach)
-                continue;
-            dist = sqrt(d2);
-            gap = dist - ra - rb;
             if (gap > slop)
                 continue;
-            if (count >= cap)
-                return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
-                    "more than max_contacts = %u contacts in one step", (unsigned)cap);
-            c = &w->contact[count++];
+            c = contact_new(w, &ctx.status);
+            if (c == NULL)
+                return ctx.status;
             c->a = a;
             c->b = b;
-            /* Coincident centres have no normal: pick +z (documented). */
-            c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+            c->n = n;
             c->gap = gap;
             c->slop = slop;
-            c->radius = ra * rb / (ra + rb);
-            {
-                v3 cp = v3_mad(pa, c->n, -ra);
-                c->ra = v3_sub(cp, ca);
-                c->rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
-            }
-            contact_finish(w, c, dt);
+            c->radius = ra;
+            c->ra = v3_sub(v3_mad(pa, n, -ra), rbs__body_com(w, a));
+            c->rb = v3_make(0, 0, 0);
+            rbs__contact_finish(w, c, dt);
         }
     }
-    w->contact_count = count;
-    if (count > w->contacts_high)
-        w->contacts_high = count;
-    return RBS_OK;
+    /* sphere - sphere, through the broad phase */
+    if (w->plan.sphere_pairs) {
+        for (i = 0; i < w->sphere_count; ++i) {
+            uint32_t a = w->spheres[i];
+            memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
+            w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel);
+        }
+        rbs__broadphase(w, w->sphere_count, detect_pair, &ctx);
+    }
+    if (w->contact_count > w->contacts_high)
+        w->contacts_high = w->contact_count;
+    return ctx.status;
 }
 
 /* Penetration depth of a sphere pair from saved start and current centres:
  * the deepest along the straight path between them (swept test), and at the
- * start. */
+ * start; *first is the fraction of the path where they first touch. */
 static void sphere_pair_pen(v3 a0, v3 a1, v3 b0, v3 b1, double rsum, double *path, double *start,
-                            double *end)
+                            double *end, double *first)
 {
     v3 d0 = v3_sub(a0, b0), d1 = v3_sub(a1, b1), dd = v3_sub(d1, d0);
     double l2 = v3_dot(dd, dd), s = 0.0, dmin;
@@ -182,94 +203,140 @@ static void sphere_pair_pen(v3 a0, v3 a1, v3 b0, v3 b1, double rsum, double *pat
     *path = rsum - dmin;
     if (*end > *path)
         *path = *end;
+    /* |d0 + t dd| = rsum: the smaller root of a quadratic in t */
+    *first = 0.0;
+    if (l2 > 0.0 && *start < 0.0) {
+        double bq = v3_dot(d0, dd), cq = v3_dot(d0, d0) - rsum * rsum, disc = bq * bq - l2 * cq;
+        if (disc >= 0.0) {
+            double t = (-bq - sqrt(disc)) / l2;
+            *first = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+        }
+    }
 }
 
-int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen)
+typedef struct overlap_ctx {
+    rbs_world *w;
+    const double *save;
+    int grew;
+    double worst, first;
+} overlap_ctx;
+
+static void overlap_pair(void *vctx, uint32_t i, uint32_t j)
 {
-    uint32_t i, j, k;
-    int grew = 0;
-    double worst = 0.0;
+    overlap_ctx *ctx = (overlap_ctx *)vctx;
+    rbs_world *w = ctx->w;
     const uint32_t S = RBS__SAVE_STRIDE;
+    uint32_t a = w->spheres[i], b = w->spheres[j];
+    double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, slop = w->def.slop * rmin;
+    double path, start, end, first;
+    if (w->fixed[a] && w->fixed[b])
+        return;
+    sphere_pair_pen(v3_load(&ctx->save[S * a]), v3_load(&w->pos[3 * a]), v3_load(&ctx->save[S * b]),
+                    v3_load(&w->pos[3 * b]), ra + rb, &path, &start, &end, &first);
+    if (end > ctx->worst)
+        ctx->worst = end;
+    if (path > slop && path > start + slop) {
+        ctx->grew = 1;
+        if (first < ctx->first)
+            ctx->first = first;
+    }
+}
+
+int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double *first)
+{
+    uint32_t i, k;
+    const uint32_t S = RBS__SAVE_STRIDE;
+    overlap_ctx ctx;
+    ctx.w = w;
+    ctx.save = save;
+    ctx.grew = 0;
+    ctx.worst = 0.0;
+    ctx.first = 1.0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         v3 a1 = v3_load(&w->pos[3 * a]), a0 = v3_load(&save[S * a]);
         double ra = w->radius[a];
-        int a_moves = !w->fixed[a];
-        if (a_moves) {
-            for (k = 0; k < w->plane_count; ++k) {
-                uint32_t b = w->planes[k];
-                v3 n = v3_load(&w->normal[3 * b]), p = v3_load(&w->pos[3 * b]);
-                double pen1 = ra - v3_dot(v3_sub(a1, p), n);
-                double pen0 = ra - v3_dot(v3_sub(a0, p), n);
-                double slop = w->def.slop * ra;
-                if (pen1 > worst)
-                    worst = pen1;
-                if (pen1 > slop && pen1 > pen0 + slop)
-                    grew = 1;
+        if (w->fixed[a])
+            continue;
+        for (k = 0; k < w->plane_count; ++k) {
+            uint32_t b = w->planes[k];
+            v3 n = v3_load(&w->normal[3 * b]), p = v3_load(&w->pos[3 * b]);
+            double pen1 = ra - v3_dot(v3_sub(a1, p), n);
+            double pen0 = ra - v3_dot(v3_sub(a0, p), n);
+            double slop = w->def.slop * ra;
+            if (pen1 > ctx.worst)
+                ctx.worst = pen1;
+            if (pen1 > slop && pen1 > pen0 + slop) {
+                ctx.grew = 1;
+                /* the fraction of the sub-step where it first touched */
+                if (pen0 < 0.0 && -pen0 / (pen1 - pen0) < ctx.first)
+                    ctx.first = -pen0 / (pen1 - pen0);
+                else if (pen0 >= 0.0)
+                    ctx.first = 0.0;
             }
-        }
-        for (j = i + 1; j < w->sphere_count; ++j) {
-            uint32_t b = w->spheres[j];
-            double rb = w->radius[b], rmin = ra < rb ? ra : rb, slop = w->def.slop * rmin;
-            double path, start, end;
-            v3 b1, b0, mid;
-            if (!a_moves && w->fixed[b])
-                continue;
-            b1 = v3_load(&w->pos[3 * b]);
-            b0 = v3_load(&save[S * b]);
-            /* cheap reject: far apart at both ends and along the way */
-            mid = v3_sub(v3_scale(v3_add(a0, a1), 0.5), v3_scale(v3_add(b0, b1), 0.5));
-            {
-                double reach = ra + rb + 0.5 * (v3_len(v3_sub(a1, a0)) + v3_len(v3_sub(b1, b0))) + slop;
-                if (v3_dot(mid, mid) > reach * reach)
-                    continue;
-            }
-            sphere_pair_pen(a0, a1, b0, b1, ra + rb, &path, &start, &end);
-            if (end > worst)
-                worst = end;
-            if (path > slop && path > start + slop)
-                grew = 1;
         }
     }
-    *max_pen = worst;
-    return grew;
+    if (w->plan.sphere_pairs) {
+        /* swept: items at the middle of their path, reaching half of it */
+        for (i = 0; i < w->sphere_count; ++i) {
+            uint32_t a = w->spheres[i];
+            v3 a1 = v3_load(&w->pos[3 * a]), a0 = v3_load(&save[S * a]);
+            v3_store(&w->bp_center[3 * i], v3_scale(v3_add(a0, a1), 0.5));
+            w->bp_reach[i] = w->radius[a] + 0.5 * v3_len(v3_sub(a1, a0));
+        }
+        rbs__broadphase(w, w->sphere_count, overlap_pair, &ctx);
+    }
+    *max_pen = ctx.worst;
+    if (first)
+        *first = ctx.first;
+    return ctx.grew;
+}
+
+static void separate_pair(void *vctx, uint32_t i, uint32_t j)
+{
+    rbs_world *w = (rbs_world *)vctx;
+    uint32_t a = w->spheres[i], b = w->spheres[j];
+    double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
+    v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
+    if (w->fixed[a] && w->fixed[b])
+        return;
+    d = v3_sub(pa, pb);
+    dist = v3_len(d);
+    pen = ra + rb - dist;
+    if (!(pen > w->def.slop * rmin))
+        return;
+    n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+    wa = w->inv_mass[a];
+    wb = w->inv_mass[b];
+    wsum = wa + wb;
+    v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
+    v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
 }
 
 void rbs__separate(rbs_world *w)
 {
-    uint32_t i, j, k;
+    uint32_t i, k;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         double ra = w->radius[a];
-        int a_moves = !w->fixed[a];
-        if (a_moves) {
-            for (k = 0; k < w->plane_count; ++k) {
-                uint32_t b = w->planes[k];
-                v3 n = v3_load(&w->normal[3 * b]);
-                v3 pa = v3_load(&w->pos[3 * a]);
-                double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n);
-                if (pen > w->def.slop * ra)
-                    v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
-            }
+        if (w->fixed[a])
+            continue;
+        for (k = 0; k < w->plane_count; ++k) {
+            uint32_t b = w->planes[k];
+            v3 n = v3_load(&w->normal[3 * b]);
+            v3 pa = v3_load(&w->pos[3 * a]);
+            double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n);
+            if (pen > w->def.slop * ra)
+                v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
         }
-        for (j = i + 1; j < w->sphere_count; ++j) {
-            uint32_t b = w->spheres[j];
-            double rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
-            v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
-            if (!a_moves && w->fixed[b])
-                continue;
-            d = v3_sub(pa, pb);
-            dist = v3_len(d);
-            pen = ra + rb - dist;
-            if (!(pen > w->def.slop * rmin))
-                continue;
-            n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
-            wa = w->inv_mass[a];
-            wb = w->inv_mass[b];
-            wsum = wa + wb;
-            v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
-            v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
+    }
+    if (w->plan.sphere_pairs) {
+        for (i = 0; i < w->sphere_count; ++i) {
+            uint32_t a = w->spheres[i];
+            memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
+            w->bp_reach[i] = w->radius[a];
         }
+        rbs__broadphase(w, w->sphere_count, separate_pair, w);
     }
 }
 

@@ -75,29 +75,40 @@ static v3 slip(const rbs_world *w, const rbs__contact *c)
     return v3_mad(v, c->n, -v3_dot(v, c->n));
 }
 
+/* One collision impulse at a contact approaching at vn < 0: the normal
+ * impulse that makes it leave at -e vn, then Coulomb friction. */
+void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
+{
+    double jn = -(1.0 + c->e) * vn / c->kn;
+    apply_pair(w, c, v3_scale(c->n, jn));
+    if (w->plan.friction && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+        v3 vt = slip(w, c);
+        v3 jt = stick_impulse(w, c, vt);
+        double l = v3_len(jt);
+        if (l > c->mu_s * jn)
+            jt = v3_scale(jt, c->mu_k * jn / l);
+        apply_pair(w, c, jt);
+    }
+}
+
+double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c)
+{
+    return v3_dot(rel_velocity(w, c), c->n);
+}
+
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
-    int friction = w->plan.friction;
     for (i = 0; i < w->contact_count; ++i)
         w->contact[i].jn = 0.0; /* used as a "collided" mark here */
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         int active = 0;
         for (i = 0; i < w->contact_count; ++i) {
             rbs__contact *c = &w->contact[i];
-            double vn = v3_dot(rel_velocity(w, c), c->n), jn;
+            double vn = v3_dot(rel_velocity(w, c), c->n);
             if (!(vn < -c->thr) || vn >= 0.0)
                 continue;
-            jn = -(1.0 + c->e) * vn / c->kn;
-            apply_pair(w, c, v3_scale(c->n, jn));
-            if (friction && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
-                v3 vt = slip(w, c);
-                v3 jt = stick_impulse(w, c, vt);
-                double l = v3_len(jt);
-                if (l > c->mu_s * jn)
-                    jt = v3_scale(jt, c->mu_k * jn / l);
-                apply_pair(w, c, jt);
-            }
+            rbs__collide(w, c, vn);
             if (c->jn == 0.0 && info)
                 info->colliding++;
             c->jn = 1.0;

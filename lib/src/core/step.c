@@ -133,6 +133,9 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     case RBS_METHOD_ADAPTIVE:
         st = rbs__step_adaptive(w, info);
         break;
+    case RBS_METHOD_SELECTIVE:
+        st = rbs__step_selective(w, info);
+        break;
     case RBS_METHOD_EVENT:
         st = rbs__step_event(w, info);
         break;

@@ -57,7 +57,8 @@
 
 #define STRIDE 13            /* doubles per sphere in the ODE state */
 #define MAX_EVENTS 100000u   /* events in one frame before giving up */
-#define MAX_STEPS 10000000u  /* accepted steps in one frame before giving up */
+#define MAX_STEPS 1000000u   /* accepted steps in one frame before giving up */
+#define MIN_TOL 1e-15        /* below this, double precision cannot deliver */
 
 struct rbs__adaptive {
     size_t dim;
@@ -493,6 +494,10 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
         return (rbs_status)rbs__world_set_error(w, RBS_E_MEMORY,
             "adaptive: GSL workspaces were not reserved (create the world with, or switch to, "
             "the adaptive method through rbs_world_set_method)");
+    if (!(w->def.tolerance >= MIN_TOL))
+        return (rbs_status)rbs__world_set_error(w, RBS_E_INVALID,
+            "adaptive: tolerance %g is below what double precision can reach (use >= %g)",
+            w->def.tolerance, MIN_TOL);
     if (a->tol != w->def.tolerance) {
         gsl_odeiv2_control_init(a->control, w->def.tolerance, w->def.tolerance, 1.0, 0.0);
         a->tol = w->def.tolerance;

@@ -9,7 +9,8 @@
  *   detect contacts; resolve collisions; v += a h, w += I^-1 (tau - w x Iw) h;
  *   resolve resting contacts; x += v h, q = exp(w h) q.
  * If an overlap deeper than the slop appears (swept for sphere pairs), the
- * sub-step is undone and retried with h/2 (the seed's rollback), down to the
+ * sub-step is undone and retried with h/2 (the seed's rollback) -- or with
+ * the straight-line time of first touch when that is earlier -- down to the
  * floor dt / 2^max_halvings, where the overlap is accepted, pushed apart and
  * reported.  After an accepted sub-step h doubles again.  Time is kept in
  * integer units of the floor, so a frame always ends exactly at dt.
@@ -118,7 +119,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
     const uint32_t K = w->def.max_halvings;
     const uint64_t total = (uint64_t)1 << K;
     uint64_t done = 0, hu = total; /* progress and sub-step, in units of dt/2^K */
-    double pen = 0.0;
+    double pen = 0.0, first = 1.0;
     rbs_status st;
 
     while (done < total) {
@@ -132,11 +133,15 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             return st;
         rbs__solve_collisions(w, info);
         advance(w, h, info);
-        if (rbs__overlap_grew(w, w->sub_save, &pen)) {
+        if (rbs__overlap_grew(w, w->sub_save, &pen, &first)) {
             if (hu > 1) {
+                /* Retry with at most half the sub-step (the seed's rule);
+                 * when the straight-line time of first touch is earlier,
+                 * jump there at once instead of halving step by step. */
+                uint64_t toi = (uint64_t)((double)hu * first);
                 rbs__restore_state(w, w->sub_save);
                 info->rollbacks++;
-                hu >>= 1;
+                hu = (toi >= 1 && toi < hu / 2) ? toi : hu / 2;
                 continue;
             }
             info->floor_hits++;
@@ -144,8 +149,8 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
         }
         done += hu;
         info->substeps++;
-        if (hu < total && (done % (hu << 1)) == 0)
-            hu <<= 1; /* grow back, staying aligned to the sub-step grid */
+        if (hu < total)
+            hu <<= 1; /* grow back after an accepted sub-step */
     }
     info->contacts = w->contact_count;
     info->max_overlap = pen;

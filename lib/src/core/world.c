@@ -215,6 +215,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->free_list = carve(base, &at, B * sizeof(uint32_t));
     x->spheres = carve(base, &at, B * sizeof(uint32_t));
     x->planes = carve(base, &at, B * sizeof(uint32_t));
+    x->item = carve(base, &at, B * sizeof(uint32_t));
     x->acc = carve(base, &at, 3 * B * sizeof(double));
     x->name = carve(base, &at, B * RBS_NAME_MAX);
     x->pos = carve(base, &at, 3 * B * sizeof(double));
@@ -238,6 +239,21 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
     x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
     x->method_state = carve(base, &at, 8 * sizeof(double));
+    {
+        size_t T = 16;
+        while (T < 2 * B)
+            T <<= 1;
+        x->bp_table_size = (uint32_t)T;
+        x->bp_center = carve(base, &at, 3 * B * sizeof(double));
+        x->bp_reach = carve(base, &at, B * sizeof(double));
+        x->bp_key = carve(base, &at, B * sizeof(uint32_t));
+        x->bp_item = carve(base, &at, B * sizeof(uint32_t));
+        x->bp_big = carve(base, &at, B * sizeof(uint32_t));
+        x->bp_start = carve(base, &at, (T + 1) * sizeof(uint32_t));
+        x->bp_fill = carve(base, &at, T * sizeof(uint32_t));
+        x->bp_query = carve(base, &at, B);
+        x->bp_cell = carve(base, &at, 3 * B * sizeof(int32_t));
+    }
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));
     x->ev_plane = carve(base, &at, B * sizeof(uint32_t));
@@ -275,7 +291,7 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     need = rbs__world_layout(NULL, &d, NULL);
     if (bytes < need)
         return RBS_E_MEMORY;
-    if (d.method != RBS_METHOD_EULER && d.method != RBS_METHOD_VERLET && d.method != RBS_METHOD_RK4 && d.method != RBS_METHOD_ADAPTIVE && d.method != RBS_METHOD_EVENT)
+    if ((int)d.method < 0 || (int)d.method >= RBS_METHOD_COUNT)
         return RBS_E_UNSUPPORTED;
     memset(buffer, 0, need);
     w = (rbs_world *)buffer;
@@ -535,16 +551,18 @@ static uint32_t slot_take(rbs_world *w)
     return s;
 }
 
-static void rebuild_sphere_list(rbs_world *w)
+void rbs__rebuild_lists(rbs_world *w)
 {
     uint32_t i;
     w->sphere_count = 0;
     w->plane_count = 0;
     for (i = 0; i < w->slots; ++i) {
-        if (w->type[i] == RBS_BODY_SPHERE)
+        if (w->type[i] == RBS_BODY_SPHERE) {
+            w->item[i] = w->sphere_count;
             w->spheres[w->sphere_count++] = i;
-        else if (w->type[i] == RBS_BODY_PLANE)
+        } else if (w->type[i] == RBS_BODY_PLANE) {
             w->planes[w->plane_count++] = i;
+        }
     }
 }
 
@@ -698,7 +716,7 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     }
     w->isotropic[s] = I[1] == 0.0 && I[2] == 0.0 && I[3] == 0.0 && I[5] == 0.0 && I[6] == 0.0 &&
                       I[7] == 0.0 && I[0] == I[4] && I[4] == I[8];
-    rebuild_sphere_list(w);
+    rbs__rebuild_lists(w);
     w->plan_dirty = 1;
     if (out) {
         out->index = s;
@@ -765,7 +783,7 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
         w->inv_inertia[9 * s + k] = 0.0;
     }
     w->isotropic[s] = 1;
-    rebuild_sphere_list(w);
+    rbs__rebuild_lists(w);
     w->plan_dirty = 1;
     if (out) {
         out->index = s;
@@ -790,7 +808,7 @@ rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
     memset(&w->orient[4 * s], 0, 4 * sizeof(double));
     w->free_list[w->free_count++] = s;
     w->bodies--;
-    rebuild_sphere_list(w);
+    rbs__rebuild_lists(w);
     w->plan_dirty = 1;
     return RBS_OK;
 }
@@ -982,8 +1000,6 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
         FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
     if (isnan(tolerance) || (tolerance > 0.0 && !isfinite(tolerance)))
         FAIL(w, RBS_E_INVALID, "tolerance must be finite");
-    if (method != RBS_METHOD_EULER && method != RBS_METHOD_VERLET && method != RBS_METHOD_RK4 && method != RBS_METHOD_ADAPTIVE && method != RBS_METHOD_EVENT)
-        FAIL(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available in this build", rbs_method_name(method));
     if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
         FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;

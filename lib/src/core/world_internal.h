@@ -89,6 +89,7 @@ struct rbs_world {
     double *sub_save;                     /* 13 per slot */
     uint32_t *spheres;                    /* slots of moving and fixed spheres */
     uint32_t sphere_count;
+    uint32_t *item;                       /* per slot: its index in spheres */
     uint32_t *planes;                     /* slots of planes */
     uint32_t plane_count;
     double *acc;                          /* 3 per slot: scratch accelerations */
@@ -100,6 +101,15 @@ struct rbs_world {
 
     /* contacts */
     rbs__contact *contact;
+
+    /* broad phase (broadphase.c): per sphere item, and a hashed grid */
+    double *bp_center;                    /* 3 per item */
+    double *bp_reach;
+    uint32_t *bp_key, *bp_item, *bp_big;
+    uint32_t *bp_start, *bp_fill;         /* bp_table_size + 1, bp_table_size */
+    uint32_t bp_table_size;               /* power of two >= 2 * max_bodies */
+    uint8_t *bp_query;                    /* per item: query mask (selective) */
+    int32_t *bp_cell;                     /* 3 per item: grid cell */
 
     /* event method (step_event.c): per body motion between events */
     double *ev_alpha;                     /* 3 per slot: angular acceleration */
@@ -120,6 +130,7 @@ int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 #endif
     ;
 void rbs__world_plan(rbs_world *w);
+void rbs__rebuild_lists(rbs_world *w); /* spheres, planes, item */
 void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 
 /* Body helpers (world.c). */
@@ -127,16 +138,27 @@ v3 rbs__body_com(const rbs_world *w, uint32_t i);
 int rbs__body_moves(const rbs_world *w, uint32_t i);
 void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out);
 
+/* Broad phase (broadphase.c): fn(ctx, i, j) for every candidate pair of
+ * items i < j (indexes into w->spheres) whose centres (w->bp_center) are
+ * closer than the sum of their reaches (w->bp_reach). */
+typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
+void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx);
+void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
+                           void *ctx);
+
 /* Contacts (contact.c). */
 rbs_status rbs__detect(rbs_world *w, double dt);
 double rbs__max_overlap(const rbs_world *w);
-int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen);
+int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
 void rbs__separate(rbs_world *w);
 v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r);
 void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j);
 
 /* Solver (solver.c). */
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
+void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
+double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
+void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 
 /* Forces (step.c). */
@@ -167,6 +189,7 @@ typedef struct rbs__adaptive rbs__adaptive;
 rbs_status rbs__adaptive_reserve(rbs_world *w);
 void rbs__adaptive_release(rbs_world *w);
 rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
+rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
 #define RBS__SCRATCH_STRIDE 40 /* doubles per slot of method_scratch */

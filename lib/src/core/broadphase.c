@@ -1,0 +1,149 @@
+/*
+ * broadphase.c - candidate sphere pairs from a uniform grid, in the world's
+ * fixed memory, so that finding neighbours costs O(N) at fixed density.
+ *
+ * Each sphere is an item with a centre and a reach (its radius plus any
+ * motion or margin the caller adds).  Two items are candidates when their
+ * centres are closer than the sum of their reaches.  Items go into a hashed
+ * grid whose cell is twice the typical reach, and each looks at the 27 cells
+ * around its own.  Items much larger than typical (radius ratios up to 1e6,
+ * or a sphere crossing many cells in one step) would blow up the cell size:
+ * they are kept on a short "big" list and tested against every item instead.
+ * The result is exact: the grid only skips pairs that cannot touch.
+ *
+ * With a query mask only pairs with at least one queried item are visited
+ * (the grid is still built from every item).  The order pairs are visited in
+ * is a deterministic function of the positions.  The grid is used for every
+ * world (for a handful of spheres it costs a few hundred nanoseconds), so it
+ * is never a stage that pruning changes.
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+/* Cell coordinate of x: floor(x / cell), clamped so that huge positions
+ * never overflow the integer conversion (far-away items share edge cells:
+ * slower, never wrong, since the distance test decides). */
+static int32_t cell_of(double x, double inv_cell)
+{
+    double c = floor(x * inv_cell);
+    if (!(c < 1.0e9))
+        c = 1.0e9;
+    if (!(c > -1.0e9))
+        c = -1.0e9;
+    return (int32_t)c;
+}
+
+static uint32_t cell_hash(int32_t x, int32_t y, int32_t z, uint32_t mask)
+{
+    uint64_t h = (uint64_t)x * 0x9E3779B97F4A7C15ull;
+    h ^= (uint64_t)y * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= (uint64_t)z * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return (uint32_t)(h ^ (h >> 32)) & mask;
+}
+
+/* Visit every candidate pair (a < b in item order) of the n items whose
+ * centres are in w->bp_center and reaches in w->bp_reach; items are indexes
+ * into w->spheres. */
+void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
+{
+    rbs__broadphase_query(w, n, NULL, fn, ctx);
+}
+
+void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
+                           void *ctx)
+{
+    const double *C = w->bp_center, *R = w->bp_reach;
+    uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
+    double mean = 0.0, cell, inv;
+
+    if (n < 2)
+        return;
+    /* typical reach: the mean; items beyond 4x the mean are "big" */
+    for (i = 0; i < n; ++i)
+        mean += R[i];
+    mean /= n;
+    cell = 0.0;
+    for (i = 0; i < n; ++i) {
+        if (R[i] > 4.0 * mean)
+            w->bp_big[big++] = i;
+        else if (R[i] > cell)
+            cell = R[i];
+    }
+    cell *= 2.0;
+    if (!(cell > 0.0) || !isfinite(cell))
+        cell = 1.0;
+    inv = 1.0 / cell;
+
+    /* counting sort of the grid items by cell hash */
+    memset(w->bp_start, 0, (size_t)(mask + 2) * sizeof(uint32_t));
+    memset(w->bp_fill, 0, (size_t)(mask + 1) * sizeof(uint32_t));
+    for (i = 0; i < n; ++i) {
+        if (R[i] > 4.0 * mean) {
+            w->bp_key[i] = UINT32_MAX;
+            continue;
+        }
+        w->bp_cell[3 * i] = cell_of(C[3 * i], inv);
+        w->bp_cell[3 * i + 1] = cell_of(C[3 * i + 1], inv);
+        w->bp_cell[3 * i + 2] = cell_of(C[3 * i + 2], inv);
+        w->bp_key[i] = cell_hash(w->bp_cell[3 * i], w->bp_cell[3 * i + 1], w->bp_cell[3 * i + 2], mask);
+        w->bp_start[w->bp_key[i] + 1]++;
+    }
+    for (i = 0; i <= mask; ++i)
+        w->bp_start[i + 1] += w->bp_start[i];
+    for (i = 0; i < n; ++i)
+        if (w->bp_key[i] != UINT32_MAX)
+            w->bp_item[w->bp_fill[w->bp_key[i]]++ + w->bp_start[w->bp_key[i]]] = i;
+
+    /* grid items against the 27 cells around them; a bucket may hold items
+     * of other cells (hash collisions), which the stored cell filters out,
+     * so every partner is seen exactly once */
+    for (i = 0; i < n; ++i) {
+        int32_t cx, cy, cz;
+        int dx, dy, dz;
+        if (w->bp_key[i] == UINT32_MAX || (query && !query[i]))
+            continue;
+        cx = w->bp_cell[3 * i];
+        cy = w->bp_cell[3 * i + 1];
+        cz = w->bp_cell[3 * i + 2];
+        for (dx = -1; dx <= 1; ++dx)
+            for (dy = -1; dy <= 1; ++dy)
+                for (dz = -1; dz <= 1; ++dz) {
+                    uint32_t h = cell_hash(cx + dx, cy + dy, cz + dz, mask), k;
+                    for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
+                        uint32_t o = w->bp_item[k];
+                        double ex, ey, ez, sr;
+                        /* each pair once: from its lower item, or from the
+                         * queried one when only one of them is queried */
+                        if (o == i || (o < i && (!query || query[o])))
+                            continue;
+                        if (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
+                            w->bp_cell[3 * o + 2] != cz + dz)
+                            continue;
+                        ex = C[3 * i] - C[3 * o];
+                        ey = C[3 * i + 1] - C[3 * o + 1];
+                        ez = C[3 * i + 2] - C[3 * o + 2];
+                        sr = R[i] + R[o];
+                        if (ex * ex + ey * ey + ez * ez <= sr * sr)
+                            fn(ctx, i < o ? i : o, i < o ? o : i);
+                    }
+                }
+    }
+    /* big items against everything */
+    for (j = 0; j < big; ++j) {
+        uint32_t b = w->bp_big[j];
+        for (i = 0; i < n; ++i) {
+            double ex, ey, ez, sr;
+            if (i == b || (w->bp_key[i] == UINT32_MAX && i < b))
+                continue; /* big-big pairs once */
+            if (query && !query[i] && !query[b])
+                continue;
+            ex = C[3 * i] - C[3 * b];
+            ey = C[3 * i + 1] - C[3 * b + 1];
+            ez = C[3 * i + 2] - C[3 * b + 2];
+            sr = R[i] + R[b];
+            if (ex * ex + ey * ey + ez * ez <= sr * sr)
+                fn(ctx, i < b ? i : b, i < b ? b : i);
+        }
+    }
+}

@@ -1,0 +1,298 @@
+/*
+ * step_selective.c - semi-implicit Euler with selective rollback
+ * (RBS_METHOD_SELECTIVE, the seed's "selective rollback" improvement).
+ *
+ * The whole world takes one Euler step of dt (contacts, forces, resting
+ * contact, positions).  Then, instead of undoing the step for everyone when
+ * two bodies overlap, only the bodies of each overlapping pair go back: each
+ * body's motion over the step is the straight Euler path x0 + s h v, so the
+ * pair is moved back along its own path to the fraction s* of the step where
+ * it first touches, the collision impulse is applied there (the same
+ * restitution and Coulomb friction as every method), and the pair goes on
+ * with its new velocities for the rest of the step.  The rest of the world
+ * keeps its full step.  New overlaps this creates are found and handled the
+ * same way, earliest first, in at most max_sweeps rounds; anything left is
+ * pushed apart and reported (floor_hits, sweep_limit).
+ *
+ * Each body keeps the start of its current straight path: its position and
+ * orientation there (in w->sub_save) and the fraction t0 where it starts
+ * (w->ev_alpha[3 i], scratch this method borrows from the event method).
+ * Cost: one step plus O(1) per impact, instead of a whole-world sub-step per
+ * halving.  Accuracy: first order, like Euler; the impact point lies exactly
+ * on the Euler path, but gravity acts over the whole step on both sides of an
+ * impact (an error of order g h per impact).
+ */
+#include <string.h>
+
+#include "core/world_internal.h"
+
+#define S RBS__SAVE_STRIDE
+#define T0(w, i) ((w)->ev_alpha[3 * (i)])
+
+/* A violation found by the search: a pair and the fraction it first touches. */
+typedef struct violation {
+    uint32_t a, b;
+    double s;
+} violation;
+
+typedef struct search_ctx {
+    rbs_world *w;
+    double h;
+    uint32_t count, cap;
+    violation *out;
+} search_ctx;
+
+/* Position of body i at fraction s of the step (on its current path). */
+static v3 pos_at(const rbs_world *w, uint32_t i, double s, double h)
+{
+    if (w->fixed[i] || w->type[i] != RBS_BODY_SPHERE)
+        return v3_load(&w->pos[3 * i]);
+    return v3_mad(v3_load(&w->sub_save[S * i]), v3_load(&w->vel[3 * i]), (s - T0(w, i)) * h);
+}
+
+static void record(search_ctx *ctx, uint32_t a, uint32_t b, double s)
+{
+    if (ctx->count < ctx->cap) {
+        ctx->out[ctx->count].a = a;
+        ctx->out[ctx->count].b = b;
+        ctx->out[ctx->count].s = s;
+    }
+    ctx->count++;
+}
+
+/* Sphere-sphere: does the pair overlap deeper along its paths than at their
+ * common start, and when does it first touch?  Returns 1 and *s if so. */
+static int pair_violates(const rbs_world *w, uint32_t a, uint32_t b, double h, double *s)
+{
+    double tl = T0(w, a) > T0(w, b) ? T0(w, a) : T0(w, b), R = w->radius[a] + w->radius[b];
+    double rmin = w->radius[a] < w->radius[b] ? w->radius[a] : w->radius[b];
+    double slop = w->def.slop * rmin, l2, u = 0.0, dmin, pen0, path, first = 0.0;
+    v3 d0 = v3_sub(pos_at(w, a, tl, h), pos_at(w, b, tl, h));
+    v3 d1 = v3_sub(v3_load(&w->pos[3 * a]), v3_load(&w->pos[3 * b]));
+    v3 dd = v3_sub(d1, d0);
+    l2 = v3_dot(dd, dd);
+    if (l2 > 0.0) {
+        u = -v3_dot(d0, dd) / l2;
+        u = u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u);
+    }
+    dmin = v3_len(v3_mad(d0, dd, u));
+    pen0 = R - v3_len(d0);
+    path = R - dmin;
+    if (!(path > slop && path > pen0 + slop))
+        return 0;
+    if (pen0 < 0.0 && l2 > 0.0) {
+        double bq = v3_dot(d0, dd), cq = v3_dot(d0, d0) - R * R, disc = bq * bq - l2 * cq;
+        if (disc >= 0.0) {
+            first = (-bq - sqrt(disc)) / l2;
+            first = first < 0.0 ? 0.0 : (first > 1.0 ? 1.0 : first);
+        }
+    }
+    *s = tl + (1.0 - tl) * first;
+    return 1;
+}
+
+/* Sphere-plane: the same question for a sphere and a half-space. */
+static int plane_violates(const rbs_world *w, uint32_t a, uint32_t p, double h, double *s)
+{
+    v3 n = v3_load(&w->normal[3 * p]), pt = v3_load(&w->pos[3 * p]);
+    double r = w->radius[a], t0 = T0(w, a), slop = w->def.slop * r;
+    double pen0 = r - v3_dot(v3_sub(pos_at(w, a, t0, h), pt), n);
+    double pen1 = r - v3_dot(v3_sub(v3_load(&w->pos[3 * a]), pt), n);
+    if (!(pen1 > slop && pen1 > pen0 + slop))
+        return 0;
+    *s = pen0 < 0.0 ? t0 + (1.0 - t0) * (-pen0 / (pen1 - pen0)) : t0;
+    return 1;
+}
+
+static void search_pair(void *vctx, uint32_t i, uint32_t j)
+{
+    search_ctx *ctx = (search_ctx *)vctx;
+    rbs_world *w = ctx->w;
+    uint32_t a = w->spheres[i], b = w->spheres[j];
+    double s;
+    if (w->fixed[a] && w->fixed[b])
+        return;
+    if (pair_violates(w, a, b, ctx->h, &s))
+        record(ctx, a, b, s);
+}
+
+/* Find every pair whose overlap grew along the current paths; with a query
+ * mask (w->bp_query over sphere items) only pairs with a marked sphere. */
+static uint32_t search(rbs_world *w, double h, violation *out, uint32_t cap, int masked)
+{
+    search_ctx ctx;
+    uint32_t i, k;
+    ctx.w = w;
+    ctx.h = h;
+    ctx.count = 0;
+    ctx.cap = cap;
+    ctx.out = out;
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        double s;
+        if (w->fixed[a] || (masked && !w->bp_query[i]))
+            continue;
+        for (k = 0; k < w->plane_count; ++k)
+            if (plane_violates(w, a, w->planes[k], h, &s))
+                record(&ctx, a, w->planes[k], s);
+    }
+    if (w->plan.sphere_pairs) {
+        for (i = 0; i < w->sphere_count; ++i) {
+            uint32_t a = w->spheres[i];
+            v3 p0 = pos_at(w, a, T0(w, a), h), p1 = v3_load(&w->pos[3 * a]);
+            v3_store(&w->bp_center[3 * i], v3_scale(v3_add(p0, p1), 0.5));
+            w->bp_reach[i] = w->radius[a] + 0.5 * v3_len(v3_sub(p1, p0));
+        }
+        rbs__broadphase_query(w, w->sphere_count, masked ? w->bp_query : NULL, search_pair, &ctx);
+    }
+    return ctx.count;
+}
+
+/* Move body i back along its path to fraction s and start a new path there. */
+static void cut_path(rbs_world *w, uint32_t i, double s, double h)
+{
+    v3 x;
+    quat q;
+    v3 om;
+    if (w->fixed[i] || w->type[i] != RBS_BODY_SPHERE)
+        return;
+    x = pos_at(w, i, s, h);
+    om = v3_load(&w->avel[3 * i]);
+    q = q_load(&w->sub_save[S * i + 9]);
+    if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
+        q = q_normalize(q_mul(q_from_rotation(om, (s - T0(w, i)) * h), q));
+    v3_store(&w->sub_save[S * i], x);
+    q_store(&w->sub_save[S * i + 9], q);
+    T0(w, i) = s;
+    v3_store(&w->pos[3 * i], x);
+    q_store(&w->orient[4 * i], q);
+}
+
+/* Finish body i's step from its path start with its current velocities. */
+static void finish_path(rbs_world *w, uint32_t i, double h)
+{
+    v3 om;
+    double rest;
+    quat q;
+    if (w->fixed[i] || w->type[i] != RBS_BODY_SPHERE)
+        return;
+    rest = (1.0 - T0(w, i)) * h;
+    v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->sub_save[S * i]), v3_load(&w->vel[3 * i]), rest));
+    om = v3_load(&w->avel[3 * i]);
+    q = q_load(&w->sub_save[S * i + 9]);
+    if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
+        q = q_normalize(q_mul(q_from_rotation(om, rest), q));
+    q_store(&w->orient[4 * i], q);
+}
+
+/* The collision impulse of a pair touching now (positions at its time). */
+static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_step_info *info)
+{
+    rbs__contact c;
+    v3 pa = v3_load(&w->pos[3 * a]), cp;
+    double ra = w->radius[a], vn;
+    memset(&c, 0, sizeof c);
+    c.a = a;
+    c.b = b;
+    if (w->type[b] == RBS_BODY_PLANE) {
+        c.n = v3_load(&w->normal[3 * b]);
+        c.gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), c.n) - ra;
+        c.slop = w->def.slop * ra;
+        c.radius = ra;
+        c.ra = v3_sub(v3_mad(pa, c.n, -ra), rbs__body_com(w, a));
+    } else {
+        double rb = w->radius[b], dist;
+        v3 d = v3_sub(pa, v3_load(&w->pos[3 * b]));
+        dist = v3_len(d);
+        c.n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+        c.gap = dist - ra - rb;
+        c.slop = w->def.slop * (ra < rb ? ra : rb);
+        c.radius = ra * rb / (ra + rb);
+        cp = v3_mad(pa, c.n, -ra);
+        c.ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
+        c.rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
+    }
+    rbs__contact_finish(w, &c, dt);
+    vn = rbs__normal_velocity(w, &c);
+    if (!(vn < 0.0))
+        return;
+    if (-vn <= c.thr)
+        c.e = 0.0; /* slower than one step of the forces builds: resting */
+    rbs__collide(w, &c, vn);
+    info->colliding++;
+}
+
+rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
+{
+    const double dt = w->def.dt;
+    violation *v = (violation *)(void *)w->contact; /* scratch after the solve */
+    uint32_t cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(violation));
+    uint32_t round, i, n = 0, k, contacts;
+    double pen = 0.0;
+    rbs_status st;
+
+    /* the whole world: one Euler step */
+    rbs__save_state(w, w->sub_save);
+    st = rbs__detect(w, dt);
+    if (st != RBS_OK)
+        return st;
+    rbs__solve_collisions(w, info);
+    rbs__integrate_velocities(w, dt);
+    rbs__solve_resting(w, info);
+    rbs__integrate_positions(w, dt);
+    contacts = w->contact_count;
+    for (i = 0; i < w->slots; ++i)
+        T0(w, i) = 0.0;
+
+    /* selective rollback: overlapping pairs only, earliest first */
+    for (round = 0; round < w->def.max_sweeps; ++round) {
+        /* after the first round only bodies moved by a fix-up can overlap anew */
+        n = search(w, dt, v, cap, round > 0);
+        memset(w->bp_query, 0, w->sphere_count);
+        if (n == 0)
+            break;
+        if (n > cap)
+            n = cap;
+        /* order by first touch (insertion sort: few at a time) */
+        for (i = 1; i < n; ++i) {
+            violation x = v[i];
+            k = i;
+            while (k > 0 && v[k - 1].s > x.s) {
+                v[k] = v[k - 1];
+                --k;
+            }
+            v[k] = x;
+        }
+        for (i = 0; i < n; ++i) {
+            double s;
+            uint32_t a = v[i].a, b = v[i].b;
+            int still = w->type[b] == RBS_BODY_PLANE ? plane_violates(w, a, b, dt, &s)
+                                                     : pair_violates(w, a, b, dt, &s);
+            if (!still)
+                continue; /* an earlier fix-up already changed this pair */
+            cut_path(w, a, s, dt);
+            cut_path(w, b, s, dt);
+            collide_now(w, a, b, dt, info);
+            finish_path(w, a, dt);
+            finish_path(w, b, dt);
+            w->bp_query[w->item[a]] = 1;
+            if (w->type[b] == RBS_BODY_SPHERE)
+                w->bp_query[w->item[b]] = 1;
+            info->rollbacks++;
+        }
+    }
+    if (n > 0 && round == w->def.max_sweeps) {
+        info->sweep_limit++;
+        info->floor_hits++;
+        rbs__separate(w);
+    }
+    info->substeps = 1;
+    info->contacts = contacts;
+    {
+        double first;
+        rbs__save_state(w, w->sub_save); /* no motion: measure the overlap */
+        rbs__overlap_grew(w, w->sub_save, &pen, &first);
+    }
+    info->max_overlap = pen;
+    return RBS_OK;
+}
