@@ -474,6 +474,70 @@ class World:
         if status != lib.RBS_OK:
             raise _e.error_class(status)(_def_problem(d))
         self._world = out[0]
+        self._lib_owned = False
+
+    @classmethod
+    def _adopt(cls, cworld: Any) -> "World":
+        """Wrap a world the library allocated (checkpoints).  Its block is
+        freed by rbs_world_destroy only when the World and every state view
+        are gone (a cffi gc owner kept by the views' buffer)."""
+        self = cls.__new__(cls)
+        self._world = ffi.NULL
+        self._lock = threading.Lock()
+        self._scene_steps = None
+        self._scene_pause_on_collision = False
+        self.description = ""
+        usage = ffi.new("rbs_usage *")
+        status = lib.rbs_world_usage(cworld, usage)
+        if status != lib.RBS_OK or usage.bytes == 0:
+            lib.rbs_world_destroy(cworld)
+            raise _e.error_class(status if status != lib.RBS_OK else lib.RBS_E_INVALID)(
+                "cannot size the restored world")
+        size = int(usage.bytes)
+        self._mem = ffi.gc(ffi.cast("char *", cworld),
+                           lambda p: lib.rbs_world_destroy(ffi.cast("rbs_world *", p)),
+                           size=size)
+        self._offset = 0
+        self._base = int(ffi.cast("uintptr_t", cworld))
+        self._size = size
+        self._block = np.frombuffer(memoryview(ffi.buffer(self._mem, size)).toreadonly(),
+                                    dtype=np.uint8)
+        self._world = cworld
+        self._lib_owned = True
+        return self
+
+    @classmethod
+    def from_checkpoint(cls, data: Union[bytes, bytearray, memoryview]) -> "World":
+        """A world restored from :meth:`checkpoint` bytes: the exact state,
+        every double bit for bit, so stepping it continues the original run
+        identically.
+
+        Raises:
+            CorruptError: truncated, damaged or foreign bytes.
+            VersionError: another checkpoint format version.
+        """
+        if not isinstance(data, (bytes, bytearray, memoryview)):
+            raise _e.ArgumentTypeError("data: expected bytes, got %s"
+                                       % _check._describe(data))
+        raw = bytes(data)
+        out = ffi.new("rbs_world **")
+        status = lib.rbs_world_create_from_checkpoint(raw, len(raw), out)
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("checkpoint of %d bytes rejected" % len(raw))
+        return cls._adopt(out[0])
+
+    @classmethod
+    def restore(cls, path: Any) -> "World":
+        """A world loaded from a file written by :meth:`save` (CorruptError,
+        VersionError or IoError with the reason if it cannot be)."""
+        raw = _check.path(path, "path")
+        out = ffi.new("rbs_world **")
+        msg = ffi.new("char[]", 512)
+        status = lib.rbs_world_load(raw, out, msg, 512)
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("%s: %s" % (raw.decode("utf-8", "replace"),
+                                                     _str(msg)))
+        return cls._adopt(out[0])
 
     @classmethod
     def _from_def(cls, d: Any) -> "World":
@@ -493,11 +557,19 @@ class World:
         if not self._lock.acquire(blocking=False):
             raise _e.BusyError("world is in use by another thread; cannot close it")
         try:
-            if self._world != ffi.NULL:
-                lib.rbs_world_destroy(self._world)
-                self._world = ffi.NULL
+            self._release_world()
         finally:
             self._lock.release()
+
+    def _release_world(self) -> None:
+        """Destroy the C world; the memory goes when the last view does."""
+        if self._world == ffi.NULL:
+            return
+        if not self._lib_owned:
+            lib.rbs_world_destroy(self._world)  # our block: nothing is freed
+        self._world = ffi.NULL
+        self._block = None  # views keep what they need of the memory
+        self._mem = None
 
     def __enter__(self) -> "World":
         return self
@@ -506,10 +578,8 @@ class World:
         self.close()
 
     def __del__(self) -> None:
-        world = getattr(self, "_world", ffi.NULL)
-        if world != ffi.NULL:
-            lib.rbs_world_destroy(world)
-            self._world = ffi.NULL
+        if getattr(self, "_world", ffi.NULL) != ffi.NULL:
+            self._release_world()
 
     @property
     def closed(self) -> bool:
@@ -1015,6 +1085,48 @@ class World:
     def hash(self) -> int:
         """Deterministic 64-bit hash of the full state bits."""
         return int(self._value(lib.rbs_world_hash))
+
+    def checkpoint(self) -> bytes:
+        """The exact state as bytes (see :meth:`from_checkpoint`)."""
+        w = self._acquire()
+        try:
+            size = lib.rbs_world_checkpoint_size(w)
+            buf = ffi.new("char[]", max(int(size), 1))
+            written = ffi.new("size_t *")
+            status = lib.rbs_world_checkpoint_write(w, buf, size, written)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("checkpoint of %d bytes" % size)
+        return ffi.buffer(buf, written[0])[:]
+
+    def save(self, path: Any) -> None:
+        """Save a checkpoint to a file atomically (a crash mid-write leaves
+        any previous file intact); restore it with :meth:`World.restore`."""
+        raw = _check.path(path, "path")
+        w = self._acquire()
+        try:
+            status = lib.rbs_world_save(w, raw)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("cannot save %s" % raw.decode("utf-8", "replace"))
+
+    def explain(self) -> str:
+        """The pipeline a step runs for this world as it is now: bodies,
+        method, and each stage in or out with the reason."""
+        w = self._acquire()
+        try:
+            needed = ffi.new("size_t *")
+            lib.rbs_world_explain(w, ffi.NULL, 0, needed)
+            size = int(needed[0])
+            buf = ffi.new("char[]", max(size, 1))
+            status = lib.rbs_world_explain(w, buf, size, needed)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("rbs_world_explain")
+        return ffi.string(buf).decode("utf-8", "replace")
 
     def __repr__(self) -> str:
         if self.closed:
