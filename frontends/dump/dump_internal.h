@@ -24,7 +24,7 @@ typedef struct rbsf__out {
  * cap bytes. */
 rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
                           char *err, size_t errlen);
-/** Append n bytes to the frame buffer; RBS_E_MEMORY if they do not fit. */
+/** Append n bytes to the frame buffer; RBS_E_CAPACITY if they do not fit. */
 rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n);
 /** Append a number (rbsf_format_double). */
 rbs_status rbsf__out_num(rbsf__out *out, double x);

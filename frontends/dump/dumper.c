@@ -80,9 +80,14 @@ static rbs_status dumper_draw(void *instance, const rbs_frame *frame, char *err,
     rbs_status st = d->format->frame(&d->out, frame, NULL);
     if (st != RBS_OK) {
         rbsf__out_discard(&d->out);
-        snprintf(err, errlen, "frame %llu does not fit the frame buffer of '%s'",
-                 (unsigned long long)frame->number, d->out.path);
-        return RBS_E_MEMORY;
+        if (st == RBS_E_CAPACITY)
+            snprintf(err, errlen, "frame %llu does not fit the frame buffer of "
+                     "'%s' (%lu bytes)", (unsigned long long)frame->number,
+                     d->out.path, (unsigned long)d->out.cap);
+        else
+            snprintf(err, errlen, "out of memory formatting frame %llu for '%s'",
+                     (unsigned long long)frame->number, d->out.path);
+        return st;
     }
     return rbsf__out_commit(&d->out, err, errlen);
 }

@@ -81,18 +81,20 @@ static rbs_status json_frame(rbsf__out *out, const rbs_frame *f, void *scratch)
              add_vector(body, "velocity", b->velocity, 3) &&
              add_vector(body, "angular_velocity", b->angular_velocity, 3);
     }
+    if (!ok) {
+        cJSON_Delete(root);
+        return RBS_E_MEMORY; /* building the tree failed */
+    }
     /* Print straight into the frame buffer, then end the line. */
     room = out->cap - out->len;
-    if (ok && room > 8)
-        ok = cJSON_PrintPreallocated(root, out->buf + out->len,
-                                     (int)(room - 8 > 0x7fffffff ? 0x7fffffff
-                                                                 : room - 8),
-                                     0) != 0;
-    else
-        ok = 0;
+    ok = room > 8 &&
+         cJSON_PrintPreallocated(root, out->buf + out->len,
+                                 (int)(room - 8 > 0x7fffffff ? 0x7fffffff
+                                                             : room - 8),
+                                 0) != 0;
     cJSON_Delete(root);
     if (!ok)
-        return RBS_E_MEMORY;
+        return RBS_E_CAPACITY;
     n = strlen(out->buf + out->len);
     out->len += n;
     return rbsf__out_put(out, "\n", 1);

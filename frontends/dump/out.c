@@ -68,7 +68,7 @@ rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
 rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n)
 {
     if (n > out->cap - out->len)
-        return RBS_E_MEMORY;
+        return RBS_E_CAPACITY;
     memcpy(out->buf + out->len, s, n);
     out->len += n;
     return RBS_OK;
