@@ -182,6 +182,53 @@ static void camera_commands_reach_the_renderers(void **state)
     assert_non_null(strstr(reply, "no renderer of this run takes camera"));
 }
 
+/* Any line at all gets an answer and a status, never a crash: random
+ * words from the command names and junk, with random arguments. */
+static void any_line_is_answered(void **state)
+{
+    fixture *f = *state;
+    char line[300], reply[4096];
+    unsigned long seed = 12345;
+    int i, j;
+    for (i = 0; i < 20000; i++) {
+        size_t n = 0;
+        int words;
+        seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+        words = (int)(seed >> 60) % 4;
+        if ((seed >> 40) % 2)
+            n += (size_t)snprintf(line, sizeof line, "%s",
+                                  names[(seed >> 33) % 13]);
+        for (j = 0; j < words && n < sizeof line - 40; j++) {
+            seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+            switch ((seed >> 50) % 5) {
+            case 0: n += (size_t)snprintf(line + n, sizeof line - n, " %lu",
+                                          seed >> 20); break;
+            case 1: n += (size_t)snprintf(line + n, sizeof line - n, " -%g",
+                                          (double)(seed >> 30) / 7.0); break;
+            case 2: n += (size_t)snprintf(line + n, sizeof line - n, " 1e999");
+                    break;
+            case 3: n += (size_t)snprintf(line + n, sizeof line - n, " %c%c",
+                                          (char)(33 + (seed >> 8) % 90),
+                                          (char)(1 + (seed >> 16) % 126));
+                    break;
+            default: n += (size_t)snprintf(line + n, sizeof line - n, "\t");
+            }
+        }
+        if (strncmp(line, "quit", 4) == 0 || strncmp(line, "pause", 5) == 0)
+            continue; /* keep the projector as it is */
+        rbsf_command_run(f->projector, line, reply, sizeof reply);
+        assert_true(strlen(reply) < sizeof reply);
+    }
+    /* A line longer than a command may be. */
+    memset(line, 'x', sizeof line - 1);
+    line[sizeof line - 1] = '\0';
+    memcpy(line, "speed ", 6);
+    assert_int_equal(rbs_projector_command(f->projector, line, reply,
+                                           sizeof reply),
+                     RBS_E_INVALID);
+    assert_non_null(strstr(reply, "too long"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -192,6 +239,7 @@ int main(void)
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(camera_commands_reach_the_renderers,
                                         setup, teardown),
+        cmocka_unit_test_setup_teardown(any_line_is_answered, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
