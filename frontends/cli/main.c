@@ -7,7 +7,9 @@
 #include "sdl_renderer.h"
 #endif
 
+#include <fcntl.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char usage_text[] =
     "usage: rbsim COMMAND [ARGUMENTS]\n"
@@ -258,9 +260,21 @@ static int convert_main(int argc, char **argv)
     return RBSF_EXIT_OK;
 }
 
+/* A closed standard descriptor would be reused by the next open(): an
+ * output file would become "standard input".  Put /dev/null there. */
+static void guard_standard_fds(void)
+{
+    int fd;
+    for (fd = 0; fd <= 2; fd++)
+        if (fcntl(fd, F_GETFD) == -1 &&
+            open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY) != fd)
+            break;
+}
+
 int main(int argc, char **argv)
 {
     const char *cmd;
+    guard_standard_fds();
     if (argc < 2) {
         fputs(usage_text, stderr);
         return RBSF_EXIT_USAGE;
