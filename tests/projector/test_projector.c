@@ -426,6 +426,57 @@ static void every_k_keeps_multiples_and_the_last(void **state)
     rbs_world_destroy(w);
 }
 
+/* A caller compiled against an older, shorter rbs_renderer_config: the
+ * array's stride is its struct_size. */
+typedef struct old_config {
+    uint32_t struct_size;
+    const char *type, *path;
+    uint32_t every;
+    const char *json, *file;
+    int32_t line, column;
+} old_config;
+
+static void older_config_arrays_are_read_by_their_size(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    old_config old[2];
+    rbs_renderer_config unset;
+    rbs_projector_def def;
+    rbs_projector *p;
+    (void)state;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    memset(old, 0, sizeof old);
+    old[0].struct_size = old[1].struct_size = sizeof old[0];
+    old[0].type = old[1].type = "rec";
+    old[0].every = 1;
+    old[1].every = 10;
+    rbs_projector_def_init(&def);
+    def.steps = 20;
+    CHECK_OK(rbs_projector_create(w, reg, (const rbs_renderer_config *)(void *)old,
+                                  2, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    assert_int_equal(ctx.made[0]->count, 21);
+    assert_int_equal(ctx.made[1]->count, 3); /* 0, 10, 20 */
+    /* The control hook the old caller has no room for is still given. */
+    assert_non_null(ctx.made[1]->config.control);
+    rbs_projector_destroy(p);
+    /* struct_size not set: refused with a message. */
+    memset(&unset, 0, sizeof unset);
+    unset.type = "rec";
+    assert_int_equal(rbs_projector_create(w, reg, &unset, 1, &def, &p),
+                     RBS_E_INVALID);
+    assert_non_null(strstr(rbs_projector_last_error(p), "struct_size"));
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
 /* A run with four renderers ends in the same world state as with none. */
 static void renderers_do_not_change_results(void **state)
 {
@@ -939,6 +990,7 @@ int main(void)
         cmocka_unit_test(zero_steps_gives_frame_zero),
         cmocka_unit_test(every_k_keeps_multiples_and_the_last),
         cmocka_unit_test(renderers_do_not_change_results),
+        cmocka_unit_test(older_config_arrays_are_read_by_their_size),
         cmocka_unit_test(failing_check_creates_nothing),
         cmocka_unit_test(failing_create_destroys_the_others),
         cmocka_unit_test(failing_draw_stops_the_run),

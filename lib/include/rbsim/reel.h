@@ -283,10 +283,13 @@ typedef struct rbs_projector rbs_projector;
  * world and the registry: both must outlive it.  From rbs_projector_start()
  * until rbs_projector_wait() returns, the world belongs to the simulation
  * thread: no other thread may call anything on it.
- * On RBS_E_INVALID/RBS_E_MEMORY *out is NULL.  On other errors (unknown type,
- * a renderer's check or create failing) *out is still set, explains the error
- * in rbs_projector_last_error(), cannot start, and must be destroyed.
- * Not thread-safe. */
+ * configs is read with configs[0].struct_size as its element size (set
+ * every struct_size to sizeof(rbs_renderer_config)).  On error *out is NULL
+ * when the arguments are unusable (NULL world or def, count too large, an
+ * uninitialised def) or memory ran out; otherwise (bad def values, an unset
+ * struct_size, an unknown type, a renderer's check or create failing) *out is
+ * set, explains the error in rbs_projector_last_error(), cannot start, and
+ * must be destroyed.  Not thread-safe. */
 RBS_API rbs_status rbs_projector_create(rbs_world *world,
                                         const rbs_renderer_registry *registry,
                                         const rbs_renderer_config *configs,

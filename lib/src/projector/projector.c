@@ -195,6 +195,25 @@ static void control_hook(void *context, const char *command)
     rbs_projector_command((rbs_projector *)context, command, NULL, 0);
 }
 
+/* The i-th config of the caller's array, whose element size is the
+ * struct_size the caller's header gave (older callers: shorter, the rest
+ * zero; newer: longer, the rest ignored).  -1 if struct_size is not set. */
+static int config_at(const rbs_renderer_config *configs, uint32_t i,
+                     rbs_renderer_config *out)
+{
+    size_t stride = configs[0].struct_size;
+    const unsigned char *base = (const unsigned char *)configs;
+    memset(out, 0, sizeof *out);
+    if (stride < offsetof(rbs_renderer_config, control))
+        return -1;
+    memcpy(out, base + (size_t)i * stride,
+           stride < sizeof *out ? stride : sizeof *out);
+    if (out->struct_size != stride)
+        return -1;
+    out->struct_size = (uint32_t)sizeof *out;
+    return 0;
+}
+
 static void label_renderer(renderer *r, const rbs_renderer_config *c)
 {
     char where[96] = "";
@@ -218,6 +237,7 @@ rbs_status rbs_projector_create(rbs_world *world,
     rbs_world_def wd;
     rbs_reel_policy policy;
     pthread_condattr_t attr;
+    rbs_renderer_config cfg[RBS_RENDERERS_MAX];
     char err[ERROR_MAX - 200];
     rbs_status st;
     uint32_t i;
@@ -290,8 +310,15 @@ rbs_status rbs_projector_create(rbs_world *world,
     /* Find every renderer type, then check every configuration, before
      * creating any: a rejected run writes nothing. */
     for (i = 0; i < count; i++) {
-        const rbs_renderer_config *c = &configs[i];
+        const rbs_renderer_config *c = &cfg[i];
         renderer *r = &p->renderers[i];
+        if (config_at(configs, i, &cfg[i]) != 0) {
+            set_error(p, RBS_E_INVALID,
+                      "renderer %lu: struct_size is not set (use "
+                      "sizeof(rbs_renderer_config))",
+                      (unsigned long)i);
+            return RBS_E_INVALID;
+        }
         if (c->type == NULL) {
             set_error(p, RBS_E_INVALID, "renderer %lu: no type",
                       (unsigned long)i);
@@ -312,7 +339,7 @@ rbs_status rbs_projector_create(rbs_world *world,
         if (r->cls->check == NULL)
             continue;
         err[0] = '\0';
-        st = r->cls->check(r->cls->context, &configs[i], world, err, sizeof err);
+        st = r->cls->check(r->cls->context, &cfg[i], world, err, sizeof err);
         if (st != RBS_OK) {
             set_error(p, st, "%s: %s", r->label,
                       err[0] ? err : rbs_status_string(st));
@@ -323,7 +350,7 @@ rbs_status rbs_projector_create(rbs_world *world,
     /* Create the renderers; each gets the control hook. */
     for (i = 0; i < count; i++) {
         renderer *r = &p->renderers[i];
-        rbs_renderer_config c = configs[i];
+        rbs_renderer_config c = cfg[i];
         c.control = control_hook;
         c.control_context = p;
         err[0] = '\0';
