@@ -304,17 +304,19 @@ RBS_API rbs_status rbs_projector_create(rbs_world *world,
 RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
 
 /** Send a command line, as typed by a user.  Thread-safe (any thread, also
- * from a renderer's control hook).  Commands: "pause", "resume",
- * "step [N]" (while paused: advance N frames, default 1, then stay paused),
- * "speed X" (real-time factor, > 0), "quit" (stop after the frame being
- * made; frames already in the reel are still drawn and every output
- * finished), "status" (a one-line summary).  Any other line is offered to
- * each renderer's command hook on the renderer thread (cameras: "orbit",
- * "zoom", ...), and this call waits for the answer unless it comes from the
- * renderer thread itself.  A reply (one line, no newline) is written into
- * reply (reply_size bytes; reply may be NULL).  Returns RBS_OK, RBS_E_INVALID
- * for bad arguments, RBS_E_NOT_FOUND if no one knows the command, or
- * RBS_E_CLOSED if the run is over. */
+ * from a renderer's control hook), also before start and after the end.
+ * Commands: "pause", "resume", "step [N]" (make N more frames, default 1,
+ * then pause; sums up if repeated), "speed X" (real-time factor, 0 < X <=
+ * 1e6), "quit" (stop after the frame being made; frames already in the reel
+ * are still drawn and every output finished), "status" (a one-line summary).
+ * Any other line is offered to each renderer's command hook: on the renderer
+ * thread while it runs (this call waits for the answer, unless it comes from
+ * the renderer thread itself), directly otherwise.  A reply (one line, no
+ * newline) is written into reply (reply_size bytes; reply may be NULL).
+ * Lines are at most 255 bytes.  Returns RBS_OK, RBS_E_INVALID for bad
+ * arguments (the reply says why), RBS_E_NOT_FOUND if no one knows the
+ * command, or RBS_E_CLOSED if the renderer thread ended before it could
+ * answer. */
 RBS_API rbs_status rbs_projector_command(rbs_projector *projector,
                                          const char *line, char *reply,
                                          size_t reply_size);
