@@ -225,8 +225,11 @@ typedef struct rbs_projector_def {
                                    only if every renderer is
                                    RBS_RENDERER_LIVE; otherwise lossless */
     int32_t realtime;         /**< nonzero: show frame k at k dt / speed of
-                                   wall time; 0 (default): as fast as
-                                   possible */
+                                   wall time (the renderer thread sleeps
+                                   until a frame is due; when more than a
+                                   frame behind, live views skip frames,
+                                   recorders never do); 0 (default): as
+                                   fast as possible */
     double speed;             /**< real-time factor, > 0; default 1 */
     int32_t start_paused;     /**< nonzero: pause after frame 0; default 0 */
     int32_t pause_on_collision; /**< nonzero: pause after a frame whose step
