@@ -9,12 +9,13 @@ variable removed, so they cannot fall back on the in-tree extension.
 import importlib.util
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
 
 import pytest
 
-from conftest import PACKAGE_DIR
+from conftest import BUILD_DIR, PACKAGE_DIR
 
 import rbsim
 
@@ -73,6 +74,34 @@ def test_setup_py_builds_the_library_with_meson(tmp_path):
     # librbsim is linked in statically: the module needs no librbsim.so.
     ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
     assert "librbsim" not in ldd and "not found" not in ldd, ldd
+
+
+def test_setup_py_uses_an_installed_library(tmp_path):
+    """pkg-config finds an installed rbsim (here: this build installed into
+    a staging folder); the extension links its librbsim.so with an rpath."""
+    meson = shutil.which("meson")
+    if meson is None:
+        pytest.fail("meson is not on PATH")
+    dest = tmp_path / "dest"
+    r = subprocess.run([meson, "install", "-C", str(BUILD_DIR), "--no-rebuild",
+                        "--quiet", "--destdir", str(dest)],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    pcs = list(dest.rglob("rbsim.pc"))
+    assert len(pcs) == 1, pcs
+    env = dict(os.environ)
+    env.update(RBSIM_LIBRARY="pkg-config", PKG_CONFIG_PATH=str(pcs[0].parent),
+               PKG_CONFIG_SYSROOT_DIR=str(dest))
+    r = subprocess.run([sys.executable, "setup.py", "-q", "build",
+                        "--build-base", str(tmp_path / "build")],
+                       cwd=PACKAGE_DIR, env=env, capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+    where = next((tmp_path / "build").glob("lib*/rbsim")).parent
+    ext = check_installed(where, tmp_path)
+    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
+    line = [l for l in ldd.splitlines() if "librbsim" in l]
+    assert line and str(dest) in line[0], ldd
 
 
 def can_build_wheels_offline():
