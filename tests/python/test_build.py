@@ -112,3 +112,13 @@ def test_package_is_typed():
     assert (PACKAGE_DIR / "rbsim" / "py.typed").exists()
     assert rbsim.World.step.__annotations__
     assert rbsim.World.__doc__ and rbsim.load.__doc__
+
+
+def test_type_checking_names_match_the_generated_classes():
+    """errors.py lists the generated classes for type checkers; the list
+    must name exactly the classes generated from RBS_STATUS_LIST."""
+    src = (PACKAGE_DIR / "rbsim" / "errors.py").read_text()
+    block = src[src.index("if TYPE_CHECKING:"):]
+    declared = set(re.findall(r"^    class (\w+)\(", block, flags=re.M))
+    generated = set(rbsim.errors.GENERATED) - {"SceneError"}
+    assert declared == generated

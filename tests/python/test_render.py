@@ -201,3 +201,26 @@ def test_frame_step_info():
     w.run(20, renderers=[frames.append])
     assert sum(f.step.colliding for f in frames) >= 1
     assert frames[0].step.steps == 1
+
+
+def test_ctrl_c_during_a_run_stops_it_and_propagates():
+    import _thread
+    w = make_world()
+    seen = []
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            w.run(endless=True, renderers=[lambda f: seen.append(f.number)])
+    finally:
+        timer.cancel()
+    assert len(seen) > 1
+    w.step()  # the run is over and the world usable
+    assert "busy" not in repr(w)
+
+
+def test_repr_never_raises_during_a_run():
+    w = make_world()
+    reprs = []
+    w.run(3, renderers=[lambda f: reprs.append(repr(w))])
+    assert reprs and all("busy" in r for r in reprs)

@@ -404,6 +404,8 @@ def start_world(world: World, steps: Optional[int] = None,
                 pause_on_collision: Optional[bool] = None,
                 reel_capacity: Optional[int] = None, endless: bool = False) -> Run:
     """Start a run of world; see World.start."""
+    if steps is None and endless is True:
+        steps = 0  # not used: the run goes on until quit
     if steps is None:
         steps = world._scene_steps
         if steps is None:

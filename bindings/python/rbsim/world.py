@@ -1131,8 +1131,11 @@ class World:
     def __repr__(self) -> str:
         if self.closed:
             return "World(<closed>)"
-        return "World(bodies=%d, t=%.6g s, method=%s)" % (
-            len(self.all_bodies()), self.time, self.method)
+        try:
+            return "World(bodies=%d, t=%.6g s, method=%s)" % (
+                len(self.all_bodies()), self.time, self.method)
+        except _e.BusyError:
+            return "World(<busy: in use by another thread or a run>)"
 
 
 def _method_value(name: Any) -> int:
