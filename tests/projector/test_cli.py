@@ -341,10 +341,20 @@ class CliTests(Base):
                               "1000", "--csv", "p.csv"], cwd=self.dir,
                              stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                              stderr=subprocess.PIPE, text=True)
+        seen = []
         try:
             p.stdin.write("step 10\n")
             p.stdin.flush()
-            time.sleep(0.5)
+            seen.append(p.stdout.readline())  # "stepping 10 frames ..."
+            deadline = time.time() + 60
+            while time.time() < deadline:
+                p.stdin.write("status\n")
+                p.stdin.flush()
+                seen.append(p.stdout.readline())
+                if "frame 10 of 1000" in seen[-1]:
+                    break
+                time.sleep(0.05)
+            time.sleep(0.2)  # paused: nothing more may come
             p.stdin.write("status\nquit\n")
             p.stdin.flush()
             out, err = p.communicate(timeout=60)
@@ -352,7 +362,10 @@ class CliTests(Base):
             if p.poll() is None:
                 p.kill()
         self.assertEqual(p.returncode, 0, err)
+        self.assertIn("stepping 10 frames", seen[0])
+        self.assertIn("frame 10 of 1000", seen[-1])
         self.assertIn("frame 10 of 1000", out)
+        self.assertIn("paused", out)
         self.assertEqual(self.assert_whole_frames(self.path("p.csv")), 11)
 
     def test_convert_round_trip(self):
