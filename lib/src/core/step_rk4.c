@@ -13,7 +13,11 @@
  * body with torque or anisotropic inertia (off-centre mass included) has
  * (q, w) advanced by the same RK4 on  q' = 1/2 (0, w) q,
  * w' = I^-1 (tau - w x I w)  (world frame), q renormalised afterwards: fourth
- * order for the torque-free and torqued rigid body.
+ * order for the torque-free and torqued rigid body.  Rotation and translation
+ * do not couple between contacts (forces act at the centre of mass, torques
+ * do not depend on position), so (q, w) is integrated on its own, in m equal
+ * RK4 sub-steps with |w| h / m <= 1/4 rad: a body spinning fast relative to
+ * the frame step stays inside RK4's stability region (m = 1 otherwise).
  *
  * Contacts, as in Verlet: the resting pass runs on the mean ("drift")
  * velocities (v1 + 2 v2 + 2 v3 + v4) / 6 before positions move, and again on
@@ -35,13 +39,15 @@ enum {
     S_W0 = 10,   /* angular velocity at the start, 3 */
     S_SX = 13,   /* sum of b_k v_k, 3 */
     S_SV = 16,   /* sum of b_k a_k, 3 */
-    S_SW = 19,   /* sum of b_k alpha_k, 3 */
-    S_SWD = 22,  /* sum of b_k w_k, 3 */
-    S_SQ = 25,   /* sum of b_k qdot_k, 4 */
-    S_QR = 29,   /* raw (unnormalised) stage quaternion, 4 */
-    S_SPIN = 33, /* 1: (q, w) integrated by RK4 */
-    S_USED = 34
+    S_WE = 19,   /* RK4 angular velocity at the end, 3 */
+    S_WM = 22,   /* RK4 mean angular velocity over the step, 3 */
+    S_QE = 25,   /* RK4 orientation at the end, 4 */
+    S_SPIN = 29, /* 1: (q, w) integrated by RK4 */
+    S_USED = 30
 };
+
+#define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
+#define SPIN_MAX_SUBSTEPS 100000
 
 static quat q_axpy(quat a, quat b, double s)
 {
@@ -57,16 +63,56 @@ static quat q_dot(v3 om, quat q)
     return r;
 }
 
-/* Angular acceleration I^-1 (tau - w x I w) at orientation q (unit). */
-static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om)
+/* Angular acceleration I^-1 (tau - w x I w) at unit orientation q. */
+static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
 {
     v3 dw;
     if (!w->isotropic[i])
-        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q_load(&w->orient[4 * i]), om)));
+        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
     if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
         return v3_make(0.0, 0.0, 0.0);
-    rbs__body_inv_inertia_world(w, i, tau, &dw);
+    if (w->isotropic[i])
+        return v3_scale(tau, w->inv_inertia[9 * i]);
+    dw = m3_mul_world(&w->inv_inertia[9 * i], q, tau);
     return dw;
+}
+
+/* RK4 on q' = 1/2 (0, w) q, w' = alpha(q, w) over h for body i, in m
+ * sub-steps with |w| h / m <= SPIN_MAX_ANGLE.  Writes the end orientation
+ * and angular velocity and the mean angular velocity over h into S. */
+static void spin_rk4(const rbs_world *w, uint32_t i, v3 tau, double h, double *S)
+{
+    quat q = q_load(&S[S_Q0]);
+    v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0);
+    double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
+    int m = 1, k;
+    if (reach > SPIN_MAX_ANGLE)
+        m = reach < SPIN_MAX_ANGLE * SPIN_MAX_SUBSTEPS ? (int)ceil(reach / SPIN_MAX_ANGLE) : SPIN_MAX_SUBSTEPS;
+    hs = h / m;
+    for (k = 0; k < m; ++k) {
+        v3 w1 = om, a1 = ang_acc(w, i, tau, w1, q);
+        quat d1 = q_dot(w1, q), q2, q3, q4, d2, d3, d4;
+        v3 w2, w3, w4, a2, a3, a4;
+        q2 = q_axpy(q, d1, 0.5 * hs);
+        w2 = v3_mad(om, a1, 0.5 * hs);
+        a2 = ang_acc(w, i, tau, w2, q_normalize(q2));
+        d2 = q_dot(w2, q2);
+        q3 = q_axpy(q, d2, 0.5 * hs);
+        w3 = v3_mad(om, a2, 0.5 * hs);
+        a3 = ang_acc(w, i, tau, w3, q_normalize(q3));
+        d3 = q_dot(w3, q3);
+        q4 = q_axpy(q, d3, hs);
+        w4 = v3_mad(om, a3, hs);
+        a4 = ang_acc(w, i, tau, w4, q_normalize(q4));
+        d4 = q_dot(w4, q4);
+        mean = v3_add(mean, v3_scale(v3_add(v3_add(w1, w4), v3_scale(v3_add(w2, w3), 2.0)), 1.0 / 6.0));
+        q = q_axpy(q, q_axpy(q_axpy(d1, d4, 1.0), q_axpy(d2, d3, 1.0), 2.0), hs / 6.0);
+        q = q_normalize(q);
+        om = v3_mad(om, v3_add(v3_add(a1, a4), v3_scale(v3_add(a2, a3), 2.0)), hs / 6.0);
+    }
+    q_store(&S[S_QE], q);
+    v3_store(&S[S_WE], om);
+    v3_store(&S[S_WM], v3_scale(mean, 1.0 / m));
 }
 
 /* Place body i's geometric centre so that its COM is at com for orientation q. */
@@ -98,15 +144,16 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         memcpy(&S[S_V0], &w->vel[3 * i], 3 * sizeof(double));
         memcpy(&S[S_Q0], &w->orient[4 * i], 4 * sizeof(double));
         memcpy(&S[S_W0], &w->avel[3 * i], 3 * sizeof(double));
-        memcpy(&S[S_QR], &w->orient[4 * i], 4 * sizeof(double));
-        memset(&S[S_SX], 0, (S_QR - S_SX) * sizeof(double));
+        memset(&S[S_SX], 0, 6 * sizeof(double));
         S[S_SPIN] = 0.0;
         if (w->plan.angular) {
             v3 om = v3_load(&w->avel[3 * i]);
             rbs__accelerations(w, i, &a, &tau);
             if ((tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) ||
-                (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)))
+                (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0))) {
                 S[S_SPIN] = 1.0;
+                spin_rk4(w, i, tau, h, S);
+            }
         }
     }
 
@@ -126,21 +173,8 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
                 a = v3_add(a, v3_load(&w->acc[3 * i]));
             v3_store(&S[S_SX], v3_mad(v3_load(&S[S_SX]), vs, b[s]));
             v3_store(&S[S_SV], v3_mad(v3_load(&S[S_SV]), a, b[s]));
-            if (S[S_SPIN] != 0.0) {
-                v3 om = v3_load(&w->avel[3 * i]), al = ang_acc(w, i, tau, om);
-                quat qd = q_dot(om, q_load(&S[S_QR]));
-                v3_store(&S[S_SW], v3_mad(v3_load(&S[S_SW]), al, b[s]));
-                v3_store(&S[S_SWD], v3_mad(v3_load(&S[S_SWD]), om, b[s]));
-                q_store(&S[S_SQ], q_axpy(q_load(&S[S_SQ]), qd, b[s]));
-                if (s < 3) {
-                    quat qr = q_axpy(q_load(&S[S_Q0]), qd, c[s]);
-                    q_store(&S[S_QR], qr);
-                    q_store(&w->orient[4 * i], q_normalize(qr));
-                    v3_store(&w->avel[3 * i], v3_mad(v3_load(&S[S_W0]), al, c[s]));
-                }
-            }
             if (s < 3) {
-                place(w, i, v3_mad(v3_load(&S[S_X0]), vs, c[s]), q_load(&w->orient[4 * i]));
+                place(w, i, v3_mad(v3_load(&S[S_X0]), vs, c[s]), q_load(&S[S_Q0]));
                 v3_store(&w->vel[3 * i], v3_mad(v3_load(&S[S_V0]), a, c[s]));
             }
         }
@@ -155,7 +189,7 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         v3_store(&w->vel[3 * i], v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0));
         /* the drift angular velocity: the stage mean, or the (constant) start */
         if (S[S_SPIN] != 0.0)
-            v3_store(&w->avel[3 * i], v3_scale(v3_load(&S[S_SWD]), 1.0 / 6.0));
+            memcpy(&w->avel[3 * i], &S[S_WM], 3 * sizeof(double));
         else
             memcpy(&w->avel[3 * i], &S[S_W0], 3 * sizeof(double));
         memcpy(&w->orient[4 * i], &S[S_Q0], 4 * sizeof(double));
@@ -175,11 +209,11 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         if (w->fixed[i])
             continue;
         if (S[S_SPIN] != 0.0) {
-            v3 dw = v3_sub(om, v3_scale(v3_load(&S[S_SWD]), 1.0 / 6.0));
-            q = q_normalize(q_axpy(q, q_load(&S[S_SQ]), h / 6.0));
+            v3 dw = v3_sub(om, v3_load(&S[S_WM]));
+            q = q_load(&S[S_QE]);
             if (dw.x != 0.0 || dw.y != 0.0 || dw.z != 0.0)
                 q = q_normalize(q_mul(q_from_rotation(dw, h), q));
-            om = v3_add(v3_mad(v3_load(&S[S_W0]), v3_load(&S[S_SW]), h / 6.0), dw);
+            om = v3_add(v3_load(&S[S_WE]), dw);
         } else if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
             q = q_normalize(q_mul(q_from_rotation(om, h), q));
         }
