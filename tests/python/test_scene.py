@@ -102,3 +102,12 @@ def test_text_format_errors_carry_places(tmp_path):
         rbsim.load(tmp_path / "config.txt")
     e = info.value
     assert any(x.line == 2 and x.file.endswith("config.txt") for x in e.errors)
+
+
+def test_scene_renderers_are_listed_and_not_silently_dropped():
+    w = rbsim.load(SCENES / "bouncing_sphere.json")
+    assert w.scene_renderers and w.scene_renderers[0]["type"] == "csv"
+    with pytest.warns(UserWarning, match="csv") as record:
+        w.run(3)
+    assert record[0].filename == __file__  # points at the caller
+    w.run(3)  # warned once per world

@@ -17,6 +17,7 @@ of the library, generated from its ``RBS_STATUS_LIST``.
 
 from __future__ import annotations
 
+import json
 import os
 from typing import Any, List, Optional, Union
 
@@ -89,6 +90,14 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         raise error_class(status)("%s: %s" % (name, detail))
     world._scene_steps = int(lib.rbs_scene_steps(scene))
     world._scene_pause_on_collision = bool(lib.rbs_scene_pause_on_collision(scene))
+    entries = []
+    item = ffi.new("rbs_scene_renderer *")
+    for i in range(lib.rbs_scene_renderer_count(scene)):
+        if lib.rbs_scene_renderer_get(scene, i, item) == lib.RBS_OK:
+            raw = item.json
+            entries.append(json.loads(ffi.string(raw).decode("utf-8", "replace"))
+                           if raw != ffi.NULL else {})
+    world.scene_renderers = entries
     describe = getattr(lib, "rbs_scene_description", None)
     if describe is not None:
         text = describe(scene)

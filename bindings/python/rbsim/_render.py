@@ -23,6 +23,7 @@ original exception again.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence, Tuple
 
@@ -402,8 +403,17 @@ def start_world(world: World, steps: Optional[int] = None,
                 renderers: Sequence[Any] = (), *, realtime: bool = False,
                 speed: float = 1.0, start_paused: bool = False,
                 pause_on_collision: Optional[bool] = None,
-                reel_capacity: Optional[int] = None, endless: bool = False) -> Run:
+                reel_capacity: Optional[int] = None, endless: bool = False,
+                _stacklevel: int = 3) -> Run:
     """Start a run of world; see World.start."""
+    if world.scene_renderers and not getattr(world, "_warned_renderers", False):
+        world._warned_renderers = True
+        warnings.warn(
+            "the scene's renderers (%s) are front-end renderers of the rbsim "
+            "command and are not run from Python; pass Python renderers to "
+            "run()/start() (world.scene_renderers lists them)"
+            % ", ".join(str(r.get("type")) for r in world.scene_renderers),
+            UserWarning, stacklevel=_stacklevel)
     if steps is None and endless is True:
         steps = 0  # not used: the run goes on until quit
     if steps is None:
@@ -438,5 +448,6 @@ def run_world(world: World, steps: Optional[int] = None,
     resume: use World.start and Run.command for that.)"""
     return start_world(world, steps, renderers, realtime=realtime, speed=speed,
                        start_paused=False, pause_on_collision=False,
-                       reel_capacity=reel_capacity, endless=endless).wait()
+                       reel_capacity=reel_capacity, endless=endless,
+                       _stacklevel=4).wait()
 

@@ -428,6 +428,8 @@ class World:
         self._scene_pause_on_collision = False
         #: the scene's description ("" for a world built in code)
         self.description = ""
+        #: the scene's "renderers" entries (dicts); run() does not run them
+        self.scene_renderers: List[Dict[str, Any]] = []
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
@@ -487,6 +489,7 @@ class World:
         self._scene_steps = None
         self._scene_pause_on_collision = False
         self.description = ""
+        self.scene_renderers = []
         usage = ffi.new("rbs_usage *")
         status = lib.rbs_world_usage(cworld, usage)
         if status != lib.RBS_OK or usage.bytes == 0:
@@ -548,6 +551,8 @@ class World:
         self._scene_pause_on_collision = False
         #: the scene's description ("" for a world built in code)
         self.description = ""
+        #: the scene's "renderers" entries (dicts); run() does not run them
+        self.scene_renderers: List[Dict[str, Any]] = []
         self._create(d)
         return self
 
