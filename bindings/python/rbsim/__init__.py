@@ -98,10 +98,8 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
             entries.append(json.loads(ffi.string(raw).decode("utf-8", "replace"))
                            if raw != ffi.NULL else {})
     world.scene_renderers = entries
-    describe = getattr(lib, "rbs_scene_description", None)
-    if describe is not None:
-        text = describe(scene)
-        world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
+    text = lib.rbs_scene_description(scene)
+    world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
     return world
 
 

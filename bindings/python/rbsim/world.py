@@ -474,7 +474,7 @@ class World:
         out = ffi.new("rbs_world **")
         status = lib.rbs_world_create_in(self._mem + self._offset, size, d, out)
         if status != lib.RBS_OK:
-            raise _e.error_class(status)(_def_problem(d))
+            raise _e.error_class(status)(_def_problem(d, status))
         self._world = out[0]
         self._lib_owned = False
 
@@ -1152,15 +1152,13 @@ def _method_value(name: Any) -> int:
     return int(out[0])
 
 
-def _def_problem(d: Any) -> str:
-    """Why the library rejects a world definition."""
-    validate = getattr(lib, "rbs_world_def_validate", None)
-    if validate is not None:
-        msg = ffi.new("char[]", 256)
-        validate(d, msg, 256)
-        if msg[0] != b"\0":
-            return ffi.string(msg).decode("utf-8", "replace")
-    return ("world definition rejected (max_bodies=%d, max_materials=%d, "
-            "max_pairs=%d, max_contacts=%d, dt=%r, method=%d, tolerance=%r)"
-            % (d.max_bodies, d.max_materials, d.max_pairs, d.max_contacts, d.dt,
-               d.method, d.tolerance))
+def _def_problem(d: Any, status: int = -1) -> str:
+    """Why the library rejects a world definition (its own words)."""
+    if status == lib.RBS_E_UNSUPPORTED and 0 <= d.method < len(METHODS):
+        return "method %r is not available in this build" % METHODS[d.method]
+    msg = ffi.new("char[]", 512)
+    status = lib.rbs_world_def_validate(d, msg, 512)
+    if status != lib.RBS_OK and msg[0] != b"\0":
+        return ffi.string(msg).decode("utf-8", "replace")
+    return ("world definition rejected (max_bodies=%d, max_contacts=%d, dt=%r)"
+            % (d.max_bodies, d.max_contacts, d.dt))
