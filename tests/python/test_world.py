@@ -253,3 +253,29 @@ def test_close_and_context_manager():
         w.time
     w.close()  # idempotent
     assert repr(w) == "World(<closed>)"
+
+
+def test_the_method_reaches_the_library():
+    """Free fall under constant g: velocity Verlet and RK4 integrate it
+    exactly, z = z0 - g t^2 / 2 (to rounding, 1e-12 m), while semi-implicit
+    Euler is low by g dt t / 2 = 4.9e-4 m at t = 0.1 s, dt = 1e-3 s.  So the
+    results tell which method ran."""
+    t = 0.1
+    exact = 5.0 - G * t * t / 2
+    for name in ("rk4", "verlet", "euler"):
+        if name not in rbsim.METHODS:
+            continue
+        w = rbsim.World(dt=0.001, gravity=(0, 0, -G), method=name)
+        assert w.method == name
+        ball = w.add_sphere("ball", position=(0.0, 0.0, 5.0))
+        w.step(100)
+        if name == "euler":
+            assert ball.position[2] == pytest.approx(exact - G * 0.001 * t / 2,
+                                                     abs=1e-12)
+        else:
+            assert ball.position[2] == pytest.approx(exact, abs=1e-12), name
+    w = rbsim.World(dt=0.001, gravity=(0, 0, -G))
+    ball = w.add_sphere("ball", position=(0.0, 0.0, 5.0))
+    w.method = "rk4"  # switched by the property
+    w.step(100)
+    assert ball.position[2] == pytest.approx(exact, abs=1e-12)
