@@ -68,7 +68,8 @@ static void stages_name_their_reason(void **state)
     ASSERT_HAS(t, "4 force evaluations");
     ASSERT_HAS(t, "in   contacts sphere-sphere: 2 spheres, 2 moving");
     ASSERT_HAS(t, "in   friction, rolling and spinning resistance: pair \"felt\"/\"felt\" has mu_s 0.4");
-    ASSERT_HAS(t, "in   angular velocity and orientation: friction can make spheres spin");
+    ASSERT_HAS(t, "in   angular velocity and orientation: sphere \"top\" has anisotropic inertia "
+                  "(contacts can make it spin)");
     ASSERT_HAS(t, "in   gyroscopic torque -w x I w: sphere \"top\" has anisotropic inertia");
     ASSERT_HAS(t, "in   mutual gravity: G = 6.674e-11");
     ASSERT_HAS(t, "twice per sub-step");
@@ -86,6 +87,12 @@ static void follows_changes_and_prune_off(void **state)
     CHECK_OK(rbs_world_create(&d, &w));
     b = ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
     assert_non_null(strstr(explain(w), "out  angular velocity"));
+    ball(w, 0.1, 1.0, 1, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    {
+        rbs_material_id m = material(w, "ice", 0.1, 0.05, -1.0);
+        (void)m;
+        ASSERT_HAS(explain(w), "in   angular velocity and orientation: friction can make spheres spin");
+    }
     CHECK_OK(rbs_body_set_angular_velocity(w, b, (rbs_vec3){0, 0, 3}));
     t = explain(w);
     ASSERT_HAS(t, "in   angular velocity and orientation: sphere #0 spins");

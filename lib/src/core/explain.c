@@ -146,7 +146,8 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         uint32_t s = w->spheres[k];
         if (w->fixed[s])
             continue;
-        if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
+        if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]) ||
+            !w->isotropic[s])
             break;
     }
     if (k < w->sphere_count) {
@@ -154,11 +155,13 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         body_name(&t, w, s);
         put(&t, nonzero3(&w->avel[3 * s]) ? " spins\n"
                 : nonzero3(&w->torque[3 * s]) ? " has an applied torque\n"
-                : " has an off-centre mass\n");
+                : nonzero3(&w->com_body[3 * s]) ? " has an off-centre mass\n"
+                : " has anisotropic inertia (contacts can make it spin)\n");
     } else if (p.friction && w->def.prune) {
         put(&t, "friction can make spheres spin\n");
     } else {
-        put(&t, "no moving sphere spins, has a torque or an off-centre mass, and no friction%s\n", why);
+        put(&t, "no moving sphere spins, has a torque, an off-centre mass or anisotropic inertia, and no "
+                "friction%s\n", why);
     }
     stage(&t, p.gyroscopic, "gyroscopic torque -w x I w");
     for (k = 0; k < w->sphere_count; ++k) {

@@ -42,8 +42,11 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
         moving++;
         if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
             p.angular = 1;
+        /* anisotropic: contact impulses leave rounding-level spin (the lever
+         * arm is computed, never exactly along the normal) that the
+         * gyroscopic term then sees, so angular motion must run too */
         if (!w->isotropic[s] || nonzero3(&w->com_body[3 * s]))
-            p.gyroscopic = 1;
+            p.gyroscopic = p.angular = 1;
     }
     if (p.friction)
         p.angular = 1;

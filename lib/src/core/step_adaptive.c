@@ -217,22 +217,25 @@ static int rhs(double t, const double y[], double dydt[], void *params)
         rbs__accelerations(w, i, &acc, &tau);
         memcpy(d, s + 3, 3 * sizeof(double));
         v3_store(d + 3, acc);
-        if (w->plan.angular && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0 || tau.x != 0.0 ||
-                                tau.y != 0.0 || tau.z != 0.0)) {
-            quat q = q_load(s + 6), qn = q_normalize(q), o = {0.0, om.x, om.y, om.z}, qd;
-            v3 al;
+        /* rotation by any angular velocity, as the other methods (contacts
+         * can leave rounding-level spin on any body) */
+        if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
+            quat o = {0.0, om.x, om.y, om.z}, qd = q_mul(o, q_load(s + 6));
+            d[6] = 0.5 * qd.w; d[7] = 0.5 * qd.x; d[8] = 0.5 * qd.y; d[9] = 0.5 * qd.z;
+        }
+        /* angular acceleration: zero unless there is a torque or the
+         * gyroscopic term (the plan leaves it out only then) */
+        if (w->plan.angular) {
+            quat qn = q_normalize(q_load(s + 6));
             if (!w->isotropic[i])
                 tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], qn, om)));
             if (tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) {
+                v3 al;
                 if (w->isotropic[i])
                     al = v3_scale(tau, w->inv_inertia[9 * i]);
                 else
                     al = m3_mul_world(&w->inv_inertia[9 * i], qn, tau);
                 v3_store(d + 10, al);
-            }
-            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
-                qd = q_mul(o, q);
-                d[6] = 0.5 * qd.w; d[7] = 0.5 * qd.x; d[8] = 0.5 * qd.y; d[9] = 0.5 * qd.z;
             }
         }
     }
