@@ -5,11 +5,13 @@
  * sdl_camera.c  camera state: defaults, mounted/scripted cameras, commands.
  * sdl_raster.c  draws one view of a frame into a 32-bit pixel buffer with a
  *               depth buffer (ray casting, per-sphere screen-space boxes).
- * sdl_font.c    a 5x7 bitmap font for the legend.
+ * sdl_font.c    a 5x7 bitmap font and the legend.
+ * sdl_window.c  the live window on its own thread: SDL video, events, keys,
+ *               mouse, redraws when the camera moves.
  * sdl_renderer.c the renderer class: SDL surfaces, PNG files, contact sheet,
- *               windows and events.
+ *               commands.
  *
- * Nothing here touches SDL except sdl_renderer.c; the rest works on plain
+ * Only sdl_renderer.c and sdl_window.c touch SDL; the rest works on plain
  * memory so it can be reasoned about (and benchmarked) without SDL.
  */
 #ifndef RBSF_SDL_INTERNAL_H
