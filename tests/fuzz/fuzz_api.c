@@ -204,14 +204,38 @@ static void op_queries(fuzz_state *s, reader *r)
     (void)rbs_world_time(s->w);
 }
 
+/* Print every live body (RBS_FUZZ_TRACE). */
+static void trace_world(const fuzz_state *s)
+{
+    rbs_world_def d;
+    uint32_t i;
+    rbs_world_def_init(&d);
+    rbs_world_get_def(s->w, &d);
+    fprintf(stderr, "world: method %s dt %.17g g %.17g %.17g %.17g e %.17g mutual %d halvings %u\n",
+            rbs_method_name(d.method), d.dt, d.gravity.x, d.gravity.y, d.gravity.z, d.restitution,
+            (int)d.mutual_gravity, (unsigned)d.max_halvings);
+    for (i = 0; i < d.max_bodies; ++i) {
+        rbs_body_id id;
+        rbs_body_state b;
+        if (rbs_world_body_at(s->w, i, &id) != RBS_OK || rbs_body_get_state(s->w, id, &b) != RBS_OK)
+            continue;
+        fprintf(stderr, "  body %u type %d r %.17g m %.17g fixed %d x %.17g %.17g %.17g v %.17g %.17g %.17g "
+                "n %.17g %.17g %.17g f %.17g %.17g %.17g\n", (unsigned)i, (int)b.type, b.radius, b.mass,
+                (int)b.fixed, b.position.x, b.position.y, b.position.z, b.velocity.x, b.velocity.y,
+                b.velocity.z, b.normal.x, b.normal.y, b.normal.z, b.force.x, b.force.y, b.force.z);
+    }
+}
+
 static void run_ops(fuzz_state *s, reader *r)
 {
-    int ops = 0;
+    int ops = 0, trace = getenv("RBS_FUZZ_TRACE") != NULL; /* print each call */
     char name[12];
     while (r->n > 0 && ops++ < 64) {
         uint8_t op = u8(r) % 12;
         uint64_t before = rbs_world_hash(s->w);
         rbs_status st;
+        if (trace)
+            fprintf(stderr, "op %d: %u (%zu bytes left)\n", ops, (unsigned)op, r->n);
         switch (op) {
         case 0: { /* material */
             rbs_material_id m;
@@ -321,7 +345,18 @@ static void run_ops(fuzz_state *s, reader *r)
             for (k = 0; k < n; ++k) {
                 uint64_t c = rbs_world_step_count(s->w);
                 before = rbs_world_hash(s->w);
-                st = rbs_world_step(s->w, NULL);
+                if (trace)
+                    trace_world(s);
+                {
+                    rbs_step_info info;
+                    st = rbs_world_step(s->w, &info);
+                    if (trace)
+                        fprintf(stderr, "step %llu: %s substeps %u rollbacks %u floor %u sweep_limit %u events %u "
+                                "contacts %u overlap %g %s\n", (unsigned long long)c + 1, rbs_status_name(st),
+                                (unsigned)info.substeps, (unsigned)info.rollbacks, (unsigned)info.floor_hits,
+                                (unsigned)info.sweep_limit, (unsigned)info.events, (unsigned)info.contacts,
+                                info.max_overlap, rbs_world_last_error(s->w));
+                }
                 check_call(s, st, before, "step");
                 if (st != RBS_OK) {
                     FUZZ_CHECK(rbs_world_step_count(s->w) == c, "failed step counted");

@@ -10,7 +10,7 @@
 # corpus tests/fuzz/corpus/<harness>/ and tests/fuzz/regressions/<harness>/.
 # New interesting inputs go to $RBS_FUZZ_BUILD/corpus/<harness>/ (the seed
 # corpus is not modified).  A crash, sanitizer report, leak or time-out
-# (an input taking longer than $RBS_FUZZ_TIMEOUT s, default 20) stops that
+# (an input taking longer than $RBS_FUZZ_TIMEOUT s, default 60) stops that
 # harness, leaves the input as $RBS_FUZZ_BUILD/artifacts/<harness>-crash-*
 # (or -timeout-*, -leak-*, -oom-*) and makes this script exit 1 after all
 # harnesses ran.  Copy such a file into tests/fuzz/regressions/<harness>/ so
@@ -24,7 +24,7 @@ secs=${1:-60}
 shift || true
 harnesses=${*:-scene_json scene_text api}
 build=${RBS_FUZZ_BUILD:-$top/build-fuzz}
-timeout=${RBS_FUZZ_TIMEOUT:-20}
+timeout=${RBS_FUZZ_TIMEOUT:-60}
 cc=${RBS_FUZZ_CC:-clang}
 
 if ! command -v "$cc" >/dev/null; then
