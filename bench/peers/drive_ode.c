@@ -5,8 +5,10 @@
  *   peers_ode --scene FILE [--steps K] [--max-wall S] [--state-out FILE]
  *
  * Settings (stated in bench/results/peers.md):
- *  - dHashSpace, levels 2^-5 .. 2^0 m (cells 3 cm .. 1 m); planes are
- *    non-placeable geoms that the space tests against every sphere.
+ *  - dHashSpace at its default levels (cells 2^-3 .. 2^10 m; faster here
+ *    than levels fitted to the spheres), or with --method sap
+ *    dSweepAndPruneSpace (XYZ), or --method simple dSimpleSpace (all pairs).
+ *    Planes are non-placeable geoms tested against every sphere.
  *  - dWorldQuickStep, 20 iterations, ERP 0.2, CFM 1e-5, contact surface layer
  *    0, no auto-disable (every body simulated every step, as in rbsim).
  *  - One contact point per touching pair (dCollide flags 1), surface mode
@@ -24,7 +26,8 @@
 #include "peers_io.h"
 
 static const char usage[] =
-    "usage: peers_ode --scene FILE [--steps K] [--max-wall S] [--state-out FILE]\n";
+    "usage: peers_ode --scene FILE [--steps K] [--max-wall S] [--state-out FILE]\n"
+    "                 [--method hash|sap|simple]   (collision space; default hash)\n";
 
 typedef struct near_ctx {
     dWorldID world;
@@ -69,8 +72,9 @@ int main(int argc, char **argv)
 
     if (peers_parse_args(argc, argv, &opt, usage) || peers_scene_read(opt.scene_path, &sc))
         return 2;
-    if (opt.extra != NULL) {
-        fprintf(stderr, "peers_ode: --method is not an ODE option\n");
+    if (opt.extra != NULL && strcmp(opt.extra, "hash") != 0 && strcmp(opt.extra, "sap") != 0 &&
+        strcmp(opt.extra, "simple") != 0) {
+        fprintf(stderr, "peers_ode: --method wants hash, sap or simple, got \"%s\"\n", opt.extra);
         return 2;
     }
     steps = opt.steps >= 0 ? opt.steps : sc.steps;
@@ -84,8 +88,13 @@ int main(int argc, char **argv)
     dWorldSetQuickStepNumIterations(world, 20);
     dWorldSetContactSurfaceLayer(world, 0.0);
     dWorldSetAutoDisableFlag(world, 0);
-    space = dHashSpaceCreate(0);
-    dHashSpaceSetLevels(space, -5, 0);
+    if (opt.extra != NULL && strcmp(opt.extra, "sap") == 0) {
+        space = dSweepAndPruneSpaceCreate(0, dSAP_AXES_XYZ);
+    } else if (opt.extra != NULL && strcmp(opt.extra, "simple") == 0) {
+        space = dSimpleSpaceCreate(0);
+    } else {
+        space = dHashSpaceCreate(0); /* default levels 2^-3 .. 2^10 m */
+    }
     for (i = 0; i < sc.n_planes; ++i) {
         const double *q = &sc.planes[6 * i];
         /* ODE's plane: n . x = d */
@@ -152,10 +161,10 @@ int main(int argc, char **argv)
             return 2;
         free(out);
     }
-    printf("RESULT {\"engine\": \"ode\", \"version\": \"%s\", \"n\": %zu, "
+    printf("RESULT {\"engine\": \"ode\", \"version\": \"%s\", \"space\": \"%s\", \"n\": %zu, "
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
            "\"contacts_max\": %lu, \"apex\": ",
-           dGetConfiguration(), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0, t_setup, contacts_max);
+           dGetConfiguration(), opt.extra ? opt.extra : "hash", sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0, t_setup, contacts_max);
     peers_print_apex(stdout, &apex);
     printf(", \"error\": \"\"}\n");
     dJointGroupDestroy(ctx.group);

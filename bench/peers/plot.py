@@ -20,7 +20,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLORS = {"rbsim": "#c0392b", "ode": "#2c7fb8", "bullet": "#31a354", "mujoco": "#756bb1"}
+COLORS = {"rbsim": "#c0392b", "ode": "#2c7fb8", "ode_sap": "#7fb8d8", "bullet": "#31a354",
+          "mujoco": "#756bb1"}
 
 
 def load(path):
@@ -75,23 +76,23 @@ def plot_scaling(rows, path):
     labels = {"lattice": "falling lattice (no contacts)", "stack": "settled stack (resting contacts)"}
     any_pts = False
     for kind, color in (("lattice", "#2c7fb8"), ("stack", "#c0392b")):
-        pts = medians(rows, kind, "ns_per_body_step").get("rbsim", [])
-        if not pts:
-            continue
-        any_pts = True
-        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        ax.plot(xs, ys, "-", color=color, label=labels[kind])
-        for x, y, ok in pts:
-            ax.plot([x], [y], "o", color=color, markerfacecolor=color if ok else "white")
-        ax.axhline(ys[0], color=color, ls=":", lw=0.8)
+        for engine, style in (("rbsim", "-"), ("rbsim_sel", "--")):
+            pts = medians(rows, kind, "ns_per_body_step").get(engine, [])
+            if not pts:
+                continue
+            any_pts = True
+            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+            ax.plot(xs, ys, style, color=color, label=f"{engine}: {labels[kind]}")
+            for x, y, ok in pts:
+                ax.plot([x], [y], "o", color=color, markerfacecolor=color if ok else "white")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("spheres, N")
     ax.set_ylabel("rbsim cost per body-step (ns)")
-    ax.set_title("rbsim scaling, 20 steps (dotted: flat from N = 1000; hollow: capped)")
+    ax.set_title("rbsim scaling, 20 steps (hollow: run hit its time cap)")
     ax.grid(True, which="both", alpha=0.3)
     if any_pts:
-        ax.legend()
+        ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

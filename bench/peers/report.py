@@ -11,7 +11,9 @@ import sys
 
 import plot
 
-ENGINES = ["rbsim", "ode", "bullet", "mujoco"]
+ENGINES = ["rbsim", "rbsim_sel", "ode", "ode_sap", "bullet", "mujoco"]
+RBSIM = ("rbsim", "rbsim_sel")
+BASE_OF = {"rbsim_sel": "rbsim", "ode_sap": "ode"}  # same program, same baseline memory
 R_BALL, H_BALL, E_BALL = 0.1, 1.0, 0.5
 
 
@@ -48,11 +50,12 @@ def status_note(rs):
     return ", ".join(st)
 
 
-def ratio_median(rows, scene, n, engine, field="wall_per_sim_s"):
-    """Median over repeats of engine's cost / rbsim's cost in the same repeat."""
+def ratio_median(rows, scene, n, engine, ref="rbsim", field="wall_per_sim_s"):
+    """Median over repeats of engine's cost / ref's cost in the same repeat
+    (repeat k of one paired with repeat k of the other, or its first run)."""
     out = []
     for r in sel(rows, scene, n, engine):
-        base = [b for b in sel(rows, scene, n, "rbsim") if b["rep"] == r["rep"]]
+        base = [b for b in sel(rows, scene, n, ref) if b["rep"] == r["rep"]] or sel(rows, scene, n, ref)
         if base and f(base[0][field]) and f(r[field]):
             out.append(f(r[field]) / f(base[0][field]))
     return med(out), len(out)
@@ -70,11 +73,14 @@ def peers_tables(rows, meta):
     L.append("### Speed\n")
     L.append("Medians over repeats.  *cost* = wall seconds per simulated second; "
              "*speed-up* = the engine's cost / rbsim's cost in the same repeat (median), "
-             "so above 1 means rbsim is faster.  *simulated* = the simulated time a run covered "
-             "(less than planned when the run hit its wall-time cap; then costs come from "
-             "different phases of the motion and the ratio is marked †).\n")
-    L.append("| scene | N | engine | runs | simulated (s) | cost (s/s) | body-steps/s | ns/body-step | speed-up of rbsim | status |")
-    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|---|")
+             "so above 1 means rbsim is faster; one column for rbsim's default method (Euler with "
+             "global rollback) and one for RBS_METHOD_SELECTIVE.  *simulated* = the simulated time "
+             "a run covered (less than planned when the run hit its wall-time cap; then costs "
+             "come from different phases of the motion and the ratio is marked †).\n")
+    refs = [x for x in RBSIM if x in engines]
+    L.append("| scene | N | engine | runs | simulated (s) | cost (s/s) | body-steps/s | ns/body-step | "
+             + " | ".join(f"speed-up of {x}" for x in refs) + " | status |")
+    L.append("|---|---:|---|---:|---:|---:|---:|---:|" + "---:|" * len(refs) + "---|")
     for scene, n in configs:
         sims = {}
         for e in engines:
@@ -85,16 +91,21 @@ def peers_tables(rows, meta):
             rs = sel(rows, scene, n, e)
             if not rs:
                 continue
-            ratio, cnt = ratio_median(rows, scene, n, e) if e != "rbsim" else (None, 0)
-            dagger = ""
-            if e != "rbsim" and sims.get("rbsim") is not None and sims.get(e) is not None \
-                    and abs(sims["rbsim"] - sims[e]) > 1e-9:
-                dagger = " †"
+            cells = []
+            for ref in refs:
+                if e in RBSIM:
+                    cells.append("")
+                    continue
+                ratio, cnt = ratio_median(rows, scene, n, e, ref)
+                dagger = ""
+                if sims.get(ref) is not None and sims.get(e) is not None and abs(sims[ref] - sims[e]) > 1e-9:
+                    dagger = " †"
+                cells.append(fmt(ratio) + (dagger if ratio is not None else ""))
             L.append(f"| {scene} | {n} | {e} | {len(rs)} | {fmt(sims.get(e))} | "
                      f"{fmt(med([f(r['wall_per_sim_s']) for r in rs]))} | "
                      f"{fmt(med([f(r['body_steps_per_s']) for r in rs]))} | "
                      f"{fmt(med([f(r['ns_per_body_step']) for r in rs]))} | "
-                     f"{(fmt(ratio) + dagger) if e != 'rbsim' else '1'} | {status_note(rs)} |")
+                     + " | ".join(cells) + f" | {status_note(rs)} |")
     L.append("")
 
     L.append("### Memory\n")
@@ -104,7 +115,8 @@ def peers_tables(rows, meta):
              "libraries.  Python engines carry the interpreter (~50–70 MB) in their peak.\n")
     L.append("| N | engine | peak (MB) | per body (bytes) | per body / ODE's |")
     L.append("|---:|---|---:|---:|---:|")
-    base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, e)]) for e in engines}
+    base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, BASE_OF.get(e, e))])
+            for e in engines}
     for scene, n in configs:
         if scene != "pile":
             continue
@@ -181,7 +193,8 @@ def machine_limit(rows, meta):
     cb = lay["contact_bytes"]
     state_b = 2 * 13 * 8 + 3 * 8
     L.append("### How close rbsim comes to the machine's limit\n")
-    L.append(f"Measured on one core by `peers_stream` (STREAM-like, 128 MB arrays, best of 10): "
+    L.append(f"Measured on one core by `peers_stream` (STREAM-like, 128 MB arrays, best of 10 passes, "
+             f"best of the runs at the start and the end of the benchmark): "
              f"copy {st['copy_gbs']:.1f} GB/s, triad {st['triad_gbs']:.1f} GB/s; "
              f"{st['gflops_scalar']:.1f} GFLOP/s for 8 independent multiply-add chains.\n")
     L.append("Bytes a body-step must move at the least, from rbsim's state layout "
@@ -196,12 +209,12 @@ def machine_limit(rows, meta):
              "rollback's two state saves, the broad phase's arrays and every extra solver sweep "
              "add to it.  Arithmetic floor: ~60 flops per body (integration, quaternion), ~120 "
              "per contact (one normal + friction impulse), rough.\n")
-    L.append("| scene | N | contacts per body | bytes/body-step (floor) | bound from bandwidth (body-steps/s) | bound from arithmetic | rbsim measured | fraction of the tighter bound |")
-    L.append("|---|---:|---:|---:|---:|---:|---:|---:|")
-    for scene in ("pile", "lattice", "stack"):
-        ns = sorted({int(r["n"]) for r in sel(rows, scene, engine="rbsim")})
+    L.append("| scene | N | rbsim | contacts per body | bytes/body-step (floor) | bound from bandwidth (body-steps/s) | bound from arithmetic | rbsim measured | fraction of the tighter bound |")
+    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    for eng, scene in [(x, y) for x in RBSIM for y in ("pile", "lattice", "stack")]:
+        ns = sorted({int(r["n"]) for r in sel(rows, scene, engine=eng)})
         for n in ns:
-            rs = sel(rows, scene, n, "rbsim")
+            rs = sel(rows, scene, n, eng)
             meas = med([f(r["body_steps_per_s"]) for r in rs])
             cpb = []
             for r in rs:
@@ -215,7 +228,7 @@ def machine_limit(rows, meta):
             bbw = bw / bytes_
             bfl = gf / (60 + 120 * c)
             tight = min(bbw, bfl)
-            L.append(f"| {scene} | {n} | {fmt(c)} | {fmt(bytes_, 4)} | {fmt(bbw)} | {fmt(bfl)} | "
+            L.append(f"| {scene} | {n} | {eng} | {fmt(c)} | {fmt(bytes_, 4)} | {fmt(bbw)} | {fmt(bfl)} | "
                      f"{fmt(meas)} | {fmt(meas / tight if meas else None)} |")
     L.append("")
     return L
@@ -228,26 +241,29 @@ def scaling_table(rows):
     L.append("### rbsim alone from 10^3 to 10^6 spheres\n")
     L.append("20 steps (dt = 1 ms) of a falling lattice (10 layers, spacing 0.12 m, no contacts "
              "yet) and of a settled stack (10 layers of touching spheres on the floor, walls "
-             "touching: every sphere in resting contact).  Target: flat cost per body-step.  "
-             "One run each; a run that hits its cap stops the larger sizes of that scene.\n")
-    L.append("| scene | N | status | steps | wall (s) | setup (s) | ns/body-step | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
-    L.append("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for scene in ("lattice", "stack"):
-        first = None
-        for r in sorted(sel(rows, scene, engine="rbsim"), key=lambda r: int(r["n"])):
-            n = int(r["n"])
-            c = f(r["ns_per_body_step"])
-            if first is None and c:
-                first = c
-            try:
-                x = json.loads(r["extra"] or "{}")
-            except ValueError:
-                x = {}
-            pk = f(r["maxrss_kb"])
-            L.append(f"| {scene} | {n} | {r['status']} | {r['steps'] or '–'} | {fmt(f(r['wall']))} | "
-                     f"{fmt(f(r['setup_wall']))} | {fmt(c)} | {fmt(c / first if c and first else None)} | "
-                     f"{fmt(pk / 1024 if pk else None)} | {fmt(pk * 1024 / n if pk else None, 4)} | "
-                     f"{x.get('substeps', '–')} | {x.get('rollbacks', '–')} | {x.get('contacts_max', '–')} |")
+             "touching: every sphere in resting contact), with rbsim's default method and with "
+             "RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  One run each; a run that "
+             "hits its wall-time cap (status capped: fewer than 20 steps) stops the larger sizes "
+             "of that scene and method.\n")
+    L.append("| rbsim | scene | N | status | steps | wall (s) | setup (s) | ns/body-step | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
+    L.append("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for eng in RBSIM:
+        for scene in ("lattice", "stack"):
+            first = None
+            for r in sorted(sel(rows, scene, engine=eng), key=lambda r: int(r["n"])):
+                n = int(r["n"])
+                c = f(r["ns_per_body_step"])
+                if first is None and c:
+                    first = c
+                try:
+                    x = json.loads(r["extra"] or "{}")
+                except ValueError:
+                    x = {}
+                pk = f(r["maxrss_kb"])
+                L.append(f"| {eng} | {scene} | {n} | {r['status']} | {r['steps'] or '–'} | {fmt(f(r['wall']))} | "
+                         f"{fmt(f(r['setup_wall']))} | {fmt(c)} | {fmt(c / first if c and first else None)} | "
+                         f"{fmt(pk / 1024 if pk else None)} | {fmt(pk * 1024 / n if pk else None, 4)} | "
+                         f"{x.get('substeps', '–')} | {x.get('rollbacks', '–')} | {x.get('contacts_max', '–')} |")
     L.append("")
     L.append("![rbsim scaling](scaling.png)\n")
     return L
@@ -255,42 +271,51 @@ def scaling_table(rows):
 
 def targets(rows, meta):
     L = ["### Against the targets of issue 9\n"]
-    def ratio_at(n):
-        r, cnt = ratio_median(rows, "pile", n, "ode")
-        return r
-    for n in (1000, 8000):
-        r = ratio_at(n)
-        verdict = "not measured" if r is None else ("met" if r >= 10 else "NOT met")
-        L.append(f"- rbsim at least 10× ODE's speed at N = {n}: measured {fmt(r)}× — {verdict}.")
-    sc = []
-    for scene in ("lattice", "stack"):
-        pts = [(int(r["n"]), f(r["ns_per_body_step"]), r["status"]) for r in sel(rows, scene, engine="rbsim")]
-        pts = sorted(p for p in pts if p[1])
-        if pts:
-            ok_pts = [p for p in pts if p[2] == "ok"]
-            spread = max(p[1] for p in pts) / min(p[1] for p in pts)
-            sc.append(f"{scene}: {fmt(pts[0][1])} ns at N = {pts[0][0]} to {fmt(pts[-1][1])} ns at "
-                      f"N = {pts[-1][0]} (max/min {fmt(spread)}; largest N completed: "
-                      f"{ok_pts[-1][0] if ok_pts else 'none'})")
-    L.append("- cost per body-step flat from 10^3 to 10^6: " + ("; ".join(sc) if sc else "not measured") + ".")
-    base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, e)]) for e in ("rbsim", "ode")}
-    for n in (1000, 8000, 27000):
-        pr = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, "rbsim")])
-        po = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, "ode")])
-        if pr and po and base["rbsim"] and base["ode"] and po - base["ode"] > 0:
-            rel = (pr - base["rbsim"]) / (po - base["ode"])
-            L.append(f"- peak memory per body at most 1/5 of ODE's, N = {n}: rbsim/ODE = {fmt(rel)} "
-                     f"— {'met' if rel <= 0.2 else 'NOT met'}.")
-    for n in (1000, 8000, 27000):
-        rs = [r for r in sel(rows, "pile", n, "rbsim") if r.get("escaped") not in (None, "")]
-        if rs:
-            esc = max(int(float(r["escaped"])) for r in rs)
-            ss = max(f(r["max_ss_overlap_rel"]) or 0 for r in rs)
-            sp = max(f(r["max_sp_overlap_rel"]) or 0 for r in rs)
-            ok = esc == 0 and ss <= 0.01 and sp <= 0.01
-            L.append(f"- no sphere escaping or overlapping by more than 1 % of its radius, N = {n} "
-                     f"(rbsim, worst repeat): escaped {esc}, sphere–sphere {100 * ss:.3g} %, "
-                     f"sphere–plane {100 * sp:.3g} % — {'met' if ok else 'NOT met'}.")
+    L.append("For rbsim's default method (**rbsim**) and for RBS_METHOD_SELECTIVE (**rbsim_sel**); "
+             "ODE is ODE with the issue's dHashSpace (ratios against ode_sap are in the speed "
+             "table).\n")
+    for eng in RBSIM:
+        if not any(r["engine"] == eng for r in rows):
+            continue
+        for n in (1000, 8000):
+            r, cnt = ratio_median(rows, "pile", n, "ode", eng)
+            verdict = "not measured" if r is None else ("met" if r >= 10 else "NOT met")
+            sims = {e: med([f(x["sim_time"]) for x in sel(rows, "pile", n, e)]) for e in (eng, "ode")}
+            note = ""
+            if r is not None and sims[eng] is not None and sims["ode"] is not None and abs(sims[eng] - sims["ode"]) > 1e-9:
+                note = (f" († {eng} covered only {fmt(sims[eng])} s of simulated time before its cap, "
+                        f"ODE {fmt(sims['ode'])} s)")
+            L.append(f"- {eng}: at least 10× ODE's speed at N = {n}: measured {fmt(r)}× — {verdict}{note}.")
+        sc = []
+        for scene in ("lattice", "stack"):
+            pts = [(int(r["n"]), f(r["ns_per_body_step"]), r["status"]) for r in sel(rows, scene, engine=eng)]
+            pts = sorted(p for p in pts if p[1])
+            if pts:
+                ok_pts = [p for p in pts if p[2] == "ok"]
+                spread = max(p[1] for p in pts) / min(p[1] for p in pts)
+                sc.append(f"{scene} {fmt(pts[0][1])} ns at N = {pts[0][0]} to {fmt(pts[-1][1])} ns at "
+                          f"N = {pts[-1][0]} (max/min {fmt(spread)}; largest N completed: "
+                          f"{ok_pts[-1][0] if ok_pts else 'none'})")
+        L.append(f"- {eng}: cost per body-step flat from 10^3 to 10^6: " + ("; ".join(sc) if sc else "not measured") + ".")
+        base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, BASE_OF.get(e, e))]) for e in (eng, "ode")}
+        for n in (1000, 8000, 27000):
+            pr = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, eng)])
+            po = med([f(r["maxrss_kb"]) for r in sel(rows, "pile", n, "ode")])
+            if pr and po and base[eng] and base["ode"] and po - base["ode"] > 0:
+                rel = (pr - base[eng]) / (po - base["ode"])
+                L.append(f"- {eng}: peak memory per body at most 1/5 of ODE's, N = {n}: {fmt(rel)} of ODE's "
+                         f"— {'met' if rel <= 0.2 else 'NOT met'}.")
+        for n in (1000, 8000, 27000):
+            rs = [r for r in sel(rows, "pile", n, eng) if r.get("escaped") not in (None, "")]
+            if rs:
+                esc = max(int(float(r["escaped"])) for r in rs)
+                ss = max(f(r["max_ss_overlap_rel"]) or 0 for r in rs)
+                sp = max(f(r["max_sp_overlap_rel"]) or 0 for r in rs)
+                ok = esc == 0 and ss <= 0.01 and sp <= 0.01
+                simt = med([f(r["sim_time"]) for r in rs])
+                L.append(f"- {eng}: no sphere escaping or overlapping by more than 1 % of its radius, N = {n} "
+                         f"(worst repeat, at t = {fmt(simt)} s): escaped {esc}, sphere–sphere {100 * ss:.3g} %, "
+                         f"sphere–plane {100 * sp:.3g} % — {'met' if ok else 'NOT met'}.")
     L.append("")
     return L
 
@@ -332,8 +357,9 @@ Engines:
 - **rbsim** (this repository, the commit named below): `rbs_world_def` defaults (method Euler,
   slop 1e-6 r, max_halvings 30, max_sweeps 64, contact slots 4 per body + 16), one "*"/"*"
   material pair with μs = μk = 0.5, e = 0.5.
-- **ODE** (Debian libode-dev, double precision, C API): dHashSpace (levels 2^-5..2^0 m),
-  dWorldQuickStep with 20 iterations, ERP 0.2, CFM 1e-5, contact surface layer 0, no
+- **ODE** (Debian libode-dev, double precision, C API): dHashSpace at its default levels
+  (the issue's choice; **ode_sap** is the same driver with dSweepAndPruneSpace, which is faster
+  for these scenes, run at N ≤ 8000 so that the comparison is fair to ODE), dWorldQuickStep with 20 iterations, ERP 0.2, CFM 1e-5, contact surface layer 0, no
   auto-disable; one contact point per pair, dContactBounce | dContactApprox1 (friction pyramid,
   μ as a Coulomb coefficient), μ = 0.5, bounce 0.5, bounce_vel 0.01 m/s (≈ g dt).
 - **Bullet** (PyPI pybullet, DIRECT mode): setTimeStep(0.001), pybullet's defaults otherwise

@@ -27,7 +27,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import scenes  # noqa: E402
 
-ENGINES = ["rbsim", "ode", "bullet", "mujoco"]
+# "ode_sap" is ODE with dSweepAndPruneSpace instead of dHashSpace: the issue
+# names the hash space, but sweep-and-prune is faster here, so it is run too
+# (N <= 8000) to keep the comparison fair to ODE.
+# "rbsim_sel" is rbsim with RBS_METHOD_SELECTIVE (only overlapping groups roll
+# back) instead of the default method.
+ENGINES = ["rbsim", "rbsim_sel", "ode", "ode_sap", "bullet", "mujoco"]
+RBSIM = ("rbsim", "rbsim_sel")
 
 # Bytes rbsim must move per body-step at the least (its state layout, see
 # peers.md): position 3, velocity 3, angular velocity 3 and orientation 4
@@ -55,27 +61,40 @@ def plan(quick):
     The cap is the wall time after which a run stops stepping."""
     if quick:
         return [
-            ("ball", 1, 2000, {e: (1, 30) for e in ENGINES}),
-            ("billiards", 16, 2000, {e: (1, 30) for e in ENGINES}),
-            ("pile", 1000, 500, {e: (1, 60) for e in ENGINES}),
+            ("ball", 1, 2000, {e: (1, 30) for e in ENGINES if e != "ode_sap"}),
+            ("billiards", 16, 2000, {e: (1, 30) for e in ENGINES if e != "ode_sap"}),
+            ("pile", 1000, 500, {e: (1, 30) for e in ENGINES}),
         ]
     return [
-        ("ball", 1, 2000, {e: (5, 30) for e in ENGINES}),
-        ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES}),
-        ("pile", 1000, 2000, {"rbsim": (5, 60), "ode": (5, 60), "bullet": (3, 90), "mujoco": (3, 60)}),
-        ("pile", 8000, 2000, {"rbsim": (3, 120), "ode": (3, 150), "bullet": (1, 420), "mujoco": (2, 200)}),
-        ("pile", 27000, 100, {"rbsim": (3, 120), "ode": (2, 120), "bullet": (1, 240), "mujoco": (1, 200)}),
+        ("ball", 1, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
+        ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
+        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "ode": (5, 60), "ode_sap": (3, 60),
+                              "bullet": (3, 90), "mujoco": (3, 60)}),
+        ("pile", 8000, 2000, {"rbsim": (3, 120), "rbsim_sel": (3, 120), "ode": (2, 300), "ode_sap": (1, 300),
+                              "bullet": (1, 300), "mujoco": (1, 240)}),
+        ("pile", 27000, 100, {"rbsim": (3, 120), "rbsim_sel": (3, 120), "ode": (1, 150), "bullet": (1, 240),
+                              "mujoco": (1, 300)}),
     ]
+
+
+# Extra seconds a run may take to set up before stepping (the wall-time cap
+# counts stepping only): MuJoCo's model compiler takes time growing as N^2
+# (about 3 s at N = 4000 and 150 s of CPU at N = 27,000 on this machine).
+SETUP_ALLOW = {("mujoco", 8000): 60, ("mujoco", 27000): 300}
 
 
 def scaling_plan(quick):
     ns = [1000, 10000] if quick else [1000, 3000, 10000, 30000, 100000, 300000, 1000000]
-    return [(kind, n) for kind in ("lattice", "stack") for n in ns]
+    return [(engine, kind, n) for engine in RBSIM for kind in ("lattice", "stack") for n in ns]
 
 
 def driver_cmd(build, engine, scene_path, steps, cap, state_path):
     if engine in ("rbsim", "ode"):
         cmd = [os.path.join(build, "bench", "peers", f"peers_{engine}")]
+    elif engine == "rbsim_sel":
+        cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "selective"]
+    elif engine == "ode_sap":
+        cmd = [os.path.join(build, "bench", "peers", "peers_ode"), "--method", "sap"]
     else:
         cmd = [sys.executable, os.path.join(HERE, f"drive_{engine}.py")]
     return cmd + ["--scene", scene_path, "--steps", str(steps), "--max-wall", str(cap),
@@ -122,7 +141,7 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
     log_path = os.path.join(work, f"{scene}_{n}.{engine}.{rep}.log")
     if os.path.exists(state_path):
         os.remove(state_path)
-    hard = cap * 1.5 + 120
+    hard = cap * 1.5 + 120 + SETUP_ALLOW.get((engine, n), 0)
     code, rss, elapsed, text = run_process(
         build, driver_cmd(build, engine, scene_path, steps, cap, state_path), hard, log_path)
     res, progress = parse_driver(text)
@@ -158,6 +177,15 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
         row["body_steps_per_s"] = n * row["steps"] / row["wall"]
         row["ns_per_body_step"] = 1e9 * row["wall"] / (n * row["steps"])
     return row
+
+
+def run_stream(build):
+    r = subprocess.run([os.path.join(build, "bench", "peers", "peers_stream")],
+                       capture_output=True, text=True, timeout=600)
+    st = json.loads(r.stdout)
+    log(f"stream: copy {st['copy_gbs']} GB/s, triad {st['triad_gbs']} GB/s, "
+        f"{st['gflops_scalar']} GFLOP/s")
+    return st
 
 
 def log(msg):
@@ -217,6 +245,9 @@ def main(argv):
     ap.add_argument("--engines", default=",".join(ENGINES))
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--skip-peers", action="store_true")
+    ap.add_argument("--merge-from", metavar="CSV",
+                    help="also report the rows of engines not run now from an earlier peers.csv "
+                         "(their ratios then compare runs made at different times)")
     a = ap.parse_args(argv)
     engines = [e for e in a.engines.split(",") if e]
     for e in engines:
@@ -227,9 +258,11 @@ def main(argv):
     exe = os.path.join(build, "bench", "peers", "peers_rbsim")
     if not os.path.exists(exe):
         sys.exit(f"run.py: {exe} is missing: build first (bench/peers/run.sh does)")
-    if "ode" in engines and not os.path.exists(os.path.join(build, "bench", "peers", "peers_ode")):
-        log("run.py: peers_ode was not built (no libode-dev): ODE is left out")
-        engines.remove("ode")
+    if not os.path.exists(os.path.join(build, "bench", "peers", "peers_ode")):
+        for e in ("ode", "ode_sap"):
+            if e in engines:
+                log(f"run.py: peers_ode was not built (no libode-dev): {e} is left out")
+                engines.remove(e)
     for e, mod in (("bullet", "pybullet"), ("mujoco", "mujoco")):
         if e in engines:
             try:
@@ -245,15 +278,13 @@ def main(argv):
 
     info = machine_info(build)
     log(f"machine: {info['cpu']}, {info['nproc']} cores, {info['memory']}")
-    r = subprocess.run([os.path.join(build, "bench", "peers", "peers_stream")],
-                       capture_output=True, text=True, timeout=600)
-    stream = json.loads(r.stdout)
-    log(f"stream: copy {stream['copy_gbs']} GB/s, triad {stream['triad_gbs']} GB/s, "
-        f"{stream['gflops_scalar']} GFLOP/s")
+    streams = [run_stream(build)]
     layout = json.loads(subprocess.run([exe, "--layout"], capture_output=True, text=True).stdout)
 
     # Peer comparison: per configuration, repeats interleaved across engines.
+    # The scaling runs that follow keep a reserve of the budget.
     expected = {}
+    reserve = 0.0 if a.skip_scaling else (60.0 if a.quick else 300.0)
     if not a.skip_peers:
         for scene, n, steps, reps in plan(a.quick):
             scenes.write(os.path.join(work, f"{scene}_{n}.bin"), scene, n)
@@ -266,14 +297,22 @@ def main(argv):
                     if rep >= nrep:
                         continue
                     key = (scene, n, e)
+                    left = a.budget - (now() - t_start) - reserve - SETUP_ALLOW.get((e, n), 0)
                     if rep > 0:
                         prev = [x for x in rows if (x["scene"], x["n"], x["engine"]) == key]
                         if any(x["status"] != "ok" for x in prev):
                             continue  # capped or failed once: one run says it
-                        left = a.budget - (now() - t_start)
                         if expected.get(key, 0) > left:
                             log(f"  skip {scene} {n} {e} rep {rep + 1}: budget")
                             continue
+                    elif left < 20.0 and SETUP_ALLOW.get((e, n)):
+                        log(f"  skip {scene} {n} {e}: its set-up alone would overrun the budget")
+                        rows.append({"scene": scene, "n": n, "engine": e, "rep": 1,
+                                     "status": "skipped (budget)", "steps_planned": steps})
+                        continue
+                    elif left < cap:
+                        # first runs always happen, with the cap cut to what is left
+                        cap = max(20.0, left)
                     row = one_run(build, work, e, scene, n, steps, cap, rep + 1)
                     expected[key] = row["process_s"]
                     rows.append(row)
@@ -286,32 +325,51 @@ def main(argv):
     # rbsim alone, 1e3 .. 1e6 spheres.
     if not a.skip_scaling:
         stop = set()
-        for kind, n in scaling_plan(a.quick):
-            if kind in stop:
+        for engine, kind, n in scaling_plan(a.quick):
+            if engine not in engines or (engine, kind) in stop:
                 continue
             left = a.budget - (now() - t_start)
-            if left < 60:
-                log(f"  skip scaling {kind} {n}: budget")
+            if left < 30:
+                log(f"  skip scaling {engine} {kind} {n}: budget")
                 continue
-            scenes.write(os.path.join(work, f"{kind}_{n}.bin"), kind, n)
-            cap = min(60.0, max(10.0, left / 4))
-            row = one_run(build, work, "rbsim", kind, n, 20, cap, 1)
-            os.remove(os.path.join(work, f"{kind}_{n}.bin"))
+            path = os.path.join(work, f"{kind}_{n}.bin")
+            if not os.path.exists(path):
+                scenes.write(path, kind, n)
+            cap = min(10.0 if a.quick else 60.0, max(10.0, left / 6))
+            row = one_run(build, work, engine, kind, n, 20, cap, 1)
             rows.append(row)
-            log(f"scaling {kind:7s} n={n:7d}: {row['status']} {row.get('steps', 0)} steps, "
+            log(f"scaling {engine:9s} {kind:7s} n={n:7d}: {row['status']} {row.get('steps', 0)} steps, "
                 f"{row.get('ns_per_body_step', float('nan')):.0f} ns/body-step, "
                 f"{row['maxrss_kb'] / 1024:.0f} MB   [{now() - t_start:.0f} s]")
             if row["status"] != "ok":
-                stop.add(kind)
+                stop.add((engine, kind))
+        for name in os.listdir(work):
+            if name.startswith(("lattice_", "stack_")):
+                os.remove(os.path.join(work, name))
 
+    # Bandwidth again at the end: the best of both is the machine's (others
+    # share this machine; a busy moment only lowers a figure).
+    streams.append(run_stream(build))
+    stream = {k: max(x[k] for x in streams) for k in ("copy_gbs", "triad_gbs", "gflops_scalar")}
+    stream["array_mb"] = streams[0]["array_mb"]
+    stream["runs"] = streams
     total = now() - t_start
     log(f"total {total:.0f} s")
+    notes = []
+    if a.merge_from:
+        with open(a.merge_from, newline="") as fh:
+            old = [r for r in csv.DictReader(fh) if r["engine"] not in engines]
+        rows += old
+        if old:
+            notes.append("Rows of " + ", ".join(sorted({r["engine"] for r in old})) +
+                         f" come from an earlier run of this benchmark ({a.merge_from}); ratios "
+                         "against them compare runs made at different times.")
     write_csv(os.path.join(results, "peers.csv"), rows)
     git = subprocess.run(["git", "-C", HERE, "describe", "--always", "--dirty"],
                          capture_output=True, text=True).stdout.strip()
     meta = {"machine": info, "stream": stream, "layout": layout, "quick": a.quick,
             "total_s": total, "engines": engines, "commit": git or "?",
-            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+            "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "notes": notes}
     with open(os.path.join(results, "peers_meta.json"), "w") as f:
         json.dump(meta, f, indent=1, sort_keys=True)
     import report
