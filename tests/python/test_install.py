@@ -42,7 +42,10 @@ def reference_hash():
 
 
 def clean_env(pythonpath):
-    env = {k: v for k, v in os.environ.items() if not k.startswith("RBSIM_")}
+    # Meson sets LD_LIBRARY_PATH to the build's library folder for tests:
+    # drop it too, so the run-time path compiled in is what finds librbsim.
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith("RBSIM_") and k != "LD_LIBRARY_PATH"}
     env["PYTHONPATH"] = str(pythonpath)
     env["PYTHONDONTWRITEBYTECODE"] = "1"
     return env
@@ -72,7 +75,8 @@ def test_setup_py_builds_the_library_with_meson(tmp_path):
     assert (where / "rbsim" / "py.typed").exists()
     ext = check_installed(where, tmp_path)
     # librbsim is linked in statically: the module needs no librbsim.so.
-    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
+    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True,
+                         env=clean_env("")).stdout
     assert "librbsim" not in ldd and "not found" not in ldd, ldd
 
 
@@ -99,7 +103,8 @@ def test_setup_py_uses_an_installed_library(tmp_path):
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
     where = next((tmp_path / "build").glob("lib*/rbsim")).parent
     ext = check_installed(where, tmp_path)
-    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True).stdout
+    ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True,
+                         env=clean_env("")).stdout
     line = [l for l in ldd.splitlines() if "librbsim" in l]
     assert line and str(dest) in line[0], ldd
 
