@@ -406,8 +406,17 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
         return -1; /* closed: quit or an error */
     st = rbs_frame_capture(p->world, slot, p->max_bodies);
     if (st != RBS_OK) {
-        fail(p, st, "frame capture at t = %.17g s failed: %s",
-             rbs_world_time(p->world), rbs_status_string(st));
+        /* Say which part of the capture failed. */
+        const char *why = rbs_world_last_error(p->world);
+        rbs_energy e;
+        rbs_vec3 lin, ang;
+        const char *what =
+            rbs_world_energy(p->world, &e) != RBS_OK           ? "energy: "
+            : rbs_world_momentum(p->world, &lin, &ang) != RBS_OK ? "momentum: "
+                                                                 : "";
+        fail(p, st, "frame capture at t = %.17g s failed: %s%s%s%s",
+             rbs_world_time(p->world), what, rbs_status_string(st),
+             why && why[0] ? ": " : "", why ? why : "");
         rbs_reel_end_write(p->reel);
         return -1;
     }
