@@ -415,9 +415,12 @@ typedef struct rbs_energy {
     double total;
 } rbs_energy;
 
+/** RBS_E_NUMERIC if a sum overflows (huge but finite states): the values
+ * written are then not to be trusted. */
 RBS_API rbs_status rbs_world_energy(const rbs_world *world, rbs_energy *out);
 /** Total linear momentum (kg m/s) and angular momentum about the origin
- * (kg m^2/s). Either pointer may be NULL. */
+ * (kg m^2/s). Either pointer may be NULL.  RBS_E_NUMERIC if a sum
+ * overflows. */
 RBS_API rbs_status rbs_world_momentum(const rbs_world *world, rbs_vec3 *linear,
                                       rbs_vec3 *angular);
 

@@ -340,6 +340,14 @@ void rbs__separate(rbs_world *w)
     }
 }
 
+double rbs__max_overlap_now(rbs_world *w)
+{
+    double pen = 0.0;
+    rbs__save_state(w, w->sub_save); /* start = end: no motion, only depth */
+    rbs__overlap_grew(w, w->sub_save, &pen, NULL);
+    return pen;
+}
+
 double rbs__max_overlap(const rbs_world *w)
 {
     uint32_t i;

@@ -12,6 +12,8 @@
  *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn, rolling and spinning
  *     resistance bounded by Jn), cancelling the approach the forces built.
  */
+#include <string.h>
+
 #include "core/world_internal.h"
 
 /* K u for the pair: (1/ma + 1/mb) u + (Ia^-1 (ra x u)) x ra + (Ib^-1 (rb x u)) x rb. */
@@ -121,7 +123,59 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
         info->sweep_limit++;
 }
 
+/* Warm-start cache: the resting impulse rates (impulse / h) of the last
+ * warm pass, in an open-addressing table keyed by the body pair. */
+static uint64_t pair_key(const rbs__contact *c)
+{
+    return (((uint64_t)c->a << 32) | (uint64_t)c->b) + 1u; /* 0 marks empty */
+}
+
+static uint32_t key_slot(uint64_t k, uint32_t mask)
+{
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdull;
+    k ^= k >> 33;
+    return (uint32_t)k & mask;
+}
+
+static const rbs__warm *warm_find(const rbs_world *w, uint64_t k)
+{
+    uint32_t mask = w->warm_size - 1, i = key_slot(k, mask), n;
+    for (n = 0; n <= mask; ++n, i = (i + 1) & mask) {
+        if (w->warm[i].key == k)
+            return &w->warm[i];
+        if (w->warm[i].key == 0)
+            return NULL;
+    }
+    return NULL;
+}
+
+static void warm_store(rbs_world *w, double h)
+{
+    uint32_t mask = w->warm_size - 1, i;
+    memset(w->warm, 0, (size_t)w->warm_size * sizeof(rbs__warm));
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        uint64_t k;
+        uint32_t j;
+        if (c->jn == 0.0)
+            continue;
+        k = pair_key(c);
+        j = key_slot(k, mask);
+        while (w->warm[j].key != 0)
+            j = (j + 1) & mask;
+        w->warm[j].key = k;
+        w->warm[j].n = c->jn / h;
+        w->warm[j].t = v3_scale(c->jt, 1.0 / h);
+    }
+}
+
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
+{
+    rbs__solve_resting_warm(w, info, 0.0);
+}
+
+void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
     int friction = w->plan.friction, any = 0;
@@ -130,6 +184,23 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
         c->jn = 0.0;
         c->jt = c->jroll = v3_make(0, 0, 0);
         c->jspin = 0.0;
+        if (h > 0.0) {
+            /* warm start: what held this contact last sub-step, scaled to h
+             * (a stack converges at once instead of creeping) */
+            const rbs__warm *m = warm_find(w, pair_key(c));
+            if (m != NULL) {
+                c->jn = m->n * h;
+                if (friction) {
+                    double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
+                    v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
+                    c->jt = l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0);
+                    if (v3_len(c->jt) > c->mu_s * c->jn)
+                        c->jt = v3_make(0, 0, 0);
+                }
+                apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
+                any = 1;
+            }
+        }
     }
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         double change = 0.0, total = 0.0;
@@ -213,4 +284,6 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
         if (sweep == max_sweeps)
             info->sweep_limit++;
     }
+    if (h > 0.0)
+        warm_store(w, h);
 }

@@ -51,6 +51,12 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     if (p.friction)
         p.angular = 1;
     p.sphere_pairs = moving >= 1 && w->sphere_count >= 2;
+    p.min_radius = 0.0;
+    for (i = 0; i < w->sphere_count; ++i) {
+        double r = w->radius[w->spheres[i]];
+        if (p.min_radius == 0.0 || r < p.min_radius)
+            p.min_radius = r;
+    }
     p.mutual = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
     if (!w->def.prune) {
         p.angular = p.gyroscopic = p.friction = p.sphere_pairs = 1;
@@ -154,6 +160,13 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     if (st != RBS_OK) {
         rbs__restore_state(w, w->step_save);
         return st;
+    }
+    /* Overlap the step did not make (bodies placed overlapping, or left by
+     * the rollback floor) is pushed apart now, so the next step starts
+     * clean; the report then describes the separated state. */
+    if (info->max_overlap > w->def.slop * w->plan.min_radius) {
+        rbs__separate(w);
+        info->max_overlap = rbs__max_overlap_now(w);
     }
     w->step_count++;
     return RBS_OK;

@@ -104,7 +104,7 @@ void rbs__integrate_positions(rbs_world *w, double h)
 static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
 {
     rbs__integrate_velocities(w, h);
-    rbs__solve_resting(w, info);
+    rbs__solve_resting_warm(w, info, h);
     rbs__integrate_positions(w, h);
 }
 

@@ -19,12 +19,11 @@
  * RK4 sub-steps with |w| h / m <= 1/4 rad: a body spinning fast relative to
  * the frame step stays inside RK4's stability region (m = 1 otherwise).
  *
- * Contacts, as in Verlet: the resting pass runs on the mean ("drift")
- * velocities (v1 + 2 v2 + 2 v3 + v4) / 6 before positions move, and again on
- * the end velocities; a velocity change made by the first pass moves the
- * position by dv h and the orientation by exp(dw h), and is carried to the
- * end velocity.  With constant forces this is the exact constant-acceleration
- * motion (x' = x + v h + a h^2/2) for free, rolling and sliding bodies.
+ * Contacts, as in Verlet: one resting pass per sub-step, on the RK4 end
+ * velocities; what it changes moves positions by half of it over the
+ * sub-step (the trapezoid), and orientations by exp(dw h / 2).  With
+ * constant forces this is the exact constant-acceleration motion
+ * (x' = x + v h + a h^2/2) of free, resting, rolling and sliding bodies.
  * Four acceleration evaluations per sub-step.
  */
 #include <string.h>
@@ -129,7 +128,6 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
 {
     static const double b[4] = {1.0, 2.0, 2.0, 1.0};
     const double c[3] = {0.5 * h, 0.5 * h, h};
-    rbs_step_info first;
     uint32_t k;
     int s;
 
@@ -180,49 +178,46 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         }
     }
 
-    /* Resting pass on the drift velocities. */
+    /* Resting contact on the end velocities. */
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
         if (w->fixed[i])
             continue;
-        v3_store(&w->vel[3 * i], v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0));
-        /* the drift angular velocity: the stage mean, or the (constant) start */
-        if (S[S_SPIN] != 0.0)
-            memcpy(&w->avel[3 * i], &S[S_WM], 3 * sizeof(double));
-        else
-            memcpy(&w->avel[3 * i], &S[S_W0], 3 * sizeof(double));
+        v3_store(&w->vel[3 * i], v3_mad(v3_load(&S[S_V0]), v3_load(&S[S_SV]), h / 6.0));
+        memcpy(&w->avel[3 * i], S[S_SPIN] != 0.0 ? &S[S_WE] : &S[S_W0], 3 * sizeof(double));
         memcpy(&w->orient[4 * i], &S[S_Q0], 4 * sizeof(double));
         place(w, i, v3_load(&S[S_X0]), q_load(&S[S_Q0]));
     }
-    memset(&first, 0, sizeof first);
-    rbs__solve_resting(w, &first);
-    info->sweep_limit += first.sweep_limit;
+    rbs__solve_resting(w, info);
 
-    /* Drift, then the end velocities plus what the resting pass changed. */
+    /* Drift: the RK4 mean velocity plus half of what the resting pass
+     * changed (the trapezoid over the sub-step). */
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
-        v3 v = v3_load(&w->vel[3 * i]), om = v3_load(&w->avel[3 * i]);
-        v3 dv = v3_sub(v, v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0));
-        quat q = q_load(&S[S_Q0]);
+        v3 dv, vd, dw, om = v3_load(&w->avel[3 * i]);
+        quat q;
         if (w->fixed[i])
             continue;
+        dv = v3_sub(v3_load(&w->vel[3 * i]), v3_mad(v3_load(&S[S_V0]), v3_load(&S[S_SV]), h / 6.0));
+        vd = v3_add(v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0), v3_scale(dv, 0.5));
         if (S[S_SPIN] != 0.0) {
-            v3 dw = v3_sub(om, v3_load(&S[S_WM]));
+            dw = v3_scale(v3_sub(om, v3_load(&S[S_WE])), 0.5);
             q = q_load(&S[S_QE]);
             if (dw.x != 0.0 || dw.y != 0.0 || dw.z != 0.0)
                 q = q_normalize(q_mul(q_from_rotation(dw, h), q));
-            om = v3_add(v3_load(&S[S_WE]), dw);
-        } else if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
-            q = q_normalize(q_mul(q_from_rotation(om, h), q));
+        } else {
+            /* constant spin between contacts: the exact rotation by the
+             * mean of the start and end angular velocities */
+            v3 wd = v3_add(v3_load(&S[S_W0]), v3_scale(v3_sub(om, v3_load(&S[S_W0])), 0.5));
+            q = q_load(&S[S_Q0]);
+            if (wd.x != 0.0 || wd.y != 0.0 || wd.z != 0.0)
+                q = q_normalize(q_mul(q_from_rotation(wd, h), q));
         }
         q_store(&w->orient[4 * i], q);
-        place(w, i, v3_mad(v3_load(&S[S_X0]), v, h), q);
-        v3_store(&w->vel[3 * i], v3_add(v3_mad(v3_load(&S[S_V0]), v3_load(&S[S_SV]), h / 6.0), dv));
-        v3_store(&w->avel[3 * i], om);
+        place(w, i, v3_mad(v3_load(&S[S_X0]), vd, h), q);
     }
-    rbs__solve_resting(w, info);
 }
 
 rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info)

@@ -238,7 +238,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
         return st;
     rbs__solve_collisions(w, info);
     rbs__integrate_velocities(w, dt);
-    rbs__solve_resting(w, info);
+    rbs__solve_resting_warm(w, info, dt);
     rbs__integrate_positions(w, dt);
     contacts = w->contact_count;
     for (i = 0; i < w->slots; ++i)
@@ -288,11 +288,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     }
     info->substeps = 1;
     info->contacts = contacts;
-    {
-        double first;
-        rbs__save_state(w, w->sub_save); /* no motion: measure the overlap */
-        rbs__overlap_grew(w, w->sub_save, &pen, &first);
-    }
+    pen = rbs__max_overlap_now(w);
     info->max_overlap = pen;
     return RBS_OK;
 }

@@ -4,79 +4,143 @@
  * The sub-step loop (detect, collision impulses, advance, overlap check,
  * rollback with h/2) is Euler's rbs__step_rollback(); only the advance
  * differs.  For the smooth forces (uniform gravity, applied force and torque,
- * mutual gravity) one sub-step of h is the kick-drift-kick form of Verlet
- * (Hairer, Lubich & Wanner, Geometric Numerical Integration, 2006, I.1.4):
+ * mutual gravity) one sub-step of h is velocity Verlet (Hairer, Lubich &
+ * Wanner, Geometric Numerical Integration, 2006, I.1.4), written with the
+ * end velocity predicted first so that contacts see it:
  *
- *   v+ = v + a(x) h/2,  w+ = w + alpha(q, w) h/2     half kick
- *   resting pass on (v+, w+)
- *   x' = x + v+ h,      q' = exp(w+ h) q             drift (exact rotation)
- *   v' = v+ + a(x') h/2, w' = w+ + alpha(q', w') h/2 half kick
- *   resting pass on (v', w')
+ *   v_e = v + a(x) h,               w_e = w + alpha(q, w) h
+ *   resting pass on (v_e, w_e): changes dv, dw
+ *   x' = x + (v + a(x) h/2 + dv/2) h,  q' = exp((w + alpha h/2 + dw/2) h) q
+ *   v' = v_e + dv + (a(x') - a(x)) h/2,  w' = w_e + dw + (alpha(q', w_p) - alpha(q, w)) h/2
  *
- * Linear motion is the symplectic, second-order Stormer-Verlet scheme.  The
- * gyroscopic torque -w x I w depends on w itself, so the second half kick is
- * implicit in w'; one fixed-point iteration from the predictor w+ +
- * alpha(q', w+) h/2 keeps the local error O(h^3), i.e. second order overall.
- * For isotropic, torque-free bodies w is constant and the rotation is exact.
+ * where w_p = w_e + dw.  Without contacts this is exactly velocity Verlet
+ * for the linear motion (symplectic, second order); for the rotation it is
+ * Heun's method on w (the gyroscopic torque -w x I w depends on w) with the
+ * midpoint rotation, second order.  Isotropic, torque-free bodies turn by the
+ * exact rotation.
  *
- * Contacts: the resting pass runs twice, once on the drift velocities (so a
- * body at rest does not sink during the drift) and once on the end
- * velocities (so a body at rest ends the sub-step at rest).  With constant
- * forces this reproduces the exact constant-acceleration motion of rolling
- * and sliding, like Euler.  Accelerations are evaluated twice per sub-step
- * (no reuse across sub-steps, since contacts, rollback and setters move
+ * Contacts: one resting pass per sub-step, on the end velocities, as in
+ * Euler; its velocity change moves positions by half of it over the
+ * sub-step (the trapezoid of the start and end velocities).  With constant
+ * forces this is the exact constant-acceleration motion of free, resting,
+ * rolling and sliding bodies.  Accelerations are evaluated twice per
+ * sub-step (no reuse across sub-steps: contacts, rollback and setters move
  * bodies in between).
  */
 #include <string.h>
 
 #include "core/world_internal.h"
 
-/* Half kick of every moving sphere by h (= half the sub-step).  With
- * corrector set, the angular kick is the one-iteration trapezoid described
- * above; the caller has just run the drift. */
-static void kick(rbs_world *w, double h, int corrector)
+/* Per-slot scratch (w->method_scratch). */
+enum {
+    S_X0 = 0,   /* COM at the start, 3 */
+    S_V0 = 3,   /* velocity at the start, 3 */
+    S_Q0 = 6,   /* orientation at the start, 4 */
+    S_W0 = 10,  /* angular velocity at the start, 3 */
+    S_A0 = 13,  /* a(x) at the start, 3 */
+    S_AL0 = 16, /* alpha(q, w) at the start, 3 */
+    S_USED = 19
+};
+
+/* Angular acceleration I^-1 (tau - w x I w) at unit orientation q; exactly
+ * zero when there is neither torque nor a gyroscopic term. */
+static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
 {
-    uint32_t k;
+    v3 dw;
+    if (!w->isotropic[i])
+        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
+    if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
+        return v3_make(0.0, 0.0, 0.0);
+    if (w->isotropic[i])
+        return v3_scale(tau, w->inv_inertia[9 * i]);
+    dw = m3_mul_world(&w->inv_inertia[9 * i], q, tau);
+    return dw;
+}
+
+/* Linear acceleration of body i (mutual gravity from w->acc when on). */
+static v3 lin_acc(const rbs_world *w, uint32_t i, v3 *tau)
+{
+    v3 a;
+    rbs__accelerations(w, i, &a, tau);
     if (w->plan.mutual)
-        rbs__mutual_gravity(w);
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t i = w->spheres[k];
-        v3 a, tau;
-        if (w->fixed[i])
-            continue;
-        rbs__accelerations(w, i, &a, &tau);
-        if (w->plan.mutual)
-            a = v3_add(a, v3_load(&w->acc[3 * i]));
-        v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), a, h));
-        if (w->plan.angular) {
-            v3 om = v3_load(&w->avel[3 * i]), t = tau, dw;
-            quat q = q_load(&w->orient[4 * i]);
-            if (!w->isotropic[i])
-                t = v3_sub(t, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
-            if (t.x == 0.0 && t.y == 0.0 && t.z == 0.0)
-                continue;
-            rbs__body_inv_inertia_world(w, i, t, &dw);
-            if (corrector && !w->isotropic[i]) {
-                /* w' = w+ + alpha(q', w_p) h with the predictor w_p */
-                v3 wp = v3_mad(om, dw, h);
-                t = v3_sub(tau, v3_cross(wp, m3_mul_world(&w->inertia[9 * i], q, wp)));
-                rbs__body_inv_inertia_world(w, i, t, &dw);
-            }
-            v3_store(&w->avel[3 * i], v3_mad(om, dw, h));
-        }
-    }
+        a = v3_add(a, v3_load(&w->acc[3 * i]));
+    return a;
 }
 
 static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
 {
-    rbs_step_info first;
-    memset(&first, 0, sizeof first);
-    kick(w, 0.5 * h, 0);
-    rbs__solve_resting(w, &first);
-    rbs__integrate_positions(w, h);
-    kick(w, 0.5 * h, 1);
+    uint32_t k;
+
+    /* Forces at the start; predicted end velocities. */
+    if (w->plan.mutual)
+        rbs__mutual_gravity(w);
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        v3 a, tau, al = v3_make(0.0, 0.0, 0.0);
+        if (w->fixed[i])
+            continue;
+        a = lin_acc(w, i, &tau);
+        v3_store(&S[S_X0], rbs__body_com(w, i));
+        memcpy(&S[S_V0], &w->vel[3 * i], 3 * sizeof(double));
+        memcpy(&S[S_Q0], &w->orient[4 * i], 4 * sizeof(double));
+        memcpy(&S[S_W0], &w->avel[3 * i], 3 * sizeof(double));
+        v3_store(&S[S_A0], a);
+        if (w->plan.angular)
+            al = ang_acc(w, i, tau, v3_load(&S[S_W0]), q_load(&S[S_Q0]));
+        v3_store(&S[S_AL0], al);
+        v3_store(&w->vel[3 * i], v3_mad(v3_load(&S[S_V0]), a, h));
+        if (al.x != 0.0 || al.y != 0.0 || al.z != 0.0)
+            v3_store(&w->avel[3 * i], v3_mad(v3_load(&S[S_W0]), al, h));
+    }
+
+    /* Resting contact on the end velocities. */
     rbs__solve_resting(w, info);
-    info->sweep_limit += first.sweep_limit;
+
+    /* Drift by the mean of the start and end velocities. */
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        v3 a0 = v3_load(&S[S_A0]), al0 = v3_load(&S[S_AL0]), v0 = v3_load(&S[S_V0]), w0 = v3_load(&S[S_W0]);
+        v3 dv, dw, vd, wd, c;
+        quat q = q_load(&S[S_Q0]);
+        if (w->fixed[i])
+            continue;
+        dv = v3_sub(v3_load(&w->vel[3 * i]), v3_mad(v0, a0, h));
+        dw = v3_sub(v3_load(&w->avel[3 * i]), v3_mad(w0, al0, h));
+        vd = v3_add(v3_mad(v0, a0, 0.5 * h), v3_scale(dv, 0.5));
+        wd = v3_add(v3_mad(w0, al0, 0.5 * h), v3_scale(dw, 0.5));
+        if (wd.x != 0.0 || wd.y != 0.0 || wd.z != 0.0) {
+            q = q_normalize(q_mul(q_from_rotation(wd, h), q));
+            q_store(&w->orient[4 * i], q);
+        }
+        c = v3_load(&w->com_body[3 * i]);
+        if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0)
+            v3_store(&w->pos[3 * i], v3_mad(v3_load(&S[S_X0]), vd, h));
+        else
+            v3_store(&w->pos[3 * i], v3_sub(v3_mad(v3_load(&S[S_X0]), vd, h), q_rotate(q, c)));
+    }
+
+    /* Forces at the end: the second half kick's correction. */
+    if (w->plan.mutual)
+        rbs__mutual_gravity(w);
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
+        v3 a1, tau, da;
+        if (w->fixed[i])
+            continue;
+        a1 = lin_acc(w, i, &tau);
+        da = v3_sub(a1, v3_load(&S[S_A0]));
+        if (da.x != 0.0 || da.y != 0.0 || da.z != 0.0)
+            v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), da, 0.5 * h));
+        if (w->plan.angular && !w->isotropic[i]) {
+            /* Heun: w' = w_p + (alpha(q', w_p) - alpha(q, w)) h/2 */
+            v3 wp = v3_load(&w->avel[3 * i]);
+            v3 dal = v3_sub(ang_acc(w, i, tau, wp, q_load(&w->orient[4 * i])), v3_load(&S[S_AL0]));
+            v3_store(&w->avel[3 * i], v3_mad(wp, dal, 0.5 * h));
+        }
+    }
 }
 
 rbs_status rbs__step_verlet(rbs_world *w, rbs_step_info *info)

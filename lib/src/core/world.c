@@ -237,6 +237,13 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->pair = carve(base, &at, P * sizeof(rbs__pair));
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
+    {
+        size_t W = 16;
+        while (W < 2 * C)
+            W <<= 1;
+        x->warm_size = (uint32_t)W;
+        x->warm = carve(base, &at, W * sizeof(rbs__warm));
+    }
     x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
     x->method_state = carve(base, &at, 8 * sizeof(double));
     {
@@ -1063,6 +1070,9 @@ rbs_status rbs_world_energy(const rbs_world *w, rbs_energy *out)
     out->kinetic = ke;
     out->potential = pe;
     out->total = ke + pe;
+    /* huge but finite states can overflow the sums: say so, never NaN */
+    if (!isfinite(out->total))
+        return RBS_E_NUMERIC;
     return RBS_OK;
 }
 
@@ -1084,6 +1094,8 @@ rbs_status rbs_world_momentum(const rbs_world *w, rbs_vec3 *linear, rbs_vec3 *an
     }
     if (linear) { linear->x = P.x; linear->y = P.y; linear->z = P.z; }
     if (angular) { angular->x = L.x; angular->y = L.y; angular->z = L.z; }
+    if (!v3_finite(P) || !v3_finite(L))
+        return RBS_E_NUMERIC; /* huge but finite states overflowed the sums */
     return RBS_OK;
 }
 

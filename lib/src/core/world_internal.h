@@ -42,6 +42,13 @@ typedef struct rbs__pair {
     double mu_s, mu_k, e, rolling, spinning;
 } rbs__pair;
 
+/* A warm-start entry: resting impulse rates of a body pair (N). */
+typedef struct rbs__warm {
+    uint64_t key; /* (a << 32 | b) + 1; 0 = empty */
+    double n;
+    v3 t;
+} rbs__warm;
+
 /* Which stages a step runs (see rbs__world_plan). */
 typedef struct rbs__plan {
     int angular;      /* integrate angular velocity and orientation */
@@ -49,6 +56,7 @@ typedef struct rbs__plan {
     int friction;     /* some pair has friction or resistance */
     int sphere_pairs; /* two or more spheres, at least one moving */
     int mutual;       /* mutual gravity */
+    double min_radius; /* smallest sphere radius (0 if none), m */
 } rbs__plan;
 
 struct rbs_world {
@@ -101,6 +109,8 @@ struct rbs_world {
 
     /* contacts */
     rbs__contact *contact;
+    rbs__warm *warm;                      /* warm-start table, warm_size slots */
+    uint32_t warm_size;                   /* power of two >= 2 * max_contacts */
 
     /* broad phase (broadphase.c): per sphere item, and a hashed grid */
     double *bp_center;                    /* 3 per item */
@@ -151,6 +161,7 @@ rbs_status rbs__detect(rbs_world *w, double dt);
 double rbs__max_overlap(const rbs_world *w);
 int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
 void rbs__separate(rbs_world *w);
+double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
 v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r);
 void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j);
 
@@ -160,6 +171,9 @@ void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
+/* The resting pass warm-started from the last warm pass, for a sub-step of h
+ * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
+void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
 
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
