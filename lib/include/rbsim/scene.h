@@ -40,43 +40,59 @@ typedef enum rbs_scene_format {
     RBS_SCENE_FORMAT_FORCE32 = 0x7fffffff
 } rbs_scene_format;
 
-/** Load and validate a scene file.  On RBS_E_SCENE (or RBS_E_IO) *out is
- * still set, holds the errors, and must be freed; on other errors *out is
- * NULL. */
+/** Load and validate a scene file.  format RBS_SCENE_AUTO: a path ending in
+ * ".json" is JSON, anything else text; a folder stands for its config.txt.
+ * Returns RBS_OK, RBS_E_SCENE (rejected: every error is recorded, see
+ * rbs_scene_error_get) or RBS_E_IO (a file could not be read; recorded the
+ * same way): in these three cases *out is set and must be freed with
+ * rbs_scene_free.  On other errors (RBS_E_INVALID arguments, RBS_E_MEMORY)
+ * *out is NULL.  Numbers are read in the "C" locale whatever the process's
+ * LC_NUMERIC.  Thread-safe for distinct scenes (no global state). */
 RBS_API rbs_status rbs_scene_load(const char *path, rbs_scene_format format,
                                   rbs_scene **out);
 
-/** Parse a JSON scene held in memory (len bytes, NUL not required).
- * name labels errors.  Same ownership as rbs_scene_load. */
+/** Parse a JSON scene held in memory: len bytes, NUL not required, never
+ * read past; any bytes are safe.  name labels errors (NULL: "<json>").
+ * Same results and ownership as rbs_scene_load. */
 RBS_API rbs_status rbs_scene_parse_json(const char *text, size_t len,
                                         const char *name, rbs_scene **out);
 
 /** Free a scene.  NULL ok. */
 RBS_API void rbs_scene_free(rbs_scene *scene);
 
-/** Number of errors found (kept ones are at most RBS_SCENE_ERRORS_MAX). */
+/** Number of errors found (kept ones are at most RBS_SCENE_ERRORS_MAX); 0
+ * for NULL.  A scene with errors builds no world. */
 RBS_API uint32_t rbs_scene_error_count(const rbs_scene *scene);
-/** The i-th kept error. */
+/** The i-th kept error, in the order found (RBS_E_NOT_FOUND past the kept
+ * ones).  The strings live as long as the scene. */
 RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
                                        rbs_scene_error *out);
 
-/** The world definition the scene asks for (capacities fit the scene). */
+/** The world definition the scene asks for: settings from "simulation",
+ * capacities that fit the scene exactly (max_contacts 4*bodies+16), the
+ * rest rbs_world_def_init defaults.  RBS_E_SCENE if the scene has errors. */
 RBS_API rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out);
-/** Add the scene's materials, pairs and bodies to an empty world. */
+/** Add the scene's materials, pairs and bodies, in file order, to an empty
+ * world made from rbs_scene_world_def (or larger).  Returns the core's status
+ * (e.g. RBS_E_CAPACITY) if the world refuses one; RBS_E_SCENE if the scene
+ * has errors. */
 RBS_API rbs_status rbs_scene_populate(const rbs_scene *scene, rbs_world *world);
-/** rbs_world_create with rbs_scene_world_def, then rbs_scene_populate. */
+/** rbs_world_create with rbs_scene_world_def, then rbs_scene_populate; on
+ * any error no world is left (*out NULL).  Free with rbs_world_destroy. */
 RBS_API rbs_status rbs_scene_build(const rbs_scene *scene, rbs_world **out);
 
-/** simulation.steps */
+/** simulation.steps (after any override); 0 for NULL. */
 RBS_API uint64_t rbs_scene_steps(const rbs_scene *scene);
 /** simulation.dt, s (after any override); 0 for NULL. */
 RBS_API double rbs_scene_dt(const rbs_scene *scene);
 /** The scene's "description" ("" if none); owned by the scene. */
 RBS_API const char *rbs_scene_description(const rbs_scene *scene);
-/** simulation.pause_on_collision */
+/** simulation.pause_on_collision (nonzero: pause at impacts); 0 for NULL. */
 RBS_API int32_t rbs_scene_pause_on_collision(const rbs_scene *scene);
-/** Command-line overrides: steps (0 keeps), dt (<= 0 keeps), method
- * (NULL keeps).  Validated like the file's values. */
+/** Command-line overrides: steps (0 keeps), dt in s (<= 0 keeps; NaN and
+ * infinities are errors), method name (NULL keeps).  Validated like the
+ * file's values: on RBS_E_SCENE nothing is changed, the errors are recorded
+ * ("command line: --dt: ...") and the scene then builds no world. */
 RBS_API rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
                                       const char *method);
 
@@ -88,13 +104,24 @@ typedef struct rbs_scene_renderer {
     int32_t line, column;
 } rbs_scene_renderer;
 
+/** Number of renderer entries (at most RBS_RENDERERS_MAX); 0 for NULL. */
 RBS_API uint32_t rbs_scene_renderer_count(const rbs_scene *scene);
+/** The i-th renderer entry, in file order (RBS_E_NOT_FOUND past the end).
+ * Strings live as long as the scene.  "type", "path" and "every" are checked
+ * for every entry, all keys of "csv", "json" and "sdl" (see
+ * scenes/FORMAT.md); other types get their entry unchecked otherwise. */
 RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
                                           rbs_scene_renderer *out);
 
-/** Write the scene in a format (JSON, or TEXT: path names config.txt and the
- * materials/objects files are written beside it).  A round trip through
- * either format gives an equal scene. */
+/** Write the scene in a format (RBS_SCENE_AUTO: by path, as for loading).
+ * JSON: one file.  TEXT: path names the config file; materials.txt and
+ * objects.txt are written beside it ("X.materials.txt", "X.objects.txt" if
+ * the name is not config.txt).  A missing parent folder (one level) is made.
+ * Every value is written (defaults included) with the fewest digits that
+ * read back exactly, so loading the result gives an equal scene and a
+ * bit-identical world.  RBS_E_SCENE for a scene with errors, RBS_E_IO if a
+ * file cannot be written, RBS_E_UNSUPPORTED if a renderer entry has a key
+ * the text format cannot spell (containing '.', '[', '=', blanks ...). */
 RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
                                   rbs_scene_format format);
 
