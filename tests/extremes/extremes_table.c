@@ -68,6 +68,25 @@ int main(int argc, char **argv)
         }
         printf("\n");
     }
+    printf("\n## Misses and errors\n\n"
+           "Each is a failing check of `meson test --suite extremes` unless marked not promised.\n\n");
+    {
+        int any = 0;
+        for (i = 0; i < n && i < 64; ++i)
+            for (m = 0; m < XMETHODS; ++m) {
+                xres *r = &res[i][m];
+                if (r->skipped || (!r->failed && xres_pass(r)))
+                    continue;
+                any = 1;
+                if (r->failed)
+                    printf("- `%s` / %s: error: %s\n", cs[i].id, rbs_method_name((rbs_method)m), r->note);
+                else
+                    printf("- `%s` / %s: %.6g over the bound %.6g%s\n", cs[i].id, rbs_method_name((rbs_method)m),
+                           r->value, r->bound, (cs[i].not_promised >> m) & 1u ? " (not promised)" : "");
+            }
+        if (!any)
+            printf("None.\n");
+    }
     printf("\n## Second numbers and notes\n\n");
     for (i = 0; i < n && i < 64; ++i) {
         const xcase *c = &cs[i];
