@@ -72,7 +72,7 @@ static void stages_name_their_reason(void **state)
                   "(contacts can make it spin)");
     ASSERT_HAS(t, "in   gyroscopic torque -w x I w: sphere \"top\" has anisotropic inertia");
     ASSERT_HAS(t, "in   mutual gravity: G = 6.674e-11");
-    ASSERT_HAS(t, "twice per sub-step");
+    ASSERT_HAS(t, "resting-contact pass: once per sub-step, on the end velocities");
     rbs_world_destroy(w);
 }
 

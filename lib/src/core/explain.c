@@ -192,9 +192,10 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
 
     /* Resting contact. */
     stage(&t, moving > 0 && w->def.method != RBS_METHOD_EVENT, "resting-contact pass");
-    if (w->def.method == RBS_METHOD_VERLET || w->def.method == RBS_METHOD_RK4 ||
-        w->def.method == RBS_METHOD_ADAPTIVE)
-        put(&t, "twice per sub-step (drift and end velocities)\n");
+    if (w->def.method == RBS_METHOD_VERLET || w->def.method == RBS_METHOD_RK4)
+        put(&t, "once per sub-step, on the end velocities (positions move by half of its change)\n");
+    else if (w->def.method == RBS_METHOD_ADAPTIVE)
+        put(&t, "in frames with lasting contact, on RK4 sub-steps\n");
     else if (w->def.method == RBS_METHOD_EVENT)
         put(&t, "the event method keeps rolling and sliding in closed form\n");
     else

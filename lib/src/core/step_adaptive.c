@@ -78,6 +78,7 @@ struct rbs__adaptive {
     uint32_t flag_cap;
     double t0;         /* start of the step being searched */
     int bad;           /* a non-finite state was met while root finding */
+    uint32_t bad_body; /* slot whose derivative was not finite */
 };
 
 /* ------------------------------------------------------------------------- */
@@ -261,9 +262,12 @@ static int rhs(double t, const double y[], double dydt[], void *params)
             }
         }
     }
-    for (k = 0; k < STRIDE * a->n; ++k)
-        if (!isfinite(dydt[k]))
+    for (k = 0; k < STRIDE * a->n; ++k) {
+        if (!isfinite(dydt[k])) {
+            a->bad_body = a->map[k / STRIDE];
             return GSL_EBADFUNC;
+        }
+    }
     return GSL_SUCCESS;
 }
 
@@ -531,10 +535,15 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
             double h_in = *hmem;
             h = h_in;
             gs = gsl_odeiv2_evolve_apply(a->evolve, a->control, a->step, &a->sys, &t, T, &h, a->y);
+            if (gs == GSL_EBADFUNC)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                    "adaptive: step %llu: the forces on body %u (\"%s\") became NaN or infinite "
+                    "at %.17g s into the frame; the world is left at its last good state",
+                    (unsigned long long)w->step_count + 1, (unsigned)a->bad_body, w->name[a->bad_body], t);
             if (gs != GSL_SUCCESS)
                 return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
-                    "adaptive: the integrator failed at %.17g s into the frame (%s)", t,
-                    gs == GSL_EBADFUNC ? "forces became NaN or infinite" : gsl_strerror(gs));
+                    "adaptive: step %llu: the integrator failed at %.17g s into the frame (%s)",
+                    (unsigned long long)w->step_count + 1, t, gsl_strerror(gs));
             /* keep the step-size suggestion unless GSL clipped it to the frame end */
             *hmem = (t == T && h < h_in) ? h_in : h;
             if (++steps > MAX_STEPS)

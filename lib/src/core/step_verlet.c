@@ -8,16 +8,20 @@
  * Wanner, Geometric Numerical Integration, 2006, I.1.4), written with the
  * end velocity predicted first so that contacts see it:
  *
- *   v_e = v + a(x) h,               w_e = w + alpha(q, w) h
- *   resting pass on (v_e, w_e): changes dv, dw
- *   x' = x + (v + a(x) h/2 + dv/2) h,  q' = exp((w + alpha h/2 + dw/2) h) q
- *   v' = v_e + dv + (a(x') - a(x)) h/2,  w' = w_e + dw + (alpha(q', w_p) - alpha(q, w)) h/2
+ *   v_e = v + a(x) h;   resting pass on v_e (and w): changes dv, dw
+ *   x' = x + (v + a(x) h/2 + dv/2) h
+ *   v' = v_e + dv + (a(x') - a(x)) h/2
  *
- * where w_p = w_e + dw.  Without contacts this is exactly velocity Verlet
- * for the linear motion (symplectic, second order); for the rotation it is
- * Heun's method on w (the gyroscopic torque -w x I w depends on w) with the
- * midpoint rotation, second order.  Isotropic, torque-free bodies turn by the
- * exact rotation.
+ * Without contacts this is exactly velocity Verlet (symplectic, second
+ * order).  Rotation: isotropic, torque-free bodies keep their spin and turn
+ * by the exact rotation.  Bodies with torque or anisotropic inertia have
+ * (q, w) advanced first, on their own (rotation and translation do not
+ * couple between contacts), by the same kick-drift-kick in m sub-steps with
+ * |w| h / m <= 1/4 rad:  w+ = w + alpha(q, w) hs/2;  q' = exp(w+ hs) q;
+ * w' = w+ + alpha(q', w_p) hs/2 with the predictor w_p = w+ + alpha(q', w+)
+ * hs/2 (the gyroscopic torque -w x I w depends on w; one fixed-point
+ * iteration keeps second order).  A contact's dw turns the body by
+ * exp(dw h/2).
  *
  * Contacts: one resting pass per sub-step, on the end velocities, as in
  * Euler; its velocity change moves positions by half of it over the
@@ -33,14 +37,19 @@
 
 /* Per-slot scratch (w->method_scratch). */
 enum {
-    S_X0 = 0,   /* COM at the start, 3 */
-    S_V0 = 3,   /* velocity at the start, 3 */
-    S_Q0 = 6,   /* orientation at the start, 4 */
-    S_W0 = 10,  /* angular velocity at the start, 3 */
-    S_A0 = 13,  /* a(x) at the start, 3 */
-    S_AL0 = 16, /* alpha(q, w) at the start, 3 */
-    S_USED = 19
+    S_X0 = 0,    /* COM at the start, 3 */
+    S_V0 = 3,    /* velocity at the start, 3 */
+    S_Q0 = 6,    /* orientation at the start, 4 */
+    S_W0 = 10,   /* angular velocity at the start, 3 */
+    S_A0 = 13,   /* a(x) at the start, 3 */
+    S_QE = 16,   /* orientation at the end (spinning bodies), 4 */
+    S_WE = 20,   /* angular velocity at the end (spinning bodies), 3 */
+    S_SPIN = 23, /* 1: (q, w) advanced by spin_verlet */
+    S_USED = 24
 };
+
+#define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
+#define SPIN_MAX_SUBSTEPS 100000
 
 /* Angular acceleration I^-1 (tau - w x I w) at unit orientation q; exactly
  * zero when there is neither torque nor a gyroscopic term. */
@@ -57,6 +66,28 @@ static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
     return dw;
 }
 
+/* Kick-drift-kick on (q, w) of body i over h in m sub-steps (see the top);
+ * the end state into S. */
+static void spin_verlet(const rbs_world *w, uint32_t i, v3 tau, double h, double *S)
+{
+    quat q = q_load(&S[S_Q0]);
+    v3 om = v3_load(&S[S_W0]);
+    double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
+    int m = 1, k;
+    if (reach > SPIN_MAX_ANGLE)
+        m = reach < SPIN_MAX_ANGLE * SPIN_MAX_SUBSTEPS ? (int)ceil(reach / SPIN_MAX_ANGLE) : SPIN_MAX_SUBSTEPS;
+    hs = h / m;
+    for (k = 0; k < m; ++k) {
+        v3 wh = v3_mad(om, ang_acc(w, i, tau, om, q), 0.5 * hs), wp;
+        if (wh.x != 0.0 || wh.y != 0.0 || wh.z != 0.0)
+            q = q_normalize(q_mul(q_from_rotation(wh, hs), q));
+        wp = v3_mad(wh, ang_acc(w, i, tau, wh, q), 0.5 * hs);
+        om = v3_mad(wh, ang_acc(w, i, tau, wp, q), 0.5 * hs);
+    }
+    q_store(&S[S_QE], q);
+    v3_store(&S[S_WE], om);
+}
+
 /* Linear acceleration of body i (mutual gravity from w->acc when on). */
 static v3 lin_acc(const rbs_world *w, uint32_t i, v3 *tau)
 {
@@ -71,27 +102,30 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
 {
     uint32_t k;
 
-    /* Forces at the start; predicted end velocities. */
+    /* Forces at the start; predicted end velocities; spinning bodies'
+     * rotation over the whole sub-step. */
     if (w->plan.mutual)
         rbs__mutual_gravity(w);
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
-        v3 a, tau, al = v3_make(0.0, 0.0, 0.0);
+        v3 a, tau, om = v3_load(&w->avel[3 * i]);
         if (w->fixed[i])
             continue;
         a = lin_acc(w, i, &tau);
         v3_store(&S[S_X0], rbs__body_com(w, i));
         memcpy(&S[S_V0], &w->vel[3 * i], 3 * sizeof(double));
         memcpy(&S[S_Q0], &w->orient[4 * i], 4 * sizeof(double));
-        memcpy(&S[S_W0], &w->avel[3 * i], 3 * sizeof(double));
+        v3_store(&S[S_W0], om);
         v3_store(&S[S_A0], a);
-        if (w->plan.angular)
-            al = ang_acc(w, i, tau, v3_load(&S[S_W0]), q_load(&S[S_Q0]));
-        v3_store(&S[S_AL0], al);
         v3_store(&w->vel[3 * i], v3_mad(v3_load(&S[S_V0]), a, h));
-        if (al.x != 0.0 || al.y != 0.0 || al.z != 0.0)
-            v3_store(&w->avel[3 * i], v3_mad(v3_load(&S[S_W0]), al, h));
+        S[S_SPIN] = 0.0;
+        if (w->plan.angular && ((tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) ||
+                                (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)))) {
+            S[S_SPIN] = 1.0;
+            spin_verlet(w, i, tau, h, S);
+            memcpy(&w->avel[3 * i], &S[S_WE], 3 * sizeof(double));
+        }
     }
 
     /* Resting contact on the end velocities. */
@@ -101,19 +135,27 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
-        v3 a0 = v3_load(&S[S_A0]), al0 = v3_load(&S[S_AL0]), v0 = v3_load(&S[S_V0]), w0 = v3_load(&S[S_W0]);
-        v3 dv, dw, vd, wd, c;
-        quat q = q_load(&S[S_Q0]);
+        v3 a0 = v3_load(&S[S_A0]), v0 = v3_load(&S[S_V0]), om = v3_load(&w->avel[3 * i]);
+        v3 dv, vd, c;
+        quat q;
         if (w->fixed[i])
             continue;
         dv = v3_sub(v3_load(&w->vel[3 * i]), v3_mad(v0, a0, h));
-        dw = v3_sub(v3_load(&w->avel[3 * i]), v3_mad(w0, al0, h));
         vd = v3_add(v3_mad(v0, a0, 0.5 * h), v3_scale(dv, 0.5));
-        wd = v3_add(v3_mad(w0, al0, 0.5 * h), v3_scale(dw, 0.5));
-        if (wd.x != 0.0 || wd.y != 0.0 || wd.z != 0.0) {
-            q = q_normalize(q_mul(q_from_rotation(wd, h), q));
-            q_store(&w->orient[4 * i], q);
+        if (S[S_SPIN] != 0.0) {
+            v3 dw = v3_scale(v3_sub(om, v3_load(&S[S_WE])), 0.5);
+            q = q_load(&S[S_QE]);
+            if (dw.x != 0.0 || dw.y != 0.0 || dw.z != 0.0)
+                q = q_normalize(q_mul(q_from_rotation(dw, h), q));
+        } else {
+            /* constant spin between contacts: the exact rotation by the
+             * mean of the start and end angular velocities */
+            v3 wd = v3_add(v3_load(&S[S_W0]), v3_scale(v3_sub(om, v3_load(&S[S_W0])), 0.5));
+            q = q_load(&S[S_Q0]);
+            if (wd.x != 0.0 || wd.y != 0.0 || wd.z != 0.0)
+                q = q_normalize(q_mul(q_from_rotation(wd, h), q));
         }
+        q_store(&w->orient[4 * i], q);
         c = v3_load(&w->com_body[3 * i]);
         if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0)
             v3_store(&w->pos[3 * i], v3_mad(v3_load(&S[S_X0]), vd, h));
@@ -134,12 +176,6 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
         da = v3_sub(a1, v3_load(&S[S_A0]));
         if (da.x != 0.0 || da.y != 0.0 || da.z != 0.0)
             v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), da, 0.5 * h));
-        if (w->plan.angular && !w->isotropic[i]) {
-            /* Heun: w' = w_p + (alpha(q', w_p) - alpha(q, w)) h/2 */
-            v3 wp = v3_load(&w->avel[3 * i]);
-            v3 dal = v3_sub(ang_acc(w, i, tau, wp, q_load(&w->orient[4 * i])), v3_load(&S[S_AL0]));
-            v3_store(&w->avel[3 * i], v3_mad(wp, dal, 0.5 * h));
-        }
     }
 }
 
