@@ -13,6 +13,16 @@
 
 #include "cases.h"
 
+/* Print text for a table cell: '|' escaped so the row keeps its columns. */
+static void cell(const char *t)
+{
+    for (; *t; ++t) {
+        if (*t == '|')
+            putchar('\\');
+        putchar(*t);
+    }
+}
+
 static void run(const xcase *c, rbs_method m, xres *r)
 {
     memset(r, 0, sizeof *r);
@@ -47,7 +57,11 @@ int main(int argc, char **argv)
     printf("\n");
     for (i = 0; i < n && i < 64; ++i) {
         const xcase *c = &cs[i];
-        printf("| `%s` | %s | %s |", c->id, c->what, c->bound);
+        printf("| `%s` | ", c->id);
+        cell(c->what);
+        printf(" | ");
+        cell(c->bound);
+        printf(" |");
         for (m = 0; m < XMETHODS; ++m) {
             xres *r = &res[i][m];
             if (c->heavy && light) {
