@@ -180,6 +180,35 @@ static void test_demos(void **state)
     }
 }
 
+/* A text scene written by hand with every lexical feature (CRLF lines, tabs,
+ * commas, comments after values, quoted names and paths, "-" restitution,
+ * dotted and indexed renderer keys, "x=5,") equals the same scene written by
+ * hand in JSON: same saved JSON, same world. */
+static void test_text_features(void **state)
+{
+    char a[512], b[512];
+    rbs_scene *st = NULL, *sj = NULL;
+    rbs_world *wt = NULL, *wj = NULL;
+    (void)state;
+    tmp(a, sizeof a, "a.json");
+    tmp(b, sizeof b, "b.json");
+    if (rbs_scene_load("text_features", RBS_SCENE_AUTO, &st) != RBS_OK) {
+        print_errors(st);
+        fail();
+    }
+    assert_int_equal(rbs_scene_load("text_features.json", RBS_SCENE_AUTO, &sj), RBS_OK);
+    assert_int_equal(rbs_scene_save(st, a, RBS_SCENE_JSON), RBS_OK);
+    assert_int_equal(rbs_scene_save(sj, b, RBS_SCENE_JSON), RBS_OK);
+    assert_same_file(a, b);
+    assert_int_equal(rbs_scene_build(st, &wt), RBS_OK);
+    assert_int_equal(rbs_scene_build(sj, &wj), RBS_OK);
+    assert_true(rbs_world_hash(wt) == rbs_world_hash(wj));
+    rbs_world_destroy(wt);
+    rbs_world_destroy(wj);
+    rbs_scene_free(st);
+    rbs_scene_free(sj);
+}
+
 /* Values the loader changes are changed once: a quaternion or normal that is
  * not unit is normalised on load, and then stays exactly as it is. */
 static void test_normalised_once(void **state)
@@ -231,6 +260,19 @@ static void test_save_errors(void **state)
     assert_int_equal(rbs_scene_save(scene, NULL, RBS_SCENE_JSON), RBS_E_INVALID);
     assert_int_equal(rbs_scene_save(NULL, "x.json", RBS_SCENE_JSON), RBS_E_INVALID);
     rbs_scene_free(scene);
+    {
+        /* a third-party renderer key the text format cannot spell */
+        static const char text[] =
+            "{\"simulation\": {\"steps\": 1}, \"bodies\": [],\n"
+            " \"renderers\": [{\"type\": \"plotter\", \"a.b\": 1}]}";
+        char a[512], cfg[512];
+        tmp(a, sizeof a, "a.json");
+        tmp(cfg, sizeof cfg, "config.txt");
+        assert_int_equal(rbs_scene_parse_json(text, sizeof text - 1, "dots", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_save(scene, a, RBS_SCENE_JSON), RBS_OK);
+        assert_int_equal(rbs_scene_save(scene, cfg, RBS_SCENE_TEXT), RBS_E_UNSUPPORTED);
+        rbs_scene_free(scene);
+    }
 }
 
 int main(void)
@@ -238,7 +280,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_issue_example),   cmocka_unit_test(test_features),
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
-        cmocka_unit_test(test_save_errors),
+        cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
     };
     if (enter_test_dir() != 0) {
         return 1;
