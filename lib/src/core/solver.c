@@ -170,6 +170,76 @@ static void warm_store(rbs_world *w, double h)
     }
 }
 
+/* Inverse effective mass of one body of a contact along n (the other held). */
+static double k_one(const rbs_world *w, uint32_t i, v3 r, v3 n)
+{
+    v3 x = v3_cross(r, n), t;
+    if (w->inv_mass[i] == 0.0)
+        return 0.0;
+    rbs__body_inv_inertia_world(w, i, x, &t);
+    return w->inv_mass[i] + v3_dot(x, t);
+}
+
+/* Shock propagation (Guendelman, Bridson & Fedkiw 2003), for when the
+ * Gauss-Seidel sweeps did not converge -- a stack whose masses differ by
+ * orders of magnitude converges at a rate of the mass ratio.  Bodies get a
+ * level: 0 for planes and fixed bodies, then one more than the lowest body
+ * they rest on.  Level by level from the ground up, each contact stops its
+ * upper body's approach with the lower body held still, so no contact is
+ * left approaching and nothing sinks.  Normal direction only. */
+static void shock_propagation(rbs_world *w)
+{
+    int32_t *level = w->ev_mode; /* scratch: the event method's per-body mode */
+    uint32_t i, k, max_level = 0;
+    int changed = 1;
+    for (k = 0; k < w->slots; ++k)
+        level[k] = (w->type[k] == RBS_BODY_SPHERE && !w->fixed[k]) ? INT32_MAX : 0;
+    for (k = 0; changed && k < w->contact_count + 1; ++k) {
+        changed = 0;
+        for (i = 0; i < w->contact_count; ++i) {
+            const rbs__contact *c = &w->contact[i];
+            if (c->jn == 0.0)
+                continue;
+            if (level[c->b] != INT32_MAX && level[c->b] + 1 < level[c->a]) {
+                level[c->a] = level[c->b] + 1;
+                changed = 1;
+            }
+            if (level[c->a] != INT32_MAX && level[c->a] + 1 < level[c->b]) {
+                level[c->b] = level[c->a] + 1;
+                changed = 1;
+            }
+        }
+    }
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
+        if (c->jn > 0.0 && top != INT32_MAX && (uint32_t)top > max_level)
+            max_level = (uint32_t)top;
+    }
+    for (k = 1; k <= max_level; ++k) {
+        for (i = 0; i < w->contact_count; ++i) {
+            rbs__contact *c = &w->contact[i];
+            double vn, kk;
+            if (c->jn == 0.0 || level[c->a] == level[c->b])
+                continue;
+            if ((uint32_t)(level[c->a] > level[c->b] ? level[c->a] : level[c->b]) != k)
+                continue;
+            vn = v3_dot(rel_velocity(w, c), c->n);
+            if (!(vn < 0.0))
+                continue;
+            if (level[c->a] > level[c->b]) {
+                kk = k_one(w, c->a, c->ra, c->n);
+                if (kk > 0.0)
+                    rbs__apply_impulse(w, c->a, c->ra, v3_scale(c->n, -vn / kk));
+            } else {
+                kk = k_one(w, c->b, c->rb, c->n);
+                if (kk > 0.0)
+                    rbs__apply_impulse(w, c->b, c->rb, v3_scale(c->n, vn / kk));
+            }
+        }
+    }
+}
+
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
 {
     rbs__solve_resting_warm(w, info, 0.0);
@@ -284,6 +354,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         if (sweep == max_sweeps)
             info->sweep_limit++;
     }
+    if (any && sweep == max_sweeps)
+        shock_propagation(w);
     if (h > 0.0)
         warm_store(w, h);
 }
