@@ -106,7 +106,7 @@ static const bad_case cases[] = {
     {"bad/zero_quaternion.json", RBS_E_SCENE,
      {E("[0, 0, 0, 0]", 1, 0,
         "bodies[0].orientation: must be a nonzero quaternion [w, x, y, z] of finite "
-        "length")}},
+        "length, got [0, 0, 0, 0]")}},
     {"bad/inertia_triangle.json", RBS_E_SCENE,
      {E("[0.001", 1, 0,
         "bodies[0].inertia: principal moments must satisfy the triangle inequality (each "
@@ -196,7 +196,10 @@ static const bad_case cases[] = {
     {"bad/camera_up_parallel.json", RBS_E_SCENE,
      {E("\"up\": [", 1, 6,
         "renderers[0].camera.up: must be nonzero and not parallel to the view direction "
-        "(target - position)")}},
+        "(target - position = [0, 0, -5]), got [0, 0, 1]")}},
+    {"bad/camera_target_equals_position.json", RBS_E_SCENE,
+     {E("\"target\": [", 1, 10,
+        "renderers[0].camera.target: must differ from the position, got [1, 2, 3] for both")}},
     {"bad/camera_bad_fov_and_far.json", RBS_E_SCENE,
      {E("180", 1, 0, "renderers[0].camera.fov: must be in (0, 180) degrees, got 180"),
       E("0.5}", 1, 0, "renderers[0].camera.far: must be > near (1), got 0.5")}},

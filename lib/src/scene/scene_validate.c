@@ -869,7 +869,9 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
             }
             if (!(n > 0) || !isfinite(n)) {
                 err(v, loc_value(v, c),
-                    "must be a nonzero quaternion [w, x, y, z] of finite length");
+                    "must be a nonzero quaternion [w, x, y, z] of finite length, got "
+                    "[%g, %g, %g, %g]",
+                    q[0], q[1], q[2], q[3]);
             } else {
                 b->orientation.w = q[0] / n;
                 b->orientation.x = q[1] / n;
@@ -1380,14 +1382,16 @@ static void check_camera(vctx *v, const cJSON *cam)
         if (!(ld > 0)) {
             c = member(cam, "target") != NULL ? member(cam, "target") : cam;
             saved = push_key(v, "target");
-            err(v, loc_value(v, c), "the target must differ from the position");
+            err(v, loc_value(v, c), "must differ from the position, got [%g, %g, %g] for both",
+                target.x, target.y, target.z);
             pop(v, saved);
         } else if (!(lu > 0) || !(lx > 1e-9 * ld * lu)) {
             c = member(cam, "up") != NULL ? member(cam, "up") : cam;
             saved = push_key(v, "up");
             err(v, loc_value(v, c),
                 "must be nonzero and not parallel to the view direction (target - "
-                "position)");
+                "position = [%g, %g, %g]), got [%g, %g, %g]",
+                d.x, d.y, d.z, up.x, up.y, up.z);
             pop(v, saved);
         }
     }
