@@ -293,6 +293,29 @@ static void overflow_restores_last_good_state(void **state)
         fail_msg("%d overflow errors do not say which body overflowed", unnamed_errors);
 }
 
+/* A ball placed 1.8e308 m behind a tilted plane: pushing the overlap apart
+ * overflows.  The step must then fail with RBS_E_NUMERIC and leave the
+ * world unchanged (or succeed with a finite state), for every method. */
+static void separation_overflow(void **state)
+{
+    int m;
+    (void)state;
+    for (m = 0; m < RBS_METHOD_COUNT; ++m) {
+        rbs_world *w = new_world((rbs_method)m, 0.0, 0);
+        rbs_plane_def p;
+        char what[96];
+        if (!w)
+            continue;
+        rbs_plane_def_init(&p);
+        p.normal = V(1e-7, -1.0, 1e-7);
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        add_ball(w, 1e-3, 1.0, V(0, 1.7976931348623157e308, -1.7976931348623157e308), V(0, 0, 0), V(0, 0, 0));
+        snprintf(what, sizeof what, "%s: separation from 1.8e308 m behind a plane", rbs_method_name((rbs_method)m));
+        step_guarded(w, 3, what);
+        rbs_world_destroy(w);
+    }
+}
+
 /* Large but finite states must not turn diagnostics into NaN: a ball far
  * below the origin (z = -1e308) moving fast (1e155 m/s, so v^2 overflows)
  * has infinite kinetic and minus infinite potential energy; the sum is NaN
@@ -350,6 +373,7 @@ int main(void)
         cmocka_unit_test(setters_refuse_non_finite),
         cmocka_unit_test(overflow_restores_last_good_state),
         cmocka_unit_test(checkpoint_of_extreme_state),
+        cmocka_unit_test(separation_overflow),
         cmocka_unit_test(diagnostics_never_nan),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

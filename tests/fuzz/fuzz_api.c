@@ -227,9 +227,11 @@ static void trace_world(const fuzz_state *s)
         if (rbs_world_body_at(s->w, i, &id) != RBS_OK || rbs_body_get_state(s->w, id, &b) != RBS_OK)
             continue;
         fprintf(stderr, "  body %u type %d r %.17g m %.17g fixed %d x %.17g %.17g %.17g v %.17g %.17g %.17g "
-                "n %.17g %.17g %.17g f %.17g %.17g %.17g\n", (unsigned)i, (int)b.type, b.radius, b.mass,
-                (int)b.fixed, b.position.x, b.position.y, b.position.z, b.velocity.x, b.velocity.y,
-                b.velocity.z, b.normal.x, b.normal.y, b.normal.z, b.force.x, b.force.y, b.force.z);
+                "w %.17g %.17g %.17g q %.17g %.17g %.17g %.17g n %.17g %.17g %.17g f %.17g %.17g %.17g\n",
+                (unsigned)i, (int)b.type, b.radius, b.mass, (int)b.fixed, b.position.x, b.position.y,
+                b.position.z, b.velocity.x, b.velocity.y, b.velocity.z, b.angular_velocity.x,
+                b.angular_velocity.y, b.angular_velocity.z, b.orientation.w, b.orientation.x, b.orientation.y,
+                b.orientation.z, b.normal.x, b.normal.y, b.normal.z, b.force.x, b.force.y, b.force.z);
     }
 }
 
@@ -363,6 +365,8 @@ static void run_ops(fuzz_state *s, reader *r)
                                 (unsigned)info.substeps, (unsigned)info.rollbacks, (unsigned)info.floor_hits,
                                 (unsigned)info.sweep_limit, (unsigned)info.events, (unsigned)info.contacts,
                                 info.max_overlap, rbs_world_last_error(s->w));
+                    if (trace)
+                        trace_world(s);
                 }
                 check_call(s, st, before, "step");
                 if (st != RBS_OK) {
