@@ -65,8 +65,8 @@ static const bad_case cases[] = {
      {E("2,", 1, 0, "format: must be 1 (this library reads format version 1), got 2")}},
     /* keys */
     {"bad/unknown_key_radus.json", RBS_E_SCENE,
-     {E("\"radus\"", 1, 0, "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)"),
-      E("{\"name\": \"ball\"", 1, 0, "bodies[0]: missing required key \"radius\" (m, > 0)")}},
+     {E("{\"name\": \"ball\"", 1, 0, "bodies[0]: missing required key \"radius\" (m, > 0)"),
+      E("\"radus\"", 1, 0, "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)")}},
     {"bad/plane_with_radius.json", RBS_E_SCENE,
      {E("\"radius\": 1}", 1, 0,
         "bodies[1].radius: unknown key in a plane; expected one of: name, type, point, "
@@ -212,23 +212,24 @@ static const bad_case cases[] = {
      {E("\"t\": 0.5", 1, 5, "renderers[0].camera.path[1].t: times must increase, got 0.5 after 1")}},
     {"bad/views_too_many.json", RBS_E_SCENE,
      {E("[{}, {}", 1, 0, "renderers[0].views: must have 1 to 4 cameras, got 5")}},
-    /* several errors in one file: all are reported, in document order */
+    /* several errors in one file: all are reported, sorted by place (a
+     * missing key is reported at its object's opening brace) */
     {"bad/many_errors.json", RBS_E_SCENE,
      {E("-1", 1, 0, "simulation.dt: must be > 0, got -1"),
-      E("\"mas\"", 1, 0, "bodies[0].mas: unknown key in a sphere (did you mean \"mass\"?)"),
-      E("\"radius\": 0", 1, 10, "bodies[0].radius: must be > 0, got 0"),
       E("{\"name\": \"ball\"", 1, 0,
         "bodies[0]: missing required key \"mass\" (kg, > 0; or give \"density\" in "
         "kg/m^3)"),
+      E("\"radius\": 0", 1, 10, "bodies[0].radius: must be > 0, got 0"),
+      E("\"mas\"", 1, 0, "bodies[0].mas: unknown key in a sphere (did you mean \"mass\"?)"),
       E("\"red\"", 1, 0,
         "bodies[1].color: must be \"#rrggbb\" or three numbers in [0, 1] (red, green, "
         "blue), got \"red\"")}},
     /* the text format: same rules, places in the file that holds the value */
     {"bad/text_unknown_key/config.txt", RBS_E_SCENE,
-     {EIN("bad/text_unknown_key/objects.txt", "radus", 1, 0,
-          "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)"),
-      EIN("bad/text_unknown_key/objects.txt", "sphere", 1, 0,
-          "bodies[0]: missing required key \"radius\" (m, > 0)")}},
+     {EIN("bad/text_unknown_key/objects.txt", "sphere", 1, 0,
+          "bodies[0]: missing required key \"radius\" (m, > 0)"),
+      EIN("bad/text_unknown_key/objects.txt", "radus", 1, 0,
+          "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)")}},
     {"bad/text_bad_material_row/config.txt", RBS_E_SCENE,
      {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
           "expected 4 to 7 columns: material_a material_b static kinetic [restitution "
@@ -248,9 +249,9 @@ static const bad_case cases[] = {
         "simulation.gravity: must be an array of 3 numbers [x, y, z], got an array of 2 "
         "elements"),
       E("-1", 1, 0, "simulation.mutual_gravity.G: must be > 0, got -1"),
+      E("every=0", 1, 6, "renderers[0].every: must be an integer >= 1, got 0"),
       EIN("bad/text_bad_values/objects.txt", "nan", 1, 0,
-          "bodies[0].position[2]: must be a number, got \"nan\""),
-      E("every=0", 1, 6, "renderers[0].every: must be an integer >= 1, got 0")}},
+          "bodies[0].position[2]: must be a number, got \"nan\"")}},
 };
 
 #define CASE_COUNT (sizeof cases / sizeof *cases)

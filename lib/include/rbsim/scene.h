@@ -63,8 +63,9 @@ RBS_API void rbs_scene_free(rbs_scene *scene);
 /** Number of errors found (kept ones are at most RBS_SCENE_ERRORS_MAX); 0
  * for NULL.  A scene with errors builds no world. */
 RBS_API uint32_t rbs_scene_error_count(const rbs_scene *scene);
-/** The i-th kept error, in the order found (RBS_E_NOT_FOUND past the kept
- * ones).  The strings live as long as the scene. */
+/** The i-th kept error, sorted by file, line and column (errors of a later
+ * rbs_scene_override follow); RBS_E_NOT_FOUND past the kept ones.  The
+ * strings live as long as the scene. */
 RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
                                        rbs_scene_error *out);
 

@@ -106,12 +106,37 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
     memcpy(buf + nt + 1 + nf + 1 + np + 1, message, nm + 1);
     e = &scene->errors[scene->error_kept++];
     e->buf = buf;
+    e->file = at.file;
     e->pub.text = buf;
     e->pub.file = buf + nt + 1;
     e->pub.path = buf + nt + 1 + nf + 1;
     e->pub.message = buf + nt + 1 + nf + 1 + np + 1;
     e->pub.line = at.line;
     e->pub.column = at.column;
+}
+
+static int error_before(const rbs__scene_err *a, const rbs__scene_err *b)
+{
+    if (a->file != b->file) {
+        return a->file < b->file;
+    }
+    if (a->pub.line != b->pub.line) {
+        return a->pub.line < b->pub.line;
+    }
+    return a->pub.column < b->pub.column;
+}
+
+void rbs__scene_sort_errors(rbs_scene *scene)
+{
+    /* insertion sort: at most RBS_SCENE_ERRORS_MAX, stable */
+    uint32_t i, j;
+    for (i = 1; i < scene->error_kept; i++) {
+        rbs__scene_err e = scene->errors[i];
+        for (j = i; j > 0 && error_before(&e, &scene->errors[j - 1]); j--) {
+            scene->errors[j] = scene->errors[j - 1];
+        }
+        scene->errors[j] = e;
+    }
 }
 
 size_t rbs__edit_distance(const char *a, const char *b)
@@ -300,6 +325,7 @@ static rbs_status scene_parse_json(const char *text, size_t len, const char *nam
         return RBS_E_MEMORY;
     }
     scene_parse_json_into(scene, text != NULL ? text : "", len, file);
+    rbs__scene_sort_errors(scene);
     return scene_result(scene, RBS_OK, out);
 }
 
@@ -364,6 +390,7 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
         status = rbs__text_load(scene, path);
     }
     free(dirpath);
+    rbs__scene_sort_errors(scene);
     return scene_result(scene, status, out);
 }
 

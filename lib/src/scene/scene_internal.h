@@ -60,8 +60,9 @@ typedef struct rbs__posmap {
     size_t count;
 } rbs__posmap;
 
-typedef struct rbs__scene_error {
+typedef struct rbs__scene_err {
     char *buf; /* "text\0file\0path\0message\0" */
+    int32_t file; /* index in files, -1 for the command line */
     rbs_scene_error pub;
 } rbs__scene_err;
 
@@ -142,6 +143,8 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/** Order the kept errors by file, line and column (stable). */
+void rbs__scene_sort_errors(rbs_scene *scene);
 char *rbs__strdup(const char *s);
 size_t rbs__edit_distance(const char *a, const char *b);
 /** The closest of n candidates to word (stride bytes apart), or NULL if none
