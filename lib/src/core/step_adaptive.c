@@ -15,23 +15,27 @@
  * still end exactly at k dt (GSL clips the last step).
  *
  * Contacts.  After every accepted step [t0, t1] the gap of every pair that
- * was apart at t0 is checked at t1 (sphere pairs also along the straight
- * path between the two states, the swept test of the rollback methods).  A
+ * was apart at t0 is checked at t1, and inside the step: sphere-plane gaps
+ * by their cubic Hermite interpolant from the end values and slopes (exact
+ * for the parabolas of uniform gravity), sphere pairs along the straight
+ * path between the two states (the swept test of the rollback methods).  A
  * pair that went through zero brackets an event; its time is found by
  * Brent's method (gsl_root_fsolver_brent) on the smallest gap, each trial
  * time s evaluated by re-integrating from the state at t0 with one rk8pd
  * step of s - t0 (no longer than the accepted step, so within tolerance).
  * The contact time is accepted when the gap is within 1e-3 of the pair's
  * slop.  There the core's impulses are applied (rbs__detect,
- * rbs__solve_collisions) and integration goes on.  A contact that after the
+ * rbs__solve_collisions) and integration goes on; a contact whose applied
+ * forces pull it apart (a ball under a ceiling) cannot rest, so even a slow
+ * approach there bounces with restitution.  A contact that after the
  * collision pass does not separate faster than one frame of forces builds
  * (resting, rolling or sliding, a Zeno cascade) cannot be integrated by a
  * smooth ODE: the rest of that frame is stepped with the RK4 rollback
  * sub-steps (rbs__rk4_advance), which keep the resting pass.
  *
- * Limits (docs/methods.md): a pair that touches and parts again inside one
- * accepted step along a curved path is not seen (the swept test assumes
- * straight motion over the step).
+ * Limits (docs/methods.md): a sphere pair that touches and parts again
+ * inside one accepted step along a curved path is not seen (the swept test
+ * assumes straight relative motion over the step).
  *
  * Memory: GSL's workspaces come from GSL's own allocator (malloc).  They are
  * allocated once, when a world is created with, or switched to, the
@@ -292,6 +296,60 @@ static double pair_gap(const rbs__adaptive *a, uint32_t i, uint32_t b, const dou
     return v3_len(v3_sub(pa, centre_in(a, b, y))) - w->radius[i] - w->radius[b];
 }
 
+/* Velocity of slot i's geometric centre in state y (zero for fixed). */
+static v3 centre_vel(const rbs__adaptive *a, uint32_t i, const double *y)
+{
+    int32_t p = a->index[i];
+    const double *s;
+    v3 c, v;
+    if (p < 0)
+        return v3_make(0.0, 0.0, 0.0);
+    s = &y[STRIDE * p];
+    v = v3_load(s + 3);
+    c = v3_load(&a->w->com_body[3 * i]);
+    if (c.x != 0.0 || c.y != 0.0 || c.z != 0.0)
+        v = v3_sub(v, v3_cross(v3_load(s + 10), q_rotate(q_normalize(q_load(s + 6)), c)));
+    return v;
+}
+
+/* Lowest point in (0, 1) of the cubic Hermite interpolant of a gap with
+ * values g0, g1 and end slopes m0, m1 (per unit s); exact for the parabolic
+ * motion of uniform gravity.  Returns 1 and its s and value when the
+ * interpolant dips below zero inside the step. */
+static int hermite_dip(double g0, double g1, double m0, double m1, double *s_min, double *g_min)
+{
+    double A = 6.0 * (g0 - g1) + 3.0 * (m0 + m1), B = -6.0 * (g0 - g1) - 4.0 * m0 - 2.0 * m1, C = m0;
+    double r[2], best = HUGE_VAL, sb = 0.0;
+    int n = 0, k;
+    if (A != 0.0) {
+        double disc = B * B - 4.0 * A * C;
+        if (disc >= 0.0) {
+            double q = -0.5 * (B + (B >= 0.0 ? sqrt(disc) : -sqrt(disc)));
+            r[n++] = q / A;
+            if (q != 0.0)
+                r[n++] = C / q;
+        }
+    } else if (B != 0.0) {
+        r[n++] = -C / B;
+    }
+    for (k = 0; k < n; ++k) {
+        double x = r[k], g;
+        if (!(x > 0.0 && x < 1.0))
+            continue;
+        g = (2.0 * x * x * x - 3.0 * x * x + 1.0) * g0 + (x * x * x - 2.0 * x * x + x) * m0 +
+            (-2.0 * x * x * x + 3.0 * x * x) * g1 + (x * x * x - x * x) * m1;
+        if (g < best) {
+            best = g;
+            sb = x;
+        }
+    }
+    if (!(best < 0.0))
+        return 0;
+    *s_min = sb;
+    *g_min = best;
+    return 1;
+}
+
 /* Smallest gap over the flagged pairs in state y. */
 static double min_gap(const rbs__adaptive *a, const double *y)
 {
@@ -364,9 +422,27 @@ static rbs_status find_crossings(rbs__adaptive *a, double t1, double *t_end)
         if (moves) {
             for (p = 0; p < w->plane_count; ++p) {
                 uint32_t b = w->planes[p];
-                if (pair_gap(a, i, b, a->y0) > 0.0 && pair_gap(a, i, b, a->y) < 0.0)
+                double g0 = pair_gap(a, i, b, a->y0), g1, sm, gm, H = t1 - a->t0;
+                v3 n;
+                if (!(g0 > 0.0))
+                    continue;
+                g1 = pair_gap(a, i, b, a->y);
+                if (g1 < 0.0) {
                     if ((st = flag_pair(a, i, b)) != RBS_OK)
                         return st;
+                    continue;
+                }
+                /* touches and leaves inside the step: the gap's cubic
+                 * Hermite interpolant (exact for parabolas) dips below 0 */
+                n = v3_load(&w->normal[3 * b]);
+                if (hermite_dip(g0, g1, H * v3_dot(centre_vel(a, i, a->y0), n),
+                                H * v3_dot(centre_vel(a, i, a->y), n), &sm, &gm)) {
+                    double ts = a->t0 + sm * H;
+                    if ((st = flag_pair(a, i, b)) != RBS_OK)
+                        return st;
+                    if (ts < *t_end && ts > a->t0)
+                        *t_end = ts;
+                }
             }
         }
         for (j = k + 1; j < w->sphere_count; ++j) {
@@ -463,6 +539,27 @@ static rbs_status locate(rbs__adaptive *a, double t_end, double *te)
 /* Stepping                                                                  */
 /* ------------------------------------------------------------------------- */
 
+/* Detect contacts for the segment starting now.  A contact whose applied
+ * forces pull it apart (a ball under a ceiling) cannot rest, so a slow
+ * approach there is an impact with restitution: its resting threshold is
+ * set to 0 (the core's threshold |a_n| dt ignores the sign). */
+static rbs_status detect_segment(rbs_world *w, double T)
+{
+    uint32_t k;
+    rbs_status st = rbs__detect(w, T);
+    if (st != RBS_OK)
+        return st;
+    for (k = 0; k < w->contact_count; ++k) {
+        rbs__contact *c = &w->contact[k];
+        v3 aa, ab, ta;
+        rbs__accelerations(w, c->a, &aa, &ta);
+        rbs__accelerations(w, c->b, &ab, &ta);
+        if (v3_dot(v3_sub(aa, ab), c->n) > 0.0)
+            c->thr = 0.0;
+    }
+    return RBS_OK;
+}
+
 /* Does a contact (after the collision pass) stay closed: approach or part
  * slower than the speed one frame of forces builds? */
 static int resting_contact(const rbs_world *w)
@@ -517,7 +614,7 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
         int gs;
         /* contacts at the start of the segment: impacts, then either free
          * flight or, with a closed contact, RK4 sub-steps to the frame end */
-        st = rbs__detect(w, T);
+        st = detect_segment(w, T);
         if (st != RBS_OK)
             return st;
         rbs__solve_collisions(w, info);
@@ -587,7 +684,7 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
                     "adaptive: more than %u contact events in one frame", MAX_EVENTS);
             if (t >= T) {
                 /* the contact is at the frame end: resolve it now */
-                st = rbs__detect(w, T);
+                st = detect_segment(w, T);
                 if (st != RBS_OK)
                     return st;
                 rbs__solve_collisions(w, info);
