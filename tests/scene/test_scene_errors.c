@@ -237,6 +237,8 @@ static const bad_case cases[] = {
     {"bad/text_no_block/config.txt", RBS_E_SCENE,
      {EIN("bad/text_no_block/objects.txt", "radius", 1, 0,
           "expected \"sphere NAME\" or \"plane NAME\" to start a body, got \"radius\"")}},
+    {"bad/text_deep_key/config.txt", RBS_E_SCENE,
+     {E("a[0]", 1, 0, "key nests deeper than 64 levels")}},
     {"bad/text_missing_objects_file/config.txt", RBS_E_IO,
      {E("nothere.txt", 1, 0,
         "cannot open 'bad/text_missing_objects_file/nothere.txt': No such file or "

@@ -269,8 +269,18 @@ static void add(cJSON *obj, const char *key, cJSON *item)
 static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *value)
 {
     const char *s = t->srcs[t->file].text;
-    size_t i = key_off, end = key_off + key_len;
+    size_t i = key_off, end = key_off + key_len, k;
     cJSON *cur = obj;
+    int depth = 1; /* the renderer object itself */
+    /* bound the nesting as the JSON parser does (cJSON frees recursively) */
+    for (k = key_off; k < end; k++) {
+        depth += s[k] == '.' || s[k] == '[';
+    }
+    if (depth >= RBS__SCENE_DEPTH_MAX) {
+        rbs__scene_error(t->scene, tloc(t, key_off), "",
+                         "key nests deeper than %d levels", RBS__SCENE_DEPTH_MAX);
+        return -1;
+    }
     for (;;) {
         size_t seg = i;
         char name[RBS_NAME_MAX];
