@@ -382,6 +382,12 @@ static void test_unreadable(void **state)
                                 "or directory");
     rbs_scene_free(scene);
 
+    /* a JSON file with another name is recognised by its first '{' */
+    assert_int_equal(rbs_scene_load("bad/json_named.txt", RBS_SCENE_AUTO, &scene), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "bad/json_named.txt:3:47: bodies[0].radius: must be > 0, got 0");
+    rbs_scene_free(scene);
+
     assert_int_equal(rbs_scene_load(NULL, RBS_SCENE_AUTO, &scene), RBS_E_INVALID);
     assert_null(scene);
     assert_int_equal(rbs_scene_load("x.json", RBS_SCENE_AUTO, NULL), RBS_E_INVALID);

@@ -34,14 +34,17 @@ typedef struct rbs_scene_error {
 
 /** Scene file formats. */
 typedef enum rbs_scene_format {
-    RBS_SCENE_AUTO = 0, /**< by content/extension: .json is JSON, else text */
+    RBS_SCENE_AUTO = 0, /**< by name and content: ".json", or a file that starts
+                             with '{', is JSON; a folder or anything else is
+                             text */
     RBS_SCENE_JSON = 1,
     RBS_SCENE_TEXT = 2, /**< config.txt with materials.txt and objects.txt */
     RBS_SCENE_FORMAT_FORCE32 = 0x7fffffff
 } rbs_scene_format;
 
 /** Load and validate a scene file.  format RBS_SCENE_AUTO: a path ending in
- * ".json" is JSON, anything else text; a folder stands for its config.txt.
+ * ".json" or a file whose first non-blank byte is '{' is JSON, anything else
+ * text; a folder stands for its config.txt.
  * Returns RBS_OK, RBS_E_SCENE (rejected: every error is recorded, see
  * rbs_scene_error_get) or RBS_E_IO (a file could not be read; recorded the
  * same way): in these three cases *out is set and must be freed with

@@ -335,6 +335,28 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
+/* The file's first byte after blanks (and a UTF-8 byte order mark) is '{':
+ * a JSON scene, whatever its name.  A text scene's first line is a comment
+ * or "key = value". */
+static int starts_like_json(const char *path)
+{
+    char buf[512];
+    size_t n, i = 0;
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        return 0; /* the loader reports the file */
+    }
+    n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    if (n >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) {
+        i = 3;
+    }
+    while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) {
+        i++;
+    }
+    return i < n && buf[i] == '{';
+}
+
 static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
 {
     rbs_scene *scene;
@@ -368,8 +390,10 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
         format = RBS_SCENE_TEXT;
     }
     if (format == RBS_SCENE_AUTO) {
-        format = ends_with(path, ".json") || ends_with(path, ".JSON") ? RBS_SCENE_JSON
-                                                                     : RBS_SCENE_TEXT;
+        format = ends_with(path, ".json") || ends_with(path, ".JSON") ||
+                         starts_like_json(path)
+                     ? RBS_SCENE_JSON
+                     : RBS_SCENE_TEXT;
     }
     if (format == RBS_SCENE_JSON) {
         int32_t file = rbs__scene_add_file(scene, path);
