@@ -4,6 +4,8 @@
  * objects.txt), the two versions describe the same world, the world builds,
  * and it steps.
  */
+#include <dirent.h>
+
 #include "scene_test.h"
 
 /* Expected facts per scene, read off the scene's own design (see
@@ -152,6 +154,46 @@ static void test_populate(void **state)
     rbs_scene_free(scene);
 }
 
+/* Every scene file in scenes/ (not only the ones listed above) loads in
+ * both forms and builds: a scene added later is checked too. */
+static void test_every_scene_in_folder(void **state)
+{
+    DIR *dir = opendir("../../scenes");
+    struct dirent *d;
+    int seen = 0;
+    (void)state;
+    assert_non_null(dir);
+    while ((d = readdir(dir)) != NULL) {
+        size_t n = strlen(d->d_name);
+        char pj[512], pt[512];
+        rbs_scene *sj = NULL, *st = NULL;
+        rbs_world *w = NULL;
+        if (n < 6 || strcmp(d->d_name + n - 5, ".json") != 0) {
+            continue;
+        }
+        snprintf(pj, sizeof pj, "../../scenes/%s", d->d_name);
+        snprintf(pt, sizeof pt, "../../scenes/%.*s/config.txt", (int)(n - 5), d->d_name);
+        if (rbs_scene_load(pj, RBS_SCENE_AUTO, &sj) != RBS_OK) {
+            print_errors(sj);
+            fail_msg("%s does not load", pj);
+        }
+        if (rbs_scene_load(pt, RBS_SCENE_AUTO, &st) != RBS_OK) {
+            print_errors(st);
+            fail_msg("%s (the text form of %s) does not load", pt, pj);
+        }
+        assert_int_equal(rbs_scene_build(sj, &w), RBS_OK);
+        rbs_world_destroy(w);
+        w = NULL;
+        assert_int_equal(rbs_scene_build(st, &w), RBS_OK);
+        rbs_world_destroy(w);
+        rbs_scene_free(sj);
+        rbs_scene_free(st);
+        seen++;
+    }
+    closedir(dir);
+    assert_true(seen >= (int)DEMO_COUNT);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -159,6 +201,7 @@ int main(void)
         cmocka_unit_test(test_text_versions),
         cmocka_unit_test(test_versions_agree),
         cmocka_unit_test(test_populate),
+        cmocka_unit_test(test_every_scene_in_folder),
     };
     if (enter_test_dir() != 0) {
         return 1;
