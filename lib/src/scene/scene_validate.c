@@ -11,6 +11,7 @@
 #include "scene/scene_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -79,7 +80,6 @@ __attribute__((format(printf, 3, 4)))
 #endif
 static void err(vctx *v, rbs__loc at, const char *fmt, ...);
 
-#include <stdarg.h>
 static void err(vctx *v, rbs__loc at, const char *fmt, ...)
 {
     char msg[512];
