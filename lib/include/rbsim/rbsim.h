@@ -181,7 +181,8 @@ typedef struct rbs_world_def {
     double restitution;       /**< fallback coefficient of restitution, [0,1];
                                    default 0.5 */
     rbs_method method;        /**< default RBS_METHOD_EULER */
-    double tolerance;         /**< adaptive method's error tolerance; default 1e-9 */
+    double tolerance;         /**< adaptive method's error tolerance; default 1e-9,
+                                   >= 1e-15 */
     double slop;              /**< allowed overlap and contact margin, relative to
                                    the smaller radius of a pair; default 1e-6 */
     uint32_t max_halvings;    /**< rollback floor: dt / 2^max_halvings; default 30 */
@@ -284,11 +285,13 @@ RBS_API rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out);
 RBS_API void rbs_world_destroy(rbs_world *world);
 
 /** Detail of the world's last error ("" if none); owned by the world, valid
- * until the next call on it. */
+ * until the next call on it.  Calls that change the world and step set it;
+ * read-only queries (find, get_state) return a status only. */
 RBS_API const char *rbs_world_last_error(const rbs_world *world);
 
 /** The definition the world was created with (capacities and settings as
- * they are now). */
+ * they are now).  Initialise *out with rbs_world_def_init() first: its
+ * struct_size says how much the caller can take. */
 RBS_API rbs_status rbs_world_get_def(const rbs_world *world, rbs_world_def *out);
 
 /* ------------------------------------------------------------------------- */

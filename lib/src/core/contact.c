@@ -52,6 +52,20 @@ static double inv_mass_along(const rbs_world *w, uint32_t a, v3 ra, uint32_t b, 
 }
 
 /* Fill material properties and thresholds of a new contact. */
+/* Resting threshold: the approach speed one step of the applied forces can
+ * build.  Along the normal when the forces press the pair together
+ * (-(a_a - a_b).n > 0, n from b to a); and, for two bodies that are both
+ * driven (a ball in a pile is pressed sideways by its neighbours with forces
+ * of the order of their weight), the smaller of their accelerations.  Forces
+ * that pull a pair apart (a ball under a ceiling) give no threshold: every
+ * approach there is an impact. */
+double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt)
+{
+    double press = -v3_dot(v3_sub(aa, ab), n), la = v3_len(aa), lb = v3_len(ab);
+    double both = la < lb ? la : lb, thr = press > both ? press : both;
+    return thr > 0.0 ? thr * dt : 0.0;
+}
+
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
 {
     uint32_t n = w->def.max_materials + 1;
@@ -70,11 +84,9 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
         c->mu_s = c->mu_k = c->rolling = c->spinning = 0.0;
         c->e = w->def.restitution;
     }
-    /* Resting threshold: the approach speed one step of the applied forces
-     * can build along the normal. */
     rbs__accelerations(w, c->a, &aa, &ta);
     rbs__accelerations(w, c->b, &ab, &ta);
-    c->thr = fabs(v3_dot(v3_sub(aa, ab), c->n)) * dt;
+    c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, c->ra, c->b, c->rb, c->n);
     c->jn = 0.0;
     c->jt = c->jroll = v3_make(0, 0, 0);

@@ -80,7 +80,8 @@ static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
                   w->type[b] == RBS_BODY_SPHERE ? v3_load(&w->vel[3 * b]) : v3_make(0, 0, 0));
     vrel = v3_mad(vrel, v3_sub(aa, ab), -(1.0 - s) * w->def.dt);
     vn = v3_dot(vrel, n);
-    return -vn <= fabs(v3_dot(v3_sub(aa, ab), n)) * w->def.dt;
+    /* the same threshold as a detected contact's (contact.c) */
+    return -vn <= rbs__resting_threshold(aa, ab, n, w->def.dt);
 }
 
 /* Take away (sign -1) or give back (+1) the part of the step's force kick
@@ -115,6 +116,11 @@ static int pair_violates(const rbs_world *w, uint32_t a, uint32_t b, double h, d
     path = R - dmin;
     if (!(path > slop && path > pen0 + slop))
         return 0;
+    /* touching when the step began and untouched by a fix-up since: its
+     * impact (if any) was resolved at the step's start; what is left is
+     * resting contact creeping, for the resting pass */
+    if (T0(w, a) == 0.0 && T0(w, b) == 0.0 && pen0 >= -slop)
+        return 0;
     if (pen0 < 0.0 && l2 > 0.0) {
         double bq = v3_dot(d0, dd), cq = v3_dot(d0, d0) - R * R, disc = bq * bq - l2 * cq;
         if (disc >= 0.0) {
@@ -141,6 +147,8 @@ static int plane_violates(const rbs_world *w, uint32_t a, uint32_t p, double h, 
     double pen1 = r - v3_dot(v3_sub(v3_load(&w->pos[3 * a]), pt), n);
     if (!(pen1 > slop && pen1 > pen0 + slop))
         return 0;
+    if (t0 == 0.0 && pen0 >= -slop)
+        return 0; /* resting contact creeping (see pair_violates) */
     *s = pen0 < 0.0 ? t0 + (1.0 - t0) * (-pen0 / (pen1 - pen0)) : t0;
     return !creeping(w, a, p, n, *s);
 }
@@ -187,6 +195,40 @@ static uint32_t search(rbs_world *w, double h, violation *out, uint32_t cap, int
         rbs__broadphase_query(w, w->sphere_count, masked ? w->bp_query : NULL, search_pair, &ctx);
     }
     return ctx.count;
+}
+
+/* Order violations by first touch: heap sort (in place; no allocation). */
+static void sift(violation *v, uint32_t root, uint32_t n)
+{
+    for (;;) {
+        uint32_t c = 2 * root + 1;
+        violation t;
+        if (c >= n)
+            return;
+        if (c + 1 < n && v[c + 1].s > v[c].s)
+            c++;
+        if (!(v[c].s > v[root].s))
+            return;
+        t = v[c];
+        v[c] = v[root];
+        v[root] = t;
+        root = c;
+    }
+}
+
+static void sort_by_time(violation *v, uint32_t n)
+{
+    uint32_t i;
+    if (n < 2)
+        return;
+    for (i = n / 2; i-- > 0;)
+        sift(v, i, n);
+    for (i = n - 1; i > 0; --i) {
+        violation t = v[0];
+        v[0] = v[i];
+        v[i] = t;
+        sift(v, 0, i);
+    }
 }
 
 /* Move body i back along its path to fraction s and start a new path there. */
@@ -268,7 +310,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     const double dt = w->def.dt;
     violation *v = (violation *)(void *)w->contact; /* scratch after the solve */
     uint32_t cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(violation));
-    uint32_t round, i, n = 0, k, contacts;
+    uint32_t round, i, n = 0, contacts;
     double pen = 0.0;
     rbs_status st;
 
@@ -294,16 +336,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
             break;
         if (n > cap)
             n = cap;
-        /* order by first touch (insertion sort: few at a time) */
-        for (i = 1; i < n; ++i) {
-            violation x = v[i];
-            k = i;
-            while (k > 0 && v[k - 1].s > x.s) {
-                v[k] = v[k - 1];
-                --k;
-            }
-            v[k] = x;
-        }
+        sort_by_time(v, n);
         for (i = 0; i < n; ++i) {
             double s;
             uint32_t a = v[i].a, b = v[i].b;

@@ -152,8 +152,8 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "method %d is not a rbs_method", (int)d.method);
         return RBS_E_INVALID;
     }
-    if (!(d.tolerance > 0.0) || !isfinite(d.tolerance)) {
-        snprintf(msg, len, "tolerance must be finite and > 0, got %g", d.tolerance);
+    if (!(d.tolerance >= 1e-15) || !isfinite(d.tolerance)) {
+        snprintf(msg, len, "tolerance must be finite and >= 1e-15 (double precision), got %g", d.tolerance);
         return RBS_E_INVALID;
     }
     if (!(d.slop > 0.0 && d.slop < 0.1)) {
@@ -1005,8 +1005,8 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
         return RBS_E_INVALID;
     if ((int)method < 0 || (int)method >= RBS_METHOD_COUNT)
         FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
-    if (isnan(tolerance) || (tolerance > 0.0 && !isfinite(tolerance)))
-        FAIL(w, RBS_E_INVALID, "tolerance must be finite");
+    if (isnan(tolerance) || (tolerance > 0.0 && !(isfinite(tolerance) && tolerance >= 1e-15)))
+        FAIL(w, RBS_E_INVALID, "tolerance must be finite and >= 1e-15 (double precision), got %g", tolerance);
     if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
         FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;

@@ -170,6 +170,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
+double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
