@@ -94,7 +94,8 @@ def _from_meson(build_temp):
     if not os.path.isfile(os.path.join(builddir, "build.ninja")):
         subprocess.run([meson, "setup", builddir, SOURCE_ROOT,
                         "-Ddefault_library=static", "--buildtype=release",
-                        "-Db_ndebug=true", "--wrap-mode=nodownload"],
+                        "-Db_ndebug=true", "--wrap-mode=nodownload",
+                        "-Dtests=false", "-Dsdl=disabled"],
                        check=True)
     subprocess.run([meson, "compile", "-C", builddir,
                     "lib/rbsim:static_library"], check=True)
