@@ -130,8 +130,9 @@ typedef struct rbs_renderer_config {
     uint32_t struct_size;  /**< sizeof(rbs_renderer_config) */
     const char *type;      /**< registered name */
     const char *path;      /**< output path (file or folder) or NULL */
-    uint32_t every;        /**< keep every K-th frame (and always the last);
-                                the projector does the keeping; 0 means 1 */
+    uint32_t every;        /**< keep frames whose number is a multiple of
+                                K, the starting frame and the last; the
+                                projector does the keeping; 0 means 1 */
     const char *json;      /**< the scene entry as JSON text, or NULL */
     const char *file;      /**< scene file for messages, or NULL */
     int32_t line, column;  /**< place of the entry in file, 1-based, or 0 */
@@ -236,6 +237,22 @@ typedef struct rbs_projector_def {
                                    resolved an impact; default 0 */
     int32_t endless;          /**< nonzero: ignore steps, run until "quit";
                                    default 0 */
+    /** Optional (default NULL): called on the simulation thread after each
+     * step, once that step's frame is in the reel (not for the starting
+     * frame), with the world at that frame (frame = its step count), e.g.
+     * to save checkpoints (rbs_world_save).  It must not change the world
+     * (a const pointer) nor call the projector except by
+     * rbs_projector_command.  A status other than RBS_OK stops the run with
+     * that status and the message written into err (errlen bytes) as
+     * rbs_projector_last_error(); outputs stay complete up to this frame. */
+    rbs_status (*after_step)(void *context, const rbs_world *world,
+                             uint64_t frame, char *err, size_t errlen);
+    void *after_step_context; /**< passed to after_step; default NULL */
+    /** Nonzero: the starting state's frame (number = the world's step count
+     * at start) is not given to the renderers, e.g. a run resumed from a
+     * checkpoint whose frame an earlier run wrote; the first frame drawn is
+     * then the next one.  Default 0 (it is drawn). */
+    int32_t skip_first_frame;
 } rbs_projector_def;
 
 /** Fill a projector definition with defaults.  Prefer the macro. */

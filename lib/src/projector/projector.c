@@ -56,6 +56,7 @@ struct rbs_projector {
     rbs_projector_def def;
     double dt;
     uint32_t max_bodies;
+    uint64_t first_frame; /* the world's step count at start */
     rbs_reel *reel;
     renderer renderers[RBS_RENDERERS_MAX];
     uint32_t count;
@@ -183,6 +184,9 @@ void rbs_projector_def_init_sized(rbs_projector_def *def, size_t def_size)
     d.start_paused = 0;
     d.pause_on_collision = 0;
     d.endless = 0;
+    d.after_step = NULL;
+    d.after_step_context = NULL;
+    d.skip_first_frame = 0;
     memcpy(def, &d, d.struct_size);
 }
 
@@ -430,7 +434,7 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     }
     paused = p->paused && p->budget == 0 && !last;
     speed = p->speed;
-    if (p->captured == 0)
+    if (p->captured == 0 && !p->def.skip_first_frame)
         p->energy_initial = slot->stats.total;
     p->energy_last = slot->stats.total;
     p->captured++;
@@ -472,13 +476,27 @@ static void *sim_main(void *arg)
         if (st != RBS_OK) {
             const char *why = rbs_world_last_error(p->world);
             fail(p, st, "step %llu (t = %.17g s) failed: %s%s%s",
-                 (unsigned long long)k, rbs_world_time(p->world),
+                 (unsigned long long)rbs_world_step_count(p->world) + 1,
+                 rbs_world_time(p->world),
                  rbs_status_string(st), why && why[0] ? ": " : "",
                  why ? why : "");
             break;
         }
         if (publish(p, &info, !endless && k == steps) != 0)
             break;
+        /* The caller's hook (e.g. a checkpoint), the frame now in the reel. */
+        if (p->def.after_step != NULL) {
+            char err[ERROR_MAX - 200];
+            uint64_t frame = rbs_world_step_count(p->world);
+            err[0] = '\0';
+            st = p->def.after_step(p->def.after_step_context, p->world, frame,
+                                   err, sizeof err);
+            if (st != RBS_OK) {
+                fail(p, st, "after frame %llu: %s", (unsigned long long)frame,
+                     err[0] ? err : rbs_status_string(st));
+                break;
+            }
+        }
     }
 
     /* No more frames: the reader drains what was published, then ends. */
@@ -561,7 +579,8 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
             continue; /* recorders never get a frame twice */
         if (r->live && !live_ok)
             continue;
-        if (!repeat && !f->last && (f->number - first) % r->every != 0)
+        if (!repeat && !f->last && f->number != first &&
+            f->number % r->every != 0)
             continue;
         err[0] = '\0';
         st = r->cls->draw(r->instance, f, err, sizeof err);
@@ -628,8 +647,9 @@ static int pace(rbs_projector *p, const rbs_frame *f, double *base_wall,
 static void *ren_main(void *arg)
 {
     rbs_projector *p = arg;
-    uint64_t first = 0;
-    int have_first = 0, anchored = 0;
+    /* The starting frame is always kept (unless it is not drawn at all). */
+    const uint64_t first = p->def.skip_first_frame ? UINT64_MAX : p->first_frame;
+    int anchored = 0;
     double base_wall = 0, base_sim = 0, last_live = -1e300;
     uint32_t i;
 
@@ -665,10 +685,6 @@ static void *ren_main(void *arg)
         if (st != RBS_OK)
             break; /* closed and drained */
 
-        if (!have_first) {
-            first = f->number;
-            have_first = 1;
-        }
         pthread_mutex_lock(&p->mu);
         quit = p->quit;
         pthread_mutex_unlock(&p->mu);
@@ -754,8 +770,17 @@ rbs_status rbs_projector_start(rbs_projector *p)
 
     /* Frame 0, the initial state, on the caller's thread (the world is
      * still the caller's): when start returns it is in the reel, so a run
-     * started paused is paused after frame 0. */
-    {
+     * started paused is paused after frame 0.  A world that has stepped
+     * already (a checkpoint) starts at its step count; with
+     * skip_first_frame that frame is not published at all. */
+    p->first_frame = rbs_world_step_count(p->world);
+    if (p->def.skip_first_frame) {
+        rbs_energy e;
+        pthread_mutex_lock(&p->mu);
+        if (rbs_world_energy(p->world, &e) == RBS_OK)
+            p->energy_initial = p->energy_last = e.total;
+        pthread_mutex_unlock(&p->mu);
+    } else {
         rbs_step_info none;
         memset(&none, 0, sizeof none);
         if (publish(p, &none, !p->def.endless && p->def.steps == 0) != 0) {
@@ -951,15 +976,13 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         pthread_cond_broadcast(&p->cond);
         pthread_mutex_unlock(&p->mu);
         if (quit) {
-            /* Stop after the frame being made; the published ones are still
-             * drawn. */
-            if (p->reel)
-                rbs_reel_close(p->reel);
-            if (info.captured > 0)
-                reply_to(reply, reply_size, "quitting after frame %llu",
-                         (unsigned long long)info.captured - 1);
-            else
-                reply_to(reply, reply_size, "quitting");
+            /* Stop after the frame being made: the simulation thread sees
+             * quit before its next step, publishes the frame it is making
+             * (the reader keeps draining, so it never waits for long) and
+             * closes the reel.  So the world always ends at the last frame
+             * published, and an after_step hook saw every frame.  Published
+             * frames are still drawn. */
+            reply_to(reply, reply_size, "quitting after the frame being made");
         } else {
             if (p->reel)
                 rbs__reel_kick(p->reel);
