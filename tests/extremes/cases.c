@@ -368,6 +368,51 @@ static void rest_dt(rbs_method m, xres *r, double dt)
 static void rest_1e7(rbs_method m, xres *r) { rest_dt(m, r, 1e-7); }
 static void rest_1e1(rbs_method m, xres *r) { rest_dt(m, r, 1e-1); }
 
+/* A ball (r = 0.1 m, 1 m/s along x) falls onto an incline (normal
+ * (0.1, 0, 1)) with dt = 1e9 s, which set_dt accepts, and max_halvings = 20
+ * (the default 30 makes the first step take minutes: found by fuzz_api).
+ * Measured: the most sub-steps + rollbacks of one step in 5 steps.  Bound:
+ * the work cap 6200 of the collapse case; a rollback cascade that grows
+ * like 2^max_halvings is a hang to the user. */
+static void huge_dt(rbs_method m, xres *r)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_sphere_def s;
+    rbs_plane_def p;
+    int k;
+    rbs_world_def_init(&d);
+    d.max_bodies = 2;
+    d.dt = 1e9;
+    d.gravity.z = -G;
+    d.max_halvings = 20;
+    if (bad(r, NULL, rbs_world_create(&d, &w), "create"))
+        return;
+    if (bad(r, w, rbs_world_set_method(w, m, 0.0), "set_method")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    rbs_plane_def_init(&p);
+    p.normal.x = 0.1;
+    rbs_world_add_plane(w, &p, NULL);
+    rbs_sphere_def_init(&s);
+    s.position.z = 1.0;
+    s.velocity.x = 1.0;
+    rbs_world_add_sphere(w, &s, NULL);
+    r->bound = WORK_CAP;
+    for (k = 0; k < 5; ++k) {
+        rbs_step_info info;
+        rbs_status st = rbs_world_step(w, &info);
+        if (st == RBS_E_NUMERIC)
+            break; /* refusing the step is fine; hanging is not */
+        if (bad(r, w, st, "step"))
+            break;
+        r->value = maxd(r->value, (double)info.substeps + info.rollbacks);
+        r->extra = maxd(isnan(r->extra) ? 0.0 : r->extra, (double)info.floor_hits);
+    }
+    rbs_world_destroy(w);
+}
+
 /* ------------------------------------------------------------------------- */
 /* Far from the origin                                                       */
 /* ------------------------------------------------------------------------- */
@@ -797,6 +842,8 @@ static const xcase cases[] = {
      "Euler g T dt/2; others 4 n EPS |z|", NULL, 0, free_fall_1e3, 0, NULL},
     {"free_fall_dt_1e-1", "|z - exact| (m) after 1e4 steps of free fall, dt = 1e-1 s",
      "Euler g T dt/2; others 4 n EPS |z|", NULL, 0, free_fall_1e1, 0, NULL},
+    {"huge_dt_1e9", "most sub-steps + rollbacks in one step: a ball onto an incline with dt = 1e9 s (max_halvings 20)",
+     "6200 (the work cap; 2^20 would be a hang)", "most floor hits in a step", 0, huge_dt, 0, NULL},
     {"rest_dt_1e-7", "displacement (m) of a ball resting on the floor, 1e4 steps of 1e-7 s",
      "1e-7 m (slop)", NULL, 0, rest_1e7, 0, NULL},
     {"rest_dt_1e-1", "displacement (m) of a ball resting on the floor, 1e4 steps of 0.1 s",
