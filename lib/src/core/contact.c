@@ -88,6 +88,16 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
     rbs__accelerations(w, c->b, &ab, &ta);
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, c->ra, c->b, c->rb, c->n);
+    /* Centred isotropic spheres: r is along n, so K is isotropic in the
+     * tangent plane: 1/ma + 1/mb + |ra|^2/Ia + |rb|^2/Ib (0 for fixed). */
+    c->kt = 0.0;
+    if (w->isotropic[c->a] && w->isotropic[c->b] &&
+        (w->type[c->a] != RBS_BODY_SPHERE || (w->com_body[3 * c->a] == 0.0 && w->com_body[3 * c->a + 1] == 0.0 &&
+                                               w->com_body[3 * c->a + 2] == 0.0)) &&
+        (w->type[c->b] != RBS_BODY_SPHERE || (w->com_body[3 * c->b] == 0.0 && w->com_body[3 * c->b + 1] == 0.0 &&
+                                               w->com_body[3 * c->b + 2] == 0.0)))
+        c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(c->ra, c->ra) * w->inv_inertia[9 * c->a] +
+                v3_dot(c->rb, c->rb) * w->inv_inertia[9 * c->b];
     c->jn = 0.0;
     c->jt = c->jroll = v3_make(0, 0, 0);
     c->jspin = 0.0;

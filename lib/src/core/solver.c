@@ -50,6 +50,8 @@ static v3 stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
     v3 t1, t2, kt1, kt2;
     if (!(s > 0.0))
         return v3_make(0, 0, 0);
+    if (c->kt > 0.0)
+        return v3_scale(vt, -1.0 / c->kt); /* isotropic tangent plane */
     t1 = v3_scale(vt, 1.0 / s);
     t2 = v3_cross(c->n, t1);
     kt1 = k_apply(w, c, t1);

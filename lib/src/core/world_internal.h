@@ -30,6 +30,8 @@ typedef struct rbs__contact {
     double mu_s, mu_k, e, rolling, spinning;
     double radius; /* lever for rolling resistance, m */
     double kn;     /* n . K n : inverse effective mass along n */
+    double kt;     /* t . K t for every tangent t when K is isotropic in the
+                      tangent plane (centred isotropic spheres); else 0 */
     /* accumulated impulses in the resting pass */
     double jn;
     v3 jt, jroll;
