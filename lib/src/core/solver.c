@@ -251,6 +251,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
     int friction = w->plan.friction, any = 0;
+    double scale = sqrt(w->def.gravity.x * w->def.gravity.x + w->def.gravity.y * w->def.gravity.y +
+                        w->def.gravity.z * w->def.gravity.z) * w->def.dt;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         c->jn = 0.0;
@@ -275,7 +277,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         }
     }
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
-        double change = 0.0, total = 0.0;
+        double change = 0.0, total = 0.0; /* largest velocity change, m/s */
         for (i = 0; i < w->contact_count; ++i) {
             rbs__contact *c = &w->contact[i];
             double vn = v3_dot(rel_velocity(w, c), c->n);
@@ -286,7 +288,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
             if (d != 0.0) {
                 apply_pair(w, c, v3_scale(c->n, d));
                 c->jn = jn_new;
-                change += fabs(d);
+                if (fabs(d) * c->kn > change)
+                    change = fabs(d) * c->kn;
                 any = 1;
             }
             total += c->jn;
@@ -302,7 +305,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                     dj = v3_sub(cand, c->jt);
                     apply_pair(w, c, dj);
                     c->jt = cand;
-                    change += v3_len(dj);
+                    if (v3_len(dj) * c->kn > change)
+                        change = v3_len(dj) * c->kn;
                 }
             }
             if (c->rolling > 0.0 || c->spinning > 0.0) {
@@ -341,12 +345,17 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                         v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
                     if (w->inv_mass[c->b] != 0.0)
                         v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
-                    change += v3_len(dl) / (c->radius > 0.0 ? c->radius : 1.0);
+                    if (v3_len(dl) * c->kn / (c->radius > 0.0 ? c->radius : 1.0) > change)
+                        change = v3_len(dl) * c->kn / (c->radius > 0.0 ? c->radius : 1.0);
                 }
             }
         }
-        /* converged when no impulse changed by more than 1e-12 of the total */
-        if (change <= 1e-12 * total || total == 0.0)
+        /* converged when no contact's velocity changed by more than 1e-9 of
+         * the scale of the pass: the first sweep's largest change or the
+         * speed one step of gravity builds, whichever is larger */
+        if (sweep == 0)
+            scale = change > scale ? change : scale;
+        if (change <= 1e-9 * scale || total == 0.0)
             break;
     }
     if (info && any) {
