@@ -1,5 +1,6 @@
 /*
- * main.c - the rbsim command: run, check, convert, help, --version.
+ * main.c - the rbsim command: run, check, explain, convert, help,
+ * --version.
  */
 #include "cli.h"
 #include "dump.h"
@@ -8,6 +9,7 @@
 #endif
 
 #include <fcntl.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -18,6 +20,8 @@ static const char usage_text[] =
     "  run [SCENE] [OPTIONS]  run a scene; with no SCENE, the built-in\n"
     "                         demonstration (outputs in ./rbsim-demo/)\n"
     "  check SCENE            validate a scene and print every error\n"
+    "  explain SCENE          print the pipeline a step runs for SCENE (each\n"
+    "                         stage in or out, and why)\n"
     "  convert IN OUT         convert a scene between JSON (.json) and the\n"
     "                         config.txt format (OUT ending in .txt)\n"
     "  help [COMMAND]         this text, or a command's options\n"
@@ -53,6 +57,21 @@ static const char run_text[] =
     "  --paused      start paused (then \"resume\" or \"step N\")\n"
     "  --reel N      frames the reel holds between the threads (default 64)\n"
     "  --quiet       no progress bar and no summary\n"
+    "  --checkpoint FILE\n"
+    "                save the exact world state to FILE (atomically) at the\n"
+    "                end of the run, also when stopped by quit, Ctrl-C or\n"
+    "                SIGTERM (at the last frame made); with --steps N below the\n"
+    "                scene's, the run stops at step N with a checkpoint\n"
+    "  --checkpoint-every N\n"
+    "                also save it after every N-th step (frames N, 2N, ...)\n"
+    "  --resume FILE continue from a checkpoint at step k: frames k+1 .. the\n"
+    "                scene's steps (or --steps, counted from 0), numbered as in\n"
+    "                the first run; frame k itself is not written again, so the\n"
+    "                first run's frames 0..k plus these equal an uninterrupted\n"
+    "                run's, byte for byte.  The checkpoint must continue SCENE\n"
+    "                (same bodies by slot, name and type, capacities, dt,\n"
+    "                method, gravity); a corrupt, truncated, foreign or\n"
+    "                unmatched file exits 3\n"
     "At most 4 outputs (the scene's renderers and these) per run.  Every output\n"
     "is checked before any is opened: a rejected run writes nothing.\n"
     "\n"
@@ -64,6 +83,15 @@ static const char check_text[] =
     "Validate SCENE: the file, the world it builds and its renderer entries\n"
     "(including that their output folders exist).  Prints every error as\n"
     "file:line:column: key: message.  Exit 0 if valid, 3 if not.\n";
+
+static const char explain_text[] =
+    "usage: rbsim explain SCENE [--method M]\n"
+    "\n"
+    "Load and validate SCENE (errors as in 'rbsim check', exit 3), build its\n"
+    "world and print the pipeline rbs_world_step() runs for it: the bodies, the\n"
+    "method and its sub-steps, and each stage in or out with the reason.\n"
+    "--method M explains the scene with another method (euler, selective,\n"
+    "event, verlet, rk4, adaptive).  Exit 0, 2 (usage) or 3 (scene error).\n";
 
 static const char convert_text[] =
     "usage: rbsim convert IN OUT\n"
@@ -88,12 +116,17 @@ int rbsf_help(FILE *out, const char *command)
               "paused run is resumed:\nnothing could resume it later); "
               "simulation.pause_on_collision needs a terminal.\nCtrl-C or "
               "SIGTERM stops the run cleanly (outputs complete up to the last "
-              "frame;\nexit 130 or 143).\n",
+              "frame;\nexit 130 or 143), after saving --checkpoint FILE at that "
+              "frame.\n",
               out);
         return 0;
     }
     if (strcmp(command, "check") == 0) {
         fputs(check_text, out);
+        return 0;
+    }
+    if (strcmp(command, "explain") == 0) {
+        fputs(explain_text, out);
         return 0;
     }
     if (strcmp(command, "convert") == 0) {
@@ -196,6 +229,106 @@ static int check_main(int argc, char **argv)
                n == 1 ? "" : "s");
 out:
     rbs_renderer_registry_destroy(registry);
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+    return code;
+}
+
+/* Print a scene's load errors (as check does), on stdout. */
+static void print_load_errors(const rbs_scene *scene, const char *path,
+                              rbs_status st)
+{
+    uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
+    for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
+        rbs_scene_error e;
+        if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
+            printf("%s\n", e.text);
+    }
+    if (count > RBS_SCENE_ERRORS_MAX)
+        printf("... and %lu more errors\n",
+               (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
+    if (count == 0)
+        printf("%s: %s\n", path, rbs_status_string(st));
+}
+
+static int explain_main(int argc, char **argv)
+{
+    const char *path = NULL, *method = NULL;
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    char *text = NULL;
+    size_t needed = 0;
+    rbs_status st;
+    int i, code = RBSF_EXIT_OK;
+
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--method") == 0 || strncmp(a, "--method=", 9) == 0) {
+            rbs_method m;
+            const char *v =
+                a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
+            if (method != NULL || v == NULL) {
+                fprintf(stderr, "rbsim explain: --method %s\n%s",
+                        method ? "given twice" : "needs a value", explain_text);
+                return RBSF_EXIT_USAGE;
+            }
+            if (rbs_method_from_name(v, &m) != RBS_OK) {
+                fprintf(stderr, "rbsim explain: --method: unknown method '%s'; "
+                                "expected euler, selective, event, verlet, rk4 "
+                                "or adaptive\n", v);
+                return RBSF_EXIT_USAGE;
+            }
+            method = v;
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "rbsim explain: unknown option '%s'\n%s", a,
+                    explain_text);
+            return RBSF_EXIT_USAGE;
+        } else if (path != NULL || a[0] == '\0') {
+            fprintf(stderr, "rbsim explain: expected one scene file\n%s",
+                    explain_text);
+            return RBSF_EXIT_USAGE;
+        } else {
+            path = a;
+        }
+    }
+    if (path == NULL) {
+        fprintf(stderr, "rbsim explain: expected one scene file\n%s",
+                explain_text);
+        return RBSF_EXIT_USAGE;
+    }
+    st = rbs_scene_load(path, RBS_SCENE_AUTO, &scene);
+    if (st == RBS_OK && method != NULL)
+        st = rbs_scene_override(scene, 0, 0.0, method);
+    if (st != RBS_OK) {
+        print_load_errors(scene, path, st);
+        code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+    st = rbs_scene_build(scene, &world);
+    if (st != RBS_OK) {
+        printf("%s: cannot build the world: %s%s%s\n", path,
+               rbs_status_string(st), world ? ": " : "",
+               world ? rbs_world_last_error(world) : "");
+        code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+    /* Ask for the length, then write the whole text. */
+    rbs_world_explain(world, NULL, 0, &needed);
+    text = needed > 0 ? malloc(needed) : NULL;
+    if (text == NULL ||
+        (st = rbs_world_explain(world, text, needed, NULL)) != RBS_OK) {
+        fprintf(stderr, "rbsim explain: %s: cannot describe the pipeline: %s\n",
+                path, text == NULL ? "out of memory" : rbs_status_string(st));
+        code = RBSF_EXIT_RUN;
+        goto out;
+    }
+    printf("scene: %s\n%s", path, text);
+    if (fflush(stdout) != 0) {
+        fprintf(stderr, "rbsim explain: cannot write the output\n");
+        code = RBSF_EXIT_RUN;
+    }
+out:
+    free(text);
     rbs_world_destroy(world);
     rbs_scene_free(scene);
     return code;
@@ -313,6 +446,8 @@ int main(int argc, char **argv)
         return check_main(argc - 2, argv + 2);
     if (strcmp(cmd, "convert") == 0)
         return convert_main(argc - 2, argv + 2);
+    if (strcmp(cmd, "explain") == 0)
+        return explain_main(argc - 2, argv + 2);
     fprintf(stderr, "rbsim: unknown command '%s'\n%s", cmd, usage_text);
     return RBSF_EXIT_USAGE;
 }

@@ -33,7 +33,20 @@ typedef struct run_options {
     int realtime, quiet, paused;
     double speed;
     uint32_t reel;
+    const char *checkpoint; /* --checkpoint FILE or NULL */
+    uint64_t checkpoint_every; /* 0: only at the end */
+    const char *resume;     /* --resume FILE or NULL */
 } run_options;
+
+/* The after_step hook's state: written on the simulation thread while the
+ * projector runs, read by the main thread only after rbs_projector_wait. */
+typedef struct checkpointer {
+    const char *path;
+    uint64_t every;   /* save when frame % every == 0; 0: never on the way */
+    uint64_t last;    /* the run's last frame: always saved */
+    int saved;        /* a checkpoint was written */
+    uint64_t saved_at;/* its frame */
+} checkpointer;
 
 /* One renderer to attach, with where it came from. */
 typedef struct output {
@@ -130,7 +143,9 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             strcmp(name, "--method") && strcmp(name, "--csv") &&
             strcmp(name, "--json") && strcmp(name, "--stats") &&
             strcmp(name, "--png") && strcmp(name, "--every") &&
-            strcmp(name, "--reel") && strcmp(name, "--speed"))
+            strcmp(name, "--reel") && strcmp(name, "--speed") &&
+            strcmp(name, "--checkpoint") && strcmp(name, "--checkpoint-every") &&
+            strcmp(name, "--resume"))
             return usage_error("unknown option '%s'%s", name, "");
         if ((strcmp(name, "--steps") == 0 && o->steps) ||
             (strcmp(name, "--dt") == 0 && o->dt > 0) ||
@@ -141,6 +156,9 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             (strcmp(name, "--png") == 0 && o->png) ||
             (strcmp(name, "--every") == 0 && o->every) ||
             (strcmp(name, "--reel") == 0 && seen_reel) ||
+            (strcmp(name, "--checkpoint") == 0 && o->checkpoint) ||
+            (strcmp(name, "--checkpoint-every") == 0 && o->checkpoint_every) ||
+            (strcmp(name, "--resume") == 0 && o->resume) ||
             (strcmp(name, "--speed") == 0 && seen_speed))
             return usage_error("%s given twice%s", name, "");
         seen_reel |= strcmp(name, "--reel") == 0;
@@ -180,6 +198,10 @@ static int parse_run_args(int argc, char **argv, run_options *o)
                 return usage_error("--reel: expected a capacity from 2 to "
                                    "1048576 frames, got '%s'%s", value, "");
             o->reel = (uint32_t)u;
+        } else if (strcmp(name, "--checkpoint-every") == 0) {
+            if (parse_u64(value, 1, 9007199254740992ULL, &o->checkpoint_every) != 0)
+                return usage_error("--checkpoint-every: expected a whole number "
+                                   "of steps from 1 to 2^53, got '%s'%s", value, "");
         } else if (value[0] == '\0') {
             return usage_error("%s: expected a path, got an empty string%s",
                                name, "");
@@ -189,10 +211,20 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             o->json = value;
         } else if (strcmp(name, "--stats") == 0) {
             o->stats = value;
+        } else if (strcmp(name, "--checkpoint") == 0) {
+            o->checkpoint = value;
+        } else if (strcmp(name, "--resume") == 0) {
+            o->resume = value;
         } else {
             o->png = value;
         }
     }
+    if (o->checkpoint_every && !o->checkpoint)
+        return usage_error("--checkpoint-every needs --checkpoint FILE%s%s", "",
+                           "");
+    if ((o->checkpoint || o->resume) && o->scene == NULL)
+        return usage_error("--checkpoint and --resume need a SCENE (not the "
+                           "demonstration)%s%s", "", "");
     return 0;
 }
 
@@ -431,9 +463,173 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene)
     return 0;
 }
 
+
+/* ---- checkpoints -------------------------------------------------------- */
+
+/* Save the world to the checkpoint file; on failure say why in err. */
+static rbs_status save_checkpoint(checkpointer *c, const rbs_world *world,
+                                  char *err, size_t errlen)
+{
+    rbs_status st;
+    errno = 0;
+    st = rbs_world_save(world, c->path);
+    if (st != RBS_OK) {
+        int e = errno;
+        snprintf(err, errlen, "cannot save the checkpoint '%s' at frame %llu: "
+                              "%s%s%s",
+                 c->path, (unsigned long long)rbs_world_step_count(world),
+                 rbs_status_string(st), e ? ": " : "", e ? strerror(e) : "");
+        return st;
+    }
+    c->saved = 1;
+    c->saved_at = rbs_world_step_count(world);
+    return RBS_OK;
+}
+
+/* The projector's after_step hook (simulation thread): every N-th frame and
+ * the run's last one. */
+static rbs_status checkpoint_hook(void *context, const rbs_world *world,
+                                  uint64_t frame, char *err, size_t errlen)
+{
+    checkpointer *c = context;
+    if ((c->every != 0 && frame % c->every == 0) || frame == c->last)
+        return save_checkpoint(c, world, err, errlen);
+    return RBS_OK;
+}
+
+/* Before anything runs: the checkpoint must be a file we can make in an
+ * existing, writable folder, and not the scene or an output. */
+static int check_checkpoint_path(const char *path, const char *scene,
+                                 const output *outs, uint32_t n)
+{
+    struct stat sb;
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    size_t len = slash ? (size_t)(slash - path) : 0;
+    uint32_t i;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': not a regular file\n",
+                path);
+        return RBSF_EXIT_USAGE;
+    }
+    if (len >= sizeof dir) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': path too long\n", path);
+        return RBSF_EXIT_USAGE;
+    }
+    if (slash == NULL)
+        strcpy(dir, ".");
+    else if (len == 0)
+        strcpy(dir, "/");
+    else {
+        memcpy(dir, path, len);
+        dir[len] = '\0';
+    }
+    if (slash != NULL && slash[1] == '\0') {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': a file name is needed, "
+                        "not a folder\n", path);
+        return RBSF_EXIT_USAGE;
+    }
+    if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': folder '%s' does not "
+                        "exist\n", path, dir);
+        return RBSF_EXIT_USAGE;
+    }
+    if (access(dir, W_OK | X_OK) != 0) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot write in folder "
+                        "'%s': %s\n", path, dir, strerror(errno));
+        return RBSF_EXIT_USAGE;
+    }
+    if (scene != NULL && same_file(path, scene)) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
+                        "scene\n", path);
+        return RBSF_EXIT_USAGE;
+    }
+    for (i = 0; i < n; i++) {
+        const char *a = outs[i].config.path;
+        if (a != NULL && strcmp(a, "-") != 0 && same_file(a, path)) {
+            fprintf(stderr, "rbsim run: --checkpoint '%s' is also the %s "
+                            "output\n", path, outs[i].config.type);
+            return RBSF_EXIT_USAGE;
+        }
+    }
+    return 0;
+}
+
+static const char *type_name(rbs_body_type t)
+{
+    return t == RBS_BODY_SPHERE ? "sphere" : t == RBS_BODY_PLANE ? "plane"
+                                                                 : "body";
+}
+
+/* Does the checkpoint continue this scene?  Same capacities, step size,
+ * method and gravity, and the same bodies (by slot, name and type).  0 if
+ * so; otherwise the difference in why. */
+static int checkpoint_matches(const rbs_world *scene_world,
+                              const rbs_world *ck, char *why, size_t n)
+{
+    rbs_world_def a, b;
+    uint32_t slot;
+    rbs_world_def_init(&a);
+    rbs_world_def_init(&b);
+    if (rbs_world_get_def(scene_world, &a) != RBS_OK ||
+        rbs_world_get_def(ck, &b) != RBS_OK) {
+        snprintf(why, n, "cannot read the world settings");
+        return -1;
+    }
+#define DIFF_U(field, what)                                                    \
+    if (a.field != b.field) {                                                  \
+        snprintf(why, n, "%s: the scene has %lu, the checkpoint %lu", what,    \
+                 (unsigned long)a.field, (unsigned long)b.field);              \
+        return -1;                                                             \
+    }
+    DIFF_U(max_bodies, "capacity max_bodies")
+    DIFF_U(max_materials, "capacity max_materials")
+    DIFF_U(max_pairs, "capacity max_pairs")
+    DIFF_U(max_contacts, "capacity max_contacts")
+#undef DIFF_U
+    if (a.dt != b.dt) {
+        snprintf(why, n, "time step: the scene has %.17g s, the checkpoint "
+                         "%.17g s", a.dt, b.dt);
+        return -1;
+    }
+    if (a.method != b.method) {
+        snprintf(why, n, "method: the scene has %s, the checkpoint %s",
+                 rbs_method_name(a.method), rbs_method_name(b.method));
+        return -1;
+    }
+    if (a.gravity.x != b.gravity.x || a.gravity.y != b.gravity.y ||
+        a.gravity.z != b.gravity.z || a.gravity_mode != b.gravity_mode) {
+        snprintf(why, n, "gravity differs (the scene has %g %g %g, the "
+                         "checkpoint %g %g %g)",
+                 a.gravity.x, a.gravity.y, a.gravity.z, b.gravity.x,
+                 b.gravity.y, b.gravity.z);
+        return -1;
+    }
+    for (slot = 0; slot < a.max_bodies; slot++) {
+        rbs_body_id ia, ib;
+        rbs_body_state sa, sb;
+        int ha = rbs_world_body_at(scene_world, slot, &ia) == RBS_OK &&
+                 rbs_body_get_state(scene_world, ia, &sa) == RBS_OK;
+        int hb = rbs_world_body_at(ck, slot, &ib) == RBS_OK &&
+                 rbs_body_get_state(ck, ib, &sb) == RBS_OK;
+        if (!ha && !hb)
+            continue;
+        if (ha != hb || sa.type != sb.type || strcmp(sa.name, sb.name) != 0) {
+            snprintf(why, n, "body slot %lu: the scene has %s%s%s%s, the "
+                             "checkpoint %s%s%s%s",
+                     (unsigned long)slot, ha ? type_name(sa.type) : "none",
+                     ha ? " '" : "", ha ? sa.name : "", ha ? "'" : "",
+                     hb ? type_name(sb.type) : "none", hb ? " '" : "",
+                     hb ? sb.name : "", hb ? "'" : "");
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* ---- progress and summary ----------------------------------------------- */
 
-static void progress(const rbs_run_info *info)
+static void progress(const rbs_run_info *info, uint64_t start)
 {
     char bar[31];
     int i, filled;
@@ -443,13 +639,15 @@ static void progress(const rbs_run_info *info)
                 info->paused ? " (paused)" : "");
         return;
     }
-    filled = (int)(30.0 * (double)info->frame / (double)info->steps);
+    /* info->steps counts from the starting frame (a resumed run's k). */
+    filled = (int)(30.0 * (double)(info->frame - start) / (double)info->steps);
     for (i = 0; i < 30; i++)
         bar[i] = i < filled ? '#' : '.';
     bar[30] = '\0';
     fprintf(stderr, "\r  [%s] %3d%%  frame %llu/%llu  t = %.4g s%s   ", bar,
-            (int)(100.0 * (double)info->frame / (double)info->steps),
-            (unsigned long long)info->frame, (unsigned long long)info->steps,
+            (int)(100.0 * (double)(info->frame - start) / (double)info->steps),
+            (unsigned long long)info->frame,
+            (unsigned long long)(start + info->steps),
             info->time, info->paused ? " (paused)" : "");
 }
 
@@ -500,12 +698,15 @@ int rbsf_run_main(int argc, char **argv)
     rbs_run_info info;
     rbs_status st;
     int code, demo, show_progress, sig;
+    checkpointer ckpt;
+    uint64_t start_frame = 0, target;
     double started;
     struct timespec ts;
 
     code = parse_run_args(argc, argv, &o);
     if (code != 0)
         return code;
+    memset(&ckpt, 0, sizeof ckpt);
     demo = o.scene == NULL;
 
     /* Signals are taken by their own thread; block them before any thread
@@ -541,6 +742,42 @@ int rbsf_run_main(int argc, char **argv)
                 o.scene ? o.scene : "demonstration", rbs_status_string(st),
                 world ? ": " : "", world ? rbs_world_last_error(world) : "");
         code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+
+    /* 1b. --resume: the checkpoint replaces the scene's world, if it
+     * continues this scene. */
+    if (o.resume) {
+        rbs_world *ck = NULL;
+        char msg[512] = "";
+        st = rbs_world_load(o.resume, &ck, msg, sizeof msg);
+        if (st != RBS_OK) {
+            fprintf(stderr, "rbsim run: --resume '%s': cannot load the "
+                            "checkpoint: %s%s%s\n",
+                    o.resume, rbs_status_string(st), msg[0] ? ": " : "", msg);
+            code = RBSF_EXIT_SCENE;
+            goto out;
+        }
+        if (checkpoint_matches(world, ck, msg, sizeof msg) != 0) {
+            fprintf(stderr, "rbsim run: --resume '%s': the checkpoint does not "
+                            "continue the scene '%s': %s\n",
+                    o.resume, o.scene, msg);
+            rbs_world_destroy(ck);
+            code = RBSF_EXIT_SCENE;
+            goto out;
+        }
+        rbs_world_destroy(world);
+        world = ck;
+        start_frame = rbs_world_step_count(world);
+    }
+    target = rbs_scene_steps(scene);
+    if (start_frame >= target) {
+        fprintf(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
+                        "%llu and the run ends at step %llu: nothing to run "
+                        "(give --steps N with N > %llu)\n",
+                o.resume, (unsigned long long)start_frame,
+                (unsigned long long)target, (unsigned long long)start_frame);
+        code = RBSF_EXIT_USAGE;
         goto out;
     }
 
@@ -613,6 +850,9 @@ int rbsf_run_main(int argc, char **argv)
     code = check_distinct(outs, n_out, o.scene);
     if (code != 0)
         goto out;
+    if (o.checkpoint &&
+        (code = check_checkpoint_path(o.checkpoint, o.scene, outs, n_out)) != 0)
+        goto out;
     if (demo && (make_dir(DEMO_DIR) != 0 ||
                  (o.png && strcmp(o.png, DEMO_DIR "/png") == 0 &&
                   make_dir(DEMO_DIR "/png") != 0))) {
@@ -660,7 +900,15 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 5. The projector. */
     rbs_projector_def_init(&def);
-    def.steps = rbs_scene_steps(scene);
+    def.steps = target - start_frame;
+    def.skip_first_frame = o.resume != NULL; /* the earlier run wrote it */
+    if (o.checkpoint) {
+        ckpt.path = o.checkpoint;
+        ckpt.every = o.checkpoint_every;
+        ckpt.last = target;
+        def.after_step = checkpoint_hook;
+        def.after_step_context = &ckpt;
+    }
     def.reel_capacity = o.reel;
     def.realtime = o.realtime;
     def.policy = o.realtime ? RBS_REEL_LATEST_ONLY : RBS_REEL_LOSSLESS;
@@ -705,7 +953,7 @@ int rbsf_run_main(int argc, char **argv)
             if (show_progress && now - started > 0.5) {
                 rbs_projector_status(projector, &info);
                 pthread_mutex_lock(&reply_lock);
-                progress(&info);
+                progress(&info, start_frame);
                 pthread_mutex_unlock(&reply_lock);
                 shown = 1;
             }
@@ -719,10 +967,24 @@ int rbsf_run_main(int argc, char **argv)
     rbs_projector_status(projector, &info);
     sig = rbsf_signals_caught(&signals);
 
+    /* 6b. The final checkpoint: the world is ours again and stands at the
+     * last frame made (quit and signals stop after a whole frame).  Not
+     * after an error: a failed step or output leaves nothing to continue. */
+    if (o.checkpoint && (st == RBS_OK || st == RBS_E_CLOSED) &&
+        (!ckpt.saved || ckpt.saved_at != rbs_world_step_count(world))) {
+        char err[600];
+        if (save_checkpoint(&ckpt, world, err, sizeof err) != RBS_OK) {
+            fprintf(stderr, "rbsim: error: %s\n", err);
+            code = RBSF_EXIT_RUN;
+        }
+    }
+
     /* 7. Report. */
     if (st != RBS_OK && st != RBS_E_CLOSED) {
         fprintf(stderr, "rbsim: error: %s\n", rbs_projector_last_error(projector));
         code = RBSF_EXIT_RUN;
+    } else if (code == RBSF_EXIT_RUN) {
+        /* the final checkpoint failed (said above) */
     } else if (st == RBS_E_CLOSED && sig != 0) {
         code = 128 + sig;
     } else {
@@ -735,6 +997,13 @@ int rbsf_run_main(int argc, char **argv)
                     sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "quit");
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
                 outs, n_out);
+        if (o.resume)
+            fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
+                    (unsigned long long)start_frame);
+        if (ckpt.saved)
+            fprintf(talk, "checkpoint: %s at frame %llu\n", ckpt.path,
+                    (unsigned long long)ckpt.saved_at);
+
     }
     if (demo && st == RBS_OK) {
         int failed = rbsf_demo_report(&demo_results, talk);
