@@ -1,0 +1,341 @@
+"""rbsim run --checkpoint / --resume and rbsim explain, driving the binary.
+
+Run as: python test_checkpoint_cli.py SUITE  (SUITE: projector, fault), with
+RBSIM set to the rbsim binary.  Checkpoints are exact: a run stopped at
+frame k (by --steps, a signal, or a killed process after a periodic save)
+and resumed from its checkpoint must write frames k+1..N byte for byte as an
+uninterrupted run does, so the comparisons below are of bytes, with no
+tolerance.
+"""
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import time
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_cli import BODIES, CSV_HEADER, RBSIM, SCENE, Base  # noqa: E402
+
+FRICTIONLESS = {
+    "format": 1,
+    "simulation": {"steps": 100, "dt": 0.001},
+    "materials": [{"pair": ["*", "*"], "static": 0, "kinetic": 0,
+                   "restitution": 1}],
+    "bodies": [
+        {"name": "floor", "type": "plane", "point": [0, 0, 0],
+         "normal": [0, 0, 1]},
+        {"name": "ball", "type": "sphere", "radius": 0.1, "mass": 1,
+         "position": [0, 0, 1]},
+    ],
+}
+
+
+def read(p):
+    with open(p, "rb") as f:
+        return f.read()
+
+
+def csv_body(data):
+    """The rows of a CSV without its header line."""
+    head, _, rest = data.partition(b"\n")
+    assert head.decode() == CSV_HEADER, head
+    return rest
+
+
+class CkptBase(Base):
+    def uninterrupted(self, scene, steps):
+        r = self.rbsim("run", scene, "--steps", str(steps), "--csv",
+                       "full.csv", "--json", "full.jsonl", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return read(self.path("full.csv")), read(self.path("full.jsonl"))
+
+    def resume_and_compare(self, scene, steps, first_csv, first_json, k,
+                           full_csv, full_json):
+        """Resume from ck.bin (at frame k): frames k+1..steps, which with the
+        first run's frames 0..k equal the uninterrupted run's bytes."""
+        r = self.rbsim("run", scene, "--steps", str(steps), "--resume",
+                       "ck.bin", "--csv", "b.csv", "--json", "b.jsonl")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("resumed: ck.bin at frame %d" % k, r.stdout)
+        b_csv = read(self.path("b.csv"))
+        rows = csv_body(b_csv).splitlines()
+        self.assertEqual(len(rows), (steps - k) * BODIES)
+        self.assertTrue(rows[0].startswith(b"%d," % (k + 1)), rows[0])
+        self.assertEqual(first_csv + csv_body(b_csv), full_csv)
+        self.assertEqual(first_json + read(self.path("b.jsonl")), full_json)
+
+
+class ProjectorTests(CkptBase):
+    def test_steps_limited_run_then_resume(self):
+        s = self.scene()
+        full_csv, full_json = self.uninterrupted(s, 1000)
+        r = self.rbsim("run", s, "--steps", "437", "--checkpoint", "ck.bin",
+                       "--csv", "a.csv", "--json", "a.jsonl")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("checkpoint: ck.bin at frame 437", r.stdout)
+        a_csv = read(self.path("a.csv"))
+        self.assertEqual(len(csv_body(a_csv).splitlines()), 438 * BODIES)
+        self.resume_and_compare(s, 1000, a_csv, read(self.path("a.jsonl")),
+                                437, full_csv, full_json)
+        # The resumed run's own checkpoint ends at the scene's last step.
+        r = self.rbsim("run", s, "--steps", "600", "--resume", "ck.bin",
+                       "--checkpoint", "ck.bin", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--steps", "600", "--resume", "ck.bin")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("at step 600", r.stderr)
+        self.assertIn("nothing to run", r.stderr)
+
+    def test_every_k_keeps_frame_numbers(self):
+        # --every 10 keeps frames 0, 10, 20, ... in both runs.
+        s = self.scene()
+        r = self.rbsim("run", s, "--steps", "300", "--every", "10", "--csv",
+                       "full.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--steps", "120", "--every", "10",
+                       "--checkpoint", "ck.bin", "--csv", "a.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--steps", "300", "--every", "10",
+                       "--resume", "ck.bin", "--csv", "b.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(read(self.path("a.csv")) +
+                         csv_body(read(self.path("b.csv"))),
+                         read(self.path("full.csv")))
+
+    def test_sigint_then_resume(self):
+        # Interrupted at some frame k: the CSV ends at k, the checkpoint is
+        # at k, and resuming gives the rest byte for byte.
+        s = self.scene()
+        steps = 4000
+        full_csv, full_json = self.uninterrupted(s, steps)
+        p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
+                              str(steps), "--checkpoint", "ck.bin", "--csv",
+                              "a.csv", "--json", "a.jsonl"], cwd=self.dir,
+                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        try:
+            deadline = time.time() + 30
+            while time.time() < deadline:
+                if (os.path.exists(self.path("a.csv")) and
+                        os.path.getsize(self.path("a.csv")) > 20000):
+                    break
+                time.sleep(0.05)
+            p.send_signal(signal.SIGINT)
+            out, err = p.communicate(timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        self.assertEqual(p.returncode, 130, err)
+        k = self.assert_whole_frames(self.path("a.csv")) - 1
+        self.assertGreater(k, 0)
+        self.assertLess(k, steps)
+        self.assertIn("checkpoint: ck.bin at frame %d" % k, out)
+        self.resume_and_compare(s, steps, read(self.path("a.csv")),
+                                read(self.path("a.jsonl")), k, full_csv,
+                                full_json)
+
+    def test_checkpoint_every_survives_a_kill(self):
+        # SIGKILL leaves the last periodic checkpoint (frame a multiple of
+        # 100, written atomically): resuming from it matches the full run.
+        s = self.scene()
+        steps = 3000
+        full_csv, full_json = self.uninterrupted(s, steps)
+        p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
+                              str(steps), "--checkpoint", "ck.bin",
+                              "--checkpoint-every", "100", "--quiet"],
+                             cwd=self.dir, stdin=subprocess.DEVNULL,
+                             stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+        try:
+            deadline = time.time() + 30
+            while time.time() < deadline and not os.path.exists(
+                    self.path("ck.bin")):
+                time.sleep(0.02)
+            time.sleep(0.25)
+            p.kill()
+            p.wait(timeout=30)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        self.assertTrue(os.path.exists(self.path("ck.bin")))
+        self.assertEqual([n for n in os.listdir(self.dir) if ".tmp" in n], [])
+        r = self.rbsim("run", s, "--steps", str(steps), "--resume", "ck.bin",
+                       "--csv", "b.csv", "--json", "b.jsonl")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        b = csv_body(read(self.path("b.csv")))
+        k = int(b.split(b",", 1)[0]) - 1
+        self.assertEqual(k % 100, 0)
+        self.assertGreaterEqual(k, 100)
+        # The full run's frames k+1.. are the resumed ones.
+        full_rows = csv_body(full_csv).splitlines(keepends=True)
+        self.assertEqual(b"".join(full_rows[(k + 1) * BODIES:]), b)
+        full_lines = full_json.splitlines(keepends=True)
+        self.assertEqual(b"".join(full_lines[k + 1:]),
+                         read(self.path("b.jsonl")))
+
+    def test_explain(self):
+        s = self.scene()
+        r = self.rbsim("explain", s)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for line in ("world: 3 spheres (3 moving, 0 fixed), 1 planes",
+                     "method: euler, dt = 0.001 s", "stages:",
+                     "  in   contacts sphere-plane",
+                     "  in   contacts sphere-sphere",
+                     "  in   friction, rolling and spinning resistance",
+                     "  out  mutual gravity"):
+            self.assertIn(line, r.stdout)
+        with open(self.path("smooth.json"), "w") as f:
+            json.dump(FRICTIONLESS, f)
+        r = self.rbsim("explain", "smooth.json", "--method", "rk4")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("method: rk4", r.stdout)
+        self.assertIn("  out  contacts sphere-sphere: fewer than two spheres",
+                      r.stdout)
+        self.assertIn("  out  friction, rolling and spinning resistance: no "
+                      "material pair has friction", r.stdout)
+        r = self.rbsim("help", "explain")
+        self.assertEqual(r.returncode, 0)
+        self.assertIn("usage: rbsim explain SCENE", r.stdout)
+        self.assertIn("explain SCENE", self.rbsim("help").stdout)
+        self.assertIn("--checkpoint FILE", self.rbsim("help", "run").stdout)
+
+    def test_explain_errors(self):
+        bad = json.loads(json.dumps(FRICTIONLESS))
+        bad["bodies"][1]["radius"] = -1
+        bad["simulation"]["dt"] = "x"
+        with open(self.path("bad.json"), "w") as f:
+            json.dump(bad, f)
+        r = self.rbsim("explain", "bad.json")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("radius", r.stdout)
+        self.assertIn("dt", r.stdout)
+        self.assertNotIn("stages:", r.stdout)
+        self.assertEqual(self.rbsim("explain").returncode, 2)
+        self.assertEqual(self.rbsim("explain", "a", "b").returncode, 2)
+        r = self.rbsim("explain", self.scene(), "--method", "leapfrog")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("leapfrog", r.stderr)
+        r = self.rbsim("explain", "missing.json")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("missing.json", r.stdout)
+
+
+class FaultTests(CkptBase):
+    def checkpoint(self, s, steps=50):
+        r = self.rbsim("run", s, "--steps", str(steps), "--checkpoint",
+                       "ck.bin", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return read(self.path("ck.bin"))
+
+    def resume_fails(self, s, data, *words):
+        with open(self.path("bad.bin"), "wb") as f:
+            f.write(data)
+        r = self.rbsim("run", s, "--resume", "bad.bin", "--csv", "r.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("'bad.bin'", r.stderr)
+        for w in words:
+            self.assertIn(w, r.stderr)
+        self.assertFalse(os.path.exists(self.path("r.csv")))
+        return r.stderr
+
+    def test_resume_corrupt_truncated_foreign(self):
+        s = self.scene()
+        good = self.checkpoint(s)
+        flipped = bytearray(good)
+        flipped[len(good) // 2] ^= 0x10
+        self.resume_fails(s, bytes(flipped), "corrupt")
+        self.resume_fails(s, good[:len(good) // 2], "corrupt")
+        self.resume_fails(s, good[:7])
+        self.resume_fails(s, b"")
+        self.resume_fails(s, read(s), "corrupt")  # a scene is not a checkpoint
+        r = self.rbsim("run", s, "--resume", "nowhere.bin")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("'nowhere.bin'", r.stderr)
+        self.assertIn("No such file", r.stderr)
+
+    def test_resume_other_scene(self):
+        s = self.scene()
+        self.checkpoint(s)
+        bodies = json.loads(json.dumps(SCENE["bodies"]))
+        bodies[2]["name"] = "bee"
+        other = self.scene("other.json", bodies=bodies)
+        r = self.rbsim("run", other, "--resume", "ck.bin")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("does not continue the scene", r.stderr)
+        self.assertIn("body slot 2", r.stderr)
+        self.assertIn("'bee'", r.stderr)
+        r = self.rbsim("run", s, "--dt", "0.002", "--resume", "ck.bin")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("time step", r.stderr)
+        r = self.rbsim("run", s, "--method", "rk4", "--resume", "ck.bin")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("method", r.stderr)
+
+    def test_bad_checkpoint_paths_write_nothing(self):
+        s = self.scene()
+        os.mkdir(self.path("adir"))
+        for path, why in (("no/such/ck.bin", "does not exist"),
+                          ("adir", "not a regular file"),
+                          ("adir/", "not a regular file"),
+                          ("scene.json", "overwrite the scene"),
+                          ("o.csv", "also the csv output")):
+            r = self.rbsim("run", s, "--csv", "o.csv", "--checkpoint", path)
+            self.assertEqual(r.returncode, 2, path + ": " + r.stderr)
+            self.assertIn(why, r.stderr)
+            self.assertFalse(os.path.exists(self.path("o.csv")), path)
+        r = self.rbsim("run", s, "--checkpoint-every", "10")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("needs --checkpoint", r.stderr)
+        r = self.rbsim("run", s, "--checkpoint", "c", "--checkpoint-every", "0")
+        self.assertEqual(r.returncode, 2)
+        r = self.rbsim("run", "--checkpoint", "c")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("need a SCENE", r.stderr)
+        # A scene error writes no checkpoint either.
+        bad = self.scene("bad.json", simulation={"steps": -1})
+        r = self.rbsim("run", bad, "--checkpoint", "ck.bin")
+        self.assertEqual(r.returncode, 3)
+        self.assertFalse(os.path.exists(self.path("ck.bin")))
+
+    def test_checkpoint_write_fails_mid_run(self):
+        # A file size limit below a checkpoint's size: the first periodic
+        # save (frame 50) fails.  The run stops with exit 4 naming the file;
+        # the CSV (on a pipe, which the limit does not touch) holds whole
+        # frames 0..50.
+        s = self.scene()
+        size = len(self.checkpoint(s, 1))
+        os.remove(self.path("ck.bin"))
+
+        def limit_size():
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (size // 2, size // 2))
+
+        r = subprocess.run([RBSIM, "run", s, "--steps", "300", "--csv", "-",
+                            "--checkpoint", "ck.bin", "--checkpoint-every",
+                            "50"], cwd=self.dir, capture_output=True,
+                           timeout=120, preexec_fn=limit_size,
+                           stdin=subprocess.DEVNULL)
+        err = r.stderr.decode()
+        self.assertEqual(r.returncode, 4, err)
+        self.assertIn("cannot save the checkpoint 'ck.bin' at frame 50", err)
+        self.assertIn("File too large", err)
+        self.assertFalse(os.path.exists(self.path("ck.bin")))
+        self.assertEqual([n for n in os.listdir(self.dir) if ".tmp" in n], [])
+        rows = csv_body(r.stdout).decode().splitlines()
+        self.assertEqual(len(rows), 51 * BODIES)
+        self.assertTrue(rows[-1].startswith("50,"))
+
+
+SUITES = {"projector": ProjectorTests, "fault": FaultTests}
+
+if __name__ == "__main__":
+    names = sys.argv[1:] or list(SUITES)
+    suite = unittest.TestSuite()
+    for n in names:
+        suite.addTests(unittest.defaultTestLoader.loadTestsFromTestCase(
+            SUITES[n]))
+    result = unittest.TextTestRunner(verbosity=2).run(suite)
+    sys.exit(0 if result.wasSuccessful() else 1)
