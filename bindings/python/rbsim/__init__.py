@@ -156,6 +156,21 @@ def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None
         lib.rbs_scene_free(scene)
 
 
+def resume(path: Union[str, "os.PathLike[str]"]) -> World:
+    """Load a checkpoint file: the world exactly as it was saved, bit for
+    bit, at the saved step count; stepping it on gives the same states as
+    the world that was saved would have.  Files written by
+    :meth:`World.save` and by ``rbsim run --checkpoint FILE`` are the same
+    format.  The same as :meth:`World.restore`.
+
+    Raises:
+        CorruptError: a damaged, truncated or foreign file.
+        VersionError: a checkpoint of another format version.
+        IoError: the file cannot be read.
+    """
+    return World.restore(path)
+
+
 def version() -> str:
     """Version of the loaded library ("MAJOR.MINOR.PATCH")."""
     return __version__
@@ -163,5 +178,5 @@ def version() -> str:
 
 __all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
            "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "StopRun", "METHODS",
-           "load", "parse_json", "version", "Error", "SceneError", "SceneIssue",
+           "load", "parse_json", "resume", "version", "Error", "SceneError", "SceneIssue",
            "BusyError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)
