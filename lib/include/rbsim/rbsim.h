@@ -192,6 +192,10 @@ typedef struct rbs_world_def {
     double softening;         /**< Plummer softening length, m; default 0 */
     int32_t prune;            /**< nonzero (default): leave out stages that cannot
                                    change the result; 0 runs every stage */
+    uint32_t max_substeps;    /**< work cap per step: sub-steps + rollbacks of the
+                                   rollback methods; past it the rest of the frame
+                                   is taken at once (reported in work_limit);
+                                   default 4096, >= 1 */
 } rbs_world_def;
 
 /** Fill a world definition with defaults.  Prefer the rbs_world_def_init macro. */
@@ -373,7 +377,9 @@ typedef struct rbs_step_info {
     uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
     uint32_t events;      /**< events processed (event method) */
     double max_overlap;   /**< deepest overlap at the end of the step, m */
-    uint32_t reserved[8]; /**< zero; room for new counters without an ABI break */
+    uint32_t work_limit;  /**< 1 if the step hit max_substeps and took the
+                               rest of the frame without further rollback */
+    uint32_t reserved[7]; /**< zero; room for new counters without an ABI break */
 } rbs_step_info;
 
 /** Advance the world by dt (one frame).  Sub-steps are internal: afterwards

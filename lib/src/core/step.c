@@ -153,6 +153,13 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
                                                rbs_method_name(w->def.method));
         break;
     }
+    /* Overlap the step did not make (bodies placed overlapping, or left by
+     * the rollback floor) is pushed apart now, so the next step starts
+     * clean; the report then describes the separated state. */
+    if (st == RBS_OK && info->max_overlap > w->def.slop * w->plan.min_radius) {
+        rbs__separate(w);
+        info->max_overlap = rbs__max_overlap_now(w);
+    }
     if (st == RBS_OK && (bad = first_bad(w)) != UINT32_MAX)
         st = (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
             "step %llu: body %u (\"%s\") became NaN or infinite; the world is left at its last good state",
@@ -160,13 +167,6 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     if (st != RBS_OK) {
         rbs__restore_state(w, w->step_save);
         return st;
-    }
-    /* Overlap the step did not make (bodies placed overlapping, or left by
-     * the rollback floor) is pushed apart now, so the next step starts
-     * clean; the report then describes the separated state. */
-    if (info->max_overlap > w->def.slop * w->plan.min_radius) {
-        rbs__separate(w);
-        info->max_overlap = rbs__max_overlap_now(w);
     }
     w->step_count++;
     return RBS_OK;

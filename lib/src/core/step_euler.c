@@ -134,7 +134,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
         rbs__solve_collisions(w, info);
         advance(w, h, info);
         if (rbs__overlap_grew(w, w->sub_save, &pen, &first)) {
-            if (hu > 1) {
+            if (hu > 1 && !info->work_limit) {
                 /* Retry with at most half the sub-step (the seed's rule);
                  * when the straight-line time of first touch is earlier,
                  * jump there at once instead of halving step by step. */
@@ -151,6 +151,12 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
         info->substeps++;
         if (hu < total)
             hu <<= 1; /* grow back after an accepted sub-step */
+        if (!info->work_limit && info->substeps + info->rollbacks >= w->def.max_substeps) {
+            /* bounded work: the rest of the frame in one sub-step, overlap
+             * pushed apart instead of rolled back (reported) */
+            info->work_limit = 1;
+            hu = total;
+        }
     }
     info->contacts = w->contact_count;
     info->max_overlap = pen;

@@ -53,6 +53,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.gravity_constant = 6.674e-11;
     d.softening = 0.0;
     d.prune = 1;
+    d.max_substeps = 4096;
     memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
     def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
 }
@@ -158,6 +159,10 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
     }
     if (!(d.slop > 0.0 && d.slop < 0.1)) {
         snprintf(msg, len, "slop must be in (0, 0.1), got %g", d.slop);
+        return RBS_E_INVALID;
+    }
+    if (d.max_substeps < 1) {
+        snprintf(msg, len, "max_substeps must be >= 1");
         return RBS_E_INVALID;
     }
     if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {
