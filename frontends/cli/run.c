@@ -771,7 +771,7 @@ int rbsf_run_main(int argc, char **argv)
         start_frame = rbs_world_step_count(world);
     }
     target = rbs_scene_steps(scene);
-    if (start_frame >= target) {
+    if (o.resume && start_frame >= target) {
         fprintf(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
                         "%llu and the run ends at step %llu: nothing to run "
                         "(give --steps N with N > %llu)\n",

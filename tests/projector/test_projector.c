@@ -4,7 +4,9 @@
  * same frames, commands (pause, step, resume, speed, status, quit, renderer
  * commands answered on the renderer thread), control from a renderer,
  * failures (check, create, draw, finish, a step's numerical failure) that
- * stop the run with a message, and the registry.
+ * stop the run with a message, the registry, the after_step hook (and its
+ * failure), quit ending the world at the last frame drawn, and a run
+ * resumed from a stepped world (skip_first_frame, frame numbers kept).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -998,6 +1000,250 @@ static void reel_contract(void **state)
     rbs_reel_destroy(NULL);
 }
 
+/* ---- after_step hook, resumed starts, quit ends at a frame -------------- */
+
+typedef struct hook_ctx {
+    uint64_t frames[256];
+    uint64_t count;
+    uint64_t fail_at;      /* return RBS_E_IO at this frame; 0 never */
+    uint64_t quit_at;      /* send "quit" at this frame; 0 never */
+    int world_mismatch;    /* frame != the world's step count */
+    int on_caller_thread;  /* called on the thread that started the run */
+    pthread_t caller;
+    rbs_projector *projector;
+} hook_ctx;
+
+static rbs_status hook(void *context, const rbs_world *world, uint64_t frame,
+                       char *err, size_t errlen)
+{
+    hook_ctx *h = context;
+    if (h->count < 256)
+        h->frames[h->count++] = frame;
+    h->world_mismatch += frame != rbs_world_step_count(world);
+    h->on_caller_thread += pthread_equal(pthread_self(), h->caller) != 0;
+    if (h->quit_at != 0 && frame == h->quit_at)
+        rbs_projector_command(h->projector, "quit", NULL, 0);
+    if (h->fail_at != 0 && frame == h->fail_at) {
+        snprintf(err, errlen, "no room for the checkpoint");
+        return RBS_E_IO;
+    }
+    return RBS_OK;
+}
+
+/* The hook sees frames 1..steps in order, on the simulation thread, with
+ * the world at that frame. */
+static void after_step_sees_every_frame(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    static hook_ctx h; /* large; one test at a time */
+    uint64_t i;
+    (void)state;
+    memset(&h, 0, sizeof h);
+    h.caller = pthread_self();
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    assert_null(def.after_step);
+    assert_int_equal(def.skip_first_frame, 0);
+    def.steps = 100;
+    def.reel_capacity = 3;
+    def.after_step = hook;
+    def.after_step_context = &h;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    assert_int_equal(h.count, 100);
+    for (i = 0; i < 100; i++)
+        assert_int_equal(h.frames[i], i + 1);
+    assert_int_equal(h.world_mismatch, 0);
+    assert_int_equal(h.on_caller_thread, 0);
+    assert_int_equal(ctx.made[0]->count, 101);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* A failing hook stops the run with its status and message; the outputs
+ * hold every frame up to the failing one, and are finished. */
+static void after_step_failure_stops_the_run(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    static hook_ctx h;
+    uint64_t i;
+    (void)state;
+    memset(&h, 0, sizeof h);
+    h.caller = pthread_self();
+    h.fail_at = 7;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 1000;
+    def.after_step = hook;
+    def.after_step_context = &h;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    assert_int_equal(rbs_projector_run(p), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(p),
+                           "after frame 7: no room for the checkpoint"));
+    assert_int_equal(h.count, 7);
+    assert_int_equal(ctx.made[0]->count, 8);
+    for (i = 0; i < 8; i++)
+        assert_int_equal(ctx.made[0]->numbers[i], i);
+    assert_int_equal(ctx.made[0]->finished, 1);
+    assert_int_equal(rbs_world_step_count(w), 7);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* "quit" stops after the frame being made: the world ends at the last
+ * frame drawn, never a step beyond it (what a final checkpoint needs). */
+static void quit_ends_at_the_last_frame(void **state)
+{
+    rbs_world *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx;
+    rbs_renderer_class c;
+    rbs_renderer_config cfg = config_for("rec", 1);
+    rbs_projector_def def;
+    rbs_projector *p;
+    static hook_ctx h;
+    rec *r;
+    (void)state;
+    memset(&h, 0, sizeof h);
+    h.caller = pthread_self();
+    h.quit_at = 30;
+    default_opts(&ctx);
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+    rbs_projector_def_init(&def);
+    def.steps = 100000;
+    def.reel_capacity = 2;
+    def.after_step = hook;
+    def.after_step_context = &h;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    h.projector = p;
+    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
+    r = ctx.made[0];
+    assert_int_equal(rbs_world_step_count(w), 30);
+    assert_int_equal(r->count, 31);
+    assert_int_equal(r->numbers[r->count - 1], 30);
+    rbs_projector_destroy(p);
+
+    /* Quit from the renderer side too: the world is at the last frame
+     * drawn, whichever frame the simulation was making. */
+    rbs_world_destroy(w);
+    w = make_world();
+    default_opts(&ctx);
+    ctx.opts.quit_at = 25;
+    rbs_projector_def_init(&def);
+    def.steps = 100000;
+    def.reel_capacity = 4;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
+    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
+    r = ctx.made[0];
+    assert_int_equal(rbs_world_step_count(w), r->numbers[r->count - 1]);
+    rbs_projector_destroy(p);
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+}
+
+/* A world that has stepped k times (as a checkpoint restores it) projects
+ * frames numbered from k; with skip_first_frame frame k is not drawn.  The
+ * frames are bit for bit those of a run from frame 0, and "every K" keeps
+ * the same frame numbers (multiples of K) in both. */
+static void resumed_world_keeps_frame_numbers(void **state)
+{
+    rbs_world *full = make_world(), *w = make_world();
+    rbs_renderer_registry *reg;
+    rec_ctx ctx_full, ctx;
+    rbs_renderer_class c_full, c;
+    rbs_renderer_config cfg[2];
+    rbs_projector_def def;
+    rbs_projector *p, *p_full;
+    rec *all, *every, *r;
+    uint64_t i;
+    (void)state;
+    default_opts(&ctx_full);
+    default_opts(&ctx);
+    c_full = rec_class(&ctx_full, "full");
+    c = rec_class(&ctx, "rec");
+    CHECK_OK(rbs_renderer_registry_create(&reg));
+    CHECK_OK(rbs_renderer_register(reg, &c_full));
+    CHECK_OK(rbs_renderer_register(reg, &c));
+
+    /* The uninterrupted run: frames 0..100. */
+    cfg[0] = config_for("full", 1);
+    rbs_projector_def_init(&def);
+    def.steps = 100;
+    /* (the recorders live until their projector is destroyed) */
+    CHECK_OK(rbs_projector_create(full, reg, cfg, 1, &def, &p_full));
+    CHECK_OK(rbs_projector_run(p_full));
+    all = ctx_full.made[0];
+    assert_int_equal(all->count, 101);
+
+    /* 40 steps by hand, then 60 more through the projector. */
+    for (i = 0; i < 40; i++)
+        CHECK_OK(rbs_world_step(w, NULL));
+    cfg[0] = config_for("rec", 1);
+    cfg[1] = config_for("rec", 25);
+    rbs_projector_def_init(&def);
+    def.steps = 60;
+    def.skip_first_frame = 1;
+    CHECK_OK(rbs_projector_create(w, reg, cfg, 2, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    r = ctx.made[0];
+    every = ctx.made[1];
+    assert_int_equal(r->count, 60);
+    for (i = 0; i < 60; i++) {
+        assert_int_equal(r->numbers[i], 41 + i);
+        /* exact: the same steps on the same state */
+        assert_memory_equal(&r->x[i], &all->x[41 + i], sizeof(double));
+    }
+    assert_int_equal(r->lasts, 1);
+    assert_int_equal(every->count, 3);
+    assert_int_equal(every->numbers[0], 50);
+    assert_int_equal(every->numbers[1], 75);
+    assert_int_equal(every->numbers[2], 100);
+    rbs_projector_destroy(p);
+    rbs_projector_destroy(p_full);
+
+    /* Without skip_first_frame the starting frame is drawn (and kept). */
+    rbs_world_destroy(w);
+    w = make_world();
+    for (i = 0; i < 40; i++)
+        CHECK_OK(rbs_world_step(w, NULL));
+    default_opts(&ctx);
+    rbs_projector_def_init(&def);
+    def.steps = 10;
+    CHECK_OK(rbs_projector_create(w, reg, &cfg[1], 1, &def, &p));
+    CHECK_OK(rbs_projector_run(p));
+    every = ctx.made[0];
+    assert_int_equal(every->count, 2);
+    assert_int_equal(every->numbers[0], 40);
+    assert_int_equal(every->numbers[1], 50);
+    rbs_projector_destroy(p);
+
+    rbs_renderer_registry_destroy(reg);
+    rbs_world_destroy(w);
+    rbs_world_destroy(full);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1015,6 +1261,10 @@ int main(void)
         cmocka_unit_test(numerical_failure_stops_the_run),
         cmocka_unit_test(commands_steer_the_run),
         cmocka_unit_test(renderer_control_quits),
+        cmocka_unit_test(after_step_sees_every_frame),
+        cmocka_unit_test(after_step_failure_stops_the_run),
+        cmocka_unit_test(quit_ends_at_the_last_frame),
+        cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
         cmocka_unit_test(realtime_paces_frames),
         cmocka_unit_test(live_view_gets_repeats_while_paused),
