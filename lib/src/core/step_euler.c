@@ -57,12 +57,10 @@ void rbs__integrate_velocities(rbs_world *w, double h)
             a = v3_add(a, v3_load(&w->acc[3 * i]));
         v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), a, h));
         if (w->plan.angular) {
+            /* torque only: the gyroscopic term w x Iw of an anisotropic body
+             * is carried by conserving its angular momentum through the
+             * rotation (rbs__integrate_positions) */
             v3 om = v3_load(&w->avel[3 * i]), dw;
-            if (!w->isotropic[i]) {
-                /* gyroscopic term; identically zero for isotropic inertia */
-                quat q = q_load(&w->orient[4 * i]);
-                tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
-            }
             if (tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) {
                 rbs__body_inv_inertia_world(w, i, tau, &dw);
                 v3_store(&w->avel[3 * i], v3_mad(om, dw, h));
@@ -71,31 +69,42 @@ void rbs__integrate_velocities(rbs_world *w, double h)
     }
 }
 
-/* x += v h (for the centre of mass); q = exp(w h) q, exactly. */
+/* x += v h (for the centre of mass); q = exp(w h) q, exactly.  An
+ * anisotropic body (or one with an off-centre mass) keeps its angular
+ * momentum L = I(q) w through the turn: w' = I(q')^-1 L.  That is Euler's
+ * equation w x Iw without the explicit term, which blows up for fast spin
+ * (w h ~ 1); |L| is conserved exactly (a Lie-Euler step). */
 void rbs__integrate_positions(rbs_world *w, double h)
 {
     uint32_t k;
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
-        v3 v, om, c;
+        v3 v, om, c, L;
+        quat q;
+        int spin;
         if (w->fixed[i])
             continue;
         v = v3_load(&w->vel[3 * i]);
         om = v3_load(&w->avel[3 * i]);
         c = v3_load(&w->com_body[3 * i]);
+        spin = om.x != 0.0 || om.y != 0.0 || om.z != 0.0;
+        q = q_load(&w->orient[4 * i]);
         if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
             v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->pos[3 * i]), v, h));
-            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0) {
-                quat q = q_mul(q_from_rotation(om, h), q_load(&w->orient[4 * i]));
-                q_store(&w->orient[4 * i], q_normalize(q));
-            }
         } else {
             v3 com = v3_mad(rbs__body_com(w, i), v, h);
-            quat q = q_load(&w->orient[4 * i]);
-            if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
-                q = q_normalize(q_mul(q_from_rotation(om, h), q));
-            q_store(&w->orient[4 * i], q);
-            v3_store(&w->pos[3 * i], v3_sub(com, q_rotate(q, c)));
+            quat qn = spin ? q_normalize(q_mul(q_from_rotation(om, h), q)) : q;
+            v3_store(&w->pos[3 * i], v3_sub(com, q_rotate(qn, c)));
+        }
+        if (!spin)
+            continue;
+        L = w->isotropic[i] ? om : m3_mul_world(&w->inertia[9 * i], q, om);
+        q = q_normalize(q_mul(q_from_rotation(om, h), q));
+        q_store(&w->orient[4 * i], q);
+        if (!w->isotropic[i]) {
+            v3 wn;
+            rbs__body_inv_inertia_world(w, i, L, &wn);
+            v3_store(&w->avel[3 * i], wn);
         }
     }
 }
