@@ -72,14 +72,25 @@ class ProjectorTests(CkptBase):
     def test_steps_limited_run_then_resume(self):
         s = self.scene()
         full_csv, full_json = self.uninterrupted(s, 1000)
+        r = self.rbsim("run", s, "--steps", "1000", "--stats", "full_s.csv",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
         r = self.rbsim("run", s, "--steps", "437", "--checkpoint", "ck.bin",
-                       "--csv", "a.csv", "--json", "a.jsonl")
+                       "--csv", "a.csv", "--json", "a.jsonl", "--stats",
+                       "a_s.csv")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("checkpoint: ck.bin at frame 437", r.stdout)
         a_csv = read(self.path("a.csv"))
         self.assertEqual(len(csv_body(a_csv).splitlines()), 438 * BODIES)
         self.resume_and_compare(s, 1000, a_csv, read(self.path("a.jsonl")),
                                 437, full_csv, full_json)
+        # The energy and step counters of each frame agree too.
+        r = self.rbsim("run", s, "--steps", "1000", "--resume", "ck.bin",
+                       "--stats", "b_s.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        a_s, b_s = read(self.path("a_s.csv")), read(self.path("b_s.csv"))
+        self.assertEqual(a_s + b_s.partition(b"\n")[2],
+                         read(self.path("full_s.csv")))
         # The resumed run's own checkpoint ends at the scene's last step.
         r = self.rbsim("run", s, "--steps", "600", "--resume", "ck.bin",
                        "--checkpoint", "ck.bin", "--quiet")
