@@ -68,12 +68,12 @@ def plan(quick):
     return [
         ("ball", 1, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
         ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
-        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "ode": (5, 60), "ode_sap": (3, 60),
-                              "bullet": (3, 90), "mujoco": (3, 60)}),
-        ("pile", 8000, 2000, {"rbsim": (3, 120), "rbsim_sel": (3, 120), "ode": (2, 300), "ode_sap": (1, 300),
-                              "bullet": (1, 300), "mujoco": (1, 240)}),
-        ("pile", 27000, 100, {"rbsim": (3, 120), "rbsim_sel": (3, 120), "ode": (1, 150), "bullet": (1, 240),
-                              "mujoco": (1, 300)}),
+        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "ode": (5, 60),
+                              "ode_sap": (3, 60), "bullet": (2, 90), "mujoco": (3, 60)}),
+        ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_sel": (3, 90), "ode": (2, 200),
+                              "ode_sap": (1, 150), "bullet": (1, 200), "mujoco": (1, 150)}),
+        ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "ode": (1, 100),
+                              "bullet": (1, 60), "mujoco": (1, 60)}),
     ]
 
 
@@ -85,7 +85,8 @@ SETUP_ALLOW = {("mujoco", 8000): 60, ("mujoco", 27000): 300}
 
 def scaling_plan(quick):
     ns = [1000, 10000] if quick else [1000, 3000, 10000, 30000, 100000, 300000, 1000000]
-    return [(engine, kind, n) for engine in RBSIM for kind in ("lattice", "stack") for n in ns]
+    # small sizes of every series first, so a short budget still covers them
+    return [(engine, kind, n) for n in ns for engine in RBSIM for kind in ("lattice", "stack")]
 
 
 def driver_cmd(build, engine, scene_path, steps, cap, state_path):
@@ -245,6 +246,8 @@ def main(argv):
     ap.add_argument("--engines", default=",".join(ENGINES))
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--skip-peers", action="store_true")
+    ap.add_argument("--source", metavar="TEXT",
+                    help="what rbsim source was measured (default: git describe of this tree)")
     ap.add_argument("--merge-from", metavar="CSV",
                     help="also report the rows of engines not run now from an earlier peers.csv "
                          "(their ratios then compare runs made at different times)")
@@ -284,7 +287,7 @@ def main(argv):
     # Peer comparison: per configuration, repeats interleaved across engines.
     # The scaling runs that follow keep a reserve of the budget.
     expected = {}
-    reserve = 0.0 if a.skip_scaling else (60.0 if a.quick else 300.0)
+    reserve = 0.0 if a.skip_scaling else (60.0 if a.quick else 240.0)
     if not a.skip_peers:
         for scene, n, steps, reps in plan(a.quick):
             scenes.write(os.path.join(work, f"{scene}_{n}.bin"), scene, n)
@@ -335,7 +338,19 @@ def main(argv):
             path = os.path.join(work, f"{kind}_{n}.bin")
             if not os.path.exists(path):
                 scenes.write(path, kind, n)
-            cap = min(10.0 if a.quick else 60.0, max(10.0, left / 6))
+            cap = min(10.0 if a.quick else 45.0, max(10.0, left / 6))
+            # Set-up that grows faster than N would be killed anyway: predict it
+            # from the last size of this series (as N^2, the worst seen).
+            prev = [x for x in rows if x["engine"] == engine and x["scene"] == kind and x.get("setup_wall")]
+            if prev:
+                guess = prev[-1]["setup_wall"] * (n / prev[-1]["n"]) ** 2
+                if guess > min(left, cap * 1.5 + 120):
+                    log(f"  skip scaling {engine} {kind} {n}: set-up would take ~{guess:.0f} s "
+                        f"(it grew as N^2 up to N = {prev[-1]['n']})")
+                    rows.append({"scene": kind, "n": n, "engine": engine, "rep": 1, "steps_planned": 20,
+                                 "status": f"skipped (set-up ~{guess:.0f} s predicted)"})
+                    stop.add((engine, kind))
+                    continue
             row = one_run(build, work, engine, kind, n, 20, cap, 1)
             rows.append(row)
             log(f"scaling {engine:9s} {kind:7s} n={n:7d}: {row['status']} {row.get('steps', 0)} steps, "
@@ -368,7 +383,7 @@ def main(argv):
     git = subprocess.run(["git", "-C", HERE, "describe", "--always", "--dirty"],
                          capture_output=True, text=True).stdout.strip()
     meta = {"machine": info, "stream": stream, "layout": layout, "quick": a.quick,
-            "total_s": total, "engines": engines, "commit": git or "?",
+            "total_s": total, "engines": engines, "commit": a.source or git or "?",
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "notes": notes}
     with open(os.path.join(results, "peers_meta.json"), "w") as f:
         json.dump(meta, f, indent=1, sort_keys=True)
