@@ -37,7 +37,7 @@ def fnum(x):
 
 
 def medians(rows, scene, field):
-    """{engine: [(n, median, all_ok)]} over rows of one scene."""
+    """{engine: [(n, median, all_ok, planned steps)]} over rows of one scene."""
     out = {}
     keys = sorted({(r["engine"], int(r["n"])) for r in rows if r["scene"] == scene})
     for e, n in keys:
@@ -45,7 +45,8 @@ def medians(rows, scene, field):
         vals = [fnum(r[field]) for r in sel if fnum(r[field])]
         if vals:
             out.setdefault(e, []).append((n, statistics.median(vals),
-                                          all(r["status"] == "ok" for r in sel)))
+                                          all(r["status"] == "ok" for r in sel),
+                                          fnum(sel[0].get("steps_planned"))))
     return out
 
 
@@ -54,9 +55,15 @@ def plot_peers(rows, path):
     for ax, field, label in ((axes[0], "wall_per_sim_s", "wall time per simulated second (s)"),
                              (axes[1], "ns_per_body_step", "cost per body-step (ns)")):
         for e, pts in medians(rows, "pile", field).items():
-            xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-            ax.plot(xs, ys, "-", color=COLORS.get(e, "k"), label=e)
-            for x, y, ok in pts:
+            # solid between sizes simulated for the same planned time, dotted
+            # to a size simulated for less (N = 27,000: the first 0.1 s only)
+            full = max(p[3] or 0 for p in pts)
+            main = [p for p in pts if (p[3] or 0) == full]
+            ax.plot([p[0] for p in main], [p[1] for p in main], "-", color=COLORS.get(e, "k"), label=e)
+            for a, b in zip(pts, pts[1:]):
+                if (a[3] or 0) != (b[3] or 0):
+                    ax.plot([a[0], b[0]], [a[1], b[1]], ":", color=COLORS.get(e, "k"))
+            for x, y, ok, _ in pts:
                 ax.plot([x], [y], "o", color=COLORS.get(e, "k"),
                         markerfacecolor=COLORS.get(e, "k") if ok else "white")
         ax.set_xscale("log")
@@ -65,7 +72,8 @@ def plot_peers(rows, path):
         ax.set_ylabel(label)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend()
-    fig.suptitle("Pile of N spheres in a 2 m box, dt = 1 ms (medians; hollow: run hit its time cap)")
+    fig.suptitle("Pile of N spheres in a 2 m box, dt = 1 ms (medians; hollow: run hit its time cap;\n"
+                 "dotted: N = 27,000 simulated for the first 0.1 s only, mostly free fall)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -83,7 +91,7 @@ def plot_scaling(rows, path):
             any_pts = True
             xs, ys = [p[0] for p in pts], [p[1] for p in pts]
             ax.plot(xs, ys, style, color=color, label=f"{engine}: {labels[kind]}")
-            for x, y, ok in pts:
+            for x, y, ok, _ in pts:
                 ax.plot([x], [y], "o", color=color, markerfacecolor=color if ok else "white")
     ax.set_xscale("log")
     ax.set_yscale("log")
