@@ -608,9 +608,12 @@ static int checkpoint_matches(const rbs_world *scene_world,
     for (slot = 0; slot < a.max_bodies; slot++) {
         rbs_body_id ia, ib;
         rbs_body_state sa, sb;
-        int ha = rbs_world_body_at(scene_world, slot, &ia) == RBS_OK &&
+        int ha, hb;
+        memset(&sa, 0, sizeof sa);
+        memset(&sb, 0, sizeof sb);
+        ha = rbs_world_body_at(scene_world, slot, &ia) == RBS_OK &&
                  rbs_body_get_state(scene_world, ia, &sa) == RBS_OK;
-        int hb = rbs_world_body_at(ck, slot, &ib) == RBS_OK &&
+        hb = rbs_world_body_at(ck, slot, &ib) == RBS_OK &&
                  rbs_body_get_state(ck, ib, &sb) == RBS_OK;
         if (!ha && !hb)
             continue;

@@ -327,8 +327,10 @@ RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
  * from a renderer's control hook), also before start and after the end.
  * Commands: "pause", "resume", "step [N]" (make N more frames, default 1,
  * then pause; sums up if repeated), "speed X" (real-time factor, 0 < X <=
- * 1e6), "quit" (stop after the frame being made; frames already in the reel
- * are still drawn and every output finished), "status" (a one-line summary).
+ * 1e6), "quit" (stop after the frame being made, which is still
+ * published, so the world ends at the last frame published; frames already
+ * in the reel are still drawn and every output finished), "status" (a
+ * one-line summary).
  * Any other line is offered to each renderer's command hook: on the renderer
  * thread while it runs (this call waits for the answer, unless it comes from
  * the renderer thread itself), directly otherwise.  A reply (one line, no
