@@ -377,6 +377,27 @@ Engines:
 """
 
 
+CAVEATS = """### Reading the numbers
+
+- Costs are for the stepping loop only.  Runs that hit their wall-time cap (status *capped*)
+  cover less simulated time than planned; their cost comes from an earlier, cheaper or dearer,
+  phase of the motion (free fall is cheap, a settled pile dear), so ratios against them (†) are
+  not like for like.  The pile at N = 27,000 covers only its first 0.1 s (mostly free fall).
+- The ball and billiards scenes measure per-step overhead more than physics: Bullet's and
+  MuJoCo's drivers call into the engine from Python once per step (and, for the ball, read its
+  state every step to find the apexes), which costs microseconds per step.
+- Bullet's bouncing ball stops at the second impact: with pybullet's defaults the contact is
+  found within Bullet's contact margin before the ball touches, and that contact takes the
+  impact without restitution.  MuJoCo's bounce overshoots (its contacts are soft, see the
+  solref choice); its overlaps in the pile are the same softness under load.
+- ODE's collision spaces: the issue names dHashSpace; at default levels it is faster here than
+  levels fitted to the spheres; ode_sap (sweep and prune) is also shown.
+- This is a shared 2-core virtual machine on which other builds and tests were running: runs of
+  the same configuration differ by up to ×2 at busy moments.  Ratios compare runs made next to
+  each other (engines alternate run by run), which cancels most of that.
+"""
+
+
 def write(results, meta=None):
     if meta is None:
         with open(os.path.join(results, "peers_meta.json")) as fh:
@@ -399,6 +420,7 @@ def write(results, meta=None):
     L += machine_limit(rows, meta)
     L += scaling_table(rows)
     L.append(SETTINGS)
+    L.append(CAVEATS)
     notes = meta.get("notes")
     if notes:
         L.append("### Notes\n")

@@ -248,9 +248,10 @@ def main(argv):
     ap.add_argument("--skip-peers", action="store_true")
     ap.add_argument("--source", metavar="TEXT",
                     help="what rbsim source was measured (default: git describe of this tree)")
-    ap.add_argument("--merge-from", metavar="CSV",
+    ap.add_argument("--merge-from", metavar="CSV", action="append", default=[],
                     help="also report the rows of engines not run now from an earlier peers.csv "
-                         "(their ratios then compare runs made at different times)")
+                         "(their ratios then compare runs made at different times); repeatable, "
+                         "the first file that has an engine gives all of its rows")
     a = ap.parse_args(argv)
     engines = [e for e in a.engines.split(",") if e]
     for e in engines:
@@ -371,17 +372,26 @@ def main(argv):
     total = now() - t_start
     log(f"total {total:.0f} s")
     notes = []
-    if a.merge_from:
-        with open(a.merge_from, newline="") as fh:
-            old = [r for r in csv.DictReader(fh) if r["engine"] not in engines]
+    taken = set(engines)
+    for path in a.merge_from:
+        with open(path, newline="") as fh:
+            old = [r for r in csv.DictReader(fh) if r["engine"] not in taken]
+        got = sorted({r["engine"] for r in old})
+        taken.update(got)
         rows += old
-        if old:
-            notes.append("Rows of " + ", ".join(sorted({r["engine"] for r in old})) +
-                         f" come from an earlier run of this benchmark ({a.merge_from}); ratios "
-                         "against them compare runs made at different times.")
+        if got:
+            notes.append("Rows of " + ", ".join(got) + f" come from an earlier run of this benchmark "
+                         f"({os.path.basename(os.path.dirname(os.path.abspath(path)))}/"
+                         f"{os.path.basename(path)}, same machine, same day); ratios against them "
+                         "compare runs made at different times.")
     write_csv(os.path.join(results, "peers.csv"), rows)
-    git = subprocess.run(["git", "-C", HERE, "describe", "--always", "--dirty"],
+    git = subprocess.run(["git", "-C", HERE, "rev-parse", "--short", "HEAD"],
                          capture_output=True, text=True).stdout.strip()
+    if git:
+        top = os.path.join(HERE, "..", "..")
+        dirty = subprocess.run(["git", "-C", top, "status", "--porcelain", "--", "lib"],
+                               capture_output=True, text=True).stdout.strip()
+        git += " (with uncommitted changes in lib/)" if dirty else " (lib/ as committed)"
     meta = {"machine": info, "stream": stream, "layout": layout, "quick": a.quick,
             "total_s": total, "engines": engines, "commit": a.source or git or "?",
             "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "notes": notes}
