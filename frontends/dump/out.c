@@ -56,6 +56,21 @@ rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
         return RBS_OK;
     }
     out->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (out->fd < 0 && errno == ENOENT) {
+        /* the one missing folder rbsf_check_output_file allowed */
+        char *slash = strrchr(out->path, '/');
+        if (slash != NULL && slash != out->path) {
+            *slash = '\0';
+            if (mkdir(out->path, 0777) != 0 && errno != EEXIST) {
+                snprintf(err, errlen, "cannot create folder '%s': %s", out->path, strerror(errno));
+                *slash = '/';
+                rbsf__out_free(out);
+                return RBS_E_IO;
+            }
+            *slash = '/';
+            out->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        }
+    }
     if (out->fd < 0) {
         snprintf(err, errlen, "cannot create '%s': %s", path, strerror(errno));
         rbsf__out_free(out);
@@ -193,10 +208,25 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
         dir[n] = '\0';
     }
     ok = stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode);
-    if (!ok)
-        snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist",
-                 path, dir);
-    else if (access(dir, W_OK) != 0) {
+    if (!ok) {
+        /* One missing folder (the scenes' "out/") is created when the run
+         * starts, if its own parent is a writable folder; a deeper missing
+         * path is more likely a typo and is refused. */
+        char *up = strrchr(dir, '/');
+        const char *parent = ".";
+        if (up != NULL && up != dir) {
+            *up = '\0';
+            parent = dir;
+        } else if (up == dir) {
+            parent = "/";
+        }
+        ok = stat(parent, &sb) == 0 && S_ISDIR(sb.st_mode) && access(parent, W_OK) == 0;
+        if (up != NULL && up != dir)
+            *up = '/';
+        if (!ok)
+            snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist",
+                     path, dir);
+    } else if (access(dir, W_OK) != 0) {
         snprintf(err, errlen, "cannot create '%s' in '%s': %s", path, dir,
                  strerror(errno));
         ok = 0;

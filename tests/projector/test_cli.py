@@ -176,10 +176,19 @@ class CliTests(Base):
         self.assertIn("ok", r.stdout)
         self.assertEqual(self.rbsim("check").returncode, 2)
 
+    def test_one_missing_output_folder_is_created(self):
+        # the demonstration scenes write to out/NAME.csv: one missing folder
+        # (whose parent exists) is created when the run starts
+        s = self.scene(renderers=[{"type": "csv", "path": "made/x.csv"}])
+        r = self.rbsim("run", s)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.isfile(self.path("made/x.csv")))
+
     def test_scene_output_rejected_writes_nothing(self):
+        # two missing folders are more likely a typo: refused, nothing written
         s = self.scene(renderers=[{"type": "csv", "path": "good.csv"},
                                   {"type": "json",
-                                   "path": "nowhere/x.jsonl"}])
+                                   "path": "nowhere/deeper/x.jsonl"}])
         r = self.rbsim("run", s)
         self.assertEqual(r.returncode, 3, r.stderr)
         self.assertIn("nowhere", r.stderr)
