@@ -39,7 +39,9 @@ const rbs_renderer_class *rbsf_stats_class(void);
 size_t rbsf_format_double(char *buf, size_t size, double x);
 
 /** Check that an output file could be created at path without creating it:
- * its folder exists and is writable, and the path is not a folder.  "-" (the
+ * its folder exists and is writable (or is one missing folder inside a
+ * writable one, created when the file is opened), and the path is not a
+ * folder.  "-" (the
  * standard output) is fine.  Returns RBS_OK or RBS_E_IO with a message. */
 rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen);
 
