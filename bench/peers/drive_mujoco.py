@@ -15,8 +15,9 @@ Settings (stated in bench/results/peers.md):
     has e = exp(-pi z / sqrt(1 - z^2)) = 0.5.  solimp at its default.  The
     bouncing-ball row shows how close this gets (shorter time constants such
     as 0.005 s bounce far higher than e = 0.5 at dt = 1 ms).
-  - The arena (<size memory>) is sized from the sphere count; if contacts
-    overflow it MuJoCo warns and the driver reports it as an error.
+  - The arena (<size memory>) is sized from the sphere count (40 kB per
+    sphere plus 2.5 bytes per pair of spheres, which MuJoCo's collision stage
+    needs); if contacts overflow it MuJoCo warns and the driver reports it.
 Only the stepping loop is timed; compiling the model is setup time.
 """
 import json
@@ -46,7 +47,9 @@ def num(x):
 
 
 def mjcf(sc):
-    mem_mb = max(64, int(sc.n * 0.04) + 16)  # about 40 kB per sphere
+    # about 40 kB per sphere, plus what MuJoCo's collision stage takes per
+    # pair of geoms (~2 bytes each: 1.46 GB at N = 27,000)
+    mem_mb = max(64, int(sc.n * 0.04 + sc.n * sc.n * 2.5e-6) + 16)
     z = dampratio(sc.restitution)
     out = [
         '<mujoco model="peers">',

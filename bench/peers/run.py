@@ -246,12 +246,14 @@ def main(argv):
     ap.add_argument("--engines", default=",".join(ENGINES))
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--skip-peers", action="store_true")
+    ap.add_argument("--only", metavar="SCENE:N,...",
+                    help="run only these peer configurations, e.g. pile:27000,ball:1")
     ap.add_argument("--source", metavar="TEXT",
                     help="what rbsim source was measured (default: git describe of this tree)")
     ap.add_argument("--merge-from", metavar="CSV", action="append", default=[],
-                    help="also report the rows of engines not run now from an earlier peers.csv "
+                    help="also report the rows of configurations not run now from an earlier peers.csv "
                          "(their ratios then compare runs made at different times); repeatable, "
-                         "the first file that has an engine gives all of its rows")
+                         "the first file that has an (engine, scene, N) gives its rows")
     a = ap.parse_args(argv)
     engines = [e for e in a.engines.split(",") if e]
     for e in engines:
@@ -290,7 +292,10 @@ def main(argv):
     expected = {}
     reserve = 0.0 if a.skip_scaling else (60.0 if a.quick else 240.0)
     if not a.skip_peers:
+        only = set(a.only.split(",")) if a.only else None
         for scene, n, steps, reps in plan(a.quick):
+            if only is not None and f"{scene}:{n}" not in only:
+                continue
             scenes.write(os.path.join(work, f"{scene}_{n}.bin"), scene, n)
             todo = [e for e in engines if e in reps]
             maxrep = max(reps[e][0] for e in todo)
@@ -372,15 +377,18 @@ def main(argv):
     total = now() - t_start
     log(f"total {total:.0f} s")
     notes = []
-    taken = set(engines)
+    # configurations (engine, scene, N) run now are kept; others come from the
+    # first earlier file that has them
+    taken = {(r["engine"], r["scene"], str(r["n"])) for r in rows}
     for path in a.merge_from:
         with open(path, newline="") as fh:
-            old = [r for r in csv.DictReader(fh) if r["engine"] not in taken]
-        got = sorted({r["engine"] for r in old})
+            old = [r for r in csv.DictReader(fh) if (r["engine"], r["scene"], r["n"]) not in taken]
+        got = sorted({(r["engine"], r["scene"], r["n"]) for r in old})
         taken.update(got)
         rows += old
         if got:
-            notes.append("Rows of " + ", ".join(got) + f" come from an earlier run of this benchmark "
+            notes.append("Rows of " + ", ".join(f"{e} {sc} {n}" for e, sc, n in got) +
+                         f" come from an earlier run of this benchmark "
                          f"({os.path.basename(os.path.dirname(os.path.abspath(path)))}/"
                          f"{os.path.basename(path)}, same machine, same day); ratios against them "
                          "compare runs made at different times.")
