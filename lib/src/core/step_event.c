@@ -38,6 +38,7 @@
 enum { EV_FREE = 0, EV_ROLL = 1, EV_SLIDE = 2 };
 
 #define EV_MAX_EVENTS 1000000u
+#define EV_MAX_STALLED 1000u
 
 /* ------------------------------------------------------------------------- */
 /* Roots                                                                     */
@@ -429,7 +430,7 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info)
 {
     const double dt = w->def.dt;
     double left = dt;
-    uint32_t events = 0;
+    uint32_t events = 0, stalled = 0;
     rbs_status st = check_scope(w);
     if (st != RBS_OK)
         return st;
@@ -450,6 +451,18 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info)
             continue; /* resolve what touches at the frame's end */
         }
         advance(w, s, dt);
+        /* an event that does not move time on (s below what time can
+         * resolve here) repeated many times is a stuck configuration, not
+         * a collapse: say so early instead of grinding to the cap */
+        if (!(left - s < left)) {
+            if (++stalled >= EV_MAX_STALLED)
+                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                    "method \"event\": %u events in a row at t = %.17g did not advance time "
+                    "(bodies jammed at a grazing contact?); use \"euler\"",
+                    EV_MAX_STALLED, rbs_world_time(w) + (dt - left));
+        } else {
+            stalled = 0;
+        }
         left -= s;
         info->events++;
         if (++events >= EV_MAX_EVENTS)

@@ -499,7 +499,7 @@ rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
     if (d.kinetic_friction > d.static_friction)
         FAIL(w, RBS_E_INVALID, "pair: kinetic friction %g exceeds static %g", d.kinetic_friction,
              d.static_friction);
-    if (!(d.restitution <= 1.0) || isnan(d.restitution))
+    if (!(d.restitution <= 1.0) || !isfinite(d.restitution))
         FAIL(w, RBS_E_INVALID, "pair: restitution must be in [0, 1] (or negative for the world's), got %g",
              d.restitution);
     if (!(d.rolling >= 0.0) || !isfinite(d.rolling) || !(d.spinning >= 0.0) || !isfinite(d.spinning))
