@@ -288,8 +288,12 @@ static quat rotate_over(quat q, v3 w0, v3 alpha, double s, double dt)
         return q_normalize(q_mul(q_from_rotation(turn, 1.0), q));
     } else {
         /* changing axis: midpoint rotations over sub-segments <= dt/16 */
-        int n = (int)ceil(s / (dt / 16.0)), k;
-        double h = s / n;
+        double m = ceil(s / (dt / 16.0)), h;
+        int n, k;
+        /* s <= dt within a frame, so at most 16 pieces; a denormal dt can
+         * make the ratio infinite: clamp before converting */
+        n = m >= 1.0 && m <= 16.0 ? (int)m : (m > 16.0 ? 16 : 1);
+        h = s / n;
         for (k = 0; k < n; ++k) {
             v3 wm = v3_mad(w0, alpha, (k + 0.5) * h);
             q = q_normalize(q_mul(q_from_rotation(wm, h), q));
