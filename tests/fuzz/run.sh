@@ -16,8 +16,10 @@
 # harnesses ran.  Copy such a file into tests/fuzz/regressions/<harness>/ so
 # `meson test --suite fuzz` replays it from then on.
 #
-# The seed is fixed (RBS_FUZZ_SEED, default 1) so that CI repeats what was
-# checked here; set another to explore.
+# The seed is fixed (RBS_FUZZ_SEED, default 1); with RBS_FUZZ_RUNS=N each
+# harness stops after N inputs (SECONDS still caps it), so a run is exactly
+# repeatable: CI checks what was checked here, whatever the machine's speed.
+# Unset RBS_FUZZ_RUNS and set another seed to explore.
 # Needs clang and libFuzzer: on Debian 12, apt-get install clang libclang-rt-14-dev.
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -52,7 +54,10 @@ mkdir -p "$build/artifacts"
 for h in $harnesses; do
   mkdir -p "$build/corpus/$h"
   echo "fuzz: $h for ${secs}s" >&2
-  "$build/tests/fuzz/fuzz_$h" -seed="${RBS_FUZZ_SEED:-1}" -max_total_time="$secs" -timeout="$timeout" -rss_limit_mb=2048 \
+  runs=""
+  [ -n "${RBS_FUZZ_RUNS:-}" ] && runs="-runs=$RBS_FUZZ_RUNS"
+  # shellcheck disable=SC2086
+  "$build/tests/fuzz/fuzz_$h" -seed="${RBS_FUZZ_SEED:-1}" $runs -max_total_time="$secs" -timeout="$timeout" -rss_limit_mb=2048 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/artifacts/$h-" \
     "$build/corpus/$h" "$here/corpus/$h" "$here/regressions/$h" >"$build/fuzz-$h.log" 2>&1
   rc=$?
