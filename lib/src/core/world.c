@@ -599,6 +599,21 @@ static double m3_inverse(const double *m, double *inv)
     return det;
 }
 
+/* A body was just put in slot s: append it to the sphere or plane list when
+ * s is the newest slot (lists stay in slot order, O(1) per body); a reused
+ * slot rebuilds them. */
+static void add_to_lists(rbs_world *w, uint32_t s)
+{
+    if (s + 1 != w->slots) {
+        rbs__rebuild_lists(w);
+    } else if (w->type[s] == RBS_BODY_SPHERE) {
+        w->item[s] = w->sphere_count;
+        w->spheres[w->sphere_count++] = s;
+    } else {
+        w->planes[w->plane_count++] = s;
+    }
+}
+
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
@@ -728,7 +743,7 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     }
     w->isotropic[s] = I[1] == 0.0 && I[2] == 0.0 && I[3] == 0.0 && I[5] == 0.0 && I[6] == 0.0 &&
                       I[7] == 0.0 && I[0] == I[4] && I[4] == I[8];
-    rbs__rebuild_lists(w);
+    add_to_lists(w, s);
     w->plan_dirty = 1;
     if (out) {
         out->index = s;
@@ -795,7 +810,7 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
         w->inv_inertia[9 * s + k] = 0.0;
     }
     w->isotropic[s] = 1;
-    rbs__rebuild_lists(w);
+    add_to_lists(w, s);
     w->plan_dirty = 1;
     if (out) {
         out->index = s;
