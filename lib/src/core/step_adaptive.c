@@ -60,8 +60,10 @@
 #include "core/world_internal.h"
 
 #define STRIDE 13            /* doubles per sphere in the ODE state */
-#define MAX_EVENTS 100000u   /* events in one frame before giving up */
-#define MAX_STEPS 1000000u   /* accepted steps in one frame before giving up */
+#define MAX_EVENTS 1000u     /* events in one frame before giving up (each costs
+                                root finding; 1000 is far beyond any scene the
+                                method is for, and bounds a step's work) */
+#define MAX_STEPS 100000u    /* accepted steps in one frame before giving up */
 #define MIN_TOL 1e-15        /* below this, double precision cannot deliver */
 
 struct rbs__adaptive {
