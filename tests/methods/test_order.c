@@ -210,6 +210,84 @@ static void fast_spin_stays_bounded(void **state)
     assert_true(top_error(RBS_METHOD_ADAPTIVE, 1e-2, 100.0) < 1e-8);
 }
 
+/* A torque-free solid sphere spinning at w about a tilted axis turns by
+ * exactly w t: its orientation after 10 steps of 1 ms at w = 1e6 rad/s
+ * (1000 rad per step) is the rotation by w t, to 1e-9 in each quaternion
+ * component (rounding of ~10^4 rad angles: 1e4 * 1e-16 * a few).  One
+ * rotation per step is exact here, so it needs none of the rotation
+ * sub-steps (4000 a step at 1/4 rad) that the budget of max_substeps = 2
+ * (512) would refuse. */
+static void free_spin_is_exact(void **state)
+{
+    const rbs_method methods[2] = {RBS_METHOD_VERLET, RBS_METHOD_RK4};
+    int k;
+    (void)state;
+    for (k = 0; k < 2; ++k) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_sphere_def s;
+        rbs_body_id id;
+        rbs_state_view v;
+        rbs_step_info info;
+        const double om = 1e6, n[3] = {0.0, 0.6, 0.8}, t = 10e-3;
+        double half, qe[4];
+        int f;
+        rbs_world_def_init(&d);
+        d.gravity.z = 0.0;
+        d.method = methods[k];
+        d.max_substeps = 2; /* one sub-step, 512 rotation sub-steps */
+        CHECK_OK(rbs_world_create(&d, &w));
+        rbs_sphere_def_init(&s);
+        s.angular_velocity.y = om * n[1];
+        s.angular_velocity.z = om * n[2];
+        CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+        for (f = 0; f < 10; ++f) {
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.work_limit, 0);
+        }
+        rbs_world_state(w, &v);
+        half = 0.5 * om * t;
+        qe[0] = cos(half), qe[1] = 0.0, qe[2] = sin(half) * n[1], qe[3] = sin(half) * n[2];
+        /* q and -q are the same rotation */
+        if (qe[0] * v.orientation[4 * id.index] < 0.0)
+            qe[0] = -qe[0], qe[2] = -qe[2], qe[3] = -qe[3];
+        for (f = 0; f < 4; ++f)
+            ASSERT_NEAR(v.orientation[4 * id.index + f], qe[f], 1e-9);
+        rbs_world_destroy(w);
+    }
+}
+
+/* A torqued asymmetric body spinning at 1e9 rad/s would need 4e6 rotation
+ * sub-steps of 1/4 rad per 1 ms step: more than the step's budget
+ * (max_substeps * 256), so the step takes what the budget allows, finishes
+ * with finite numbers and says so in work_limit. */
+static void spin_work_is_bounded(void **state)
+{
+    const rbs_method methods[2] = {RBS_METHOD_VERLET, RBS_METHOD_RK4};
+    int k;
+    (void)state;
+    for (k = 0; k < 2; ++k) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_sphere_def s;
+        rbs_step_info info;
+        rbs_world_def_init(&d);
+        d.gravity.z = 0.0;
+        d.method = methods[k];
+        d.max_substeps = 16; /* budget: 4096 rotation sub-steps */
+        CHECK_OK(rbs_world_create(&d, &w));
+        rbs_sphere_def_init(&s);
+        s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+        s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
+        s.angular_velocity.x = 1e9;
+        s.torque.z = 1.0;
+        CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+        CHECK_OK(rbs_world_step(w, &info));
+        assert_int_equal(info.work_limit, 1);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -222,6 +300,8 @@ int main(void)
         cmocka_unit_test(figure_eight_momentum),
         cmocka_unit_test(rotation_orders),
         cmocka_unit_test(fast_spin_stays_bounded),
+        cmocka_unit_test(free_spin_is_exact),
+        cmocka_unit_test(spin_work_is_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -96,6 +96,24 @@ void rbs__restore_state(rbs_world *w, const double *save)
     }
 }
 
+#define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
+
+int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact)
+{
+    double m;
+    if (exact || !(reach > SPIN_MAX_ANGLE))
+        return 1;
+    m = ceil(reach / SPIN_MAX_ANGLE);
+    if (!(m <= (double)w->spin_left)) {
+        /* the step's budget is spent: one sub-step, reported */
+        info->work_limit = 1;
+        w->spin_left = 0;
+        return 1;
+    }
+    w->spin_left -= (uint64_t)m;
+    return (int)m;
+}
+
 /* First non-finite body, or UINT32_MAX. */
 static uint32_t first_bad(const rbs_world *w)
 {
@@ -129,6 +147,7 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     if (w->plan_dirty)
         rbs__world_plan(w);
     rbs__save_state(w, w->step_save);
+    w->spin_left = (uint64_t)w->def.max_substeps * 256u;
     switch (w->def.method) {
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);

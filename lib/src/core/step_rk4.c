@@ -45,8 +45,6 @@ enum {
     S_USED = 30
 };
 
-#define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
-#define SPIN_MAX_SUBSTEPS 100000
 
 static quat q_axpy(quat a, quat b, double s)
 {
@@ -77,16 +75,24 @@ static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
 }
 
 /* RK4 on q' = 1/2 (0, w) q, w' = alpha(q, w) over h for body i, in m
- * sub-steps with |w| h / m <= SPIN_MAX_ANGLE.  Writes the end orientation
+ * sub-steps of at most about 0.25 rad (rbs__spin_substeps).  Writes the end orientation
  * and angular velocity and the mean angular velocity over h into S. */
-static void spin_rk4(const rbs_world *w, uint32_t i, v3 tau, double h, double *S)
+static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, double h, double *S)
 {
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0);
     double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
-    int m = 1, k;
-    if (reach > SPIN_MAX_ANGLE)
-        m = reach < SPIN_MAX_ANGLE * SPIN_MAX_SUBSTEPS ? (int)ceil(reach / SPIN_MAX_ANGLE) : SPIN_MAX_SUBSTEPS;
+    int m, k;
+    if (w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0) {
+        /* torque-free and isotropic: w is constant; the rotation is exact */
+        if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
+            q = q_normalize(q_mul(q_from_rotation(om, h), q));
+        q_store(&S[S_QE], q);
+        v3_store(&S[S_WE], om);
+        v3_store(&S[S_WM], om);
+        return;
+    }
+    m = rbs__spin_substeps(w, info, reach, 0);
     hs = h / m;
     for (k = 0; k < m; ++k) {
         v3 w1 = om, a1 = ang_acc(w, i, tau, w1, q);
@@ -150,7 +156,7 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
             if ((tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) ||
                 (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0))) {
                 S[S_SPIN] = 1.0;
-                spin_rk4(w, i, tau, h, S);
+                spin_rk4(w, info, i, tau, h, S);
             }
         }
     }

@@ -48,8 +48,6 @@ enum {
     S_USED = 24
 };
 
-#define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
-#define SPIN_MAX_SUBSTEPS 100000
 
 /* Angular acceleration I^-1 (tau - w x I w) at unit orientation q; exactly
  * zero when there is neither torque nor a gyroscopic term. */
@@ -68,14 +66,14 @@ static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
 
 /* Kick-drift-kick on (q, w) of body i over h in m sub-steps (see the top);
  * the end state into S. */
-static void spin_verlet(const rbs_world *w, uint32_t i, v3 tau, double h, double *S)
+static void spin_verlet(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, double h, double *S)
 {
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]);
     double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
-    int m = 1, k;
-    if (reach > SPIN_MAX_ANGLE)
-        m = reach < SPIN_MAX_ANGLE * SPIN_MAX_SUBSTEPS ? (int)ceil(reach / SPIN_MAX_ANGLE) : SPIN_MAX_SUBSTEPS;
+    int m, k;
+    /* torque-free and isotropic: w is constant, one rotation is exact */
+    m = rbs__spin_substeps(w, info, reach, w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0);
     hs = h / m;
     for (k = 0; k < m; ++k) {
         v3 wh = v3_mad(om, ang_acc(w, i, tau, om, q), 0.5 * hs), wp;
@@ -123,7 +121,7 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
         if (w->plan.angular && ((tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) ||
                                 (!w->isotropic[i] && (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)))) {
             S[S_SPIN] = 1.0;
-            spin_verlet(w, i, tau, h, S);
+            spin_verlet(w, info, i, tau, h, S);
             memcpy(&w->avel[3 * i], &S[S_WE], 3 * sizeof(double));
         }
     }

@@ -78,6 +78,7 @@ struct rbs_world {
     uint32_t contacts_high;
     rbs__plan plan;
     int plan_dirty;
+    uint64_t spin_left; /* rotation sub-steps this step may still take (rbs__spin_substeps) */
 
     /* per body (capacity def.max_bodies) */
     int32_t *type;
@@ -190,6 +191,11 @@ void rbs__restore_state(rbs_world *w, const double *save);
  * after the collision pass; it may run the resting pass. */
 typedef void (*rbs__advance_fn)(rbs_world *w, double h, rbs_step_info *info);
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance);
+/* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
+ * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
+ * isotropic body), and within the step's budget (max_substeps * 256 in all);
+ * past the budget 1, with info->work_limit set. */
+int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact);
 void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
 void rbs__integrate_velocities(rbs_world *w, double h);
 void rbs__integrate_positions(rbs_world *w, double h);
