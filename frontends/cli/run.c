@@ -561,8 +561,80 @@ static const char *type_name(rbs_body_type t)
                                                                  : "body";
 }
 
+/* Name of material id m of world w ("*" for the null id). */
+static const char *material_label(const rbs_world *w, rbs_material_id m)
+{
+    const char *name = "?";
+    if (m.index == 0 && m.generation == 0)
+        return "*";
+    rbs_world_material_at(w, m.index, NULL, &name);
+    return name;
+}
+
+/* The same materials (by index and name) and the same pair rows (in order,
+ * every coefficient bit for bit)?  0 if so; otherwise the difference. */
+static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
+                           size_t n)
+{
+    uint32_t i;
+    for (i = 0;; i++) {
+        const char *na = NULL, *nb = NULL;
+        int ha = rbs_world_material_at(a, i, NULL, &na) == RBS_OK;
+        int hb = rbs_world_material_at(b, i, NULL, &nb) == RBS_OK;
+        if (!ha && !hb)
+            break;
+        if (ha != hb || strcmp(na, nb) != 0) {
+            snprintf(why, n, "material %lu: the scene has %s%s%s, the "
+                             "checkpoint %s%s%s",
+                     (unsigned long)i, ha ? "'" : "", ha ? na : "none",
+                     ha ? "'" : "", hb ? "'" : "", hb ? nb : "none",
+                     hb ? "'" : "");
+            return -1;
+        }
+    }
+    for (i = 0;; i++) {
+        rbs_pair_def pa, pb;
+        int ha, hb;
+        rbs_pair_def_init(&pa);
+        rbs_pair_def_init(&pb);
+        ha = rbs_world_pair_at(a, i, &pa) == RBS_OK;
+        hb = rbs_world_pair_at(b, i, &pb) == RBS_OK;
+        if (!ha && !hb)
+            return 0;
+        if (ha != hb) {
+            snprintf(why, n, "material pairs: %s has a row %lu ('%s' / '%s') "
+                             "that %s has not",
+                     ha ? "the scene" : "the checkpoint", (unsigned long)i,
+                     ha ? material_label(a, pa.a) : material_label(b, pb.a),
+                     ha ? material_label(a, pa.b) : material_label(b, pb.b),
+                     ha ? "the checkpoint" : "the scene");
+            return -1;
+        }
+        if (pa.a.index != pb.a.index || pa.a.generation != pb.a.generation ||
+            pa.b.index != pb.b.index || pa.b.generation != pb.b.generation ||
+            !(pa.static_friction == pb.static_friction) ||
+            !(pa.kinetic_friction == pb.kinetic_friction) ||
+            !(pa.restitution == pb.restitution) || !(pa.rolling == pb.rolling) ||
+            !(pa.spinning == pb.spinning)) {
+            snprintf(why, n, "material pair '%s' / '%s': the scene has "
+                             "mu_s %.17g mu_k %.17g e %.17g rolling %.17g "
+                             "spinning %.17g, the checkpoint has '%s' / '%s' "
+                             "mu_s %.17g mu_k %.17g e %.17g rolling %.17g "
+                             "spinning %.17g",
+                     material_label(a, pa.a), material_label(a, pa.b),
+                     pa.static_friction, pa.kinetic_friction, pa.restitution,
+                     pa.rolling, pa.spinning, material_label(b, pb.a),
+                     material_label(b, pb.b), pb.static_friction,
+                     pb.kinetic_friction, pb.restitution, pb.rolling,
+                     pb.spinning);
+            return -1;
+        }
+    }
+}
+
 /* Does the checkpoint continue this scene?  Same capacities, step size,
- * method and gravity, and the same bodies (by slot, name and type).  0 if
+ * method, gravity and every other world setting, the same materials and
+ * material-pair rows, and the same bodies (by slot, name and type).  0 if
  * so; otherwise the difference in why. */
 static int checkpoint_matches(const rbs_world *scene_world,
                               const rbs_world *ck, char *why, size_t n)
@@ -605,6 +677,25 @@ static int checkpoint_matches(const rbs_world *scene_world,
                  b.gravity.y, b.gravity.z);
         return -1;
     }
+#define DIFF_D(field, what)                                                    \
+    if (!(a.field == b.field)) {                                               \
+        snprintf(why, n, "%s: the scene has %.17g, the checkpoint %.17g",     \
+                 what, (double)a.field, (double)b.field);                      \
+        return -1;                                                             \
+    }
+    DIFF_D(restitution, "restitution")
+    DIFF_D(tolerance, "tolerance")
+    DIFF_D(slop, "slop")
+    DIFF_D(max_halvings, "max_halvings")
+    DIFF_D(max_sweeps, "max_sweeps")
+    DIFF_D(max_substeps, "max_substeps")
+    DIFF_D(mutual_gravity, "mutual_gravity")
+    DIFF_D(gravity_constant, "gravity_constant")
+    DIFF_D(softening, "softening")
+    DIFF_D(prune, "prune")
+#undef DIFF_D
+    if (materials_match(scene_world, ck, why, n) != 0)
+        return -1;
     for (slot = 0; slot < a.max_bodies; slot++) {
         rbs_body_id ia, ib;
         rbs_body_state sa, sb;

@@ -290,6 +290,35 @@ static void pair_rules(void **state)
     assert_int_equal(rbs_world_set_pair(w, &p), RBS_E_INVALID);
     p.restitution = 0.2;
     CHECK_OK(rbs_world_set_pair(w, &p));
+    {
+        /* read back: materials by index, rows as set; a replaced row keeps
+         * its place; past the end RBS_E_NOT_FOUND */
+        rbs_pair_def r, star;
+        rbs_material_id m;
+        const char *name = NULL;
+        CHECK_OK(rbs_world_material_at(w, 1, &m, &name));
+        assert_int_equal(m.index, b.index);
+        assert_int_equal(m.generation, b.generation);
+        assert_string_equal(name, "b");
+        assert_int_equal(rbs_world_material_at(w, 2, &m, &name), RBS_E_NOT_FOUND);
+        rbs_pair_def_init(&star);
+        star.restitution = -1.0;
+        CHECK_OK(rbs_world_set_pair(w, &star));
+        p.rolling = 0.01;
+        CHECK_OK(rbs_world_set_pair(w, &p)); /* replaces row 0 */
+        rbs_pair_def_init(&r);
+        CHECK_OK(rbs_world_pair_at(w, 0, &r));
+        assert_int_equal(r.struct_size, sizeof r);
+        assert_int_equal(r.a.index, a.index);
+        assert_int_equal(r.b.index, b.index);
+        assert_true(r.static_friction == 0.5 && r.kinetic_friction == 0.1);
+        assert_true(r.restitution == 0.2 && r.rolling == 0.01 && r.spinning == 0.0);
+        CHECK_OK(rbs_world_pair_at(w, 1, &r));
+        assert_true(r.a.index == 0 && r.a.generation == 0 && r.b.generation == 0);
+        assert_true(r.restitution == -1.0);
+        assert_int_equal(rbs_world_pair_at(w, 2, &r), RBS_E_NOT_FOUND);
+        assert_int_equal(rbs_world_pair_at(w, 0, NULL), RBS_E_INVALID);
+    }
     rbs_world_destroy(w);
 }
 

@@ -276,6 +276,7 @@ class FaultTests(CkptBase):
         r = self.rbsim("run", other, "--resume", "ck.bin")
         self.assertEqual(r.returncode, 3)
         self.assertIn("does not continue the scene", r.stderr)
+
         self.assertIn("body slot 2", r.stderr)
         self.assertIn("'bee'", r.stderr)
         r = self.rbsim("run", s, "--dt", "0.002", "--resume", "ck.bin")
@@ -284,6 +285,34 @@ class FaultTests(CkptBase):
         r = self.rbsim("run", s, "--method", "rk4", "--resume", "ck.bin")
         self.assertEqual(r.returncode, 3)
         self.assertIn("method", r.stderr)
+
+    def test_resume_other_materials_or_settings(self):
+        """A scene whose friction, restitution, material names or world
+        settings changed since the checkpoint is refused, naming the
+        difference: resuming would silently run the old values."""
+        s = self.scene()
+        self.checkpoint(s)
+        mats = json.loads(json.dumps(SCENE["materials"]))
+        mats[0]["kinetic"] = 0.25
+        cases = [
+            (self.scene("kin.json", materials=mats),
+             ["material pair '*' / '*'", "mu_k 0.29999999999999999",
+              "mu_k 0.25"]),
+            (self.scene("two.json", materials=SCENE["materials"] + [
+                {"pair": ["rubber", "*"], "static": 0.5, "kinetic": 0.3}]),
+             ["capacity max_pairs: the scene has 2, the checkpoint 1"]),
+            (self.scene("e.json", simulation=dict(SCENE["simulation"],
+                                                  restitution=0.9)),
+             ["restitution: the scene has 0.90000000000000002"]),
+        ]
+        for scene, words in cases:
+            r = self.rbsim("run", scene, "--resume", "ck.bin", "--csv",
+                           "r.csv")
+            self.assertEqual(r.returncode, 3, (scene, r.stderr))
+            self.assertIn("does not continue the scene", r.stderr)
+            for w in words:
+                self.assertIn(w, r.stderr)
+            self.assertFalse(os.path.exists(self.path("r.csv")))
 
     def test_bad_checkpoint_paths_write_nothing(self):
         s = self.scene()

@@ -311,6 +311,18 @@ RBS_API rbs_status rbs_world_find_material(const rbs_world *world,
                                            rbs_material_id *out);
 /** Set (add or replace) the row of a material pair. */
 RBS_API rbs_status rbs_world_set_pair(rbs_world *world, const rbs_pair_def *def);
+/** The index-th material (0 <= index < the number added): its id into *out
+ * and its name into *name (owned by the world, valid while it lives); either
+ * may be NULL.  RBS_E_NOT_FOUND past the last.  Read-only; thread-safe with
+ * other readers. */
+RBS_API rbs_status rbs_world_material_at(const rbs_world *world, uint32_t index,
+                                         rbs_material_id *out, const char **name);
+/** The index-th material-pair row, in the order rows were first set, into
+ * *out (initialise it with rbs_pair_def_init() first: its struct_size says
+ * how much the caller can take).  Restitution is as set (negative: the
+ * world's).  RBS_E_NOT_FOUND past the last.  Read-only. */
+RBS_API rbs_status rbs_world_pair_at(const rbs_world *world, uint32_t index,
+                                     rbs_pair_def *out);
 
 /** Add a sphere.  Invalid values give RBS_E_INVALID with the reason in
  * rbs_world_last_error(); RBS_E_CAPACITY leaves the world unchanged. */

@@ -435,6 +435,48 @@ rbs_status rbs_world_find_material(const rbs_world *w, const char *name, rbs_mat
     return RBS_E_NOT_FOUND;
 }
 
+rbs_status rbs_world_material_at(const rbs_world *w, uint32_t index, rbs_material_id *out,
+                                 const char **name)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (index >= w->materials)
+        return RBS_E_NOT_FOUND;
+    if (out) {
+        out->index = index;
+        out->generation = 1;
+    }
+    if (name)
+        *name = w->material_name[index];
+    return RBS_OK;
+}
+
+rbs_status rbs_world_pair_at(const rbs_world *w, uint32_t index, rbs_pair_def *out)
+{
+    rbs_pair_def d;
+    const rbs__pair *r;
+    uint32_t size;
+    if (w == NULL || out == NULL || w->magic != WORLD_MAGIC || out->struct_size < sizeof(uint32_t))
+        return RBS_E_INVALID;
+    if (index >= w->pairs)
+        return RBS_E_NOT_FOUND;
+    r = &w->pair[index];
+    rbs_pair_def_init(&d);
+    d.a.index = r->a ? r->a - 1 : 0;
+    d.a.generation = r->a ? 1 : 0;
+    d.b.index = r->b ? r->b - 1 : 0;
+    d.b.generation = r->b ? 1 : 0;
+    d.static_friction = r->mu_s;
+    d.kinetic_friction = r->mu_k;
+    d.restitution = r->e;
+    d.rolling = r->rolling;
+    d.spinning = r->spinning;
+    size = out->struct_size < sizeof d ? out->struct_size : (uint32_t)sizeof d;
+    memcpy(out, &d, size);
+    out->struct_size = size;
+    return RBS_OK;
+}
+
 /* Material id -> stored code (index + 1, 0 = none/"*"); -1 if invalid. */
 static int64_t material_code(const rbs_world *w, rbs_material_id m)
 {
