@@ -355,7 +355,7 @@ Scenes (one file per scene, written by `bench/peers/scenes.py`, read by all four
 Engines:
 
 - **rbsim** (this repository, the commit named below): `rbs_world_def` defaults (method Euler,
-  slop 1e-6 r, max_halvings 30, max_sweeps 64, contact slots 4 per body + 16), one "*"/"*"
+  slop 1e-6 r, max_halvings 30, max_sweeps 20, contact slots 4 per body + 16), one "*"/"*"
   material pair with μs = μk = 0.5, e = 0.5.
 - **ODE** (Debian libode-dev, double precision, C API): dHashSpace at its default levels
   (the issue's choice; **ode_sap** is the same driver with dSweepAndPruneSpace, which is faster

@@ -48,7 +48,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.tolerance = 1e-9;
     d.slop = 1e-6;
     d.max_halvings = 30;
-    d.max_sweeps = 64;
+    d.max_sweeps = 20;
     d.mutual_gravity = 0;
     d.gravity_constant = 6.674e-11;
     d.softening = 0.0;
