@@ -148,6 +148,7 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         rbs__world_plan(w);
     rbs__save_state(w, w->step_save);
     w->spin_left = (uint64_t)w->def.max_substeps * 256u;
+    w->overlap_unmeasured = 0;
     switch (w->def.method) {
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);
@@ -175,10 +176,13 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     /* Overlap the step did not make (bodies placed overlapping, or left by
      * the rollback floor) is pushed apart now, so the next step starts
      * clean; the report then describes the separated state. */
-    if (st == RBS_OK && info->max_overlap > w->def.slop * w->plan.min_radius) {
+    if (st == RBS_OK && (w->overlap_unmeasured || info->max_overlap > w->def.slop * w->plan.min_radius)) {
+        /* (separation moves nothing when no overlap exceeds the slop, so a
+         * method that did not measure can always take this path) */
         rbs__separate(w);
         info->max_overlap = rbs__max_overlap_now(w);
     }
+    w->overlap_unmeasured = 0;
     if (st == RBS_OK && (bad = first_bad(w)) != UINT32_MAX)
         st = (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
             "step %llu: body %u (\"%s\") became NaN or infinite; the world is left at its last good state",

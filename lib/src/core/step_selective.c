@@ -311,7 +311,6 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     violation *v = (violation *)(void *)w->contact; /* scratch after the solve */
     uint32_t cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(violation));
     uint32_t round, i, n = 0, contacts;
-    double pen = 0.0;
     rbs_status st;
 
     /* the whole world: one Euler step */
@@ -366,7 +365,9 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     }
     info->substeps = 1;
     info->contacts = contacts;
-    pen = rbs__max_overlap_now(w);
-    info->max_overlap = pen;
+    /* the deepest overlap is left for rbs_world_step to measure, after the
+     * separation pass it runs anyway whenever there is overlap to push
+     * apart: measuring here too would cost one more broad phase a step */
+    w->overlap_unmeasured = 1;
     return RBS_OK;
 }

@@ -78,6 +78,7 @@ struct rbs_world {
     uint32_t contacts_high;
     rbs__plan plan;
     int plan_dirty;
+    int overlap_unmeasured; /* set by a method that leaves info->max_overlap to rbs_world_step */
     uint64_t spin_left; /* rotation sub-steps this step may still take (rbs__spin_substeps) */
 
     /* per body (capacity def.max_bodies) */
