@@ -10,29 +10,6 @@
 
 #include "core/world_internal.h"
 
-v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
-{
-    return v3_add(v3_load(&w->vel[3 * i]), v3_cross(v3_load(&w->avel[3 * i]), r));
-}
-
-void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out)
-{
-    if (w->isotropic[i])
-        *out = v3_scale(u, w->inv_inertia[9 * i]);
-    else
-        *out = m3_mul_world(&w->inv_inertia[9 * i], q_load(&w->orient[4 * i]), u);
-}
-
-void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
-{
-    v3 dw;
-    if (w->inv_mass[i] == 0.0)
-        return;
-    v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
-    rbs__body_inv_inertia_world(w, i, v3_cross(r, j), &dw);
-    v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
-}
-
 /* Inverse effective mass along unit u: u . K u. */
 static double inv_mass_along(const rbs_world *w, uint32_t a, v3 ra, uint32_t b, v3 rb, v3 u)
 {

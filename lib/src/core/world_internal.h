@@ -150,7 +150,15 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 /* Body helpers (world.c). */
 v3 rbs__body_com(const rbs_world *w, uint32_t i);
 int rbs__body_moves(const rbs_world *w, uint32_t i);
-void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out);
+/* I^-1 u in world axes (scalar for isotropic bodies).  Inline: the contact
+ * solver's inner loop calls it and the two below for every impulse. */
+static inline void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out)
+{
+    if (w->isotropic[i])
+        *out = v3_scale(u, w->inv_inertia[9 * i]);
+    else
+        *out = m3_mul_world(&w->inv_inertia[9 * i], q_load(&w->orient[4 * i]), u);
+}
 
 /* Broad phase (broadphase.c): fn(ctx, i, j) for every candidate pair of
  * items i < j (indexes into w->spheres) whose centres (w->bp_center) are
@@ -166,8 +174,22 @@ double rbs__max_overlap(const rbs_world *w);
 int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
 void rbs__separate(rbs_world *w);
 double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
-v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r);
-void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j);
+/* Velocity of the point at r from body i's centre of mass. */
+static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
+{
+    return v3_add(v3_load(&w->vel[3 * i]), v3_cross(v3_load(&w->avel[3 * i]), r));
+}
+
+/* Impulse j at r from body i's centre of mass (nothing for fixed bodies). */
+static inline void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
+{
+    v3 dw;
+    if (w->inv_mass[i] == 0.0)
+        return;
+    v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
+    rbs__body_inv_inertia_world(w, i, v3_cross(r, j), &dw);
+    v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
+}
 
 /* Solver (solver.c). */
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
