@@ -109,13 +109,20 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
         for (dx = -1; dx <= 1; ++dx)
             for (dy = -1; dy <= 1; ++dy)
                 for (dz = -1; dz <= 1; ++dz) {
-                    uint32_t h = cell_hash(cx + dx, cy + dy, cz + dz, mask), k;
+                    uint32_t h, k;
+                    /* without a query, each pair once from the half of
+                     * the stencil at or after (0, 0, 0): of two items in
+                     * different cells exactly one sees the other there */
+                    if (!query && (dx < 0 || (dx == 0 && (dy < 0 || (dy == 0 && dz < 0)))))
+                        continue;
+                    h = cell_hash(cx + dx, cy + dy, cz + dz, mask);
                     for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
                         uint32_t o = w->bp_item[k];
                         double ex, ey, ez, sr;
-                        /* each pair once: from its lower item, or from the
-                         * queried one when only one of them is queried */
-                        if (o == i || (o < i && (!query || query[o])))
+                        /* each pair once: in its own cell from its lower
+                         * item; with a query, from the lower item when both
+                         * are queried, else from the queried one */
+                        if (o == i || (o < i && (!query || query[o]) && (query || (dx == 0 && dy == 0 && dz == 0))))
                             continue;
                         if (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
                             w->bp_cell[3 * o + 2] != cz + dz)
@@ -147,3 +154,4 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
         }
     }
 }
+
