@@ -210,6 +210,19 @@ static void fast_spin_stays_bounded(void **state)
     assert_true(top_error(RBS_METHOD_ADAPTIVE, 1e-2, 100.0) < 1e-8);
 }
 
+/* A weightless world for method m with the given work budget. */
+static rbs_world *spin_world(rbs_method m, uint32_t max_substeps)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_world_def_init(&d);
+    d.gravity.z = 0.0;
+    d.method = m;
+    d.max_substeps = max_substeps;
+    CHECK_OK(rbs_world_create(&d, &w));
+    return w;
+}
+
 /* A torque-free solid sphere spinning at w about a tilted axis turns by
  * exactly w t: its orientation after 10 steps of 1 ms at w = 1e6 rad/s
  * (1000 rad per step) is the rotation by w t, to 1e-9 in each quaternion
@@ -223,8 +236,7 @@ static void free_spin_is_exact(void **state)
     int k;
     (void)state;
     for (k = 0; k < 2; ++k) {
-        rbs_world_def d;
-        rbs_world *w = NULL;
+        rbs_world *w = spin_world(methods[k], 2); /* one sub-step, 512 rotation sub-steps */
         rbs_sphere_def s;
         rbs_body_id id;
         rbs_state_view v;
@@ -232,11 +244,6 @@ static void free_spin_is_exact(void **state)
         const double om = 1e6, n[3] = {0.0, 0.6, 0.8}, t = 10e-3;
         double half, qe[4];
         int f;
-        rbs_world_def_init(&d);
-        d.gravity.z = 0.0;
-        d.method = methods[k];
-        d.max_substeps = 2; /* one sub-step, 512 rotation sub-steps */
-        CHECK_OK(rbs_world_create(&d, &w));
         rbs_sphere_def_init(&s);
         s.angular_velocity.y = om * n[1];
         s.angular_velocity.z = om * n[2];
@@ -267,15 +274,9 @@ static void spin_work_is_bounded(void **state)
     int k;
     (void)state;
     for (k = 0; k < 2; ++k) {
-        rbs_world_def d;
-        rbs_world *w = NULL;
+        rbs_world *w = spin_world(methods[k], 16); /* budget: 4096 rotation sub-steps */
         rbs_sphere_def s;
         rbs_step_info info;
-        rbs_world_def_init(&d);
-        d.gravity.z = 0.0;
-        d.method = methods[k];
-        d.max_substeps = 16; /* budget: 4096 rotation sub-steps */
-        CHECK_OK(rbs_world_create(&d, &w));
         rbs_sphere_def_init(&s);
         s.inertia_kind = RBS_INERTIA_PRINCIPAL;
         s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
