@@ -656,6 +656,68 @@ static void add_to_lists(rbs_world *w, uint32_t s)
     }
 }
 
+/* Checks every body kind shares: its name (kind is "sphere" or "plane"). */
+static rbs_status check_name(rbs_world *w, const char *kind, const char *name)
+{
+    if (name != NULL && !name_ok(name))
+        FAIL(w, RBS_E_INVALID, "%s name longer than %d bytes", kind, RBS_NAME_MAX - 1);
+    if (name_taken(w, name))
+        FAIL(w, RBS_E_INVALID, "%s \"%s\": name already used", kind, name);
+    return RBS_OK;
+}
+
+/* ... its material (stored code into *mat) and texture, then a free slot
+ * into *slot, set up as an unmoving body of that type with nothing applied
+ * (the caller fills in what its kind has). */
+static rbs_status take_slot(rbs_world *w, const char *kind, rbs_body_type type, rbs_material_id material,
+                            rbs_texture texture, uint32_t color, const char *name, uint32_t *slot)
+{
+    int64_t mat = material_code(w, material);
+    uint32_t s;
+    int k;
+    if (mat < 0)
+        FAIL(w, RBS_E_STALE_ID, "%s: unknown material id", kind);
+    if (texture < RBS_TEXTURE_NONE || texture > RBS_TEXTURE_CHECKER)
+        FAIL(w, RBS_E_INVALID, "%s texture %d is not a rbs_texture", kind, (int)texture);
+    s = slot_take(w);
+    if (s == UINT32_MAX)
+        FAIL(w, RBS_E_CAPACITY, "%s: world holds at most %u bodies", kind, (unsigned)w->def.max_bodies);
+    w->type[s] = type;
+    w->fixed[s] = 1;
+    w->material[s] = (uint32_t)mat;
+    w->color[s] = color & 0xffffffu;
+    w->texture[s] = texture;
+    memset(w->name[s], 0, RBS_NAME_MAX);
+    if (name)
+        strcpy(w->name[s], name);
+    v3_store(&w->pos[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->vel[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->avel[3 * s], v3_make(0, 0, 0));
+    q_store(&w->orient[4 * s], (quat){1.0, 0.0, 0.0, 0.0});
+    v3_store(&w->force[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->torque[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->normal[3 * s], v3_make(0, 0, 0));
+    v3_store(&w->com_body[3 * s], v3_make(0, 0, 0));
+    w->radius[s] = w->mass[s] = w->inv_mass[s] = 0.0;
+    for (k = 0; k < 9; ++k)
+        w->inertia[9 * s + k] = w->inv_inertia[9 * s + k] = 0.0;
+    w->isotropic[s] = 1;
+    *slot = s;
+    return RBS_OK;
+}
+
+/* The body in slot s is complete: list it and hand out its id. */
+static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
+{
+    add_to_lists(w, s);
+    w->plan_dirty = 1;
+    if (out) {
+        out->index = s;
+        out->generation = w->generation[s];
+    }
+    return RBS_OK;
+}
+
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
@@ -664,7 +726,7 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     quat q;
     double qn;
     uint32_t s;
-    int64_t mat;
+    rbs_status st;
     int k;
 
     if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
@@ -673,10 +735,8 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     rbs_sphere_def_init(&d);
     if (!def_read(&d, sizeof d, def))
         FAIL(w, RBS_E_INVALID, "sphere def not initialised (use rbs_sphere_def_init)");
-    if (d.name != NULL && !name_ok(d.name))
-        FAIL(w, RBS_E_INVALID, "sphere name longer than %d bytes", RBS_NAME_MAX - 1);
-    if (name_taken(w, d.name))
-        FAIL(w, RBS_E_INVALID, "sphere \"%s\": name already used", d.name);
+    if ((st = check_name(w, "sphere", d.name)) != RBS_OK)
+        return st;
     if (!(d.radius > 0.0) || !isfinite(d.radius))
         FAIL(w, RBS_E_INVALID, "sphere radius must be finite and > 0, got %g", d.radius);
     if (d.density != 0.0) {
@@ -751,30 +811,16 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         FAIL(w, RBS_E_INVALID,
              "sphere: centre of mass offset %g is too far from the centre for this inertia "
              "(inertia about the COM would not be positive definite)", sqrt(c2));
-    mat = material_code(w, d.material);
-    if (mat < 0)
-        FAIL(w, RBS_E_STALE_ID, "sphere: unknown material id");
-    if (d.texture < RBS_TEXTURE_NONE || d.texture > RBS_TEXTURE_CHECKER)
-        FAIL(w, RBS_E_INVALID, "sphere texture %d is not a rbs_texture", (int)d.texture);
-
-    s = slot_take(w);
-    if (s == UINT32_MAX)
-        FAIL(w, RBS_E_CAPACITY, "sphere: world holds at most %u bodies", (unsigned)w->def.max_bodies);
-    w->type[s] = RBS_BODY_SPHERE;
+    st = take_slot(w, "sphere", RBS_BODY_SPHERE, d.material, d.texture, d.color, d.name, &s);
+    if (st != RBS_OK)
+        return st;
     w->fixed[s] = d.fixed != 0;
-    w->material[s] = (uint32_t)mat;
-    w->color[s] = d.color & 0xffffffu;
-    w->texture[s] = d.texture;
-    memset(w->name[s], 0, RBS_NAME_MAX);
-    if (d.name)
-        strcpy(w->name[s], d.name);
     v3_store(&w->pos[3 * s], p);
     v3_store(&w->vel[3 * s], d.fixed ? v3_make(0, 0, 0) : v);
     v3_store(&w->avel[3 * s], d.fixed ? v3_make(0, 0, 0) : av);
     q_store(&w->orient[4 * s], q);
     v3_store(&w->force[3 * s], f);
     v3_store(&w->torque[3 * s], t);
-    v3_store(&w->normal[3 * s], v3_make(0, 0, 0));
     v3_store(&w->com_body[3 * s], c);
     w->radius[s] = d.radius;
     w->mass[s] = mass;
@@ -785,13 +831,7 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     }
     w->isotropic[s] = I[1] == 0.0 && I[2] == 0.0 && I[3] == 0.0 && I[5] == 0.0 && I[6] == 0.0 &&
                       I[7] == 0.0 && I[0] == I[4] && I[4] == I[8];
-    add_to_lists(w, s);
-    w->plan_dirty = 1;
-    if (out) {
-        out->index = s;
-        out->generation = w->generation[s];
-    }
-    return RBS_OK;
+    return body_done(w, s, out);
 }
 
 rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_id *out)
@@ -800,18 +840,15 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
     v3 p, n;
     double len;
     uint32_t s;
-    int64_t mat;
-    int k;
+    rbs_status st;
     if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
         return RBS_E_INVALID;
     w->error[0] = '\0';
     rbs_plane_def_init(&d);
     if (!def_read(&d, sizeof d, def))
         FAIL(w, RBS_E_INVALID, "plane def not initialised (use rbs_plane_def_init)");
-    if (d.name != NULL && !name_ok(d.name))
-        FAIL(w, RBS_E_INVALID, "plane name longer than %d bytes", RBS_NAME_MAX - 1);
-    if (name_taken(w, d.name))
-        FAIL(w, RBS_E_INVALID, "plane \"%s\": name already used", d.name);
+    if ((st = check_name(w, "plane", d.name)) != RBS_OK)
+        return st;
     p = v3_make(d.point.x, d.point.y, d.point.z);
     n = v3_make(d.normal.x, d.normal.y, d.normal.z);
     if (!v3_finite(p) || !v3_finite(n))
@@ -820,45 +857,12 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
     if (!(len > 0.0) || !isfinite(len))
         FAIL(w, RBS_E_INVALID, "plane normal must be nonzero");
     n = v3_scale(n, 1.0 / len);
-    mat = material_code(w, d.material);
-    if (mat < 0)
-        FAIL(w, RBS_E_STALE_ID, "plane: unknown material id");
-    if (d.texture < RBS_TEXTURE_NONE || d.texture > RBS_TEXTURE_CHECKER)
-        FAIL(w, RBS_E_INVALID, "plane texture %d is not a rbs_texture", (int)d.texture);
-    s = slot_take(w);
-    if (s == UINT32_MAX)
-        FAIL(w, RBS_E_CAPACITY, "plane: world holds at most %u bodies", (unsigned)w->def.max_bodies);
-    w->type[s] = RBS_BODY_PLANE;
-    w->fixed[s] = 1;
-    w->material[s] = (uint32_t)mat;
-    w->color[s] = d.color & 0xffffffu;
-    w->texture[s] = d.texture;
-    memset(w->name[s], 0, RBS_NAME_MAX);
-    if (d.name)
-        strcpy(w->name[s], d.name);
+    st = take_slot(w, "plane", RBS_BODY_PLANE, d.material, d.texture, d.color, d.name, &s);
+    if (st != RBS_OK)
+        return st;
     v3_store(&w->pos[3 * s], p);
-    v3_store(&w->vel[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->avel[3 * s], v3_make(0, 0, 0));
-    q_store(&w->orient[4 * s], (quat){1.0, 0.0, 0.0, 0.0});
-    v3_store(&w->force[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->torque[3 * s], v3_make(0, 0, 0));
     v3_store(&w->normal[3 * s], n);
-    v3_store(&w->com_body[3 * s], v3_make(0, 0, 0));
-    w->radius[s] = 0.0;
-    w->mass[s] = 0.0;
-    w->inv_mass[s] = 0.0;
-    for (k = 0; k < 9; ++k) {
-        w->inertia[9 * s + k] = 0.0;
-        w->inv_inertia[9 * s + k] = 0.0;
-    }
-    w->isotropic[s] = 1;
-    add_to_lists(w, s);
-    w->plan_dirty = 1;
-    if (out) {
-        out->index = s;
-        out->generation = w->generation[s];
-    }
-    return RBS_OK;
+    return body_done(w, s, out);
 }
 
 rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
