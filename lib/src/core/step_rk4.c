@@ -60,19 +60,6 @@ static quat q_dot(v3 om, quat q)
     return r;
 }
 
-/* Angular acceleration I^-1 (tau - w x I w) at unit orientation q. */
-static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
-{
-    v3 dw;
-    if (!w->isotropic[i])
-        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
-    if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
-        return v3_make(0.0, 0.0, 0.0);
-    if (w->isotropic[i])
-        return v3_scale(tau, w->inv_inertia[9 * i]);
-    dw = m3_mul_world(&w->inv_inertia[9 * i], q, tau);
-    return dw;
-}
 
 /* RK4 on q' = 1/2 (0, w) q, w' = alpha(q, w) over h for body i, in m
  * sub-steps of at most about 0.25 rad (rbs__spin_substeps).  Writes the end orientation
@@ -81,7 +68,7 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
 {
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0);
-    double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
+    double reach = (v3_len(om) + v3_len(rbs__angular_acceleration(w, i, tau, om, q)) * h) * h, hs;
     int m, k;
     if (w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0) {
         /* torque-free and isotropic: w is constant; the rotation is exact */
@@ -95,20 +82,20 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
     m = rbs__spin_substeps(w, info, reach, 0);
     hs = h / m;
     for (k = 0; k < m; ++k) {
-        v3 w1 = om, a1 = ang_acc(w, i, tau, w1, q);
+        v3 w1 = om, a1 = rbs__angular_acceleration(w, i, tau, w1, q);
         quat d1 = q_dot(w1, q), q2, q3, q4, d2, d3, d4;
         v3 w2, w3, w4, a2, a3, a4;
         q2 = q_axpy(q, d1, 0.5 * hs);
         w2 = v3_mad(om, a1, 0.5 * hs);
-        a2 = ang_acc(w, i, tau, w2, q_normalize(q2));
+        a2 = rbs__angular_acceleration(w, i, tau, w2, q_normalize(q2));
         d2 = q_dot(w2, q2);
         q3 = q_axpy(q, d2, 0.5 * hs);
         w3 = v3_mad(om, a2, 0.5 * hs);
-        a3 = ang_acc(w, i, tau, w3, q_normalize(q3));
+        a3 = rbs__angular_acceleration(w, i, tau, w3, q_normalize(q3));
         d3 = q_dot(w3, q3);
         q4 = q_axpy(q, d3, hs);
         w4 = v3_mad(om, a3, hs);
-        a4 = ang_acc(w, i, tau, w4, q_normalize(q4));
+        a4 = rbs__angular_acceleration(w, i, tau, w4, q_normalize(q4));
         d4 = q_dot(w4, q4);
         mean = v3_add(mean, v3_scale(v3_add(v3_add(w1, w4), v3_scale(v3_add(w2, w3), 2.0)), 1.0 / 6.0));
         q = q_axpy(q, q_axpy(q_axpy(d1, d4, 1.0), q_axpy(d2, d3, 1.0), 2.0), hs / 6.0);

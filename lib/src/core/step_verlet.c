@@ -49,20 +49,6 @@ enum {
 };
 
 
-/* Angular acceleration I^-1 (tau - w x I w) at unit orientation q; exactly
- * zero when there is neither torque nor a gyroscopic term. */
-static v3 ang_acc(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
-{
-    v3 dw;
-    if (!w->isotropic[i])
-        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
-    if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
-        return v3_make(0.0, 0.0, 0.0);
-    if (w->isotropic[i])
-        return v3_scale(tau, w->inv_inertia[9 * i]);
-    dw = m3_mul_world(&w->inv_inertia[9 * i], q, tau);
-    return dw;
-}
 
 /* Kick-drift-kick on (q, w) of body i over h in m sub-steps (see the top);
  * the end state into S. */
@@ -70,17 +56,17 @@ static void spin_verlet(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, d
 {
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]);
-    double reach = (v3_len(om) + v3_len(ang_acc(w, i, tau, om, q)) * h) * h, hs;
+    double reach = (v3_len(om) + v3_len(rbs__angular_acceleration(w, i, tau, om, q)) * h) * h, hs;
     int m, k;
     /* torque-free and isotropic: w is constant, one rotation is exact */
     m = rbs__spin_substeps(w, info, reach, w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0);
     hs = h / m;
     for (k = 0; k < m; ++k) {
-        v3 wh = v3_mad(om, ang_acc(w, i, tau, om, q), 0.5 * hs), wp;
+        v3 wh = v3_mad(om, rbs__angular_acceleration(w, i, tau, om, q), 0.5 * hs), wp;
         if (wh.x != 0.0 || wh.y != 0.0 || wh.z != 0.0)
             q = q_normalize(q_mul(q_from_rotation(wh, hs), q));
-        wp = v3_mad(wh, ang_acc(w, i, tau, wh, q), 0.5 * hs);
-        om = v3_mad(wh, ang_acc(w, i, tau, wp, q), 0.5 * hs);
+        wp = v3_mad(wh, rbs__angular_acceleration(w, i, tau, wh, q), 0.5 * hs);
+        om = v3_mad(wh, rbs__angular_acceleration(w, i, tau, wp, q), 0.5 * hs);
     }
     q_store(&S[S_QE], q);
     v3_store(&S[S_WE], om);

@@ -219,6 +219,19 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
  * isotropic body), and within the step's budget (max_substeps * 256 in all);
  * past the budget 1, with info->work_limit set. */
 int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact);
+/* Angular acceleration I^-1 (tau - w x I w) of body i at unit orientation q
+ * and angular velocity om (world axes); exactly zero when there is neither
+ * torque nor a gyroscopic term.  For verlet and rk4's rotation sub-steps. */
+static inline v3 rbs__angular_acceleration(const rbs_world *w, uint32_t i, v3 tau, v3 om, quat q)
+{
+    if (!w->isotropic[i])
+        tau = v3_sub(tau, v3_cross(om, m3_mul_world(&w->inertia[9 * i], q, om)));
+    if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
+        return v3_make(0.0, 0.0, 0.0);
+    if (w->isotropic[i])
+        return v3_scale(tau, w->inv_inertia[9 * i]);
+    return m3_mul_world(&w->inv_inertia[9 * i], q, tau);
+}
 void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
 void rbs__integrate_velocities(rbs_world *w, double h);
 void rbs__integrate_positions(rbs_world *w, double h);
