@@ -189,25 +189,14 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
-        v3 dv, vd, dw, om = v3_load(&w->avel[3 * i]);
+        v3 dv, vd, om = v3_load(&w->avel[3 * i]);
         quat q;
         if (w->fixed[i])
             continue;
         dv = v3_sub(v3_load(&w->vel[3 * i]), v3_mad(v3_load(&S[S_V0]), v3_load(&S[S_SV]), h / 6.0));
         vd = v3_add(v3_scale(v3_load(&S[S_SX]), 1.0 / 6.0), v3_scale(dv, 0.5));
-        if (S[S_SPIN] != 0.0) {
-            dw = v3_scale(v3_sub(om, v3_load(&S[S_WE])), 0.5);
-            q = q_load(&S[S_QE]);
-            if (dw.x != 0.0 || dw.y != 0.0 || dw.z != 0.0)
-                q = q_normalize(q_mul(q_from_rotation(dw, h), q));
-        } else {
-            /* constant spin between contacts: the exact rotation by the
-             * mean of the start and end angular velocities */
-            v3 wd = v3_add(v3_load(&S[S_W0]), v3_scale(v3_sub(om, v3_load(&S[S_W0])), 0.5));
-            q = q_load(&S[S_Q0]);
-            if (wd.x != 0.0 || wd.y != 0.0 || wd.z != 0.0)
-                q = q_normalize(q_mul(q_from_rotation(wd, h), q));
-        }
+        q = rbs__end_orientation(S[S_SPIN] != 0.0, q_load(&S[S_Q0]), v3_load(&S[S_W0]), q_load(&S[S_QE]),
+                                 v3_load(&S[S_WE]), om, h);
         q_store(&w->orient[4 * i], q);
         place(w, i, v3_mad(v3_load(&S[S_X0]), vd, h), q);
     }

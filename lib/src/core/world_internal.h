@@ -219,6 +219,21 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
  * isotropic body), and within the step's budget (max_substeps * 256 in all);
  * past the budget 1, with info->work_limit set. */
 int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact);
+/* Orientation at the end of a verlet or rk4 sub-step of h after the contact
+ * impulses changed the angular velocity to om.  A body whose rotation was
+ * sub-stepped (spun: it ended at qe, we) takes half of the impulses' change
+ * as one more rotation; otherwise the spin was constant between contacts and
+ * the rotation by the mean of the start (w0, from q0) and end velocities is
+ * exact. */
+static inline quat rbs__end_orientation(int spun, quat q0, v3 w0, quat qe, v3 we, v3 om, double h)
+{
+    v3 r = spun ? v3_scale(v3_sub(om, we), 0.5) : v3_add(w0, v3_scale(v3_sub(om, w0), 0.5));
+    quat q = spun ? qe : q0;
+    if (r.x != 0.0 || r.y != 0.0 || r.z != 0.0)
+        q = q_normalize(q_mul(q_from_rotation(r, h), q));
+    return q;
+}
+
 /* Angular acceleration I^-1 (tau - w x I w) of body i at unit orientation q
  * and angular velocity om (world axes); exactly zero when there is neither
  * torque nor a gyroscopic term.  For verlet and rk4's rotation sub-steps. */
