@@ -222,6 +222,70 @@ static rbs_renderer_config config_for(const char *type, uint32_t every)
     return c;
 }
 
+/* ---- a fixture: a world, recorder classes and a projector ---------------- */
+
+/* The classes `name` (context ctx) and, unless NULL, `other_name` (context
+ * other); cfg[0..n) holds a renderer of each, every frame.  The test adjusts
+ * the options, cfg and def between fx_init and fx_create. */
+typedef struct fixture {
+    rbs_world *w;
+    rbs_renderer_registry *reg;
+    const char *name, *other_name;
+    rec_ctx ctx, other;
+    rbs_renderer_config cfg[RBS_RENDERERS_MAX];
+    uint32_t n;
+    rbs_projector_def def;
+    rbs_projector *p;
+} fixture;
+
+static void fx_init(fixture *fx, const char *name, const char *other_name)
+{
+    memset(fx, 0, sizeof *fx);
+    fx->w = make_world();
+    fx->name = name;
+    fx->other_name = other_name;
+    default_opts(&fx->ctx);
+    default_opts(&fx->other);
+    fx->cfg[fx->n++] = config_for(name, 1);
+    if (other_name != NULL)
+        fx->cfg[fx->n++] = config_for(other_name, 1);
+    rbs_projector_def_init(&fx->def);
+}
+
+/* The registry with the classes (a class takes its flags from the options:
+ * set them first). */
+static void fx_register(fixture *fx)
+{
+    rbs_renderer_class c = rec_class(&fx->ctx, fx->name);
+    CHECK_OK(rbs_renderer_registry_create(&fx->reg));
+    CHECK_OK(rbs_renderer_register(fx->reg, &c));
+    if (fx->other_name != NULL) {
+        c = rec_class(&fx->other, fx->other_name);
+        CHECK_OK(rbs_renderer_register(fx->reg, &c));
+    }
+}
+
+/* The projector over cfg[0..n) with def. */
+static rbs_status fx_project(fixture *fx)
+{
+    return rbs_projector_create(fx->w, fx->reg, fx->cfg, fx->n, &fx->def,
+                                &fx->p);
+}
+
+static rbs_status fx_create(fixture *fx)
+{
+    fx_register(fx);
+    return fx_project(fx);
+}
+
+/* The projector, then the registry it uses, then the world. */
+static void fx_done(fixture *fx)
+{
+    rbs_projector_destroy(fx->p);
+    rbs_renderer_registry_destroy(fx->reg);
+    rbs_world_destroy(fx->w);
+}
+
 /* ---- tests -------------------------------------------------------------- */
 
 static void registry_finds_and_rejects(void **state)
@@ -259,173 +323,129 @@ static void registry_finds_and_rejects(void **state)
     rbs_renderer_registry_destroy(reg);
 }
 
-/* Run a projector to the end with n recorders of the given every. */
-static rbs_status run_with(rbs_world *w, rec_ctx *ctx, uint32_t n,
-                           const uint32_t *every, uint64_t steps,
-                           rbs_projector **out)
+/* Run fx's projector to the end with n "rec" recorders of every frame, and
+ * destroy it (the registry stays until fx_done). */
+static rbs_status run_with(fixture *fx, uint32_t n, uint64_t steps)
 {
-    rbs_renderer_registry *reg;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg[RBS_RENDERERS_MAX];
-    rbs_projector_def def;
     rbs_status st;
     uint32_t i;
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    c = rec_class(ctx, "rec");
-    CHECK_OK(rbs_renderer_register(reg, &c));
     for (i = 0; i < n; i++)
-        cfg[i] = config_for("rec", every ? every[i] : 1);
-    rbs_projector_def_init(&def);
-    def.steps = steps;
-    def.reel_capacity = 4;
-    st = rbs_projector_create(w, reg, cfg, n, &def, out);
+        fx->cfg[i] = config_for("rec", 1);
+    fx->n = n;
+    fx->def.steps = steps;
+    fx->def.reel_capacity = 4;
+    st = fx_create(fx);
     if (st == RBS_OK)
-        st = rbs_projector_run(*out);
-    /* The registry must outlive the projector: keep it until destroy. */
-    rbs_projector_destroy(*out);
-    *out = NULL;
-    rbs_renderer_registry_destroy(reg);
+        st = rbs_projector_run(fx->p);
+    rbs_projector_destroy(fx->p);
+    fx->p = NULL;
     return st;
 }
 
 static void every_frame_in_order_with_exact_state(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_projector *p;
-    rec_ctx ctx;
+    fixture fx;
     rec *r;
     uint64_t k;
     rbs_state_view v;
+    rbs_run_info info;
     int created = 0, destroyed = 0;
     uint32_t b;
     (void)state;
-    default_opts(&ctx);
-    ctx.opts.created = &created;
-    ctx.opts.destroyed = &destroyed;
-    /* Keep the instance alive past destroy to read it: count via ctx, read
-     * before the projector frees it by running without destroy. */
-    {
-        rbs_renderer_registry *reg;
-        rbs_renderer_class c = rec_class(&ctx, "rec");
-        rbs_renderer_config cfg = config_for("rec", 1);
-        rbs_projector_def def;
-        rbs_run_info info;
-        CHECK_OK(rbs_renderer_registry_create(&reg));
-        CHECK_OK(rbs_renderer_register(reg, &c));
-        rbs_projector_def_init(&def);
-        def.steps = 500;
-        def.reel_capacity = 3;
-        CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-        CHECK_OK(rbs_projector_status(p, &info));
-        assert_int_equal(info.state, RBS_RUN_READY);
-        CHECK_OK(rbs_projector_run(p));
-        assert_int_equal(rbs_projector_wait(p), RBS_OK); /* repeatable */
-        CHECK_OK(rbs_projector_status(p, &info));
-        assert_int_equal(info.state, RBS_RUN_DONE);
-        assert_int_equal(info.result, RBS_OK);
-        assert_int_equal(info.frame, 500);
-        assert_int_equal(info.drawn, 501);
-        assert_int_equal(info.captured, 501);
-        assert_true(info.time == rbs_world_time(w));
-        r = ctx.made[0];
-        assert_int_equal(r->count, 501);
-        for (k = 0; k <= 500; k++)
-            assert_int_equal(r->numbers[k], k);
-        assert_int_equal(r->lasts, 1);
-        assert_int_equal(r->finished, 1);
-        assert_int_equal(r->out_of_thread, 0);
-        /* The last frame holds the world's state bit for bit. */
-        CHECK_OK(rbs_world_state(w, &v));
-        assert_int_equal(r->final_count, 4);
-        for (b = 0; b < r->final_count; b++) {
-            uint32_t s = r->final[b].slot;
-            assert_memory_equal(r->final[b].position, v.position + 3 * s,
-                                3 * sizeof(double));
-            assert_memory_equal(r->final[b].velocity, v.velocity + 3 * s,
-                                3 * sizeof(double));
-            assert_memory_equal(r->final[b].angular_velocity,
-                                v.angular_velocity + 3 * s, 3 * sizeof(double));
-            assert_memory_equal(r->final[b].orientation, v.orientation + 4 * s,
-                                4 * sizeof(double));
-        }
-        assert_string_equal(r->final[1].name, "ball0");
-        assert_int_equal(r->final[0].type, RBS_BODY_PLANE);
-        assert_int_equal(r->final[1].type, RBS_BODY_SPHERE);
-        assert_true(r->final[1].radius == 0.1);
-        rbs_projector_destroy(p);
-        assert_int_equal(destroyed, 1);
-        rbs_renderer_registry_destroy(reg);
+    fx_init(&fx, "rec", NULL);
+    fx.ctx.opts.created = &created;
+    fx.ctx.opts.destroyed = &destroyed;
+    fx.def.steps = 500;
+    fx.def.reel_capacity = 3;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_int_equal(info.state, RBS_RUN_READY);
+    CHECK_OK(rbs_projector_run(fx.p));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_OK); /* repeatable */
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_int_equal(info.state, RBS_RUN_DONE);
+    assert_int_equal(info.result, RBS_OK);
+    assert_int_equal(info.frame, 500);
+    assert_int_equal(info.drawn, 501);
+    assert_int_equal(info.captured, 501);
+    assert_true(info.time == rbs_world_time(fx.w));
+    /* The instance is read while the projector keeps it. */
+    r = fx.ctx.made[0];
+    assert_int_equal(r->count, 501);
+    for (k = 0; k <= 500; k++)
+        assert_int_equal(r->numbers[k], k);
+    assert_int_equal(r->lasts, 1);
+    assert_int_equal(r->finished, 1);
+    assert_int_equal(r->out_of_thread, 0);
+    /* The last frame holds the world's state bit for bit. */
+    CHECK_OK(rbs_world_state(fx.w, &v));
+    assert_int_equal(r->final_count, 4);
+    for (b = 0; b < r->final_count; b++) {
+        uint32_t s = r->final[b].slot;
+        assert_memory_equal(r->final[b].position, v.position + 3 * s,
+                            3 * sizeof(double));
+        assert_memory_equal(r->final[b].velocity, v.velocity + 3 * s,
+                            3 * sizeof(double));
+        assert_memory_equal(r->final[b].angular_velocity,
+                            v.angular_velocity + 3 * s, 3 * sizeof(double));
+        assert_memory_equal(r->final[b].orientation, v.orientation + 4 * s,
+                            4 * sizeof(double));
     }
+    assert_string_equal(r->final[1].name, "ball0");
+    assert_int_equal(r->final[0].type, RBS_BODY_PLANE);
+    assert_int_equal(r->final[1].type, RBS_BODY_SPHERE);
+    assert_true(r->final[1].radius == 0.1);
+    rbs_projector_destroy(fx.p);
+    fx.p = NULL;
+    assert_int_equal(destroyed, 1);
     assert_int_equal(created, 1);
-    rbs_world_destroy(w);
+    fx_done(&fx);
 }
 
 /* Frame 0 only when steps is 0; its time is 0 and it is the last. */
 static void zero_steps_gives_frame_zero(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_run(p));
-    assert_int_equal(ctx.made[0]->count, 1);
-    assert_int_equal(ctx.made[0]->numbers[0], 0);
-    assert_int_equal(ctx.made[0]->lasts, 1);
-    assert_true(rbs_world_time(w) == 0.0);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx_init(&fx, "rec", NULL);
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_run(fx.p));
+    assert_int_equal(fx.ctx.made[0]->count, 1);
+    assert_int_equal(fx.ctx.made[0]->numbers[0], 0);
+    assert_int_equal(fx.ctx.made[0]->lasts, 1);
+    assert_true(rbs_world_time(fx.w) == 0.0);
+    fx_done(&fx);
 }
 
 static void every_k_keeps_multiples_and_the_last(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg[4];
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     const uint32_t every[4] = {1, 7, 100, 1000};
     uint32_t i;
     uint64_t k;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
+    fx_init(&fx, "rec", NULL);
     for (i = 0; i < 4; i++)
-        cfg[i] = config_for("rec", every[i]);
-    rbs_projector_def_init(&def);
-    def.steps = 250;
-    CHECK_OK(rbs_projector_create(w, reg, cfg, 4, &def, &p));
-    CHECK_OK(rbs_projector_run(p));
+        fx.cfg[i] = config_for("rec", every[i]);
+    fx.n = 4;
+    fx.def.steps = 250;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_run(fx.p));
     for (i = 0; i < 4; i++) {
-        rec *r = ctx.made[i];
+        rec *r = fx.ctx.made[i];
         uint64_t n = 0;
         for (k = 0; k <= 250; k++)
             if (k % every[i] == 0 || k == 250) {
                 assert_true(n < r->count);
                 assert_int_equal(r->numbers[n], k);
                 /* Every renderer sees the same frame contents. */
-                assert_memory_equal(&r->x[n], &ctx.made[0]->x[k], sizeof(double));
+                assert_memory_equal(&r->x[n], &fx.ctx.made[0]->x[k],
+                                    sizeof(double));
                 n++;
             }
         assert_int_equal(r->count, n);
     }
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx_done(&fx);
 }
 
 /* A caller compiled against an older, shorter rbs_renderer_config: the
@@ -440,239 +460,167 @@ typedef struct old_config {
 
 static void older_config_arrays_are_read_by_their_size(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
+    fixture fx;
     old_config old[2];
     rbs_renderer_config unset;
-    rbs_projector_def def;
-    rbs_projector *p;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
+    fx_init(&fx, "rec", NULL);
+    fx_register(&fx);
     memset(old, 0, sizeof old);
     old[0].struct_size = old[1].struct_size = sizeof old[0];
     old[0].type = old[1].type = "rec";
     old[0].every = 1;
     old[1].every = 10;
-    rbs_projector_def_init(&def);
-    def.steps = 20;
-    CHECK_OK(rbs_projector_create(w, reg, (const rbs_renderer_config *)(void *)old,
-                                  2, &def, &p));
-    CHECK_OK(rbs_projector_run(p));
-    assert_int_equal(ctx.made[0]->count, 21);
-    assert_int_equal(ctx.made[1]->count, 3); /* 0, 10, 20 */
+    fx.def.steps = 20;
+    CHECK_OK(rbs_projector_create(fx.w, fx.reg,
+                                  (const rbs_renderer_config *)(void *)old, 2,
+                                  &fx.def, &fx.p));
+    CHECK_OK(rbs_projector_run(fx.p));
+    assert_int_equal(fx.ctx.made[0]->count, 21);
+    assert_int_equal(fx.ctx.made[1]->count, 3); /* 0, 10, 20 */
     /* The control hook the old caller has no room for is still given. */
-    assert_non_null(ctx.made[1]->config.control);
-    rbs_projector_destroy(p);
+    assert_non_null(fx.ctx.made[1]->config.control);
+    rbs_projector_destroy(fx.p);
     /* struct_size not set: refused with a message. */
     memset(&unset, 0, sizeof unset);
     unset.type = "rec";
-    assert_int_equal(rbs_projector_create(w, reg, &unset, 1, &def, &p),
-                     RBS_E_INVALID);
-    assert_non_null(strstr(rbs_projector_last_error(p), "struct_size"));
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_int_equal(
+        rbs_projector_create(fx.w, fx.reg, &unset, 1, &fx.def, &fx.p),
+        RBS_E_INVALID);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "struct_size"));
+    fx_done(&fx);
 }
 
 /* A run with four renderers ends in the same world state as with none. */
 static void renderers_do_not_change_results(void **state)
 {
-    rbs_world *a = make_world(), *b = make_world();
-    rbs_projector *p = NULL;
-    rec_ctx ctx;
+    fixture a, b;
     (void)state;
-    default_opts(&ctx);
-    CHECK_OK(run_with(a, &ctx, 0, NULL, 300, &p));
-    default_opts(&ctx);
-    CHECK_OK(run_with(b, &ctx, 4, NULL, 300, &p));
-    assert_int_equal(rbs_world_step_count(a), 300);
-    assert_true(rbs_world_hash(a) == rbs_world_hash(b));
-    rbs_world_destroy(a);
-    rbs_world_destroy(b);
+    fx_init(&a, "rec", NULL);
+    fx_init(&b, "rec", NULL);
+    CHECK_OK(run_with(&a, 0, 300));
+    CHECK_OK(run_with(&b, 4, 300));
+    assert_int_equal(rbs_world_step_count(a.w), 300);
+    assert_true(rbs_world_hash(a.w) == rbs_world_hash(b.w));
+    fx_done(&a);
+    fx_done(&b);
 }
 
+/* In the fixtures below ctx is the "good" class's, other the "bad" one's. */
 static void failing_check_creates_nothing(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx good, bad;
-    rbs_renderer_class cg, cb;
-    rbs_renderer_config cfg[2];
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     int created = 0;
     (void)state;
-    default_opts(&good);
-    default_opts(&bad);
-    good.opts.created = &created;
-    bad.opts.fail_check = 1;
-    cg = rec_class(&good, "good");
-    cb = rec_class(&bad, "bad");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &cg));
-    CHECK_OK(rbs_renderer_register(reg, &cb));
-    cfg[0] = config_for("good", 1);
-    cfg[1] = config_for("bad", 1);
-    cfg[1].file = "scene.json";
-    cfg[1].line = 12;
-    cfg[1].column = 5;
-    rbs_projector_def_init(&def);
-    def.steps = 10;
-    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p), RBS_E_SCENE);
-    assert_non_null(p);
+    fx_init(&fx, "good", "bad");
+    fx.ctx.opts.created = &created;
+    fx.other.opts.fail_check = 1;
+    fx.cfg[1].file = "scene.json";
+    fx.cfg[1].line = 12;
+    fx.cfg[1].column = 5;
+    fx.def.steps = 10;
+    assert_int_equal(fx_create(&fx), RBS_E_SCENE);
+    assert_non_null(fx.p);
     assert_int_equal(created, 0); /* the good one was never created */
-    assert_non_null(strstr(rbs_projector_last_error(p), "scene.json:12:5"));
-    assert_non_null(strstr(rbs_projector_last_error(p), "check says no"));
-    assert_int_equal(rbs_projector_start(p), RBS_E_INVALID);
-    rbs_projector_destroy(p);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "scene.json:12:5"));
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "check says no"));
+    assert_int_equal(rbs_projector_start(fx.p), RBS_E_INVALID);
+    rbs_projector_destroy(fx.p);
 
     /* Unknown type. */
-    cfg[1] = config_for("nonesuch", 1);
-    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p),
-                     RBS_E_NOT_FOUND);
-    assert_non_null(strstr(rbs_projector_last_error(p), "nonesuch"));
-    rbs_projector_destroy(p);
+    fx.cfg[1] = config_for("nonesuch", 1);
+    assert_int_equal(fx_project(&fx), RBS_E_NOT_FOUND);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "nonesuch"));
+    rbs_projector_destroy(fx.p);
 
     /* Too many renderers, bad def: plain RBS_E_INVALID, no projector. */
-    assert_int_equal(rbs_projector_create(w, reg, cfg, RBS_RENDERERS_MAX + 1,
-                                          &def, &p),
-                     RBS_E_INVALID);
-    assert_null(p);
-    def.speed = -1;
-    assert_int_equal(rbs_projector_create(w, reg, cfg, 1, &def, &p),
-                     RBS_E_INVALID);
-    assert_non_null(strstr(rbs_projector_last_error(p), "speed"));
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx.n = RBS_RENDERERS_MAX + 1;
+    assert_int_equal(fx_project(&fx), RBS_E_INVALID);
+    assert_null(fx.p);
+    fx.n = 1;
+    fx.def.speed = -1;
+    assert_int_equal(fx_project(&fx), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "speed"));
+    fx_done(&fx);
 }
 
 static void failing_create_destroys_the_others(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx good, bad;
-    rbs_renderer_class cg, cb;
-    rbs_renderer_config cfg[2];
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     int created = 0, destroyed = 0;
     (void)state;
-    default_opts(&good);
-    default_opts(&bad);
-    good.opts.created = &created;
-    good.opts.destroyed = &destroyed;
-    bad.opts.fail_create = 1;
-    cg = rec_class(&good, "good");
-    cb = rec_class(&bad, "bad");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &cg));
-    CHECK_OK(rbs_renderer_register(reg, &cb));
-    cfg[0] = config_for("good", 1);
-    cfg[1] = config_for("bad", 1);
-    cfg[1].path = "out.x";
-    rbs_projector_def_init(&def);
-    assert_int_equal(rbs_projector_create(w, reg, cfg, 2, &def, &p), RBS_E_IO);
-    assert_non_null(strstr(rbs_projector_last_error(p), "bad renderer 'out.x'"));
-    assert_non_null(strstr(rbs_projector_last_error(p), "cannot create"));
+    fx_init(&fx, "good", "bad");
+    fx.ctx.opts.created = &created;
+    fx.ctx.opts.destroyed = &destroyed;
+    fx.other.opts.fail_create = 1;
+    fx.cfg[1].path = "out.x";
+    assert_int_equal(fx_create(&fx), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "bad renderer 'out.x'"));
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "cannot create"));
     assert_int_equal(created, 1);
-    rbs_projector_destroy(p);
+    rbs_projector_destroy(fx.p);
+    fx.p = NULL;
     assert_int_equal(destroyed, 1);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx_done(&fx);
 }
 
 /* A renderer failing mid-run stops the run with its message; the other
  * renderer is finished (complete up to the frames drawn). */
 static void failing_draw_stops_the_run(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx good, bad;
-    rbs_renderer_class cg, cb;
-    rbs_renderer_config cfg[2];
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     rbs_run_info info;
     uint64_t k;
     (void)state;
-    default_opts(&good);
-    default_opts(&bad);
-    bad.opts.fail_draw_at = 40;
-    cg = rec_class(&good, "good");
-    cb = rec_class(&bad, "bad");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &cg));
-    CHECK_OK(rbs_renderer_register(reg, &cb));
-    cfg[0] = config_for("good", 1);
-    cfg[1] = config_for("bad", 1);
-    cfg[1].path = "x.out";
-    rbs_projector_def_init(&def);
-    def.steps = 100000; /* would take long: the failure must stop it */
-    def.reel_capacity = 8;
-    CHECK_OK(rbs_projector_create(w, reg, cfg, 2, &def, &p));
-    assert_int_equal(rbs_projector_run(p), RBS_E_IO);
-    assert_non_null(strstr(rbs_projector_last_error(p), "bad renderer 'x.out'"));
-    assert_non_null(strstr(rbs_projector_last_error(p), "frame 40"));
-    assert_non_null(strstr(rbs_projector_last_error(p), "disk on fire"));
-    CHECK_OK(rbs_projector_status(p, &info));
+    fx_init(&fx, "good", "bad");
+    fx.other.opts.fail_draw_at = 40;
+    fx.cfg[1].path = "x.out";
+    fx.def.steps = 100000; /* would take long: the failure must stop it */
+    fx.def.reel_capacity = 8;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "bad renderer 'x.out'"));
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "frame 40"));
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "disk on fire"));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_int_equal(info.result, RBS_E_IO);
     assert_true(info.captured < 100); /* stopped within a reel's worth */
     /* The good renderer drew 0..40 (the frame the other failed on may be
      * drawn by it first) and was finished. */
-    assert_true(good.made[0]->count == 40 || good.made[0]->count == 41);
-    for (k = 0; k < good.made[0]->count; k++)
-        assert_int_equal(good.made[0]->numbers[k], k);
-    assert_int_equal(good.made[0]->finished, 1);
-    assert_int_equal(bad.made[0]->finished, 1);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_true(fx.ctx.made[0]->count == 40 || fx.ctx.made[0]->count == 41);
+    for (k = 0; k < fx.ctx.made[0]->count; k++)
+        assert_int_equal(fx.ctx.made[0]->numbers[k], k);
+    assert_int_equal(fx.ctx.made[0]->finished, 1);
+    assert_int_equal(fx.other.made[0]->finished, 1);
+    fx_done(&fx);
 }
 
 static void failing_finish_is_reported(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_projector *p = NULL;
-    rec_ctx ctx;
+    fixture fx;
     (void)state;
-    default_opts(&ctx);
-    ctx.opts.fail_finish = 1;
-    assert_int_equal(run_with(w, &ctx, 1, NULL, 5, &p), RBS_E_IO);
-    rbs_world_destroy(w);
+    fx_init(&fx, "rec", NULL);
+    fx.ctx.opts.fail_finish = 1;
+    assert_int_equal(run_with(&fx, 1, 5), RBS_E_IO);
+    fx_done(&fx);
 }
 
 /* A step's failure stops the run with the world's message; frames made
  * before it are all drawn. */
 static void numerical_failure_stops_the_run(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     rbs_body_id id;
     rbs_vec3 huge = {1e308, 0, 0};
     rbs_status st;
     (void)state;
-    CHECK_OK(rbs_world_find_body(w, "ball0", &id));
-    CHECK_OK(rbs_body_set_force(w, id, huge));
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 100000;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    st = rbs_projector_run(p);
-    print_message("%s\n", rbs_projector_last_error(p));
+    fx_init(&fx, "rec", NULL);
+    CHECK_OK(rbs_world_find_body(fx.w, "ball0", &id));
+    CHECK_OK(rbs_body_set_force(fx.w, id, huge));
+    fx.def.steps = 100000;
+    CHECK_OK(fx_create(&fx));
+    st = rbs_projector_run(fx.p);
+    print_message("%s\n", rbs_projector_last_error(fx.p));
     if (st == RBS_OK) {
         /* The core took it: then nothing to see here, but say so. */
         print_message("core accepted a 1e308 N force for 100000 steps\n");
@@ -681,15 +629,13 @@ static void numerical_failure_stops_the_run(void **state)
     /* The step or the capture of its frame (the energy overflows first)
      * fails: either way a numerical failure naming the time. */
     assert_int_equal(st, RBS_E_NUMERIC);
-    assert_non_null(strstr(rbs_projector_last_error(p), "t = "));
-    assert_non_null(strstr(rbs_projector_last_error(p), "numerical failure"));
-    assert_true(ctx.made[0]->count >= 1);
-    assert_int_equal(ctx.made[0]->numbers[ctx.made[0]->count - 1],
-                     ctx.made[0]->count - 1);
-    assert_int_equal(ctx.made[0]->finished, 1);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "t = "));
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "numerical failure"));
+    assert_true(fx.ctx.made[0]->count >= 1);
+    assert_int_equal(fx.ctx.made[0]->numbers[fx.ctx.made[0]->count - 1],
+                     fx.ctx.made[0]->count - 1);
+    assert_int_equal(fx.ctx.made[0]->finished, 1);
+    fx_done(&fx);
 }
 
 /* Commands while running: pause holds the simulation, step N advances N
@@ -698,32 +644,22 @@ static void numerical_failure_stops_the_run(void **state)
  * up to there. */
 static void commands_steer_the_run(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     rbs_run_info info;
     char reply[512];
     uint64_t k, before;
     struct timespec nap = {0, 30 * 1000 * 1000};
     int tries;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 1000000;
-    def.start_paused = 1;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_start(p));
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 1000000;
+    fx.def.start_paused = 1;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
 
     /* Paused after frame 0: wait for it to be drawn, then nothing moves. */
     for (tries = 0; tries < 200; tries++) {
-        CHECK_OK(rbs_projector_status(p, &info));
+        CHECK_OK(rbs_projector_status(fx.p, &info));
         if (info.drawn == 1)
             break;
         nanosleep(&nap, NULL);
@@ -731,215 +667,166 @@ static void commands_steer_the_run(void **state)
     assert_int_equal(info.drawn, 1);
     assert_true(info.paused);
     nanosleep(&nap, NULL);
-    CHECK_OK(rbs_projector_status(p, &info));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_int_equal(info.captured, 1);
 
     /* step 5: exactly five more frames. */
-    CHECK_OK(rbs_projector_command(p, "step 5", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "step 5", reply, sizeof reply));
     assert_non_null(strstr(reply, "5 frames"));
     for (tries = 0; tries < 200; tries++) {
-        CHECK_OK(rbs_projector_status(p, &info));
+        CHECK_OK(rbs_projector_status(fx.p, &info));
         if (info.drawn == 6)
             break;
         nanosleep(&nap, NULL);
     }
     nanosleep(&nap, NULL);
-    CHECK_OK(rbs_projector_status(p, &info));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_int_equal(info.captured, 6);
     assert_int_equal(info.frame, 5);
-    CHECK_OK(rbs_projector_command(p, "status", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
     assert_non_null(strstr(reply, "frame 5 of 1000000"));
     assert_non_null(strstr(reply, "paused"));
 
     /* Bad arguments are refused with a reason. */
-    assert_int_equal(rbs_projector_command(p, "step 0", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "step 0", reply, sizeof reply),
                      RBS_E_INVALID);
     assert_non_null(strstr(reply, "step"));
-    assert_int_equal(rbs_projector_command(p, "step 3x", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "step 3x", reply, sizeof reply),
                      RBS_E_INVALID);
-    assert_int_equal(rbs_projector_command(p, "speed -2", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "speed -2", reply, sizeof reply),
                      RBS_E_INVALID);
-    assert_int_equal(rbs_projector_command(p, "speed nan", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "speed nan", reply, sizeof reply),
                      RBS_E_INVALID);
-    assert_int_equal(rbs_projector_command(p, "pause now", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "pause now", reply, sizeof reply),
                      RBS_E_INVALID);
-    assert_int_equal(rbs_projector_command(p, "", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "", reply, sizeof reply),
                      RBS_E_INVALID);
-    CHECK_OK(rbs_projector_command(p, "speed 2.5", reply, sizeof reply));
-    CHECK_OK(rbs_projector_status(p, &info));
+    CHECK_OK(rbs_projector_command(fx.p, "speed 2.5", reply, sizeof reply));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_true(info.speed == 2.5);
 
     /* Renderer commands run on the renderer thread. */
-    CHECK_OK(rbs_projector_command(p, "ping", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "ping", reply, sizeof reply));
     assert_string_equal(reply, "pong");
-    assert_int_equal(rbs_projector_command(p, "warp 9", reply, sizeof reply),
+    assert_int_equal(rbs_projector_command(fx.p, "warp 9", reply, sizeof reply),
                      RBS_E_NOT_FOUND);
     assert_non_null(strstr(reply, "unknown command"));
 
     /* Resume, let it run, quit. */
-    CHECK_OK(rbs_projector_command(p, "resume", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "resume", reply, sizeof reply));
     for (tries = 0; tries < 500; tries++) {
-        CHECK_OK(rbs_projector_status(p, &info));
+        CHECK_OK(rbs_projector_status(fx.p, &info));
         if (info.captured > 6)
             break;
         nanosleep(&nap, NULL);
     }
     before = info.captured;
     assert_true(before > 6);
-    CHECK_OK(rbs_projector_command(p, "ping", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "ping", reply, sizeof reply));
     assert_string_equal(reply, "pong");
-    CHECK_OK(rbs_projector_command(p, "quit", reply, sizeof reply));
-    assert_int_equal(rbs_projector_wait(p), RBS_E_CLOSED);
-    assert_true(rbs_projector_finished(p, 0));
-    CHECK_OK(rbs_projector_status(p, &info));
+    CHECK_OK(rbs_projector_command(fx.p, "quit", reply, sizeof reply));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_E_CLOSED);
+    assert_true(rbs_projector_finished(fx.p, 0));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_int_equal(info.state, RBS_RUN_DONE);
     assert_int_equal(info.result, RBS_E_CLOSED);
     /* Every frame drawn, in order, none lost, up to the end. */
-    for (k = 0; k < ctx.made[0]->count; k++)
-        assert_int_equal(ctx.made[0]->numbers[k], k);
-    assert_int_equal(ctx.made[0]->count, info.drawn);
-    assert_int_equal(ctx.made[0]->finished, 1);
-    assert_int_equal(ctx.made[0]->lasts, 0);
+    for (k = 0; k < fx.ctx.made[0]->count; k++)
+        assert_int_equal(fx.ctx.made[0]->numbers[k], k);
+    assert_int_equal(fx.ctx.made[0]->count, info.drawn);
+    assert_int_equal(fx.ctx.made[0]->finished, 1);
+    assert_int_equal(fx.ctx.made[0]->lasts, 0);
     /* After the end, commands still answer. */
-    CHECK_OK(rbs_projector_command(p, "status", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
     assert_non_null(strstr(reply, "done"));
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx_done(&fx);
 }
 
 /* A renderer can send "quit" back through its control hook. */
 static void renderer_control_quits(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     (void)state;
-    default_opts(&ctx);
-    ctx.opts.quit_at = 25;
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 1000000;
-    def.reel_capacity = 4;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
+    fx_init(&fx, "rec", NULL);
+    fx.ctx.opts.quit_at = 25;
+    fx.def.steps = 1000000;
+    fx.def.reel_capacity = 4;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_CLOSED);
     /* Frames already in the reel are still drawn: at most a reel more. */
-    assert_true(ctx.made[0]->count >= 26);
-    assert_true(ctx.made[0]->count <= 26 + 4 + 1);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_true(fx.ctx.made[0]->count >= 26);
+    assert_true(fx.ctx.made[0]->count <= 26 + 4 + 1);
+    fx_done(&fx);
 }
 
 /* Destroying a running projector quits and joins. */
 static void destroy_while_running(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.endless = 1;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_start(p));
-    assert_int_equal(rbs_projector_start(p), RBS_E_INVALID); /* once only */
-    assert_false(rbs_projector_finished(p, 0.05));
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    fx_init(&fx, "rec", NULL);
+    fx.def.endless = 1;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
+    assert_int_equal(rbs_projector_start(fx.p), RBS_E_INVALID); /* once only */
+    assert_false(rbs_projector_finished(fx.p, 0.05));
+    fx_done(&fx);
 }
 
 /* Real time: 200 frames of 1 ms at speed 1 take at least 0.2 s of wall
  * time (pacing sleeps; the lower bound cannot be met by chance). */
 static void realtime_paces_frames(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     rbs_run_info info;
     (void)state;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 200;
-    def.realtime = 1;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_run(p));
-    CHECK_OK(rbs_projector_status(p, &info));
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 200;
+    fx.def.realtime = 1;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_run(fx.p));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_true(info.wall_time >= 0.2 - 0.002); /* one frame's rounding */
-    assert_int_equal(ctx.made[0]->count, 201);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_int_equal(fx.ctx.made[0]->count, 201);
+    fx_done(&fx);
 }
 
 /* Live views only: the latest-only reel; frames increase strictly; while
  * paused the live view gets repeats flagged paused. */
 static void live_view_gets_repeats_while_paused(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("live", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     struct timespec nap = {0, 200 * 1000 * 1000};
     rbs_run_info info;
     uint64_t k;
     int tries;
     (void)state;
-    default_opts(&ctx);
-    ctx.opts.live = 1;
-    c = rec_class(&ctx, "live");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 1000000;
-    def.policy = RBS_REEL_LATEST_ONLY;
-    def.start_paused = 1;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_start(p));
+    fx_init(&fx, "live", NULL);
+    fx.ctx.opts.live = 1;
+    fx.def.steps = 1000000;
+    fx.def.policy = RBS_REEL_LATEST_ONLY;
+    fx.def.start_paused = 1;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
     nanosleep(&nap, NULL);
     nanosleep(&nap, NULL);
-    CHECK_OK(rbs_projector_command(p, "step 3", NULL, 0));
+    CHECK_OK(rbs_projector_command(fx.p, "step 3", NULL, 0));
     for (tries = 0; tries < 250; tries++) {
-        CHECK_OK(rbs_projector_status(p, &info));
+        CHECK_OK(rbs_projector_status(fx.p, &info));
         if (info.drawn == 4)
             break;
         nanosleep(&nap, NULL);
     }
-    CHECK_OK(rbs_projector_command(p, "quit", NULL, 0));
-    assert_int_equal(rbs_projector_wait(p), RBS_E_CLOSED);
+    CHECK_OK(rbs_projector_command(fx.p, "quit", NULL, 0));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_E_CLOSED);
     /* At least 0.4 s paused at 30 Hz: about 12 repeats; 3 is a margin for a
      * loaded machine. */
-    assert_true(ctx.made[0]->repeats >= 3);
-    for (k = 1; k < ctx.made[0]->count; k++)
-        assert_true(ctx.made[0]->numbers[k] > ctx.made[0]->numbers[k - 1]);
-    assert_int_equal(ctx.made[0]->numbers[ctx.made[0]->count - 1], 3);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_true(fx.ctx.made[0]->repeats >= 3);
+    for (k = 1; k < fx.ctx.made[0]->count; k++)
+        assert_true(fx.ctx.made[0]->numbers[k] >
+                    fx.ctx.made[0]->numbers[k - 1]);
+    assert_int_equal(fx.ctx.made[0]->numbers[fx.ctx.made[0]->count - 1], 3);
+    fx_done(&fx);
 }
 
 /* The reel's contract on one thread. */
@@ -1034,133 +921,97 @@ static rbs_status hook(void *context, const rbs_world *world, uint64_t frame,
  * the world at that frame. */
 static void after_step_sees_every_frame(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     static hook_ctx h; /* large; one test at a time */
     uint64_t i;
     (void)state;
     memset(&h, 0, sizeof h);
     h.caller = pthread_self();
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    assert_null(def.after_step);
-    assert_int_equal(def.skip_first_frame, 0);
-    def.steps = 100;
-    def.reel_capacity = 3;
-    def.after_step = hook;
-    def.after_step_context = &h;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    CHECK_OK(rbs_projector_run(p));
+    fx_init(&fx, "rec", NULL);
+    assert_null(fx.def.after_step);
+    assert_int_equal(fx.def.skip_first_frame, 0);
+    fx.def.steps = 100;
+    fx.def.reel_capacity = 3;
+    fx.def.after_step = hook;
+    fx.def.after_step_context = &h;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_run(fx.p));
     assert_int_equal(h.count, 100);
     for (i = 0; i < 100; i++)
         assert_int_equal(h.frames[i], i + 1);
     assert_int_equal(h.world_mismatch, 0);
     assert_int_equal(h.on_caller_thread, 0);
-    assert_int_equal(ctx.made[0]->count, 101);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    assert_int_equal(fx.ctx.made[0]->count, 101);
+    fx_done(&fx);
 }
 
 /* A failing hook stops the run with its status and message; the outputs
  * hold every frame up to the failing one, and are finished. */
 static void after_step_failure_stops_the_run(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     static hook_ctx h;
     uint64_t i;
     (void)state;
     memset(&h, 0, sizeof h);
     h.caller = pthread_self();
     h.fail_at = 7;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 1000;
-    def.after_step = hook;
-    def.after_step_context = &h;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    assert_int_equal(rbs_projector_run(p), RBS_E_IO);
-    assert_non_null(strstr(rbs_projector_last_error(p),
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 1000;
+    fx.def.after_step = hook;
+    fx.def.after_step_context = &h;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_IO);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p),
                            "after frame 7: no room for the checkpoint"));
     assert_int_equal(h.count, 7);
-    assert_int_equal(ctx.made[0]->count, 8);
+    assert_int_equal(fx.ctx.made[0]->count, 8);
     for (i = 0; i < 8; i++)
-        assert_int_equal(ctx.made[0]->numbers[i], i);
-    assert_int_equal(ctx.made[0]->finished, 1);
-    assert_int_equal(rbs_world_step_count(w), 7);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+        assert_int_equal(fx.ctx.made[0]->numbers[i], i);
+    assert_int_equal(fx.ctx.made[0]->finished, 1);
+    assert_int_equal(rbs_world_step_count(fx.w), 7);
+    fx_done(&fx);
 }
 
 /* "quit" stops after the frame being made: the world ends at the last
  * frame drawn, never a step beyond it (what a final checkpoint needs). */
 static void quit_ends_at_the_last_frame(void **state)
 {
-    rbs_world *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx;
-    rbs_renderer_class c;
-    rbs_renderer_config cfg = config_for("rec", 1);
-    rbs_projector_def def;
-    rbs_projector *p;
+    fixture fx;
     static hook_ctx h;
     rec *r;
     (void)state;
     memset(&h, 0, sizeof h);
     h.caller = pthread_self();
     h.quit_at = 30;
-    default_opts(&ctx);
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c));
-    rbs_projector_def_init(&def);
-    def.steps = 100000;
-    def.reel_capacity = 2;
-    def.after_step = hook;
-    def.after_step_context = &h;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    h.projector = p;
-    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
-    r = ctx.made[0];
-    assert_int_equal(rbs_world_step_count(w), 30);
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 100000;
+    fx.def.reel_capacity = 2;
+    fx.def.after_step = hook;
+    fx.def.after_step_context = &h;
+    CHECK_OK(fx_create(&fx));
+    h.projector = fx.p;
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_CLOSED);
+    r = fx.ctx.made[0];
+    assert_int_equal(rbs_world_step_count(fx.w), 30);
     assert_int_equal(r->count, 31);
     assert_int_equal(r->numbers[r->count - 1], 30);
-    rbs_projector_destroy(p);
+    rbs_projector_destroy(fx.p);
 
     /* Quit from the renderer side too: the world is at the last frame
      * drawn, whichever frame the simulation was making. */
-    rbs_world_destroy(w);
-    w = make_world();
-    default_opts(&ctx);
-    ctx.opts.quit_at = 25;
-    rbs_projector_def_init(&def);
-    def.steps = 100000;
-    def.reel_capacity = 4;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg, 1, &def, &p));
-    assert_int_equal(rbs_projector_run(p), RBS_E_CLOSED);
-    r = ctx.made[0];
-    assert_int_equal(rbs_world_step_count(w), r->numbers[r->count - 1]);
-    rbs_projector_destroy(p);
-    rbs_renderer_registry_destroy(reg);
-    rbs_world_destroy(w);
+    rbs_world_destroy(fx.w);
+    fx.w = make_world();
+    default_opts(&fx.ctx);
+    fx.ctx.opts.quit_at = 25;
+    rbs_projector_def_init(&fx.def);
+    fx.def.steps = 100000;
+    fx.def.reel_capacity = 4;
+    CHECK_OK(fx_project(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_CLOSED);
+    r = fx.ctx.made[0];
+    assert_int_equal(rbs_world_step_count(fx.w), r->numbers[r->count - 1]);
+    fx_done(&fx);
 }
 
 /* A world that has stepped k times (as a checkpoint restores it) projects
@@ -1169,32 +1020,24 @@ static void quit_ends_at_the_last_frame(void **state)
  * the same frame numbers (multiples of K) in both. */
 static void resumed_world_keeps_frame_numbers(void **state)
 {
-    rbs_world *full = make_world(), *w = make_world();
-    rbs_renderer_registry *reg;
-    rec_ctx ctx_full, ctx;
-    rbs_renderer_class c_full, c;
+    fixture fx; /* fx.w: the uninterrupted run; ctx "full", other "rec" */
+    rbs_world *w;
     rbs_renderer_config cfg[2];
-    rbs_projector_def def;
-    rbs_projector *p, *p_full;
+    rbs_projector *p;
     rec *all, *every, *r;
     uint64_t i;
     (void)state;
-    default_opts(&ctx_full);
-    default_opts(&ctx);
-    c_full = rec_class(&ctx_full, "full");
-    c = rec_class(&ctx, "rec");
-    CHECK_OK(rbs_renderer_registry_create(&reg));
-    CHECK_OK(rbs_renderer_register(reg, &c_full));
-    CHECK_OK(rbs_renderer_register(reg, &c));
+    fx_init(&fx, "full", "rec");
+    w = make_world();
+    fx_register(&fx);
 
     /* The uninterrupted run: frames 0..100. */
-    cfg[0] = config_for("full", 1);
-    rbs_projector_def_init(&def);
-    def.steps = 100;
+    fx.n = 1;
+    fx.def.steps = 100;
     /* (the recorders live until their projector is destroyed) */
-    CHECK_OK(rbs_projector_create(full, reg, cfg, 1, &def, &p_full));
-    CHECK_OK(rbs_projector_run(p_full));
-    all = ctx_full.made[0];
+    CHECK_OK(fx_project(&fx));
+    CHECK_OK(rbs_projector_run(fx.p));
+    all = fx.ctx.made[0];
     assert_int_equal(all->count, 101);
 
     /* 40 steps by hand, then 60 more through the projector. */
@@ -1202,13 +1045,13 @@ static void resumed_world_keeps_frame_numbers(void **state)
         CHECK_OK(rbs_world_step(w, NULL));
     cfg[0] = config_for("rec", 1);
     cfg[1] = config_for("rec", 25);
-    rbs_projector_def_init(&def);
-    def.steps = 60;
-    def.skip_first_frame = 1;
-    CHECK_OK(rbs_projector_create(w, reg, cfg, 2, &def, &p));
+    rbs_projector_def_init(&fx.def);
+    fx.def.steps = 60;
+    fx.def.skip_first_frame = 1;
+    CHECK_OK(rbs_projector_create(w, fx.reg, cfg, 2, &fx.def, &p));
     CHECK_OK(rbs_projector_run(p));
-    r = ctx.made[0];
-    every = ctx.made[1];
+    r = fx.other.made[0];
+    every = fx.other.made[1];
     assert_int_equal(r->count, 60);
     for (i = 0; i < 60; i++) {
         assert_int_equal(r->numbers[i], 41 + i);
@@ -1221,27 +1064,27 @@ static void resumed_world_keeps_frame_numbers(void **state)
     assert_int_equal(every->numbers[1], 75);
     assert_int_equal(every->numbers[2], 100);
     rbs_projector_destroy(p);
-    rbs_projector_destroy(p_full);
+    rbs_projector_destroy(fx.p);
+    fx.p = NULL;
 
     /* Without skip_first_frame the starting frame is drawn (and kept). */
     rbs_world_destroy(w);
     w = make_world();
     for (i = 0; i < 40; i++)
         CHECK_OK(rbs_world_step(w, NULL));
-    default_opts(&ctx);
-    rbs_projector_def_init(&def);
-    def.steps = 10;
-    CHECK_OK(rbs_projector_create(w, reg, &cfg[1], 1, &def, &p));
+    default_opts(&fx.other);
+    rbs_projector_def_init(&fx.def);
+    fx.def.steps = 10;
+    CHECK_OK(rbs_projector_create(w, fx.reg, &cfg[1], 1, &fx.def, &p));
     CHECK_OK(rbs_projector_run(p));
-    every = ctx.made[0];
+    every = fx.other.made[0];
     assert_int_equal(every->count, 2);
     assert_int_equal(every->numbers[0], 40);
     assert_int_equal(every->numbers[1], 50);
     rbs_projector_destroy(p);
 
-    rbs_renderer_registry_destroy(reg);
     rbs_world_destroy(w);
-    rbs_world_destroy(full);
+    fx_done(&fx);
 }
 
 int main(void)
