@@ -54,15 +54,6 @@ static void put_num(FILE *f, double x)
     fputs(buf, f);
 }
 
-static void put_vec(FILE *f, rbs_vec3 v, const char *sep)
-{
-    put_num(f, v.x);
-    fputs(sep, f);
-    put_num(f, v.y);
-    fputs(sep, f);
-    put_num(f, v.z);
-}
-
 static void put_json_string(FILE *f, const char *s)
 {
     fputc('"', f);
@@ -100,6 +91,155 @@ static rbs_status finish(FILE *f)
     return RBS_OK;
 }
 
+/* ---- keys and values, in either format --------------------------------- */
+
+static void put_text_string(FILE *f, const char *str);
+
+/* How a writer spells the keys of one group: what stands before the first
+ * key, before a next key (on the same line or a new one) and after a key. */
+typedef struct key_style {
+    int json; /* words quoted, lists in brackets */
+    const char *first, *next, *next_line, *after;
+} key_style;
+
+enum { KEY_FIRST, KEY_NEXT, KEY_NEXT_LINE };
+
+static const key_style json_simulation = {1, "{\"", ", \"", ",\n    \"", "\": "};
+static const key_style json_gravity = {1, "{\"", ", \"", ", \"", "\": "};
+static const key_style json_body = {1, ", \"", ", \"", ",\n      \"", "\": "};
+static const key_style text_config = {0, "", "\n", "\n", " = "};
+static const key_style text_gravity = {0, "", " ", " ", "="};
+static const key_style text_body = {0, "\n  ", "\n  ", "\n  ", " "};
+
+/* where: KEY_FIRST, KEY_NEXT or KEY_NEXT_LINE. */
+static void put_key(FILE *f, const key_style *k, const char *key, int where)
+{
+    fputs(where == KEY_FIRST ? k->first : where == KEY_NEXT ? k->next : k->next_line, f);
+    fputs(key, f);
+    fputs(k->after, f);
+}
+
+/* A word: quoted in JSON, bare in text. */
+static void put_word(FILE *f, const key_style *k, const char *word)
+{
+    if (k->json) {
+        fputc('"', f);
+    }
+    fputs(word, f);
+    if (k->json) {
+        fputc('"', f);
+    }
+}
+
+/* Numbers: a JSON array, or words in text. */
+static void put_list(FILE *f, const key_style *k, const double *x, int n)
+{
+    int i;
+    if (k->json) {
+        fputc('[', f);
+    }
+    for (i = 0; i < n; i++) {
+        if (i > 0) {
+            fputs(k->json ? ", " : " ", f);
+        }
+        put_num(f, x[i]);
+    }
+    if (k->json) {
+        fputc(']', f);
+    }
+}
+
+static void put_vec_field(FILE *f, const key_style *k, const char *key, int where, rbs_vec3 v)
+{
+    const double x[3] = {v.x, v.y, v.z};
+    put_key(f, k, key, where);
+    put_list(f, k, x, 3);
+}
+
+/* The simulation settings, from "steps" to "mutual_gravity" (its G and
+ * softening in the style g). */
+static void put_simulation(FILE *f, const key_style *k, const key_style *g, const rbs_scene *s)
+{
+    const char *method = rbs_method_name(s->method);
+    put_key(f, k, "steps", KEY_FIRST);
+    fprintf(f, "%llu", (unsigned long long)s->steps);
+    put_key(f, k, "dt", KEY_NEXT);
+    put_num(f, s->dt);
+    put_vec_field(f, k, "gravity", KEY_NEXT, s->gravity);
+    put_key(f, k, "gravity_mode", KEY_NEXT);
+    put_word(f, k, s->gravity_mode == RBS_GRAVITY_FORCE ? "force" : "acceleration");
+    put_key(f, k, "method", KEY_NEXT_LINE);
+    put_word(f, k, method != NULL ? method : "euler");
+    put_key(f, k, "tolerance", KEY_NEXT);
+    put_num(f, s->tolerance);
+    put_key(f, k, "restitution", KEY_NEXT);
+    put_num(f, s->restitution);
+    put_key(f, k, "pause_on_collision", KEY_NEXT);
+    fputs(s->pause_on_collision ? "true" : "false", f);
+    put_key(f, k, "mutual_gravity", KEY_NEXT_LINE);
+    if (s->mutual_gravity) {
+        put_key(f, g, "G", KEY_FIRST);
+        put_num(f, s->gravity_constant);
+        put_key(f, g, "softening", KEY_NEXT);
+        put_num(f, s->softening);
+        if (g->json) {
+            fputc('}', f);
+        }
+    } else {
+        fputs("false", f);
+    }
+}
+
+/* Everything after a body's name and type, the same sequence in both
+ * formats (see put_key); each writer adds its own framing. */
+static void put_body(FILE *f, const key_style *k, const rbs_scene *s,
+                     const rbs__scene_body *b)
+{
+    char color[24];
+    if (b->type == RBS_BODY_SPHERE) {
+        const double q[4] = {b->orientation.w, b->orientation.x, b->orientation.y,
+                             b->orientation.z};
+        put_key(f, k, "radius", KEY_NEXT);
+        put_num(f, b->radius);
+        put_key(f, k, b->density > 0 ? "density" : "mass", KEY_NEXT);
+        put_num(f, b->density > 0 ? b->density : b->mass);
+        if (b->inertia_kind == RBS_INERTIA_PRINCIPAL) {
+            put_vec_field(f, k, "inertia", KEY_NEXT, b->inertia);
+        } else {
+            put_key(f, k, "inertia", KEY_NEXT);
+            put_word(f, k, b->inertia_kind == RBS_INERTIA_HOLLOW ? "hollow" : "solid");
+        }
+        put_vec_field(f, k, "position", KEY_NEXT_LINE, b->position);
+        put_key(f, k, "orientation", KEY_NEXT);
+        put_list(f, k, q, 4);
+        put_vec_field(f, k, "velocity", KEY_NEXT_LINE, b->velocity);
+        put_vec_field(f, k, "angular_velocity", KEY_NEXT, b->angular_velocity);
+        put_vec_field(f, k, "center_of_mass", KEY_NEXT, b->center_of_mass);
+        put_vec_field(f, k, "force", KEY_NEXT_LINE, b->force);
+        put_vec_field(f, k, "torque", KEY_NEXT, b->torque);
+        put_key(f, k, "fixed", KEY_NEXT);
+        fputs(b->fixed ? "true" : "false", f);
+    } else {
+        put_vec_field(f, k, "point", KEY_NEXT, b->point);
+        put_vec_field(f, k, "normal", KEY_NEXT, b->normal);
+    }
+    if (b->material >= 0) {
+        put_key(f, k, "material", KEY_NEXT);
+        if (k->json) {
+            put_json_string(f, s->materials[b->material]);
+        } else {
+            put_text_string(f, s->materials[b->material]);
+        }
+    }
+    snprintf(color, sizeof color, "#%06lx", (unsigned long)(b->color & 0xffffffu));
+    put_key(f, k, "color", KEY_NEXT);
+    put_word(f, k, color);
+    put_key(f, k, "texture", KEY_NEXT);
+    put_word(f, k, texture_name(b->texture));
+}
+
+/* ---- JSON --------------------------------------------------------------- */
+
 rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
 {
     FILE *f = open_out(path);
@@ -113,27 +253,9 @@ rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
         put_json_string(f, s->description);
         fputs(",\n", f);
     }
-    fprintf(f, "  \"simulation\": {\"steps\": %llu, \"dt\": ", (unsigned long long)s->steps);
-    put_num(f, s->dt);
-    fputs(", \"gravity\": [", f);
-    put_vec(f, s->gravity, ", ");
-    fprintf(f, "], \"gravity_mode\": \"%s\",\n    \"method\": \"%s\", \"tolerance\": ",
-            s->gravity_mode == RBS_GRAVITY_FORCE ? "force" : "acceleration",
-            rbs_method_name(s->method) != NULL ? rbs_method_name(s->method) : "euler");
-    put_num(f, s->tolerance);
-    fputs(", \"restitution\": ", f);
-    put_num(f, s->restitution);
-    fprintf(f, ", \"pause_on_collision\": %s,\n    \"mutual_gravity\": ",
-            s->pause_on_collision ? "true" : "false");
-    if (s->mutual_gravity) {
-        fputs("{\"G\": ", f);
-        put_num(f, s->gravity_constant);
-        fputs(", \"softening\": ", f);
-        put_num(f, s->softening);
-        fputs("}},\n", f);
-    } else {
-        fputs("false},\n", f);
-    }
+    fputs("  \"simulation\": ", f);
+    put_simulation(f, &json_simulation, &json_gravity, s);
+    fputs("},\n", f);
     fputs("  \"materials\": [", f);
     for (i = 0; i < s->pair_count; i++) {
         const rbs__scene_pair *p = &s->pairs[i];
@@ -161,58 +283,10 @@ rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
         const rbs__scene_body *b = &s->bodies[i];
         fputs(i ? ",\n    {\"name\": " : "\n    {\"name\": ", f);
         put_json_string(f, b->name);
-        if (b->type == RBS_BODY_SPHERE) {
-            fputs(", \"type\": \"sphere\", \"radius\": ", f);
-            put_num(f, b->radius);
-            if (b->density > 0) {
-                fputs(", \"density\": ", f);
-                put_num(f, b->density);
-            } else {
-                fputs(", \"mass\": ", f);
-                put_num(f, b->mass);
-            }
-            if (b->inertia_kind == RBS_INERTIA_PRINCIPAL) {
-                fputs(", \"inertia\": [", f);
-                put_vec(f, b->inertia, ", ");
-                fputs("]", f);
-            } else {
-                fprintf(f, ", \"inertia\": \"%s\"",
-                        b->inertia_kind == RBS_INERTIA_HOLLOW ? "hollow" : "solid");
-            }
-            fputs(",\n      \"position\": [", f);
-            put_vec(f, b->position, ", ");
-            fputs("], \"orientation\": [", f);
-            put_num(f, b->orientation.w);
-            fputs(", ", f);
-            put_num(f, b->orientation.x);
-            fputs(", ", f);
-            put_num(f, b->orientation.y);
-            fputs(", ", f);
-            put_num(f, b->orientation.z);
-            fputs("],\n      \"velocity\": [", f);
-            put_vec(f, b->velocity, ", ");
-            fputs("], \"angular_velocity\": [", f);
-            put_vec(f, b->angular_velocity, ", ");
-            fputs("], \"center_of_mass\": [", f);
-            put_vec(f, b->center_of_mass, ", ");
-            fputs("],\n      \"force\": [", f);
-            put_vec(f, b->force, ", ");
-            fputs("], \"torque\": [", f);
-            put_vec(f, b->torque, ", ");
-            fprintf(f, "], \"fixed\": %s", b->fixed ? "true" : "false");
-        } else {
-            fputs(", \"type\": \"plane\", \"point\": [", f);
-            put_vec(f, b->point, ", ");
-            fputs("], \"normal\": [", f);
-            put_vec(f, b->normal, ", ");
-            fputs("]", f);
-        }
-        if (b->material >= 0) {
-            fputs(", \"material\": ", f);
-            put_json_string(f, s->materials[b->material]);
-        }
-        fprintf(f, ", \"color\": \"#%06lx\", \"texture\": \"%s\"}",
-                (unsigned long)(b->color & 0xffffffu), texture_name(b->texture));
+        fputs(b->type == RBS_BODY_SPHERE ? ", \"type\": \"sphere\"" : ", \"type\": \"plane\"",
+              f);
+        put_body(f, &json_body, s, b);
+        fputc('}', f);
     }
     fputs(s->body_count ? "\n  ],\n" : "],\n", f);
     fputs("  \"renderers\": [", f);
@@ -225,6 +299,28 @@ rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
 }
 
 /* ---- text --------------------------------------------------------------- */
+
+/* A quoted string token, escaped. */
+static void put_quoted(FILE *f, const char *str)
+{
+    const char *c;
+    fputc('"', f);
+    for (c = str; *c; c++) {
+        if (*c == '"' || *c == '\\') {
+            fputc('\\', f);
+            fputc(*c, f);
+        } else if (*c == '\n') {
+            fputs("\\n", f);
+        } else if (*c == '\t') {
+            fputs("\\t", f);
+        } else if (*c == '\r') {
+            fputs("\\r", f);
+        } else {
+            fputc(*c, f);
+        }
+    }
+    fputc('"', f);
+}
 
 /* A string token that reads back as the same string: bare when safe. */
 static void put_text_string(FILE *f, const char *str)
@@ -262,22 +358,7 @@ static void put_text_string(FILE *f, const char *str)
         fputs(str, f);
         return;
     }
-    fputc('"', f);
-    for (c = str; *c; c++) {
-        if (*c == '"' || *c == '\\') {
-            fputc('\\', f);
-            fputc(*c, f);
-        } else if (*c == '\n') {
-            fputs("\\n", f);
-        } else if (*c == '\t') {
-            fputs("\\t", f);
-        } else if (*c == '\r') {
-            fputs("\\r", f);
-        } else {
-            fputc(*c, f);
-        }
-    }
-    fputc('"', f);
+    put_quoted(f, str);
 }
 
 static int key_is_simple(const char *k)
@@ -447,47 +528,10 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
     fputs("# rbsim scene, text format version 1 (see scenes/FORMAT.md)\n", f);
     if (s->description != NULL) {
         fputs("description = ", f);
-        {
-            /* always quoted, so that it reads back exactly */
-            const char *c;
-            fputc('"', f);
-            for (c = s->description; *c; c++) {
-                if (*c == '"' || *c == '\\') {
-                    fputc('\\', f);
-                    fputc(*c, f);
-                } else if (*c == '\n') {
-                    fputs("\\n", f);
-                } else if (*c == '\t') {
-                    fputs("\\t", f);
-                } else if (*c == '\r') {
-                    fputs("\\r", f);
-                } else {
-                    fputc(*c, f);
-                }
-            }
-            fputs("\"\n", f);
-        }
+        put_quoted(f, s->description); /* always, so that it reads back exactly */
+        fputc('\n', f);
     }
-    fprintf(f, "steps = %llu\ndt = ", (unsigned long long)s->steps);
-    put_num(f, s->dt);
-    fputs("\ngravity = ", f);
-    put_vec(f, s->gravity, " ");
-    fprintf(f, "\ngravity_mode = %s\nmethod = %s\ntolerance = ",
-            s->gravity_mode == RBS_GRAVITY_FORCE ? "force" : "acceleration",
-            rbs_method_name(s->method) != NULL ? rbs_method_name(s->method) : "euler");
-    put_num(f, s->tolerance);
-    fputs("\nrestitution = ", f);
-    put_num(f, s->restitution);
-    fprintf(f, "\npause_on_collision = %s\nmutual_gravity = ",
-            s->pause_on_collision ? "true" : "false");
-    if (s->mutual_gravity) {
-        fputs("G=", f);
-        put_num(f, s->gravity_constant);
-        fputs(" softening=", f);
-        put_num(f, s->softening);
-    } else {
-        fputs("false", f);
-    }
+    put_simulation(f, &text_config, &text_gravity, s);
     fputs("\nmaterials = ", f);
     put_text_string(f, mbase);
     fputs("\nobjects = ", f);
@@ -553,53 +597,8 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
         fputs(i ? "\n" : "", f);
         fputs(b->type == RBS_BODY_SPHERE ? "sphere " : "plane ", f);
         put_text_string(f, b->name);
+        put_body(f, &text_body, s, b);
         fputc('\n', f);
-        if (b->type == RBS_BODY_SPHERE) {
-            fputs("  radius ", f);
-            put_num(f, b->radius);
-            fputs(b->density > 0 ? "\n  density " : "\n  mass ", f);
-            put_num(f, b->density > 0 ? b->density : b->mass);
-            fputs("\n  inertia ", f);
-            if (b->inertia_kind == RBS_INERTIA_PRINCIPAL) {
-                put_vec(f, b->inertia, " ");
-            } else {
-                fputs(b->inertia_kind == RBS_INERTIA_HOLLOW ? "hollow" : "solid", f);
-            }
-            fputs("\n  position ", f);
-            put_vec(f, b->position, " ");
-            fputs("\n  orientation ", f);
-            put_num(f, b->orientation.w);
-            fputc(' ', f);
-            put_num(f, b->orientation.x);
-            fputc(' ', f);
-            put_num(f, b->orientation.y);
-            fputc(' ', f);
-            put_num(f, b->orientation.z);
-            fputs("\n  velocity ", f);
-            put_vec(f, b->velocity, " ");
-            fputs("\n  angular_velocity ", f);
-            put_vec(f, b->angular_velocity, " ");
-            fputs("\n  center_of_mass ", f);
-            put_vec(f, b->center_of_mass, " ");
-            fputs("\n  force ", f);
-            put_vec(f, b->force, " ");
-            fputs("\n  torque ", f);
-            put_vec(f, b->torque, " ");
-            fprintf(f, "\n  fixed %s\n", b->fixed ? "true" : "false");
-        } else {
-            fputs("  point ", f);
-            put_vec(f, b->point, " ");
-            fputs("\n  normal ", f);
-            put_vec(f, b->normal, " ");
-            fputc('\n', f);
-        }
-        if (b->material >= 0) {
-            fputs("  material ", f);
-            put_text_string(f, s->materials[b->material]);
-            fputc('\n', f);
-        }
-        fprintf(f, "  color #%06lx\n  texture %s\n", (unsigned long)(b->color & 0xffffffu),
-                texture_name(b->texture));
     }
     st2 = finish(f);
     if (st2 != RBS_OK && st == RBS_OK) {
