@@ -95,7 +95,18 @@ typedef struct fuzz_state {
     uint32_t nb;
     rbs_material_id mats[MAX_IDS];
     uint32_t nm;
+    int step_failed; /* the last step failed and no other call came since */
+    int failures;    /* failed steps so far */
+    uint64_t work;   /* (sub-steps + rollbacks + events) x (bodies + 1) so far */
 } fuzz_state;
+
+/* Bounds on one input's stepping, so that an input ends in seconds under
+ * ASan: a frame at the library's work caps (euler's 4096 sub-steps,
+ * adaptive's 1e5 steps) is legitimate but slow, and a program of 64 calls
+ * could ask for a hundred of them.  Past either bound steps are skipped
+ * (deterministically: the bounds count work, not time). */
+#define FUZZ_WORK_BUDGET 4000000u
+#define FUZZ_MAX_FAILURES 4
 
 static rbs_body_id pick_body(fuzz_state *s, reader *r)
 {
@@ -245,6 +256,8 @@ static void run_ops(fuzz_state *s, reader *r)
         rbs_status st;
         if (trace)
             fprintf(stderr, "op %d: %u (%zu bytes left)\n", ops, (unsigned)op, r->n);
+        if (op != 7 && op != 8)
+            s->step_failed = 0;
         switch (op) {
         case 0: { /* material */
             rbs_material_id m;
@@ -351,13 +364,20 @@ static void run_ops(fuzz_state *s, reader *r)
         case 7:
         case 8: { /* steps */
             int k, n = 1 + u8(r) % FUZZ_STEPS;
+            /* A step is a function of the world alone: after a failure,
+             * with no call in between, it would fail again the same way
+             * after the same work (a frame at the work cap can take
+             * seconds under ASan), so it is skipped.  That it does fail
+             * again is checked by tests/extremes/test_badvalues.c. */
+            if (s->step_failed || s->failures >= FUZZ_MAX_FAILURES || s->work >= FUZZ_WORK_BUDGET)
+                break;
             for (k = 0; k < n; ++k) {
                 uint64_t c = rbs_world_step_count(s->w);
+                rbs_step_info info;
                 before = rbs_world_hash(s->w);
                 if (trace)
                     trace_world(s);
                 {
-                    rbs_step_info info;
                     st = rbs_world_step(s->w, &info);
                     if (trace)
                         fprintf(stderr, "step %llu: %s substeps %u rollbacks %u floor %u sweep_limit %u events %u "
@@ -372,8 +392,11 @@ static void run_ops(fuzz_state *s, reader *r)
                 if (st != RBS_OK) {
                     FUZZ_CHECK(rbs_world_step_count(s->w) == c, "failed step counted");
                     FUZZ_CHECK(rbs_world_last_error(s->w)[0] != '\0', "failed step without message");
+                    s->step_failed = 1;
+                    s->failures++;
                     break;
                 }
+                s->work += ((uint64_t)info.substeps + info.rollbacks + info.events) * (s->nb + 1u);
                 FUZZ_CHECK(rbs_world_step_count(s->w) == c + 1, "step not counted");
             }
             break;
