@@ -133,7 +133,7 @@ int main(int argc, char **argv)
            "  a number or RBS_E_NUMERIC, never NaN; a checkpoint of an extreme state restores it bit for bit.\n"
            "- Fuzzing (`tests/fuzz/`): libFuzzer harnesses for the JSON scene parser, the text scene files and\n"
            "  random sequences of API calls; `tests/fuzz/run.sh [SECONDS]` builds them with clang, ASan and\n"
-           "  UBSan and runs each; CI (`.ci/run`) runs each for its first 10,000 inputs from seed 1; the seed\n"
+           "  UBSan and runs each; CI (`.ci/run`) runs each for 10,000 inputs from seed 1 (at most 300 s); the seed\n"
            "  corpus and every input kept in `tests/fuzz/regressions/` replay under `meson test --suite fuzz`\n"
            "  in every build.\n"
            "- Golden hashes (`tests/golden/`, suite golden): the state hash of every demonstration scene after\n"
