@@ -241,9 +241,53 @@ static void billiards_break_conserves_momentum(void **state)
     rbs_world_destroy(w);
 }
 
+/* A step's events are bounded by max_substeps x 256: an elastic ball
+ * between two walls 0.2 m apart at 10 m/s hits one every 20 ms, 500 per
+ * 10 s frame; with max_substeps = 1 (256 events) the frame is refused
+ * with the reason and the world keeps its state; with 2 (512) it runs. */
+static void events_per_step_are_bounded(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 1; k <= 2; ++k) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_plane_def p;
+        rbs_body_id b;
+        rbs_step_info info;
+        rbs_world_def_init(&d);
+        d.method = RBS_METHOD_EVENT;
+        d.dt = 10.0;
+        d.gravity.z = 0.0;
+        d.restitution = 1.0;
+        d.max_substeps = (uint32_t)k;
+        CHECK_OK(rbs_world_create(&d, &w));
+        rbs_plane_def_init(&p);
+        p.normal.x = 1.0;
+        p.normal.z = 0.0;
+        p.point.x = -0.2;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        p.normal.x = -1.0;
+        p.point.x = 0.2;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        b = ball(w, 0.1, 1.0, 0.0, 0.0, 0.0, 10.0, 0.0, 0.0, (rbs_material_id){0, 0});
+        if (k == 1) {
+            assert_int_equal(rbs_world_step(w, &info), RBS_E_UNSUPPORTED);
+            assert_non_null(strstr(rbs_world_last_error(w), "more than 256 events in one step (max_substeps 1"));
+            assert_true(state_of(w, b).position.x == 0.0 && state_of(w, b).velocity.x == 10.0);
+        } else {
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.events, 500);
+            ASSERT_NEAR(state_of(w, b).position.x, 0.0, 1e-9);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(events_per_step_are_bounded),
         cmocka_unit_test(bouncing_ball_is_exact),
         cmocka_unit_test(zeno_limit_ends_in_rest),
         cmocka_unit_test(backspin_slide_to_roll_is_exact),

@@ -106,6 +106,7 @@ typedef struct fuzz_state {
  * could ask for a hundred of them.  Past either bound steps are skipped
  * (deterministically: the bounds count work, not time). */
 #define FUZZ_WORK_BUDGET 4000000u
+#define FUZZ_MAX_SUBSTEPS 256u
 #define FUZZ_MAX_FAILURES 4
 
 static rbs_body_id pick_body(fuzz_state *s, reader *r)
@@ -440,6 +441,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     d.max_halvings = u8(&r) % 32;
     d.mutual_gravity = u8(&r) & 1;
     d.prune = u8(&r) & 1;
+    /* every method's work per step is bounded by max_substeps; a small cap
+     * keeps one input's steps to seconds under ASan (the default's frames
+     * are legitimate but can take a minute here; tests cover the caps) */
+    d.max_substeps = FUZZ_MAX_SUBSTEPS;
     st = rbs_world_def_validate(&d, msg, sizeof msg);
     FUZZ_CHECK(fuzz_status_valid(st), "validate %d", (int)st);
     st = rbs_world_create(&d, &s.w);
@@ -449,6 +454,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         /* fall back to defaults so the program still runs */
         rbs_world_def_init(&d);
         d.max_bodies = 8;
+        d.max_substeps = FUZZ_MAX_SUBSTEPS;
         st = rbs_world_create(&d, &s.w);
         FUZZ_CHECK(st == RBS_OK, "default world %s", rbs_status_name(st));
     }

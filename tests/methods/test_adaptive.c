@@ -265,6 +265,44 @@ static void create_in_and_numeric_failure(void **state)
     free(mem);
 }
 
+/* A frame's adaptive steps are bounded by max_substeps x 25: ten periods
+ * of the circular orbit in one frame take well over 25 steps at tolerance
+ * 1e-9, so with max_substeps = 1 the frame is refused with the reason and
+ * the world keeps its state; at the default (102,400) it runs. */
+static void steps_per_frame_are_bounded(void **state)
+{
+    int k;
+    (void)state;
+    for (k = 0; k < 2; ++k) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_body_id a, b;
+        rbs_world_def_init(&d);
+        d.gravity.z = 0.0;
+        d.method = RBS_METHOD_ADAPTIVE;
+        d.mutual_gravity = 1;
+        d.gravity_constant = 1.0;
+        d.dt = 10.0 * circular_period();
+        if (k == 0)
+            d.max_substeps = 1;
+        CHECK_OK(rbs_world_create(&d, &w));
+        a = point_mass(w, 1.0, 0.5, 0.0, 0.0, 0.5 * sqrt(2.0));
+        b = point_mass(w, 1.0, -0.5, 0.0, 0.0, -0.5 * sqrt(2.0));
+        if (k == 0) {
+            assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+            assert_non_null(strstr(rbs_world_last_error(w), "more than 25 steps in one frame (max_substeps 1"));
+            assert_true(rbs_world_step_count(w) == 0 && state_of(w, a).position.x == 0.5);
+        } else {
+            CHECK_OK(rbs_world_step(w, NULL));
+            /* back where it started after ten periods (1e-6: tolerance 1e-9
+             * over ~10 periods of error growth) */
+            ASSERT_NEAR(state_of(w, a).position.x, 0.5, 1e-6);
+            ASSERT_NEAR(state_of(w, b).position.x, -0.5, 1e-6);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -278,6 +316,7 @@ int main(void)
         cmocka_unit_test(tolerance_can_change),
         cmocka_unit_test(switch_methods),
         cmocka_unit_test(create_in_and_numeric_failure),
+        cmocka_unit_test(steps_per_frame_are_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -194,9 +194,13 @@ typedef struct rbs_world_def {
     int32_t prune;            /**< nonzero (default): leave out stages that cannot
                                    change the result; 0 runs every stage */
     uint32_t max_substeps;    /**< work cap per step: sub-steps + rollbacks of the
-                                   rollback methods; past it the rest of the frame
-                                   is taken at once (reported in work_limit);
-                                   default 4096, >= 1 */
+                                   rollback methods, past which the rest of the
+                                   frame is taken at once (reported in
+                                   work_limit); also 256x this many rotation
+                                   sub-steps (verlet, rk4; then work_limit) and
+                                   events (event; then RBS_E_UNSUPPORTED), 25x
+                                   this many adaptive steps (then
+                                   RBS_E_NUMERIC); default 4096, >= 1 */
 } rbs_world_def;
 
 /** Fill a world definition with defaults.  Prefer the rbs_world_def_init macro. */

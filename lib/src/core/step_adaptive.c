@@ -63,7 +63,9 @@
 #define MAX_EVENTS 1000u     /* events in one frame before giving up (each costs
                                 root finding; 1000 is far beyond any scene the
                                 method is for, and bounds a step's work) */
-#define MAX_STEPS 100000u    /* accepted steps in one frame before giving up */
+#define STEPS_PER_SUBSTEP 25u /* accepted steps in one frame before giving up:
+                                 max_substeps * 25 (102,400 at the default),
+                                 the work bound the other methods share */
 #define MIN_TOL 1e-15        /* below this, double precision cannot deliver */
 
 struct rbs__adaptive {
@@ -645,10 +647,12 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
                     (unsigned long long)w->step_count + 1, t, gsl_strerror(gs));
             /* keep the step-size suggestion unless GSL clipped it to the frame end */
             *hmem = (t == T && h < h_in) ? h_in : h;
-            if (++steps > MAX_STEPS)
+            if (++steps > (uint64_t)w->def.max_substeps * STEPS_PER_SUBSTEP)
                 return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
-                    "adaptive: more than %u steps in one frame (tolerance %g too tight?)",
-                    MAX_STEPS, w->def.tolerance);
+                    "adaptive: more than %llu steps in one frame (max_substeps %u x %u; tolerance %g "
+                    "too tight?)",
+                    (unsigned long long)w->def.max_substeps * STEPS_PER_SUBSTEP,
+                    (unsigned)w->def.max_substeps, STEPS_PER_SUBSTEP, w->def.tolerance);
             substeps++;
             st = find_crossings(a, t, &t_end);
             if (st != RBS_OK)

@@ -37,7 +37,10 @@
 
 enum { EV_FREE = 0, EV_ROLL = 1, EV_SLIDE = 2 };
 
-#define EV_MAX_EVENTS 1000000u
+/* Events per step: at most max_substeps * EV_EVENTS_PER_SUBSTEP (1,048,576
+ * at the default max_substeps), the same bound on a step's work as the
+ * other methods' sub-steps. */
+#define EV_EVENTS_PER_SUBSTEP 256u
 #define EV_MAX_STALLED 1000u
 
 /* ------------------------------------------------------------------------- */
@@ -434,7 +437,8 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info)
 {
     const double dt = w->def.dt;
     double left = dt;
-    uint32_t events = 0, stalled = 0;
+    uint64_t events = 0;
+    uint32_t stalled = 0;
     rbs_status st = check_scope(w);
     if (st != RBS_OK)
         return st;
@@ -469,10 +473,12 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info)
         }
         left -= s;
         info->events++;
-        if (++events >= EV_MAX_EVENTS)
+        if (++events >= (uint64_t)w->def.max_substeps * EV_EVENTS_PER_SUBSTEP)
             return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
-                "method \"event\": more than %u events in one step (inelastic collapse?); use \"euler\"",
-                EV_MAX_EVENTS);
+                "method \"event\": more than %llu events in one step (max_substeps %u x %u; "
+                "inelastic collapse?); use \"euler\"",
+                (unsigned long long)w->def.max_substeps * EV_EVENTS_PER_SUBSTEP,
+                (unsigned)w->def.max_substeps, EV_EVENTS_PER_SUBSTEP);
     }
     info->substeps = 1;
     info->contacts = w->contact_count;
