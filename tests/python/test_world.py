@@ -205,6 +205,23 @@ def test_materials_and_pairs():
     other = rbsim.World()
     with pytest.raises(rbsim.StaleIdError):
         other.add_sphere(material=rubber)
+    # read back: materials in order, rows as set (a replaced row in place;
+    # the refused ones above changed nothing)
+    assert w.materials() == [rubber, steel]
+    assert [m.name for m in w.materials()] == ["rubber", "steel"]
+    rows = w.pairs()
+    assert rows == [
+        {"a": rubber, "b": steel, "static": 0.9, "kinetic": 0.7,
+         "restitution": 0.8, "rolling": 0.01, "spinning": 0.001},
+        {"a": "*", "b": "*", "static": 0.5, "kinetic": 0.4,
+         "restitution": rows[1]["restitution"], "rolling": 0.0,
+         "spinning": 0.0},
+        {"a": steel, "b": "*", "static": 0.2, "kinetic": 0.1,
+         "restitution": rows[2]["restitution"], "rolling": 0.0,
+         "spinning": 0.0},
+    ]
+    assert rows[1]["restitution"] < 0  # the world's
+    assert other.materials() == [] and other.pairs() == []
 
 
 def test_energy_and_momentum():

@@ -675,6 +675,48 @@ class World:
                     raw, out)
         return Material(self, out, name)
 
+    def materials(self) -> List[Material]:
+        """Every material, in the order they were added."""
+        out: List[Material] = []
+        cid = ffi.new("rbs_material_id *")
+        name = ffi.new("char **")
+        w = self._acquire()
+        try:
+            while lib.rbs_world_material_at(w, len(out), cid, name) == lib.RBS_OK:
+                out.append(Material(self, cid, ffi.string(name[0]).decode()))
+        finally:
+            self._lock.release()
+        return out
+
+    def pairs(self) -> List[Dict[str, Any]]:
+        """Every material-pair row, in the order rows were first set, as
+        dicts with a, b (Material, or "*" for any), static, kinetic,
+        restitution (negative: the world's), rolling and spinning."""
+        out: List[Dict[str, Any]] = []
+        d = ffi.new("rbs_pair_def *")
+        w = self._acquire()
+        try:
+            mats = {}
+            cid = ffi.new("rbs_material_id *")
+            name = ffi.new("char **")
+            k = 0
+            while lib.rbs_world_material_at(w, k, cid, name) == lib.RBS_OK:
+                mats[k] = Material(self, cid, ffi.string(name[0]).decode())
+                k += 1
+            while True:
+                lib.rbs_pair_def_init_sized(d, ffi.sizeof("rbs_pair_def"))
+                if lib.rbs_world_pair_at(w, len(out), d) != lib.RBS_OK:
+                    break
+                out.append({
+                    "a": mats[d.a.index] if d.a.generation else "*",
+                    "b": mats[d.b.index] if d.b.generation else "*",
+                    "static": d.static_friction, "kinetic": d.kinetic_friction,
+                    "restitution": d.restitution, "rolling": d.rolling,
+                    "spinning": d.spinning})
+        finally:
+            self._lock.release()
+        return out
+
     def _cmaterial(self, m: Union[Material, str, None], what: str) -> Any:
         out = ffi.new("rbs_material_id *")
         if m is None or (isinstance(m, str) and m == "*"):
