@@ -42,6 +42,17 @@ static uint32_t cell_hash(int32_t x, int32_t y, int32_t z, uint32_t mask)
     return (uint32_t)(h ^ (h >> 32)) & mask;
 }
 
+/* Items i and o are candidates when their centres are closer than the sum
+ * of their reaches: then fn visits them, the lower item first. */
+static inline void visit_if_close(const double *C, const double *R, uint32_t i, uint32_t o,
+                                  rbs__pair_fn fn, void *ctx)
+{
+    double ex = C[3 * i] - C[3 * o], ey = C[3 * i + 1] - C[3 * o + 1], ez = C[3 * i + 2] - C[3 * o + 2];
+    double sr = R[i] + R[o];
+    if (ex * ex + ey * ey + ez * ez <= sr * sr)
+        fn(ctx, i < o ? i : o, i < o ? o : i);
+}
+
 /* Visit every candidate pair (a < b in item order) of the n items whose
  * centres are in w->bp_center and reaches in w->bp_reach; items are indexes
  * into w->spheres. */
@@ -118,21 +129,15 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                     h = cell_hash(cx + dx, cy + dy, cz + dz, mask);
                     for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
                         uint32_t o = w->bp_item[k];
-                        double ex, ey, ez, sr;
-                        /* each pair once: in its own cell from its lower
-                         * item; with a query, from the lower item when both
-                         * are queried, else from the queried one */
-                        if (o == i || (o < i && (!query || query[o]) && (query || (dx == 0 && dy == 0 && dz == 0))))
+                        /* each pair once: with a query, from the lower item
+                         * when both are queried, else from the queried one;
+                         * without, in a shared cell from the lower item */
+                        if (o == i || (o < i && (query ? query[o] : (dx == 0 && dy == 0 && dz == 0))))
                             continue;
                         if (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
                             w->bp_cell[3 * o + 2] != cz + dz)
                             continue;
-                        ex = C[3 * i] - C[3 * o];
-                        ey = C[3 * i + 1] - C[3 * o + 1];
-                        ez = C[3 * i + 2] - C[3 * o + 2];
-                        sr = R[i] + R[o];
-                        if (ex * ex + ey * ey + ez * ez <= sr * sr)
-                            fn(ctx, i < o ? i : o, i < o ? o : i);
+                        visit_if_close(C, R, i, o, fn, ctx);
                     }
                 }
     }
@@ -140,17 +145,11 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
     for (j = 0; j < big; ++j) {
         uint32_t b = w->bp_big[j];
         for (i = 0; i < n; ++i) {
-            double ex, ey, ez, sr;
             if (i == b || (w->bp_key[i] == UINT32_MAX && i < b))
                 continue; /* big-big pairs once */
             if (query && !query[i] && !query[b])
                 continue;
-            ex = C[3 * i] - C[3 * b];
-            ey = C[3 * i + 1] - C[3 * b + 1];
-            ez = C[3 * i + 2] - C[3 * b + 2];
-            sr = R[i] + R[b];
-            if (ex * ex + ey * ey + ez * ez <= sr * sr)
-                fn(ctx, i < b ? i : b, i < b ? b : i);
+            visit_if_close(C, R, i, b, fn, ctx);
         }
     }
 }
