@@ -140,6 +140,23 @@ int rbsf_help(FILE *out, const char *command)
     return -1;
 }
 
+/* Print a scene's load errors on stdout (check and explain). */
+static void print_load_errors(const rbs_scene *scene, const char *path,
+                              rbs_status st)
+{
+    uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
+    for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
+        rbs_scene_error e;
+        if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
+            printf("%s\n", e.text);
+    }
+    if (count > RBS_SCENE_ERRORS_MAX)
+        printf("... and %lu more errors\n",
+               (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
+    if (count == 0)
+        printf("%s: %s\n", path, rbs_status_string(st));
+}
+
 static int check_main(int argc, char **argv)
 {
     rbs_scene *scene = NULL;
@@ -155,17 +172,7 @@ static int check_main(int argc, char **argv)
     }
     st = rbs_scene_load(argv[0], RBS_SCENE_AUTO, &scene);
     if (st != RBS_OK) {
-        uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
-        for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
-            rbs_scene_error e;
-            if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
-                printf("%s\n", e.text);
-        }
-        if (count > RBS_SCENE_ERRORS_MAX)
-            printf("... and %lu more errors\n",
-                   (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
-        if (count == 0)
-            printf("%s: %s\n", argv[0], rbs_status_string(st));
+        print_load_errors(scene, argv[0], st);
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
@@ -232,23 +239,6 @@ out:
     rbs_world_destroy(world);
     rbs_scene_free(scene);
     return code;
-}
-
-/* Print a scene's load errors (as check does), on stdout. */
-static void print_load_errors(const rbs_scene *scene, const char *path,
-                              rbs_status st)
-{
-    uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
-    for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
-        rbs_scene_error e;
-        if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
-            printf("%s\n", e.text);
-    }
-    if (count > RBS_SCENE_ERRORS_MAX)
-        printf("... and %lu more errors\n",
-               (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
-    if (count == 0)
-        printf("%s: %s\n", path, rbs_status_string(st));
 }
 
 static int explain_main(int argc, char **argv)
