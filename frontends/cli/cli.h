@@ -72,6 +72,9 @@ void rbsf_signals_stop(rbsf_signals *s);
 /* ---- run.c ---- */
 /** "rbsim run ARGS": the exit code. */
 int rbsf_run_main(int argc, char **argv);
+/** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
+ * then how many more (nothing when it has none). */
+void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 

@@ -144,16 +144,9 @@ int rbsf_help(FILE *out, const char *command)
 static void print_load_errors(const rbs_scene *scene, const char *path,
                               rbs_status st)
 {
-    uint32_t k, count = scene ? rbs_scene_error_count(scene) : 0;
-    for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
-        rbs_scene_error e;
-        if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
-            printf("%s\n", e.text);
-    }
-    if (count > RBS_SCENE_ERRORS_MAX)
-        printf("... and %lu more errors\n",
-               (unsigned long)(count - RBS_SCENE_ERRORS_MAX));
-    if (count == 0)
+    if (scene != NULL && rbs_scene_error_count(scene) > 0)
+        rbsf_print_scene_errors(scene, stdout);
+    else
         printf("%s: %s\n", path, rbs_status_string(st));
 }
 

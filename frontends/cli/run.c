@@ -230,7 +230,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
 
 /* ---- scene -------------------------------------------------------------- */
 
-static void print_scene_errors(const rbs_scene *scene, FILE *out)
+void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out)
 {
     uint32_t i, n = rbs_scene_error_count(scene);
     for (i = 0; i < n && i < RBS_SCENE_ERRORS_MAX; i++) {
@@ -256,7 +256,7 @@ static int load_scene(const char *path, rbs_scene **out)
     if (st == RBS_OK)
         return 0;
     if (*out != NULL && rbs_scene_error_count(*out) > 0)
-        print_scene_errors(*out, stderr);
+        rbsf_print_scene_errors(*out, stderr);
     else
         fprintf(stderr, "rbsim: %s: %s\n", path ? path : "demonstration",
                 rbs_status_string(st));
@@ -820,7 +820,7 @@ int rbsf_run_main(int argc, char **argv)
         st = rbs_scene_override(scene, o.steps, o.dt, o.method);
         if (st != RBS_OK) {
             if (rbs_scene_error_count(scene) > 0)
-                print_scene_errors(scene, stderr);
+                rbsf_print_scene_errors(scene, stderr);
             else
                 fprintf(stderr, "rbsim run: cannot apply the options: %s\n",
                         rbs_status_string(st));
@@ -831,7 +831,7 @@ int rbsf_run_main(int argc, char **argv)
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
         if (rbs_scene_error_count(scene) > 0)
-            print_scene_errors(scene, stderr);
+            rbsf_print_scene_errors(scene, stderr);
         fprintf(stderr, "rbsim: %s: cannot build the world: %s%s%s\n",
                 o.scene ? o.scene : "demonstration", rbs_status_string(st),
                 world ? ": " : "", world ? rbs_world_last_error(world) : "");
