@@ -422,14 +422,7 @@ class World:
                  gravity_constant: Optional[float] = None,
                  softening: Optional[float] = None,
                  prune: Optional[bool] = None) -> None:
-        self._world: Any = ffi.NULL
-        self._lock = threading.Lock()
-        self._scene_steps: Optional[int] = None
-        self._scene_pause_on_collision = False
-        #: the scene's description ("" for a world built in code)
-        self.description = ""
-        #: the scene's "renderers" entries (dicts); run() does not run them
-        self.scene_renderers: List[Dict[str, Any]] = []
+        self._init_fields()
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
@@ -478,18 +471,24 @@ class World:
         self._world = out[0]
         self._lib_owned = False
 
+    def _init_fields(self) -> None:
+        """The fields every way of making a World starts from."""
+        self._world: Any = ffi.NULL
+        self._lock = threading.Lock()
+        self._scene_steps: Optional[int] = None
+        self._scene_pause_on_collision = False
+        #: the scene's description ("" for a world built in code)
+        self.description = ""
+        #: the scene's "renderers" entries (dicts); run() does not run them
+        self.scene_renderers: List[Dict[str, Any]] = []
+
     @classmethod
     def _adopt(cls, cworld: Any) -> "World":
         """Wrap a world the library allocated (checkpoints).  Its block is
         freed by rbs_world_destroy only when the World and every state view
         are gone (a cffi gc owner kept by the views' buffer)."""
         self = cls.__new__(cls)
-        self._world = ffi.NULL
-        self._lock = threading.Lock()
-        self._scene_steps = None
-        self._scene_pause_on_collision = False
-        self.description = ""
-        self.scene_renderers = []
+        self._init_fields()
         usage = ffi.new("rbs_usage *")
         status = lib.rbs_world_usage(cworld, usage)
         if status != lib.RBS_OK or usage.bytes == 0:
@@ -545,14 +544,7 @@ class World:
     @classmethod
     def _from_def(cls, d: Any) -> "World":
         self = cls.__new__(cls)
-        self._world = ffi.NULL
-        self._lock = threading.Lock()
-        self._scene_steps = None
-        self._scene_pause_on_collision = False
-        #: the scene's description ("" for a world built in code)
-        self.description = ""
-        #: the scene's "renderers" entries (dicts); run() does not run them
-        self.scene_renderers: List[Dict[str, Any]] = []
+        self._init_fields()
         self._create(d)
         return self
 
@@ -675,18 +667,21 @@ class World:
                     raw, out)
         return Material(self, out, name)
 
-    def materials(self) -> List[Material]:
-        """Every material, in the order they were added."""
+    def _materials_locked(self, w: Any) -> List[Material]:
         out: List[Material] = []
         cid = ffi.new("rbs_material_id *")
         name = ffi.new("char **")
+        while lib.rbs_world_material_at(w, len(out), cid, name) == lib.RBS_OK:
+            out.append(Material(self, cid, ffi.string(name[0]).decode()))
+        return out
+
+    def materials(self) -> List[Material]:
+        """Every material, in the order they were added."""
         w = self._acquire()
         try:
-            while lib.rbs_world_material_at(w, len(out), cid, name) == lib.RBS_OK:
-                out.append(Material(self, cid, ffi.string(name[0]).decode()))
+            return self._materials_locked(w)
         finally:
             self._lock.release()
-        return out
 
     def pairs(self) -> List[Dict[str, Any]]:
         """Every material-pair row, in the order rows were first set, as
@@ -696,13 +691,7 @@ class World:
         d = ffi.new("rbs_pair_def *")
         w = self._acquire()
         try:
-            mats = {}
-            cid = ffi.new("rbs_material_id *")
-            name = ffi.new("char **")
-            k = 0
-            while lib.rbs_world_material_at(w, k, cid, name) == lib.RBS_OK:
-                mats[k] = Material(self, cid, ffi.string(name[0]).decode())
-                k += 1
+            mats = self._materials_locked(w)
             while True:
                 lib.rbs_pair_def_init_sized(d, ffi.sizeof("rbs_pair_def"))
                 if lib.rbs_world_pair_at(w, len(out), d) != lib.RBS_OK:
