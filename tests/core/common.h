@@ -101,4 +101,25 @@ static inline void step_n(rbs_world *w, int n)
                      #a, a_, b_, t_, fabs(a_ - b_));                            \
     } while (0)
 
+/* Newton's cradle: five 0.1 m, 1 kg balls on the x axis, the first 0.1 m
+ * short of the touching row and arriving at 1 m/s (no gravity or friction
+ * intended: the world's settings are the caller's). */
+static inline void cradle_balls(rbs_world *w, rbs_body_id b[5])
+{
+    int i;
+    b[0] = ball(w, 0.1, 1.0, -0.5, 0, 0, 1.0, 0, 0, (rbs_material_id){0, 0});
+    for (i = 1; i < 5; ++i)
+        b[i] = ball(w, 0.1, 1.0, 0.2 * (i - 1), 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+}
+
+/* ... and after the impacts with e = 1: the first four at rest, the last
+ * leaving at 1 m/s, within tol. */
+static inline void cradle_check(const rbs_world *w, const rbs_body_id b[5], double tol)
+{
+    int i;
+    for (i = 0; i < 4; ++i)
+        ASSERT_NEAR(state_of(w, b[i]).velocity.x, 0.0, tol);
+    ASSERT_NEAR(state_of(w, b[4]).velocity.x, 1.0, tol);
+}
+
 #endif
