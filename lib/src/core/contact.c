@@ -291,9 +291,18 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
     return ctx.grew;
 }
 
+/* What the separation pass saw: the deepest overlap before any push, and
+ * whether it pushed anything. */
+typedef struct separate_ctx {
+    rbs_world *w;
+    double worst;
+    int pushed;
+} separate_ctx;
+
 static void separate_pair(void *vctx, uint32_t i, uint32_t j)
 {
-    rbs_world *w = (rbs_world *)vctx;
+    separate_ctx *ctx = (separate_ctx *)vctx;
+    rbs_world *w = ctx->w;
     uint32_t a = w->spheres[i], b = w->spheres[j];
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
     v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
@@ -302,6 +311,8 @@ static void separate_pair(void *vctx, uint32_t i, uint32_t j)
     d = v3_sub(pa, pb);
     dist = v3_len(d);
     pen = ra + rb - dist;
+    if (pen > ctx->worst)
+        ctx->worst = pen;
     if (!(pen > w->def.slop * rmin))
         return;
     n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
@@ -310,11 +321,16 @@ static void separate_pair(void *vctx, uint32_t i, uint32_t j)
     wsum = wa + wb;
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
     v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
+    ctx->pushed = 1;
 }
 
-void rbs__separate(rbs_world *w)
+int rbs__separate(rbs_world *w, double *max_pen)
 {
     uint32_t i, k;
+    separate_ctx ctx;
+    ctx.w = w;
+    ctx.worst = 0.0;
+    ctx.pushed = 0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         double ra = w->radius[a];
@@ -325,8 +341,12 @@ void rbs__separate(rbs_world *w)
             v3 n = v3_load(&w->normal[3 * b]);
             v3 pa = v3_load(&w->pos[3 * a]);
             double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n);
-            if (pen > w->def.slop * ra)
+            if (pen > ctx.worst)
+                ctx.worst = pen;
+            if (pen > w->def.slop * ra) {
                 v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
+                ctx.pushed = 1;
+            }
         }
     }
     if (w->plan.sphere_pairs) {
@@ -335,8 +355,11 @@ void rbs__separate(rbs_world *w)
             memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
             w->bp_reach[i] = w->radius[a];
         }
-        rbs__broadphase(w, w->sphere_count, separate_pair, w);
+        rbs__broadphase(w, w->sphere_count, separate_pair, &ctx);
     }
+    if (max_pen)
+        *max_pen = ctx.worst;
+    return ctx.pushed;
 }
 
 double rbs__max_overlap_now(rbs_world *w)

@@ -154,7 +154,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
                 continue;
             }
             info->floor_hits++;
-            rbs__separate(w);
+            rbs__separate(w, NULL);
         }
         done += hu;
         info->substeps++;

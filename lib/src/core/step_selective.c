@@ -361,7 +361,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     if (n > 0 && round == w->def.max_sweeps) {
         info->sweep_limit++;
         info->floor_hits++;
-        rbs__separate(w);
+        rbs__separate(w, NULL);
     }
     info->substeps = 1;
     info->contacts = contacts;

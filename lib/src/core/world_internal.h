@@ -172,7 +172,10 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
 rbs_status rbs__detect(rbs_world *w, double dt);
 double rbs__max_overlap(const rbs_world *w);
 int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
-void rbs__separate(rbs_world *w);
+/* Push apart overlap deeper than the slop (planes, then pairs); 1 if it
+ * pushed anything.  *max_pen (may be NULL): the deepest overlap it saw,
+ * which is the state's when nothing was pushed. */
+int rbs__separate(rbs_world *w, double *max_pen);
 double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
 /* Velocity of the point at r from body i's centre of mass. */
 static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
