@@ -394,7 +394,8 @@ class World:
         tolerance: the adaptive method's error tolerance (> 0).
         slop: allowed overlap relative to the smaller radius of a pair.
         max_halvings: rollback floor dt / 2**max_halvings.
-        max_sweeps: impulse sweeps per contact pass.
+        max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
+                and separation iterations.
         mutual_gravity: Newtonian attraction between bodies.
         gravity_constant: G, m^3 kg^-1 s^-2.
         softening: Plummer softening length, m.

@@ -186,8 +186,9 @@ typedef struct rbs_world_def {
     double slop;              /**< allowed overlap and contact margin, relative to
                                    the smaller radius of a pair; default 1e-6 */
     uint32_t max_halvings;    /**< rollback floor: dt / 2^max_halvings; default 30 */
-    uint32_t max_sweeps;      /**< impulse sweeps per contact pass (and selective
-                                   fix-up rounds); default 20 */
+    uint32_t max_sweeps;      /**< impulse sweeps per contact pass, selective
+                                   fix-up rounds and separation iterations;
+                                   default 20 */
     int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
     double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11 */
     double softening;         /**< Plummer softening length, m; default 0 */

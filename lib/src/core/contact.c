@@ -291,74 +291,148 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
     return ctx.grew;
 }
 
-/* What the separation pass saw: the deepest overlap before any push, and
- * whether it pushed anything. */
+/* Separation: a Gauss-Seidel projection of positions (the position pass of
+ * Catto, "Modeling and Solving Constraints", GDC 2009; Jakobsen, "Advanced
+ * Character Physics", GDC 2001).  Each overlap deeper than the slop is
+ * pushed to zero along its normal, split by inverse mass (a plane does not
+ * move), and the pushes are iterated, because in a pile one push closes the
+ * gap of the next pair: a single pass can leave a packing deeper than it
+ * found it.  The pairs are gathered once (one broad phase) into a list kept
+ * in the contact array, which is free scratch once a method has solved its
+ * contacts; the list holds every pair within SEP_MARGIN of touching, so a
+ * push into a neighbour is seen too.  At most max_sweeps iterations, fewer
+ * when no overlap is deeper than the slop.  Pushes move positions only:
+ * velocities, and so energy, are untouched. */
+#define SEP_MARGIN 0.05 /* of the smaller radius */
+
+typedef struct sep_pair {
+    uint32_t a, b; /* sphere, and sphere or plane */
+} sep_pair;
+
 typedef struct separate_ctx {
     rbs_world *w;
     double worst;
+    sep_pair *list;
+    uint32_t count, cap;
     int pushed;
 } separate_ctx;
 
-static void separate_pair(void *vctx, uint32_t i, uint32_t j)
+/* Push a and b (b a sphere) apart; the overlap before the push. */
+static double push_pair(rbs_world *w, uint32_t a, uint32_t b, int *pushed)
 {
-    separate_ctx *ctx = (separate_ctx *)vctx;
-    rbs_world *w = ctx->w;
-    uint32_t a = w->spheres[i], b = w->spheres[j];
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
     v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
-    if (w->fixed[a] && w->fixed[b])
-        return;
     d = v3_sub(pa, pb);
     dist = v3_len(d);
     pen = ra + rb - dist;
-    if (pen > ctx->worst)
-        ctx->worst = pen;
     if (!(pen > w->def.slop * rmin))
-        return;
+        return pen;
+    /* Coincident centres have no normal: pick +z (documented). */
     n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     wa = w->inv_mass[a];
     wb = w->inv_mass[b];
     wsum = wa + wb;
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
     v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
-    ctx->pushed = 1;
+    *pushed = 1;
+    return pen;
+}
+
+/* Push sphere a out of plane p; the overlap before the push. */
+static double push_plane(rbs_world *w, uint32_t a, uint32_t p, int *pushed)
+{
+    v3 n = v3_load(&w->normal[3 * p]), pa = v3_load(&w->pos[3 * a]);
+    double ra = w->radius[a], pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * p])), n);
+    if (pen > w->def.slop * ra) {
+        v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
+        *pushed = 1;
+    }
+    return pen;
+}
+
+static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
+{
+    if (pen > ctx->worst)
+        ctx->worst = pen;
+    if (ctx->count < ctx->cap) {
+        ctx->list[ctx->count].a = a;
+        ctx->list[ctx->count].b = b;
+        ctx->count++;
+    } else if (ctx->w->type[b] == RBS_BODY_SPHERE) {
+        /* the list is full (only when very many spheres overlap one
+         * another): this pair gets the single push of the first pass */
+        push_pair(ctx->w, a, b, &ctx->pushed);
+    } else {
+        push_plane(ctx->w, a, b, &ctx->pushed);
+    }
+}
+
+static void separate_pair(void *vctx, uint32_t i, uint32_t j)
+{
+    separate_ctx *ctx = (separate_ctx *)vctx;
+    rbs_world *w = ctx->w;
+    uint32_t a = w->spheres[i], b = w->spheres[j];
+    double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb;
+    v3 d;
+    double pen;
+    if (w->fixed[a] && w->fixed[b])
+        return;
+    d = v3_sub(v3_load(&w->pos[3 * a]), v3_load(&w->pos[3 * b]));
+    pen = ra + rb - v3_len(d);
+    if (pen > -SEP_MARGIN * rmin)
+        separate_keep(ctx, a, b, pen);
 }
 
 int rbs__separate(rbs_world *w, double *max_pen)
 {
-    uint32_t i, k;
+    uint32_t i, k, it;
     separate_ctx ctx;
     ctx.w = w;
     ctx.worst = 0.0;
     ctx.pushed = 0;
+    ctx.list = (sep_pair *)(void *)w->contact;
+    ctx.count = 0;
+    ctx.cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(sep_pair));
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         double ra = w->radius[a];
+        v3 pa;
         if (w->fixed[a])
             continue;
+        pa = v3_load(&w->pos[3 * a]);
         for (k = 0; k < w->plane_count; ++k) {
             uint32_t b = w->planes[k];
-            v3 n = v3_load(&w->normal[3 * b]);
-            v3 pa = v3_load(&w->pos[3 * a]);
-            double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n);
-            if (pen > ctx.worst)
-                ctx.worst = pen;
-            if (pen > w->def.slop * ra) {
-                v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
-                ctx.pushed = 1;
-            }
+            double pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), v3_load(&w->normal[3 * b]));
+            if (pen > -SEP_MARGIN * ra)
+                separate_keep(&ctx, a, b, pen);
         }
     }
     if (w->plan.sphere_pairs) {
         for (i = 0; i < w->sphere_count; ++i) {
             uint32_t a = w->spheres[i];
             memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
-            w->bp_reach[i] = w->radius[a];
+            w->bp_reach[i] = w->radius[a] * (1.0 + SEP_MARGIN);
         }
         rbs__broadphase(w, w->sphere_count, separate_pair, &ctx);
     }
     if (max_pen)
         *max_pen = ctx.worst;
+    /* nothing deeper than the slop: nothing to push (the common case) */
+    if (!(ctx.worst > w->def.slop * w->plan.min_radius) && !ctx.pushed)
+        return 0;
+    for (it = 0; it < w->def.max_sweeps; ++it) {
+        int pushed = 0;
+        for (i = 0; i < ctx.count; ++i) {
+            const sep_pair *p = &ctx.list[i];
+            if (w->type[p->b] == RBS_BODY_SPHERE)
+                push_pair(w, p->a, p->b, &pushed);
+            else
+                push_plane(w, p->a, p->b, &pushed);
+        }
+        if (!pushed)
+            break;
+        ctx.pushed = 1;
+    }
     return ctx.pushed;
 }
 

@@ -39,11 +39,26 @@ typedef struct violation {
     double s;
 } violation;
 
+/* The fix-up rounds' neighbour list (Verlet's "neighbour list" of molecular
+ * dynamics, L. Verlet, Phys. Rev. 159, 98, 1967).  The first round's broad
+ * phase gives each sphere item a ball: the middle of its path (bp_center)
+ * and a reach (bp_reach) of its radius, half its path and a skin of
+ * SKIN radii; every pair whose balls meet is kept in the list.  While each
+ * body's path, cut and re-aimed by fix-ups, stays inside its ball, two
+ * bodies not on the list cannot touch, so a round only tests listed pairs
+ * with a moved body instead of rebuilding the grid.  A body whose path
+ * leaves its ball (or a list too long for its scratch) sends the rest of
+ * the step back to the grid: the list saves work, it never decides. */
+#define SKIN 0.1
+
 typedef struct search_ctx {
     rbs_world *w;
     double h;
     uint32_t count, cap;
     violation *out;
+    uint32_t *list;             /* item pairs, 2 per pair */
+    uint32_t list_count, list_cap;
+    int building, list_full;    /* round 0 appends to the list */
 } search_ctx;
 
 /* Position of body i at fraction s of the step (on its current path). */
@@ -161,21 +176,29 @@ static void search_pair(void *vctx, uint32_t i, uint32_t j)
     double s;
     if (w->fixed[a] && w->fixed[b])
         return;
+    if (ctx->building) {
+        if (ctx->list_count < ctx->list_cap) {
+            ctx->list[2 * ctx->list_count] = i;
+            ctx->list[2 * ctx->list_count + 1] = j;
+            ctx->list_count++;
+        } else {
+            ctx->list_full = 1;
+        }
+    }
     if (pair_violates(w, a, b, ctx->h, &s))
         record(ctx, a, b, s);
 }
 
-/* Find every pair whose overlap grew along the current paths; with a query
- * mask (w->bp_query over sphere items) only pairs with a marked sphere. */
-static uint32_t search(rbs_world *w, double h, violation *out, uint32_t cap, int masked)
+/* Find every pair whose overlap grew along the current paths.  Round 0
+ * (ctx->list set) searches every sphere and builds the neighbour list;
+ * later rounds only pairs with a sphere marked in w->bp_query, from the list
+ * when *list_ok, else from a grid rebuilt at the current paths. */
+static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
 {
-    search_ctx ctx;
+    rbs_world *w = ctx->w;
+    double h = ctx->h;
     uint32_t i, k;
-    ctx.w = w;
-    ctx.h = h;
-    ctx.count = 0;
-    ctx.cap = cap;
-    ctx.out = out;
+    ctx->count = 0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         double s;
@@ -183,18 +206,38 @@ static uint32_t search(rbs_world *w, double h, violation *out, uint32_t cap, int
             continue;
         for (k = 0; k < w->plane_count; ++k)
             if (plane_violates(w, a, w->planes[k], h, &s))
-                record(&ctx, a, w->planes[k], s);
+                record(ctx, a, w->planes[k], s);
     }
-    if (w->plan.sphere_pairs) {
-        for (i = 0; i < w->sphere_count; ++i) {
-            uint32_t a = w->spheres[i];
-            v3 p0 = pos_at(w, a, T0(w, a), h), p1 = v3_load(&w->pos[3 * a]);
-            v3_store(&w->bp_center[3 * i], v3_scale(v3_add(p0, p1), 0.5));
-            w->bp_reach[i] = w->radius[a] + 0.5 * v3_len(v3_sub(p1, p0));
+    if (!w->plan.sphere_pairs)
+        return ctx->count;
+    if (masked && *list_ok) {
+        for (k = 0; k < ctx->list_count; ++k) {
+            uint32_t p = ctx->list[2 * k], q = ctx->list[2 * k + 1];
+            if (w->bp_query[p] || w->bp_query[q])
+                search_pair(ctx, p, q);
         }
-        rbs__broadphase_query(w, w->sphere_count, masked ? w->bp_query : NULL, search_pair, &ctx);
+        return ctx->count;
     }
-    return ctx.count;
+    for (i = 0; i < w->sphere_count; ++i) {
+        uint32_t a = w->spheres[i];
+        v3 p0 = pos_at(w, a, T0(w, a), h), p1 = v3_load(&w->pos[3 * a]);
+        v3_store(&w->bp_center[3 * i], v3_scale(v3_add(p0, p1), 0.5));
+        w->bp_reach[i] = w->radius[a] * (masked ? 1.0 : 1.0 + SKIN) + 0.5 * v3_len(v3_sub(p1, p0));
+    }
+    ctx->building = !masked;
+    rbs__broadphase_query(w, w->sphere_count, masked ? w->bp_query : NULL, search_pair, ctx);
+    ctx->building = 0;
+    *list_ok = !masked && !ctx->list_full;
+    return ctx->count;
+}
+
+/* Is body i's current path inside its ball of round 0 (see SKIN)?  Its
+ * start is on an earlier path that was; the end decides. */
+static int inside_ball(const rbs_world *w, uint32_t i)
+{
+    uint32_t k = w->item[i];
+    v3 c = v3_load(&w->bp_center[3 * k]);
+    return v3_len(v3_sub(v3_load(&w->pos[3 * i]), c)) + w->radius[i] <= w->bp_reach[k];
 }
 
 /* Order violations by first touch: heap sort (in place; no allocation). */
@@ -308,9 +351,14 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
 rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
 {
     const double dt = w->def.dt;
-    violation *v = (violation *)(void *)w->contact; /* scratch after the solve */
-    uint32_t cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(violation));
+    /* scratch after the solve: the contact array, half for violations and
+     * half for the neighbour list */
+    size_t half = (size_t)w->def.max_contacts * sizeof(rbs__contact) / 2;
+    violation *v = (violation *)(void *)w->contact;
+    uint32_t cap = (uint32_t)(half / sizeof(violation));
     uint32_t round, i, n = 0, contacts;
+    int list_ok = 0;
+    search_ctx ctx;
     rbs_status st;
 
     /* the whole world: one Euler step */
@@ -327,9 +375,18 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
         T0(w, i) = 0.0;
 
     /* selective rollback: overlapping pairs only, earliest first */
+    ctx.w = w;
+    ctx.h = dt;
+    ctx.cap = cap;
+    ctx.out = v;
+    ctx.list = (uint32_t *)(void *)((unsigned char *)w->contact + half);
+    ctx.list_count = 0;
+    ctx.list_cap = (uint32_t)(half / (2 * sizeof(uint32_t)));
+    ctx.list_full = 0;
+    ctx.building = 0;
     for (round = 0; round < w->def.max_sweeps; ++round) {
         /* after the first round only bodies moved by a fix-up can overlap anew */
-        n = search(w, dt, v, cap, round > 0);
+        n = search(&ctx, round > 0, &list_ok);
         memset(w->bp_query, 0, w->sphere_count);
         if (n == 0)
             break;
@@ -355,13 +412,16 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
             w->bp_query[w->item[a]] = 1;
             if (w->type[b] == RBS_BODY_SPHERE)
                 w->bp_query[w->item[b]] = 1;
+            if (list_ok && (!inside_ball(w, a) || (w->type[b] == RBS_BODY_SPHERE && !inside_ball(w, b))))
+                list_ok = 0; /* a path left its ball: the grid from now on */
             info->rollbacks++;
         }
     }
     if (n > 0 && round == w->def.max_sweeps) {
+        /* what is left is pushed apart by the separation pass that
+         * rbs_world_step runs after every selective step */
         info->sweep_limit++;
         info->floor_hits++;
-        rbs__separate(w, NULL);
     }
     info->substeps = 1;
     info->contacts = contacts;
