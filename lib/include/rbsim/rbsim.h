@@ -282,13 +282,19 @@ RBS_API size_t rbs_world_memory_size(const rbs_world_def *def);
 
 /** Build a world inside caller memory of at least rbs_world_memory_size()
  * bytes, aligned to 16.  The caller owns the buffer and frees it after
- * rbs_world_destroy().  No other memory is taken, now or later. */
+ * rbs_world_destroy().  No other memory is taken, now or later.  The whole
+ * buffer is written (zeroed) here, so every page of it is resident from the
+ * start: the choice for a program that must not take a page fault while
+ * stepping. */
 RBS_API rbs_status rbs_world_create_in(void *buffer, size_t bytes,
                                        const rbs_world_def *def,
                                        rbs_world **out);
 
-/** Allocate exactly once and build a world there.  Free with
- * rbs_world_destroy(). */
+/** Allocate exactly once (calloc of rbs_world_memory_size() bytes) and build
+ * a world there.  Free with rbs_world_destroy().  Stepping allocates nothing;
+ * the operating system backs the block's pages as they are first written, so
+ * resident memory is what the run uses (capacity never reached costs
+ * address space only). */
 RBS_API rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out);
 
 /** Destroy a world; frees its memory if rbs_world_create made it.  NULL ok. */

@@ -283,8 +283,10 @@ size_t rbs_world_memory_size(const rbs_world_def *def)
 
 static void rebuild_pair_table(rbs_world *w);
 
-rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *def,
-                               rbs_world **out)
+/* Build a world in buffer; zeroed: the buffer is known to be all zero
+ * bytes already (calloc), so it is not written over. */
+static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *def, rbs_world **out,
+                              int zeroed)
 {
     rbs_world_def d;
     char msg[RBS__ERROR_MAX];
@@ -305,7 +307,8 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
         return RBS_E_MEMORY;
     if ((int)d.method < 0 || (int)d.method >= RBS_METHOD_COUNT)
         return RBS_E_UNSUPPORTED;
-    memset(buffer, 0, need);
+    if (!zeroed)
+        memset(buffer, 0, need);
     w = (rbs_world *)buffer;
     w->magic = WORLD_MAGIC;
     w->bytes = need;
@@ -323,6 +326,12 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     return RBS_OK;
 }
 
+rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *def,
+                               rbs_world **out)
+{
+    return world_build(buffer, bytes, def, out, 0);
+}
+
 rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out)
 {
     size_t need;
@@ -337,11 +346,15 @@ rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out)
         char msg[RBS__ERROR_MAX];
         return world_def_check(def, &d, msg, sizeof msg);
     }
-    /* The one allocation of a world's life. */
-    mem = malloc(need);
+    /* The one allocation of a world's life.  calloc, not malloc and a
+     * memset: the operating system gives a large block as zero pages that
+     * take physical memory only when first written, so capacity a run never
+     * reaches (contact slots, other methods' scratch) costs address space,
+     * not memory (rbsim.h). */
+    mem = calloc(1, need);
     if (mem == NULL)
         return RBS_E_MEMORY;
-    st = rbs_world_create_in(mem, need, def, out);
+    st = world_build(mem, need, def, out, 1);
     if (st != RBS_OK) {
         free(mem);
         return st;
