@@ -132,18 +132,25 @@ static uint64_t pair_key(const rbs__contact *c)
     return (((uint64_t)c->a << 32) | (uint64_t)c->b) + 1u; /* 0 marks empty */
 }
 
-static uint32_t key_slot(uint64_t k, uint32_t mask)
+/* The slot of key k in a table of size slots: a 32-bit mix of the key
+ * scaled to [0, size) by a multiply and shift (Lemire, "Fast random integer
+ * generation in an interval", ACM TOMACS 29(1), 2019), so the size need not
+ * be a power of two. */
+static uint32_t key_slot(uint64_t k, uint32_t size)
 {
     k ^= k >> 33;
     k *= 0xff51afd7ed558ccdull;
     k ^= k >> 33;
-    return (uint32_t)k & mask;
+    return (uint32_t)(((k & 0xffffffffull) * size) >> 32);
 }
 
 static const rbs__warm *warm_find(const rbs_world *w, uint64_t k)
 {
-    uint32_t mask = w->warm_size - 1, i = key_slot(k, mask), n;
-    for (n = 0; n <= mask; ++n, i = (i + 1) & mask) {
+    uint32_t size = w->warm_used, i, n;
+    if (size == 0)
+        return NULL;
+    i = key_slot(k, size);
+    for (n = 0; n < size; ++n, i = i + 1 == size ? 0 : i + 1) {
         if (w->warm[i].key == k)
             return &w->warm[i];
         if (w->warm[i].key == 0)
@@ -152,10 +159,18 @@ static const rbs__warm *warm_find(const rbs_world *w, uint64_t k)
     return NULL;
 }
 
+/* Store this pass's impulse rates.  The table's used part is twice the
+ * contacts stored (at least 16; at most warm_size, which is 2 max_contacts
+ * + 16), so a step clears and touches memory in proportion to its contacts,
+ * not to the world's capacity. */
 static void warm_store(rbs_world *w, double h)
 {
-    uint32_t mask = w->warm_size - 1, i;
-    memset(w->warm, 0, (size_t)w->warm_size * sizeof(rbs__warm));
+    uint32_t i, count = 0, size;
+    for (i = 0; i < w->contact_count; ++i)
+        count += w->contact[i].jn != 0.0;
+    size = 2 * count < 16 ? 16 : 2 * count;
+    w->warm_used = size;
+    memset(w->warm, 0, (size_t)size * sizeof(rbs__warm));
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
         uint64_t k;
@@ -163,9 +178,9 @@ static void warm_store(rbs_world *w, double h)
         if (c->jn == 0.0)
             continue;
         k = pair_key(c);
-        j = key_slot(k, mask);
+        j = key_slot(k, size);
         while (w->warm[j].key != 0)
-            j = (j + 1) & mask;
+            j = j + 1 == size ? 0 : j + 1;
         w->warm[j].key = k;
         w->warm[j].n = c->jn / h;
         w->warm[j].t = v3_scale(c->jt, 1.0 / h);

@@ -243,9 +243,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
     {
-        size_t W = 16;
-        while (W < 2 * C)
-            W <<= 1;
+        size_t W = 2 * C + 16; /* room for every contact at load 1/2 (solver.c) */
         x->warm_size = (uint32_t)W;
         x->warm = carve(base, &at, W * sizeof(rbs__warm));
     }

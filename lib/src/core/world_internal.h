@@ -114,7 +114,8 @@ struct rbs_world {
     /* contacts */
     rbs__contact *contact;
     rbs__warm *warm;                      /* warm-start table, warm_size slots */
-    uint32_t warm_size;                   /* power of two >= 2 * max_contacts */
+    uint32_t warm_size;                   /* 2 * max_contacts + 16 */
+    uint32_t warm_used;                   /* slots the last warm pass used (0: none) */
 
     /* broad phase (broadphase.c): per sphere item, and a hashed grid */
     double *bp_center;                    /* 3 per item */
