@@ -4,8 +4,9 @@
  *
  * Each sphere is an item with a centre and a reach (its radius plus any
  * motion or margin the caller adds).  Two items are candidates when their
- * centres are closer than the sum of their reaches.  Items go into a hashed
- * grid whose cell is twice the typical reach, and each looks at the 27 cells
+ * centres are closer than the sum of their reaches.  Items go into a grid
+ * whose cell is twice the typical reach (indexed densely when the items' box
+ * of cells fits the table, else hashed), and each looks at the 27 cells
  * around its own.  Items much larger than typical (radius ratios up to 1e6,
  * or a sphere crossing many cells in one step) would blow up the cell size:
  * they are kept on a short "big" list and tested against every item instead.
@@ -42,6 +43,16 @@ static uint32_t cell_hash(int32_t x, int32_t y, int32_t z, uint32_t mask)
     return (uint32_t)(h ^ (h >> 32)) & mask;
 }
 
+/* The table slot of cell (x, y, z): its index in the box from lo (nx by ny
+ * cells in x and y) when dense, else its hash. */
+static inline uint32_t cell_key(int32_t x, int32_t y, int32_t z, uint32_t mask, int dense,
+                                const int32_t *lo, uint64_t nx, uint64_t ny)
+{
+    if (dense)
+        return (uint32_t)((uint64_t)(x - lo[0]) + nx * ((uint64_t)(y - lo[1]) + ny * (uint64_t)(z - lo[2])));
+    return cell_hash(x, y, z, mask);
+}
+
 /* Items i and o are candidates when their centres are closer than the sum
  * of their reaches: then fn visits them, the lower item first. */
 static inline void visit_if_close(const double *C, const double *R, uint32_t i, uint32_t o,
@@ -67,6 +78,9 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
     const double *C = w->bp_center, *R = w->bp_reach;
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
+    int32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    uint64_t nx = 0, ny = 0;
+    int any = 0, dense;
 
     if (n < 2)
         return;
@@ -86,18 +100,48 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
         cell = 1.0;
     inv = 1.0 / cell;
 
-    /* counting sort of the grid items by cell hash */
-    memset(w->bp_start, 0, (size_t)(mask + 2) * sizeof(uint32_t));
-    memset(w->bp_fill, 0, (size_t)(mask + 1) * sizeof(uint32_t));
+    /* cells of the grid items, and the box of cells they fill */
     for (i = 0; i < n; ++i) {
+        int32_t x, y, z;
         if (R[i] > 4.0 * mean) {
             w->bp_key[i] = UINT32_MAX;
             continue;
         }
-        w->bp_cell[3 * i] = cell_of(C[3 * i], inv);
-        w->bp_cell[3 * i + 1] = cell_of(C[3 * i + 1], inv);
-        w->bp_cell[3 * i + 2] = cell_of(C[3 * i + 2], inv);
-        w->bp_key[i] = cell_hash(w->bp_cell[3 * i], w->bp_cell[3 * i + 1], w->bp_cell[3 * i + 2], mask);
+        w->bp_key[i] = 0;
+        x = w->bp_cell[3 * i] = cell_of(C[3 * i], inv);
+        y = w->bp_cell[3 * i + 1] = cell_of(C[3 * i + 1], inv);
+        z = w->bp_cell[3 * i + 2] = cell_of(C[3 * i + 2], inv);
+        if (!any || x < lo[0]) lo[0] = x;
+        if (!any || y < lo[1]) lo[1] = y;
+        if (!any || z < lo[2]) lo[2] = z;
+        if (!any || x > hi[0]) hi[0] = x;
+        if (!any || y > hi[1]) hi[1] = y;
+        if (!any || z > hi[2]) hi[2] = z;
+        any = 1;
+    }
+    /* A box of at most as many cells as the table has slots is indexed
+     * densely, x fastest: neighbouring cells then sit next to each other in
+     * memory, and items made in spatial order (a lattice, a pile) walk the
+     * table in order instead of hopping through it (at a million bodies the
+     * hash's random access was most of the cost).  Otherwise cells are
+     * hashed. */
+    dense = any && (int64_t)hi[0] - lo[0] <= (int64_t)mask && (int64_t)hi[1] - lo[1] <= (int64_t)mask &&
+            (int64_t)hi[2] - lo[2] <= (int64_t)mask;
+    if (dense) {
+        nx = (uint64_t)((int64_t)hi[0] - lo[0]) + 1;
+        ny = (uint64_t)((int64_t)hi[1] - lo[1]) + 1;
+        dense = nx * ny <= (uint64_t)mask + 1 &&
+                nx * ny * ((uint64_t)((int64_t)hi[2] - lo[2]) + 1) <= (uint64_t)mask + 1;
+    }
+
+    /* counting sort of the grid items by cell key */
+    memset(w->bp_start, 0, (size_t)(mask + 2) * sizeof(uint32_t));
+    memset(w->bp_fill, 0, (size_t)(mask + 1) * sizeof(uint32_t));
+    for (i = 0; i < n; ++i) {
+        if (w->bp_key[i] == UINT32_MAX)
+            continue;
+        w->bp_key[i] = cell_key(w->bp_cell[3 * i], w->bp_cell[3 * i + 1], w->bp_cell[3 * i + 2], mask,
+                                dense, lo, nx, ny);
         w->bp_start[w->bp_key[i] + 1]++;
     }
     for (i = 0; i <= mask; ++i)
@@ -126,7 +170,10 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                      * different cells exactly one sees the other there */
                     if (!query && (dx < 0 || (dx == 0 && (dy < 0 || (dy == 0 && dz < 0)))))
                         continue;
-                    h = cell_hash(cx + dx, cy + dy, cz + dz, mask);
+                    if (dense && (cx + dx < lo[0] || cx + dx > hi[0] || cy + dy < lo[1] ||
+                                  cy + dy > hi[1] || cz + dz < lo[2] || cz + dz > hi[2]))
+                        continue; /* outside the box: no items there */
+                    h = cell_key(cx + dx, cy + dy, cz + dz, mask, dense, lo, nx, ny);
                     for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
                         uint32_t o = w->bp_item[k];
                         /* each pair once: with a query, from the lower item
