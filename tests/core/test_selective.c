@@ -76,10 +76,10 @@ static void cradle(void **state)
     rbs_world_destroy(w);
 }
 
-/* A pile of 125 spheres dropped into a five-plane box: after 1.5 s nothing
- * has escaped and no overlap exceeds 1 % of a radius (the issue's quality
- * bound), and every step is a single sub-step. */
-static void pile_quality(void **state)
+/* A pile of 125 spheres (r 0.05 m, m 0.1 kg, friction 0.5) over a
+ * five-plane box, dropped from a slightly sheared lattice; with far set, one
+ * more fixed sphere of the same size 1e7 m away, which touches nothing. */
+static rbs_world *pile_world(int far)
 {
     rbs_world_def d;
     rbs_world *w;
@@ -87,10 +87,7 @@ static void pile_quality(void **state)
     rbs_pair_def pd;
     const double nrm[5][3] = {{0, 0, 1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
     const double pt[5][3] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}};
-    rbs_state_view v;
-    rbs_step_info info;
     int i, j, k;
-    (void)state;
     rbs_world_def_init(&d);
     d.max_bodies = 140;
     d.method = RBS_METHOD_SELECTIVE;
@@ -111,6 +108,29 @@ static void pile_quality(void **state)
         for (j = 0; j < 5; ++j)
             for (k = 0; k < 5; ++k)
                 ball(w, 0.05, 0.1, (i - 2) * 0.12 + 0.001 * k, (j - 2) * 0.12, 0.1 + k * 0.12, 0, 0, 0, m);
+    if (far) {
+        rbs_sphere_def s;
+        rbs_sphere_def_init(&s);
+        s.radius = 0.05;
+        s.mass = 0.1;
+        s.position.x = 1e7;
+        s.position.z = 0.05;
+        s.fixed = 1;
+        s.material = m;
+        CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    }
+    return w;
+}
+
+/* The pile after 1.5 s: nothing has escaped and no overlap exceeds 1 % of a
+ * radius (the issue's quality bound), and every step is a single sub-step. */
+static void pile_quality(void **state)
+{
+    rbs_world *w = pile_world(0);
+    rbs_state_view v;
+    rbs_step_info info;
+    int i, k;
+    (void)state;
     for (k = 0; k < 1500; ++k) {
         CHECK_OK(rbs_world_step(w, &info));
         assert_int_equal(info.substeps, 1);
@@ -125,6 +145,63 @@ static void pile_quality(void **state)
     rbs_world_destroy(w);
 }
 
+/* The broad phase indexes its grid densely when the spheres' box of cells
+ * fits its table and hashes the cells otherwise; both must find the same
+ * pairs in the same order.  The same pile with and without a far, fixed,
+ * untouched sphere (whose cell puts the box far beyond the table, so that
+ * world hashes) must move bit for bit alike over 600 steps of piling up. */
+static void grid_index_does_not_change_the_pile(void **state)
+{
+    rbs_world *dense = pile_world(0), *hashed = pile_world(1);
+    rbs_state_view a, b;
+    int k;
+    (void)state;
+    for (k = 0; k < 600; ++k) {
+        CHECK_OK(rbs_world_step(dense, NULL));
+        CHECK_OK(rbs_world_step(hashed, NULL));
+    }
+    CHECK_OK(rbs_world_state(dense, &a));
+    CHECK_OK(rbs_world_state(hashed, &b));
+    assert_int_equal(a.slots + 1, b.slots);
+    assert_memory_equal(a.position, b.position, 3 * a.slots * sizeof(double));
+    assert_memory_equal(a.velocity, b.velocity, 3 * a.slots * sizeof(double));
+    assert_memory_equal(a.angular_velocity, b.angular_velocity, 3 * a.slots * sizeof(double));
+    assert_memory_equal(a.orientation, b.orientation, 4 * a.slots * sizeof(double));
+    ASSERT_NEAR(b.position[3 * a.slots], 1e7, 0.0);
+    rbs_world_destroy(dense);
+    rbs_world_destroy(hashed);
+}
+
+/* A struck ball that crosses far more than the fix-up rounds' skin (0.1
+ * radius) in what is left of the step still hits the next ball in that step:
+ * its path leaves its ball of the first round, so the search goes back to
+ * the grid.  Three equal balls on a line, no gravity, e = 1, dt = 10 ms: A
+ * at 5 m/s is 0.5 mm from B, B is 20 mm from C.  Exact (elastic exchange at
+ * each touch): A stops at 0.5 mm on, B stops after 20 mm at t = 4.1 ms and C
+ * leaves at 5 m/s, 29.5 mm on at the end of the step (1e-12 m: rounding). */
+static void struck_ball_hits_the_next_in_the_same_step(void **state)
+{
+    const double r = 0.05, v = 5.0, dt = 0.01;
+    rbs_world *w = make_world(4, dt, 0.0, 1.0);
+    rbs_material_id m = material(w, "m", 0.0, 0.0, 1.0);
+    rbs_body_id a, b, c;
+    rbs_step_info info;
+    (void)state;
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_SELECTIVE, 0.0));
+    a = ball(w, r, 1.0, 0.0, 0, 0, v, 0, 0, m);
+    b = ball(w, r, 1.0, 2 * r + 0.0005, 0, 0, 0, 0, 0, m);
+    c = ball(w, r, 1.0, 4 * r + 0.0205, 0, 0, 0, 0, 0, m);
+    CHECK_OK(rbs_world_step(w, &info));
+    assert_int_equal(info.colliding, 2);
+    ASSERT_NEAR(state_of(w, a).velocity.x, 0.0, 1e-12);
+    ASSERT_NEAR(state_of(w, b).velocity.x, 0.0, 1e-12);
+    ASSERT_NEAR(state_of(w, c).velocity.x, v, 1e-12);
+    ASSERT_NEAR(state_of(w, a).position.x, 0.0005, 1e-12);
+    ASSERT_NEAR(state_of(w, b).position.x, 2 * r + 0.0205, 1e-12);
+    ASSERT_NEAR(state_of(w, c).position.x, 4 * r + 0.0205 + v * (dt - 0.0205 / v), 1e-12);
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -132,6 +209,8 @@ int main(void)
         cmocka_unit_test(bystander_keeps_its_full_step),
         cmocka_unit_test(cradle),
         cmocka_unit_test(pile_quality),
+        cmocka_unit_test(grid_index_does_not_change_the_pile),
+        cmocka_unit_test(struck_ball_hits_the_next_in_the_same_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
