@@ -386,6 +386,7 @@ static void separate_pair(void *vctx, uint32_t i, uint32_t j)
 int rbs__separate(rbs_world *w, double *max_pen)
 {
     uint32_t i, k, it;
+    int32_t *moved;
     separate_ctx ctx;
     ctx.w = w;
     ctx.worst = 0.0;
@@ -420,14 +421,32 @@ int rbs__separate(rbs_world *w, double *max_pen)
     /* nothing deeper than the slop: nothing to push (the common case) */
     if (!(ctx.worst > w->def.slop * w->plan.min_radius) && !ctx.pushed)
         return 0;
+    /* An entry whose bodies have not moved since it was last looked at has
+     * the overlap it was left with, at most the slop: it is skipped.  Each
+     * sphere item's last move is stamped (iteration + 1) in bp_cell, free
+     * scratch once the broad phase has run; an entry is looked at in
+     * iteration it when a body of it moved in iteration it - 1 or it. */
+    moved = w->bp_cell;
+    for (i = 0; i < w->sphere_count; ++i)
+        moved[3 * i] = 0;
     for (it = 0; it < w->def.max_sweeps; ++it) {
         int pushed = 0;
         for (i = 0; i < ctx.count; ++i) {
             const sep_pair *p = &ctx.list[i];
-            if (w->type[p->b] == RBS_BODY_SPHERE)
-                push_pair(w, p->a, p->b, &pushed);
+            int sphere = w->type[p->b] == RBS_BODY_SPHERE, did = 0;
+            uint32_t ia = w->item[p->a], ib = sphere ? w->item[p->b] : 0;
+            if (it > 0 && moved[3 * ia] < (int32_t)it && !(sphere && moved[3 * ib] >= (int32_t)it))
+                continue;
+            if (sphere)
+                push_pair(w, p->a, p->b, &did);
             else
-                push_plane(w, p->a, p->b, &pushed);
+                push_plane(w, p->a, p->b, &did);
+            if (did) {
+                moved[3 * ia] = (int32_t)it + 1;
+                if (sphere)
+                    moved[3 * ib] = (int32_t)it + 1;
+                pushed = 1;
+            }
         }
         if (!pushed)
             break;
