@@ -78,9 +78,9 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
     const double *C = w->bp_center, *R = w->bp_reach;
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
-    int32_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
     uint64_t nx = 0, ny = 0;
-    int any = 0, dense;
+    int any = 0, dense, d;
 
     if (n < 2)
         return;
@@ -102,21 +102,16 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
 
     /* cells of the grid items, and the box of cells they fill */
     for (i = 0; i < n; ++i) {
-        int32_t x, y, z;
         if (R[i] > 4.0 * mean) {
             w->bp_key[i] = UINT32_MAX;
             continue;
         }
         w->bp_key[i] = 0;
-        x = w->bp_cell[3 * i] = cell_of(C[3 * i], inv);
-        y = w->bp_cell[3 * i + 1] = cell_of(C[3 * i + 1], inv);
-        z = w->bp_cell[3 * i + 2] = cell_of(C[3 * i + 2], inv);
-        if (!any || x < lo[0]) lo[0] = x;
-        if (!any || y < lo[1]) lo[1] = y;
-        if (!any || z < lo[2]) lo[2] = z;
-        if (!any || x > hi[0]) hi[0] = x;
-        if (!any || y > hi[1]) hi[1] = y;
-        if (!any || z > hi[2]) hi[2] = z;
+        for (d = 0; d < 3; ++d) {
+            int32_t c = w->bp_cell[3 * i + d] = cell_of(C[3 * i + d], inv);
+            lo[d] = c < lo[d] ? c : lo[d];
+            hi[d] = c > hi[d] ? c : hi[d];
+        }
         any = 1;
     }
     /* A box of at most as many cells as the table has slots is indexed

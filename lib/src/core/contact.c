@@ -317,8 +317,9 @@ typedef struct separate_ctx {
     int pushed;
 } separate_ctx;
 
-/* Push a and b (b a sphere) apart; the overlap before the push. */
-static double push_pair(rbs_world *w, uint32_t a, uint32_t b, int *pushed)
+/* Push a and b (b a sphere) apart if they overlap deeper than the slop;
+ * 1 if it pushed. */
+static int push_pair(rbs_world *w, uint32_t a, uint32_t b)
 {
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
     v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
@@ -326,7 +327,7 @@ static double push_pair(rbs_world *w, uint32_t a, uint32_t b, int *pushed)
     dist = v3_len(d);
     pen = ra + rb - dist;
     if (!(pen > w->def.slop * rmin))
-        return pen;
+        return 0;
     /* Coincident centres have no normal: pick +z (documented). */
     n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     wa = w->inv_mass[a];
@@ -334,20 +335,24 @@ static double push_pair(rbs_world *w, uint32_t a, uint32_t b, int *pushed)
     wsum = wa + wb;
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
     v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
-    *pushed = 1;
-    return pen;
+    return 1;
 }
 
-/* Push sphere a out of plane p; the overlap before the push. */
-static double push_plane(rbs_world *w, uint32_t a, uint32_t p, int *pushed)
+/* Push sphere a out of plane p if it is deeper than the slop; 1 if it
+ * pushed. */
+static int push_plane(rbs_world *w, uint32_t a, uint32_t p)
 {
     v3 n = v3_load(&w->normal[3 * p]), pa = v3_load(&w->pos[3 * a]);
     double ra = w->radius[a], pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * p])), n);
-    if (pen > w->def.slop * ra) {
-        v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
-        *pushed = 1;
-    }
-    return pen;
+    if (!(pen > w->def.slop * ra))
+        return 0;
+    v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
+    return 1;
+}
+
+static int push(rbs_world *w, uint32_t a, uint32_t b)
+{
+    return w->type[b] == RBS_BODY_SPHERE ? push_pair(w, a, b) : push_plane(w, a, b);
 }
 
 static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
@@ -358,12 +363,10 @@ static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
         ctx->list[ctx->count].a = a;
         ctx->list[ctx->count].b = b;
         ctx->count++;
-    } else if (ctx->w->type[b] == RBS_BODY_SPHERE) {
+    } else if (push(ctx->w, a, b)) {
         /* the list is full (only when very many spheres overlap one
          * another): this pair gets the single push of the first pass */
-        push_pair(ctx->w, a, b, &ctx->pushed);
-    } else {
-        push_plane(ctx->w, a, b, &ctx->pushed);
+        ctx->pushed = 1;
     }
 }
 
@@ -433,15 +436,11 @@ int rbs__separate(rbs_world *w, double *max_pen)
         int pushed = 0;
         for (i = 0; i < ctx.count; ++i) {
             const sep_pair *p = &ctx.list[i];
-            int sphere = w->type[p->b] == RBS_BODY_SPHERE, did = 0;
+            int sphere = w->type[p->b] == RBS_BODY_SPHERE;
             uint32_t ia = w->item[p->a], ib = sphere ? w->item[p->b] : 0;
             if (it > 0 && moved[3 * ia] < (int32_t)it && !(sphere && moved[3 * ib] >= (int32_t)it))
                 continue;
-            if (sphere)
-                push_pair(w, p->a, p->b, &did);
-            else
-                push_plane(w, p->a, p->b, &did);
-            if (did) {
+            if (push(w, p->a, p->b)) {
                 moved[3 * ia] = (int32_t)it + 1;
                 if (sphere)
                     moved[3 * ib] = (int32_t)it + 1;

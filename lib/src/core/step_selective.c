@@ -190,7 +190,7 @@ static void search_pair(void *vctx, uint32_t i, uint32_t j)
 }
 
 /* Find every pair whose overlap grew along the current paths.  Round 0
- * (ctx->list set) searches every sphere and builds the neighbour list;
+ * (masked == 0) searches every sphere and builds the neighbour list;
  * later rounds only pairs with a sphere marked in w->bp_query, from the list
  * when *list_ok, else from a grid rebuilt at the current paths. */
 static uint32_t search(search_ctx *ctx, int masked, int *list_ok)

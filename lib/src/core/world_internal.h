@@ -117,7 +117,7 @@ struct rbs_world {
     uint32_t warm_size;                   /* 2 * max_contacts + 16 */
     uint32_t warm_used;                   /* slots the last warm pass used (0: none) */
 
-    /* broad phase (broadphase.c): per sphere item, and a hashed grid */
+    /* broad phase (broadphase.c): per sphere item, and a grid (dense or hashed) */
     double *bp_center;                    /* 3 per item */
     double *bp_reach;
     uint32_t *bp_key, *bp_item, *bp_big;
