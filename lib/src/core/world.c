@@ -247,6 +247,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->warm_size = (uint32_t)W;
         x->warm = carve(base, &at, W * sizeof(rbs__warm));
     }
+    x->solver_body = carve(base, &at, RBS__SOLVER_STRIDE * B * sizeof(double));
     x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
     x->method_state = carve(base, &at, 8 * sizeof(double));
     {

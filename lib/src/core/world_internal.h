@@ -114,6 +114,9 @@ struct rbs_world {
     /* contacts */
     rbs__contact *contact;
     rbs__warm *warm;                      /* warm-start table, warm_size slots */
+    double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
+                                             pass's compact copy of v, w, 1/m, 1/I
+                                             (solver.c) */
     uint32_t warm_size;                   /* 2 * max_contacts + 16 */
     uint32_t warm_used;                   /* slots the last warm pass used (0: none) */
 
@@ -270,6 +273,7 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
 rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
+#define RBS__SOLVER_STRIDE 8   /* doubles per slot of solver_body */
 #define RBS__SCRATCH_STRIDE 40 /* doubles per slot of method_scratch */
 
 #endif
