@@ -145,9 +145,9 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
         if (w->bp_key[i] != UINT32_MAX)
             w->bp_item[w->bp_fill[w->bp_key[i]]++ + w->bp_start[w->bp_key[i]]] = i;
 
-    /* grid items against the 27 cells around them; a bucket may hold items
-     * of other cells (hash collisions), which the stored cell filters out,
-     * so every partner is seen exactly once */
+    /* grid items against the 27 cells around them; a hashed bucket may
+     * hold items of other cells (collisions), which the stored cell filters
+     * out, so every partner is seen exactly once */
     for (i = 0; i < n; ++i) {
         int32_t cx, cy, cz;
         int dx, dy, dz;
@@ -176,8 +176,9 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                          * without, in a shared cell from the lower item */
                         if (o == i || (o < i && (query ? query[o] : (dx == 0 && dy == 0 && dz == 0))))
                             continue;
-                        if (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
-                            w->bp_cell[3 * o + 2] != cz + dz)
+                        /* (a dense slot holds one cell only: no check) */
+                        if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
+                                       w->bp_cell[3 * o + 2] != cz + dz))
                             continue;
                         visit_if_close(C, R, i, o, fn, ctx);
                     }

@@ -315,17 +315,25 @@ typedef struct separate_ctx {
     sep_pair *list;
     uint32_t count, cap;
     int pushed;
+    int overflow; /* a pair did not fit the list (pushed once, unlisted) */
 } separate_ctx;
 
 /* Push a and b (b a sphere) apart if they overlap deeper than the slop;
  * 1 if it pushed. */
-static int push_pair(rbs_world *w, uint32_t a, uint32_t b)
+static int push_pair(rbs_world *w, uint32_t a, uint32_t b, double *moved_by)
 {
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
     v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
+    double sr = ra + rb, d2;
     d = v3_sub(pa, pb);
-    dist = v3_len(d);
-    pen = ra + rb - dist;
+    d2 = v3_dot(d, d);
+    /* Apart (most listed pairs, most iterations): d2 above sr^2 with room
+     * for the rounding of sr * sr means |d| >= sr, so the overlap computed
+     * below would be <= 0 and push nothing; skip its square root. */
+    if (d2 > sr * sr * (1.0 + 1e-14))
+        return 0;
+    dist = sqrt(d2);
+    pen = sr - dist;
     if (!(pen > w->def.slop * rmin))
         return 0;
     /* Coincident centres have no normal: pick +z (documented). */
@@ -335,24 +343,31 @@ static int push_pair(rbs_world *w, uint32_t a, uint32_t b)
     wsum = wa + wb;
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen * wa / wsum));
     v3_store(&w->pos[3 * b], v3_mad(pb, n, -pen * wb / wsum));
+    if (moved_by) {
+        moved_by[w->item[a]] += pen * wa / wsum;
+        moved_by[w->item[b]] += pen * wb / wsum;
+    }
     return 1;
 }
 
 /* Push sphere a out of plane p if it is deeper than the slop; 1 if it
- * pushed. */
-static int push_plane(rbs_world *w, uint32_t a, uint32_t p)
+ * pushed.  moved_by (may be NULL): per sphere item, the distance pushed so
+ * far, increased by this push (push_pair likewise). */
+static int push_plane(rbs_world *w, uint32_t a, uint32_t p, double *moved_by)
 {
     v3 n = v3_load(&w->normal[3 * p]), pa = v3_load(&w->pos[3 * a]);
     double ra = w->radius[a], pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * p])), n);
     if (!(pen > w->def.slop * ra))
         return 0;
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
+    if (moved_by)
+        moved_by[w->item[a]] += pen;
     return 1;
 }
 
-static int push(rbs_world *w, uint32_t a, uint32_t b)
+static int push(rbs_world *w, uint32_t a, uint32_t b, double *moved_by)
 {
-    return w->type[b] == RBS_BODY_SPHERE ? push_pair(w, a, b) : push_plane(w, a, b);
+    return w->type[b] == RBS_BODY_SPHERE ? push_pair(w, a, b, moved_by) : push_plane(w, a, b, moved_by);
 }
 
 static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
@@ -363,10 +378,12 @@ static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
         ctx->list[ctx->count].a = a;
         ctx->list[ctx->count].b = b;
         ctx->count++;
-    } else if (push(ctx->w, a, b)) {
+    } else {
         /* the list is full (only when very many spheres overlap one
          * another): this pair gets the single push of the first pass */
-        ctx->pushed = 1;
+        ctx->overflow = 1;
+        if (push(ctx->w, a, b, NULL))
+            ctx->pushed = 1;
     }
 }
 
@@ -386,14 +403,54 @@ static void separate_pair(void *vctx, uint32_t i, uint32_t j)
         separate_keep(ctx, a, b, pen);
 }
 
+/* The deepest overlap of the state after the pushes, from the list alone
+ * when that is exact: a pair left off the list had a gap of more than
+ * SEP_MARGIN of its smaller radius, and closes by at most what its two
+ * bodies were pushed; while every body moved less than a quarter of that
+ * margin, no unlisted pair can touch, and the listed ones give the same
+ * answer as measuring the whole world (the same expressions as
+ * rbs__overlap_grew's, with its broad phase's candidate test), one broad
+ * phase cheaper.  Otherwise the whole world is measured. */
+static double overlap_after(rbs_world *w, const separate_ctx *ctx, const double *moved_by)
+{
+    uint32_t i;
+    double most = 0.0, worst = 0.0;
+    if (ctx->overflow)
+        return rbs__max_overlap_now(w);
+    for (i = 0; i < w->sphere_count; ++i)
+        if (!(moved_by[i] <= most)) /* (NaN too) */
+            most = moved_by[i];
+    if (!(4.0 * most < SEP_MARGIN * w->plan.min_radius))
+        return rbs__max_overlap_now(w);
+    for (i = 0; i < ctx->count; ++i) {
+        const sep_pair *p = &ctx->list[i];
+        v3 pa = v3_load(&w->pos[3 * p->a]);
+        double ra = w->radius[p->a], pen;
+        if (w->type[p->b] == RBS_BODY_SPHERE) {
+            v3 d = v3_sub(pa, v3_load(&w->pos[3 * p->b]));
+            double sr = ra + w->radius[p->b];
+            if (!(v3_dot(d, d) <= sr * sr))
+                continue; /* not a candidate of the broad phase */
+            pen = sr - v3_len(d);
+        } else {
+            pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * p->b])), v3_load(&w->normal[3 * p->b]));
+        }
+        if (pen > worst)
+            worst = pen;
+    }
+    return worst;
+}
+
 int rbs__separate(rbs_world *w, double *max_pen)
 {
     uint32_t i, k, it;
     int32_t *moved;
+    double *moved_by;
     separate_ctx ctx;
     ctx.w = w;
     ctx.worst = 0.0;
     ctx.pushed = 0;
+    ctx.overflow = 0;
     ctx.list = (sep_pair *)(void *)w->contact;
     ctx.count = 0;
     ctx.cap = (uint32_t)((size_t)w->def.max_contacts * sizeof(rbs__contact) / sizeof(sep_pair));
@@ -430,8 +487,11 @@ int rbs__separate(rbs_world *w, double *max_pen)
      * scratch once the broad phase has run; an entry is looked at in
      * iteration it when a body of it moved in iteration it - 1 or it. */
     moved = w->bp_cell;
-    for (i = 0; i < w->sphere_count; ++i)
+    moved_by = w->bp_reach; /* free too: what each item was pushed, m */
+    for (i = 0; i < w->sphere_count; ++i) {
         moved[3 * i] = 0;
+        moved_by[i] = 0.0;
+    }
     for (it = 0; it < w->def.max_sweeps; ++it) {
         int pushed = 0;
         for (i = 0; i < ctx.count; ++i) {
@@ -440,7 +500,7 @@ int rbs__separate(rbs_world *w, double *max_pen)
             uint32_t ia = w->item[p->a], ib = sphere ? w->item[p->b] : 0;
             if (it > 0 && moved[3 * ia] < (int32_t)it && !(sphere && moved[3 * ib] >= (int32_t)it))
                 continue;
-            if (push(w, p->a, p->b)) {
+            if (push(w, p->a, p->b, moved_by)) {
                 moved[3 * ia] = (int32_t)it + 1;
                 if (sphere)
                     moved[3 * ib] = (int32_t)it + 1;
@@ -451,6 +511,8 @@ int rbs__separate(rbs_world *w, double *max_pen)
             break;
         ctx.pushed = 1;
     }
+    if (max_pen && ctx.pushed)
+        *max_pen = overlap_after(w, &ctx, moved_by);
     return ctx.pushed;
 }
 

@@ -438,8 +438,9 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             v3 v = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
             v3 vt = v3_mad(v, c->n, -v3_dot(v, c->n));
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                /* stick_impulse's isotropic case: -vt / kt (0 if |vt| is 0) */
-                v3 stick = v3_len(vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
+                /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
+                 * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
+                v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
                 v3 cand = v3_add(c->jt, stick), dj;
                 double l = v3_len(cand);
                 if (l > c->mu_s * c->jn)

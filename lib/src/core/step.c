@@ -178,11 +178,10 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
      * clean; the report then describes the separated state. */
     if (st == RBS_OK && (w->overlap_unmeasured || info->max_overlap > w->def.slop * w->plan.min_radius)) {
         /* (separation moves nothing when no overlap exceeds the slop, so a
-         * method that did not measure can always take this path; when it
-         * moved nothing, the deepest overlap it saw is the state's) */
+         * method that did not measure can always take this path; it
+         * reports the deepest overlap of the state it leaves) */
         double pen;
-        if (rbs__separate(w, &pen))
-            pen = rbs__max_overlap_now(w);
+        rbs__separate(w, &pen);
         info->max_overlap = pen;
     }
     w->overlap_unmeasured = 0;

@@ -177,8 +177,8 @@ rbs_status rbs__detect(rbs_world *w, double dt);
 double rbs__max_overlap(const rbs_world *w);
 int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
 /* Push apart overlap deeper than the slop (planes, then pairs); 1 if it
- * pushed anything.  *max_pen (may be NULL): the deepest overlap it saw,
- * which is the state's when nothing was pushed. */
+ * pushed anything.  *max_pen (may be NULL): the deepest overlap of the
+ * state the pass leaves (what rbs__max_overlap_now would say). */
 int rbs__separate(rbs_world *w, double *max_pen);
 double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
 /* Velocity of the point at r from body i's centre of mass. */
