@@ -390,6 +390,25 @@ static void scatter_body(rbs_world *w, uint32_t i)
     memcpy(&w->avel[3 * i], b + 3, 3 * sizeof(double));
 }
 
+/* fn on every body of a contact: through the contacts' ends when they are
+ * few, else through the body lists in slot order (a sequential walk; a
+ * pile's contacts would visit each body several times, scattered). */
+static void gather_scatter(rbs_world *w, void (*fn)(rbs_world *, uint32_t))
+{
+    uint32_t i;
+    if (2 * (uint64_t)w->contact_count < w->sphere_count) {
+        for (i = 0; i < w->contact_count; ++i) {
+            fn(w, w->contact[i].a);
+            fn(w, w->contact[i].b);
+        }
+        return;
+    }
+    for (i = 0; i < w->sphere_count; ++i)
+        fn(w, w->spheres[i]);
+    for (i = 0; i < w->plane_count; ++i)
+        fn(w, w->planes[i]);
+}
+
 /* rbs__point_velocity and rbs__apply_impulse on a gathered body. */
 static inline v3 sb_point_velocity(const double *b, v3 r)
 {
@@ -489,10 +508,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
     }
     fast = w->contact_count > 0 && fast_eligible(w, friction);
     if (fast)
-        for (i = 0; i < w->contact_count; ++i) {
-            gather_body(w, w->contact[i].a);
-            gather_body(w, w->contact[i].b);
-        }
+        gather_scatter(w, gather_body);
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         double change, total; /* largest velocity change, m/s; sum of Jn */
         if (fast ? sweep_fast(w, friction, &change, &total) : sweep_generic(w, friction, &change, &total))
@@ -506,10 +522,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
             break;
     }
     if (fast)
-        for (i = 0; i < w->contact_count; ++i) {
-            scatter_body(w, w->contact[i].a);
-            scatter_body(w, w->contact[i].b);
-        }
+        gather_scatter(w, scatter_body);
     if (info && any) {
         for (i = 0; i < w->contact_count; ++i)
             if (w->contact[i].jn > 0.0)
