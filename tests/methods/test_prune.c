@@ -6,7 +6,8 @@
  * The scenes cover each pruning decision (see rbs_world_explain):
  * no spin, frictionless, isotropic and centred, anisotropic (spinning, and
  * at rest but hit off its axis), off-centre mass,
- * a single sphere, fixed spheres, mutual gravity off and on.
+ * a single sphere, fixed spheres, mutual gravity off and on, and a heap
+ * (the compact resting sweep, which pruning off replaces by the general).
  */
 #include "methods_common.h"
 
@@ -113,6 +114,31 @@ static void scene_fixed(rbs_world *w)
     sphere(w, 0.1, 0.05, 0, 1.0, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
 }
 
+/* a heap with friction in a corner (two walls and the floor): eighteen
+ * spheres placed touching, so most resting passes hold dozens of contacts
+ * and the compact resting sweep (pruned) meets the general one (full) */
+static void scene_heap(rbs_world *w)
+{
+    rbs_material_id m = material(w, "grit", 0.6, 0.4, 0.2);
+    rbs_plane_def p;
+    int k;
+    floor_plane(w, m);
+    rbs_plane_def_init(&p);
+    p.normal.x = 1.0; p.normal.z = 0.0;
+    p.point.x = -0.1;
+    p.material = m;
+    CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+    rbs_plane_def_init(&p);
+    p.normal.y = 1.0; p.normal.z = 0.0;
+    p.point.y = -0.1;
+    p.material = m;
+    CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+    for (k = 0; k < 18; ++k)
+        sphere(w, 0.1, 0.2 * (k % 3), 0.2 * ((k / 3) % 3), 0.1 + 0.2 * (k / 9), 0.05 * (k % 2), -0.03 * (k % 3),
+               0, 0, 0, 0, m);
+    sphere(w, 0.1, 0.2, 0.2, 0.9, 0.2, 0.1, -1.0, 0, 0, 0, m);
+}
+
 /* three bodies with mutual gravity (the figure-eight) */
 static void scene_three_body(rbs_world *w)
 {
@@ -137,6 +163,7 @@ static const scene scenes[] = {
     {"anisotropic, no spin, hit frictionlessly", scene_aniso_hit, 0.0, 0, 0.0},
     {"single sphere, mutual gravity on", scene_single, -9.81, 1, 1.0},
     {"fixed sphere, mutual gravity on", scene_fixed, -9.81, 1, 1.0},
+    {"heap with friction (compact resting sweep)", scene_heap, -9.81, 0, 0.0},
     {"three bodies, mutual gravity on", scene_three_body, 0.0, 1, 1.0},
     {"three bodies, mutual gravity off", scene_three_body, 0.0, 0, 1.0},
 };
@@ -151,7 +178,7 @@ static uint64_t run(const scene *sc, rbs_method m, int prune, int n, double dt)
     uint64_t h;
     int k;
     rbs_world_def_init(&d);
-    d.max_bodies = 8;
+    d.max_bodies = 24;
     d.dt = dt;
     d.gravity.z = sc->gz;
     d.mutual_gravity = sc->mutual;

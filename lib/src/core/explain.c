@@ -200,6 +200,33 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         put(&t, "the event method keeps rolling and sliding in closed form\n");
     else
         put(&t, "once per sub-step, after the forces\n");
+    if (moving > 0 && w->def.method != RBS_METHOD_EVENT) {
+        /* the compact sweep (solver.c) decides per pass, from the pass's
+         * contacts; here: whether every pass can take it */
+        uint32_t odd = UINT32_MAX;
+        for (k = 0; k < w->sphere_count && odd == UINT32_MAX; ++k)
+            if (!w->isotropic[w->spheres[k]] || nonzero3(&w->com_body[3 * w->spheres[k]]))
+                odd = w->spheres[k];
+        for (i = 0; i < w->pairs; ++i)
+            if (w->pair[i].rolling > 0.0 || w->pair[i].spinning > 0.0)
+                break;
+        stage(&t, w->def.prune && odd == UINT32_MAX && i == w->pairs, "compact resting sweep");
+        if (!w->def.prune) {
+            put(&t, "every impulse through the general sweep (pruning off)\n");
+        } else if (odd != UINT32_MAX) {
+            body_name(&t, w, odd);
+            put(&t, " has anisotropic inertia or an off-centre mass: its contacts need the general "
+                    "sweep (passes without them still take the compact one)\n");
+        } else if (i < w->pairs) {
+            const rbs__pair *r = &w->pair[i];
+            put(&t, "pair \"%s\"/\"%s\" has rolling or spinning resistance: its contacts need the "
+                    "general sweep\n", r->a ? w->material_name[r->a - 1] : "*",
+                r->b ? w->material_name[r->b - 1] : "*");
+        } else {
+            put(&t, "centred isotropic spheres without rolling or spinning resistance: the sweeps read "
+                    "v, w, 1/m and 1/I from one compact record per body\n");
+        }
+    }
 
     if (needed)
         *needed = t.len + 1;

@@ -506,7 +506,9 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
             }
         }
     }
-    fast = w->contact_count > 0 && fast_eligible(w, friction);
+    /* (a pruning decision: with def.prune off every pass takes the generic
+     * sweep, which test_prune compares bit for bit) */
+    fast = w->def.prune && w->contact_count > 0 && fast_eligible(w, friction);
     if (fast)
         gather_scatter(w, gather_body);
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
