@@ -73,8 +73,8 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
                                                w->com_body[3 * c->a + 2] == 0.0)) &&
         (w->type[c->b] != RBS_BODY_SPHERE || (w->com_body[3 * c->b] == 0.0 && w->com_body[3 * c->b + 1] == 0.0 &&
                                                w->com_body[3 * c->b + 2] == 0.0)))
-        c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(c->ra, c->ra) * w->inv_inertia[9 * c->a] +
-                v3_dot(c->rb, c->rb) * w->inv_inertia[9 * c->b];
+        c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(c->ra, c->ra) * w->iso_inv_inertia[c->a] +
+                v3_dot(c->rb, c->rb) * w->iso_inv_inertia[c->b];
     c->jn = 0.0;
     c->jt = c->jroll = v3_make(0, 0, 0);
     c->jspin = 0.0;

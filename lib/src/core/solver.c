@@ -378,7 +378,7 @@ static void gather_body(rbs_world *w, uint32_t i)
     memcpy(b, &w->vel[3 * i], 3 * sizeof(double));
     memcpy(b + 3, &w->avel[3 * i], 3 * sizeof(double));
     b[6] = w->inv_mass[i];
-    b[7] = w->inv_inertia[9 * i];
+    b[7] = rbs__inv_inertia_xx(w, i); /* isotropic, or not moving (unused) */
 }
 
 static void scatter_body(rbs_world *w, uint32_t i)

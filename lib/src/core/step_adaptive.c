@@ -241,7 +241,7 @@ static int rhs(double t, const double y[], double dydt[], void *params)
             if (tau.x != 0.0 || tau.y != 0.0 || tau.z != 0.0) {
                 v3 al;
                 if (w->isotropic[i])
-                    al = v3_scale(tau, w->inv_inertia[9 * i]);
+                    al = v3_scale(tau, w->iso_inv_inertia[i]);
                 else
                     al = m3_mul_world(&w->inv_inertia[9 * i], qn, tau);
                 v3_store(d + 10, al);

@@ -183,7 +183,7 @@ static rbs_status classify(rbs_world *w, double dt)
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k], plane = UINT32_MAX;
         v3 a, tau, x, v, alpha;
-        double r = w->radius[i], m = w->mass[i], I = w->inertia[9 * i], invI = w->inv_inertia[9 * i];
+        double r = w->radius[i], m = w->mass[i], I = rbs__inertia_xx(w, i), invI = rbs__inv_inertia_xx(w, i);
         if (w->fixed[i])
             continue;
         rbs__accelerations(w, i, &a, &tau);

@@ -236,6 +236,8 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->com_body = carve(base, &at, 3 * B * sizeof(double));
     x->inertia = carve(base, &at, 9 * B * sizeof(double));
     x->inv_inertia = carve(base, &at, 9 * B * sizeof(double));
+    x->iso_inertia = carve(base, &at, B * sizeof(double));
+    x->iso_inv_inertia = carve(base, &at, B * sizeof(double));
     x->step_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
     x->sub_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
     x->material_name = carve(base, &at, M * RBS_NAME_MAX);
@@ -602,6 +604,23 @@ static int name_taken(const rbs_world *w, const char *name)
 }
 
 /* Take a free slot (reusing removed ones first); UINT32_MAX if full. */
+/* Store v at p unless it is zero (what a free slot already holds). */
+static void store_nonzero3(double *p, v3 v)
+{
+    if (v.x != 0.0 || v.y != 0.0 || v.z != 0.0)
+        v3_store(p, v);
+}
+
+/* Zero n doubles at p, writing only those that are not zero already (so a
+ * page that was never written stays so). */
+static void clear_nonzero(double *p, int n)
+{
+    int k;
+    for (k = 0; k < n; ++k)
+        if (p[k] != 0.0)
+            p[k] = 0.0;
+}
+
 static uint32_t slot_take(rbs_world *w)
 {
     uint32_t s;
@@ -686,7 +705,6 @@ static rbs_status take_slot(rbs_world *w, const char *kind, rbs_body_type type, 
 {
     int64_t mat = material_code(w, material);
     uint32_t s;
-    int k;
     if (mat < 0)
         FAIL(w, RBS_E_STALE_ID, "%s: unknown material id", kind);
     if (texture < RBS_TEXTURE_NONE || texture > RBS_TEXTURE_CHECKER)
@@ -699,20 +717,14 @@ static rbs_status take_slot(rbs_world *w, const char *kind, rbs_body_type type, 
     w->material[s] = (uint32_t)mat;
     w->color[s] = color & 0xffffffu;
     w->texture[s] = texture;
-    memset(w->name[s], 0, RBS_NAME_MAX);
-    if (name)
+    /* A free slot holds zeros (the block starts zeroed; remove_body clears
+     * what it wrote), so only what differs from zero is written: the
+     * arrays a world's bodies never use -- names, forces, 3x3 inertia of
+     * isotropic spheres -- stay untouched, and calloc'd pages of them are
+     * never made resident. */
+    if (name && name[0] != '\0')
         strcpy(w->name[s], name);
-    v3_store(&w->pos[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->vel[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->avel[3 * s], v3_make(0, 0, 0));
     q_store(&w->orient[4 * s], (quat){1.0, 0.0, 0.0, 0.0});
-    v3_store(&w->force[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->torque[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->normal[3 * s], v3_make(0, 0, 0));
-    v3_store(&w->com_body[3 * s], v3_make(0, 0, 0));
-    w->radius[s] = w->mass[s] = w->inv_mass[s] = 0.0;
-    for (k = 0; k < 9; ++k)
-        w->inertia[9 * s + k] = w->inv_inertia[9 * s + k] = 0.0;
     w->isotropic[s] = 1;
     *slot = s;
     return RBS_OK;
@@ -827,22 +839,29 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     if (st != RBS_OK)
         return st;
     w->fixed[s] = d.fixed != 0;
-    v3_store(&w->pos[3 * s], p);
-    v3_store(&w->vel[3 * s], d.fixed ? v3_make(0, 0, 0) : v);
-    v3_store(&w->avel[3 * s], d.fixed ? v3_make(0, 0, 0) : av);
+    store_nonzero3(&w->pos[3 * s], p);
+    if (!d.fixed) {
+        store_nonzero3(&w->vel[3 * s], v);
+        store_nonzero3(&w->avel[3 * s], av);
+    }
     q_store(&w->orient[4 * s], q);
-    v3_store(&w->force[3 * s], f);
-    v3_store(&w->torque[3 * s], t);
-    v3_store(&w->com_body[3 * s], c);
+    store_nonzero3(&w->force[3 * s], f);
+    store_nonzero3(&w->torque[3 * s], t);
+    store_nonzero3(&w->com_body[3 * s], c);
     w->radius[s] = d.radius;
     w->mass[s] = mass;
     w->inv_mass[s] = d.fixed ? 0.0 : 1.0 / mass;
-    for (k = 0; k < 9; ++k) {
-        w->inertia[9 * s + k] = I[k];
-        w->inv_inertia[9 * s + k] = d.fixed ? 0.0 : inv[k];
-    }
     w->isotropic[s] = I[1] == 0.0 && I[2] == 0.0 && I[3] == 0.0 && I[5] == 0.0 && I[6] == 0.0 &&
                       I[7] == 0.0 && I[0] == I[4] && I[4] == I[8];
+    if (w->isotropic[s]) {
+        w->iso_inertia[s] = I[0];
+        w->iso_inv_inertia[s] = d.fixed ? 0.0 : inv[0];
+    } else {
+        for (k = 0; k < 9; ++k) {
+            w->inertia[9 * s + k] = I[k];
+            w->inv_inertia[9 * s + k] = d.fixed ? 0.0 : inv[k];
+        }
+    }
     return body_done(w, s, out);
 }
 
@@ -872,7 +891,7 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
     st = take_slot(w, "plane", RBS_BODY_PLANE, d.material, d.texture, d.color, d.name, &s);
     if (st != RBS_OK)
         return st;
-    v3_store(&w->pos[3 * s], p);
+    store_nonzero3(&w->pos[3 * s], p);
     v3_store(&w->normal[3 * s], n);
     return body_done(w, s, out);
 }
@@ -886,11 +905,21 @@ rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
         FAIL(w, RBS_E_STALE_ID, "remove_body: null or stale body id {%u, %u}", (unsigned)id.index,
              (unsigned)id.generation);
     w->type[s] = RBS_BODY_NONE;
-    memset(w->name[s], 0, RBS_NAME_MAX);
+    /* back to zeros, as take_slot expects of a free slot */
+    if (w->name[s][0] != '\0')
+        memset(w->name[s], 0, RBS_NAME_MAX);
     memset(&w->pos[3 * s], 0, 3 * sizeof(double));
     memset(&w->vel[3 * s], 0, 3 * sizeof(double));
     memset(&w->avel[3 * s], 0, 3 * sizeof(double));
     memset(&w->orient[4 * s], 0, 4 * sizeof(double));
+    clear_nonzero(&w->force[3 * s], 3);
+    clear_nonzero(&w->torque[3 * s], 3);
+    clear_nonzero(&w->normal[3 * s], 3);
+    clear_nonzero(&w->com_body[3 * s], 3);
+    clear_nonzero(&w->inertia[9 * s], 9);
+    clear_nonzero(&w->inv_inertia[9 * s], 9);
+    w->radius[s] = w->mass[s] = w->inv_mass[s] = 0.0;
+    w->iso_inertia[s] = w->iso_inv_inertia[s] = 0.0;
     w->free_list[w->free_count++] = s;
     w->bodies--;
     rbs__rebuild_lists(w);
@@ -1124,7 +1153,7 @@ rbs_status rbs_world_energy(const rbs_world *w, rbs_energy *out)
         v = v3_load(&w->vel[3 * i]);
         om = v3_load(&w->avel[3 * i]);
         q = q_load(&w->orient[4 * i]);
-        Iw = m3_mul_world(&w->inertia[9 * i], q, om);
+        Iw = rbs__inertia_times(w, i, q, om);
         ke += 0.5 * w->mass[i] * v3_dot(v, v) + 0.5 * v3_dot(om, Iw);
         x = rbs__body_com(w, i);
         if (w->def.gravity_mode == RBS_GRAVITY_ACCELERATION)
@@ -1168,7 +1197,7 @@ rbs_status rbs_world_momentum(const rbs_world *w, rbs_vec3 *linear, rbs_vec3 *an
         x = rbs__body_com(w, i);
         om = v3_load(&w->avel[3 * i]);
         P = v3_add(P, p);
-        L = v3_add(L, v3_add(v3_cross(x, p), m3_mul_world(&w->inertia[9 * i], q_load(&w->orient[4 * i]), om)));
+        L = v3_add(L, v3_add(v3_cross(x, p), rbs__inertia_times(w, i, q_load(&w->orient[4 * i]), om)));
     }
     if (linear) { linear->x = P.x; linear->y = P.y; linear->z = P.z; }
     if (angular) { angular->x = L.x; angular->y = L.y; angular->z = L.z; }

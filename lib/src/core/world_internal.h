@@ -93,7 +93,10 @@ struct rbs_world {
     double *force, *torque, *normal;      /* 3 per slot */
     double *radius, *mass, *inv_mass;
     double *com_body;                     /* 3 per slot, body frame */
-    double *inertia, *inv_inertia;        /* 9 per slot, about COM, body frame */
+    double *inertia, *inv_inertia;        /* 9 per slot, about COM, body frame;
+                                             written for anisotropic bodies only */
+    double *iso_inertia, *iso_inv_inertia; /* per slot: an isotropic body's moment
+                                             (and inverse) as one number */
     int32_t *isotropic;                   /* inertia is a multiple of identity */
     uint32_t *free_list;
     /* backups: start of step, start of sub-step */
@@ -159,9 +162,33 @@ int rbs__body_moves(const rbs_world *w, uint32_t i);
 static inline void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out)
 {
     if (w->isotropic[i])
-        *out = v3_scale(u, w->inv_inertia[9 * i]);
+        *out = v3_scale(u, w->iso_inv_inertia[i]);
     else
         *out = m3_mul_world(&w->inv_inertia[9 * i], q_load(&w->orient[4 * i]), u);
+}
+
+/* The (x, x) moment of body i and its inverse entry (the moment of an
+ * isotropic body). */
+static inline double rbs__inertia_xx(const rbs_world *w, uint32_t i)
+{
+    return w->isotropic[i] ? w->iso_inertia[i] : w->inertia[9 * i];
+}
+static inline double rbs__inv_inertia_xx(const rbs_world *w, uint32_t i)
+{
+    return w->isotropic[i] ? w->iso_inv_inertia[i] : w->inv_inertia[9 * i];
+}
+
+/* I(q) w in world axes: the scalar moment times w for an isotropic body
+ * (computed as the diagonal matrix it is, so results match the general
+ * case bit for bit), the 3x3 otherwise. */
+static inline v3 rbs__inertia_times(const rbs_world *w, uint32_t i, quat q, v3 om)
+{
+    if (w->isotropic[i]) {
+        double s = w->iso_inertia[i], I[9] = {0};
+        I[0] = I[4] = I[8] = s;
+        return m3_mul_world(I, q, om);
+    }
+    return m3_mul_world(&w->inertia[9 * i], q, om);
 }
 
 /* Broad phase (broadphase.c): fn(ctx, i, j) for every candidate pair of
@@ -251,7 +278,7 @@ static inline v3 rbs__angular_acceleration(const rbs_world *w, uint32_t i, v3 ta
     if (tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0)
         return v3_make(0.0, 0.0, 0.0);
     if (w->isotropic[i])
-        return v3_scale(tau, w->inv_inertia[9 * i]);
+        return v3_scale(tau, w->iso_inv_inertia[i]);
     return m3_mul_world(&w->inv_inertia[9 * i], q, tau);
 }
 void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
