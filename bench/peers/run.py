@@ -388,10 +388,9 @@ def main(argv):
         rows += old
         if got:
             notes.append("Rows of " + ", ".join(f"{e} {sc} {n}" for e, sc, n in got) +
-                         f" come from an earlier run of this benchmark "
-                         f"({os.path.basename(os.path.dirname(os.path.abspath(path)))}/"
-                         f"{os.path.basename(path)}, same machine, same day); ratios against them "
-                         "compare runs made at different times.")
+                         f" come from an earlier run of this benchmark ({os.path.basename(path)}, "
+                         "given with --merge-from); ratios against them compare runs made at "
+                         "different times, on a machine whose speed may have drifted.")
     write_csv(os.path.join(results, "peers.csv"), rows)
     git = subprocess.run(["git", "-C", HERE, "rev-parse", "--short", "HEAD"],
                          capture_output=True, text=True).stdout.strip()
