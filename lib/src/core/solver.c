@@ -262,6 +262,26 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
     rbs__solve_resting_warm(w, info, 0.0);
 }
 
+/* The two sweeps below share their arithmetic through these helpers, so
+ * they agree bit for bit.  normal_row: the accumulated normal impulse that
+ * cancels the approach vn (Jn >= 0).  cone: the accumulated
+ * friction impulse jt + stick kept within Coulomb's cone (|Jt| <= mu_s Jn
+ * sticks, else mu_k Jn against the slip). */
+static inline double normal_row(const rbs__contact *c, double vn)
+{
+    double jn_new = c->jn - vn / c->kn;
+    return jn_new < 0.0 ? 0.0 : jn_new;
+}
+
+static inline v3 cone(const rbs__contact *c, v3 stick)
+{
+    v3 cand = v3_add(c->jt, stick);
+    double l = v3_len(cand);
+    if (l > c->mu_s * c->jn)
+        cand = v3_scale(cand, c->mu_k * c->jn / l);
+    return cand;
+}
+
 /* One Gauss-Seidel sweep over every contact (any body, any resistance).
  * *change: the largest velocity change, m/s; *total: the sum of normal
  * impulses; returns 1 if an impulse changed. */
@@ -272,11 +292,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double vn = v3_dot(rel_velocity(w, c), c->n);
-        double jn_new = c->jn - vn / c->kn, d;
-        if (jn_new < 0.0)
-            jn_new = 0.0;
-        d = jn_new - c->jn;
+        double jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n)), d = jn_new - c->jn;
         if (d != 0.0) {
             apply_pair(w, c, v3_scale(c->n, d));
             c->jn = jn_new;
@@ -290,11 +306,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         if (c->mu_s > 0.0 || c->mu_k > 0.0) {
             v3 vt = slip(w, c);
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                v3 cand = v3_add(c->jt, stick_impulse(w, c, vt)), dj;
-                double l = v3_len(cand);
-                if (l > c->mu_s * c->jn)
-                    cand = v3_scale(cand, c->mu_k * c->jn / l);
-                dj = v3_sub(cand, c->jt);
+                v3 cand = cone(c, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
                 apply_pair(w, c, dj);
                 c->jt = cand;
                 if (v3_len(dj) * c->kn > change)
@@ -438,11 +450,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
         rbs__contact *c = &w->contact[i];
         double *ba = SB(w, c->a), *bb = SB(w, c->b);
         v3 rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
-        double vn = v3_dot(rv, c->n);
-        double jn_new = c->jn - vn / c->kn, d;
-        if (jn_new < 0.0)
-            jn_new = 0.0;
-        d = jn_new - c->jn;
+        double jn_new = normal_row(c, v3_dot(rv, c->n)), d = jn_new - c->jn;
         if (d != 0.0) {
             sb_apply_pair(ba, bb, c, v3_scale(c->n, d));
             c->jn = jn_new;
@@ -460,11 +468,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
                 v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
-                v3 cand = v3_add(c->jt, stick), dj;
-                double l = v3_len(cand);
-                if (l > c->mu_s * c->jn)
-                    cand = v3_scale(cand, c->mu_k * c->jn / l);
-                dj = v3_sub(cand, c->jt);
+                v3 cand = cone(c, stick), dj = v3_sub(cand, c->jt);
                 sb_apply_pair(ba, bb, c, dj);
                 c->jt = cand;
                 if (v3_len(dj) * c->kn > change)
