@@ -76,8 +76,19 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
         c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(c->ra, c->ra) * w->iso_inv_inertia[c->a] +
                 v3_dot(c->rb, c->rb) * w->iso_inv_inertia[c->b];
     c->jn = 0.0;
-    c->jt = c->jroll = v3_make(0, 0, 0);
-    c->jspin = 0.0;
+    c->jt = v3_make(0, 0, 0);
+}
+
+/* A detected contact with rolling or spinning resistance: its lever and
+ * impulses beside it (see rbs__resist). */
+static void resist_init(rbs_world *w, const rbs__contact *c, double radius)
+{
+    if (c->rolling > 0.0 || c->spinning > 0.0) {
+        rbs__resist *r = &w->contact_resist[c - w->contact];
+        r->radius = radius;
+        r->jroll = v3_make(0, 0, 0);
+        r->jspin = 0.0;
+    }
 }
 
 /* Detection state passed through the broad phase. */
@@ -124,11 +135,11 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     c->gap = gap;
     c->slop = slop;
-    c->radius = ra * rb / (ra + rb);
     cp = v3_mad(pa, c->n, -ra);
     c->ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
     c->rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
     rbs__contact_finish(w, c, ctx->dt);
+    resist_init(w, c, ra * rb / (ra + rb));
 }
 
 rbs_status rbs__detect(rbs_world *w, double dt)
@@ -164,10 +175,10 @@ rbs_status rbs__detect(rbs_world *w, double dt)
             c->n = n;
             c->gap = gap;
             c->slop = slop;
-            c->radius = ra;
             c->ra = v3_sub(v3_mad(pa, n, -ra), rbs__body_com(w, a));
             c->rb = v3_make(0, 0, 0);
             rbs__contact_finish(w, c, dt);
+            resist_init(w, c, ra);
         }
     }
     /* sphere - sphere, through the broad phase */

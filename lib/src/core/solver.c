@@ -314,33 +314,34 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             }
         }
         if (c->rolling > 0.0 || c->spinning > 0.0) {
+            rbs__resist *rs = &w->contact_resist[i];
             v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
             double ws = v3_dot(wrel, c->n);
             v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
             double lr = v3_len(wr);
             if (c->rolling > 0.0 && lr > 0.0) {
                 v3 u = v3_scale(wr, 1.0 / lr), cand;
-                double k = 0.0, lim = c->rolling * c->radius * c->jn, l;
+                double k = 0.0, lim = c->rolling * rs->radius * c->jn, l;
                 rbs__body_inv_inertia_world(w, c->a, u, &ia);
                 rbs__body_inv_inertia_world(w, c->b, u, &ib);
                 k = v3_dot(u, ia) + v3_dot(u, ib);
-                cand = v3_mad(c->jroll, u, -lr / k);
+                cand = v3_mad(rs->jroll, u, -lr / k);
                 l = v3_len(cand);
                 if (l > lim)
                     cand = v3_scale(cand, lim / l);
-                dl = v3_add(dl, v3_sub(cand, c->jroll));
-                c->jroll = cand;
+                dl = v3_add(dl, v3_sub(cand, rs->jroll));
+                rs->jroll = cand;
             }
             if (c->spinning > 0.0 && ws != 0.0) {
                 double k, cand, lim = c->spinning * c->jn;
                 rbs__body_inv_inertia_world(w, c->a, c->n, &ia);
                 rbs__body_inv_inertia_world(w, c->b, c->n, &ib);
                 k = v3_dot(c->n, ia) + v3_dot(c->n, ib);
-                cand = c->jspin - ws / k;
+                cand = rs->jspin - ws / k;
                 if (cand > lim) cand = lim;
                 if (cand < -lim) cand = -lim;
-                dl = v3_mad(dl, c->n, cand - c->jspin);
-                c->jspin = cand;
+                dl = v3_mad(dl, c->n, cand - rs->jspin);
+                rs->jspin = cand;
             }
             if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
                 rbs__body_inv_inertia_world(w, c->a, dl, &ia);
@@ -349,8 +350,8 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                     v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
                 if (w->inv_mass[c->b] != 0.0)
                     v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
-                if (v3_len(dl) * c->kn / (c->radius > 0.0 ? c->radius : 1.0) > change)
-                    change = v3_len(dl) * c->kn / (c->radius > 0.0 ? c->radius : 1.0);
+                if (v3_len(dl) * c->kn / (rs->radius > 0.0 ? rs->radius : 1.0) > change)
+                    change = v3_len(dl) * c->kn / (rs->radius > 0.0 ? rs->radius : 1.0);
             }
         }
     }
@@ -490,8 +491,11 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         c->jn = 0.0;
-        c->jt = c->jroll = v3_make(0, 0, 0);
-        c->jspin = 0.0;
+        c->jt = v3_make(0, 0, 0);
+        if (c->rolling > 0.0 || c->spinning > 0.0) {
+            w->contact_resist[i].jroll = v3_make(0, 0, 0);
+            w->contact_resist[i].jspin = 0.0;
+        }
         if (h > 0.0) {
             /* warm start: what held this contact last sub-step, scaled to h
              * (a stack converges at once instead of creeping) */

@@ -324,7 +324,6 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
         c.n = v3_load(&w->normal[3 * b]);
         c.gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), c.n) - ra;
         c.slop = w->def.slop * ra;
-        c.radius = ra;
         c.ra = v3_sub(v3_mad(pa, c.n, -ra), rbs__body_com(w, a));
     } else {
         double rb = w->radius[b], dist;
@@ -333,7 +332,6 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
         c.n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
         c.gap = dist - ra - rb;
         c.slop = w->def.slop * (ra < rb ? ra : rb);
-        c.radius = ra * rb / (ra + rb);
         cp = v3_mad(pa, c.n, -ra);
         c.ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
         c.rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));

@@ -244,6 +244,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->pair = carve(base, &at, P * sizeof(rbs__pair));
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
+    x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));
     {
         size_t W = 2 * C + 16; /* room for every contact at load 1/2 (solver.c) */
         x->warm_size = (uint32_t)W;

@@ -28,15 +28,23 @@ typedef struct rbs__contact {
     double slop;   /* allowed overlap for this pair, m */
     double thr;    /* approach speed below which the contact is resting, m/s */
     double mu_s, mu_k, e, rolling, spinning;
-    double radius; /* lever for rolling resistance, m */
     double kn;     /* n . K n : inverse effective mass along n */
     double kt;     /* t . K t for every tangent t when K is isotropic in the
                       tangent plane (centred isotropic spheres); else 0 */
     /* accumulated impulses in the resting pass */
     double jn;
-    v3 jt, jroll;
-    double jspin;
+    v3 jt;
 } rbs__contact;
+
+/* The rolling and spinning resistance of contact i, beside the contact
+ * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
+ * sweeps stream stay small; written only for a contact whose pair has
+ * resistance (rolling or spinning > 0), read only then. */
+typedef struct rbs__resist {
+    double radius; /* lever for rolling resistance, m */
+    v3 jroll;      /* accumulated rolling and spinning impulses */
+    double jspin;
+} rbs__resist;
 
 /* A material-pair row. */
 typedef struct rbs__pair {
@@ -116,6 +124,7 @@ struct rbs_world {
 
     /* contacts */
     rbs__contact *contact;
+    rbs__resist *contact_resist;          /* one per contact slot (resistance only) */
     rbs__warm *warm;                      /* warm-start table, warm_size slots */
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
