@@ -497,6 +497,115 @@ static void reported_overlap_is_the_states(void **state)
     }
 }
 
+/* Speculative resting contact (contact.c), under euler and selective.  A
+ * ball of r = 5 cm at rest a gap d = g dt^2 / 2 (4.9 um) above a plane --
+ * more than the slop (1e-6 r = 50 nm), less than the creep reach g dt^2 --
+ * would sink d deep in one step of gravity.  The pair is a contact with a
+ * gap, and the resting pass lets it close to the slop and no further:
+ * after one step the ball is at r + slop exactly, moving down at
+ * (d - slop) / dt, with no rollback, impact or overlap; the next step's
+ * resting pass stops it there for good.  Tolerances: rounding of 0.05 m
+ * positions (1e-17 m; bound 1e-12 m) and of a velocity divided by dt (1e-9
+ * m/s).  Without speculative contacts the ball overlaps the plane by
+ * 4.9 um: euler rolls back, selective pushes it out to r. */
+static void creeping_gap_closes_to_the_slop(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE};
+    const double r = 0.05, dt = 1e-3, d = 0.5 * G * dt * dt, slop = 1e-6 * r;
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        rbs_world *w = make_world(4, dt, -G, 0.5);
+        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_step_info info;
+        rbs_body_id b;
+        int k;
+        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
+        floor_plane(w, mat);
+        b = ball(w, r, 0.1, 0, 0, r + d, 0, 0, 0, mat);
+        CHECK_OK(rbs_world_step(w, &info));
+        assert_int_equal(info.rollbacks, 0);
+        assert_int_equal(info.colliding, 0);
+        assert_true(info.max_overlap == 0.0);
+        ASSERT_NEAR(state_of(w, b).position.z, r + slop, 1e-12);
+        ASSERT_NEAR(state_of(w, b).velocity.z, -(d - slop) / dt, 1e-9);
+        for (k = 0; k < 200; ++k) {
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.rollbacks, 0);
+            assert_int_equal(info.colliding, 0);
+            ASSERT_NEAR(state_of(w, b).position.z, r + slop, 1e-12);
+            ASSERT_NEAR(state_of(w, b).velocity.z, 0.0, 1e-9);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* The same for a ball above another ball resting on the plane: the upper
+ * ball closes its 4.9 um gap to the slop in one step and the two then
+ * rest, the lower carrying both weights (its plane contact holds
+ * 2 m g dt of impulse a step, so nothing moves: 1e-9 m/s).  A sphere
+ * pair's creep reach is g dt^2 too (both fall alike).  Positions: the
+ * resting pass stops at 1e-9 of its first change (2 g dt here), a
+ * velocity error of about 2e-11 m/s a step, which over 200 steps of 1 ms
+ * moves a ball about 4e-12 m: bound 1e-10 m. */
+static void stacked_gap_closes_to_the_slop(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE};
+    const double r = 0.05, dt = 1e-3, d = 0.5 * G * dt * dt, slop = 1e-6 * r;
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        rbs_world *w = make_world(4, dt, -G, 0.5);
+        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_step_info info;
+        rbs_body_id lo, hi;
+        int k;
+        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
+        floor_plane(w, mat);
+        lo = ball(w, r, 0.1, 0, 0, r, 0, 0, 0, mat);
+        hi = ball(w, r, 0.1, 0, 0, 3.0 * r + d, 0, 0, 0, mat);
+        for (k = 0; k < 200; ++k) {
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.rollbacks, 0);
+            assert_int_equal(info.colliding, 0);
+            assert_true(info.max_overlap <= slop);
+        }
+        ASSERT_NEAR(state_of(w, lo).position.z, r, 1e-10);
+        ASSERT_NEAR(state_of(w, hi).position.z, 3.0 * r + slop, 1e-10);
+        ASSERT_NEAR(state_of(w, lo).velocity.z, 0.0, 1e-9);
+        ASSERT_NEAR(state_of(w, hi).velocity.z, 0.0, 1e-9);
+        rbs_world_destroy(w);
+    }
+}
+
+/* An impact inside the creep reach is still an impact.  The ball of the
+ * test above, d = 4.9 um above the plane but moving down at 2 m/s (200
+ * times the resting threshold g dt): the speculative contact must not stop
+ * it plastically; it meets the plane at v = sqrt(4 + 2 g d) and leaves with
+ * e v, e = 0.5, then rises under gravity.  Euler's error in velocity is
+ * below g dt per bounce and step: bound 2 g dt (a plastic stop would leave
+ * 0, an error of 1 m/s). */
+static void impact_inside_the_reach_bounces(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE};
+    const double r = 0.05, dt = 1e-3, d = 0.5 * G * dt * dt, e = 0.5;
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        rbs_world *w = make_world(4, dt, -G, e);
+        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_body_id b;
+        double v = sqrt(4.0 + 2.0 * G * d);
+        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
+        floor_plane(w, mat);
+        b = ball(w, r, 0.1, 0, 0, r + d, 0, 0, -2.0, mat);
+        step_n(w, 5);
+        ASSERT_NEAR(state_of(w, b).velocity.z, e * v - G * 5.0 * dt, 2.0 * G * dt);
+        assert_true(state_of(w, b).position.z > r + d);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -517,6 +626,9 @@ int main(void)
         cmocka_unit_test(fast_asymmetric_top_keeps_angular_momentum),
         cmocka_unit_test(chained_overlap_is_separated),
         cmocka_unit_test(reported_overlap_is_the_states),
+        cmocka_unit_test(creeping_gap_closes_to_the_slop),
+        cmocka_unit_test(stacked_gap_closes_to_the_slop),
+        cmocka_unit_test(impact_inside_the_reach_bounces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -11,6 +11,10 @@
  *  2. Resting contact, after the forces: projected Gauss-Seidel on
  *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn, rolling and spinning
  *     resistance bounded by Jn), cancelling the approach the forces built.
+ * A speculative contact (gap > slop, contact.c) takes no collision impulse;
+ * the collision pass marks it as an impact (bias -1: left out of the resting
+ * pass too) when it approaches faster than its threshold, and the resting
+ * pass lets it approach at (gap - slop) / h, so it closes to the slop.
  */
 #include <string.h>
 
@@ -103,13 +107,21 @@ double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c)
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
-    for (i = 0; i < w->contact_count; ++i)
-        w->contact[i].jn = 0.0; /* used as a "collided" mark here */
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        c->jn = 0.0; /* used as a "collided" mark here */
+        /* a speculative contact approaching as an impact (the test a
+         * touching one gets below, on the velocities before any impulse) */
+        c->bias = c->gap > c->slop && v3_dot(rel_velocity(w, c), c->n) < -c->thr ? -1.0 : 0.0;
+    }
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         int active = 0;
         for (i = 0; i < w->contact_count; ++i) {
             rbs__contact *c = &w->contact[i];
-            double vn = v3_dot(rel_velocity(w, c), c->n);
+            double vn;
+            if (c->gap > c->slop)
+                continue; /* speculative: not touching */
+            vn = v3_dot(rel_velocity(w, c), c->n);
             if (!(vn < -c->thr) || vn >= 0.0)
                 continue;
             rbs__collide(w, c, vn);
@@ -241,7 +253,7 @@ static void shock_propagation(rbs_world *w)
                 continue;
             if ((uint32_t)(level[c->a] > level[c->b] ? level[c->a] : level[c->b]) != k)
                 continue;
-            vn = v3_dot(rel_velocity(w, c), c->n);
+            vn = v3_dot(rel_velocity(w, c), c->n) + c->bias; /* (jn > 0: bias >= 0) */
             if (!(vn < 0.0))
                 continue;
             if (level[c->a] > level[c->b]) {
@@ -264,7 +276,9 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
 
 /* The two sweeps below share their arithmetic through these helpers, so
  * they agree bit for bit.  normal_row: the accumulated normal impulse that
- * cancels the approach vn (Jn >= 0).  cone: the accumulated
+ * cancels the approach vn (Jn >= 0); a speculative contact passes vn plus
+ * its bias, the approach it may keep (a touching contact adds 0: the same
+ * number).  cone: the accumulated
  * friction impulse jt + stick kept within Coulomb's cone (|Jt| <= mu_s Jn
  * sticks, else mu_k Jn against the slip). */
 static inline double normal_row(const rbs__contact *c, double vn)
@@ -292,7 +306,11 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n)), d = jn_new - c->jn;
+        double jn_new, d;
+        if (c->bias < 0.0)
+            continue; /* an impact on its way (speculative) */
+        jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n) + c->bias);
+        d = jn_new - c->jn;
         if (d != 0.0) {
             apply_pair(w, c, v3_scale(c->n, d));
             c->jn = jn_new;
@@ -449,9 +467,13 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double *ba = SB(w, c->a), *bb = SB(w, c->b);
-        v3 rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
-        double jn_new = normal_row(c, v3_dot(rv, c->n)), d = jn_new - c->jn;
+        double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d;
+        v3 rv;
+        if (c->bias < 0.0)
+            continue; /* an impact on its way (speculative) */
+        rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
+        jn_new = normal_row(c, v3_dot(rv, c->n) + c->bias);
+        d = jn_new - c->jn;
         if (d != 0.0) {
             sb_apply_pair(ba, bb, c, v3_scale(c->n, d));
             c->jn = jn_new;
@@ -492,6 +514,12 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         rbs__contact *c = &w->contact[i];
         c->jn = 0.0;
         c->jt = v3_make(0, 0, 0);
+        if (c->gap > c->slop && !(c->bias < 0.0))
+            /* speculative, not an impact: it may close to the slop in h
+             * (a cold pass, h <= 0, has no sub-step to close it in) */
+            c->bias = h > 0.0 ? (c->gap - c->slop) / h : -1.0;
+        if (c->bias < 0.0)
+            continue; /* left out of the pass: no warm start either */
         if (c->rolling > 0.0 || c->spinning > 0.0) {
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;

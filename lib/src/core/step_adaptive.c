@@ -550,7 +550,7 @@ static rbs_status locate(rbs__adaptive *a, double t_end, double *te)
 static rbs_status detect_segment(rbs_world *w, double T)
 {
     uint32_t k;
-    rbs_status st = rbs__detect(w, T);
+    rbs_status st = rbs__detect(w, T, 0);
     if (st != RBS_OK)
         return st;
     for (k = 0; k < w->contact_count; ++k) {
@@ -585,7 +585,7 @@ static rbs_status finish_with_rk4(rbs_world *w, rbs_step_info *info, double rema
     double dt = w->def.dt;
     rbs_status st;
     w->def.dt = remaining;
-    st = rbs__step_rollback(w, info, rbs__rk4_advance);
+    st = rbs__step_rollback(w, info, rbs__rk4_advance, 0);
     w->def.dt = dt;
     return st;
 }

@@ -8,6 +8,8 @@
  * One frame (dt) is covered by sub-steps h = dt / 2^k.  Each sub-step:
  *   detect contacts; resolve collisions; v += a h, w += I^-1 (tau - w x Iw) h;
  *   resolve resting contacts; x += v h, q = exp(w h) q.
+ * Euler's contacts include speculative ones (contact.c): pairs a resting
+ * approach can close within the step; verlet and rk4 take touching ones.
  * If an overlap deeper than the slop appears (swept for sphere pairs), the
  * sub-step is undone and retried with h/2 (the seed's rollback) -- or with
  * the straight-line time of first touch when that is earlier -- down to the
@@ -119,10 +121,11 @@ static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, euler_advance);
+    return rbs__step_rollback(w, info, euler_advance, 1);
 }
 
-rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance)
+rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
+                              int speculative)
 {
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
@@ -137,7 +140,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             hu = total - done;
         h = dt * ((double)hu / (double)total);
         rbs__save_state(w, w->sub_save);
-        st = rbs__detect(w, dt);
+        st = rbs__detect(w, dt, speculative);
         if (st != RBS_OK)
             return st;
         rbs__solve_collisions(w, info);
@@ -167,7 +170,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             hu = total;
         }
     }
-    info->contacts = w->contact_count;
+    info->contacts = rbs__touching(w);
     info->max_overlap = pen;
     return RBS_OK;
 }

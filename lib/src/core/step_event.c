@@ -418,7 +418,7 @@ static double next_event(const rbs_world *w, double smax, double dt)
 static rbs_status resolve_contacts(rbs_world *w, double dt, rbs_step_info *info)
 {
     uint32_t k;
-    rbs_status st = rbs__detect(w, dt);
+    rbs_status st = rbs__detect(w, dt, 0);
     if (st != RBS_OK)
         return st;
     for (k = 0; k < w->contact_count; ++k) {

@@ -361,14 +361,14 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
 
     /* the whole world: one Euler step */
     rbs__save_state(w, w->sub_save);
-    st = rbs__detect(w, dt);
+    st = rbs__detect(w, dt, 1);
     if (st != RBS_OK)
         return st;
     rbs__solve_collisions(w, info);
     rbs__integrate_velocities(w, dt);
     rbs__solve_resting_warm(w, info, dt);
     rbs__integrate_positions(w, dt);
-    contacts = w->contact_count;
+    contacts = rbs__touching(w);
     for (i = 0; i < w->slots; ++i)
         T0(w, i) = 0.0;
 

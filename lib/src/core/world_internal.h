@@ -27,6 +27,10 @@ typedef struct rbs__contact {
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
     double slop;   /* allowed overlap for this pair, m */
     double thr;    /* approach speed below which the contact is resting, m/s */
+    double bias;   /* speculative contact (gap > slop): the approach speed
+                      the resting pass allows, (gap - slop) / h, or -1 when
+                      the pair approaches as an impact (left to the
+                      method's rollback); 0 for a touching contact */
     double mu_s, mu_k, e, rolling, spinning;
     double kn;     /* n . K n : inverse effective mass along n */
     double kt;     /* t . K t for every tangent t when K is isotropic in the
@@ -209,7 +213,13 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                            void *ctx);
 
 /* Contacts (contact.c). */
-rbs_status rbs__detect(rbs_world *w, double dt);
+/* Contacts at the start of a step.  speculative: also pairs apart by more
+ * than the slop but by at most the creep reach thr * dt, the distance a
+ * resting approach (slower than thr) closes in one step (see contact.c);
+ * only for methods whose resting pass takes them (euler, selective). */
+rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
+/* Contacts of the current list that touch (gap <= slop). */
+uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
 int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
 /* Push apart overlap deeper than the slop (planes, then pairs); 1 if it
@@ -256,7 +266,8 @@ void rbs__restore_state(rbs_world *w, const double *save);
  * function moves velocities and positions over one sub-step of h seconds,
  * after the collision pass; it may run the resting pass. */
 typedef void (*rbs__advance_fn)(rbs_world *w, double h, rbs_step_info *info);
-rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance);
+rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
+                              int speculative);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
  * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
  * isotropic body), and within the step's budget (max_substeps * 256 in all);
