@@ -497,6 +497,17 @@ static void reported_overlap_is_the_states(void **state)
     }
 }
 
+/* The speculative-contact tests' world: dt = 1 ms, gravity, restitution e,
+ * a floor, one material (mu 0.5, e from the world), stepped by method. */
+static rbs_world *floor_world(rbs_method method, double e, rbs_material_id *mat)
+{
+    rbs_world *w = make_world(4, 1e-3, -G, e);
+    *mat = material(w, "m", 0.5, 0.5, -1.0);
+    CHECK_OK(rbs_world_set_method(w, method, 0.0));
+    floor_plane(w, *mat);
+    return w;
+}
+
 /* Speculative resting contact (contact.c), under euler and selective.  A
  * ball of r = 5 cm at rest a gap d = g dt^2 / 2 (4.9 um) above a plane --
  * more than the slop (1e-6 r = 50 nm), less than the creep reach g dt^2 --
@@ -515,13 +526,11 @@ static void creeping_gap_closes_to_the_slop(void **state)
     size_t m;
     (void)state;
     for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
-        rbs_world *w = make_world(4, dt, -G, 0.5);
-        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_material_id mat;
+        rbs_world *w = floor_world(methods[m], 0.5, &mat);
         rbs_step_info info;
         rbs_body_id b;
         int k;
-        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
-        floor_plane(w, mat);
         b = ball(w, r, 0.1, 0, 0, r + d, 0, 0, 0, mat);
         CHECK_OK(rbs_world_step(w, &info));
         assert_int_equal(info.rollbacks, 0);
@@ -555,13 +564,11 @@ static void stacked_gap_closes_to_the_slop(void **state)
     size_t m;
     (void)state;
     for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
-        rbs_world *w = make_world(4, dt, -G, 0.5);
-        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_material_id mat;
+        rbs_world *w = floor_world(methods[m], 0.5, &mat);
         rbs_step_info info;
         rbs_body_id lo, hi;
         int k;
-        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
-        floor_plane(w, mat);
         lo = ball(w, r, 0.1, 0, 0, r, 0, 0, 0, mat);
         hi = ball(w, r, 0.1, 0, 0, 3.0 * r + d, 0, 0, 0, mat);
         for (k = 0; k < 200; ++k) {
@@ -592,12 +599,10 @@ static void impact_inside_the_reach_bounces(void **state)
     size_t m;
     (void)state;
     for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
-        rbs_world *w = make_world(4, dt, -G, e);
-        rbs_material_id mat = material(w, "m", 0.5, 0.5, -1.0);
+        rbs_material_id mat;
+        rbs_world *w = floor_world(methods[m], e, &mat);
         rbs_body_id b;
         double v = sqrt(4.0 + 2.0 * G * d);
-        CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
-        floor_plane(w, mat);
         b = ball(w, r, 0.1, 0, 0, r + d, 0, 0, -2.0, mat);
         step_n(w, 5);
         ASSERT_NEAR(state_of(w, b).velocity.z, e * v - G * 5.0 * dt, 2.0 * G * dt);

@@ -276,14 +276,14 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
 
 /* The two sweeps below share their arithmetic through these helpers, so
  * they agree bit for bit.  normal_row: the accumulated normal impulse that
- * cancels the approach vn (Jn >= 0); a speculative contact passes vn plus
- * its bias, the approach it may keep (a touching contact adds 0: the same
- * number).  cone: the accumulated
+ * cancels the approach vn beyond the contact's bias, the approach a
+ * speculative contact may keep (Jn >= 0; a touching contact's bias is 0,
+ * which leaves vn the same number).  cone: the accumulated
  * friction impulse jt + stick kept within Coulomb's cone (|Jt| <= mu_s Jn
  * sticks, else mu_k Jn against the slip). */
 static inline double normal_row(const rbs__contact *c, double vn)
 {
-    double jn_new = c->jn - vn / c->kn;
+    double jn_new = c->jn - (vn + c->bias) / c->kn;
     return jn_new < 0.0 ? 0.0 : jn_new;
 }
 
@@ -309,7 +309,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         double jn_new, d;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n) + c->bias);
+        jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n));
         d = jn_new - c->jn;
         if (d != 0.0) {
             apply_pair(w, c, v3_scale(c->n, d));
@@ -472,7 +472,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
-        jn_new = normal_row(c, v3_dot(rv, c->n) + c->bias);
+        jn_new = normal_row(c, v3_dot(rv, c->n));
         d = jn_new - c->jn;
         if (d != 0.0) {
             sb_apply_pair(ba, bb, c, v3_scale(c->n, d));
