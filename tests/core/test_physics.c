@@ -611,6 +611,63 @@ static void impact_inside_the_reach_bounces(void **state)
     }
 }
 
+/* The slop is the speed/accuracy knob of impacts.  A ball of r = 0.1 m
+ * dropped from h0 = 0.1 m above the plane (e = 0.5) meets it at
+ * v = sqrt(2 g h0) = 1.40 m/s and travels at most v dt + g dt^2 = 1.42 mm
+ * in a step.  With the default slop (1e-6 r) euler rolls the step of the
+ * impact back to the moment of touch; with slop 0.02 (2 mm) it never rolls
+ * back: the step that overlaps is kept, the overlap stays within the slop,
+ * and the next step's collision pass bounces the ball from where it is.
+ * Both rise to the exact apex e^2 h0 (point contact, instantaneous) within
+ * euler's first-order error: the accepted overlap (<= v dt deep) and a bounce
+ * up to one step late (rebound speed off by <= (1 + e) g dt, which moves
+ * the apex by e v (1 + e) dt) -- bound 2 v dt = 2.8 mm. */
+static void slop_accepts_shallow_impacts(void **state)
+{
+    const double slops[] = {1e-6, 0.02};
+    const double r = 0.1, dt = 1e-3, h0 = 0.1, e = 0.5, v = sqrt(2.0 * G * h0);
+    size_t s;
+    (void)state;
+    for (s = 0; s < sizeof slops / sizeof slops[0]; ++s) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_material_id mat;
+        rbs_body_id b;
+        rbs_step_info info;
+        uint64_t rollbacks = 0;
+        double apex = 0.0;
+        int k, rising = 0;
+        rbs_world_def_init(&d);
+        d.max_bodies = 4;
+        d.dt = dt;
+        d.gravity.z = -G;
+        d.restitution = e;
+        d.slop = slops[s];
+        CHECK_OK(rbs_world_create(&d, &w));
+        mat = material(w, "m", 0.5, 0.5, -1.0);
+        floor_plane(w, mat);
+        b = ball(w, r, 1.0, 0, 0, r + h0, 0, 0, 0, mat);
+        for (k = 0; k < 300; ++k) {
+            rbs_body_state st;
+            CHECK_OK(rbs_world_step(w, &info));
+            rollbacks += info.rollbacks;
+            assert_true(info.max_overlap <= slops[s] * r);
+            st = state_of(w, b);
+            if (st.velocity.z > 0.0)
+                rising = 1;
+            if (rising && st.position.z - r > apex)
+                apex = st.position.z - r;
+        }
+        if (s == 0)
+            assert_true(rollbacks > 0);
+        else
+            assert_int_equal(rollbacks, 0);
+        assert_true(rising);
+        ASSERT_NEAR(apex, e * e * h0, 2.0 * v * dt);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -634,6 +691,7 @@ int main(void)
         cmocka_unit_test(creeping_gap_closes_to_the_slop),
         cmocka_unit_test(stacked_gap_closes_to_the_slop),
         cmocka_unit_test(impact_inside_the_reach_bounces),
+        cmocka_unit_test(slop_accepts_shallow_impacts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

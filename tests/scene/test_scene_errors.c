@@ -100,6 +100,11 @@ static const bad_case cases[] = {
     {"bad/negative_radius.json", RBS_E_SCENE,
      {E("-0.1", 1, 0, "bodies[0].radius: must be > 0, got -0.1")}},
     {"bad/zero_dt.json", RBS_E_SCENE, {E("\"dt\": 0", 1, 6, "simulation.dt: must be > 0, got 0")}},
+    {"bad/slop_out_of_range.json", RBS_E_SCENE,
+     {E("0.1}", 1, 0,
+        "simulation.slop: must be in (0, 0.1) (a fraction of the smaller radius), got 0.1")}},
+    {"bad/slop_not_a_number.json", RBS_E_SCENE,
+     {E("\"loose\"", 1, 0, "simulation.slop: must be a number, got \"loose\"")}},
     {"bad/zero_normal.json", RBS_E_SCENE,
      {E("\"normal\": [0, 0, 0]", 1, 10,
         "bodies[1].normal: must be a nonzero vector of finite length, got [0, 0, 0]")}},
@@ -538,13 +543,49 @@ static void test_material_rules(void **state)
     rbs_scene_free(scene);
 }
 
+/* simulation.slop reaches the world, and is the overlap a scene may start
+ * with: a ball 0.4 % of its radius inside the floor loads with slop 0.005
+ * and is an error with the world's default (1e-6); absent, the world's
+ * default is what the world gets. */
+static void test_slop(void **state)
+{
+    static const char fmt[] =
+        "{\"simulation\": {\"steps\": 1%s},\n"
+        " \"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 0.5, \"mass\": 1,"
+        " \"position\": [0, 0, %s]},\n"
+        " {\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1]}]}\n";
+    char text[1024];
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    rbs_world_def d, def0;
+    (void)state;
+    rbs_world_def_init(&def0);
+    snprintf(text, sizeof text, fmt, ", \"slop\": 0.005", "0.498");
+    assert_int_equal(rbs_scene_parse_json(text, strlen(text), "loose", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+    assert_true(d.slop == 0.005);
+    rbs_scene_free(scene);
+    snprintf(text, sizeof text, fmt, "", "0.498");
+    assert_int_equal(rbs_scene_parse_json(text, strlen(text), "tight", &scene), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_non_null(strstr(e.text, "bodies[0].position: \"ball\" starts behind (inside) plane"));
+    rbs_scene_free(scene);
+    snprintf(text, sizeof text, fmt, "", "0.5");
+    assert_int_equal(rbs_scene_parse_json(text, strlen(text), "default", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+    assert_true(d.slop == def0.slop);
+    rbs_scene_free(scene);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields),
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers),
-        cmocka_unit_test(test_material_rules),
+        cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
     };
     if (enter_test_dir() != 0) {
         return 1;

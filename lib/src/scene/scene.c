@@ -39,9 +39,12 @@ void rbs__c_locale_pop(rbs__locale *l)
 rbs_scene *rbs__scene_new(void)
 {
     rbs_scene *scene = calloc(1, sizeof *scene);
+    rbs_world_def def;
     if (scene == NULL) {
         return NULL;
     }
+    rbs_world_def_init(&def);
+    scene->slop = def.slop; /* the world's default */
     scene->dt = 0.001;
     scene->gravity.z = -9.81;
     scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
@@ -480,6 +483,7 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->restitution = scene->restitution;
     out->method = scene->method;
     out->tolerance = scene->tolerance;
+    out->slop = scene->slop;
     out->mutual_gravity = scene->mutual_gravity;
     out->gravity_constant = scene->gravity_constant;
     out->softening = scene->softening;

@@ -119,6 +119,7 @@ struct rbs_scene {
     rbs_gravity_mode gravity_mode;
     rbs_method method;
     double tolerance;
+    double slop; /* allowed overlap and contact margin, of the smaller radius */
     double restitution;
     int32_t pause_on_collision;
     int32_t mutual_gravity;

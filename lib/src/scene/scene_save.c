@@ -172,6 +172,8 @@ static void put_simulation(FILE *f, const key_style *k, const key_style *g, cons
     put_word(f, k, method != NULL ? method : "euler");
     put_key(f, k, "tolerance", KEY_NEXT);
     put_num(f, s->tolerance);
+    put_key(f, k, "slop", KEY_NEXT);
+    put_num(f, s->slop);
     put_key(f, k, "restitution", KEY_NEXT);
     put_num(f, s->restitution);
     put_key(f, k, "pause_on_collision", KEY_NEXT);

@@ -426,8 +426,8 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 /* ---- simulation --------------------------------------------------------- */
 
 static const char *const sim_keys[] = {
-    "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "restitution",
-    "pause_on_collision", "mutual_gravity"};
+    "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
+    "restitution", "pause_on_collision", "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
 
@@ -497,6 +497,21 @@ static void check_simulation(vctx *v, const cJSON *sim)
     if ((c = member(sim, "tolerance")) != NULL) {
         saved = push_key(v, "tolerance");
         (void)get_ranged(v, c, R_POS, &s->tolerance);
+        pop(v, saved);
+    }
+    if ((c = member(sim, "slop")) != NULL) {
+        /* the world's range (rbs_world_def.slop): (0, 0.1) of a radius */
+        double x;
+        saved = push_key(v, "slop");
+        if (get_number(v, c, &x) == 0) {
+            if (x > 0.0 && x < 0.1) {
+                s->slop = x;
+            } else {
+                char g[64];
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be in (0, 0.1) (a fraction of the smaller radius), got %s", g);
+            }
+        }
         pop(v, saved);
     }
     if ((c = member(sim, "restitution")) != NULL) {
@@ -1229,14 +1244,12 @@ static void overlap_error(vctx *v, uint32_t i, const char *fmt_other, double dep
     pop(v, saved);
 }
 
-/* Bodies may not overlap at the start (beyond the world's slop). */
+/* Bodies may not overlap at the start (beyond the scene's slop). */
 static void check_overlap(vctx *v)
 {
     rbs_scene *s = v->scene;
-    rbs_world_def def;
     uint32_t i, j, n = 0;
     sweep_rec *rec;
-    rbs_world_def_init(&def);
     rec = malloc((s->body_count + 1) * sizeof *rec);
     if (rec == NULL) {
         rbs__loc none = {0, 0, 0};
@@ -1266,7 +1279,7 @@ static void check_overlap(vctx *v)
             d = (sp->position.x - pl->point.x) * pl->normal.x +
                 (sp->position.y - pl->point.y) * pl->normal.y +
                 (sp->position.z - pl->point.z) * pl->normal.z;
-            if (d < sp->radius - def.slop * sp->radius) {
+            if (d < sp->radius - s->slop * sp->radius) {
                 overlap_error(v, i, "starts behind (inside) plane", sp->radius - d, j);
             }
         }
@@ -1285,7 +1298,7 @@ static void check_overlap(vctx *v)
             if (a->fixed && b->fixed) {
                 continue;
             }
-            if (dist < a->radius + b->radius - def.slop * rmin) {
+            if (dist < a->radius + b->radius - s->slop * rmin) {
                 uint32_t first = rec[i].index < rec[j].index ? rec[i].index : rec[j].index;
                 uint32_t second = rec[i].index ^ rec[j].index ^ first;
                 overlap_error(v, second, "overlaps", a->radius + b->radius - dist, first);
