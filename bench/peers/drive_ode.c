@@ -70,7 +70,13 @@ int main(int argc, char **argv)
     size_t i;
     unsigned long contacts_max = 0;
 
-    if (peers_parse_args(argc, argv, &opt, usage) || peers_scene_read(opt.scene_path, &sc))
+    if (peers_parse_args(argc, argv, &opt, usage))
+        return 2;
+    if (opt.slop != 0.0) {
+        fprintf(stderr, "peers_ode: --slop is rbsim's option\n%s", usage);
+        return 2;
+    }
+    if (peers_scene_read(opt.scene_path, &sc))
         return 2;
     if (opt.extra != NULL && strcmp(opt.extra, "hash") != 0 && strcmp(opt.extra, "sap") != 0 &&
         strcmp(opt.extra, "simple") != 0) {

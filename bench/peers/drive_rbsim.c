@@ -2,12 +2,13 @@
  * drive_rbsim.c - runs a peers scene in rbsim and reports time and counters.
  *
  *   peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE]
- *               [--method NAME]
+ *               [--method NAME] [--slop X]
  *
  * Contacts: one "*"/"*" material-pair row with mu_s = mu_k = friction and
  * e = restitution, and the world's restitution the same, so every contact
  * (sphere-sphere and sphere-plane) has the scene's coefficients.  Everything
- * else is the library's default (slop, max_halvings, max_sweeps, contacts).
+ * else is the library's default (max_halvings, max_sweeps, contacts; the slop
+ * too unless --slop gives one).
  * Only the stepping loop is timed; creation is reported as setup time.
  */
 #include <stdint.h>
@@ -19,6 +20,7 @@
 
 static const char usage[] =
     "usage: peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE] [--method NAME]\n"
+    "                   [--slop X]   (rbs_world_def.slop, a fraction of the radius; default the library's)\n"
     "       peers_rbsim --layout    (bytes of the world per body and per contact)\n";
 
 /* Bytes the world takes per body and per contact slot, from the public
@@ -92,6 +94,15 @@ int main(int argc, char **argv)
     def.restitution = sc.restitution;
     if (opt.extra != NULL && check(NULL, rbs_method_from_name(opt.extra, &def.method), "--method"))
         return 2;
+    if (opt.slop != 0.0)
+        def.slop = opt.slop;
+    {
+        char why[256];
+        if (rbs_world_def_validate(&def, why, sizeof why) != RBS_OK) {
+            fprintf(stderr, "peers_rbsim: the world's settings: %s\n", why);
+            return 2;
+        }
+    }
     if (check(NULL, rbs_world_create(&def, &w), "rbs_world_create"))
         return 2;
     rbs_pair_def_init(&pair);
@@ -184,12 +195,12 @@ int main(int argc, char **argv)
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
            "\"substeps\": %llu, \"rollbacks\": %llu, \"floor_hits\": %llu, \"sweep_limit\": %llu, "
            "\"contacts_max\": %u, \"contacts_high\": %u, \"step_max_overlap\": %.9g, "
-           "\"world_bytes\": %zu, \"max_contacts\": %u, \"energy_lib\": %.12g, \"apex\": ",
+           "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"energy_lib\": %.12g, \"apex\": ",
            rbs_version(), rbs_method_name(def.method), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0,
            t_setup, (unsigned long long)substeps, (unsigned long long)rollbacks,
            (unsigned long long)floor_hits, (unsigned long long)sweep_limit, contacts_max,
            usage_info.contacts_high, overlap_max, usage_info.bytes, def.max_contacts,
-           energy.total);
+           def.slop, energy.total);
     peers_print_apex(stdout, &apex);
     printf(", \"error\": \"");
     for (; *error; ++error)

@@ -44,6 +44,13 @@ int peers_parse_args(int argc, char **argv, peers_options *opt, const char *usag
             }
         } else if (strcmp(a, "--method") == 0) {
             opt->extra = v;
+        } else if (strcmp(a, "--slop") == 0) {
+            /* (its range is the library's to check) */
+            opt->slop = strtod(v, &end);
+            if (*v == '\0' || *end != '\0' || !(opt->slop > 0.0)) {
+                fprintf(stderr, "%s: --slop wants a fraction of a radius > 0, got \"%s\"\n", argv[0], v);
+                return 1;
+            }
         } else {
             fprintf(stderr, "%s: unknown option \"%s\"\n%s", argv[0], a, usage);
             return 1;
