@@ -28,6 +28,7 @@ typedef struct run_options {
     uint64_t steps;      /* 0: the scene's */
     double dt;           /* <= 0: the scene's */
     const char *method;  /* NULL: the scene's */
+    double slop;         /* 0: the scene's */
     const char *csv, *json, *stats, *png;
     uint32_t every;      /* 0: every frame */
     int realtime, quiet, paused;
@@ -140,7 +141,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             continue;
         }
         if (strcmp(name, "--steps") && strcmp(name, "--dt") &&
-            strcmp(name, "--method") && strcmp(name, "--csv") &&
+            strcmp(name, "--method") && strcmp(name, "--slop") && strcmp(name, "--csv") &&
             strcmp(name, "--json") && strcmp(name, "--stats") &&
             strcmp(name, "--png") && strcmp(name, "--every") &&
             strcmp(name, "--reel") && strcmp(name, "--speed") &&
@@ -150,6 +151,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         if ((strcmp(name, "--steps") == 0 && o->steps) ||
             (strcmp(name, "--dt") == 0 && o->dt > 0) ||
             (strcmp(name, "--method") == 0 && o->method) ||
+            (strcmp(name, "--slop") == 0 && o->slop > 0) ||
             (strcmp(name, "--csv") == 0 && o->csv) ||
             (strcmp(name, "--json") == 0 && o->json) ||
             (strcmp(name, "--stats") == 0 && o->stats) ||
@@ -177,6 +179,10 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             if (parse_positive(value, &o->dt) != 0)
                 return usage_error("--dt: expected a time step in seconds, > 0, "
                                    "got '%s'%s", value, "");
+        } else if (strcmp(name, "--slop") == 0) {
+            if (parse_positive(value, &o->slop) != 0 || !(o->slop < 0.1))
+                return usage_error("--slop: expected a fraction of the smaller "
+                                   "radius in (0, 0.1), got '%s'%s", value, "");
         } else if (strcmp(name, "--speed") == 0) {
             if (parse_positive(value, &o->speed) != 0 || o->speed > 1e6)
                 return usage_error("--speed: expected a factor > 0 and <= 1e6, "
@@ -827,6 +833,11 @@ int rbsf_run_main(int argc, char **argv)
             code = RBSF_EXIT_USAGE;
             goto out;
         }
+    }
+    if (o.slop > 0 && rbs_scene_override_slop(scene, o.slop) != RBS_OK) {
+        rbsf_print_scene_errors(scene, stderr);
+        code = RBSF_EXIT_USAGE;
+        goto out;
     }
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {

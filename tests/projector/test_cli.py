@@ -120,6 +120,11 @@ class CliTests(Base):
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
             (["--method", "leapfrog"], "unknown method 'leapfrog'"),
+            (["--slop", "0.1"], "--slop: expected a fraction of the smaller radius in (0, 0.1)"),
+            (["--slop", "0"], "--slop: expected"),
+            (["--slop", "nan"], "--slop: expected"),
+            (["--slop", "loose"], "--slop: expected"),
+            (["--slop", "0.01", "--slop=0.02"], "--slop given twice"),
             (["--every", "0"], "--every"),
             (["--reel", "1"], "--reel"),
             (["--speed", "0"], "--speed"),
@@ -141,6 +146,36 @@ class CliTests(Base):
             self.assertEqual(r.returncode, 2, (extra, r.stderr))
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
+
+    def test_slop_option(self):
+        """--slop overrides simulation.slop: a ball of r = 0.1 m dropped
+        0.1 m (impact at 1.4 m/s, at most 1.42 mm a step) is rolled back at
+        its impact with the default slop (1e-6 r) and never with 0.02
+        (2 mm), whose overlap stays within 2 mm; a checkpoint made with one
+        slop does not resume with another."""
+        s = self.scene(bodies=[SCENE["bodies"][0],
+                               {"name": "ball", "type": "sphere", "radius": 0.1,
+                                "mass": 1, "position": [0, 0, 0.2]}])
+        rolled = {}
+        for slop in (None, "0.02"):
+            extra = [] if slop is None else ["--slop", slop]
+            st = "st_%s.csv" % slop
+            r = self.rbsim("run", s, "--stats", st, "--quiet", "--csv", "x_%s.csv" % slop, *extra)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            with open(self.path(st), newline="") as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(len(rows), 301)
+            rolled[slop] = sum(int(x["rollbacks"]) for x in rows)
+            worst = max(float(x["max_overlap"]) for x in rows)
+            self.assertLessEqual(worst, (0.02 if slop else 1e-6) * 0.1)
+        self.assertGreater(rolled[None], 0)
+        self.assertEqual(rolled["0.02"], 0)
+        r = self.rbsim("run", s, "--steps", "100", "--checkpoint", "c.ckpt", "--quiet",
+                       "--csv", "c1.csv", "--slop", "0.02")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--resume", "c.ckpt", "--quiet", "--csv", "c2.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("slop", r.stderr)
 
     def test_too_many_outputs(self):
         s = self.scene(renderers=[{"type": "csv", "path": "s1.csv"},

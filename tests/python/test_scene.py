@@ -70,6 +70,21 @@ def test_overrides(write_scene):
         rbsim.load(path, steps=0)
 
 
+def test_slop_override(write_scene):
+    """slop= sets the world's slop (as --slop and simulation.slop do); out of
+    (0, 0.1) it is a SceneError naming --slop, a non-number a type error."""
+    import json
+    path = write_scene(bounce_scene(steps=10))
+    assert rbsim.load(path).settings["slop"] == 1e-6
+    assert rbsim.load(path, slop=0.005).settings["slop"] == 0.005
+    assert rbsim.parse_json(json.dumps(bounce_scene()), "inline", slop=0.02).settings["slop"] == 0.02
+    for bad in (0.0, 0.1, -1e-3):
+        with pytest.raises(rbsim.SceneError, match="--slop"):
+            rbsim.load(path, slop=bad)
+    with pytest.raises(rbsim.ArgumentTypeError, match="slop"):
+        rbsim.load(path, slop="loose")
+
+
 def test_parse_json():
     import json
     w = rbsim.parse_json(json.dumps(bounce_scene()), "inline")

@@ -476,6 +476,23 @@ static void test_override(void **state)
     assert_string_equal(e.text, "command line: --steps: steps * dt overflows "
                                 "(9007199254740992 * 1e+300)");
     rbs_scene_free(scene);
+
+    /* --slop: in (0, 0.1) reaches the world; else an error, the scene's
+     * slop kept, and nothing builds */
+    assert_int_equal(rbs_scene_override_slop(NULL, 0.01), RBS_E_INVALID);
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_override_slop(scene, 0.01), RBS_OK);
+    assert_int_equal(rbs_scene_world_def(scene, &def), RBS_OK);
+    assert_true(def.slop == 0.01);
+    assert_int_equal(rbs_scene_override_slop(scene, 0.1), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_override_slop(scene, 0.0 / 0.0), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 2);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --slop: must be in (0, 0.1) (a fraction of the "
+                                "smaller radius), got 0.1");
+    assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);
+    rbs_scene_free(scene);
     assert_int_equal(rbs_scene_override(NULL, 1, 1, NULL), RBS_E_INVALID);
 }
 

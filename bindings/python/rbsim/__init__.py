@@ -61,7 +61,11 @@ def _raise_scene(status: int, scene: Any, name: str) -> None:
 
 
 def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float],
-                method: Optional[str]) -> World:
+                method: Optional[str], slop: Optional[float] = None) -> World:
+    if slop is not None:
+        status = lib.rbs_scene_override_slop(scene, _check.real(slop, "slop"))
+        if status != lib.RBS_OK:
+            _raise_scene(status, scene, name)
     if steps is not None or dt is not None or method is not None:
         n = 0 if steps is None else _check.u64(steps, "steps", 1)
         step = 0.0
@@ -105,14 +109,15 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
 
 def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
          steps: Optional[int] = None, dt: Optional[float] = None,
-         method: Optional[str] = None) -> World:
+         method: Optional[str] = None, slop: Optional[float] = None) -> World:
     """Load a scene file and build its world.
 
     Args:
         path: a JSON scene, or a seed-format config.txt (see scenes/FORMAT.md).
         format: "auto" (by content/extension), "json" or "text".
-        steps, dt, method: override the scene's simulation settings (as the
-            command line's --steps/--dt/--method do).
+        steps, dt, method, slop: override the scene's simulation settings
+            (as the command line's --steps/--dt/--method/--slop do; slop in
+            (0, 0.1) of the smaller radius).
 
     Returns:
         the World; :meth:`World.run` without steps uses the scene's.
@@ -132,13 +137,14 @@ def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
     try:
         if status != lib.RBS_OK:
             _raise_scene(status, scene, name)
-        return _from_scene(scene, name, steps, dt, method)
+        return _from_scene(scene, name, steps, dt, method, slop)
     finally:
         lib.rbs_scene_free(scene)
 
 
 def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None,
-               dt: Optional[float] = None, method: Optional[str] = None) -> World:
+               dt: Optional[float] = None, method: Optional[str] = None,
+               slop: Optional[float] = None) -> World:
     """Build a world from a JSON scene held in a string (name labels
     errors).  Same errors as :func:`load`."""
     if not isinstance(text, str):
@@ -151,7 +157,7 @@ def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None
     try:
         if status != lib.RBS_OK:
             _raise_scene(status, scene, name)
-        return _from_scene(scene, name, steps, dt, method)
+        return _from_scene(scene, name, steps, dt, method, slop)
     finally:
         lib.rbs_scene_free(scene)
 

@@ -100,6 +100,13 @@ RBS_API int32_t rbs_scene_pause_on_collision(const rbs_scene *scene);
 RBS_API rbs_status rbs_scene_override(rbs_scene *scene, uint64_t steps, double dt,
                                       const char *method);
 
+/** Command-line override of simulation.slop (a fraction of the smaller
+ * radius of a pair, in (0, 0.1); see rbs_world_def.slop).  Out of range,
+ * NaN or infinite is RBS_E_SCENE with the error recorded ("command line:
+ * --slop: ..."), the scene unchanged and then building no world.  Start
+ * positions were checked against the file's slop when it was loaded. */
+RBS_API rbs_status rbs_scene_override_slop(rbs_scene *scene, double slop);
+
 /** A renderer entry of the scene ("renderers": [...]). */
 typedef struct rbs_scene_renderer {
     const char *type;  /**< "csv", "json", "sdl", or a registered name */

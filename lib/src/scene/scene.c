@@ -665,6 +665,25 @@ static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
     return RBS_OK;
 }
 
+rbs_status rbs_scene_override_slop(rbs_scene *scene, double slop)
+{
+    rbs__loc none = {-1, 0, 0};
+    if (scene == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (!(slop > 0.0 && slop < 0.1)) {
+        /* the number in the C locale, as rbs_scene_override's */
+        rbs__locale l;
+        rbs__c_locale_push(&l);
+        rbs__scene_error(scene, none, "--slop",
+                         "must be in (0, 0.1) (a fraction of the smaller radius), got %g", slop);
+        rbs__c_locale_pop(&l);
+        return RBS_E_SCENE;
+    }
+    scene->slop = slop;
+    return RBS_OK;
+}
+
 uint32_t rbs_scene_renderer_count(const rbs_scene *scene)
 {
     return scene != NULL ? scene->renderer_count : 0;
