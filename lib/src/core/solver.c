@@ -245,14 +245,39 @@ static void shock_propagation(rbs_world *w)
         if (c->jn > 0.0 && top != INT32_MAX && (uint32_t)top > max_level)
             max_level = (uint32_t)top;
     }
-    for (k = 1; k <= max_level; ++k) {
+    /* The contacts to propagate through, grouped by the level of their
+     * upper body (a counting sort, stable: contact order within a level),
+     * so that the levels, ground up, take one walk over their own contacts
+     * instead of each level walking every contact -- O(contacts), where a
+     * pile of L levels took L walks.  (A level is one more than the level
+     * of a different body, so it is below the number of bodies: the counts
+     * fit in shock_order's max_bodies + 2 entries after max_contacts.) */
+    {
+        uint32_t *order = w->shock_order, *start = w->shock_order + w->def.max_contacts, n = 0;
+        memset(start, 0, ((size_t)max_level + 2) * sizeof *start);
         for (i = 0; i < w->contact_count; ++i) {
-            rbs__contact *c = &w->contact[i];
+            const rbs__contact *c = &w->contact[i];
+            int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
+            if (c->jn == 0.0 || level[c->a] == level[c->b] || top == INT32_MAX ||
+                (uint32_t)top > max_level)
+                continue; /* (the contacts the walk by levels 1..max_level took) */
+            start[top + 1]++;
+        }
+        for (k = 1; k <= max_level + 1; ++k)
+            start[k] += start[k - 1];
+        for (i = 0; i < w->contact_count; ++i) {
+            const rbs__contact *c = &w->contact[i];
+            int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
+            if (c->jn == 0.0 || level[c->a] == level[c->b] || top == INT32_MAX ||
+                (uint32_t)top > max_level)
+                continue; /* (the contacts the walk by levels 1..max_level took) */
+            order[start[top]++] = i; /* start[top] ends at the next level's start */
+            n++;
+        }
+        /* start[k] is now the end of level k: level k is [start[k-1], start[k]) */
+        for (k = 0; k < n; ++k) {
+            rbs__contact *c = &w->contact[order[k]];
             double vn, kk;
-            if (c->jn == 0.0 || level[c->a] == level[c->b])
-                continue;
-            if ((uint32_t)(level[c->a] > level[c->b] ? level[c->a] : level[c->b]) != k)
-                continue;
             vn = v3_dot(rel_velocity(w, c), c->n) + c->bias; /* (jn > 0: bias >= 0) */
             if (!(vn < 0.0))
                 continue;

@@ -149,6 +149,9 @@ struct rbs_world {
     double *ev_alpha;                     /* 3 per slot: angular acceleration */
     int32_t *ev_mode;                     /* free / on a plane */
     uint32_t *ev_plane;                   /* the plane a body rolls or slides on */
+    uint32_t *shock_order;                /* max_contacts + max_bodies + 2: shock
+                                             propagation's contacts by level and
+                                             its per-level counts (solver.c) */
 
     /* methods (step_verlet.c, step_rk4.c, step_adaptive.c) */
     double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot */
