@@ -668,6 +668,54 @@ static void slop_accepts_shallow_impacts(void **state)
     }
 }
 
+/* The loosest slop the world takes (just under 0.1 of a radius) keeps
+ * impacts that are deeper than it: a sphere crossing 20 radii per step
+ * still meets the other at the moment of touch, so the elastic exchange is
+ * exact (1e-9 m/s: rounding of 2000 m/s), and one crossing 10 radii per
+ * step towards a plane never ends a step more than the slop inside it --
+ * under euler and selective. */
+static void loosest_slop_still_stops_tunnelling(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE};
+    const double slop = 0.0999, r = 0.1;
+    size_t m;
+    (void)state;
+    for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_body_id a, b;
+        rbs_step_info info;
+        int k;
+        rbs_world_def_init(&d);
+        d.max_bodies = 4;
+        d.dt = 1e-3;
+        d.restitution = 1.0;
+        d.gravity.z = 0.0;
+        d.slop = slop;
+        d.method = methods[m];
+        CHECK_OK(rbs_world_create(&d, &w));
+        a = ball(w, r, 1.0, 0.0, 0, 0, 2000.0, 0, 0, (rbs_material_id){0, 0});
+        b = ball(w, r, 1.0, 1.0, 0, 0, 0.0, 0, 0, (rbs_material_id){0, 0});
+        step_n(w, 1);
+        assert_true(state_of(w, a).position.x < state_of(w, b).position.x);
+        ASSERT_NEAR(state_of(w, b).velocity.x, 2000.0, 1e-9);
+        ASSERT_NEAR(state_of(w, a).velocity.x, 0.0, 1e-9);
+        rbs_world_destroy(w);
+
+        d.restitution = 0.5;
+        d.gravity.z = -G;
+        CHECK_OK(rbs_world_create(&d, &w));
+        floor_plane(w, (rbs_material_id){0, 0});
+        a = ball(w, r, 1.0, 0, 0, 1.05, 0, 0, -1000.0, (rbs_material_id){0, 0});
+        for (k = 0; k < 5; ++k) {
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_true(state_of(w, a).position.z >= r - slop * r);
+        }
+        assert_true(state_of(w, a).velocity.z > 0.0);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -692,6 +740,7 @@ int main(void)
         cmocka_unit_test(stacked_gap_closes_to_the_slop),
         cmocka_unit_test(impact_inside_the_reach_bounces),
         cmocka_unit_test(slop_accepts_shallow_impacts),
+        cmocka_unit_test(loosest_slop_still_stops_tunnelling),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
