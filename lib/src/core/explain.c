@@ -96,8 +96,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     put(&t, "world: %u spheres (%u moving, %u fixed), %u planes, %u material pairs\n",
         (unsigned)w->sphere_count, (unsigned)moving, (unsigned)fixed, (unsigned)w->plane_count,
         (unsigned)w->pairs);
-    put(&t, "method: %s, dt = %g s, tolerance = %g, pruning %s\n", rbs_method_name(w->def.method),
-        w->def.dt, w->def.tolerance, w->def.prune ? "on" : "off (every stage runs)");
+    put(&t, "method: %s, dt = %g s, slop = %g of the smaller radius, tolerance = %g, pruning %s\n",
+        rbs_method_name(w->def.method), w->def.dt, w->def.slop, w->def.tolerance,
+        w->def.prune ? "on" : "off (every stage runs)");
     put(&t, "  %s\n", method_summary(w->def.method));
     if (w->def.method != RBS_METHOD_EVENT)
         put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
