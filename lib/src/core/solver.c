@@ -209,6 +209,17 @@ static double k_one(const rbs_world *w, uint32_t i, v3 r, v3 n)
     return w->inv_mass[i] + v3_dot(x, t);
 }
 
+/* The level shock propagation handles contact c at (that of its upper
+ * body), or 0 when it has none: no load, both bodies on one level, or a
+ * body no loaded contact joins to the ground. */
+static uint32_t shock_level(const rbs__contact *c, const int32_t *level, uint32_t max_level)
+{
+    int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
+    if (c->jn == 0.0 || level[c->a] == level[c->b] || top == INT32_MAX || (uint32_t)top > max_level)
+        return 0;
+    return (uint32_t)top;
+}
+
 /* Shock propagation (Guendelman, Bridson & Fedkiw 2003), for when the
  * Gauss-Seidel sweeps did not converge -- a stack whose masses differ by
  * orders of magnitude converges at a rate of the mass ratio.  Bodies get a
@@ -256,23 +267,18 @@ static void shock_propagation(rbs_world *w)
         uint32_t *order = w->shock_order, *start = w->shock_order + w->def.max_contacts, n = 0;
         memset(start, 0, ((size_t)max_level + 2) * sizeof *start);
         for (i = 0; i < w->contact_count; ++i) {
-            const rbs__contact *c = &w->contact[i];
-            int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
-            if (c->jn == 0.0 || level[c->a] == level[c->b] || top == INT32_MAX ||
-                (uint32_t)top > max_level)
-                continue; /* (the contacts the walk by levels 1..max_level took) */
-            start[top + 1]++;
+            uint32_t top = shock_level(&w->contact[i], level, max_level);
+            if (top != 0)
+                start[top + 1]++;
         }
         for (k = 1; k <= max_level + 1; ++k)
             start[k] += start[k - 1];
         for (i = 0; i < w->contact_count; ++i) {
-            const rbs__contact *c = &w->contact[i];
-            int32_t top = level[c->a] > level[c->b] ? level[c->a] : level[c->b];
-            if (c->jn == 0.0 || level[c->a] == level[c->b] || top == INT32_MAX ||
-                (uint32_t)top > max_level)
-                continue; /* (the contacts the walk by levels 1..max_level took) */
-            order[start[top]++] = i; /* start[top] ends at the next level's start */
-            n++;
+            uint32_t top = shock_level(&w->contact[i], level, max_level);
+            if (top != 0) {
+                order[start[top]++] = i; /* start[top] ends at the next level's start */
+                n++;
+            }
         }
         /* start[k] is now the end of level k: level k is [start[k-1], start[k]) */
         for (k = 0; k < n; ++k) {
