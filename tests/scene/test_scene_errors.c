@@ -103,6 +103,10 @@ static const bad_case cases[] = {
     {"bad/slop_out_of_range.json", RBS_E_SCENE,
      {E("0.1}", 1, 0,
         "simulation.slop: must be in (0, 0.1) (a fraction of the smaller radius), got 0.1")}},
+    {"bad/max_sweeps_zero.json", RBS_E_SCENE,
+     {E("0}", 1, 0, "simulation.max_sweeps: must be an integer from 1 to 100000, got 0")}},
+    {"bad/max_sweeps_fraction.json", RBS_E_SCENE,
+     {E("2.5}", 1, 0, "simulation.max_sweeps: must be an integer from 1 to 100000, got 2.5")}},
     {"bad/slop_not_a_number.json", RBS_E_SCENE,
      {E("\"loose\"", 1, 0, "simulation.slop: must be a number, got \"loose\"")}},
     {"bad/zero_normal.json", RBS_E_SCENE,
@@ -563,7 +567,7 @@ static void test_material_rules(void **state)
 /* simulation.slop reaches the world, and is the overlap a scene may start
  * with: a ball 0.4 % of its radius inside the floor loads with slop 0.005
  * and is an error with the world's default (1e-6); absent, the world's
- * default is what the world gets. */
+ * default is what the world gets.  simulation.max_sweeps reaches it too. */
 static void test_slop(void **state)
 {
     static const char fmt[] =
@@ -593,6 +597,13 @@ static void test_slop(void **state)
     assert_int_equal(rbs_scene_parse_json(text, strlen(text), "default", &scene), RBS_OK);
     assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
     assert_true(d.slop == def0.slop);
+    assert_int_equal(d.max_sweeps, def0.max_sweeps);
+    rbs_scene_free(scene);
+    /* simulation.max_sweeps likewise */
+    snprintf(text, sizeof text, fmt, ", \"max_sweeps\": 5", "0.5");
+    assert_int_equal(rbs_scene_parse_json(text, strlen(text), "sweeps", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+    assert_int_equal(d.max_sweeps, 5);
     rbs_scene_free(scene);
 }
 

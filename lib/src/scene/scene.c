@@ -44,7 +44,8 @@ rbs_scene *rbs__scene_new(void)
         return NULL;
     }
     rbs_world_def_init(&def);
-    scene->slop = def.slop; /* the world's default */
+    scene->slop = def.slop; /* the world's defaults */
+    scene->max_sweeps = def.max_sweeps;
     scene->dt = 0.001;
     scene->gravity.z = -9.81;
     scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
@@ -484,6 +485,7 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->method = scene->method;
     out->tolerance = scene->tolerance;
     out->slop = scene->slop;
+    out->max_sweeps = scene->max_sweeps;
     out->mutual_gravity = scene->mutual_gravity;
     out->gravity_constant = scene->gravity_constant;
     out->softening = scene->softening;

@@ -120,6 +120,7 @@ struct rbs_scene {
     rbs_method method;
     double tolerance;
     double slop; /* allowed overlap and contact margin, of the smaller radius */
+    uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
     double restitution;
     int32_t pause_on_collision;
     int32_t mutual_gravity;

@@ -427,7 +427,7 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 
 static const char *const sim_keys[] = {
     "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
-    "restitution", "pause_on_collision", "mutual_gravity"};
+    "max_sweeps", "restitution", "pause_on_collision", "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
 
@@ -511,6 +511,15 @@ static void check_simulation(vctx *v, const cJSON *sim)
                 got(v, c, g, sizeof g);
                 err(v, loc_value(v, c), "must be in (0, 0.1) (a fraction of the smaller radius), got %s", g);
             }
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "max_sweeps")) != NULL) {
+        /* the world's range (rbs_world_def.max_sweeps) */
+        uint64_t n;
+        saved = push_key(v, "max_sweeps");
+        if (get_integer(v, c, 1, 100000, "an integer from 1 to 100000", &n) == 0) {
+            s->max_sweeps = (uint32_t)n;
         }
         pop(v, saved);
     }
