@@ -585,7 +585,7 @@ static rbs_status finish_with_rk4(rbs_world *w, rbs_step_info *info, double rema
     double dt = w->def.dt;
     rbs_status st;
     w->def.dt = remaining;
-    st = rbs__step_rollback(w, info, rbs__rk4_advance, 0);
+    st = rbs__step_rollback(w, info, rbs__rk4_advance, 0, 0); /* mid-frame */
     w->def.dt = dt;
     return st;
 }

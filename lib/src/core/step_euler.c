@@ -121,11 +121,11 @@ static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, euler_advance, 1);
+    return rbs__step_rollback(w, info, euler_advance, 1, 1);
 }
 
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
-                              int speculative)
+                              int speculative, int at_step_start)
 {
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
@@ -135,23 +135,29 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
     rbs_status st;
 
     while (done < total) {
-        double h;
+        double h, *save = w->sub_save;
         if (hu > total - done)
             hu = total - done;
         h = dt * ((double)hu / (double)total);
-        rbs__save_state(w, w->sub_save);
+        /* until a sub-step is accepted the world is at the frame's start,
+         * which rbs_world_step has just saved: no copy (and, for a frame of
+         * one sub-step, sub_save is never touched) */
+        if (at_step_start && done == 0)
+            save = w->step_save;
+        else
+            rbs__save_state(w, save);
         st = rbs__detect(w, dt, speculative);
         if (st != RBS_OK)
             return st;
         rbs__solve_collisions(w, info);
         advance(w, h, info);
-        if (rbs__overlap_grew(w, w->sub_save, &pen, &first)) {
+        if (rbs__overlap_grew(w, save, &pen, &first)) {
             if (hu > 1 && !info->work_limit) {
                 /* Retry with at most half the sub-step (the seed's rule);
                  * when the straight-line time of first touch is earlier,
                  * jump there at once instead of halving step by step. */
                 uint64_t toi = (uint64_t)((double)hu * first);
-                rbs__restore_state(w, w->sub_save);
+                rbs__restore_state(w, save);
                 info->rollbacks++;
                 hu = (toi >= 1 && toi < hu / 2) ? toi : hu / 2;
                 continue;
