@@ -673,12 +673,12 @@ rbs_status rbs_scene_override_slop(rbs_scene *scene, double slop)
     if (scene == NULL) {
         return RBS_E_INVALID;
     }
-    if (!(slop > 0.0 && slop < 0.1)) {
+    if (!(slop > 0.0 && slop < RBS__SCENE_SLOP_MAX)) {
         /* the number in the C locale, as rbs_scene_override's */
         rbs__locale l;
         rbs__c_locale_push(&l);
         rbs__scene_error(scene, none, "--slop",
-                         "must be in (0, 0.1) (a fraction of the smaller radius), got %g", slop);
+                         RBS__SCENE_SLOP_RANGE ", got %g", slop);
         rbs__c_locale_pop(&l);
         return RBS_E_SCENE;
     }

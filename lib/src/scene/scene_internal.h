@@ -27,6 +27,12 @@
 #define RBS__SCENE_FILES_MAX 4
 /** Largest steps value: every frame time k*dt keeps an exact integer k. */
 #define RBS__SCENE_STEPS_MAX 9007199254740992.0 /* 2^53 */
+/* The world's ranges (rbs_world_def_validate, world.c), checked at load so
+ * that the error names the key: slop in (0, RBS__SCENE_SLOP_MAX), and
+ * max_sweeps in 1..RBS__SCENE_SWEEPS_MAX. */
+#define RBS__SCENE_SLOP_MAX 0.1
+#define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
+#define RBS__SCENE_SWEEPS_MAX 100000
 
 /** A place in a scene file. */
 typedef struct rbs__loc {

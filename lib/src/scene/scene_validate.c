@@ -500,25 +500,23 @@ static void check_simulation(vctx *v, const cJSON *sim)
         pop(v, saved);
     }
     if ((c = member(sim, "slop")) != NULL) {
-        /* the world's range (rbs_world_def.slop): (0, 0.1) of a radius */
         double x;
         saved = push_key(v, "slop");
         if (get_number(v, c, &x) == 0) {
-            if (x > 0.0 && x < 0.1) {
+            if (x > 0.0 && x < RBS__SCENE_SLOP_MAX) {
                 s->slop = x;
             } else {
                 char g[64];
                 got(v, c, g, sizeof g);
-                err(v, loc_value(v, c), "must be in (0, 0.1) (a fraction of the smaller radius), got %s", g);
+                err(v, loc_value(v, c), RBS__SCENE_SLOP_RANGE ", got %s", g);
             }
         }
         pop(v, saved);
     }
     if ((c = member(sim, "max_sweeps")) != NULL) {
-        /* the world's range (rbs_world_def.max_sweeps) */
         uint64_t n;
         saved = push_key(v, "max_sweeps");
-        if (get_integer(v, c, 1, 100000, "an integer from 1 to 100000", &n) == 0) {
+        if (get_integer(v, c, 1, RBS__SCENE_SWEEPS_MAX, "an integer from 1 to 100000", &n) == 0) {
             s->max_sweeps = (uint32_t)n;
         }
         pop(v, saved);
