@@ -190,45 +190,46 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                 }
             }
         }
-    } else
-    /* grid items against the 27 cells around them; a hashed bucket may
-     * hold items of other cells (collisions), which the stored cell filters
-     * out, so every partner is seen exactly once */
-    for (i = 0; i < n; ++i) {
-        int32_t cx, cy, cz;
-        int dx, dy, dz;
-        if (w->bp_key[i] == UINT32_MAX || (query && !query[i]))
-            continue;
-        cx = w->bp_cell[3 * i];
-        cy = w->bp_cell[3 * i + 1];
-        cz = w->bp_cell[3 * i + 2];
-        for (dx = -1; dx <= 1; ++dx)
-            for (dy = -1; dy <= 1; ++dy)
-                for (dz = -1; dz <= 1; ++dz) {
-                    uint32_t h, k;
-                    /* without a query, each pair once from the half of
-                     * the stencil at or after (0, 0, 0): of two items in
-                     * different cells exactly one sees the other there */
-                    if (!query && (dx < 0 || (dx == 0 && (dy < 0 || (dy == 0 && dz < 0)))))
-                        continue;
-                    if (dense && (cx + dx < lo[0] || cx + dx > hi[0] || cy + dy < lo[1] ||
-                                  cy + dy > hi[1] || cz + dz < lo[2] || cz + dz > hi[2]))
-                        continue; /* outside the box: no items there */
-                    h = cell_key(cx + dx, cy + dy, cz + dz, mask, dense, lo, nx, ny);
-                    for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
-                        uint32_t o = w->bp_item[k];
-                        /* each pair once: with a query, from the lower item
-                         * when both are queried, else from the queried one;
-                         * without, in a shared cell from the lower item */
-                        if (o == i || (o < i && (query ? query[o] : (dx == 0 && dy == 0 && dz == 0))))
+    } else {
+        /* grid items against the 27 cells around them; a hashed bucket may
+         * hold items of other cells (collisions), which the stored cell
+         * filters out, so every partner is seen exactly once */
+        for (i = 0; i < n; ++i) {
+            int32_t cx, cy, cz;
+            int dx, dy, dz;
+            if (w->bp_key[i] == UINT32_MAX || (query && !query[i]))
+                continue;
+            cx = w->bp_cell[3 * i];
+            cy = w->bp_cell[3 * i + 1];
+            cz = w->bp_cell[3 * i + 2];
+            for (dx = -1; dx <= 1; ++dx)
+                for (dy = -1; dy <= 1; ++dy)
+                    for (dz = -1; dz <= 1; ++dz) {
+                        uint32_t h, k;
+                        /* without a query, each pair once from the half of
+                         * the stencil at or after (0, 0, 0): of two items in
+                         * different cells exactly one sees the other there */
+                        if (!query && (dx < 0 || (dx == 0 && (dy < 0 || (dy == 0 && dz < 0)))))
                             continue;
-                        /* (a dense slot holds one cell only: no check) */
-                        if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
-                                       w->bp_cell[3 * o + 2] != cz + dz))
-                            continue;
-                        visit_if_close(C, R, i, o, fn, ctx);
+                        if (dense && (cx + dx < lo[0] || cx + dx > hi[0] || cy + dy < lo[1] ||
+                                      cy + dy > hi[1] || cz + dz < lo[2] || cz + dz > hi[2]))
+                            continue; /* outside the box: no items there */
+                        h = cell_key(cx + dx, cy + dy, cz + dz, mask, dense, lo, nx, ny);
+                        for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
+                            uint32_t o = w->bp_item[k];
+                            /* each pair once: with a query, from the lower item
+                             * when both are queried, else from the queried one;
+                             * without, in a shared cell from the lower item */
+                            if (o == i || (o < i && (query ? query[o] : (dx == 0 && dy == 0 && dz == 0))))
+                                continue;
+                            /* (a dense slot holds one cell only: no check) */
+                            if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
+                                           w->bp_cell[3 * o + 2] != cz + dz))
+                                continue;
+                            visit_if_close(C, R, i, o, fn, ctx);
+                        }
                     }
-                }
+        }
     }
     /* big items against everything */
     for (j = 0; j < big; ++j) {
