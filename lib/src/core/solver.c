@@ -337,10 +337,13 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double jn_new, d;
+        double jn_new, d, vn;
+        v3 rv;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        jn_new = normal_row(c, v3_dot(rel_velocity(w, c), c->n));
+        rv = rel_velocity(w, c);
+        vn = v3_dot(rv, c->n);
+        jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
         if (d != 0.0) {
             apply_pair(w, c, v3_scale(c->n, d));
@@ -353,7 +356,10 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         if (!friction || c->jn == 0.0)
             continue;
         if (c->mu_s > 0.0 || c->mu_k > 0.0) {
-            v3 vt = slip(w, c);
+            /* an isotropic tangent plane (kt > 0: centred spheres, r along
+             * n) means the normal impulse changed the relative velocity
+             * along n only: the slip is the one before it */
+            v3 vt = c->kt > 0.0 ? v3_mad(rv, c->n, -vn) : slip(w, c);
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 v3 cand = cone(c, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
                 apply_pair(w, c, dj);
@@ -498,12 +504,13 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d;
+        double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d, vn;
         v3 rv;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
-        jn_new = normal_row(c, v3_dot(rv, c->n));
+        vn = v3_dot(rv, c->n);
+        jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
         if (d != 0.0) {
             sb_apply_pair(ba, bb, c, v3_scale(c->n, d));
@@ -516,8 +523,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
         if (!friction || c->jn == 0.0 || !(c->mu_s > 0.0 || c->mu_k > 0.0))
             continue;
         {
-            v3 v = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
-            v3 vt = v3_mad(v, c->n, -v3_dot(v, c->n));
+            v3 vt = v3_mad(rv, c->n, -vn); /* the slip before the normal impulse (see sweep_generic) */
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
