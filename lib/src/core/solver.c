@@ -338,36 +338,51 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         double jn_new, d, vn;
-        v3 rv;
+        v3 rv, j = {0, 0, 0};
+        int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         rv = rel_velocity(w, c);
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
+        push = 0;
         if (d != 0.0) {
-            apply_pair(w, c, v3_scale(c->n, d));
+            j = v3_scale(c->n, d);
+            push = 1;
             c->jn = jn_new;
             if (fabs(d) * c->kn > change)
                 change = fabs(d) * c->kn;
             any = 1;
         }
         total += c->jn;
-        if (!friction || c->jn == 0.0)
-            continue;
-        if (c->mu_s > 0.0 || c->mu_k > 0.0) {
-            /* an isotropic tangent plane (kt > 0: centred spheres, r along
-             * n) means the normal impulse changed the relative velocity
-             * along n only: the slip is the one before it */
-            v3 vt = c->kt > 0.0 ? v3_mad(rv, c->n, -vn) : slip(w, c);
+        if (friction && c->jn != 0.0 && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+            v3 vt;
+            if (c->kt > 0.0) {
+                /* an isotropic tangent plane (centred spheres, r along n):
+                 * the normal impulse changes the relative velocity along n
+                 * only, so the slip is the one before it, and both
+                 * impulses go on as one */
+                vt = v3_mad(rv, c->n, -vn);
+            } else {
+                if (push)
+                    apply_pair(w, c, j);
+                push = 0;
+                vt = slip(w, c);
+            }
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 v3 cand = cone(c, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
-                apply_pair(w, c, dj);
+                j = push ? v3_add(j, dj) : dj;
+                push = 1;
                 c->jt = cand;
                 if (v3_len(dj) * c->kn > change)
                     change = v3_len(dj) * c->kn;
             }
         }
+        if (push)
+            apply_pair(w, c, j);
+        if (!friction || c->jn == 0.0)
+            continue;
         if (c->rolling > 0.0 || c->spinning > 0.0) {
             rbs__resist *rs = &w->contact_resist[i];
             v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
@@ -505,36 +520,40 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d, vn;
-        v3 rv;
+        v3 rv, j = {0, 0, 0};
+        int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
+        push = 0;
         if (d != 0.0) {
-            sb_apply_pair(ba, bb, c, v3_scale(c->n, d));
+            j = v3_scale(c->n, d);
+            push = 1;
             c->jn = jn_new;
             if (fabs(d) * c->kn > change)
                 change = fabs(d) * c->kn;
             any = 1;
         }
         total += c->jn;
-        if (!friction || c->jn == 0.0 || !(c->mu_s > 0.0 || c->mu_k > 0.0))
-            continue;
-        {
+        if (friction && c->jn != 0.0 && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
             v3 vt = v3_mad(rv, c->n, -vn); /* the slip before the normal impulse (see sweep_generic) */
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
                 v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
                 v3 cand = cone(c, stick), dj = v3_sub(cand, c->jt);
-                sb_apply_pair(ba, bb, c, dj);
+                j = push ? v3_add(j, dj) : dj;
+                push = 1;
                 c->jt = cand;
                 if (v3_len(dj) * c->kn > change)
                     change = v3_len(dj) * c->kn;
             }
         }
+        if (push)
+            sb_apply_pair(ba, bb, c, j);
     }
     *change_out = change;
     *total_out = total;
