@@ -7,8 +7,10 @@
  * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
  * precedes it.  Reading checks everything before it builds anything.
  *
- * Format version 1 (little or big endian as written; a reader on the other
- * byte order rejects it as foreign):
+ * Format version 2 (little or big endian as written; a reader on the other
+ * byte order rejects it as foreign; version 1 lacked the warm-start table's
+ * extent among the counters, so a world resumed from it lost its warm start
+ * for a step):
  *   char     magic[8]   "RBSCKPT\0"
  *   uint32   version    1
  *   uint32   endian     0x01020304
@@ -29,7 +31,7 @@
 
 #include "core/world_internal.h"
 
-#define CKPT_VERSION 1u
+#define CKPT_VERSION 2u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {
@@ -44,6 +46,8 @@ typedef struct header {
 typedef struct counters {
     uint64_t step_count;
     uint32_t slots, bodies, free_count, materials, pairs, contacts_high;
+    uint32_t warm_used; /* the warm-start table's part in use (version 2) */
+    uint32_t reserved;  /* 0 */
 } counters;
 
 static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n)
@@ -91,6 +95,7 @@ rbs_status rbs_world_checkpoint_write(const rbs_world *w, void *buf, size_t size
     c.materials = w->materials;
     c.pairs = w->pairs;
     c.contacts_high = w->contacts_high;
+    c.warm_used = w->warm_used;
     memcpy(out + at, &h, sizeof h);
     at += sizeof h;
     memcpy(out + at, &w->def, sizeof w->def);
@@ -182,7 +187,7 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     }
     if (w->bytes - arrays_offset() != arrays || c.slots > def.max_bodies ||
         c.materials > def.max_materials || c.pairs > def.max_pairs || c.bodies > c.slots ||
-        c.free_count > c.slots) {
+        c.free_count > c.slots || c.warm_used > w->warm_size) {
         rbs_world_destroy(w);
         snprintf(msg, len, "its layout does not match its definition");
         return RBS_E_CORRUPT;
@@ -196,6 +201,7 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     w->materials = c.materials;
     w->pairs = c.pairs;
     w->contacts_high = c.contacts_high;
+    w->warm_used = c.warm_used;
     w->plan_dirty = 1;
     rbs__rebuild_lists(w); /* derived lists */
     *out = w;
