@@ -18,6 +18,8 @@
  * world (for a handful of spheres it costs a few hundred nanoseconds), so it
  * is never a stage that pruning changes.
  */
+#include <float.h>
+#include <math.h>
 #include <string.h>
 
 #include "core/world_internal.h"
@@ -55,25 +57,19 @@ static inline uint32_t cell_key(int32_t x, int32_t y, int32_t z, uint32_t mask, 
 
 /* Items i and o are candidates when their centres are closer than the sum
  * of their reaches: then fn visits them, the lower item first. */
-static inline void visit_if_close(const double *C, const double *R, uint32_t i, uint32_t o,
-                                  rbs__pair_fn fn, void *ctx)
+static inline void visit_if_close(const double *C, const double *R, double extra, uint32_t i,
+                                  uint32_t o, rbs__pair_fn fn, void *ctx)
 {
     double ex = C[3 * i] - C[3 * o], ey = C[3 * i + 1] - C[3 * o + 1], ez = C[3 * i + 2] - C[3 * o + 2];
-    double sr = R[i] + R[o];
+    double sr = R[i] + R[o] + extra;
     if (ex * ex + ey * ey + ez * ez <= sr * sr)
         fn(ctx, i < o ? i : o, i < o ? o : i);
 }
 
-/* Visit every candidate pair (a < b in item order) of the n items whose
- * centres are in w->bp_center and reaches in w->bp_reach; items are indexes
- * into w->spheres. */
-void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
-{
-    rbs__broadphase_query(w, n, NULL, fn, ctx);
-}
-
-void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
-                           void *ctx)
+/* The grid pass: fn for every pair of items whose centres are closer than
+ * the sum of their reaches plus extra (m; 0 for the callers' own test). */
+static void grid_pairs(rbs_world *w, uint32_t n, const uint8_t *query, double extra, rbs__pair_fn fn,
+                       void *ctx)
 {
     const double *C = w->bp_center, *R = w->bp_reach;
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
@@ -95,7 +91,7 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
         else if (R[i] > cell)
             cell = R[i];
     }
-    cell *= 2.0;
+    cell = 2.0 * cell + extra; /* every pair the test can take is within one cell */
     if (!(cell > 0.0) || !isfinite(cell))
         cell = 1.0;
     inv = 1.0 / cell;
@@ -186,7 +182,7 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                     uint32_t o = w->bp_item[k];
                     if (o == i || (o < i && m == 0))
                         continue;
-                    visit_if_close(C, R, i, o, fn, ctx);
+                    visit_if_close(C, R, extra, i, o, fn, ctx);
                 }
             }
         }
@@ -226,7 +222,7 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                             if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
                                            w->bp_cell[3 * o + 2] != cz + dz))
                                 continue;
-                            visit_if_close(C, R, i, o, fn, ctx);
+                            visit_if_close(C, R, extra, i, o, fn, ctx);
                         }
                     }
         }
@@ -239,8 +235,142 @@ void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
                 continue; /* big-big pairs once */
             if (query && !query[i] && !query[b])
                 continue;
-            visit_if_close(C, R, i, b, fn, ctx);
+            visit_if_close(C, R, extra, i, b, fn, ctx);
         }
     }
 }
 
+
+void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
+{
+    grid_pairs(w, n, NULL, 0.0, fn, ctx);
+}
+
+void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
+                           void *ctx)
+{
+    grid_pairs(w, n, query, 0.0, fn, ctx);
+}
+
+/* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967).
+ * Built from the grid with every reach grown by a margin m / 2, it holds
+ * each pair (i < j) whose centres were closer than R_i + R_j + m, sorted by
+ * (i, j), and the centres it was built at.  A later pass with centres c and
+ * reaches R can take its pairs from the list when no item has moved, plus
+ * grown its reach beyond what it had, by more than the margin allows:
+ *   2 max_i (R_i - r_i + |c_i - c_Li|) <= m + 2 min_i (R_Li - r_i)
+ * (r the radius; c_L, R_L at the build): then every pair closer than
+ * R_i + R_j is on the list.  The list is tested with the pass's own
+ * R_i + R_j, so a pass visits the same pairs in the same (sorted) order
+ * whether the list was built for it or reused: results never depend on
+ * when it was built (nor on a checkpoint's resume, which starts without
+ * one). */
+#define LIST_SKIN 0.1 /* margin beyond the reaches' spread, of the mean radius */
+
+static void list_collect(void *vctx, uint32_t i, uint32_t j)
+{
+    rbs_world *w = (rbs_world *)vctx;
+    if (w->vl_count < w->vl_cap) {
+        w->vl_pair[2 * w->vl_count] = i;
+        w->vl_pair[2 * w->vl_count + 1] = j;
+    }
+    w->vl_count++;
+}
+
+/* Build the list at margin m; 0 (and no list) if it does not fit. */
+static int list_build(rbs_world *w, uint32_t n, double m, double emin)
+{
+    /* bp_start and bp_fill (2 n entries and more each) are free once the
+     * grid pass is over */
+    uint32_t *start = w->bp_start, *next = w->bp_fill, *P = w->vl_pair, i, k;
+    w->vl_valid = 0;
+    w->vl_count = 0;
+    grid_pairs(w, n, NULL, m, list_collect, w);
+    if (w->vl_count > w->vl_cap)
+        return 0;
+    /* sorted in place by the first item (American flag sort: McIlroy,
+     * Bostic & McIlroy, "Engineering radix sort", Computing Systems 6(1),
+     * 1993), then each first item's few partners by insertion */
+    memset(start, 0, ((size_t)n + 1) * sizeof *start);
+    for (k = 0; k < w->vl_count; ++k)
+        start[P[2 * k] + 1]++;
+    for (i = 0; i < n; ++i) {
+        start[i + 1] += start[i];
+        next[i] = start[i];
+    }
+    for (i = 0; i < n; ++i)
+        while (next[i] < start[i + 1]) {
+            uint32_t at = next[i], a = P[2 * at];
+            if (a == i) {
+                next[i]++;
+            } else {
+                /* the pair belongs to bucket a: swap it into a's next slot */
+                uint32_t to = next[a]++, t0 = P[2 * to], t1 = P[2 * to + 1];
+                P[2 * to] = a;
+                P[2 * to + 1] = P[2 * at + 1];
+                P[2 * at] = t0;
+                P[2 * at + 1] = t1;
+            }
+        }
+    for (k = 1; k < w->vl_count; ++k) {
+        uint32_t a = P[2 * k], b = P[2 * k + 1], at = k;
+        while (at > 0 && P[2 * (at - 1)] == a && P[2 * (at - 1) + 1] > b) {
+            P[2 * at + 1] = P[2 * (at - 1) + 1];
+            at--;
+        }
+        P[2 * at + 1] = b;
+    }
+    memcpy(w->vl_pos, w->bp_center, 3 * (size_t)n * sizeof(double));
+    w->vl_items = n;
+    w->vl_margin = m;
+    w->vl_emin = emin;
+    w->vl_valid = 1;
+    return 1;
+}
+
+void rbs__broadphase_pairs(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
+{
+    const double *C = w->bp_center, *R = w->bp_reach;
+    double emax = 0.0, emin = INFINITY, need = 0.0, size = 0.0, rsum = 0.0, guard;
+    int reuse = w->vl_valid && w->vl_items == n;
+    uint32_t i, k;
+    if (n < 2)
+        return;
+    for (i = 0; i < n; ++i) {
+        double r = w->radius[w->spheres[i]], e = R[i] - r, d;
+        emax = e > emax ? e : emax;
+        emin = e < emin ? e : emin;
+        rsum += r;
+        for (k = 0; k < 3; ++k)
+            size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
+        if (reuse) {
+            double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
+                   dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
+            d = e + sqrt(dx * dx + dy * dy + dz * dz);
+            need = d > need ? d : need;
+        }
+    }
+    if (!(emin >= 0.0))
+        emin = 0.0;
+    /* rounding of the distances behind both tests, with room to spare */
+    guard = 64.0 * DBL_EPSILON * (size + emax + rsum / n);
+    if (!isfinite(need) || !isfinite(guard))
+        reuse = 0;
+    if (!(reuse && 2.0 * need + guard <= w->vl_margin + 2.0 * w->vl_emin)) {
+        double spread = 2.0 * (emax - emin) + guard;
+        /* grown by a skin, so that it lasts; else just what this pass needs */
+        if (!list_build(w, n, spread + LIST_SKIN * rsum / n, emin) && !list_build(w, n, spread, emin)) {
+            /* more candidate pairs than the list holds: the grid itself (its
+             * own order; a function of this pass's centres only) */
+            grid_pairs(w, n, NULL, 0.0, fn, ctx);
+            return;
+        }
+    }
+    for (k = 0; k < w->vl_count; ++k) {
+        uint32_t a = w->vl_pair[2 * k], b = w->vl_pair[2 * k + 1];
+        double ex = C[3 * a] - C[3 * b], ey = C[3 * a + 1] - C[3 * b + 1], ez = C[3 * a + 2] - C[3 * b + 2];
+        double sr = R[a] + R[b];
+        if (ex * ex + ey * ey + ez * ez <= sr * sr)
+            fn(ctx, a, b);
+    }
+}

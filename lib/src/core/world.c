@@ -267,6 +267,9 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->bp_fill = carve(base, &at, T * sizeof(uint32_t));
         x->bp_query = carve(base, &at, B);
         x->bp_cell = carve(base, &at, 3 * B * sizeof(int32_t));
+        x->vl_pos = carve(base, &at, 3 * B * sizeof(double));
+        x->vl_cap = (uint32_t)C;
+        x->vl_pair = carve(base, &at, 2 * C * sizeof(uint32_t));
     }
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));
@@ -643,6 +646,7 @@ void rbs__rebuild_lists(rbs_world *w)
     uint32_t i;
     w->sphere_count = 0;
     w->plane_count = 0;
+    w->vl_valid = 0; /* items may be renumbered */
     for (i = 0; i < w->slots; ++i) {
         if (w->type[i] == RBS_BODY_SPHERE) {
             w->item[i] = w->sphere_count;

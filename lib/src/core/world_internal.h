@@ -144,6 +144,14 @@ struct rbs_world {
     uint32_t bp_table_size;               /* power of two >= 2 * max_bodies */
     uint8_t *bp_query;                    /* per item: query mask (selective) */
     int32_t *bp_cell;                     /* 3 per item: grid cell */
+    /* the candidate-pair list (broadphase.c, rbs__broadphase_pairs) */
+    double *vl_pos;                       /* 3 per item: centres at its build */
+    uint32_t *vl_pair;                    /* 2 per pair, vl_cap pairs, sorted */
+    uint32_t vl_cap;                      /* max_contacts */
+    uint32_t vl_count;                    /* pairs on the list */
+    uint32_t vl_items;                    /* items it was built for */
+    int vl_valid;                         /* 0: none (cleared when items change) */
+    double vl_margin, vl_emin;            /* its margin m and least reach - radius, m */
 
     /* event method (step_event.c): per body motion between events */
     double *ev_alpha;                     /* 3 per slot: angular acceleration */
@@ -214,6 +222,10 @@ typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
 void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx);
 void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
                            void *ctx);
+/* The same pairs as rbs__broadphase, visited in order of (i, j), from a
+ * candidate list kept between passes while the items move little (see
+ * broadphase.c): the results do not depend on when the list was built. */
+void rbs__broadphase_pairs(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
