@@ -133,7 +133,7 @@ struct rbs_world {
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
                                              (solver.c) */
-    uint32_t warm_size;                   /* 2 * max_contacts + 16 */
+    uint32_t warm_size;                   /* max_contacts * 3/2 + 16 */
     uint32_t warm_used;                   /* slots the last warm pass used (0: none) */
 
     /* broad phase (broadphase.c): per sphere item, and a grid (dense or hashed) */
