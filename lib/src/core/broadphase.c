@@ -328,7 +328,7 @@ static int list_build(rbs_world *w, uint32_t n, double m, double emin)
     return 1;
 }
 
-void rbs__broadphase_pairs(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
+void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx)
 {
     const double *C = w->bp_center, *R = w->bp_reach;
     double emax = 0.0, emin = INFINITY, need = 0.0, size = 0.0, rsum = 0.0, guard;
@@ -362,14 +362,19 @@ void rbs__broadphase_pairs(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
         if (!list_build(w, n, spread + LIST_SKIN * rsum / n, emin) && !list_build(w, n, spread, emin)) {
             /* more candidate pairs than the list holds: the grid itself (its
              * own order; a function of this pass's centres only) */
-            grid_pairs(w, n, NULL, 0.0, fn, ctx);
+            grid_pairs(w, n, query, 0.0, fn, ctx);
             return;
         }
     }
     for (k = 0; k < w->vl_count; ++k) {
         uint32_t a = w->vl_pair[2 * k], b = w->vl_pair[2 * k + 1];
-        double ex = C[3 * a] - C[3 * b], ey = C[3 * a + 1] - C[3 * b + 1], ez = C[3 * a + 2] - C[3 * b + 2];
-        double sr = R[a] + R[b];
+        double ex, ey, ez, sr;
+        if (query && !query[a] && !query[b])
+            continue;
+        ex = C[3 * a] - C[3 * b];
+        ey = C[3 * a + 1] - C[3 * b + 1];
+        ez = C[3 * a + 2] - C[3 * b + 2];
+        sr = R[a] + R[b];
         if (ex * ex + ey * ey + ez * ez <= sr * sr)
             fn(ctx, a, b);
     }

@@ -241,7 +241,7 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
             memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
             w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + half;
         }
-        rbs__broadphase_pairs(w, w->sphere_count, detect_pair, &ctx);
+        rbs__broadphase_pairs(w, w->sphere_count, NULL, detect_pair, &ctx);
     }
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;
@@ -355,7 +355,7 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
             v3_store(&w->bp_center[3 * i], v3_scale(v3_add(a0, a1), 0.5));
             w->bp_reach[i] = w->radius[a] + 0.5 * v3_len(v3_sub(a1, a0));
         }
-        rbs__broadphase_pairs(w, w->sphere_count, overlap_pair, &ctx);
+        rbs__broadphase_pairs(w, w->sphere_count, NULL, overlap_pair, &ctx);
     }
     *max_pen = ctx.worst;
     if (first)
@@ -546,7 +546,7 @@ int rbs__separate(rbs_world *w, double *max_pen)
             memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
             w->bp_reach[i] = w->radius[a] * (1.0 + SEP_MARGIN);
         }
-        rbs__broadphase(w, w->sphere_count, separate_pair, &ctx);
+        rbs__broadphase_pairs(w, w->sphere_count, NULL, separate_pair, &ctx);
     }
     if (max_pen)
         *max_pen = ctx.worst;

@@ -222,10 +222,11 @@ typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
 void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx);
 void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
                            void *ctx);
-/* The same pairs as rbs__broadphase, visited in order of (i, j), from a
- * candidate list kept between passes while the items move little (see
- * broadphase.c): the results do not depend on when the list was built. */
-void rbs__broadphase_pairs(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx);
+/* The same pairs as rbs__broadphase_query (query may be NULL: every pair),
+ * visited in order of (i, j), from a candidate list kept between passes
+ * while the items move little (see broadphase.c): the results do not depend
+ * on when the list was built. */
+void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
