@@ -13,10 +13,11 @@
  * The result is exact: the grid only skips pairs that cannot touch.
  *
  * With a query mask only pairs with at least one queried item are visited
- * (the grid is still built from every item).  The order pairs are visited in
- * is a deterministic function of the positions.  The grid is used for every
- * world (for a handful of spheres it costs a few hundred nanoseconds), so it
- * is never a stage that pruning changes.
+ * (the grid is still built from every item).  Callers do not walk the grid
+ * themselves: rbs__broadphase_pairs (at the end) keeps a candidate list
+ * built from it and visits pairs in order of (i, j).  The broad phase is
+ * used for every world (for a handful of spheres it costs a few hundred
+ * nanoseconds), so it is never a stage that pruning changes.
  */
 #include <float.h>
 #include <math.h>
@@ -240,17 +241,6 @@ static void grid_pairs(rbs_world *w, uint32_t n, const uint8_t *query, double ex
     }
 }
 
-
-void rbs__broadphase(rbs_world *w, uint32_t n, rbs__pair_fn fn, void *ctx)
-{
-    grid_pairs(w, n, NULL, 0.0, fn, ctx);
-}
-
-void rbs__broadphase_query(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn,
-                           void *ctx)
-{
-    grid_pairs(w, n, query, 0.0, fn, ctx);
-}
 
 /* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967).
  * Built from the grid with every reach grown by a margin m / 2, it holds
