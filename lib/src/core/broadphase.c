@@ -243,19 +243,19 @@ static void grid_pairs(rbs_world *w, uint32_t n, const uint8_t *query, double ex
 
 
 /* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967).
- * Built from the grid with every reach grown by a margin m / 2, it holds
- * each pair (i < j) whose centres were closer than R_i + R_j + m, sorted by
- * (i, j), and the centres it was built at.  A later pass with centres c and
- * reaches R can take its pairs from the list when no item has moved, plus
- * grown its reach beyond what it had, by more than the margin allows:
- *   2 max_i (R_i - r_i + |c_i - c_Li|) <= m + 2 min_i (R_Li - r_i)
- * (r the radius; c_L, R_L at the build): then every pair closer than
- * R_i + R_j is on the list.  The list is tested with the pass's own
- * R_i + R_j, so a pass visits the same pairs in the same (sorted) order
+ * Built from the grid with every pair's reach grown by a margin m, it holds
+ * each pair (i < j) whose centres were closer than R_Li + R_Lj + m, sorted
+ * by (i, j), with the centres c_L and reaches R_L it was built at.  A later
+ * pass with centres c and reaches R can take its pairs from the list when
+ * no item has moved, plus grown its reach, by more than half the margin:
+ *   max_i (R_i - R_Li + |c_i - c_Li|) <= m / 2
+ * -- then every pair closer than R_i + R_j was closer than R_Li + R_Lj + m
+ * at the build, so it is on the list.  The list is tested with the pass's
+ * own R_i + R_j, so a pass visits the same pairs in the same (sorted) order
  * whether the list was built for it or reused: results never depend on
  * when it was built (nor on a checkpoint's resume, which starts without
  * one). */
-#define LIST_SKIN 0.1 /* margin beyond the reaches' spread, of the mean radius */
+#define LIST_SKIN 0.1 /* the margin, of the mean radius */
 
 static void list_collect(void *vctx, uint32_t i, uint32_t j)
 {
@@ -268,7 +268,7 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
 }
 
 /* Build the list at margin m; 0 (and no list) if it does not fit. */
-static int list_build(rbs_world *w, uint32_t n, double m, double emin)
+static int list_build(rbs_world *w, uint32_t n, double m)
 {
     /* bp_start and bp_fill (2 n entries and more each) are free once the
      * grid pass is over */
@@ -311,9 +311,9 @@ static int list_build(rbs_world *w, uint32_t n, double m, double emin)
         P[2 * at + 1] = b;
     }
     memcpy(w->vl_pos, w->bp_center, 3 * (size_t)n * sizeof(double));
+    memcpy(w->vl_reach, w->bp_reach, (size_t)n * sizeof(double));
     w->vl_items = n;
     w->vl_margin = m;
-    w->vl_emin = emin;
     w->vl_valid = 1;
     return 1;
 }
@@ -321,35 +321,31 @@ static int list_build(rbs_world *w, uint32_t n, double m, double emin)
 void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx)
 {
     const double *C = w->bp_center, *R = w->bp_reach;
-    double emax = 0.0, emin = INFINITY, need = 0.0, size = 0.0, rsum = 0.0, guard;
+    double need = 0.0, size = 0.0, rsum = 0.0, rmax = 0.0, guard, m;
     int reuse = w->vl_valid && w->vl_items == n;
     uint32_t i, k;
     if (n < 2)
         return;
     for (i = 0; i < n; ++i) {
-        double r = w->radius[w->spheres[i]], e = R[i] - r, d;
-        emax = e > emax ? e : emax;
-        emin = e < emin ? e : emin;
-        rsum += r;
+        rsum += w->radius[w->spheres[i]];
+        rmax = R[i] > rmax ? R[i] : rmax;
         for (k = 0; k < 3; ++k)
             size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
         if (reuse) {
             double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
                    dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
-            d = e + sqrt(dx * dx + dy * dy + dz * dz);
+            double d = R[i] - w->vl_reach[i] + sqrt(dx * dx + dy * dy + dz * dz);
             need = d > need ? d : need;
         }
     }
-    if (!(emin >= 0.0))
-        emin = 0.0;
     /* rounding of the distances behind both tests, with room to spare */
-    guard = 64.0 * DBL_EPSILON * (size + emax + rsum / n);
+    guard = 64.0 * DBL_EPSILON * (size + rmax);
     if (!isfinite(need) || !isfinite(guard))
         reuse = 0;
-    if (!(reuse && 2.0 * need + guard <= w->vl_margin + 2.0 * w->vl_emin)) {
-        double spread = 2.0 * (emax - emin) + guard;
+    if (!(reuse && 2.0 * need + guard <= w->vl_margin)) {
         /* grown by a skin, so that it lasts; else just what this pass needs */
-        if (!list_build(w, n, spread + LIST_SKIN * rsum / n, emin) && !list_build(w, n, spread, emin)) {
+        m = LIST_SKIN * rsum / n + guard;
+        if (!list_build(w, n, m) && !list_build(w, n, guard)) {
             /* more candidate pairs than the list holds: the grid itself (its
              * own order; a function of this pass's centres only) */
             grid_pairs(w, n, query, 0.0, fn, ctx);

@@ -268,6 +268,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->bp_query = carve(base, &at, B);
         x->bp_cell = carve(base, &at, 3 * B * sizeof(int32_t));
         x->vl_pos = carve(base, &at, 3 * B * sizeof(double));
+        x->vl_reach = carve(base, &at, B * sizeof(double));
         x->vl_cap = (uint32_t)C;
         x->vl_pair = carve(base, &at, 2 * C * sizeof(uint32_t));
     }
