@@ -138,67 +138,104 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
 }
 
 /* Warm-start cache: the resting impulse rates (impulse / h) of the last
- * warm pass, in an open-addressing table keyed by the body pair. */
-static uint64_t pair_key(const rbs__contact *c)
+ * warm pass, one entry a contact that held, sorted by the key of its body
+ * pair.  The key puts contacts with a plane (b a plane) before pairs of
+ * spheres, and each by (a, b): the order rbs__detect makes them in (spheres
+ * in slot order, each sphere's planes and partners likewise; pairs through
+ * rbs__broadphase_pairs), so a pass writes the table in order and reads it
+ * in order -- sequentially, at any size -- with no hashing.  (Slots are
+ * below 2^24.) */
+static uint64_t pair_key(const rbs_world *w, const rbs__contact *c)
 {
-    return (((uint64_t)c->a << 32) | (uint64_t)c->b) + 1u; /* 0 marks empty */
+    return ((uint64_t)(w->type[c->b] != RBS_BODY_PLANE) << 63) | ((uint64_t)c->a << 32) | (uint64_t)c->b;
 }
 
-/* The slot of key k in a table of size slots: a 32-bit mix of the key
- * scaled to [0, size) by a multiply and shift (Lemire, "Fast random integer
- * generation in an interval", ACM TOMACS 29(1), 2019), so the size need not
- * be a power of two. */
-static uint32_t key_slot(uint64_t k, uint32_t size)
+/* The entry of key k, or NULL.  *at: where the previous search ended; the
+ * pass asks in ascending order, so a search gallops forward from there
+ * (doubling steps, then bisection: O(1) a contact in order, O(log n) out of
+ * order, and from the start when k is behind). */
+static const rbs__warm *warm_find(const rbs_world *w, uint64_t k, uint32_t *at)
 {
-    k ^= k >> 33;
-    k *= 0xff51afd7ed558ccdull;
-    k ^= k >> 33;
-    return (uint32_t)(((k & 0xffffffffull) * size) >> 32);
-}
-
-static const rbs__warm *warm_find(const rbs_world *w, uint64_t k)
-{
-    uint32_t size = w->warm_used, i, n;
-    if (size == 0)
-        return NULL;
-    i = key_slot(k, size);
-    for (n = 0; n < size; ++n, i = i + 1 == size ? 0 : i + 1) {
-        if (w->warm[i].key == k)
-            return &w->warm[i];
-        if (w->warm[i].key == 0)
-            return NULL;
+    const rbs__warm *t = w->warm;
+    uint32_t n = w->warm_used, lo = *at < n ? *at : n, hi, step = 1;
+    if (lo > 0 && t[lo - 1].key >= k)
+        lo = 0;
+    /* every entry before lo is below k */
+    hi = lo;
+    while (hi < n && t[hi].key < k) {
+        lo = hi + 1;
+        hi = n - hi > step ? hi + step : n;
+        step *= 2;
     }
-    return NULL;
+    /* the first entry at or above k is in [lo, hi] (hi: n, or at or above k) */
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (t[mid].key < k)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *at = lo;
+    return lo < n && t[lo].key == k ? &t[lo] : NULL;
 }
 
-/* Store this pass's impulse rates.  The table's used part is 3/2 of the
- * contacts stored (at least 16; at most warm_size, which is 3/2 max_contacts
- * + 16): a load of at most 2/3, where linear probing takes about 2 probes
- * to find a key and 5 to miss one (Knuth, TAOCP vol. 3, 6.4), and a step
- * clears and touches memory in proportion to its contacts, not to the
- * world's capacity. */
+/* Entries i and its larger child down the heap [0, n) (warm_sort). */
+static void warm_sift(rbs__warm *t, uint32_t i, uint32_t n)
+{
+    for (;;) {
+        uint32_t c = 2 * i + 1;
+        rbs__warm tmp;
+        if (c >= n)
+            return;
+        if (c + 1 < n && t[c + 1].key > t[c].key)
+            c++;
+        if (t[c].key <= t[i].key)
+            return;
+        tmp = t[i];
+        t[i] = t[c];
+        t[c] = tmp;
+        i = c;
+    }
+}
+
+/* Heap sort by key, in place: for a pass whose contacts were not in key
+ * order (pairs from the grid's own walk, when the candidate list could not
+ * hold them). */
+static void warm_sort(rbs__warm *t, uint32_t n)
+{
+    uint32_t i;
+    for (i = n / 2; i-- > 0;)
+        warm_sift(t, i, n);
+    for (i = n; i-- > 1;) {
+        rbs__warm tmp = t[0];
+        t[0] = t[i];
+        t[i] = tmp;
+        warm_sift(t, 0, i);
+    }
+}
+
+/* Store this pass's impulse rates: one entry per contact that held (at most
+ * max_contacts = warm_size), written in contact order, which is key order
+ * (else sorted). */
 static void warm_store(rbs_world *w, double h)
 {
-    uint32_t i, count = 0, size;
-    for (i = 0; i < w->contact_count; ++i)
-        count += w->contact[i].jn != 0.0;
-    size = count + count / 2 < 16 ? 16 : count + count / 2;
-    w->warm_used = size;
-    memset(w->warm, 0, (size_t)size * sizeof(rbs__warm));
+    uint32_t i, n = 0;
+    int sorted = 1;
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
-        uint64_t k;
-        uint32_t j;
+        rbs__warm *e = &w->warm[n];
         if (c->jn == 0.0)
             continue;
-        k = pair_key(c);
-        j = key_slot(k, size);
-        while (w->warm[j].key != 0)
-            j = j + 1 == size ? 0 : j + 1;
-        w->warm[j].key = k;
-        w->warm[j].n = c->jn / h;
-        w->warm[j].t = v3_scale(c->jt, 1.0 / h);
+        e->key = pair_key(w, c);
+        if (n > 0 && !(w->warm[n - 1].key < e->key))
+            sorted = 0;
+        e->n = c->jn / h;
+        e->t = v3_scale(c->jt, 1.0 / h);
+        n++;
     }
+    if (!sorted)
+        warm_sort(w->warm, n);
+    w->warm_used = n;
 }
 
 /* Inverse effective mass of one body of a contact along n (the other held). */
@@ -564,7 +601,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
 
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
 {
-    uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
+    uint32_t sweep, i, max_sweeps = w->def.max_sweeps, at = 0;
     int friction = w->plan.friction, any = 0, fast;
     double scale = sqrt(w->def.gravity.x * w->def.gravity.x + w->def.gravity.y * w->def.gravity.y +
                         w->def.gravity.z * w->def.gravity.z) * w->def.dt;
@@ -585,7 +622,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         if (h > 0.0) {
             /* warm start: what held this contact last sub-step, scaled to h
              * (a stack converges at once instead of creeping) */
-            const rbs__warm *m = warm_find(w, pair_key(c));
+            const rbs__warm *m = warm_find(w, pair_key(w, c), &at);
             if (m != NULL) {
                 c->jn = m->n * h;
                 if (friction) {

@@ -246,7 +246,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
     x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));
     {
-        size_t W = C + C / 2 + 16; /* room for every contact at load 2/3 (solver.c) */
+        size_t W = C; /* an entry for every contact (solver.c) */
         x->warm_size = (uint32_t)W;
         x->warm = carve(base, &at, W * sizeof(rbs__warm));
     }

@@ -58,7 +58,7 @@ typedef struct rbs__pair {
 
 /* A warm-start entry: resting impulse rates of a body pair (N). */
 typedef struct rbs__warm {
-    uint64_t key; /* (a << 32 | b) + 1; 0 = empty */
+    uint64_t key; /* the pair's key (solver.c, pair_key) */
     double n;
     v3 t;
 } rbs__warm;
@@ -129,12 +129,12 @@ struct rbs_world {
     /* contacts */
     rbs__contact *contact;
     rbs__resist *contact_resist;          /* one per contact slot (resistance only) */
-    rbs__warm *warm;                      /* warm-start table, warm_size slots */
+    rbs__warm *warm;                      /* warm-start entries, sorted by key */
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
                                              (solver.c) */
-    uint32_t warm_size;                   /* max_contacts * 3/2 + 16 */
-    uint32_t warm_used;                   /* slots the last warm pass used (0: none) */
+    uint32_t warm_size;                   /* max_contacts */
+    uint32_t warm_used;                   /* entries the last warm pass stored (0: none) */
 
     /* broad phase (broadphase.c): per sphere item, and a grid (dense or hashed) */
     double *bp_center;                    /* 3 per item */
