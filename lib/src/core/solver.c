@@ -145,7 +145,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
  * rbs__broadphase_pairs), so a pass writes the table in order and reads it
  * in order -- sequentially, at any size -- with no hashing.  (Slots are
  * below 2^24.) */
-static uint64_t pair_key(const rbs_world *w, const rbs__contact *c)
+uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c)
 {
     return ((uint64_t)(w->type[c->b] != RBS_BODY_PLANE) << 63) | ((uint64_t)c->a << 32) | (uint64_t)c->b;
 }
@@ -154,7 +154,7 @@ static uint64_t pair_key(const rbs_world *w, const rbs__contact *c)
  * pass asks in ascending order, so a search gallops forward from there
  * (doubling steps, then bisection: O(1) a contact in order, O(log n) out of
  * order, and from the start when k is behind). */
-static const rbs__warm *warm_find(const rbs_world *w, uint64_t k, uint32_t *at)
+const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at)
 {
     const rbs__warm *t = w->warm;
     uint32_t n = w->warm_used, lo = *at < n ? *at : n, hi, step = 1;
@@ -217,7 +217,7 @@ static void warm_sort(rbs__warm *t, uint32_t n)
 /* Store this pass's impulse rates: one entry per contact that held (at most
  * max_contacts = warm_size), written in contact order, which is key order
  * (else sorted). */
-static void warm_store(rbs_world *w, double h)
+void rbs__warm_store(rbs_world *w, double h)
 {
     uint32_t i, n = 0;
     int sorted = 1;
@@ -226,7 +226,7 @@ static void warm_store(rbs_world *w, double h)
         rbs__warm *e = &w->warm[n];
         if (c->jn == 0.0)
             continue;
-        e->key = pair_key(w, c);
+        e->key = rbs__warm_key(w, c);
         if (n > 0 && !(w->warm[n - 1].key < e->key))
             sorted = 0;
         e->n = c->jn / h;
@@ -622,7 +622,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         if (h > 0.0) {
             /* warm start: what held this contact last sub-step, scaled to h
              * (a stack converges at once instead of creeping) */
-            const rbs__warm *m = warm_find(w, pair_key(w, c), &at);
+            const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
             if (m != NULL) {
                 c->jn = m->n * h;
                 if (friction) {
@@ -666,5 +666,5 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
     if (any && sweep == max_sweeps)
         shock_propagation(w);
     if (h > 0.0)
-        warm_store(w, h);
+        rbs__warm_store(w, h);
 }

@@ -58,7 +58,7 @@ typedef struct rbs__pair {
 
 /* A warm-start entry: resting impulse rates of a body pair (N). */
 typedef struct rbs__warm {
-    uint64_t key; /* the pair's key (solver.c, pair_key) */
+    uint64_t key; /* the pair's key (rbs__warm_key) */
     double n;
     v3 t;
 } rbs__warm;
@@ -268,6 +268,14 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
+
+/* The warm-start table (solver.c): the key of a contact's body pair; store
+ * the resting impulse rates of the current contacts (those with jn != 0)
+ * for a pass of h seconds, sorted by key; find key k's entry (NULL: none),
+ * searching from *at, where the previous search ended (0 to start). */
+uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c);
+void rbs__warm_store(rbs_world *w, double h);
+const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at);
 
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
