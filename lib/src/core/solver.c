@@ -179,39 +179,12 @@ const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at)
     return lo < n && t[lo].key == k ? &t[lo] : NULL;
 }
 
-/* Entries i and its larger child down the heap [0, n) (warm_sort). */
-static void warm_sift(rbs__warm *t, uint32_t i, uint32_t n)
-{
-    for (;;) {
-        uint32_t c = 2 * i + 1;
-        rbs__warm tmp;
-        if (c >= n)
-            return;
-        if (c + 1 < n && t[c + 1].key > t[c].key)
-            c++;
-        if (t[c].key <= t[i].key)
-            return;
-        tmp = t[i];
-        t[i] = t[c];
-        t[c] = tmp;
-        i = c;
-    }
-}
-
-/* Heap sort by key, in place: for a pass whose contacts were not in key
+/* Key order, for rbs__heap_sort: a pass whose contacts were not in key
  * order (pairs from the grid's own walk, when the candidate list could not
- * hold them). */
-static void warm_sort(rbs__warm *t, uint32_t n)
+ * hold them) is sorted in place. */
+static int warm_greater(const void *x, const void *y)
 {
-    uint32_t i;
-    for (i = n / 2; i-- > 0;)
-        warm_sift(t, i, n);
-    for (i = n; i-- > 1;) {
-        rbs__warm tmp = t[0];
-        t[0] = t[i];
-        t[i] = tmp;
-        warm_sift(t, 0, i);
-    }
+    return ((const rbs__warm *)x)->key > ((const rbs__warm *)y)->key;
 }
 
 /* Store this pass's impulse rates: one entry per contact that held (at most
@@ -234,7 +207,7 @@ void rbs__warm_store(rbs_world *w, double h)
         n++;
     }
     if (!sorted)
-        warm_sort(w->warm, n);
+        rbs__heap_sort(w->warm, n, sizeof *w->warm, warm_greater);
     w->warm_used = n;
 }
 

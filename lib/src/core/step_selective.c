@@ -240,38 +240,10 @@ static int inside_ball(const rbs_world *w, uint32_t i)
     return v3_len(v3_sub(v3_load(&w->pos[3 * i]), c)) + w->radius[i] <= w->bp_reach[k];
 }
 
-/* Order violations by first touch: heap sort (in place; no allocation). */
-static void sift(violation *v, uint32_t root, uint32_t n)
+/* Later first touch, for ordering violations by it (rbs__heap_sort). */
+static int later(const void *x, const void *y)
 {
-    for (;;) {
-        uint32_t c = 2 * root + 1;
-        violation t;
-        if (c >= n)
-            return;
-        if (c + 1 < n && v[c + 1].s > v[c].s)
-            c++;
-        if (!(v[c].s > v[root].s))
-            return;
-        t = v[c];
-        v[c] = v[root];
-        v[root] = t;
-        root = c;
-    }
-}
-
-static void sort_by_time(violation *v, uint32_t n)
-{
-    uint32_t i;
-    if (n < 2)
-        return;
-    for (i = n / 2; i-- > 0;)
-        sift(v, i, n);
-    for (i = n - 1; i > 0; --i) {
-        violation t = v[0];
-        v[0] = v[i];
-        v[i] = t;
-        sift(v, 0, i);
-    }
+    return ((const violation *)x)->s > ((const violation *)y)->s;
 }
 
 /* Move body i back along its path to fraction s and start a new path there. */
@@ -390,7 +362,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
             break;
         if (n > cap)
             n = cap;
-        sort_by_time(v, n);
+        rbs__heap_sort(v, n, sizeof *v, later);
         for (i = 0; i < n; ++i) {
             double s;
             uint32_t a = v[i].a, b = v[i].b;

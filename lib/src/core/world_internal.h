@@ -277,6 +277,11 @@ uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c);
 void rbs__warm_store(rbs_world *w, double h);
 const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at);
 
+/* In-place heap sort of n elements of size bytes into ascending order of
+ * greater (greater(x, y): x goes after y), with no allocation (sort.c). */
+typedef int (*rbs__greater_fn)(const void *x, const void *y);
+void rbs__heap_sort(void *base, uint32_t n, size_t size, rbs__greater_fn greater);
+
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
 
