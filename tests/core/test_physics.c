@@ -345,6 +345,64 @@ static void off_centre_mass_wobbles(void **state)
     rbs_world_destroy(w);
 }
 
+/* An off-centre sphere hits a frictionless floor (no material: the world's
+ * default pair, restitution e = 0.6) falling at v = 1 m/s without spin, in
+ * no gravity.  Its centre of mass sits c = 0.04 m off the centre along body
+ * x, which the orientation turns to world x (q = 1) or world y (a quarter
+ * turn about z).  The contact point is straight below the centre, so its
+ * lever from the COM is r = (-c_w, -R) and |r x n| = c; Newton's impulse
+ * law (Goldstein; Stronge, Impact Mechanics, ch. 2) gives
+ *     J = (1 + e) v / (1/m + c^2 / I),  I = 2/5 m R^2 - m c^2
+ * (about the axis through the COM normal to n and c: the parallel-axis
+ * rule), v_z = -v + J / m, and the spin J c / I about the axis normal to
+ * both -- +y when c is along +x, -x when c is along +y -- while the contact
+ * point leaves at e v.  Before the impact nothing turns (no torque), so the
+ * impact's geometry is exact; the spin is about a principal axis, so it
+ * stays constant after it.  Tolerance 1e-12 relative: rounding of a few
+ * operations (the impact time itself only moves the position). */
+static void off_centre_impact_follows_the_impulse_law(void **state)
+{
+    const double R = 0.1, c = 0.04, m = 2.0, v = 1.0, e = 0.6, dt = 1e-3;
+    const double I = 0.4 * m * R * R - m * c * c, J = (1.0 + e) * v / (1.0 / m + c * c / I);
+    int turn;
+    (void)state;
+    for (turn = 0; turn < 2; ++turn) {
+        rbs_world *w = make_world(4, dt, 0.0, e);
+        rbs_sphere_def s;
+        rbs_plane_def p;
+        rbs_body_id b, f;
+        rbs_body_state st;
+        double wa, wb, vc;
+        rbs_plane_def_init(&p);
+        CHECK_OK(rbs_world_add_plane(w, &p, &f));
+        rbs_sphere_def_init(&s);
+        s.radius = R;
+        s.mass = m;
+        s.position.z = R + 0.4 * v * dt; /* hits in the first step */
+        s.velocity.z = -v;
+        s.center_of_mass.x = c;
+        if (turn) {
+            s.orientation.w = sqrt(0.5);
+            s.orientation.z = sqrt(0.5);
+        }
+        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+        step_n(w, 1);
+        st = state_of(w, b);
+        ASSERT_NEAR(st.velocity.z, -v + J / m, 1e-12 * v);
+        ASSERT_NEAR(st.velocity.x, 0.0, 1e-12 * v);
+        ASSERT_NEAR(st.velocity.y, 0.0, 1e-12 * v);
+        wa = turn ? -st.angular_velocity.x : st.angular_velocity.y; /* the spin axis */
+        wb = turn ? st.angular_velocity.y : st.angular_velocity.x;
+        ASSERT_NEAR(wa, J * c / I, 1e-12 * J * c / I);
+        ASSERT_NEAR(wb, 0.0, 1e-12 * J * c / I);
+        ASSERT_NEAR(st.angular_velocity.z, 0.0, 1e-12 * J * c / I);
+        /* the contact point (straight below the centre) leaves at e v */
+        vc = st.velocity.z + c * wa;
+        ASSERT_NEAR(vc, e * v, 1e-12 * v);
+        rbs_world_destroy(w);
+    }
+}
+
 /* A free asymmetric top spinning fast (|w| = 100 rad/s at dt = 10 ms, one
  * radian per step) about a tilted axis: Euler's Lie step carries the angular
  * momentum through each turn, so |L| and its direction are conserved to
@@ -733,6 +791,7 @@ int main(void)
         cmocka_unit_test(gravity_modes),
         cmocka_unit_test(rolling_resistance_decelerates),
         cmocka_unit_test(off_centre_mass_wobbles),
+        cmocka_unit_test(off_centre_impact_follows_the_impulse_law),
         cmocka_unit_test(fast_asymmetric_top_keeps_angular_momentum),
         cmocka_unit_test(chained_overlap_is_separated),
         cmocka_unit_test(reported_overlap_is_the_states),

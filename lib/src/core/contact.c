@@ -57,28 +57,39 @@ double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt)
     return thr > 0.0 ? thr * dt : 0.0;
 }
 
+/* Body i of a contact has its centre of mass off its centre: a moving
+ * sphere with com_body != 0 (a fixed body's lever is from its centre). */
+static int com_off(const rbs_world *w, uint32_t i)
+{
+    return w->type[i] == RBS_BODY_SPHERE && !w->fixed[i] &&
+           (w->com_body[3 * i] != 0.0 || w->com_body[3 * i + 1] != 0.0 || w->com_body[3 * i + 2] != 0.0);
+}
+
+/* The contact point is a's surface point pa - r_a n: r_a behind a's centre
+ * along n, and dist - r_a ahead of b's centre (a sphere; a plane takes no
+ * lever: it never moves). */
+void rbs__contact_levers(const rbs_world *w, rbs__contact *c, double dist)
+{
+    c->la = -w->radius[c->a];
+    c->lb = w->type[c->b] == RBS_BODY_PLANE ? 0.0 : dist - w->radius[c->a];
+    c->off = (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u);
+}
+
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
 {
     uint32_t n = w->def.max_materials + 1;
     int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
-    v3 aa, ab, ta;
-    if (row >= 0) {
-        const rbs__pair *p = &w->pair[row];
-        c->mu_s = p->mu_s;
-        c->mu_k = p->mu_k;
-        c->e = p->e >= 0.0 ? p->e : w->def.restitution;
-        c->rolling = p->rolling;
-        c->spinning = p->spinning;
-    } else {
-        /* No row for this pair: frictionless, the world's restitution
-         * (documented in rbsim.h; scenes reject this case). */
-        c->mu_s = c->mu_k = c->rolling = c->spinning = 0.0;
-        c->e = w->def.restitution;
-    }
+    v3 aa, ab, ta, ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
+    const rbs__pair *p;
+    /* No row for this pair: the default row, frictionless with the world's
+     * restitution (documented in rbsim.h; scenes reject this case). */
+    c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
+    p = rbs__contact_pair(w, c);
+    c->e = p->e >= 0.0 ? p->e : w->def.restitution;
     rbs__accelerations(w, c->a, &aa, &ta);
     rbs__accelerations(w, c->b, &ab, &ta);
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
-    c->kn = inv_mass_along(w, c->a, c->ra, c->b, c->rb, c->n);
+    c->kn = inv_mass_along(w, c->a, ra, c->b, rb, c->n);
     /* Centred isotropic spheres: r is along n, so K is isotropic in the
      * tangent plane: 1/ma + 1/mb + |ra|^2/Ia + |rb|^2/Ib (0 for fixed). */
     c->kt = 0.0;
@@ -87,8 +98,8 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
                                                w->com_body[3 * c->a + 2] == 0.0)) &&
         (w->type[c->b] != RBS_BODY_SPHERE || (w->com_body[3 * c->b] == 0.0 && w->com_body[3 * c->b + 1] == 0.0 &&
                                                w->com_body[3 * c->b + 2] == 0.0)))
-        c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(c->ra, c->ra) * w->iso_inv_inertia[c->a] +
-                v3_dot(c->rb, c->rb) * w->iso_inv_inertia[c->b];
+        c->kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(ra, ra) * w->iso_inv_inertia[c->a] +
+                v3_dot(rb, rb) * w->iso_inv_inertia[c->b];
     c->bias = 0.0;
     c->jn = 0.0;
     c->jt = v3_make(0, 0, 0);
@@ -98,7 +109,8 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
  * impulses beside it (see rbs__resist). */
 static void resist_init(rbs_world *w, const rbs__contact *c, double radius)
 {
-    if (c->rolling > 0.0 || c->spinning > 0.0) {
+    const rbs__pair *p = rbs__contact_pair(w, c);
+    if (p->rolling > 0.0 || p->spinning > 0.0) {
         rbs__resist *r = &w->contact_resist[c - w->contact];
         r->radius = radius;
         r->jroll = v3_make(0, 0, 0);
@@ -157,7 +169,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     rbs_world *w = ctx->w;
     uint32_t a = w->spheres[i], b = w->spheres[j];
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, slop, dist, gap;
-    v3 pa, d, cp;
+    v3 pa, d;
     rbs__contact *c;
     if (w->fixed[a] && w->fixed[b])
         return;
@@ -177,9 +189,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     c->gap = gap;
     c->slop = slop;
-    cp = v3_mad(pa, c->n, -ra);
-    c->ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
-    c->rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
+    rbs__contact_levers(w, c, dist);
     rbs__contact_finish(w, c, ctx->dt);
     if (beyond_reach(c, ctx->dt)) {
         w->contact_count--;
@@ -224,8 +234,7 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
             c->n = n;
             c->gap = gap;
             c->slop = slop;
-            c->ra = v3_sub(v3_mad(pa, n, -ra), rbs__body_com(w, a));
-            c->rb = v3_make(0, 0, 0);
+            rbs__contact_levers(w, c, 0.0);
             rbs__contact_finish(w, c, dt);
             if (beyond_reach(c, dt)) {
                 w->contact_count--;

@@ -25,25 +25,39 @@ static v3 k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
 {
     v3 r = v3_scale(u, w->inv_mass[c->a] + w->inv_mass[c->b]), t;
     if (w->inv_mass[c->a] != 0.0) {
-        rbs__body_inv_inertia_world(w, c->a, v3_cross(c->ra, u), &t);
-        r = v3_add(r, v3_cross(t, c->ra));
+        v3 ra = rbs__contact_ra(w, c);
+        rbs__body_inv_inertia_world(w, c->a, v3_cross(ra, u), &t);
+        r = v3_add(r, v3_cross(t, ra));
     }
     if (w->inv_mass[c->b] != 0.0) {
-        rbs__body_inv_inertia_world(w, c->b, v3_cross(c->rb, u), &t);
-        r = v3_add(r, v3_cross(t, c->rb));
+        v3 rb = rbs__contact_rb(w, c);
+        rbs__body_inv_inertia_world(w, c->b, v3_cross(rb, u), &t);
+        r = v3_add(r, v3_cross(t, rb));
     }
     return r;
 }
 
+/* The relative velocity at a contact and an impulse on its pair (j on a,
+ * -j on b), with its levers ra, rb (rbs__contact_ra, rbs__contact_rb). */
+static v3 rel_velocity_at(const rbs_world *w, const rbs__contact *c, v3 ra, v3 rb)
+{
+    return v3_sub(rbs__point_velocity(w, c->a, ra), rbs__point_velocity(w, c->b, rb));
+}
+
+static void apply_pair_at(rbs_world *w, const rbs__contact *c, v3 ra, v3 rb, v3 j)
+{
+    rbs__apply_impulse(w, c->a, ra, j);
+    rbs__apply_impulse(w, c->b, rb, v3_scale(j, -1.0));
+}
+
 static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
-    return v3_sub(rbs__point_velocity(w, c->a, c->ra), rbs__point_velocity(w, c->b, c->rb));
+    return rel_velocity_at(w, c, rbs__contact_ra(w, c), rbs__contact_rb(w, c));
 }
 
 static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
 {
-    rbs__apply_impulse(w, c->a, c->ra, j);
-    rbs__apply_impulse(w, c->b, c->rb, v3_scale(j, -1.0));
+    apply_pair_at(w, c, rbs__contact_ra(w, c), rbs__contact_rb(w, c), j);
 }
 
 /* Tangential impulse that stops the slip vt (in the tangent plane): solves
@@ -87,14 +101,15 @@ static v3 slip(const rbs_world *w, const rbs__contact *c)
  * impulse that makes it leave at -e vn, then Coulomb friction. */
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
 {
+    const rbs__pair *p = rbs__contact_pair(w, c);
     double jn = -(1.0 + c->e) * vn / c->kn;
     apply_pair(w, c, v3_scale(c->n, jn));
-    if (w->plan.friction && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+    if (w->plan.friction && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
         v3 vt = slip(w, c);
         v3 jt = stick_impulse(w, c, vt);
         double l = v3_len(jt);
-        if (l > c->mu_s * jn)
-            jt = v3_scale(jt, c->mu_k * jn / l);
+        if (l > p->mu_s * jn)
+            jt = v3_scale(jt, p->mu_k * jn / l);
         apply_pair(w, c, jt);
     }
 }
@@ -300,13 +315,15 @@ static void shock_propagation(rbs_world *w)
             if (!(vn < 0.0))
                 continue;
             if (level[c->a] > level[c->b]) {
-                kk = k_one(w, c->a, c->ra, c->n);
+                v3 ra = rbs__contact_ra(w, c);
+                kk = k_one(w, c->a, ra, c->n);
                 if (kk > 0.0)
-                    rbs__apply_impulse(w, c->a, c->ra, v3_scale(c->n, -vn / kk));
+                    rbs__apply_impulse(w, c->a, ra, v3_scale(c->n, -vn / kk));
             } else {
-                kk = k_one(w, c->b, c->rb, c->n);
+                v3 rb = rbs__contact_rb(w, c);
+                kk = k_one(w, c->b, rb, c->n);
                 if (kk > 0.0)
-                    rbs__apply_impulse(w, c->b, c->rb, v3_scale(c->n, vn / kk));
+                    rbs__apply_impulse(w, c->b, rb, v3_scale(c->n, vn / kk));
             }
         }
     }
@@ -330,12 +347,12 @@ static inline double normal_row(const rbs__contact *c, double vn)
     return jn_new < 0.0 ? 0.0 : jn_new;
 }
 
-static inline v3 cone(const rbs__contact *c, v3 stick)
+static inline v3 cone(const rbs__contact *c, const rbs__pair *p, v3 stick)
 {
     v3 cand = v3_add(c->jt, stick);
     double l = v3_len(cand);
-    if (l > c->mu_s * c->jn)
-        cand = v3_scale(cand, c->mu_k * c->jn / l);
+    if (l > p->mu_s * c->jn)
+        cand = v3_scale(cand, p->mu_k * c->jn / l);
     return cand;
 }
 
@@ -349,12 +366,15 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
         double jn_new, d, vn;
-        v3 rv, j = {0, 0, 0};
+        v3 rv, ra, rb, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        rv = rel_velocity(w, c);
+        ra = rbs__contact_ra(w, c);
+        rb = rbs__contact_rb(w, c);
+        rv = rel_velocity_at(w, c, ra, rb);
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -368,7 +388,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             any = 1;
         }
         total += c->jn;
-        if (friction && c->jn != 0.0 && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+        if (friction && c->jn != 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             v3 vt;
             if (c->kt > 0.0) {
                 /* an isotropic tangent plane (centred spheres, r along n):
@@ -378,12 +398,12 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 vt = v3_mad(rv, c->n, -vn);
             } else {
                 if (push)
-                    apply_pair(w, c, j);
+                    apply_pair_at(w, c, ra, rb, j);
                 push = 0;
                 vt = slip(w, c);
             }
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                v3 cand = cone(c, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
+                v3 cand = cone(c, p, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
@@ -392,18 +412,18 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             }
         }
         if (push)
-            apply_pair(w, c, j);
+            apply_pair_at(w, c, ra, rb, j);
         if (!friction || c->jn == 0.0)
             continue;
-        if (c->rolling > 0.0 || c->spinning > 0.0) {
+        if (p->rolling > 0.0 || p->spinning > 0.0) {
             rbs__resist *rs = &w->contact_resist[i];
             v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
             double ws = v3_dot(wrel, c->n);
             v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
             double lr = v3_len(wr);
-            if (c->rolling > 0.0 && lr > 0.0) {
+            if (p->rolling > 0.0 && lr > 0.0) {
                 v3 u = v3_scale(wr, 1.0 / lr), cand;
-                double k = 0.0, lim = c->rolling * rs->radius * c->jn, l;
+                double k = 0.0, lim = p->rolling * rs->radius * c->jn, l;
                 rbs__body_inv_inertia_world(w, c->a, u, &ia);
                 rbs__body_inv_inertia_world(w, c->b, u, &ib);
                 k = v3_dot(u, ia) + v3_dot(u, ib);
@@ -414,8 +434,8 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 dl = v3_add(dl, v3_sub(cand, rs->jroll));
                 rs->jroll = cand;
             }
-            if (c->spinning > 0.0 && ws != 0.0) {
-                double k, cand, lim = c->spinning * c->jn;
+            if (p->spinning > 0.0 && ws != 0.0) {
+                double k, cand, lim = p->spinning * c->jn;
                 rbs__body_inv_inertia_world(w, c->a, c->n, &ia);
                 rbs__body_inv_inertia_world(w, c->b, c->n, &ib);
                 k = v3_dot(c->n, ia) + v3_dot(c->n, ib);
@@ -456,12 +476,13 @@ static int fast_eligible(const rbs_world *w, int friction)
     uint32_t i;
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
-        if (c->rolling > 0.0 || c->spinning > 0.0)
-            return 0;
+        const rbs__pair *p = rbs__contact_pair(w, c);
+        if (p->rolling > 0.0 || p->spinning > 0.0 || c->off != 0)
+            return 0; /* (an off-centre mass: levers not along n) */
         if ((w->inv_mass[c->a] != 0.0 && !w->isotropic[c->a]) ||
             (w->inv_mass[c->b] != 0.0 && !w->isotropic[c->b]))
             return 0;
-        if (friction && (c->mu_s > 0.0 || c->mu_k > 0.0) && !(c->kt > 0.0))
+        if (friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && !(c->kt > 0.0))
             return 0; /* anisotropic tangent plane: the 2x2 solve of stick_impulse */
     }
     return 1;
@@ -518,10 +539,10 @@ static inline void sb_apply(double *b, v3 r, v3 j)
     v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(v3_cross(r, j), b[7])));
 }
 
-static inline void sb_apply_pair(double *ba, double *bb, const rbs__contact *c, v3 j)
+static inline void sb_apply_pair(double *ba, double *bb, v3 ra, v3 rb, v3 j)
 {
-    sb_apply(ba, c->ra, j);
-    sb_apply(bb, c->rb, v3_scale(j, -1.0));
+    sb_apply(ba, ra, j);
+    sb_apply(bb, rb, v3_scale(j, -1.0));
 }
 
 static int sweep_fast(rbs_world *w, int friction, double *change_out, double *total_out)
@@ -531,12 +552,17 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     double change = 0.0, total = 0.0;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
         double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d, vn;
-        v3 rv, j = {0, 0, 0};
+        v3 rv, ra, rb, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        rv = v3_sub(sb_point_velocity(ba, c->ra), sb_point_velocity(bb, c->rb));
+        /* the levers along n (fast_eligible: no off-centre mass), as
+         * rbs__contact_ra and rbs__contact_rb make them */
+        ra = v3_scale(c->n, c->la);
+        rb = v3_scale(c->n, c->lb);
+        rv = v3_sub(sb_point_velocity(ba, ra), sb_point_velocity(bb, rb));
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -550,13 +576,13 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             any = 1;
         }
         total += c->jn;
-        if (friction && c->jn != 0.0 && (c->mu_s > 0.0 || c->mu_k > 0.0)) {
+        if (friction && c->jn != 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             v3 vt = v3_mad(rv, c->n, -vn); /* the slip before the normal impulse (see sweep_generic) */
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
                 v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
-                v3 cand = cone(c, stick), dj = v3_sub(cand, c->jt);
+                v3 cand = cone(c, p, stick), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
@@ -565,7 +591,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             }
         }
         if (push)
-            sb_apply_pair(ba, bb, c, j);
+            sb_apply_pair(ba, bb, ra, rb, j);
     }
     *change_out = change;
     *total_out = total;
@@ -588,7 +614,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
             c->bias = h > 0.0 ? (c->gap - c->slop) / h : -1.0;
         if (c->bias < 0.0)
             continue; /* left out of the pass: no warm start either */
-        if (c->rolling > 0.0 || c->spinning > 0.0) {
+        if (rbs__contact_pair(w, c)->rolling > 0.0 || rbs__contact_pair(w, c)->spinning > 0.0) {
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;
         }
@@ -602,7 +628,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                     double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
                     v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
                     c->jt = l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0);
-                    if (v3_len(c->jt) > c->mu_s * c->jn)
+                    if (v3_len(c->jt) > rbs__contact_pair(w, c)->mu_s * c->jn)
                         c->jt = v3_make(0, 0, 0);
                 }
                 apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));

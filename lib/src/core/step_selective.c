@@ -287,8 +287,8 @@ static void finish_path(rbs_world *w, uint32_t i, double h)
 static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_step_info *info)
 {
     rbs__contact c;
-    v3 pa = v3_load(&w->pos[3 * a]), cp;
-    double ra = w->radius[a], vn;
+    v3 pa = v3_load(&w->pos[3 * a]);
+    double ra = w->radius[a], vn, dist = 0.0;
     memset(&c, 0, sizeof c);
     c.a = a;
     c.b = b;
@@ -296,18 +296,15 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
         c.n = v3_load(&w->normal[3 * b]);
         c.gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), c.n) - ra;
         c.slop = w->def.slop * ra;
-        c.ra = v3_sub(v3_mad(pa, c.n, -ra), rbs__body_com(w, a));
     } else {
-        double rb = w->radius[b], dist;
+        double rb = w->radius[b];
         v3 d = v3_sub(pa, v3_load(&w->pos[3 * b]));
         dist = v3_len(d);
         c.n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
         c.gap = dist - ra - rb;
         c.slop = w->def.slop * (ra < rb ? ra : rb);
-        cp = v3_mad(pa, c.n, -ra);
-        c.ra = v3_sub(cp, w->fixed[a] ? pa : rbs__body_com(w, a));
-        c.rb = v3_sub(cp, w->fixed[b] ? v3_load(&w->pos[3 * b]) : rbs__body_com(w, b));
     }
+    rbs__contact_levers(w, &c, dist);
     rbs__contact_finish(w, &c, dt);
     vn = rbs__normal_velocity(w, &c);
     if (!(vn < 0.0))

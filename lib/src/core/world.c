@@ -241,7 +241,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->step_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
     x->sub_save = carve(base, &at, RBS__SAVE_STRIDE * B * sizeof(double));
     x->material_name = carve(base, &at, M * RBS_NAME_MAX);
-    x->pair = carve(base, &at, P * sizeof(rbs__pair));
+    x->pair = carve(base, &at, (P + 1) * sizeof(rbs__pair)); /* + the default row */
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
     x->contact = carve(base, &at, C * sizeof(rbs__contact));
     x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));
@@ -321,6 +321,9 @@ static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *d
     w->bytes = need;
     w->def = d;
     rbs__world_layout(w, &d, (unsigned char *)buffer);
+    /* the default row (index max_pairs) of a contact no row matches:
+     * frictionless (zeros), the world's restitution */
+    w->pair[d.max_pairs].e = -1.0;
     rebuild_pair_table(w);
     w->plan_dirty = 1;
     /* the adaptive method's GSL workspaces: the one allocation outside the

@@ -22,8 +22,15 @@
  * points from b towards a. */
 typedef struct rbs__contact {
     uint32_t a, b;
+    uint32_t row;  /* material-pair row (w->pair[row]: friction, rolling,
+                      spinning); w->def.max_pairs, the world's default row
+                      (frictionless), when no row matches the pair */
+    uint32_t off;  /* RBS__OFF_A | RBS__OFF_B: that body's centre of mass is
+                      off its centre (the lever needs its rotation) */
     v3 n;          /* unit normal, from b to a */
-    v3 ra, rb;     /* from each COM to the contact point */
+    double la, lb; /* levers along n: ra = la n and rb = lb n from each body's
+                      centre to the contact point (minus the centre of mass
+                      offset R c when off; rbs__contact_ra, rbs__contact_rb) */
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
     double slop;   /* allowed overlap for this pair, m */
     double thr;    /* approach speed below which the contact is resting, m/s */
@@ -31,7 +38,8 @@ typedef struct rbs__contact {
                       the resting pass allows, (gap - slop) / h, or -1 when
                       the pair approaches as an impact (left to the
                       method's rollback); 0 for a touching contact */
-    double mu_s, mu_k, e, rolling, spinning;
+    double e;      /* restitution (the event method sets it to 0 for a
+                      resting approach) */
     double kn;     /* n . K n : inverse effective mass along n */
     double kt;     /* t . K t for every tangent t when K is isotropic in the
                       tangent plane (centred isotropic spheres); else 0 */
@@ -39,6 +47,9 @@ typedef struct rbs__contact {
     double jn;
     v3 jt;
 } rbs__contact;
+
+#define RBS__OFF_A 1u
+#define RBS__OFF_B 2u
 
 /* The rolling and spinning resistance of contact i, beside the contact
  * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
@@ -123,7 +134,8 @@ struct rbs_world {
 
     /* materials */
     char (*material_name)[RBS_NAME_MAX];
-    rbs__pair *pair;
+    rbs__pair *pair;                      /* max_pairs rows, then the default row
+                                             (frictionless; e < 0: the world's) */
     int32_t *pair_table;                  /* (max_materials+1)^2 -> pair row or -1 */
 
     /* contacts */
@@ -247,6 +259,30 @@ static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
     return v3_add(v3_load(&w->vel[3 * i]), v3_cross(v3_load(&w->avel[3 * i]), r));
 }
 
+/* A contact's levers: from each body's centre of mass to the contact point.
+ * Along n (la n, lb n) unless the body's centre of mass is off its centre,
+ * whose offset R c then comes off (the lever from the centre is along n). */
+static inline v3 rbs__contact_lever(const rbs_world *w, const rbs__contact *c, uint32_t i, double l, uint32_t off)
+{
+    v3 r = v3_scale(c->n, l);
+    if (c->off & off)
+        r = v3_sub(r, q_rotate(q_load(&w->orient[4 * i]), v3_load(&w->com_body[3 * i])));
+    return r;
+}
+static inline v3 rbs__contact_ra(const rbs_world *w, const rbs__contact *c)
+{
+    return rbs__contact_lever(w, c, c->a, c->la, RBS__OFF_A);
+}
+static inline v3 rbs__contact_rb(const rbs_world *w, const rbs__contact *c)
+{
+    return rbs__contact_lever(w, c, c->b, c->lb, RBS__OFF_B);
+}
+/* The material-pair row of a contact: its friction and resistance. */
+static inline const rbs__pair *rbs__contact_pair(const rbs_world *w, const rbs__contact *c)
+{
+    return &w->pair[c->row];
+}
+
 /* Impulse j at r from body i's centre of mass (nothing for fixed bodies). */
 static inline void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
 {
@@ -263,6 +299,9 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
+/* Levers and offsets of contact c (a, b, n set) whose centres are dist apart
+ * (a sphere pair; unused for a plane). */
+void rbs__contact_levers(const rbs_world *w, rbs__contact *c, double dist);
 double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
