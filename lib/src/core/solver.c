@@ -37,27 +37,47 @@ static v3 k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
     return r;
 }
 
-/* The relative velocity at a contact and an impulse on its pair (j on a,
- * -j on b), with its levers ra, rb (rbs__contact_ra, rbs__contact_rb). */
-static v3 rel_velocity_at(const rbs_world *w, const rbs__contact *c, v3 ra, v3 rb)
+/* The relative velocity at a contact, and an impulse on its pair (j on a,
+ * -j on b).  With both levers along n (no off-centre mass: c->off == 0)
+ *     v_rel = v_a - v_b + (la w_a - lb w_b) x n,
+ *     dw_a = I_a^-1 (la (n x j)),  dw_b = I_b^-1 (-lb (n x j)):
+ * one cross product each instead of two; the fast sweep below makes the
+ * same operations, so the two sweeps agree bit for bit. */
+static inline v3 along_rel_velocity(const rbs__contact *c, v3 va, v3 wa, v3 vb, v3 wb)
 {
-    return v3_sub(rbs__point_velocity(w, c->a, ra), rbs__point_velocity(w, c->b, rb));
+    return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, c->la), v3_scale(wb, c->lb)), c->n));
 }
 
-static void apply_pair_at(rbs_world *w, const rbs__contact *c, v3 ra, v3 rb, v3 j)
+/* Impulse j and angular impulse tau (r x j) on body i (nothing if fixed). */
+static inline void apply_linear_angular(rbs_world *w, uint32_t i, v3 j, v3 tau)
 {
-    rbs__apply_impulse(w, c->a, ra, j);
-    rbs__apply_impulse(w, c->b, rb, v3_scale(j, -1.0));
+    v3 dw;
+    if (w->inv_mass[i] == 0.0)
+        return;
+    v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
+    rbs__body_inv_inertia_world(w, i, tau, &dw);
+    v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
 }
 
 static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
-    return rel_velocity_at(w, c, rbs__contact_ra(w, c), rbs__contact_rb(w, c));
+    if (c->off == 0)
+        return along_rel_velocity(c, v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
+                                  v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
+    return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
+                  rbs__point_velocity(w, c->b, rbs__contact_rb(w, c)));
 }
 
 static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
 {
-    apply_pair_at(w, c, rbs__contact_ra(w, c), rbs__contact_rb(w, c), j);
+    if (c->off == 0) {
+        v3 t = v3_cross(c->n, j);
+        apply_linear_angular(w, c->a, j, v3_scale(t, c->la));
+        apply_linear_angular(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
+        return;
+    }
+    rbs__apply_impulse(w, c->a, rbs__contact_ra(w, c), j);
+    rbs__apply_impulse(w, c->b, rbs__contact_rb(w, c), v3_scale(j, -1.0));
 }
 
 /* Tangential impulse that stops the slip vt (in the tangent plane): solves
@@ -368,13 +388,11 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
         double jn_new, d, vn;
-        v3 rv, ra, rb, j = {0, 0, 0};
+        v3 rv, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        ra = rbs__contact_ra(w, c);
-        rb = rbs__contact_rb(w, c);
-        rv = rel_velocity_at(w, c, ra, rb);
+        rv = rel_velocity(w, c);
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -398,7 +416,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 vt = v3_mad(rv, c->n, -vn);
             } else {
                 if (push)
-                    apply_pair_at(w, c, ra, rb, j);
+                    apply_pair(w, c, j);
                 push = 0;
                 vt = slip(w, c);
             }
@@ -412,7 +430,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             }
         }
         if (push)
-            apply_pair_at(w, c, ra, rb, j);
+            apply_pair(w, c, j);
         if (!friction || c->jn == 0.0)
             continue;
         if (p->rolling > 0.0 || p->spinning > 0.0) {
@@ -525,24 +543,20 @@ static void gather_scatter(rbs_world *w, void (*fn)(rbs_world *, uint32_t))
         fn(w, w->planes[i]);
 }
 
-/* rbs__point_velocity and rbs__apply_impulse on a gathered body. */
-static inline v3 sb_point_velocity(const double *b, v3 r)
-{
-    return v3_add(v3_load(b), v3_cross(v3_load(b + 3), r));
-}
-
-static inline void sb_apply(double *b, v3 r, v3 j)
+/* apply_linear_angular and apply_pair on gathered bodies. */
+static inline void sb_apply(double *b, v3 j, v3 tau)
 {
     if (b[6] == 0.0)
         return;
     v3_store(b, v3_mad(v3_load(b), j, b[6]));
-    v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(v3_cross(r, j), b[7])));
+    v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(tau, b[7])));
 }
 
-static inline void sb_apply_pair(double *ba, double *bb, v3 ra, v3 rb, v3 j)
+static inline void sb_apply_pair(double *ba, double *bb, const rbs__contact *c, v3 j)
 {
-    sb_apply(ba, ra, j);
-    sb_apply(bb, rb, v3_scale(j, -1.0));
+    v3 t = v3_cross(c->n, j);
+    sb_apply(ba, j, v3_scale(t, c->la));
+    sb_apply(bb, v3_scale(j, -1.0), v3_scale(t, -c->lb));
 }
 
 static int sweep_fast(rbs_world *w, int friction, double *change_out, double *total_out)
@@ -554,15 +568,12 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
         double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d, vn;
-        v3 rv, ra, rb, j = {0, 0, 0};
+        v3 rv, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        /* the levers along n (fast_eligible: no off-centre mass), as
-         * rbs__contact_ra and rbs__contact_rb make them */
-        ra = v3_scale(c->n, c->la);
-        rb = v3_scale(c->n, c->lb);
-        rv = v3_sub(sb_point_velocity(ba, ra), sb_point_velocity(bb, rb));
+        /* levers along n (fast_eligible: no off-centre mass) */
+        rv = along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -591,7 +602,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             }
         }
         if (push)
-            sb_apply_pair(ba, bb, ra, rb, j);
+            sb_apply_pair(ba, bb, c, j);
     }
     *change_out = change;
     *total_out = total;
