@@ -88,8 +88,8 @@ static v3 stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
     v3 t1, t2, kt1, kt2;
     if (!(s > 0.0))
         return v3_make(0, 0, 0);
-    if (c->kt > 0.0)
-        return v3_scale(vt, -1.0 / c->kt); /* isotropic tangent plane */
+    if (c->kt_inv > 0.0)
+        return v3_scale(vt, -c->kt_inv); /* isotropic tangent plane */
     t1 = v3_scale(vt, 1.0 / s);
     t2 = v3_cross(c->n, t1);
     kt1 = k_apply(w, c, t1);
@@ -370,14 +370,15 @@ static inline double normal_row(const rbs__contact *c, double vn)
 static inline v3 cone(const rbs__contact *c, const rbs__pair *p, v3 stick)
 {
     v3 cand = v3_add(c->jt, stick);
-    double l = v3_len(cand);
-    if (l > p->mu_s * c->jn)
-        cand = v3_scale(cand, p->mu_k * c->jn / l);
+    double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
+    if (l2 > lim * lim) /* (a square root only to slide) */
+        cand = v3_scale(cand, p->mu_k * c->jn / sqrt(l2));
     return cand;
 }
 
 /* One Gauss-Seidel sweep over every contact (any body, any resistance).
- * *change: the largest velocity change, m/s; *total: the sum of normal
+ * *change: the largest velocity change, m/s (the sweep keeps its square:
+ * no square root a row); *total: the sum of normal
  * impulses; returns 1 if an impulse changed. */
 static int sweep_generic(rbs_world *w, int friction, double *change_out, double *total_out)
 {
@@ -401,14 +402,14 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             j = v3_scale(c->n, d);
             push = 1;
             c->jn = jn_new;
-            if (fabs(d) * c->kn > change)
-                change = fabs(d) * c->kn;
+            if (d * d * c->kn * c->kn > change)
+                change = d * d * c->kn * c->kn;
             any = 1;
         }
         total += c->jn;
         if (friction && c->jn != 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             v3 vt;
-            if (c->kt > 0.0) {
+            if (c->kt_inv > 0.0) {
                 /* an isotropic tangent plane (centred spheres, r along n):
                  * the normal impulse changes the relative velocity along n
                  * only, so the slip is the one before it, and both
@@ -425,8 +426,8 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
-                if (v3_len(dj) * c->kn > change)
-                    change = v3_len(dj) * c->kn;
+                if (v3_dot(dj, dj) * c->kn * c->kn > change)
+                    change = v3_dot(dj, dj) * c->kn * c->kn;
             }
         }
         if (push)
@@ -464,18 +465,20 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 rs->jspin = cand;
             }
             if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
+                double lever = rs->radius > 0.0 ? rs->radius : 1.0;
+                double dl2 = v3_dot(dl, dl) * c->kn * c->kn / (lever * lever); /* squared, as change */
                 rbs__body_inv_inertia_world(w, c->a, dl, &ia);
                 rbs__body_inv_inertia_world(w, c->b, dl, &ib);
                 if (w->inv_mass[c->a] != 0.0)
                     v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
                 if (w->inv_mass[c->b] != 0.0)
                     v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
-                if (v3_len(dl) * c->kn / (rs->radius > 0.0 ? rs->radius : 1.0) > change)
-                    change = v3_len(dl) * c->kn / (rs->radius > 0.0 ? rs->radius : 1.0);
+                if (dl2 > change)
+                    change = dl2;
             }
         }
     }
-    *change_out = change;
+    *change_out = sqrt(change); /* change held its square */
     *total_out = total;
     return any;
 }
@@ -500,7 +503,7 @@ static int fast_eligible(const rbs_world *w, int friction)
         if ((w->inv_mass[c->a] != 0.0 && !w->isotropic[c->a]) ||
             (w->inv_mass[c->b] != 0.0 && !w->isotropic[c->b]))
             return 0;
-        if (friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && !(c->kt > 0.0))
+        if (friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && !(c->kt_inv > 0.0))
             return 0; /* anisotropic tangent plane: the 2x2 solve of stick_impulse */
     }
     return 1;
@@ -582,8 +585,8 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             j = v3_scale(c->n, d);
             push = 1;
             c->jn = jn_new;
-            if (fabs(d) * c->kn > change)
-                change = fabs(d) * c->kn;
+            if (d * d * c->kn * c->kn > change)
+                change = d * d * c->kn * c->kn;
             any = 1;
         }
         total += c->jn;
@@ -592,19 +595,19 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
-                v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -1.0 / c->kt) : v3_make(0, 0, 0);
+                v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
                 v3 cand = cone(c, p, stick), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
-                if (v3_len(dj) * c->kn > change)
-                    change = v3_len(dj) * c->kn;
+                if (v3_dot(dj, dj) * c->kn * c->kn > change)
+                    change = v3_dot(dj, dj) * c->kn * c->kn;
             }
         }
         if (push)
             sb_apply_pair(ba, bb, c, j);
     }
-    *change_out = change;
+    *change_out = sqrt(change); /* change held its square */
     *total_out = total;
     return any;
 }

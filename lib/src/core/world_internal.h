@@ -41,8 +41,9 @@ typedef struct rbs__contact {
     double e;      /* restitution (the event method sets it to 0 for a
                       resting approach) */
     double kn;     /* n . K n : inverse effective mass along n */
-    double kt;     /* t . K t for every tangent t when K is isotropic in the
-                      tangent plane (centred isotropic spheres); else 0 */
+    double kt_inv; /* 1 / (t . K t), the same for every tangent t when K is
+                      isotropic in the tangent plane (centred isotropic
+                      spheres); else 0 */
     /* accumulated impulses in the resting pass */
     double jn;
     v3 jt;
