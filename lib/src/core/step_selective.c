@@ -16,7 +16,7 @@
  *
  * Each body keeps the start of its current straight path: its position and
  * orientation there (in w->sub_save) and the fraction t0 where it starts
- * (w->ev_alpha[3 i], scratch this method borrows from the event method).
+ * (w->ev_alpha[i], scratch this method borrows from the event method).
  * Cost: one step plus O(1) per impact, instead of a whole-world sub-step per
  * halving.  Accuracy: first order, like Euler.  The impact point lies
  * exactly on the Euler path; the impulse acts on the velocity the body has at
@@ -31,7 +31,7 @@
 #include "core/world_internal.h"
 
 #define S RBS__SAVE_STRIDE
-#define T0(w, i) ((w)->ev_alpha[3 * (i)])
+#define T0(w, i) ((w)->ev_alpha[i]) /* (dense: one double a body made resident, not three) */
 
 /* A violation found by the search: a pair and the fraction it first touches. */
 typedef struct violation {
