@@ -68,11 +68,13 @@ static int com_off(const rbs_world *w, uint32_t i)
 /* The contact point is a's surface point pa - r_a n: r_a behind a's centre
  * along n, and dist - r_a ahead of b's centre (a sphere; a plane takes no
  * lever: it never moves). */
-void rbs__contact_levers(const rbs_world *w, rbs__contact *c, double dist)
+void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap)
 {
     c->la = -w->radius[c->a];
     c->lb = w->type[c->b] == RBS_BODY_PLANE ? 0.0 : dist - w->radius[c->a];
-    c->off = (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u);
+    c->gap = gap;
+    c->flags = (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u) |
+               (gap > rbs__contact_slop(w, c) ? RBS__APART : 0u);
 }
 
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
@@ -124,9 +126,9 @@ static void resist_init(rbs_world *w, const rbs__contact *c, double radius)
 
 /* A speculative contact farther apart than its creep reach thr * dt: not a
  * contact after all (its thr is known only once it is finished). */
-static int beyond_reach(const rbs__contact *c, double dt)
+static int beyond_reach(const rbs__contact *c, double slop, double dt)
 {
-    return c->gap > c->slop && !(c->gap <= c->slop + c->thr * dt);
+    return (c->flags & RBS__APART) && !(c->gap <= slop + c->thr * dt);
 }
 
 /* The largest acceleration of a moving sphere times dt^2, m: a bound on
@@ -191,11 +193,9 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     c->b = b;
     /* Coincident centres have no normal: pick +z (documented). */
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
-    c->gap = gap;
-    c->slop = slop;
-    rbs__contact_levers(w, c, dist);
+    rbs__contact_set(w, c, dist, gap);
     rbs__contact_finish(w, c, ctx->dt);
-    if (beyond_reach(c, ctx->dt)) {
+    if (beyond_reach(c, slop, ctx->dt)) {
         w->contact_count--;
         return;
     }
@@ -236,11 +236,9 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
             c->a = a;
             c->b = b;
             c->n = n;
-            c->gap = gap;
-            c->slop = slop;
-            rbs__contact_levers(w, c, 0.0);
+            rbs__contact_set(w, c, 0.0, gap);
             rbs__contact_finish(w, c, dt);
-            if (beyond_reach(c, dt)) {
+            if (beyond_reach(c, slop, dt)) {
                 w->contact_count--;
                 continue;
             }
@@ -265,7 +263,7 @@ uint32_t rbs__touching(const rbs_world *w)
 {
     uint32_t i, n = 0;
     for (i = 0; i < w->contact_count; ++i)
-        n += !(w->contact[i].gap > w->contact[i].slop);
+        n += !(w->contact[i].flags & RBS__APART);
     return n;
 }
 

@@ -38,7 +38,7 @@ static v3 k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
 }
 
 /* The relative velocity at a contact, and an impulse on its pair (j on a,
- * -j on b).  With both levers along n (no off-centre mass: c->off == 0)
+ * -j on b).  With both levers along n (no off-centre mass: no RBS__OFF flag)
  *     v_rel = v_a - v_b + (la w_a - lb w_b) x n,
  *     dw_a = I_a^-1 (la (n x j)),  dw_b = I_b^-1 (-lb (n x j)):
  * one cross product each instead of two; the fast sweep below makes the
@@ -61,7 +61,7 @@ static inline void apply_linear_angular(rbs_world *w, uint32_t i, v3 j, v3 tau)
 
 static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
-    if (c->off == 0)
+    if (!(c->flags & RBS__OFF))
         return along_rel_velocity(c, v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
                                   v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
     return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
@@ -70,7 +70,7 @@ static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
 
 static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
 {
-    if (c->off == 0) {
+    if (!(c->flags & RBS__OFF)) {
         v3 t = v3_cross(c->n, j);
         apply_linear_angular(w, c->a, j, v3_scale(t, c->la));
         apply_linear_angular(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
@@ -147,14 +147,14 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
         c->jn = 0.0; /* used as a "collided" mark here */
         /* a speculative contact approaching as an impact (the test a
          * touching one gets below, on the velocities before any impulse) */
-        c->bias = c->gap > c->slop && v3_dot(rel_velocity(w, c), c->n) < -c->thr ? -1.0 : 0.0;
+        c->bias = (c->flags & RBS__APART) && v3_dot(rel_velocity(w, c), c->n) < -c->thr ? -1.0 : 0.0;
     }
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         int active = 0;
         for (i = 0; i < w->contact_count; ++i) {
             rbs__contact *c = &w->contact[i];
             double vn;
-            if (c->gap > c->slop)
+            if (c->flags & RBS__APART)
                 continue; /* speculative: not touching */
             vn = v3_dot(rel_velocity(w, c), c->n);
             if (!(vn < -c->thr) || vn >= 0.0)
@@ -498,7 +498,7 @@ static int fast_eligible(const rbs_world *w, int friction)
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
-        if (p->rolling > 0.0 || p->spinning > 0.0 || c->off != 0)
+        if (p->rolling > 0.0 || p->spinning > 0.0 || (c->flags & RBS__OFF))
             return 0; /* (an off-centre mass: levers not along n) */
         if ((w->inv_mass[c->a] != 0.0 && !w->isotropic[c->a]) ||
             (w->inv_mass[c->b] != 0.0 && !w->isotropic[c->b]))
@@ -622,10 +622,10 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         rbs__contact *c = &w->contact[i];
         c->jn = 0.0;
         c->jt = v3_make(0, 0, 0);
-        if (c->gap > c->slop && !(c->bias < 0.0))
+        if ((c->flags & RBS__APART) && !(c->bias < 0.0))
             /* speculative, not an impact: it may close to the slop in h
              * (a cold pass, h <= 0, has no sub-step to close it in) */
-            c->bias = h > 0.0 ? (c->gap - c->slop) / h : -1.0;
+            c->bias = h > 0.0 ? (c->gap - rbs__contact_slop(w, c)) / h : -1.0;
         if (c->bias < 0.0)
             continue; /* left out of the pass: no warm start either */
         if (rbs__contact_pair(w, c)->rolling > 0.0 || rbs__contact_pair(w, c)->spinning > 0.0) {

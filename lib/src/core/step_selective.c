@@ -288,23 +288,21 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
 {
     rbs__contact c;
     v3 pa = v3_load(&w->pos[3 * a]);
-    double ra = w->radius[a], vn, dist = 0.0;
+    double ra = w->radius[a], vn, dist = 0.0, gap;
     memset(&c, 0, sizeof c);
     c.a = a;
     c.b = b;
     if (w->type[b] == RBS_BODY_PLANE) {
         c.n = v3_load(&w->normal[3 * b]);
-        c.gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), c.n) - ra;
-        c.slop = w->def.slop * ra;
+        gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), c.n) - ra;
     } else {
         double rb = w->radius[b];
         v3 d = v3_sub(pa, v3_load(&w->pos[3 * b]));
         dist = v3_len(d);
         c.n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
-        c.gap = dist - ra - rb;
-        c.slop = w->def.slop * (ra < rb ? ra : rb);
+        gap = dist - ra - rb;
     }
-    rbs__contact_levers(w, &c, dist);
+    rbs__contact_set(w, &c, dist, gap);
     rbs__contact_finish(w, &c, dt);
     vn = rbs__normal_velocity(w, &c);
     if (!(vn < 0.0))

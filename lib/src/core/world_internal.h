@@ -25,14 +25,15 @@ typedef struct rbs__contact {
     uint32_t row;  /* material-pair row (w->pair[row]: friction, rolling,
                       spinning); w->def.max_pairs, the world's default row
                       (frictionless), when no row matches the pair */
-    uint32_t off;  /* RBS__OFF_A | RBS__OFF_B: that body's centre of mass is
-                      off its centre (the lever needs its rotation) */
+    uint32_t flags; /* RBS__OFF_A | RBS__OFF_B: that body's centre of mass
+                       is off its centre (the lever needs its rotation);
+                       RBS__APART: gap > the pair's slop (a speculative
+                       contact, not touching) */
     v3 n;          /* unit normal, from b to a */
     double la, lb; /* levers along n: ra = la n and rb = lb n from each body's
                       centre to the contact point (minus the centre of mass
                       offset R c when off; rbs__contact_ra, rbs__contact_rb) */
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
-    double slop;   /* allowed overlap for this pair, m */
     double thr;    /* approach speed below which the contact is resting, m/s */
     double bias;   /* speculative contact (gap > slop): the approach speed
                       the resting pass allows, (gap - slop) / h, or -1 when
@@ -51,6 +52,8 @@ typedef struct rbs__contact {
 
 #define RBS__OFF_A 1u
 #define RBS__OFF_B 2u
+#define RBS__OFF (RBS__OFF_A | RBS__OFF_B)
+#define RBS__APART 4u
 
 /* The rolling and spinning resistance of contact i, beside the contact
  * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
@@ -266,7 +269,7 @@ static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
 static inline v3 rbs__contact_lever(const rbs_world *w, const rbs__contact *c, uint32_t i, double l, uint32_t off)
 {
     v3 r = v3_scale(c->n, l);
-    if (c->off & off)
+    if (c->flags & off)
         r = v3_sub(r, q_rotate(q_load(&w->orient[4 * i]), v3_load(&w->com_body[3 * i])));
     return r;
 }
@@ -277,6 +280,13 @@ static inline v3 rbs__contact_ra(const rbs_world *w, const rbs__contact *c)
 static inline v3 rbs__contact_rb(const rbs_world *w, const rbs__contact *c)
 {
     return rbs__contact_lever(w, c, c->b, c->lb, RBS__OFF_B);
+}
+/* The allowed overlap of a contact's pair, m: def.slop times the smaller
+ * radius (a's against a plane). */
+static inline double rbs__contact_slop(const rbs_world *w, const rbs__contact *c)
+{
+    double ra = w->radius[c->a], rb = w->radius[c->b];
+    return w->def.slop * (w->type[c->b] == RBS_BODY_PLANE || ra < rb ? ra : rb);
 }
 /* The material-pair row of a contact: its friction and resistance. */
 static inline const rbs__pair *rbs__contact_pair(const rbs_world *w, const rbs__contact *c)
@@ -300,9 +310,9 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
-/* Levers and offsets of contact c (a, b, n set) whose centres are dist apart
- * (a sphere pair; unused for a plane). */
-void rbs__contact_levers(const rbs_world *w, rbs__contact *c, double dist);
+/* Levers, gap and flags of contact c (a, b, n set) whose centres are dist
+ * apart (a sphere pair; unused for a plane) and whose surfaces gap. */
+void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap);
 double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
