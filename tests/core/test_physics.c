@@ -152,6 +152,36 @@ static void sliding_sphere_starts_rolling(void **state)
     rbs_world_destroy(w);
 }
 
+/* Bodies whose materials have no pair row meet frictionlessly (the world's
+ * default row, documented in rbsim.h): a ball launched sliding at 5 m/s on
+ * a floor of another material keeps sliding at exactly 5 m/s without spin
+ * for 3 s, while the same ball on a floor of its own material (a row with
+ * mu = 0.3) rolls at 5/7 v0 as in sliding_sphere_starts_rolling.  Exact:
+ * no tangential impulse at all, so nothing rounds. */
+static void pairs_without_a_row_are_frictionless(void **state)
+{
+    const double v0 = 5.0, r = 0.1;
+    int own;
+    (void)state;
+    for (own = 0; own < 2; ++own) {
+        rbs_world *w = make_world(4, 1e-3, -G, 0.5);
+        rbs_material_id m = material(w, "m", 0.3, 0.3, -1.0), other;
+        rbs_body_id b;
+        CHECK_OK(rbs_world_add_material(w, "other", &other));
+        floor_plane(w, own ? m : other);
+        b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
+        step_n(w, 3000);
+        if (own) {
+            ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
+        } else {
+            assert_true(state_of(w, b).velocity.x == v0);
+            assert_true(state_of(w, b).angular_velocity.y == 0.0);
+            assert_true(state_of(w, b).angular_velocity.x == 0.0);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 /* A ball at rest on a plane for 10 s moves less than 1e-9 m. */
 static void ball_at_rest_stays_put(void **state)
 {
@@ -783,6 +813,7 @@ int main(void)
         cmocka_unit_test(equal_spheres_exchange_velocities),
         cmocka_unit_test(momentum_conserved_up_to_mass_ratio_1e9),
         cmocka_unit_test(sliding_sphere_starts_rolling),
+        cmocka_unit_test(pairs_without_a_row_are_frictionless),
         cmocka_unit_test(ball_at_rest_stays_put),
         cmocka_unit_test(incline_rolls_or_slides),
         cmocka_unit_test(fast_sphere_does_not_tunnel_through_plane),
