@@ -7,12 +7,10 @@
  * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
  * precedes it.  Reading checks everything before it builds anything.
  *
- * Format version 2 (little or big endian as written; a reader on the other
- * byte order rejects it as foreign; version 1 lacked the warm-start table's
- * extent among the counters, so a world resumed from it lost its warm start
- * for a step):
+ * Format version 3 (little or big endian as written; a reader on the other
+ * byte order rejects it as foreign; see CKPT_VERSION for the earlier ones):
  *   char     magic[8]   "RBSCKPT\0"
- *   uint32   version    1
+ *   uint32   version    3
  *   uint32   endian     0x01020304
  *   uint32   def_size   sizeof(rbs_world_def)
  *   uint32   reserved   0

@@ -48,17 +48,6 @@ static inline v3 along_rel_velocity(const rbs__contact *c, v3 va, v3 wa, v3 vb, 
     return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, c->la), v3_scale(wb, c->lb)), c->n));
 }
 
-/* Impulse j and angular impulse tau (r x j) on body i (nothing if fixed). */
-static inline void apply_linear_angular(rbs_world *w, uint32_t i, v3 j, v3 tau)
-{
-    v3 dw;
-    if (w->inv_mass[i] == 0.0)
-        return;
-    v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
-    rbs__body_inv_inertia_world(w, i, tau, &dw);
-    v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
-}
-
 static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
     if (!(c->flags & RBS__OFF))
@@ -72,8 +61,8 @@ static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
 {
     if (!(c->flags & RBS__OFF)) {
         v3 t = v3_cross(c->n, j);
-        apply_linear_angular(w, c->a, j, v3_scale(t, c->la));
-        apply_linear_angular(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
+        rbs__apply_impulse_torque(w, c->a, j, v3_scale(t, c->la));
+        rbs__apply_impulse_torque(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
         return;
     }
     rbs__apply_impulse(w, c->a, rbs__contact_ra(w, c), j);
@@ -546,7 +535,7 @@ static void gather_scatter(rbs_world *w, void (*fn)(rbs_world *, uint32_t))
         fn(w, w->planes[i]);
 }
 
-/* apply_linear_angular and apply_pair on gathered bodies. */
+/* rbs__apply_impulse_torque and apply_pair on gathered bodies. */
 static inline void sb_apply(double *b, v3 j, v3 tau)
 {
     if (b[6] == 0.0)
@@ -620,6 +609,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                         w->def.gravity.z * w->def.gravity.z) * w->def.dt;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
         c->jn = 0.0;
         c->jt = v3_make(0, 0, 0);
         if ((c->flags & RBS__APART) && !(c->bias < 0.0))
@@ -628,7 +618,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
             c->bias = h > 0.0 ? (c->gap - rbs__contact_slop(w, c)) / h : -1.0;
         if (c->bias < 0.0)
             continue; /* left out of the pass: no warm start either */
-        if (rbs__contact_pair(w, c)->rolling > 0.0 || rbs__contact_pair(w, c)->spinning > 0.0) {
+        if (p->rolling > 0.0 || p->spinning > 0.0) {
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;
         }
@@ -642,7 +632,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                     double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
                     v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
                     c->jt = l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0);
-                    if (v3_len(c->jt) > rbs__contact_pair(w, c)->mu_s * c->jn)
+                    if (v3_len(c->jt) > p->mu_s * c->jn)
                         c->jt = v3_make(0, 0, 0);
                 }
                 apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));

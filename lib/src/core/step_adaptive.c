@@ -571,9 +571,7 @@ static int resting_contact(const rbs_world *w)
     uint32_t k;
     for (k = 0; k < w->contact_count; ++k) {
         const rbs__contact *c = &w->contact[k];
-        double vn = v3_dot(v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)), rbs__point_velocity(w, c->b, rbs__contact_rb(w, c))),
-                           c->n);
-        if (vn <= c->thr)
+        if (rbs__normal_velocity(w, c) <= c->thr)
             return 1;
     }
     return 0;

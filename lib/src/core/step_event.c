@@ -423,8 +423,7 @@ static rbs_status resolve_contacts(rbs_world *w, double dt, rbs_step_info *info)
         return st;
     for (k = 0; k < w->contact_count; ++k) {
         rbs__contact *c = &w->contact[k];
-        double vn = v3_dot(v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
-                                  rbs__point_velocity(w, c->b, rbs__contact_rb(w, c))), c->n);
+        double vn = rbs__normal_velocity(w, c);
         if (vn < 0.0 && -vn <= c->thr)
             c->e = 0.0; /* resting: the Zeno cascade ends here */
         c->thr = 0.0;
