@@ -92,16 +92,12 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
     rbs__accelerations(w, c->b, &ab, &ta);
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, ra, c->b, rb, c->n);
-    /* Centred isotropic spheres: r is along n, so K is isotropic in the
-     * tangent plane: 1/ma + 1/mb + |ra|^2/Ia + |rb|^2/Ib (0 for fixed);
-     * kept as its inverse, which the sweeps multiply by. */
+    /* Isotropic bodies with both levers along n (no RBS__OFF flag: a fixed
+     * body's lever runs from its centre): K is isotropic in the tangent
+     * plane, 1/ma + 1/mb + |ra|^2/Ia + |rb|^2/Ib (0 for fixed); kept as its
+     * inverse, which the sweeps multiply by. */
     c->kt_inv = 0.0;
-    if (w->isotropic[c->a] && w->isotropic[c->b] &&
-        (w->type[c->a] != RBS_BODY_SPHERE || (w->com_body[3 * c->a] == 0.0 && w->com_body[3 * c->a + 1] == 0.0 &&
-                                               w->com_body[3 * c->a + 2] == 0.0)) &&
-        (w->type[c->b] != RBS_BODY_SPHERE || (w->com_body[3 * c->b] == 0.0 && w->com_body[3 * c->b + 1] == 0.0 &&
-                                               w->com_body[3 * c->b + 2] == 0.0)))
-    {
+    if (w->isotropic[c->a] && w->isotropic[c->b] && !(c->flags & RBS__OFF)) {
         double kt = w->inv_mass[c->a] + w->inv_mass[c->b] + v3_dot(ra, ra) * w->iso_inv_inertia[c->a] +
                     v3_dot(rb, rb) * w->iso_inv_inertia[c->b];
         c->kt_inv = kt > 0.0 ? 1.0 / kt : 0.0;
