@@ -294,13 +294,6 @@ static inline const rbs__pair *rbs__contact_pair(const rbs_world *w, const rbs__
     return &w->pair[c->row];
 }
 
-/* Impulse j at r from body i's centre of mass (nothing for fixed bodies). */
-static inline void rbs__apply_impulse_torque(rbs_world *w, uint32_t i, v3 j, v3 tau);
-static inline void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
-{
-    rbs__apply_impulse_torque(w, i, j, v3_cross(r, j));
-}
-
 /* Impulse j and angular impulse tau (= r x j) on body i (nothing for fixed
  * bodies): for a caller that has r x j in a cheaper form. */
 static inline void rbs__apply_impulse_torque(rbs_world *w, uint32_t i, v3 j, v3 tau)
@@ -311,6 +304,12 @@ static inline void rbs__apply_impulse_torque(rbs_world *w, uint32_t i, v3 j, v3 
     v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), j, w->inv_mass[i]));
     rbs__body_inv_inertia_world(w, i, tau, &dw);
     v3_store(&w->avel[3 * i], v3_add(v3_load(&w->avel[3 * i]), dw));
+}
+
+/* Impulse j at r from body i's centre of mass (nothing for fixed bodies). */
+static inline void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
+{
+    rbs__apply_impulse_torque(w, i, j, v3_cross(r, j));
 }
 
 /* Solver (solver.c). */
