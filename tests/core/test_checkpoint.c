@@ -3,7 +3,9 @@
  * from it gives bit-identical results to never having stopped; corrupt,
  * truncated and foreign data are rejected with a reason.
  */
+#include <stdio.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "common.h"
@@ -154,12 +156,46 @@ static void damaged_checkpoints_are_rejected(void **state)
     rbs_world_destroy(a);
 }
 
+/* Saving refuses to replace what is not a regular file (the rename would
+ * put a file where /dev/null or a FIFO was) and writes through a link. */
+static void save_keeps_devices_and_links(void **state)
+{
+    rbs_world *a = scene(), *b = NULL;
+    char dir[] = "/tmp/rbs_ckpt_XXXXXX", fifo[64], link[64], real[64], msg[256];
+    struct stat sb;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    snprintf(fifo, sizeof fifo, "%s/pipe", dir);
+    snprintf(link, sizeof link, "%s/link", dir);
+    snprintf(real, sizeof real, "%s/real", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(rbs_world_save(a, fifo), RBS_E_IO);
+    assert_int_equal(lstat(fifo, &sb), 0);
+    assert_true(S_ISFIFO(sb.st_mode));
+    assert_int_equal(rbs_world_save(a, dir), RBS_E_IO); /* a folder */
+    assert_int_equal(lstat(dir, &sb), 0);
+    assert_true(S_ISDIR(sb.st_mode));
+    assert_int_equal(symlink(real, link), 0);
+    CHECK_OK(rbs_world_save(a, link));
+    assert_int_equal(lstat(link, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode));
+    CHECK_OK(rbs_world_load(real, &b, msg, sizeof msg));
+    assert_true(rbs_world_hash(b) == rbs_world_hash(a));
+    rbs_world_destroy(b);
+    assert_int_equal(unlink(link), 0);
+    assert_int_equal(unlink(real), 0);
+    assert_int_equal(unlink(fifo), 0);
+    assert_int_equal(rmdir(dir), 0); /* nothing else was left in it */
+    rbs_world_destroy(a);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(resume_is_bit_identical),
         cmocka_unit_test(resume_in_contact),
         cmocka_unit_test(damaged_checkpoints_are_rejected),
+        cmocka_unit_test(save_keeps_devices_and_links),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

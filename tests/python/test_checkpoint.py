@@ -3,6 +3,8 @@ data.  A restored world is library-allocated; its state views must stay
 valid as long as they live, like those of a world built in Python."""
 
 import gc
+import os
+import stat
 import struct
 
 import numpy as np
@@ -43,6 +45,36 @@ def test_save_and_restore(tmp_path):
     assert r.hash() == w.hash()
     with pytest.raises(rbsim.IoError):
         rbsim.World.restore(tmp_path / "missing.ckpt")
+
+
+def test_save_never_replaces_what_is_not_a_regular_file(tmp_path):
+    w = make_world()
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    with pytest.raises(rbsim.IoError, match="not a regular file"):
+        w.save(fifo)
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)  # still the FIFO
+    with pytest.raises(rbsim.IoError, match="not a regular file"):
+        w.save(tmp_path)
+    with pytest.raises(rbsim.IoError, match="folder does not exist"):
+        w.save(tmp_path / "no" / "such.ckpt")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pipe"]  # no temporaries left
+
+
+def test_save_writes_through_a_symbolic_link(tmp_path):
+    w = make_world()
+    w.step(10)
+    target = tmp_path / "real.ckpt"
+    link = tmp_path / "link.ckpt"
+    link.symlink_to(target)
+    w.save(link)
+    assert link.is_symlink() and os.readlink(link) == str(target)
+    assert rbsim.World.restore(target).hash() == w.hash()
+    dangling = tmp_path / "dangling.ckpt"
+    dangling.symlink_to(tmp_path / "gone" / "x.ckpt")
+    with pytest.raises(rbsim.IoError, match="folder does not exist"):
+        w.save(dangling)
+    assert dangling.is_symlink()
 
 
 def test_views_of_a_restored_world_outlive_it():

@@ -18,6 +18,8 @@ Design notes
 
 from __future__ import annotations
 
+import os
+import stat
 import threading
 from dataclasses import dataclass
 from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
@@ -74,6 +76,24 @@ def _quat(q: Any) -> np.ndarray:
 
 def _set_vec3(dst: Any, v: Tuple[float, ...]) -> None:
     dst.x, dst.y, dst.z = v
+
+
+def _save_reason(raw: bytes) -> str:
+    """Why rbs_world_save refused a path, as far as the file system says
+    (the C call returns a status only)."""
+    try:
+        st = os.stat(raw)
+    except FileNotFoundError:
+        via = " (the folder of the file its symbolic link names)" if os.path.islink(raw) else ""
+        folder = os.path.dirname(os.path.realpath(raw)) or b"."
+        if not os.path.isdir(folder):
+            return ": its folder does not exist%s" % via
+        return ": its folder is not writable" if not os.access(folder, os.W_OK) else ""
+    except OSError as exc:
+        return ": %s" % exc.strerror
+    if not stat.S_ISREG(st.st_mode):
+        return ": exists and is not a regular file (a folder, device or FIFO is never replaced)"
+    return ""
 
 
 def _str(p: Any) -> str:
@@ -673,7 +693,7 @@ class World:
         cid = ffi.new("rbs_material_id *")
         name = ffi.new("char **")
         while lib.rbs_world_material_at(w, len(out), cid, name) == lib.RBS_OK:
-            out.append(Material(self, cid, ffi.string(name[0]).decode()))
+            out.append(Material(self, cid, ffi.string(name[0]).decode("utf-8", "replace")))
         return out
 
     def materials(self) -> List[Material]:
@@ -750,7 +770,12 @@ class World:
                                   ("rolling", "rolling", rolling),
                                   ("spinning", "spinning", spinning)):
             if value is not None:
-                setattr(d, field, _check.real(value, key))
+                x = _check.real(value, key)
+                if key == "restitution" and not 0.0 <= x <= 1.0:
+                    # (C's negative "the world's" is None here, not a number)
+                    raise _e.error_class(lib.RBS_E_INVALID)(
+                        "restitution: must be in [0, 1] (None keeps the world's), got %r" % x)
+                setattr(d, field, x)
         self._call(lib.rbs_world_set_pair, d)
 
     # -- bodies -------------------------------------------------------------
@@ -1147,7 +1172,8 @@ class World:
         finally:
             self._lock.release()
         if status != lib.RBS_OK:
-            raise _e.error_class(status)("cannot save %s" % raw.decode("utf-8", "replace"))
+            raise _e.error_class(status)("cannot save %s%s" % (raw.decode("utf-8", "replace"),
+                                                               _save_reason(raw)))
 
     def explain(self) -> str:
         """The pipeline a step runs for this world as it is now: bodies,

@@ -164,7 +164,8 @@ typedef enum rbs_texture {
 /* Definitions                                                               */
 /* ------------------------------------------------------------------------- */
 
-/** Longest body or material name, including the terminating NUL. */
+/** Longest body or material name, including the terminating NUL.  Names
+ * are UTF-8: a name that is not well-formed UTF-8 is RBS_E_INVALID. */
 #define RBS_NAME_MAX 64
 
 /** World definition: capacities (fixed for the world's life) and settings.
@@ -494,7 +495,11 @@ RBS_API rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size
                                                     rbs_world **out);
 
 /** Save a checkpoint to a file atomically: a temporary file beside it,
- * fsync, rename.  A crash mid-write leaves any previous file intact. */
+ * fsync, rename.  A crash mid-write leaves any previous file intact.  A
+ * path that exists and is not a regular file (a device, FIFO or folder) is
+ * refused with RBS_E_IO, never replaced; through a symbolic link the file
+ * it points to is written (created if missing) and the link kept.
+ * Reads the world only: safe while no thread steps it. */
 RBS_API rbs_status rbs_world_save(const rbs_world *world, const char *path);
 
 /** Load a world saved by rbs_world_save().  On error *out is NULL and, when

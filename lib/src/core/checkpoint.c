@@ -25,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/world_internal.h"
@@ -215,15 +216,63 @@ rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size, rbs_wo
     return create_from(buf, size, out, msg, sizeof msg);
 }
 
+/* The file a chain of symbolic links ends at (malloc'd; it need not exist
+ * yet), or NULL for a loop (more than 40 links) or no memory.  A relative
+ * link is taken from its own folder. */
+static char *link_target(const char *path)
+{
+    char *cur = NULL;
+    int hops;
+    size_t n = strlen(path);
+    struct stat sb;
+    if ((cur = (char *)malloc(n + 1)) == NULL)
+        return NULL;
+    memcpy(cur, path, n + 1);
+    for (hops = 0; hops < 40; ++hops) {
+        char buf[4096], *next, *slash;
+        ssize_t k;
+        size_t dir;
+        if (lstat(cur, &sb) != 0 || !S_ISLNK(sb.st_mode))
+            return cur;
+        k = readlink(cur, buf, sizeof buf - 1);
+        if (k < 0)
+            break;
+        buf[k] = '\0';
+        slash = strrchr(cur, '/');
+        dir = (buf[0] != '/' && slash != NULL) ? (size_t)(slash - cur) + 1 : 0;
+        if ((next = (char *)malloc(dir + (size_t)k + 1)) == NULL)
+            break;
+        memcpy(next, cur, dir);
+        memcpy(next + dir, buf, (size_t)k + 1);
+        free(cur);
+        cur = next;
+    }
+    free(cur);
+    return NULL;
+}
+
 rbs_status rbs_world_save(const rbs_world *w, const char *path)
 {
     size_t n = rbs_world_checkpoint_size(w), len;
     unsigned char *buf;
-    char *tmp;
+    char *tmp, *target = NULL;
     int fd;
+    struct stat sb;
     rbs_status st = RBS_OK;
     if (n == 0 || path == NULL || path[0] == '\0')
         return RBS_E_INVALID;
+    /* The rename would replace whatever the path names: refuse what is
+     * not a regular file (a device such as /dev/null, a FIFO, a folder);
+     * through a symbolic link, write the file it points to (the link
+     * stays). */
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
+        return RBS_E_IO;
+    if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
+        target = link_target(path);
+        if (target == NULL)
+            return RBS_E_IO; /* a loop, or out of memory */
+        path = target;
+    }
     len = strlen(path);
     /* saving is not part of stepping: it may allocate */
     buf = (unsigned char *)malloc(n);
@@ -231,6 +280,7 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
     if (buf == NULL || tmp == NULL) {
         free(buf);
         free(tmp);
+        free(target);
         return RBS_E_MEMORY;
     }
     rbs_world_checkpoint_write(w, buf, n, NULL);
@@ -261,6 +311,7 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
     }
     free(buf);
     free(tmp);
+    free(target);
     return st;
 }
 
