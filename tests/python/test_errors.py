@@ -17,10 +17,13 @@ from rbsim._native import ffi, lib
 
 NAN, INF = float("nan"), float("inf")
 # None is left out: as a keyword it means "the library's default".
-BAD_REALS = ["1.0", NAN, INF, -INF, [1.0], object(), True, 1j]
+BAD_REALS = ["1.0", NAN, INF, -INF, [1.0], object(), True, 1j, 10 ** 400]
+# (a dict of three keys iterates its keys, a set has no order: neither is a
+# vector even when it holds three numbers)
 BAD_VECTORS = [1.0, "abc", [1.0, 2.0], [1.0, 2.0, 3.0, 4.0, 5.0],
                [NAN, 0, 0], [0, INF, 0], [0, 0, None], {"x": 1}, object(),
-               np.array([1.0, np.nan, 0.0])]
+               np.array([1.0, np.nan, 0.0]), {0: 1.0, 1: 2.0, 2: 3.0},
+               {1.0, 2.0, 3.0}, [10 ** 400, 0, 0]]
 BAD_INTS = [-1, 2 ** 40, 1.5, "3", NAN, True]
 
 
@@ -228,3 +231,42 @@ def test_bad_arguments_to_stepping_and_settings():
     check_raises_rbsim(w.run, 5, speed=NAN)
     check_raises_rbsim(w.run, 5, reel_capacity=1)
     assert w.step_count == 0 and not math.isnan(w.time)
+
+
+def test_text_that_is_not_unicode_names_the_argument(tmp_path):
+    w = make_world()
+    for call in (lambda: w.body("\udcff"), lambda: w.add_material("rub\ud800ber"),
+                 lambda: w.add_sphere("\ud800", position=(1, 0, 1)),
+                 lambda: rbsim.parse_json('{"bodies": []}', name="\ud800")):
+        with pytest.raises(rbsim.InvalidError, match="lone surrogate"):
+            call()
+    with pytest.raises(rbsim.InvalidError, match="path: cannot be encoded"):
+        rbsim.World.restore(str(tmp_path) + "/\ud800.ckpt")
+
+
+def test_names_from_c_must_be_utf8():
+    w = make_world()
+    out = ffi.new("rbs_material_id *")
+    raw = w._acquire()
+    try:
+        assert lib.rbs_world_add_material(raw, b"rub\xffber", out) == lib.RBS_E_INVALID
+        assert b"UTF-8" in ffi.string(lib.rbs_world_last_error(raw))
+        # overlong "/" and a UTF-16 surrogate encoded in UTF-8: not UTF-8
+        assert lib.rbs_world_add_material(raw, b"\xc0\xaf", out) == lib.RBS_E_INVALID
+        assert lib.rbs_world_add_material(raw, b"\xed\xa0\x80", out) == lib.RBS_E_INVALID
+        assert lib.rbs_world_add_material(raw, "gummi-\u00e4\U0001f600".encode(), out) == lib.RBS_OK
+    finally:
+        w._lock.release()
+    assert [m.name for m in w.materials()] == ["gummi-\u00e4\U0001f600"]
+    with pytest.raises(rbsim.InvalidError):
+        w.add_sphere(b"b\xffall".decode("utf-8", "surrogateescape"), position=(1, 0, 1))
+
+
+def test_pair_restitution_outside_0_1_is_refused():
+    w = make_world()
+    for bad in (-0.5, 1.5):
+        with pytest.raises(rbsim.InvalidError, match="restitution: must be in"):
+            w.set_material("*", "*", restitution=bad)
+    assert w.pairs() == []
+    w.set_material("*", "*", restitution=0.25)
+    assert w.pairs()[0]["restitution"] == 0.25

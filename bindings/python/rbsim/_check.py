@@ -7,6 +7,7 @@ every message names the argument.
 
 from __future__ import annotations
 
+import collections.abc
 import math
 import numbers
 import os
@@ -23,7 +24,11 @@ def real(value: Any, what: str) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise _e.ArgumentTypeError("%s: expected a real number, got %s"
                                    % (what, _describe(value)))
-    x = float(value)
+    try:
+        x = float(value)
+    except OverflowError:
+        raise _e.error_class(-4)("%s: must be finite, got an integer too large for a double (%s)"
+                                 % (what, _describe(value))) from None
     if not math.isfinite(x):
         raise _e.error_class(-4)("%s: must be finite, got %r" % (what, x))
     return x
@@ -64,6 +69,11 @@ def vector(value: Any, what: str, size: int = 3) -> Tuple[float, ...]:
     if value is None or isinstance(value, (str, bytes)):
         raise _e.ArgumentTypeError("%s: expected %d numbers, got %s"
                                    % (what, size, _describe(value)))
+    if isinstance(value, (collections.abc.Mapping, collections.abc.Set)):
+        # a dict iterates its keys and a set has no order: neither says
+        # which number is x
+        raise _e.ArgumentTypeError("%s: expected %d numbers in order (a sequence or an "
+                                   "array), got %s" % (what, size, _describe(value)))
     try:
         items = list(value)
     except TypeError:
@@ -84,13 +94,21 @@ def text(value: Any, what: str, optional: bool = False) -> Optional[bytes]:
                                    % (what, _describe(value)))
     if "\0" in value:
         raise _e.error_class(-1)("%s: must not contain NUL characters" % what)
-    return value.encode("utf-8")
+    try:
+        return value.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise _e.error_class(-1)("%s: not valid Unicode text: a lone surrogate %r at "
+                                 "position %d" % (what, value[exc.start], exc.start)) from None
 
 
 def path(value: Any, what: str) -> bytes:
     """File-system bytes of a str or os.PathLike."""
     if isinstance(value, (str, bytes)) or isinstance(value, os.PathLike):
-        raw = os.fsencode(value)
+        try:
+            raw = os.fsencode(value)
+        except UnicodeEncodeError as exc:
+            raise _e.error_class(-1)("%s: cannot be encoded for the file system: %r at "
+                                     "position %d" % (what, exc.object[exc.start], exc.start)) from None
         if b"\0" in raw:
             raise _e.error_class(-1)("%s: must not contain NUL characters" % what)
         if not raw:

@@ -416,7 +416,47 @@ rbs_status rbs_world_get_def(const rbs_world *w, rbs_world_def *out)
 /* Materials                                                                 */
 /* ------------------------------------------------------------------------- */
 
-static int name_ok(const char *name) { return name != NULL && strlen(name) < RBS_NAME_MAX; }
+/* 1 if s is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates
+ * or code points above U+10FFFF), so names written to JSON frames and
+ * read by Python are always text. */
+static int utf8_ok(const unsigned char *s)
+{
+    while (*s) {
+        unsigned c = *s, n, k;
+        uint32_t cp;
+        if (c < 0x80) {
+            s++;
+            continue;
+        }
+        if (c >= 0xc2 && c <= 0xdf) {
+            n = 1;
+            cp = c & 0x1f;
+        } else if (c >= 0xe0 && c <= 0xef) {
+            n = 2;
+            cp = c & 0x0f;
+        } else if (c >= 0xf0 && c <= 0xf4) {
+            n = 3;
+            cp = c & 0x07;
+        } else {
+            return 0;
+        }
+        for (k = 1; k <= n; ++k) {
+            if ((s[k] & 0xc0) != 0x80)
+                return 0; /* (also stops at the NUL) */
+            cp = (cp << 6) | (s[k] & 0x3fu);
+        }
+        if ((n == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) ||
+            (n == 3 && (cp < 0x10000 || cp > 0x10ffff)))
+            return 0;
+        s += n + 1;
+    }
+    return 1;
+}
+
+static int name_ok(const char *name)
+{
+    return name != NULL && strlen(name) < RBS_NAME_MAX && utf8_ok((const unsigned char *)name);
+}
 
 rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_id *out)
 {
@@ -425,7 +465,7 @@ rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_i
         return RBS_E_INVALID;
     w->error[0] = '\0';
     if (!name_ok(name) || name[0] == '\0' || strcmp(name, "*") == 0)
-        FAIL(w, RBS_E_INVALID, "material name must be 1..%d bytes and not \"*\"", RBS_NAME_MAX - 1);
+        FAIL(w, RBS_E_INVALID, "material name must be 1..%d bytes of UTF-8 and not \"*\"", RBS_NAME_MAX - 1);
     if (rbs_world_find_material(w, name, &id) == RBS_OK)
         FAIL(w, RBS_E_INVALID, "material \"%s\" already exists", name);
     if (w->materials >= w->def.max_materials)
@@ -700,8 +740,10 @@ static void add_to_lists(rbs_world *w, uint32_t s)
 /* Checks every body kind shares: its name (kind is "sphere" or "plane"). */
 static rbs_status check_name(rbs_world *w, const char *kind, const char *name)
 {
-    if (name != NULL && !name_ok(name))
+    if (name != NULL && strlen(name) >= RBS_NAME_MAX)
         FAIL(w, RBS_E_INVALID, "%s name longer than %d bytes", kind, RBS_NAME_MAX - 1);
+    if (name != NULL && !name_ok(name))
+        FAIL(w, RBS_E_INVALID, "%s name is not valid UTF-8", kind);
     if (name_taken(w, name))
         FAIL(w, RBS_E_INVALID, "%s \"%s\": name already used", kind, name);
     return RBS_OK;
