@@ -1377,7 +1377,10 @@ int rbsf_run_main(int argc, char **argv)
     }
     rbsf_signals_attach(&signals, projector);
     if (rbs_projector_start(projector) != RBS_OK) {
+        /* The run began (frame 0 failed): its outputs stand, as after a
+         * failure at any later frame. */
         fprintf(stderr, "rbsim: %s\n", rbs_projector_last_error(projector));
+        commit_staged(outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
     }
