@@ -13,6 +13,7 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -42,7 +43,8 @@ typedef struct run_options {
 /* The after_step hook's state: written on the simulation thread while the
  * projector runs, read by the main thread only after rbs_projector_wait. */
 typedef struct checkpointer {
-    const char *path;
+    const char *name; /* as given, for messages */
+    const char *path; /* its links followed: the file rename() replaces */
     uint64_t every;   /* save when frame % every == 0; 0: never on the way */
     uint64_t last;    /* the run's last frame: always saved */
     int saved;        /* a checkpoint was written */
@@ -55,6 +57,11 @@ typedef struct output {
     int from_scene;        /* 1: a scene entry (errors exit 3), 0: argv (2) */
     char *owned_json;      /* JSON text made here, freed at the end */
     char *owned_path;
+    /* A file output staged by stage_output: the renderer writes work, which
+     * is target itself (made here) or a temporary renamed onto target once
+     * the run has started. */
+    char *target, *work;
+    int created, made_dir, temporary;
 } output;
 
 /* ---- argument parsing --------------------------------------------------- */
@@ -95,7 +102,25 @@ static int parse_positive(const char *s, double *out)
     return 0;
 }
 
-/* Options take their value as the next argument or after '='. */
+/* Every option of "rbsim run", flags and those that take a value. */
+static const char *const run_option_names[] = {
+    "--steps", "--dt", "--method", "--slop", "--csv", "--json", "--stats",
+    "--png", "--every", "--realtime", "--speed", "--paused", "--reel",
+    "--quiet", "--checkpoint", "--checkpoint-every", "--resume", NULL};
+
+/* Is a (up to any '=') the name of an option of "rbsim run"? */
+static int is_run_option(const char *a)
+{
+    size_t i, n = strcspn(a, "=");
+    for (i = 0; run_option_names[i] != NULL; i++)
+        if (strlen(run_option_names[i]) == n &&
+            strncmp(a, run_option_names[i], n) == 0)
+            return 1;
+    return 0;
+}
+
+/* Options take their value as the next argument or after '='.  A next
+ * argument that is itself an option ("--csv --quiet") is a missing value. */
 static int parse_run_args(int argc, char **argv, run_options *o)
 {
     int i, seen_reel = 0, seen_speed = 0;
@@ -167,8 +192,15 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         seen_speed |= strcmp(name, "--speed") == 0;
         if (eq)
             value = eq + 1;
-        else if (i + 1 < argc)
+        else if (i + 1 < argc && !is_run_option(argv[i + 1]))
             value = argv[++i];
+        else if (i + 1 < argc) {
+            fprintf(stderr, "rbsim run: %s needs a value, got the option '%s' "
+                            "(a file of that name: write ./%s or %s=%s)\n"
+                            "try 'rbsim help run'\n",
+                    name, argv[i + 1], argv[i + 1], name, argv[i + 1]);
+            return RBSF_EXIT_USAGE;
+        }
         else
             return usage_error("%s needs a value%s", name, "");
         if (strcmp(name, "--steps") == 0) {
@@ -375,6 +407,8 @@ static void free_outputs(output *outs, uint32_t n)
     for (i = 0; i < n; i++) {
         cJSON_free(outs[i].owned_json);
         free(outs[i].owned_path);
+        free(outs[i].target);
+        free(outs[i].work);
     }
 }
 
@@ -388,6 +422,49 @@ static int make_dir(const char *path)
     fprintf(stderr, "rbsim: cannot create folder '%s': %s\n", path,
             strerror(errno));
     return -1;
+}
+
+/* A copy of path with its symbolic links followed to the file they name
+ * (which need not exist yet), so that a file replaced by rename() is the
+ * link's target, not the link.  NULL with errno on failure. */
+static char *resolve_links(const char *path)
+{
+    char *p = malloc(strlen(path) + 1);
+    int hops;
+    if (p == NULL)
+        return NULL;
+    strcpy(p, path);
+    for (hops = 0; hops < 40; hops++) {
+        struct stat sb;
+        char link[4096];
+        const char *slash;
+        size_t dir;
+        ssize_t n;
+        char *next;
+        if (lstat(p, &sb) != 0 || !S_ISLNK(sb.st_mode))
+            return p;
+        n = readlink(p, link, sizeof link - 1);
+        if (n < 0) {
+            free(p);
+            return NULL;
+        }
+        link[n] = '\0';
+        /* A relative link is relative to the link's folder. */
+        slash = strrchr(p, '/');
+        dir = link[0] == '/' || slash == NULL ? 0 : (size_t)(slash - p) + 1;
+        next = malloc(dir + (size_t)n + 1);
+        if (next == NULL) {
+            free(p);
+            return NULL;
+        }
+        memcpy(next, p, dir);
+        memcpy(next + dir, link, (size_t)n + 1);
+        free(p);
+        p = next;
+    }
+    free(p);
+    errno = ELOOP;
+    return NULL;
 }
 
 /* Two names for one file (the same text, or an existing file reached twice,
@@ -443,14 +520,36 @@ static int same_file(const char *a, const char *b)
              strcmp(ka.name, kb.name) == 0));
 }
 
-/* No two outputs may write one file, and none may overwrite the scene. */
-static int check_distinct(const output *outs, uint32_t n, const char *scene)
+/* No two outputs may write one file (standard output included), and none
+ * may overwrite the scene or the checkpoint being resumed. */
+static int check_distinct(const output *outs, uint32_t n, const char *scene,
+                          const char *resume)
 {
     uint32_t i, j;
+    const output *on_stdout = NULL;
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
-        if (a == NULL || strcmp(a, "-") == 0)
+        if (a != NULL && strcmp(a, "-") == 0) {
+            if (on_stdout != NULL) {
+                fprintf(stderr, "rbsim run: the %s and %s outputs both write "
+                                "to standard output ('-'): at most one "
+                                "output may\n",
+                        on_stdout->config.type, outs[i].config.type);
+                return outs[i].from_scene && on_stdout->from_scene
+                           ? RBSF_EXIT_SCENE
+                           : RBSF_EXIT_USAGE;
+            }
+            on_stdout = &outs[i];
             continue;
+        }
+        if (a == NULL)
+            continue;
+        if (resume != NULL && same_file(a, resume)) {
+            fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
+                            "--resume checkpoint '%s'\n",
+                    outs[i].config.type, a, resume);
+            return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+        }
         if (scene != NULL && same_file(a, scene)) {
             fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
                             "scene\n", outs[i].config.type, a);
@@ -470,6 +569,115 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene)
 }
 
 
+/* ---- staging: a rejected run writes nothing ------------------------------ */
+
+/* Make a file output safe to open: an existing regular file is opened for
+ * writing without truncating it (so its permissions, its file system and the
+ * like are proven) and a temporary beside it takes the run's bytes; a new
+ * file is made at once (so its name, folder and file system are proven) and
+ * written in place.  Devices and pipes are opened as they are.  0, or -1
+ * with the reason in err. */
+static int stage_output(output *o, char *err, size_t errlen)
+{
+    const char *path = o->config.path;
+    struct stat sb;
+    const char *slash;
+    size_t dir;
+    int fd;
+
+    o->target = resolve_links(path);
+    if (o->target == NULL) {
+        snprintf(err, errlen, "'%s': %s", path, strerror(errno));
+        return -1;
+    }
+    slash = strrchr(o->target, '/');
+    dir = slash ? (size_t)(slash - o->target) + 1 : 0;
+    o->work = malloc(strlen(o->target) + 32);
+    if (o->work == NULL) {
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    if (stat(o->target, &sb) == 0) {
+        if (!S_ISREG(sb.st_mode)) {
+            strcpy(o->work, o->target); /* a device or a pipe: nothing kept */
+            return 0;
+        }
+        fd = open(o->target, O_WRONLY | O_NOCTTY);
+        if (fd < 0) {
+            snprintf(err, errlen, "cannot write '%s': %s", path,
+                     strerror(errno));
+            return -1;
+        }
+        close(fd);
+        memcpy(o->work, o->target, dir);
+        strcpy(o->work + dir, ".rbsim-XXXXXX");
+        fd = mkstemp(o->work);
+        if (fd < 0) {
+            snprintf(err, errlen, "cannot create a temporary file beside '%s': "
+                                  "%s", path, strerror(errno));
+            return -1;
+        }
+        fchmod(fd, sb.st_mode & 07777); /* the old file's permissions */
+        close(fd);
+        o->temporary = 1;
+        return 0;
+    }
+    strcpy(o->work, o->target);
+    fd = open(o->target, O_WRONLY | O_CREAT | O_EXCL | O_NOCTTY, 0666);
+    if (fd < 0 && errno == ENOENT && slash != NULL && slash != o->target) {
+        /* the one missing folder rbsf_check_output_file allows */
+        o->work[dir - 1] = '\0';
+        if (mkdir(o->work, 0777) == 0)
+            o->made_dir = 1;
+        o->work[dir - 1] = '/';
+        fd = open(o->target, O_WRONLY | O_CREAT | O_EXCL | O_NOCTTY, 0666);
+    }
+    if (fd < 0) {
+        snprintf(err, errlen, "cannot create '%s': %s", path, strerror(errno));
+        return -1;
+    }
+    close(fd);
+    o->created = 1;
+    return 0;
+}
+
+/* A rejected run: remove what stage_output made. */
+static void discard_staged(output *outs, uint32_t n)
+{
+    uint32_t i;
+    for (i = 0; i < n; i++) {
+        output *o = &outs[i];
+        if (o->temporary || o->created)
+            unlink(o->work);
+        if (o->made_dir) {
+            char *slash = strrchr(o->work, '/');
+            *slash = '\0';
+            rmdir(o->work);
+            *slash = '/';
+        }
+        o->temporary = o->created = o->made_dir = 0;
+    }
+}
+
+/* A run that started: its temporaries replace the old files.  0, or -1
+ * after saying which could not. */
+static int commit_staged(output *outs, uint32_t n)
+{
+    uint32_t i;
+    int failed = 0;
+    for (i = 0; i < n; i++) {
+        output *o = &outs[i];
+        if (o->temporary && rename(o->work, o->target) != 0) {
+            fprintf(stderr, "rbsim: error: cannot replace '%s' (the run's %s "
+                            "output is in '%s'): %s\n",
+                    o->config.path, o->config.type, o->work, strerror(errno));
+            failed = 1;
+        }
+        o->temporary = o->created = o->made_dir = 0;
+    }
+    return failed ? -1 : 0;
+}
+
 /* ---- checkpoints -------------------------------------------------------- */
 
 /* Save the world to the checkpoint file; on failure say why in err. */
@@ -483,7 +691,7 @@ static rbs_status save_checkpoint(checkpointer *c, const rbs_world *world,
         int e = errno;
         snprintf(err, errlen, "cannot save the checkpoint '%s' at frame %llu: "
                               "%s%s%s",
-                 c->path, (unsigned long long)rbs_world_step_count(world),
+                 c->name, (unsigned long long)rbs_world_step_count(world),
                  rbs_status_string(st), e ? ": " : "", e ? strerror(e) : "");
         return st;
     }
@@ -503,22 +711,27 @@ static rbs_status checkpoint_hook(void *context, const rbs_world *world,
     return RBS_OK;
 }
 
-/* Before anything runs: the checkpoint must be a file we can make in an
- * existing, writable folder, and not the scene or an output. */
-static int check_checkpoint_path(const char *path, const char *scene,
-                                 const output *outs, uint32_t n)
+/* Before anything runs: the checkpoint (path, its links followed: target)
+ * must be a file we can make in an existing, writable folder, and not the
+ * scene or an output.  rbs_world_save writes "<target>.tmp<pid>" and renames
+ * it onto target, so that file is made and removed here: it proves the
+ * folder, the name's length and the file system (e.g. /proc) at once. */
+static int check_checkpoint_path(const char *path, const char *target,
+                                 const char *scene, const output *outs,
+                                 uint32_t n)
 {
     struct stat sb;
-    const char *slash = strrchr(path, '/');
-    char dir[4096];
-    size_t len = slash ? (size_t)(slash - path) : 0;
+    const char *slash = strrchr(target, '/');
+    char dir[4096], tmp[4200];
+    size_t len = slash ? (size_t)(slash - target) : 0;
     uint32_t i;
-    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    int fd;
+    if (stat(target, &sb) == 0 && !S_ISREG(sb.st_mode)) {
         fprintf(stderr, "rbsim run: --checkpoint '%s': not a regular file\n",
                 path);
         return RBSF_EXIT_USAGE;
     }
-    if (len >= sizeof dir) {
+    if (len >= sizeof dir || strlen(target) + 32 >= sizeof tmp) {
         fprintf(stderr, "rbsim run: --checkpoint '%s': path too long\n", path);
         return RBSF_EXIT_USAGE;
     }
@@ -527,7 +740,7 @@ static int check_checkpoint_path(const char *path, const char *scene,
     else if (len == 0)
         strcpy(dir, "/");
     else {
-        memcpy(dir, path, len);
+        memcpy(dir, target, len);
         dir[len] = '\0';
     }
     if (slash != NULL && slash[1] == '\0') {
@@ -545,14 +758,33 @@ static int check_checkpoint_path(const char *path, const char *scene,
                         "'%s': %s\n", path, dir, strerror(errno));
         return RBSF_EXIT_USAGE;
     }
-    if (scene != NULL && same_file(path, scene)) {
+    /* An existing checkpoint: may it be written (not immutable, say)?
+     * Opened without truncating it. */
+    fd = open(target, O_WRONLY | O_NOCTTY);
+    if (fd < 0 && errno != ENOENT) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot write it: %s\n",
+                path, strerror(errno));
+        return RBSF_EXIT_USAGE;
+    }
+    if (fd >= 0)
+        close(fd);
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld", target, (long)getpid());
+    fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0) {
+        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot create a file "
+                        "in folder '%s': %s\n", path, dir, strerror(errno));
+        return RBSF_EXIT_USAGE;
+    }
+    close(fd);
+    unlink(tmp);
+    if (scene != NULL && same_file(target, scene)) {
         fprintf(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
                         "scene\n", path);
         return RBSF_EXIT_USAGE;
     }
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
-        if (a != NULL && strcmp(a, "-") != 0 && same_file(a, path)) {
+        if (a != NULL && strcmp(a, "-") != 0 && same_file(a, target)) {
             fprintf(stderr, "rbsim run: --checkpoint '%s' is also the %s "
                             "output\n", path, outs[i].config.type);
             return RBSF_EXIT_USAGE;
@@ -638,9 +870,82 @@ static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
     }
 }
 
+/* x in its shortest exact form, then unit. */
+static void show_num(char *buf, size_t n, double x, const char *unit)
+{
+    char num[40];
+    rbsf_format_double(num, sizeof num, x);
+    snprintf(buf, n, "%s%s", num, unit);
+}
+
+static void show3(char *buf, size_t n, rbs_vec3 u)
+{
+    char x[40], y[40], z[40];
+    rbsf_format_double(x, sizeof x, u.x);
+    rbsf_format_double(y, sizeof y, u.y);
+    rbsf_format_double(z, sizeof z, u.z);
+    snprintf(buf, n, "[%s, %s, %s]", x, y, z);
+}
+
+/* Do a scene body and its checkpointed self have the same definition: the
+ * properties a scene gives and the run never changes (not the state, which
+ * moves on)?  0 if so; otherwise the field and both values in why. */
+static int body_matches(const rbs_world *scene_world, const rbs_world *ck,
+                        const rbs_body_state *a, const rbs_body_state *b,
+                        char *why, size_t n)
+{
+    const char *what = NULL;
+    char va[160] = "", vb[160] = "";
+#define SAME3(u, v) ((u).x == (v).x && (u).y == (v).y && (u).z == (v).z)
+#define SHOW3(buf, u) show3(buf, sizeof buf, (u))
+    if (a->fixed != b->fixed) {
+        what = "fixed";
+        snprintf(va, sizeof va, "%s", a->fixed ? "true" : "false");
+        snprintf(vb, sizeof vb, "%s", b->fixed ? "true" : "false");
+    } else if (a->type == RBS_BODY_SPHERE && !(a->radius == b->radius)) {
+        what = "radius";
+        show_num(va, sizeof va, a->radius, " m");
+        show_num(vb, sizeof vb, b->radius, " m");
+    } else if (!(a->mass == b->mass)) {
+        what = "mass";
+        show_num(va, sizeof va, a->mass, " kg");
+        show_num(vb, sizeof vb, b->mass, " kg");
+    } else if (!SAME3(a->force, b->force)) {
+        what = "force";
+        SHOW3(va, a->force);
+        SHOW3(vb, b->force);
+    } else if (!SAME3(a->torque, b->torque)) {
+        what = "torque";
+        SHOW3(va, a->torque);
+        SHOW3(vb, b->torque);
+    } else if (a->type == RBS_BODY_PLANE && !SAME3(a->normal, b->normal)) {
+        what = "normal";
+        SHOW3(va, a->normal);
+        SHOW3(vb, b->normal);
+    } else if (a->type == RBS_BODY_PLANE && !SAME3(a->position, b->position)) {
+        what = "point"; /* a plane never moves */
+        SHOW3(va, a->position);
+        SHOW3(vb, b->position);
+    } else if (a->material.index != b->material.index ||
+               a->material.generation != b->material.generation) {
+        what = "material";
+        snprintf(va, sizeof va, "'%s'", material_label(scene_world, a->material));
+        snprintf(vb, sizeof vb, "'%s'", material_label(ck, b->material));
+    }
+#undef SAME3
+#undef SHOW3
+    if (what == NULL)
+        return 0;
+    snprintf(why, n, "body '%s' (slot %lu): %s: the scene has %s, the "
+                     "checkpoint %s",
+             a->name, (unsigned long)a->slot, what, va, vb);
+    return -1;
+}
+
 /* Does the checkpoint continue this scene?  Same capacities, step size,
  * method, gravity and every other world setting, the same materials and
- * material-pair rows, and the same bodies (by slot, name and type).  0 if
+ * material-pair rows, and the same bodies (by slot, name and type, with the
+ * same definition: body_matches).  0 if
  * so; otherwise the difference in why. */
 static int checkpoint_matches(const rbs_world *scene_world,
                               const rbs_world *ck, char *why, size_t n)
@@ -723,6 +1028,8 @@ static int checkpoint_matches(const rbs_world *scene_world,
                      hb ? sb.name : "", hb ? "'" : "");
             return -1;
         }
+        if (body_matches(scene_world, ck, &sa, &sb, why, n) != 0)
+            return -1;
     }
     return 0;
 }
@@ -799,6 +1106,7 @@ int rbsf_run_main(int argc, char **argv)
     rbs_status st;
     int code, demo, show_progress, sig;
     checkpointer ckpt;
+    char *ckpt_target = NULL;
     uint64_t start_frame = 0, target;
     double started;
     struct timespec ts;
@@ -952,12 +1260,22 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 4. Check every output before any is opened: a rejected run writes
      * nothing.  (The demonstration's folder is made first: it is ours.) */
-    code = check_distinct(outs, n_out, o.scene);
+    code = check_distinct(outs, n_out, o.scene, o.resume);
     if (code != 0)
         goto out;
-    if (o.checkpoint &&
-        (code = check_checkpoint_path(o.checkpoint, o.scene, outs, n_out)) != 0)
-        goto out;
+    if (o.checkpoint) {
+        ckpt_target = resolve_links(o.checkpoint);
+        if (ckpt_target == NULL) {
+            fprintf(stderr, "rbsim run: --checkpoint '%s': %s\n", o.checkpoint,
+                    strerror(errno));
+            code = RBSF_EXIT_USAGE;
+            goto out;
+        }
+        code = check_checkpoint_path(o.checkpoint, ckpt_target, o.scene, outs,
+                                     n_out);
+        if (code != 0)
+            goto out;
+    }
     if (demo && (make_dir(DEMO_DIR) != 0 ||
                  (o.png && strcmp(o.png, DEMO_DIR "/png") == 0 &&
                   make_dir(DEMO_DIR "/png") != 0))) {
@@ -998,6 +1316,27 @@ int rbsf_run_main(int argc, char **argv)
             goto out;
         }
     }
+    /* Every file output is made (or a temporary beside it) before any is
+     * written; from here until the run starts, out: removes them again. */
+    for (i = 0; i < n_out; i++) {
+        char err[600] = "";
+        const char *type = outs[i].config.type;
+        if (outs[i].config.path == NULL ||
+            strcmp(outs[i].config.path, "-") == 0 ||
+            (strcmp(type, "csv") && strcmp(type, "json") && strcmp(type, "stats")))
+            continue;
+        if (stage_output(&outs[i], err, sizeof err) != 0) {
+            if (outs[i].from_scene)
+                fprintf(stderr, "%s:%d:%d: renderers[%lu] (%s): %s\n",
+                        configs[i].file, (int)configs[i].line,
+                        (int)configs[i].column, (unsigned long)i, type, err);
+            else
+                fprintf(stderr, "rbsim run: --%s: %s\n", type, err);
+            code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+            goto out;
+        }
+        configs[i].path = outs[i].work;
+    }
     if ((sig = rbsf_signals_caught(&signals)) != 0) {
         code = 128 + sig; /* interrupted before anything was written */
         goto out;
@@ -1008,7 +1347,8 @@ int rbsf_run_main(int argc, char **argv)
     def.steps = target - start_frame;
     def.skip_first_frame = o.resume != NULL; /* the earlier run wrote it */
     if (o.checkpoint) {
-        ckpt.path = o.checkpoint;
+        ckpt.name = o.checkpoint;
+        ckpt.path = ckpt_target;
         ckpt.every = o.checkpoint_every;
         ckpt.last = target;
         def.after_step = checkpoint_hook;
@@ -1037,7 +1377,10 @@ int rbsf_run_main(int argc, char **argv)
     }
     rbsf_signals_attach(&signals, projector);
     if (rbs_projector_start(projector) != RBS_OK) {
+        /* The run began (frame 0 failed): its outputs stand, as after a
+         * failure at any later frame. */
         fprintf(stderr, "rbsim: %s\n", rbs_projector_last_error(projector));
+        commit_staged(outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
     }
@@ -1071,6 +1414,10 @@ int rbsf_run_main(int argc, char **argv)
     rbsf_signals_attach(&signals, NULL);
     rbs_projector_status(projector, &info);
     sig = rbsf_signals_caught(&signals);
+    /* The run started: its outputs (complete up to the last frame) replace
+     * the old files. */
+    if (commit_staged(outs, n_out) != 0)
+        code = RBSF_EXIT_RUN;
 
     /* 6b. The final checkpoint: the world is ours again and stands at the
      * last frame made (quit and signals stop after a whole frame).  Not
@@ -1106,7 +1453,7 @@ int rbsf_run_main(int argc, char **argv)
             fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
                     (unsigned long long)start_frame);
         if (ckpt.saved)
-            fprintf(talk, "checkpoint: %s at frame %llu\n", ckpt.path,
+            fprintf(talk, "checkpoint: %s at frame %llu\n", ckpt.name,
                     (unsigned long long)ckpt.saved_at);
 
     }
@@ -1120,6 +1467,8 @@ int rbsf_run_main(int argc, char **argv)
 out:
     rbsf_signals_stop(&signals);
     rbs_projector_destroy(projector);
+    discard_staged(outs, n_out); /* a rejected run: nothing is left */
+    free(ckpt_target);
     rbs_renderer_registry_destroy(registry);
     rbs_world_destroy(world);
     rbs_scene_free(scene);

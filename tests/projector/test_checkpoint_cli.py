@@ -340,6 +340,85 @@ class FaultTests(CkptBase):
         self.assertEqual(r.returncode, 3)
         self.assertFalse(os.path.exists(self.path("ck.bin")))
 
+    def test_checkpoint_path_checked_before_the_run(self):
+        """A --checkpoint that cannot be written (a name too long for the
+        file system, a folder that takes no files) is refused up front with
+        exit 2, before any output is written, not after the whole run."""
+        s = self.scene()
+        for path in ("c" * 300 + ".bin", "/proc/rbsim-no-such.bin"):
+            r = self.rbsim("run", s, "--csv", "o.csv", "--checkpoint", path)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("rbsim run: --checkpoint '%s'" % path, r.stderr)
+            self.assertFalse(os.path.exists(self.path("o.csv")))
+        self.assertEqual(os.listdir(self.dir), ["scene.json"])
+
+    def test_checkpoint_through_a_symlink(self):
+        """--checkpoint onto a symlink writes the link's target (the link
+        stays), like every other output."""
+        s = self.scene()
+        os.mkdir(self.path("real"))
+        os.symlink("real/ck.bin", self.path("link.bin"))
+        r = self.rbsim("run", s, "--steps", "50", "--checkpoint", "link.bin",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.islink(self.path("link.bin")))
+        self.assertEqual(os.listdir(self.path("real")), ["ck.bin"])
+        r = self.rbsim("run", s, "--steps", "60", "--resume", "real/ck.bin",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+
+    def test_outputs_never_overwrite_the_resumed_checkpoint(self):
+        s = self.scene()
+        good = self.checkpoint(s)
+        for opt in ("--csv", "--json", "--stats"):
+            for name in ("ck.bin", "./ck.bin"):
+                r = self.rbsim("run", s, "--resume", "ck.bin", opt, name)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertIn("would overwrite the --resume checkpoint",
+                              r.stderr)
+                self.assertEqual(read(self.path("ck.bin")), good)
+
+    def test_resume_a_folder(self):
+        s = self.scene()
+        os.mkdir(self.path("adir"))
+        r = self.rbsim("run", s, "--resume", "adir")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("adir: is a folder", r.stderr)
+        self.assertNotIn("memory", r.stderr)
+
+    def test_resume_other_body_definitions(self):
+        """A body whose definition changed since the checkpoint (not its
+        state) is refused, naming the body and the field: resuming would
+        silently run the old body."""
+        s = self.scene()
+        self.checkpoint(s)
+        cases = [
+            (2, "radius", 0.12, "radius: the scene has 0.12 m"),
+            (1, "mass", 2, "mass: the scene has 2 kg, the checkpoint 1 kg"),
+            (1, "fixed", True, "fixed: the scene has true"),
+            (3, "force", [1, 0, 0], "force: the scene has [1, 0, 0]"),
+            (3, "torque", [0, 0, 1], "torque: the scene has [0, 0, 1]"),
+            (0, "normal", [0, 1, 1], "normal: the scene has"),
+            (0, "point", [0, 0, -1], "point: the scene has [0, 0, -1]"),
+        ]
+        names = ["floor", "a", "b", "c"]
+        for i, key, value, words in cases:
+            bodies = json.loads(json.dumps(SCENE["bodies"]))
+            bodies[i][key] = value
+            e = self.scene("e.json", bodies=bodies)
+            r = self.rbsim("run", e, "--resume", "ck.bin", "--csv", "r.csv")
+            self.assertEqual(r.returncode, 3, (key, r.stderr))
+            self.assertIn("does not continue the scene", r.stderr)
+            self.assertIn("body '%s' (slot %d)" % (names[i], i), r.stderr)
+            self.assertIn(words, r.stderr)
+            self.assertFalse(os.path.exists(self.path("r.csv")))
+        # Only the state differs: accepted.
+        bodies = json.loads(json.dumps(SCENE["bodies"]))
+        bodies[1]["position"] = [0.2, 0, 0.5]
+        e = self.scene("e.json", bodies=bodies)
+        r = self.rbsim("run", e, "--resume", "ck.bin", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+
     def test_checkpoint_write_fails_mid_run(self):
         # A file size limit below a checkpoint's size: the first periodic
         # save (frame 50) fails.  The run stops with exit 4 naming the file;

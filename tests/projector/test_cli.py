@@ -494,8 +494,77 @@ class FaultTests(Base):
         self.assertGreater(size, limit - 1000)  # it failed near the limit
         self.assertGreater(self.assert_whole_frames(self.path("big.csv")), 10)
 
-    def _interrupt(self, sig, code):
+    def test_rejected_run_keeps_existing_outputs(self):
+        """An output that cannot be made (a name too long for the file
+        system, /proc) is refused before any output is touched: existing
+        files keep their bytes and no new file is left behind."""
+        s = self.scene(renderers=[{"type": "csv", "path": "scene_out.csv"}])
+        for name, text in (("keep.json", "PRECIOUS\n"),
+                           ("scene_out.csv", "MARKER\n")):
+            with open(self.path(name), "w") as f:
+                f.write(text)
+        before = sorted(os.listdir(self.dir))
+        for bad in ("s" * 300 + ".csv", "/proc/rbsim-no-such.csv",
+                    "/proc/self/status"):
+            r = self.rbsim("run", s, "--json", "keep.json", "--csv", "new.csv",
+                           "--stats", bad)
+            self.assertEqual(r.returncode, 2, (bad, r.stderr))
+            self.assertIn("rbsim run: --stats: ", r.stderr)
+            self.assertEqual(sorted(os.listdir(self.dir)), before, bad)
+            with open(self.path("keep.json")) as f:
+                self.assertEqual(f.read(), "PRECIOUS\n")
+            with open(self.path("scene_out.csv")) as f:
+                self.assertEqual(f.read(), "MARKER\n")
+
+    def test_run_replaces_existing_outputs(self):
+        """A run that starts replaces an existing output whole (same
+        permissions, written through a symlink) and leaves no temporary."""
         s = self.scene()
+        with open(self.path("old.csv"), "w") as f:
+            f.write("OLD\n")
+        os.chmod(self.path("old.csv"), 0o640)
+        os.mkdir(self.path("real"))
+        with open(self.path("real/t.jsonl"), "w") as f:
+            f.write("OLD\n")
+        os.symlink("real/t.jsonl", self.path("link.jsonl"))
+        r = self.rbsim("run", s, "--steps", "20", "--csv", "old.csv",
+                       "--json", "link.jsonl", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("old.csv")), 21)
+        self.assertEqual(os.stat(self.path("old.csv")).st_mode & 0o777, 0o640)
+        self.assertTrue(os.path.islink(self.path("link.jsonl")))
+        with open(self.path("real/t.jsonl")) as f:
+            self.assertEqual(len(f.read().splitlines()), 21)
+        self.assertEqual([n for n in os.listdir(self.dir) + os.listdir(
+            self.path("real")) if n.startswith(".rbsim-")], [])
+
+    def test_option_name_is_not_a_value(self):
+        s = self.scene()
+        r = self.rbsim("run", s, "--csv", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("--csv needs a value, got the option '--quiet'", r.stderr)
+        self.assertIn("./--quiet", r.stderr)
+        self.assertFalse(os.path.exists(self.path("--quiet")))
+        r = self.rbsim("run", s, "--steps", "5", "--csv", "./--quiet",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("--quiet")), 6)
+
+    def test_one_output_on_stdout(self):
+        s = self.scene()
+        for a, b in (("--csv", "--json"), ("--stats", "--json"),
+                     ("--csv", "--stats")):
+            r = self.rbsim("run", s, a, "-", b, "-")
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("both write to standard output", r.stderr)
+            self.assertEqual(r.stdout, "")
+
+    def _interrupt(self, sig, code, existing=False):
+        s = self.scene()
+        if existing:  # old outputs: the run writes temporaries, then renames
+            for name in ("i.csv", "i.jsonl", "i_stats.csv"):
+                with open(self.path(name), "w") as f:
+                    f.write("OLD\n")
         p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps",
                               "100000", "--csv", "i.csv", "--json", "i.jsonl",
                               "--stats", "i_stats.csv"], cwd=self.dir,
@@ -505,8 +574,10 @@ class FaultTests(Base):
             # Wait until frames are being written, then interrupt.
             deadline = time.time() + 30
             while time.time() < deadline:
-                if (os.path.exists(self.path("i.csv")) and
-                        os.path.getsize(self.path("i.csv")) > 2000):
+                tmp = [n for n in os.listdir(self.dir)
+                       if n.startswith(".rbsim-")] if existing else ["i.csv"]
+                if any(os.path.getsize(self.path(n)) > 2000 for n in tmp
+                       if os.path.exists(self.path(n))):
                     break
                 time.sleep(0.05)
             p.send_signal(sig)
@@ -530,6 +601,11 @@ class FaultTests(Base):
 
     def test_sigterm(self):
         self._interrupt(signal.SIGTERM, 143)
+
+    def test_sigterm_replaces_existing_outputs(self):
+        self._interrupt(signal.SIGTERM, 143, existing=True)
+        self.assertEqual([n for n in os.listdir(self.dir)
+                          if n.startswith(".rbsim-")], [])
 
     def test_numerical_failure_exit_4(self):
         bodies = SCENE["bodies"] + [

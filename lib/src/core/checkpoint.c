@@ -332,6 +332,17 @@ rbs_status rbs_world_load(const char *path, rbs_world **out, char *message, size
         st = RBS_E_IO;
         goto done;
     }
+    {
+        /* A folder opens on Linux and seeks to a nonsense size. */
+        struct stat sb;
+        if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+            fclose(f);
+            snprintf(msg, sizeof msg, "%s: is a folder, not a checkpoint file",
+                     path);
+            st = RBS_E_IO;
+            goto done;
+        }
+    }
     if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
         fclose(f);
         snprintf(msg, sizeof msg, "%s: cannot read", path);
