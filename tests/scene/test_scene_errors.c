@@ -142,6 +142,32 @@ static const bad_case cases[] = {
      {E("18446744073709551616", 1, 0,
         "simulation.steps: must be a non-negative integer (at most 2^53), got "
         "18446744073709551616")}},
+    {"bad/invalid_utf8_name.json", RBS_E_SCENE,
+     {E("\xff", 1, 0, "bodies[0].name: invalid UTF-8 in a string (byte 0xff)")}},
+    /* the world's own limits, named at the key */
+    {"bad/limits_simulation.json", RBS_E_SCENE,
+     {E("9007199254740993", 1, 0,
+        "simulation.steps: must be a non-negative integer (at most 2^53), got "
+        "9007199254740993 (a double cannot hold it exactly: integers above 2^53 are "
+        "rounded)"),
+      E("1e-20", 1, 0, "simulation.tolerance: must be >= 1e-15 (double precision), got 1e-20"),
+      E("\"out/a.csv\"", 2, 0,
+        "renderers[1].path: renderers[0] already writes \"out/a.csv\"; give each renderer "
+        "its own path")}},
+    {"bad/limits_bodies.json", RBS_E_SCENE,
+     {E("1, \"position\": [0", 1, 0,
+        "bodies[0].mass: the moments of inertia (mass 1 kg, radius 1e-300 m) underflow or "
+        "overflow a double: the inertia and its inverse must be finite and nonzero"),
+      E("1e-308", 1, 0,
+        "bodies[1].mass: the moments of inertia (mass 1e-308 kg, radius 0.1 m) underflow "
+        "or overflow a double: the inertia and its inverse must be finite and nonzero"),
+      E("[0.0999999", 1, 0,
+        "bodies[2].center_of_mass: |offset| = 0.0999999 m is too far from the centre for "
+        "this inertia (the inertia about the centre of mass would not be positive "
+        "definite)"),
+      E("[3, 0, 1.1]", 1, 0,
+        "bodies[3].position: the potential energy in gravity at the start is inf J, beyond "
+        "1e300 J (the world's energy would overflow)")}},
     {"bad/steps_dt_overflow.json", RBS_E_SCENE,
      {E("9007199254740992", 1, 0,
         "simulation.steps: steps * dt overflows (9007199254740992 * 1e+300 s)")}},
@@ -243,6 +269,16 @@ static const bad_case cases[] = {
      {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
           "expected 4 to 7 columns: material_a material_b static kinetic [restitution "
           "[rolling [spinning]]], got 3")}},
+    /* a byte-order mark is skipped (line 1 is fine); a bad escape, invalid
+     * UTF-8 (the file stops there) and a mistyped body line are errors */
+    {"bad/text_mistakes/config.txt", RBS_E_SCENE,
+     {E("\\q", 1, 0,
+        "invalid escape \\q in a quoted string; the escapes are \\\" \\\\ \\n \\t \\r"),
+      EIN("bad/text_mistakes/materials.txt", "\xe9", 1, 0,
+          "invalid UTF-8 (byte 0xe9): scene files are UTF-8"),
+      EIN("bad/text_mistakes/objects.txt", "cube", 1, 0,
+          "unknown body type \"cube\"; a body starts with \"sphere NAME\" or \"plane "
+          "NAME\"")}},
     {"bad/text_no_block/config.txt", RBS_E_SCENE,
      {EIN("bad/text_no_block/objects.txt", "radius", 1, 0,
           "expected \"sphere NAME\" or \"plane NAME\" to start a body, got \"radius\"")}},
@@ -481,6 +517,15 @@ static void test_override(void **state)
                                 "(9007199254740992 * 1e+300)");
     rbs_scene_free(scene);
 
+    /* 2^53 + 1 is refused, not rounded to 2^53 */
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_override(scene, 9007199254740993ULL, 0.0, NULL), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "command line: --steps: must be at most 2^53, got "
+                                "9007199254740993");
+    rbs_scene_free(scene);
+
     /* --slop: in (0, 0.1) reaches the world; else an error, the scene's
      * slop kept, and nothing builds */
     assert_int_equal(rbs_scene_override_slop(NULL, 0.01), RBS_E_INVALID);
@@ -607,6 +652,61 @@ static void test_slop(void **state)
     rbs_scene_free(scene);
 }
 
+/* Overlap at the start is found wherever the two spheres are in the body
+ * list and whatever their sizes (the grid's levels): a lattice of 1000
+ * spheres, no planes, where the last overlaps the first; then a tiny sphere
+ * inside a huge one, listed first and last. */
+static void test_overlap_far_apart(void **state)
+{
+    size_t cap = 200000, n = 0;
+    char *text = malloc(cap);
+    int i;
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_non_null(text);
+    n += (size_t)snprintf(text + n, cap - n,
+                          "{\"simulation\": {\"steps\": 1, \"gravity\": [0, 0, 0]},\n"
+                          "\"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+                          "\"kinetic\": 0.3}],\n\"bodies\": [\n");
+    for (i = 0; i < 1000; i++) {
+        /* a 10 x 10 x 10 lattice, 1 m apart, radius 0.4; the last at the first's place */
+        int x = i % 10, y = (i / 10) % 10, z = i / 100;
+        if (i == 999) {
+            x = y = 0;
+            z = 0;
+        }
+        n += (size_t)snprintf(text + n, cap - n,
+                              "%s{\"name\": \"b%d\", \"type\": \"sphere\", \"radius\": 0.4, "
+                              "\"mass\": 1, \"position\": [%d, %d, %d.25]}\n",
+                              i ? "," : "", i, x, y, z);
+    }
+    n += (size_t)snprintf(text + n, cap - n, "]}\n");
+    assert_int_equal(rbs_scene_parse_json(text, n, "lattice", &scene), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_non_null(strstr(e.text, "bodies[999].position: \"b999\" overlaps \"b0\" (bodies[0]) "
+                                   "by 0.8 m at the start"));
+    rbs_scene_free(scene);
+
+    n = (size_t)snprintf(text, cap,
+                         "{\"simulation\": {\"steps\": 1, \"gravity\": [0, 0, 0]},\n"
+                         "\"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+                         "\"kinetic\": 0.3}],\n\"bodies\": [\n"
+                         "{\"name\": \"tiny\", \"type\": \"sphere\", \"radius\": 1e-3, "
+                         "\"mass\": 1, \"position\": [-900, 0, 0]},\n"
+                         "{\"name\": \"far\", \"type\": \"sphere\", \"radius\": 1, "
+                         "\"mass\": 1, \"position\": [5000, 0, 0]},\n"
+                         "{\"name\": \"huge\", \"type\": \"sphere\", \"radius\": 1000, "
+                         "\"mass\": 1, \"position\": [0, 0, 0]}]}\n");
+    assert_int_equal(rbs_scene_parse_json(text, n, "sizes", &scene), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_non_null(strstr(e.text, "bodies[2].position: \"huge\" overlaps \"tiny\" (bodies[0])"));
+    rbs_scene_free(scene);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -614,6 +714,7 @@ int main(void)
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
+        cmocka_unit_test(test_overlap_far_apart),
     };
     if (enter_test_dir() != 0) {
         return 1;

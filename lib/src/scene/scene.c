@@ -633,7 +633,7 @@ static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
             new_dt = dt;
         }
     }
-    if ((double)new_steps > RBS__SCENE_STEPS_MAX) {
+    if (new_steps > ((uint64_t)1 << 53)) { /* not (double)new_steps: 2^53 + 1 rounds */
         rbs__scene_error(scene, none, "--steps", "must be at most 2^53, got %llu",
                          (unsigned long long)new_steps);
     } else if (!isfinite((double)new_steps * new_dt)) {

@@ -33,6 +33,11 @@
 #define RBS__SCENE_SLOP_MAX 0.1
 #define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
 #define RBS__SCENE_SWEEPS_MAX 100000
+/* The world's smallest tolerance (world.c: double precision). */
+#define RBS__SCENE_TOLERANCE_MIN 1e-15
+/** Largest size of each of a movable sphere's energies at the start, J: four
+ * terms for each of 2^24 bodies then sum to less than DBL_MAX. */
+#define RBS__SCENE_ENERGY_MAX 1e300
 
 /** A place in a scene file. */
 typedef struct rbs__loc {
@@ -168,6 +173,10 @@ int rbs__posmap_init(rbs__posmap *map, size_t expected);
 void rbs__posmap_fini(rbs__posmap *map);
 int rbs__posmap_put(rbs__posmap *map, const rbs__pos *pos);
 const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item);
+/** Length in bytes of the well-formed UTF-8 sequence at text[i] (i < len), or
+ * 0 if it is not one (RFC 3629: no overlong forms, surrogates or code points
+ * above U+10FFFF). */
+size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
 
 /* scene_json.c: JSON text -> tree + positions */
 /** Parse JSON text into *tree with positions for every item (file index
@@ -196,6 +205,10 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path);
 void rbs__scene_validate(rbs_scene *scene, const cJSON *tree,
                          const rbs__posmap *map, const rbs__src *srcs,
                          int32_t src_count);
+
+/** Whether word is a key of a sphere or a plane, or close enough to one to
+ * be its misspelling (objects.txt tells a mistyped body line from a key). */
+int rbs__body_key_near(const char *word);
 
 /* scene_save.c */
 rbs_status rbs__scene_save_json(const rbs_scene *scene, const char *path);

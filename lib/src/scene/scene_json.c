@@ -5,8 +5,8 @@
  * every call (a data race when two threads load scenes).  So the text is read
  * by a small recursive-descent parser of our own, which checks the grammar
  * strictly (RFC 8259: no trailing text, no NaN, no raw control characters,
- * paired surrogates), limits nesting to RBS__SCENE_DEPTH_MAX before it
- * recurses deeply, builds the cJSON tree with cJSON's constructors (which
+ * paired surrogates, well-formed UTF-8 in strings), limits nesting to
+ * RBS__SCENE_DEPTH_MAX before it recurses deeply, builds the cJSON tree with cJSON's constructors (which
  * touch no global state), and records the byte offset of every value and key
  * in the position map as it goes.  Numbers are converted by strtod under the
  * "C" locale (set per thread by the callers, see rbs__c_locale_push).
@@ -262,6 +262,21 @@ static int scan_string(json_scan *sc, char **out)
             }
             }
             sc->i += 2;
+            continue;
+        }
+        if (c >= 0x80) {
+            /* RFC 8259: the text is UTF-8; copy a whole sequence */
+            size_t n = rbs__utf8_seq(sc->s, sc->len, sc->i);
+            if (n == 0) {
+                char msg[80];
+                snprintf(msg, sizeof msg, "invalid UTF-8 in a string (byte 0x%02x)", c);
+                scan_fail(sc, sc->i, msg);
+                free(buf);
+                return -1;
+            }
+            memcpy(buf + k, sc->s + sc->i, n);
+            k += n;
+            sc->i += n;
             continue;
         }
         buf[k++] = (char)c;

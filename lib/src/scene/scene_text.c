@@ -103,7 +103,21 @@ static int tokenize(tctx *t, size_t begin, size_t end, int commas, ttok *toks,
         if (s[i] == '"') {
             i++;
             while (i < end && s[i] != '"') {
-                i += (s[i] == '\\' && i + 1 < end) ? 2 : 1;
+                if (s[i] == '\\' && i + 1 < end) {
+                    char e = s[i + 1];
+                    if (e != '"' && e != '\\' && e != 'n' && e != 't' && e != 'r') {
+                        rbs__scene_error(t->scene, tloc(t, i), "",
+                                         "invalid escape \\%c in a quoted string; the "
+                                         "escapes are \\\" \\\\ \\n \\t \\r",
+                                         (unsigned char)e >= 0x21 && (unsigned char)e < 0x7f
+                                             ? e
+                                             : '?');
+                        return -1;
+                    }
+                    i += 2;
+                } else {
+                    i++;
+                }
             }
             if (i >= end) {
                 rbs__scene_error(t->scene, tloc(t, start), "",
@@ -512,6 +526,9 @@ static int next_line(const tctx *t, size_t *pos, size_t *b, size_t *e)
     if (*pos >= src->len) {
         return 0;
     }
+    if (*pos == 0 && src->len >= 3 && memcmp(src->text, "\xEF\xBB\xBF", 3) == 0) {
+        *pos = 3; /* a UTF-8 byte order mark is skipped, as in JSON */
+    }
     *b = *pos;
     nl = memchr(src->text + *pos, '\n', src->len - *pos);
     *e = nl != NULL ? (size_t)(nl - src->text) : src->len;
@@ -519,14 +536,29 @@ static int next_line(const tctx *t, size_t *pos, size_t *b, size_t *e)
     return 1;
 }
 
+/* A text file holds no NUL byte and is UTF-8 throughout (as a JSON scene
+ * is), so that every name and string converts to JSON unchanged. */
 static void check_binary(tctx *t)
 {
     const rbs__src *src = &t->srcs[t->file];
     const char *z = memchr(src->text, '\0', src->len);
+    size_t i = 0;
     if (z != NULL) {
         rbs__scene_error(t->scene, tloc(t, (size_t)(z - src->text)), "",
                          "NUL byte: this is not a text file");
         t->failed = 2;
+        return;
+    }
+    while (i < src->len) {
+        size_t n = rbs__utf8_seq(src->text, src->len, i);
+        if (n == 0) {
+            rbs__scene_error(t->scene, tloc(t, i), "",
+                             "invalid UTF-8 (byte 0x%02x): scene files are UTF-8",
+                             (unsigned)(unsigned char)src->text[i]);
+            t->failed = 2;
+            return;
+        }
+        i += n;
     }
 }
 
@@ -648,6 +680,25 @@ static void load_objects(tctx *t, cJSON *bodies)
             }
             continue;
         }
+        if (!toks[0].quoted && toks[0].len < sizeof key) {
+            /* "cube c": a mistyped body line, not a key of the body before */
+            static const char *const types[] = {"sphere", "plane"};
+            const char *hint;
+            memcpy(key, s + toks[0].off, toks[0].len);
+            key[toks[0].len] = '\0';
+            hint = rbs__suggest(key, types, 2);
+            if (hint != NULL || (n == 2 && !rbs__body_key_near(key) &&
+                                 !is_number(s + toks[1].off, toks[1].len))) {
+                rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
+                                 "unknown body type \"%s\"%s%s%s; a body starts with "
+                                 "\"sphere NAME\" or \"plane NAME\"",
+                                 key, hint ? " (did you mean \"" : "", hint ? hint : "",
+                                 hint ? "\"?)" : "");
+                body = NULL;     /* its key lines are not checked */
+                complained = 1;
+                continue;
+            }
+        }
         if (body == NULL) {
             if (!complained) {
                 rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
@@ -760,6 +811,7 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path)
     rbs__loc none = {0, 0, 0};
     rbs_status st = RBS_OK, st2;
     int32_t file, k;
+    int config_unreadable;
     memset(srcs, 0, sizeof srcs);
     memset(&map, 0, sizeof map);
     memset(&t, 0, sizeof t);
@@ -799,6 +851,7 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path)
     record(&t, rends, 0, 0, 1, 0);
     add(root, "simulation", sim);
     check_binary(&t);
+    config_unreadable = t.failed == 2; /* reported; the rest would only mislead */
     /* config.txt: "key = value" lines */
     while (t.failed == 0 && next_line(&t, &pos, &b, &e)) {
         const char *s = texts[0];
@@ -964,7 +1017,7 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path)
         rbs__scene_error(scene, none, "", "out of memory");
         st = RBS_E_MEMORY;
     }
-    if (st == RBS_OK) {
+    if (st == RBS_OK && !config_unreadable) {
         rbs__scene_validate(scene, root, &map, srcs, scene->file_count);
     }
     cJSON_Delete(root);

@@ -288,12 +288,72 @@ static int get_choice(vctx *v, const cJSON *item, const char *const *names, int 
     return -1;
 }
 
+/* Whether a number literal t[0..n) (JSON grammar) is exactly the integer x,
+ * not a longer or fractional number that rounded to it: 9007199254740993
+ * reads as the double 2^53. */
+static int literal_is(const char *t, size_t n, uint64_t x)
+{
+    char dig[96], want[24];
+    size_t i = 0, nd = 0, k;
+    long point = 0, e = 0;
+    int neg_e = 0, seen_point = 0;
+    if (i < n && t[i] == '-') {
+        i++;
+    }
+    for (; i < n && t[i] != 'e' && t[i] != 'E'; i++) {
+        if (t[i] == '.') {
+            seen_point = 1;
+        } else if (nd > 0 || t[i] != '0') {
+            if (nd == sizeof dig) {
+                return 0;
+            }
+            dig[nd++] = t[i];
+            point += !seen_point;
+        } else {
+            point -= seen_point; /* a leading zero after the point */
+        }
+    }
+    if (i < n) { /* exponent */
+        i++;
+        if (i < n && (t[i] == '+' || t[i] == '-')) {
+            neg_e = t[i] == '-';
+            i++;
+        }
+        for (; i < n; i++) {
+            if (e < 100000) {
+                e = e * 10 + (t[i] - '0');
+            }
+        }
+    }
+    while (nd > 0 && dig[nd - 1] == '0') {
+        nd--; /* the value is 0.dig * 10^point: trailing zeros change nothing */
+    }
+    if (nd == 0) {
+        return x == 0;
+    }
+    point += neg_e ? -e : e; /* digits before the decimal point */
+    if (point < (long)nd || point > 20) {
+        return 0; /* a fraction, or more than 20 digits */
+    }
+    snprintf(want, sizeof want, "%llu", (unsigned long long)x);
+    if (strlen(want) != (size_t)point) {
+        return 0;
+    }
+    for (k = 0; k < (size_t)point; k++) {
+        if (want[k] != (k < nd ? dig[k] : '0')) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 /* An integer in [lo, hi] (JSON number without fraction). */
 static int get_integer(vctx *v, const cJSON *item, double lo, double hi,
                        const char *what, uint64_t *out)
 {
     double x;
     char g[64];
+    const rbs__pos *pos;
     if (!cJSON_IsNumber(item)) {
         got(v, item, g, sizeof g);
         err(v, loc_value(v, item), "must be %s, got %s", what, g);
@@ -305,6 +365,22 @@ static int get_integer(vctx *v, const cJSON *item, double lo, double hi,
     got(v, item, g, sizeof g);
     if (x != floor(x) || x < lo || x > hi) {
         err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        return -1;
+    }
+    pos = rbs__posmap_get(v->map, item);
+    if (pos != NULL && pos->file >= 0 && pos->file < v->src_count && pos->raw_len > 0 &&
+        (size_t)pos->raw_off + pos->raw_len <= v->srcs[pos->file].len &&
+        !literal_is(v->srcs[pos->file].text + pos->raw_off, pos->raw_len,
+                    (uint64_t)(x < 0 ? -x : x))) {
+        /* the double is an integer in range, the number written is not */
+        if (fabs(x) >= 9007199254740992.0) {
+            err(v, loc_value(v, item),
+                "must be %s, got %s (a double cannot hold it exactly: integers above "
+                "2^53 are rounded)",
+                what, g);
+        } else {
+            err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        }
         return -1;
     }
     *out = (uint64_t)x;
@@ -495,8 +571,17 @@ static void check_simulation(vctx *v, const cJSON *sim)
         pop(v, saved);
     }
     if ((c = member(sim, "tolerance")) != NULL) {
+        double x;
         saved = push_key(v, "tolerance");
-        (void)get_ranged(v, c, R_POS, &s->tolerance);
+        if (get_number(v, c, &x) == 0) {
+            if (x >= RBS__SCENE_TOLERANCE_MIN) {
+                s->tolerance = x;
+            } else {
+                char g[64];
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be >= 1e-15 (double precision), got %s", g);
+            }
+        }
         pop(v, saved);
     }
     if ((c = member(sim, "slop")) != NULL) {
@@ -781,8 +866,153 @@ static int get_color(vctx *v, const cJSON *item, uint32_t *out)
 
 static int vec_len_zero(rbs_vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
 
+/* The world's own test of a sphere's inertia (rbs_world_add_sphere, world.c),
+ * repeated so that the error names the key: the inertia about the centre of
+ * mass (parallel-axis rule) must be positive definite and, scaled by its mean
+ * moment, invertible with a finite inverse.  Returns 0 if it is, 1 if the
+ * moments underflow or overflow a double, 2 if the centre of mass is too far
+ * from the centre for them.  *trace gets the trace about the centre of mass. */
+static int sphere_inertia(const rbs__scene_body *b, double mass, double *trace)
+{
+    double I[9], In[9], sc, c[3], c2, det, cof[3];
+    int i, j;
+    memset(I, 0, sizeof I);
+    if (b->inertia_kind == RBS_INERTIA_PRINCIPAL) {
+        I[0] = b->inertia.x;
+        I[4] = b->inertia.y;
+        I[8] = b->inertia.z;
+    } else {
+        I[0] = I[4] = I[8] = (b->inertia_kind == RBS_INERTIA_SOLID ? 0.4 : 2.0 / 3.0) * mass *
+                             b->radius * b->radius;
+    }
+    c[0] = b->center_of_mass.x;
+    c[1] = b->center_of_mass.y;
+    c[2] = b->center_of_mass.z;
+    c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            I[3 * i + j] -= mass * ((i == j ? c2 : 0.0) - c[i] * c[j]);
+        }
+    }
+    sc = (I[0] + I[4] + I[8]) / 3.0;
+    *trace = 3.0 * sc;
+    if (!(sc > 0.0) || !isfinite(sc)) {
+        return c2 > 0.0 && isfinite(sc) ? 2 : 1;
+    }
+    for (i = 0; i < 9; i++) {
+        In[i] = I[i] / sc;
+    }
+    cof[0] = In[4] * In[8] - In[5] * In[7];
+    cof[1] = In[5] * In[6] - In[3] * In[8];
+    cof[2] = In[3] * In[7] - In[4] * In[6];
+    det = In[0] * cof[0] + In[1] * cof[1] + In[2] * cof[2];
+    if (!(In[0] > 0.0) || !(In[0] * In[4] - In[1] * In[3] > 0.0) || !(det > 0.0)) {
+        return c2 > 0.0 ? 2 : 1;
+    }
+    /* the largest inverse moments: diagonal cofactors / det / sc */
+    if (!isfinite(cof[0] / det / sc) || !isfinite((In[0] * In[8] - In[2] * In[6]) / det / sc) ||
+        !isfinite((In[0] * In[4] - In[1] * In[3]) / det / sc)) {
+        return 1;
+    }
+    return 0;
+}
+
+/* A movable sphere's energies at the start, each at most
+ * RBS__SCENE_ENERGY_MAX in size so that the world's energy sums (at most
+ * 4 terms for each of 2^24 bodies) cannot overflow: kinetic, rotational (a
+ * bound: |w|^2 trace / 2), and potential in gravity and in its force. */
+static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body *b,
+                                double mass, double trace)
+{
+    const rbs_scene *s = v->scene;
+    const rbs_quat q = b->orientation;
+    const rbs_vec3 c = b->center_of_mass, p = b->position, g = s->gravity;
+    rbs_vec3 x, t;
+    double e[4], gx;
+    static const char *const keys[4] = {"velocity", "angular_velocity", "position", "force"};
+    static const char *const what[4] = {
+        "the kinetic energy m v^2 / 2", "the rotational energy",
+        "the potential energy in gravity", "the potential energy of its force"};
+    int k;
+    /* the centre of mass in the world: p + q c q* */
+    t.x = 2.0 * (q.y * c.z - q.z * c.y);
+    t.y = 2.0 * (q.z * c.x - q.x * c.z);
+    t.z = 2.0 * (q.x * c.y - q.y * c.x);
+    x.x = p.x + c.x + q.w * t.x + (q.y * t.z - q.z * t.y);
+    x.y = p.y + c.y + q.w * t.y + (q.z * t.x - q.x * t.z);
+    x.z = p.z + c.z + q.w * t.z + (q.x * t.y - q.y * t.x);
+    gx = g.x * x.x + g.y * x.y + g.z * x.z;
+    e[0] = 0.5 * mass *
+           (b->velocity.x * b->velocity.x + b->velocity.y * b->velocity.y +
+            b->velocity.z * b->velocity.z);
+    e[1] = 0.5 * trace *
+           (b->angular_velocity.x * b->angular_velocity.x +
+            b->angular_velocity.y * b->angular_velocity.y +
+            b->angular_velocity.z * b->angular_velocity.z);
+    e[2] = fabs(s->gravity_mode == RBS_GRAVITY_ACCELERATION ? mass * gx : gx);
+    e[3] = fabs(b->force.x * x.x + b->force.y * x.y + b->force.z * x.z);
+    for (k = 0; k < 4; k++) {
+        if (!(e[k] <= RBS__SCENE_ENERGY_MAX)) {
+            const cJSON *at = member(obj, keys[k]) != NULL ? member(obj, keys[k]) : obj;
+            size_t saved = push_key(v, keys[k]);
+            err(v, loc_value(v, at),
+                "%s at the start is %g J, beyond 1e300 J (the world's energy would "
+                "overflow)",
+                what[k], e[k]);
+            pop(v, saved);
+            return;
+        }
+    }
+}
+
+/* A sphere whose own values are valid: the limits the world adds (inertia,
+ * 1 / mass) and its energy at the start. */
+static void check_sphere_limits(vctx *v, const cJSON *obj, const rbs__scene_body *b)
+{
+    double mass = b->density > 0 ? b->density * (4.0 / 3.0) * 3.14159265358979323846 *
+                                       b->radius * b->radius * b->radius
+                                 : b->mass;
+    const char *mkey = b->density > 0 ? "density" : "mass";
+    const char *ikey = b->inertia_kind == RBS_INERTIA_PRINCIPAL ? "inertia" : mkey;
+    double trace;
+    size_t saved;
+    int r;
+    if (!(mass > 0.0) || !isfinite(mass) || (!b->fixed && !isfinite(1.0 / mass))) {
+        saved = push_key(v, mkey);
+        err(v, loc_value(v, member(obj, mkey)),
+            "the mass %g kg is too small for double precision (1 / mass overflows)", mass);
+        pop(v, saved);
+        return;
+    }
+    r = sphere_inertia(b, mass, &trace);
+    if (r == 1) {
+        const cJSON *at = member(obj, ikey) != NULL ? member(obj, ikey) : obj;
+        saved = push_key(v, ikey);
+        err(v, loc_value(v, at),
+            "the moments of inertia (mass %g kg, radius %g m) underflow or overflow a "
+            "double: the inertia and its inverse must be finite and nonzero",
+            mass, b->radius);
+        pop(v, saved);
+        return;
+    }
+    if (r == 2) {
+        rbs_vec3 m = b->center_of_mass;
+        saved = push_key(v, "center_of_mass");
+        err(v, loc_value(v, member(obj, "center_of_mass")),
+            "|offset| = %g m is too far from the centre for this inertia (the inertia "
+            "about the centre of mass would not be positive definite)",
+            sqrt(m.x * m.x + m.y * m.y + m.z * m.z));
+        pop(v, saved);
+        return;
+    }
+    if (!b->fixed) {
+        check_sphere_energy(v, obj, b, mass, trace);
+    }
+}
+
 static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
 {
+    uint32_t before = v->scene->error_count;
     const cJSON *c, *mass, *density;
     size_t saved;
     int radius_ok = 0;
@@ -941,6 +1171,9 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
         (void)get_bool(v, c, &b->fixed);
         pop(v, saved);
     }
+    if (v->scene->error_count == before) {
+        check_sphere_limits(v, obj, b);
+    }
 }
 
 static void check_plane(vctx *v, const cJSON *obj, rbs__scene_body *b)
@@ -982,6 +1215,14 @@ static void check_plane(vctx *v, const cJSON *obj, rbs__scene_body *b)
     } else {
         missing(v, obj, "normal", "the outward normal, [x, y, z], nonzero");
     }
+}
+
+int rbs__body_key_near(const char *word)
+{
+    const size_t ns = sizeof sphere_keys / sizeof *sphere_keys,
+                 np = sizeof plane_keys / sizeof *plane_keys;
+    return rbs__suggest(word, sphere_keys, ns) != NULL ||
+           rbs__suggest(word, plane_keys, np) != NULL;
 }
 
 /* qsort has no context argument: sort (name, index) records instead. */
@@ -1224,18 +1465,62 @@ static void check_pairs(vctx *v)
     free(other);
 }
 
-typedef struct sweep_rec {
-    double lo;
+/* A sphere in the overlap grid: its level (cells of 2^level m, at least its
+ * diameter) and the cell holding its centre. */
+typedef struct grid_rec {
+    int32_t level;
     uint32_t index;
-} sweep_rec;
+    int64_t cell[3];
+} grid_rec;
 
-static int cmp_sweep(const void *pa, const void *pb)
+static int cmp_grid_key(const grid_rec *a, int32_t level, const int64_t *cell)
 {
-    const sweep_rec *a = pa, *b = pb;
-    if (a->lo != b->lo) {
-        return a->lo < b->lo ? -1 : 1;
+    int k;
+    if (a->level != level) {
+        return a->level < level ? -1 : 1;
     }
-    return a->index < b->index ? -1 : a->index > b->index;
+    for (k = 0; k < 3; k++) {
+        if (a->cell[k] != cell[k]) {
+            return a->cell[k] < cell[k] ? -1 : 1;
+        }
+    }
+    return 0;
+}
+
+static int cmp_grid(const void *pa, const void *pb)
+{
+    const grid_rec *a = pa, *b = pb;
+    int c = cmp_grid_key(a, b->level, b->cell);
+    return c != 0 ? c : (a->index < b->index ? -1 : a->index > b->index);
+}
+
+/* The cell of coordinate x in cells of size h: floor(x / h), clamped to
+ * +-2^62 (monotone, so neighbouring cells stay neighbours). */
+static int64_t grid_cell(double x, double h)
+{
+    double c = floor(x / h);
+    if (!(c > -4.611686018427387904e18)) {
+        return -((int64_t)1 << 62);
+    }
+    if (!(c < 4.611686018427387904e18)) {
+        return (int64_t)1 << 62;
+    }
+    return (int64_t)c;
+}
+
+/* First record at or after (level, cell) in the sorted array. */
+static size_t grid_lower(const grid_rec *rec, size_t n, int32_t level, const int64_t *cell)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (cmp_grid_key(&rec[mid], level, cell) < 0) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo;
 }
 
 static void overlap_error(vctx *v, uint32_t i, const char *fmt_other, double depth,
@@ -1251,68 +1536,129 @@ static void overlap_error(vctx *v, uint32_t i, const char *fmt_other, double dep
     pop(v, saved);
 }
 
-/* Bodies may not overlap at the start (beyond the scene's slop). */
+/* Two spheres at the start: an error if they overlap beyond the slop
+ * (fixed pairs may overlap). */
+static void overlap_pair(vctx *v, uint32_t ia, uint32_t ib)
+{
+    rbs_scene *s = v->scene;
+    const rbs__scene_body *a = &s->bodies[ia], *b = &s->bodies[ib];
+    double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y,
+           dz = a->position.z - b->position.z;
+    double dist = sqrt(dx * dx + dy * dy + dz * dz);
+    double rmin = a->radius < b->radius ? a->radius : b->radius;
+    if (a->fixed && b->fixed) {
+        return;
+    }
+    if (dist < a->radius + b->radius - s->slop * rmin) {
+        uint32_t first = ia < ib ? ia : ib, second = ia ^ ib ^ first;
+        overlap_error(v, second, "overlaps", a->radius + b->radius - dist, first);
+    }
+}
+
+/* Bodies may not overlap at the start (beyond the scene's slop).
+ *
+ * Spheres against planes: the planes are collected once, O(spheres x planes).
+ * Spheres against spheres: a hierarchical grid, O(N log N).  A sphere of
+ * radius r goes to level L, the least with 2^L >= 2r, in the cell of its
+ * centre at that level.  Two overlapping spheres a, b with level(a) <=
+ * level(b) = L are less than r_a + r_b <= 2^L apart, so b lies in one of the
+ * 27 cells around a's cell at level L: each sphere looks only at its own
+ * level and the larger ones (never at smaller spheres), 9 binary searches per
+ * level.  Spheres that do not overlap fill a cell with a bounded number of
+ * spheres of its level; only fixed spheres, which may overlap each other,
+ * can crowd a cell. */
 static void check_overlap(vctx *v)
 {
     rbs_scene *s = v->scene;
-    uint32_t i, j, n = 0;
-    sweep_rec *rec;
-    rec = malloc((s->body_count + 1) * sizeof *rec);
-    if (rec == NULL) {
+    uint32_t i, j, n = 0, np = 0, nlev = 0;
+    grid_rec *rec = malloc((s->body_count + 1) * sizeof *rec);
+    uint32_t *planes = malloc((s->body_count + 1) * sizeof *planes);
+    int32_t *levels = malloc((s->body_count + 1) * sizeof *levels);
+    if (rec == NULL || planes == NULL || levels == NULL) {
         rbs__loc none = {0, 0, 0};
+        free(rec);
+        free(planes);
+        free(levels);
         rbs__scene_error(s, none, "", "out of memory (checking overlaps)");
         return;
     }
     for (i = 0; i < s->body_count; i++) {
         const rbs__scene_body *b = &s->bodies[i];
-        if (b->ok && b->type == RBS_BODY_SPHERE) {
-            rec[n].lo = b->position.x - b->radius;
+        if (b->ok && b->type == RBS_BODY_PLANE) {
+            planes[np++] = i;
+        } else if (b->ok && b->type == RBS_BODY_SPHERE) {
+            int e;
+            double m = frexp(b->radius, &e), h; /* r = m 2^e, m in [0.5, 1) */
+            rec[n].level = m == 0.5 ? e : e + 1;  /* 2^level >= 2r */
             rec[n].index = i;
+            h = ldexp(1.0, rec[n].level);
+            rec[n].cell[0] = grid_cell(b->position.x, h);
+            rec[n].cell[1] = grid_cell(b->position.y, h);
+            rec[n].cell[2] = grid_cell(b->position.z, h);
             n++;
         }
     }
     /* spheres against planes */
-    for (i = 0; i < s->body_count && v->scene->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
+    for (i = 0; i < s->body_count && s->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
         const rbs__scene_body *sp = &s->bodies[i];
         if (!sp->ok || sp->type != RBS_BODY_SPHERE || sp->fixed) {
             continue;
         }
-        for (j = 0; j < s->body_count; j++) {
-            const rbs__scene_body *pl = &s->bodies[j];
-            double d;
-            if (!pl->ok || pl->type != RBS_BODY_PLANE) {
-                continue;
-            }
-            d = (sp->position.x - pl->point.x) * pl->normal.x +
-                (sp->position.y - pl->point.y) * pl->normal.y +
-                (sp->position.z - pl->point.z) * pl->normal.z;
+        for (j = 0; j < np; j++) {
+            const rbs__scene_body *pl = &s->bodies[planes[j]];
+            double d = (sp->position.x - pl->point.x) * pl->normal.x +
+                       (sp->position.y - pl->point.y) * pl->normal.y +
+                       (sp->position.z - pl->point.z) * pl->normal.z;
             if (d < sp->radius - s->slop * sp->radius) {
-                overlap_error(v, i, "starts behind (inside) plane", sp->radius - d, j);
+                overlap_error(v, i, "starts behind (inside) plane", sp->radius - d,
+                              planes[j]);
             }
         }
     }
-    /* spheres against spheres: sweep along x */
-    qsort(rec, n, sizeof *rec, cmp_sweep);
-    for (i = 0; i < n && v->scene->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
+    /* spheres against spheres: sort by (level, cell); list the levels */
+    qsort(rec, n, sizeof *rec, cmp_grid);
+    for (i = 0; i < n; i++) {
+        if (nlev == 0 || levels[nlev - 1] != rec[i].level) {
+            levels[nlev++] = rec[i].level;
+        }
+    }
+    for (i = 0; i < n && s->error_kept < RBS_SCENE_ERRORS_MAX; i++) {
         const rbs__scene_body *a = &s->bodies[rec[i].index];
-        double hi = a->position.x + a->radius;
-        for (j = i + 1; j < n && rec[j].lo <= hi; j++) {
-            const rbs__scene_body *b = &s->bodies[rec[j].index];
-            double dx = a->position.x - b->position.x, dy = a->position.y - b->position.y,
-                   dz = a->position.z - b->position.z;
-            double dist = sqrt(dx * dx + dy * dy + dz * dz);
-            double rmin = a->radius < b->radius ? a->radius : b->radius;
-            if (a->fixed && b->fixed) {
-                continue;
+        uint32_t l;
+        for (l = 0; l < nlev; l++) {
+            int32_t level = levels[l];
+            double h = ldexp(1.0, level);
+            int64_t c[3];
+            int dx, dy;
+            if (level < rec[i].level) {
+                continue; /* smaller spheres look at this one */
             }
-            if (dist < a->radius + b->radius - s->slop * rmin) {
-                uint32_t first = rec[i].index < rec[j].index ? rec[i].index : rec[j].index;
-                uint32_t second = rec[i].index ^ rec[j].index ^ first;
-                overlap_error(v, second, "overlaps", a->radius + b->radius - dist, first);
+            c[0] = grid_cell(a->position.x, h);
+            c[1] = grid_cell(a->position.y, h);
+            c[2] = grid_cell(a->position.z, h);
+            for (dx = -1; dx <= 1; dx++) {
+                for (dy = -1; dy <= 1; dy++) {
+                    int64_t from[3], to[3];
+                    size_t k;
+                    from[0] = to[0] = c[0] + dx;
+                    from[1] = to[1] = c[1] + dy;
+                    from[2] = c[2] - 1;
+                    to[2] = c[2] + 1;
+                    /* cells (x, y, z-1 .. z+1) are adjacent in the sort order */
+                    for (k = grid_lower(rec, n, level, from);
+                         k < n && cmp_grid_key(&rec[k], level, to) <= 0; k++) {
+                        if (level == rec[i].level && k <= i) {
+                            continue; /* a pair of one level is seen from both */
+                        }
+                        overlap_pair(v, rec[i].index, rec[k].index);
+                    }
+                }
             }
         }
     }
     free(rec);
+    free(planes);
+    free(levels);
 }
 
 /* ---- renderers ---------------------------------------------------------- */
@@ -1746,7 +2092,23 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
             size_t i = 0;
             for (r = c->child; r != NULL; r = r->next, i++) {
                 size_t s2 = push_index(&v, i);
+                const cJSON *q, *p = cJSON_IsObject(r) ? member(r, "path") : NULL;
+                size_t j = 0;
                 check_renderer(&v, r, i);
+                /* two renderers may not write one file (the front ends refuse it) */
+                for (q = c->child; q != r && cJSON_IsString(p); q = q->next, j++) {
+                    const cJSON *qp = cJSON_IsObject(q) ? member(q, "path") : NULL;
+                    if (cJSON_IsString(qp) && p->valuestring[0] != '\0' &&
+                        strcmp(qp->valuestring, p->valuestring) == 0) {
+                        size_t s3 = push_key(&v, "path");
+                        err(&v, loc_value(&v, p),
+                            "renderers[%lu] already writes \"%s\"; give each renderer its "
+                            "own path",
+                            (unsigned long)j, p->valuestring);
+                        pop(&v, s3);
+                        break;
+                    }
+                }
                 pop(&v, s2);
             }
         }
