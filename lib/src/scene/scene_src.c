@@ -72,9 +72,13 @@ rbs__loc rbs__src_loc(const rbs__src *src, int32_t file, size_t off)
 
 static size_t posmap_hash(const cJSON *item, size_t cap)
 {
+    /* MurmurHash3's 64-bit finalizer (A. Appleby): both rounds, so every
+     * bit of the pointer reaches the low bits the table uses */
     uint64_t h = (uint64_t)(uintptr_t)item;
     h ^= h >> 33;
     h *= 0xff51afd7ed558ccdULL;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ULL;
     h ^= h >> 33;
     return (size_t)h & (cap - 1);
 }
