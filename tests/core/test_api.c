@@ -4,6 +4,7 @@
  * unchanged, caller-owned memory.
  */
 #include <stdlib.h>
+#include <string.h>
 
 #include "common.h"
 
@@ -456,6 +457,83 @@ static void overflow_in_step_keeps_last_good_state(void **state)
     rbs_world_destroy(w);
 }
 
+/* The name index against a walk over every slot: random adds and removes
+ * of names from a small pool, in a world whose index is small enough that
+ * names collide and removals shift entries back; after every operation
+ * each pool name is found exactly where the walk finds it, and a
+ * checkpoint of the world finds the same. */
+static uint32_t walk_find(const rbs_world *w, const char *name)
+{
+    uint32_t slot;
+    for (slot = 0; slot < 64; ++slot) {
+        rbs_body_id id;
+        rbs_body_state st;
+        if (rbs_world_body_at(w, slot, &id) == RBS_OK && rbs_body_get_state(w, id, &st) == RBS_OK &&
+            strcmp(st.name, name) == 0)
+            return slot;
+    }
+    return UINT32_MAX;
+}
+
+static void names_are_indexed(void **state)
+{
+    rbs_world *w = make_world(64, 1e-3, 0.0, 0.5), *r = NULL;
+    rbs_body_id ids[48];
+    int live[48] = {0}, op, k;
+    uint32_t rng = 12345u;
+    char name[16];
+    (void)state;
+    for (op = 0; op < 3000; ++op) {
+        rng = rng * 1664525u + 1013904223u;
+        k = (int)((rng >> 8) % 48u);
+        snprintf(name, sizeof name, "b%d", k * 7919);
+        if (!live[k]) {
+            rbs_sphere_def s;
+            rbs_sphere_def_init(&s);
+            s.name = name;
+            s.position.x = 3.0 * k;
+            CHECK_OK(rbs_world_add_sphere(w, &s, &ids[k]));
+            live[k] = 1;
+            /* a second body of that name is refused */
+            s.position.x += 1000.0;
+            assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+        } else if ((rng >> 4) & 1u) {
+            CHECK_OK(rbs_world_remove_body(w, ids[k]));
+            live[k] = 0;
+        }
+        for (k = 0; k < 48; ++k) {
+            rbs_body_id id;
+            uint32_t at;
+            snprintf(name, sizeof name, "b%d", k * 7919);
+            at = walk_find(w, name);
+            assert_true((at != UINT32_MAX) == live[k]);
+            if (live[k]) {
+                CHECK_OK(rbs_world_find_body(w, name, &id));
+                assert_int_equal(id.index, at);
+                assert_int_equal(id.index, ids[k].index);
+                assert_int_equal(id.generation, ids[k].generation);
+            } else {
+                assert_int_equal(rbs_world_find_body(w, name, &id), RBS_E_NOT_FOUND);
+            }
+        }
+    }
+    {
+        size_t n = rbs_world_checkpoint_size(w);
+        unsigned char *buf = malloc(n);
+        assert_non_null(buf);
+        CHECK_OK(rbs_world_checkpoint_write(w, buf, n, NULL));
+        CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &r));
+        free(buf);
+        for (k = 0; k < 48; ++k) {
+            rbs_body_id id;
+            snprintf(name, sizeof name, "b%d", k * 7919);
+            assert_int_equal(rbs_world_find_body(r, name, &id), live[k] ? RBS_OK : RBS_E_NOT_FOUND);
+        }
+        rbs_world_destroy(r);
+    }
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -468,6 +546,7 @@ int main(void)
         cmocka_unit_test(capacity_error_leaves_world_unchanged),
         cmocka_unit_test(contact_capacity_error_keeps_state),
         cmocka_unit_test(ids_stale_after_remove),
+        cmocka_unit_test(names_are_indexed),
         cmocka_unit_test(reused_slot_starts_clean),
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
         cmocka_unit_test(pair_rules),

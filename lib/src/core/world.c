@@ -223,6 +223,13 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->item = carve(base, &at, B * sizeof(uint32_t));
     x->acc = carve(base, &at, 3 * B * sizeof(double));
     x->name = carve(base, &at, B * RBS_NAME_MAX);
+    {
+        size_t K = 2;
+        while (K < 2 * B)
+            K *= 2;
+        x->name_index_size = (uint32_t)K;
+        x->name_index = carve(base, &at, K * sizeof(uint32_t));
+    }
     x->pos = carve(base, &at, 3 * B * sizeof(double));
     x->vel = carve(base, &at, 3 * B * sizeof(double));
     x->avel = carve(base, &at, 3 * B * sizeof(double));
@@ -641,15 +648,65 @@ static int id_valid(const rbs_world *w, rbs_body_id id)
            w->generation[id.index] == id.generation && w->type[id.index] != RBS_BODY_NONE;
 }
 
+/* The name index: FNV-1a of the name, linear probing in a table at least
+ * twice the bodies (so probes stay short and an empty entry always ends
+ * one), removal by backward shift (Knuth, TAOCP vol. 3, 6.4, Algorithm R),
+ * so no tombstones pile up.  It lives in the world's block: named bodies
+ * are found in O(1) instead of by a walk over every slot. */
+static uint32_t name_hash(const char *name)
+{
+    uint32_t h = 2166136261u;
+    while (*name)
+        h = (h ^ (unsigned char)*name++) * 16777619u;
+    return h;
+}
+
+/* The index entry holding name, or the empty entry where it would go. */
+static uint32_t name_probe(const rbs_world *w, const char *name)
+{
+    uint32_t mask = w->name_index_size - 1, k = name_hash(name) & mask;
+    while (w->name_index[k] != 0 && strcmp(w->name[w->name_index[k] - 1], name) != 0)
+        k = (k + 1) & mask;
+    return k;
+}
+
+/* Slot of the body named name, or UINT32_MAX. */
+static uint32_t name_find(const rbs_world *w, const char *name)
+{
+    uint32_t e = w->name_index[name_probe(w, name)];
+    return e != 0 ? e - 1 : UINT32_MAX;
+}
+
+static void name_insert(rbs_world *w, uint32_t s)
+{
+    w->name_index[name_probe(w, w->name[s])] = s + 1;
+}
+
+static void name_remove(rbs_world *w, uint32_t s)
+{
+    uint32_t mask = w->name_index_size - 1, hole = name_probe(w, w->name[s]), k = hole;
+    w->name_index[hole] = 0;
+    for (;;) {
+        uint32_t home;
+        k = (k + 1) & mask;
+        if (w->name_index[k] == 0)
+            return;
+        home = name_hash(w->name[w->name_index[k] - 1]) & mask;
+        /* the entry at k may fill the hole unless its home lies
+         * cyclically in (hole, k] */
+        if ((k > hole) ? (home <= hole || home > k) : (home <= hole && home > k)) {
+            w->name_index[hole] = w->name_index[k];
+            w->name_index[k] = 0;
+            hole = k;
+        }
+    }
+}
+
 static int name_taken(const rbs_world *w, const char *name)
 {
-    uint32_t i;
     if (name == NULL || name[0] == '\0')
         return 0;
-    for (i = 0; i < w->slots; ++i)
-        if (w->type[i] != RBS_BODY_NONE && strcmp(w->name[i], name) == 0)
-            return 1;
-    return 0;
+    return name_find(w, name) != UINT32_MAX;
 }
 
 /* Take a free slot (reusing removed ones first); UINT32_MAX if full. */
@@ -774,8 +831,10 @@ static rbs_status take_slot(rbs_world *w, const char *kind, rbs_body_type type, 
      * arrays a world's bodies never use -- names, forces, 3x3 inertia of
      * isotropic spheres -- stay untouched, and calloc'd pages of them are
      * never made resident. */
-    if (name && name[0] != '\0')
+    if (name && name[0] != '\0') {
         strcpy(w->name[s], name);
+        name_insert(w, s);
+    }
     q_store(&w->orient[4 * s], (quat){1.0, 0.0, 0.0, 0.0});
     w->isotropic[s] = 1;
     *slot = s;
@@ -958,8 +1017,10 @@ rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
              (unsigned)id.generation);
     w->type[s] = RBS_BODY_NONE;
     /* back to zeros, as take_slot expects of a free slot */
-    if (w->name[s][0] != '\0')
+    if (w->name[s][0] != '\0') {
+        name_remove(w, s);
         memset(w->name[s], 0, RBS_NAME_MAX);
+    }
     memset(&w->pos[3 * s], 0, 3 * sizeof(double));
     memset(&w->vel[3 * s], 0, 3 * sizeof(double));
     memset(&w->avel[3 * s], 0, 3 * sizeof(double));
@@ -984,16 +1045,13 @@ rbs_status rbs_world_find_body(const rbs_world *w, const char *name, rbs_body_id
     uint32_t i;
     if (w == NULL || w->magic != WORLD_MAGIC || name == NULL || name[0] == '\0')
         return RBS_E_INVALID;
-    for (i = 0; i < w->slots; ++i) {
-        if (w->type[i] != RBS_BODY_NONE && strcmp(w->name[i], name) == 0) {
-            if (out) {
-                out->index = i;
-                out->generation = w->generation[i];
-            }
-            return RBS_OK;
-        }
+    if ((i = name_find(w, name)) == UINT32_MAX)
+        return RBS_E_NOT_FOUND;
+    if (out) {
+        out->index = i;
+        out->generation = w->generation[i];
     }
-    return RBS_E_NOT_FOUND;
+    return RBS_OK;
 }
 
 rbs_status rbs_world_body_at(const rbs_world *w, uint32_t slot, rbs_body_id *out)

@@ -116,6 +116,10 @@ struct rbs_world {
     uint32_t *color;
     int32_t *texture;
     char (*name)[RBS_NAME_MAX];
+    uint32_t *name_index;                 /* named bodies by name: open addressing,
+                                             linear probing, name_index_size
+                                             entries of slot + 1 (0: empty) */
+    uint32_t name_index_size;             /* power of two >= 2 * max_bodies */
     double *pos, *vel, *avel, *orient;    /* 3, 3, 3, 4 per slot */
     double *force, *torque, *normal;      /* 3 per slot */
     double *radius, *mass, *inv_mass;
