@@ -106,8 +106,12 @@ static const char convert_text[] =
     "\n"
     "Read the scene IN (either format) and write it to OUT: JSON when OUT ends\n"
     "in .json, the config.txt format (with materials.txt and objects.txt\n"
-    "beside it) when OUT ends in .txt.  Exit 0, 2 (usage), 3 (IN is not a\n"
-    "valid scene) or 4 (OUT could not be written).\n";
+    "beside it) when OUT ends in .txt.  Every file is written to a temporary\n"
+    "and renamed into place only when all are complete: a failed convert\n"
+    "leaves what was there and names the file that failed and why.  A folder,\n"
+    "device or FIFO is never replaced; a symbolic link's target is written.\n"
+    "Exit 0, 2 (usage), 3 (IN is not a valid scene) or 4 (OUT could not be\n"
+    "written).\n";
 
 int rbsf_help(FILE *out, const char *command)
 {
@@ -333,6 +337,7 @@ static int ends_with(const char *s, const char *suffix)
 
 static int convert_main(int argc, char **argv)
 {
+    char why[600];
     rbs_scene *scene = NULL;
     rbs_scene_format format;
     rbs_status st;
@@ -366,17 +371,14 @@ static int convert_main(int argc, char **argv)
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
-    count = rbs_scene_error_count(scene);
-    st = rbs_scene_save(scene, argv[1], format);
+    st = rbs_scene_save_v2(scene, argv[1], format, why, sizeof why);
     if (st != RBS_OK) {
-        uint32_t now = rbs_scene_error_count(scene);
-        for (k = count; k < now && k < RBS_SCENE_ERRORS_MAX; k++) {
-            rbs_scene_error e;
-            if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
-                fprintf(stderr, "%s\n", e.text);
-        }
-        fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", argv[1],
-                rbs_status_string(st));
+        /* nothing was written: the save replaces files only when all are complete */
+        if (why[0] != '\0')
+            fprintf(stderr, "rbsim convert: %s\n", why);
+        else
+            fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", argv[1],
+                    rbs_status_string(st));
         rbs_scene_free(scene);
         return RBSF_EXIT_RUN;
     }

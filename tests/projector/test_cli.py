@@ -437,6 +437,27 @@ class CliTests(Base):
         self.assertEqual(outs[0], outs[1])
         self.assertEqual(outs[0], outs[2])
 
+    def test_convert_writes_everything_or_nothing(self):
+        # objects.txt cannot be written (a folder is in its place): the old
+        # config.txt stays, no materials.txt or temporary appears, and the
+        # message names objects.txt and why (exit 4).
+        s = self.scene()
+        d = self.path("half")
+        os.mkdir(d)
+        with open(os.path.join(d, "config.txt"), "w") as f:
+            f.write("old\n")
+        os.mkdir(os.path.join(d, "objects.txt"))
+        r = self.rbsim("convert", s, os.path.join(d, "config.txt"))
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("objects.txt': is a folder", r.stderr)
+        self.assertEqual(sorted(os.listdir(d)), ["config.txt", "objects.txt"])
+        with open(os.path.join(d, "config.txt")) as f:
+            self.assertEqual(f.read(), "old\n")
+        # an OS reason, not "input/output error"
+        r = self.rbsim("convert", s, self.path("no/such/dir/x.json"))
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("No such file or directory", r.stderr)
+
     def test_demo(self):
         r = self.rbsim("run", timeout=300)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)

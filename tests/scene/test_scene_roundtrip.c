@@ -7,8 +7,11 @@
  * Scenes: the issue's example, a file using every feature of format 1
  * (roundtrip_features.json) and every demonstration scene.
  */
+#include <dirent.h>
 #include <math.h>
+#include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "scene_test.h"
 
@@ -275,12 +278,83 @@ static void test_save_errors(void **state)
     }
 }
 
+/* Entries in a folder (".", ".." left out). */
+static int entries(const char *dir)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    int n = 0;
+    assert_non_null(d);
+    while ((e = readdir(d)) != NULL)
+        n += strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0;
+    closedir(d);
+    return n;
+}
+
+/* A save writes every file or none: a text scene whose objects.txt cannot
+ * be written leaves the old config.txt and no materials.txt, temporaries
+ * or half files, and the message names the file that failed; a FIFO is
+ * never replaced; through a symbolic link the target is written. */
+static void test_save_is_all_or_nothing(void **state)
+{
+    rbs_scene *scene = NULL;
+    char dir[512], cfg[600], obj[600], mat[600], fifo[600], link[600], real[600], msg[700];
+    struct stat sb;
+    FILE *f;
+    (void)state;
+    tmp(dir, sizeof dir, "aon");
+    assert_int_equal(mkdir(dir, 0700), 0);
+    snprintf(cfg, sizeof cfg, "%s/config.txt", dir);
+    snprintf(obj, sizeof obj, "%s/objects.txt", dir);
+    snprintf(mat, sizeof mat, "%s/materials.txt", dir);
+    snprintf(fifo, sizeof fifo, "%s/pipe.json", dir);
+    snprintf(link, sizeof link, "%s/link.json", dir);
+    snprintf(real, sizeof real, "%s/real.json", dir);
+    assert_int_equal(rbs_scene_load("issue_example.json", RBS_SCENE_AUTO, &scene), RBS_OK);
+    f = fopen(cfg, "w");
+    assert_non_null(f);
+    fputs("old\n", f);
+    fclose(f);
+    assert_int_equal(mkdir(obj, 0700), 0);
+    assert_int_equal(rbs_scene_save_v2(scene, cfg, RBS_SCENE_TEXT, msg, sizeof msg), RBS_E_IO);
+    assert_non_null(strstr(msg, "objects.txt"));
+    assert_non_null(strstr(msg, "is a folder"));
+    assert_int_equal(entries(dir), 2); /* config.txt (untouched) and the folder */
+    f = fopen(cfg, "r");
+    assert_non_null(f);
+    assert_non_null(fgets(msg, sizeof msg, f));
+    fclose(f);
+    assert_string_equal(msg, "old\n");
+    assert_int_equal(rmdir(obj), 0);
+    assert_int_equal(rbs_scene_save_v2(scene, cfg, RBS_SCENE_TEXT, msg, sizeof msg), RBS_OK);
+    assert_string_equal(msg, "");
+    assert_int_equal(entries(dir), 3);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(rbs_scene_save_v2(scene, fifo, RBS_SCENE_JSON, msg, sizeof msg), RBS_E_IO);
+    assert_non_null(strstr(msg, "not a regular file"));
+    assert_int_equal(lstat(fifo, &sb), 0);
+    assert_true(S_ISFIFO(sb.st_mode));
+    assert_int_equal(symlink("real.json", link), 0); /* relative: beside the link */
+    assert_int_equal(rbs_scene_save(scene, link, RBS_SCENE_JSON), RBS_OK);
+    assert_int_equal(lstat(link, &sb), 0);
+    assert_true(S_ISLNK(sb.st_mode));
+    assert_int_equal(stat(real, &sb), 0);
+    assert_true(S_ISREG(sb.st_mode) && sb.st_size > 0);
+    assert_int_equal(entries(dir), 6);
+    rbs_scene_free(scene);
+    assert_int_equal(remove(cfg) | remove(obj) | remove(mat) | remove(fifo) | remove(link) |
+                         remove(real),
+                     0);
+    assert_int_equal(rmdir(dir), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_issue_example),   cmocka_unit_test(test_features),
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
         cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
+        cmocka_unit_test(test_save_is_all_or_nothing),
     };
     if (enter_test_dir() != 0) {
         return 1;

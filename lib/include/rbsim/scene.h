@@ -130,11 +130,23 @@ RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
  * the name is not config.txt).  A missing parent folder (one level) is made.
  * Every value is written (defaults included) with the fewest digits that
  * read back exactly, so loading the result gives an equal scene and a
- * bit-identical world.  RBS_E_SCENE for a scene with errors, RBS_E_IO if a
- * file cannot be written, RBS_E_UNSUPPORTED if a renderer entry has a key
- * the text format cannot spell (containing '.', '[', '=', blanks ...). */
+ * bit-identical world.  Every file is written to a temporary beside it and
+ * renamed into place only when all are complete, so a failed save leaves
+ * what was there; a path that names a folder, device or FIFO is refused,
+ * one that names a symbolic link writes the link's target.  RBS_E_SCENE for
+ * a scene with errors, RBS_E_IO if a file cannot be written,
+ * RBS_E_UNSUPPORTED if a renderer entry has a key the text format cannot
+ * spell (containing '.', '[', '=', blanks ...).  Reads the scene only: safe
+ * to call from several threads on one scene. */
 RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
                                   rbs_scene_format format);
+
+/** rbs_scene_save, and on RBS_E_IO a message ("cannot write 'PATH':
+ * REASON", naming the file that failed) in message (message_size bytes,
+ * NUL-terminated; "" on success).  message may be NULL. */
+RBS_API rbs_status rbs_scene_save_v2(const rbs_scene *scene, const char *path,
+                                     rbs_scene_format format, char *message,
+                                     size_t message_size);
 
 #ifdef __cplusplus
 }

@@ -217,10 +217,7 @@ rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size, rbs_wo
     return create_from(buf, size, out, msg, sizeof msg);
 }
 
-/* The file a chain of symbolic links ends at (malloc'd; it need not exist
- * yet), or NULL for a loop (more than 40 links) or no memory.  A relative
- * link is taken from its own folder. */
-static char *link_target(const char *path)
+char *rbs__link_target(const char *path)
 {
     char *cur = NULL;
     int hops;
@@ -269,7 +266,7 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
         return RBS_E_IO;
     if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
-        target = link_target(path);
+        target = rbs__link_target(path);
         if (target == NULL)
             return RBS_E_IO; /* a loop, or out of memory */
         path = target;

@@ -343,6 +343,13 @@ const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at);
 typedef int (*rbs__greater_fn)(const void *x, const void *y);
 void rbs__heap_sort(void *base, uint32_t n, size_t size, rbs__greater_fn greater);
 
+/* The file a chain of symbolic links ends at (malloc'd, the caller frees;
+ * it need not exist yet), or NULL for a loop (more than 40 links) or no
+ * memory.  A relative link is taken from its own folder.  For writers that
+ * replace a file by renaming a temporary onto it (checkpoints, scenes): the
+ * rename then lands on the link's target and the link stays. */
+char *rbs__link_target(const char *path);
+
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
 

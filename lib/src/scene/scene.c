@@ -713,8 +713,11 @@ rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
 }
 
 static rbs_status scene_save(const rbs_scene *scene, const char *path,
-                             rbs_scene_format format)
+                             rbs_scene_format format, char *message, size_t message_size)
 {
+    if (message != NULL && message_size > 0) {
+        message[0] = '\0';
+    }
     if (scene == NULL || path == NULL) {
         return RBS_E_INVALID;
     }
@@ -726,10 +729,10 @@ static rbs_status scene_save(const rbs_scene *scene, const char *path,
                                                                      : RBS_SCENE_TEXT;
     }
     if (format == RBS_SCENE_JSON) {
-        return rbs__scene_save_json(scene, path);
+        return rbs__scene_save_json(scene, path, message, message_size);
     }
     if (format == RBS_SCENE_TEXT) {
-        return rbs__scene_save_text(scene, path);
+        return rbs__scene_save_text(scene, path, message, message_size);
     }
     return RBS_E_INVALID;
 }
@@ -763,7 +766,18 @@ rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
     rbs__locale l;
     rbs_status st;
     rbs__c_locale_push(&l);
-    st = scene_save(scene, path, format);
+    st = scene_save(scene, path, format, NULL, 0);
+    rbs__c_locale_pop(&l);
+    return st;
+}
+
+rbs_status rbs_scene_save_v2(const rbs_scene *scene, const char *path, rbs_scene_format format,
+                             char *message, size_t message_size)
+{
+    rbs__locale l;
+    rbs_status st;
+    rbs__c_locale_push(&l);
+    st = scene_save(scene, path, format, message, message_size);
     rbs__c_locale_pop(&l);
     return st;
 }

@@ -211,8 +211,12 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree,
 int rbs__body_key_near(const char *word);
 
 /* scene_save.c */
-rbs_status rbs__scene_save_json(const rbs_scene *scene, const char *path);
-rbs_status rbs__scene_save_text(const rbs_scene *scene, const char *path);
+/* Save as JSON or text; on failure message (if not NULL) names the file
+ * that could not be written and why. */
+rbs_status rbs__scene_save_json(const rbs_scene *scene, const char *path, char *message,
+                                size_t message_size);
+rbs_status rbs__scene_save_text(const rbs_scene *scene, const char *path, char *message,
+                                size_t message_size);
 
 /* scene.c: reading files */
 /** Read a whole file into a new buffer (NUL-terminated).  Records an error

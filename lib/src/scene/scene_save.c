@@ -7,32 +7,148 @@
 #include "scene/scene_internal.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
-/* fopen for writing; a missing parent folder (one level) is made. */
-static FILE *open_out(const char *path)
+#include "core/world_internal.h" /* rbs__link_target */
+
+/* A file being written: the target (through any symbolic link), its
+ * temporary beside it and the stream to the temporary.  A save writes all
+ * its files to temporaries and renames them into place only when every one
+ * is complete, so a failed save leaves what was there before; a device,
+ * FIFO or folder in a target's place is refused, never replaced. */
+typedef struct staged {
+    char *path;
+    char *tmp;
+    FILE *f;
+} staged;
+
+/* Report of a failed save: "cannot write 'PATH': REASON". */
+typedef struct save_report {
+    char *text;
+    size_t size;
+} save_report;
+
+static rbs_status report(save_report *r, rbs_status st, const char *path, const char *why)
 {
-    FILE *f = fopen(path, "w");
-    const char *slash;
-    if (f != NULL || errno != ENOENT || (slash = strrchr(path, '/')) == NULL ||
-        slash == path) {
-        return f;
+    if (r->text != NULL && r->size > 0 && r->text[0] == '\0') {
+        snprintf(r->text, r->size, "cannot write '%s': %s", path, why);
+    }
+    return st;
+}
+
+/* Open o's temporary for path; a missing parent folder (one level) is made. */
+static rbs_status stage_open(staged *o, const char *path, save_report *r)
+{
+    struct stat sb, file;
+    size_t n;
+    int fd = -1, attempt, have = 0;
+    o->f = NULL;
+    o->tmp = NULL;
+    o->path = rbs__link_target(path);
+    if (o->path == NULL) {
+        return errno == ENOMEM ? RBS_E_MEMORY
+                               : report(r, RBS_E_IO, path, "a loop of symbolic links");
+    }
+    if (stat(o->path, &file) == 0) {
+        if (!S_ISREG(file.st_mode)) {
+            return report(r, RBS_E_IO, o->path,
+                          S_ISDIR(file.st_mode) ? "is a folder"
+                                                : "exists and is not a regular file");
+        }
+        have = 1;
     }
     {
-        size_t n = (size_t)(slash - path);
-        char *dir = malloc(n + 1);
-        if (dir == NULL) {
-            return NULL;
+        /* a missing parent folder (one level) is made */
+        const char *slash = strrchr(o->path, '/');
+        if (slash != NULL && slash != o->path) {
+            size_t d = (size_t)(slash - o->path);
+            char *dir = malloc(d + 1);
+            if (dir == NULL) {
+                return RBS_E_MEMORY;
+            }
+            memcpy(dir, o->path, d);
+            dir[d] = '\0';
+            if (stat(dir, &sb) != 0 && errno == ENOENT) {
+                (void)mkdir(dir, 0777);
+            }
+            free(dir);
         }
-        memcpy(dir, path, n);
-        dir[n] = '\0';
-        (void)mkdir(dir, 0777);
-        free(dir);
     }
-    return fopen(path, "w");
+    n = strlen(o->path) + 32;
+    if ((o->tmp = malloc(n)) == NULL) {
+        return RBS_E_MEMORY;
+    }
+    /* O_EXCL: never another writer's temporary (pid and attempt in the name) */
+    for (attempt = 0; attempt < 100 && fd < 0; attempt++) {
+        snprintf(o->tmp, n, "%s.tmp%ld.%d", o->path, (long)getpid(), attempt);
+        fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST) {
+            break;
+        }
+    }
+    if (fd < 0) {
+        int e = errno;
+        free(o->tmp);
+        o->tmp = NULL;
+        return report(r, RBS_E_IO, o->path, strerror(e));
+    }
+    if (have) {
+        (void)fchmod(fd, file.st_mode & 07777); /* the replaced file's permissions */
+    }
+    if ((o->f = fdopen(fd, "w")) == NULL) {
+        close(fd);
+        return RBS_E_MEMORY;
+    }
+    return RBS_OK;
+}
+
+/* Close o's stream (its data complete on RBS_OK). */
+static rbs_status stage_close(staged *o, save_report *r)
+{
+    int bad, e = 0;
+    if (o->f == NULL) {
+        return RBS_OK;
+    }
+    bad = fflush(o->f) != 0 || ferror(o->f);
+    if (bad) {
+        e = errno;
+    }
+    if (fclose(o->f) != 0 && !bad) {
+        bad = 1;
+        e = errno;
+    }
+    o->f = NULL;
+    return bad ? report(r, RBS_E_IO, o->path, e != 0 ? strerror(e) : "write error") : RBS_OK;
+}
+
+/* Rename the temporaries into place if st is RBS_OK, else remove them;
+ * frees the files either way. */
+static rbs_status stage_finish(staged *o, int n, rbs_status st, save_report *r)
+{
+    int i;
+    for (i = 0; i < n; i++) {
+        rbs_status c = stage_close(&o[i], r);
+        if (st == RBS_OK) {
+            st = c;
+        }
+    }
+    for (i = 0; i < n; i++) {
+        if (o[i].tmp != NULL && st == RBS_OK && rename(o[i].tmp, o[i].path) != 0) {
+            st = report(r, RBS_E_IO, o[i].path, strerror(errno));
+        }
+        if (o[i].tmp != NULL && st != RBS_OK) {
+            (void)unlink(o[i].tmp);
+        }
+        free(o[i].tmp);
+        free(o[i].path);
+        o[i].tmp = o[i].path = NULL;
+    }
+    return st;
 }
 
 /* Shortest "%.{15,16,17}g" that reads back exactly. */
@@ -82,14 +198,6 @@ static const char *texture_name(rbs_texture t)
     return t == RBS_TEXTURE_NONE ? "none" : t == RBS_TEXTURE_STRIPES ? "stripes" : "checker";
 }
 
-static rbs_status finish(FILE *f)
-{
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad) {
-        return RBS_E_IO;
-    }
-    return RBS_OK;
-}
 
 /* ---- keys and values, in either format --------------------------------- */
 
@@ -244,13 +352,18 @@ static void put_body(FILE *f, const key_style *k, const rbs_scene *s,
 
 /* ---- JSON --------------------------------------------------------------- */
 
-rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
+rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path, char *message,
+                                size_t message_size)
 {
-    FILE *f = open_out(path);
+    save_report r = {message, message_size};
+    staged o;
+    FILE *f;
     uint32_t i;
-    if (f == NULL) {
-        return RBS_E_IO;
+    rbs_status st = stage_open(&o, path, &r);
+    if (st != RBS_OK) {
+        return stage_finish(&o, 1, st, &r);
     }
+    f = o.f;
     fputs("{\n  \"format\": 1,\n", f);
     if (s->description != NULL) {
         fputs("  \"description\": ", f);
@@ -299,7 +412,7 @@ rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path)
         fputs(s->renderers[i].json, f);
     }
     fputs(s->renderer_count ? "\n  ]\n}\n" : "]\n}\n", f);
-    return finish(f);
+    return stage_finish(&o, 1, RBS_OK, &r);
 }
 
 /* ---- text --------------------------------------------------------------- */
@@ -507,14 +620,17 @@ static char *sibling(const char *config, const char *suffix)
     }
 }
 
-rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
+rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *message,
+                                size_t message_size)
 {
+    save_report r = {message, message_size};
+    staged o[3] = {{NULL, NULL, NULL}, {NULL, NULL, NULL}, {NULL, NULL, NULL}};
     char *mpath = sibling(path, "materials.txt");
     char *opath = sibling(path, "objects.txt");
     const char *mbase, *obase;
     FILE *f;
     uint32_t i;
-    rbs_status st = RBS_OK, st2;
+    rbs_status st = RBS_OK;
     if (mpath == NULL || opath == NULL) {
         free(mpath);
         free(opath);
@@ -522,13 +638,16 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
     }
     mbase = strrchr(mpath, '/') != NULL ? strrchr(mpath, '/') + 1 : mpath;
     obase = strrchr(opath, '/') != NULL ? strrchr(opath, '/') + 1 : opath;
-    /* config.txt */
-    f = open_out(path);
-    if (f == NULL) {
+    /* all three files staged before any is written: none replaces what is
+     * there unless every one can be */
+    if ((st = stage_open(&o[0], path, &r)) != RBS_OK || (st = stage_open(&o[1], mpath, &r)) != RBS_OK ||
+        (st = stage_open(&o[2], opath, &r)) != RBS_OK) {
         free(mpath);
         free(opath);
-        return RBS_E_IO;
+        return stage_finish(o, 3, st, &r);
     }
+    /* config.txt */
+    f = o[0].f;
     fputs("# rbsim scene, text format version 1 (see scenes/FORMAT.md)\n", f);
     if (s->description != NULL) {
         fputs("description = ", f);
@@ -541,23 +660,13 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
     fputs("\nobjects = ", f);
     put_text_string(f, obase);
     fputc('\n', f);
-    for (i = 0; i < s->renderer_count; i++) {
-        st2 = put_renderer(f, &s->renderers[i]);
-        if (st2 != RBS_OK && st == RBS_OK) {
-            st = st2;
-        }
+    for (i = 0; i < s->renderer_count && st == RBS_OK; i++) {
+        st = put_renderer(f, &s->renderers[i]);
     }
-    st2 = finish(f);
-    if (st2 != RBS_OK && st == RBS_OK) {
-        st = st2;
-    }
+    free(mpath);
+    free(opath);
     /* materials.txt */
-    f = open_out(mpath);
-    if (f == NULL) {
-        free(mpath);
-        free(opath);
-        return RBS_E_IO;
-    }
+    f = o[1].f;
     fputs("# material_a material_b static kinetic restitution(- = the simulation's) "
           "rolling spinning\n",
           f);
@@ -582,17 +691,8 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
         put_num(f, p->spinning);
         fputc('\n', f);
     }
-    st2 = finish(f);
-    if (st2 != RBS_OK && st == RBS_OK) {
-        st = st2;
-    }
     /* objects.txt */
-    f = open_out(opath);
-    free(mpath);
-    free(opath);
-    if (f == NULL) {
-        return RBS_E_IO;
-    }
+    f = o[2].f;
     fputs("# one block per body: \"sphere NAME\" or \"plane NAME\", then \"key value\" "
           "lines\n",
           f);
@@ -604,9 +704,5 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path)
         put_body(f, &text_body, s, b);
         fputc('\n', f);
     }
-    st2 = finish(f);
-    if (st2 != RBS_OK && st == RBS_OK) {
-        st = st2;
-    }
-    return st;
+    return stage_finish(o, 3, st, &r);
 }
