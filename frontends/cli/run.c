@@ -931,6 +931,41 @@ static int body_matches(const rbs_world *scene_world, const rbs_world *ck,
         what = "material";
         snprintf(va, sizeof va, "'%s'", material_label(scene_world, a->material));
         snprintf(vb, sizeof vb, "'%s'", material_label(ck, b->material));
+    } else if (a->color != b->color) {
+        what = "color";
+        snprintf(va, sizeof va, "#%06lx", (unsigned long)a->color);
+        snprintf(vb, sizeof vb, "#%06lx", (unsigned long)b->color);
+    } else if (a->texture != b->texture) {
+        what = "texture";
+        snprintf(va, sizeof va, "%d", (int)a->texture);
+        snprintf(vb, sizeof vb, "%d", (int)b->texture);
+    } else if (a->type == RBS_BODY_SPHERE) {
+        /* the mass distribution: centre of mass and inertia about it (from
+         * the scene's inertia and center_of_mass) */
+        rbs_body_id ia, ib;
+        rbs_vec3 ca, cb;
+        double Ia[9], Ib[9];
+        int k, same = 1;
+        if (rbs_world_body_at(scene_world, a->slot, &ia) != RBS_OK ||
+            rbs_world_body_at(ck, b->slot, &ib) != RBS_OK ||
+            rbs_body_get_inertia(scene_world, ia, &ca, Ia) != RBS_OK ||
+            rbs_body_get_inertia(ck, ib, &cb, Ib) != RBS_OK) {
+            what = "inertia";
+            snprintf(va, sizeof va, "(unreadable)");
+            snprintf(vb, sizeof vb, "(unreadable)");
+        } else if (!SAME3(ca, cb)) {
+            what = "center_of_mass";
+            SHOW3(va, ca);
+            SHOW3(vb, cb);
+        } else {
+            for (k = 0; k < 9; ++k)
+                same = same && Ia[k] == Ib[k];
+            if (!same) {
+                what = "inertia (about the centre of mass, kg m^2, diagonal)";
+                SHOW3(va, ((rbs_vec3){Ia[0], Ia[4], Ia[8]}));
+                SHOW3(vb, ((rbs_vec3){Ib[0], Ib[4], Ib[8]}));
+            }
+        }
     }
 #undef SAME3
 #undef SHOW3

@@ -400,6 +400,12 @@ class FaultTests(CkptBase):
             (3, "torque", [0, 0, 1], "torque: the scene has [0, 0, 1]"),
             (0, "normal", [0, 1, 1], "normal: the scene has"),
             (0, "point", [0, 0, -1], "point: the scene has [0, 0, -1]"),
+            # the mass distribution (inertia 2/5 m r^2 -> 2/3 m r^2 for
+            # hollow; an offset centre of mass) and the look
+            (2, "inertia", "hollow", "inertia (about the centre of mass"),
+            (2, "center_of_mass", [0.01, 0, 0],
+             "center_of_mass: the scene has [0.01, 0, 0], the checkpoint [0, 0, 0]"),
+            (3, "color", "#00ff00", "color: the scene has #00ff00"),
         ]
         names = ["floor", "a", "b", "c"]
         for i, key, value, words in cases:

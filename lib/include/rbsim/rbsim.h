@@ -381,6 +381,14 @@ typedef struct rbs_body_state {
 
 RBS_API rbs_status rbs_body_get_state(const rbs_world *world, rbs_body_id id,
                                       rbs_body_state *out);
+/** A body's mass distribution as the world keeps it: *center_of_mass the
+ * offset of its centre of mass from its centre (body frame, m) and
+ * inertia[9] the inertia tensor about the centre of mass (body frame,
+ * row-major, kg m^2; a fixed sphere keeps the inertia it was given).
+ * Planes: zeros.  Either pointer may be NULL.  Read-only: safe while no
+ * thread changes the world. */
+RBS_API rbs_status rbs_body_get_inertia(const rbs_world *world, rbs_body_id id,
+                                        rbs_vec3 *center_of_mass, double inertia[9]);
 /** Setters: finite values only (RBS_E_NUMERIC otherwise, world unchanged).
  * Moving a body into overlap is allowed; the next step separates it. */
 RBS_API rbs_status rbs_body_set_position(rbs_world *world, rbs_body_id id, rbs_vec3 p);

@@ -1113,6 +1113,26 @@ rbs_status rbs_body_get_state(const rbs_world *w, rbs_body_id id, rbs_body_state
     return RBS_OK;
 }
 
+rbs_status rbs_body_get_inertia(const rbs_world *w, rbs_body_id id, rbs_vec3 *center_of_mass,
+                                double inertia[9])
+{
+    uint32_t s = id.index, k;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    if (!id_valid(w, id))
+        return RBS_E_STALE_ID;
+    if (center_of_mass) {
+        center_of_mass->x = w->com_body[3 * s];
+        center_of_mass->y = w->com_body[3 * s + 1];
+        center_of_mass->z = w->com_body[3 * s + 2];
+    }
+    if (inertia) {
+        for (k = 0; k < 9; ++k)
+            inertia[k] = w->isotropic[s] ? (k % 4 == 0 ? w->iso_inertia[s] : 0.0) : w->inertia[9 * s + k];
+    }
+    return RBS_OK;
+}
+
 /* Common checks of the setters: valid id, finite value. */
 static rbs_status setter_check(rbs_world *w, rbs_body_id id, const double *v, int n, const char *what)
 {
