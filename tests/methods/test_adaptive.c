@@ -269,6 +269,33 @@ static void create_in_and_numeric_failure(void **state)
  * of the circular orbit in one frame take well over 25 steps at tolerance
  * 1e-9, so with max_substeps = 1 the frame is refused with the reason and
  * the world keeps its state; at the default (102,400) it runs. */
+/* Mutual-gravity potential: -G ma mb / d for every pair with a moving
+ * body, exactly; the constant of two fixed spheres -- here at one point,
+ * where it would be infinite -- is left out, so the energy stays finite
+ * and the step runs.  G = 1, masses 2, 3 (fixed, both at the origin) and
+ * 5 (moving, at x = 4, at rest): PE = -(2 + 3) * 5 / 4. */
+static void fixed_pairs_leave_no_infinite_potential(void **state)
+{
+    rbs_world *w = orbit_world(RBS_METHOD_ADAPTIVE, 1e-3, 1.0, 1e-9);
+    rbs_sphere_def s;
+    rbs_energy e;
+    int k;
+    (void)state;
+    for (k = 0; k < 2; ++k) {
+        rbs_sphere_def_init(&s);
+        s.radius = 0.1;
+        s.mass = 2.0 + k;
+        s.fixed = 1;
+        CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    }
+    (void)point_mass(w, 5.0, 4.0, 0.0, 0.0, 0.0);
+    CHECK_OK(rbs_world_energy(w, &e));
+    assert_true(e.kinetic == 0.0);
+    assert_true(fabs(e.potential + 25.0 / 4.0) <= 1e-15);
+    CHECK_OK(rbs_world_step(w, NULL));
+    rbs_world_destroy(w);
+}
+
 static void steps_per_frame_are_bounded(void **state)
 {
     int k;
@@ -317,6 +344,7 @@ int main(void)
         cmocka_unit_test(switch_methods),
         cmocka_unit_test(create_in_and_numeric_failure),
         cmocka_unit_test(steps_per_frame_are_bounded),
+        cmocka_unit_test(fixed_pairs_leave_no_infinite_potential),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

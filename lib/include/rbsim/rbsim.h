@@ -461,8 +461,13 @@ typedef struct rbs_energy {
     double total;
 } rbs_energy;
 
-/** RBS_E_NUMERIC if a sum overflows (huge but finite states): the values
- * written are then not to be trusted. */
+/** Kinetic (translation and rotation) and potential energy (uniform
+ * gravity, constant forces, and with mutual_gravity -G ma mb / sqrt(d^2 +
+ * softening^2) for every pair of spheres of which at least one moves; the
+ * constant of a pair of fixed spheres is left out).  RBS_E_NUMERIC if a
+ * sum overflows (huge but finite states) or is infinite (two spheres at one
+ * point under unsoftened mutual gravity): the values written are then not
+ * to be trusted. */
 RBS_API rbs_status rbs_world_energy(const rbs_world *world, rbs_energy *out);
 /** Total linear momentum (kg m/s) and angular momentum about the origin
  * (kg m^2/s). Either pointer may be NULL.  RBS_E_NUMERIC if a sum

@@ -1299,7 +1299,11 @@ rbs_status rbs_world_energy(const rbs_world *w, rbs_energy *out)
             v3 xa = rbs__body_com(w, a);
             for (j = i + 1; j < w->sphere_count; ++j) {
                 uint32_t b = w->spheres[j];
-                v3 d = v3_sub(rbs__body_com(w, b), xa);
+                v3 d;
+                if (w->fixed[a] && w->fixed[b])
+                    continue; /* a constant (the pair never moves): left out, so
+                                 two fixed spheres at one point are no infinity */
+                d = v3_sub(rbs__body_com(w, b), xa);
                 pe -= G * w->mass[a] * w->mass[b] / sqrt(v3_dot(d, d) + eps2);
             }
         }
