@@ -1,20 +1,30 @@
 /*
  * csv.c - the CSV formats: bodies (one row per body per frame) and
  * statistics (one row per frame).  Numbers in shortest round-trip form;
- * names quoted when they hold a comma, a quote or a line break (RFC 4180).
+ * names quoted when they hold a comma, a quote or a line break (RFC 4180),
+ * and marked as text when a spreadsheet would read them as a formula.
  */
 #include "dump_internal.h"
 
 #include <string.h>
 
-/* Append a name, quoted if needed. */
+/* Append a name, quoted if needed.  A name a spreadsheet would take for a
+ * formula -- one beginning with = + - @, a tab or a carriage return (CSV
+ * injection; OWASP, "CSV Injection") -- is written with an apostrophe in
+ * front, the spreadsheets' own mark of text, and so is one that begins with
+ * an apostrophe: a program reading the file drops one leading apostrophe
+ * to get the name back. */
 static rbs_status put_name(rbsf__out *out, const char *name)
 {
     rbs_status st = RBS_OK;
     const char *c;
-    if (strpbrk(name, ",\"\r\n") == NULL)
-        return rbsf__out_put(out, name, strlen(name));
-    st = rbsf__out_put(out, "\"", 1);
+    int mark = name[0] != '\0' && strchr("=+-@\t\r'", name[0]) != NULL;
+    if (strpbrk(name, ",\"\r\n") == NULL) {
+        if (mark)
+            st = rbsf__out_put(out, "'", 1);
+        return st == RBS_OK ? rbsf__out_put(out, name, strlen(name)) : st;
+    }
+    st = rbsf__out_put(out, mark ? "\"'" : "\"", mark ? 2 : 1);
     for (c = name; *c && st == RBS_OK; c++)
         st = *c == '"' ? rbsf__out_put(out, "\"\"", 2) : rbsf__out_put(out, c, 1);
     return st == RBS_OK ? rbsf__out_put(out, "\"", 1) : st;
@@ -84,7 +94,7 @@ static rbs_status stats_frame(rbsf__out *out, const rbs_frame *f, void *scratch)
 }
 
 /* Longest row: 13 numbers of at most 24 characters, a name of at most 63
- * bytes doubled and quoted, two 20-digit integers, commas. */
+ * bytes doubled, marked and quoted, two 20-digit integers, commas. */
 const rbsf__format rbsf__csv_format = {
     "csv",
     "frame,t,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n",

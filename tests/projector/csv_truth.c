@@ -69,9 +69,10 @@ int main(int argc, char **argv)
     rbs_projector_def def;
     rbs_projector *p;
     rbs_status st;
-    /* Names with what CSV must quote; the test knows them by slot. */
-    static const char *const names[] = {"plain", "comma,name", "quote\"d",
-                                        "both,\"x\""};
+    /* Names with what CSV must quote or mark as text; the test knows them by
+     * slot. */
+    static const char *const names[] = {"=plain", "comma,name", "quote\"d",
+                                        "@both,\"x\""};
     int i;
 
     if (argc != 3) {
