@@ -26,7 +26,8 @@
 
 typedef struct run_options {
     const char *scene;
-    uint64_t steps;      /* 0: the scene's */
+    uint64_t steps;      /* with steps_given; else the scene's */
+    int steps_given;     /* --steps N was given (N may be 0) */
     double dt;           /* <= 0: the scene's */
     const char *method;  /* NULL: the scene's */
     double slop;         /* 0: the scene's */
@@ -173,7 +174,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             strcmp(name, "--checkpoint") && strcmp(name, "--checkpoint-every") &&
             strcmp(name, "--resume"))
             return usage_error("unknown option '%s'%s", name, "");
-        if ((strcmp(name, "--steps") == 0 && o->steps) ||
+        if ((strcmp(name, "--steps") == 0 && o->steps_given) ||
             (strcmp(name, "--dt") == 0 && o->dt > 0) ||
             (strcmp(name, "--method") == 0 && o->method) ||
             (strcmp(name, "--slop") == 0 && o->slop > 0) ||
@@ -204,9 +205,10 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         else
             return usage_error("%s needs a value%s", name, "");
         if (strcmp(name, "--steps") == 0) {
-            if (parse_u64(value, 1, 9007199254740992ULL, &o->steps) != 0)
-                return usage_error("--steps: expected a whole number from 1 to "
+            if (parse_u64(value, 0, 9007199254740992ULL, &o->steps) != 0)
+                return usage_error("--steps: expected a whole number from 0 to "
                                    "2^53, got '%s'%s", value, "");
+            o->steps_given = 1;
         } else if (strcmp(name, "--dt") == 0) {
             if (parse_positive(value, &o->dt) != 0)
                 return usage_error("--dt: expected a time step in seconds, > 0, "
@@ -227,9 +229,9 @@ static int parse_run_args(int argc, char **argv, run_options *o)
                                    "adaptive%s", value, "");
             o->method = value;
         } else if (strcmp(name, "--every") == 0) {
-            if (parse_u64(value, 1, 0xffffffffu, &u) != 0)
-                return usage_error("--every: expected a whole number >= 1, got "
-                                   "'%s'%s", value, "");
+            if (parse_u64(value, 1, RBS_EVERY_MAX, &u) != 0)
+                return usage_error("--every: expected a whole number from 1 to "
+                                   "2147483647 (2^31 - 1), got '%s'%s", value, "");
             o->every = (uint32_t)u;
         } else if (strcmp(name, "--reel") == 0) {
             if (parse_u64(value, 2, 1u << 20, &u) != 0)
@@ -394,7 +396,7 @@ static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
         }
         item = cJSON_GetObjectItemCaseSensitive(root, "every");
         if (cJSON_IsNumber(item) && item->valuedouble >= 1 &&
-            item->valuedouble <= 4294967295.0)
+            item->valuedouble <= (double)RBS_EVERY_MAX)
             o->config.every = (uint32_t)item->valuedouble;
         cJSON_Delete(root);
     }
@@ -1165,7 +1167,7 @@ int rbsf_run_main(int argc, char **argv)
         code = RBSF_EXIT_SCENE;
         goto out;
     }
-    if (o.steps || o.dt > 0 || o.method) {
+    if (o.steps || o.dt > 0 || o.method) { /* steps 0: no override */
         st = rbs_scene_override(scene, o.steps, o.dt, o.method);
         if (st != RBS_OK) {
             if (rbs_scene_error_count(scene) > 0)
@@ -1218,7 +1220,8 @@ int rbsf_run_main(int argc, char **argv)
         world = ck;
         start_frame = rbs_world_step_count(world);
     }
-    target = rbs_scene_steps(scene);
+    /* --steps 0 (frame 0 only) needs no override: 0 steps always fit. */
+    target = o.steps_given && o.steps == 0 ? 0 : rbs_scene_steps(scene);
     if (o.resume && start_frame >= target) {
         fprintf(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
                         "%llu and the run ends at step %llu: nothing to run "

@@ -115,7 +115,10 @@ class CliTests(Base):
         s = self.scene()
         cases = [
             (["--steps", "abc"], "--steps"),
-            (["--steps", "0"], "--steps"),
+            (["--steps", "2^53+1"], "--steps: expected a whole number from 0 to 2^53"),
+            (["--every", "2147483648"],
+             "--every: expected a whole number from 1 to 2147483647 (2^31 - 1), "
+             "got '2147483648'"),
             (["--steps=-3"], "--steps"),
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
@@ -326,6 +329,49 @@ class CliTests(Base):
         self.assertEqual(json.loads(lines[0])["frame"], 0)
         self.assertEqual(json.loads(lines[0])["t"], 0)
         self.assertIn("simulated 0 s", r.stderr)
+
+    def test_steps_zero_flag_as_scene(self):
+        # --steps 0 is frame 0 only, exactly as "steps": 0 in the scene.
+        sim = dict(SCENE["simulation"], steps=0)
+        a = self.rbsim("run", self.scene("zero.json", simulation=sim),
+                       "--csv", "a.csv", "--quiet")
+        self.assertEqual(a.returncode, 0, a.stderr)
+        b = self.rbsim("run", self.scene(), "--steps", "0", "--csv", "b.csv",
+                       "--quiet")
+        self.assertEqual(b.returncode, 0, b.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 1)
+        with open(self.path("a.csv"), "rb") as fa, \
+                open(self.path("b.csv"), "rb") as fb:
+            self.assertEqual(fa.read(), fb.read())
+
+    def test_every_limit_is_one_everywhere(self):
+        # The flag, the scene key and the PNG renderer share 1..2^31-1, and
+        # each message gives the range and the value as written.
+        top = 2147483647
+        r = self.rbsim("run", self.scene(), "--every", str(top), "--csv",
+                       "a.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted({int(x[0]) for x in
+                                 self.read_csv(self.path("a.csv"))}), [0, 300])
+        for value in ("2147483648", "3000000000", "5000000000"):
+            s = self.scene("ev.json", renderers=[
+                {"type": "csv", "path": "ev.csv", "every": int(value)}])
+            r = self.rbsim("check", s)
+            self.assertEqual(r.returncode, 3, r.stderr)
+            self.assertIn("must be an integer from 1 to 2147483647 (2^31 - 1), "
+                          "got " + value, r.stdout + r.stderr)
+            r = self.rbsim("run", self.scene(), "--every", value, "--png", "pd")
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("from 1 to 2147483647 (2^31 - 1), got '%s'" % value,
+                          r.stderr)
+            self.assertNotIn("e+09", r.stderr)
+        r = self.rbsim("run", self.scene(), "--steps", "3", "--every",
+                       str(top), "--png", "pd", "--quiet")
+        if "without SDL" not in r.stderr:
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(sorted(os.listdir(self.path("pd"))),
+                             ["contact_sheet.png", "frame_000000.png",
+                              "frame_000003.png"])
 
     def test_stdin_end_does_not_stop_the_run(self):
         s = self.scene()

@@ -334,6 +334,13 @@ rbs_status rbs_projector_create(rbs_world *world,
                       r->label, c->type);
             return RBS_E_NOT_FOUND;
         }
+        if (c->every > RBS_EVERY_MAX) {
+            set_error(p, RBS_E_INVALID,
+                      "%s: every must be from 1 to %lu (0 means 1), got %lu",
+                      r->label, (unsigned long)RBS_EVERY_MAX,
+                      (unsigned long)c->every);
+            return RBS_E_INVALID;
+        }
         r->every = c->every == 0 ? 1 : c->every;
         r->live = (r->cls->flags & RBS_RENDERER_LIVE) != 0;
     }
