@@ -373,6 +373,56 @@ class CliTests(Base):
                              ["contact_sheet.png", "frame_000000.png",
                               "frame_000003.png"])
 
+    def test_no_output_among_the_png_folder_files(self):
+        # A file the sdl renderer writes in its folder (frame_NNNNNN.png,
+        # contact_sheet.png, viewK/frame_NNNNNN.png) cannot be another
+        # output: exit 2, nothing written.  Other names in the folder can.
+        s = self.scene()
+        probe = self.rbsim("run", s, "--steps", "1", "--png", "probe",
+                           "--quiet")
+        if "without SDL" in probe.stderr:
+            self.skipTest("built without SDL")
+        cases = [
+            (["--png", "pd", "--csv", "pd/frame_000003.png"], "frame_NNNNNN.png"),
+            (["--png", "pd", "--stats", "pd/contact_sheet.png"],
+             "contact_sheet.png"),
+            (["--png", "pd/", "--json", "./pd//frame_1234567.png"],
+             "frame_NNNNNN.png"),
+        ]
+        for extra, what in cases:
+            r = self.rbsim("run", s, "--steps", "5", *extra)
+            self.assertEqual(r.returncode, 2, (extra, r.stderr))
+            self.assertIn("the sdl output writes in its folder", r.stderr)
+            self.assertIn(what, r.stderr)
+            self.assertFalse(os.path.exists(self.path("pd")), extra)
+        os.mkdir(self.path("pk"))
+        r = self.rbsim("run", s, "--steps", "5", "--png", "pk",
+                       "--checkpoint", "pk/frame_000000.png")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("the sdl output writes in its folder 'pk' "
+                      "(frame_NNNNNN.png)", r.stderr)
+        self.assertEqual(os.listdir(self.path("pk")), [])
+        # Two views, not tiled: viewK/ for K < 2, and no frames in DIR.
+        views = [{"position": [3, -3, 2], "target": [0, 0, 0]},
+                 {"position": [-3, 3, 2], "target": [0, 0, 0]}]
+        sv = self.scene("views.json", renderers=[
+            {"type": "sdl", "path": "pv", "views": views, "window": False}])
+        r = self.rbsim("run", sv, "--steps", "5", "--csv",
+                       "pv/view1/frame_000005.png")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("viewK/frame_NNNNNN.png", r.stderr)
+        for name in ("pv/frame_000005.png", "pv/view2/frame_000005.png",
+                     "pv/frame_00005.png", "pv/frame_0000005.png",
+                     "pv/run.csv"):
+            r = self.rbsim("run", sv, "--steps", "5", "--csv", name, "--quiet")
+            self.assertEqual(r.returncode, 0, (name, r.stderr))
+            self.assertEqual(self.assert_whole_frames(self.path(name)), 6)
+        r = self.rbsim("run", s, "--steps", "5", "--png", "pn", "--csv",
+                       "pn/frame_000003.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(
+            self.path("pn/frame_000003.csv")), 6)
+
     def test_stdin_end_does_not_stop_the_run(self):
         s = self.scene()
         r = self.rbsim("run", s, "--csv", "a.csv", "--steps", "400")
