@@ -28,9 +28,11 @@ static const rbsf_command commands[] = {
     {"help", "", "list these commands", cmd_help},
     {"quit", "", "stop the run; every output is finished up to the last frame",
      cmd_forward},
-    {"pause", "", "pause the simulation", cmd_forward},
+    {"pause", "", "hold the display on the frame shown (named in the reply); "
+     "frames already made wait in the reel", cmd_forward},
     {"resume", "", "go on after a pause", cmd_forward},
-    {"step", "[N]", "make N more frames (default 1), then stay paused",
+    {"step", "[N]", "show N more frames (default 1; at most to the last), "
+     "then stay paused",
      cmd_forward},
     {"speed", "FACTOR", "real-time factor (--realtime runs), e.g. 0.5",
      cmd_forward},

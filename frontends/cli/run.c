@@ -26,7 +26,8 @@
 
 typedef struct run_options {
     const char *scene;
-    uint64_t steps;      /* 0: the scene's */
+    uint64_t steps;      /* with steps_given; else the scene's */
+    int steps_given;     /* --steps N was given (N may be 0) */
     double dt;           /* <= 0: the scene's */
     const char *method;  /* NULL: the scene's */
     double slop;         /* 0: the scene's */
@@ -173,7 +174,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             strcmp(name, "--checkpoint") && strcmp(name, "--checkpoint-every") &&
             strcmp(name, "--resume"))
             return usage_error("unknown option '%s'%s", name, "");
-        if ((strcmp(name, "--steps") == 0 && o->steps) ||
+        if ((strcmp(name, "--steps") == 0 && o->steps_given) ||
             (strcmp(name, "--dt") == 0 && o->dt > 0) ||
             (strcmp(name, "--method") == 0 && o->method) ||
             (strcmp(name, "--slop") == 0 && o->slop > 0) ||
@@ -204,9 +205,10 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         else
             return usage_error("%s needs a value%s", name, "");
         if (strcmp(name, "--steps") == 0) {
-            if (parse_u64(value, 1, 9007199254740992ULL, &o->steps) != 0)
-                return usage_error("--steps: expected a whole number from 1 to "
+            if (parse_u64(value, 0, 9007199254740992ULL, &o->steps) != 0)
+                return usage_error("--steps: expected a whole number from 0 to "
                                    "2^53, got '%s'%s", value, "");
+            o->steps_given = 1;
         } else if (strcmp(name, "--dt") == 0) {
             if (parse_positive(value, &o->dt) != 0)
                 return usage_error("--dt: expected a time step in seconds, > 0, "
@@ -227,9 +229,9 @@ static int parse_run_args(int argc, char **argv, run_options *o)
                                    "adaptive%s", value, "");
             o->method = value;
         } else if (strcmp(name, "--every") == 0) {
-            if (parse_u64(value, 1, 0xffffffffu, &u) != 0)
-                return usage_error("--every: expected a whole number >= 1, got "
-                                   "'%s'%s", value, "");
+            if (parse_u64(value, 1, RBS_EVERY_MAX, &u) != 0)
+                return usage_error("--every: expected a whole number from 1 to "
+                                   "2147483647 (2^31 - 1), got '%s'%s", value, "");
             o->every = (uint32_t)u;
         } else if (strcmp(name, "--reel") == 0) {
             if (parse_u64(value, 2, 1u << 20, &u) != 0)
@@ -394,7 +396,7 @@ static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
         }
         item = cJSON_GetObjectItemCaseSensitive(root, "every");
         if (cJSON_IsNumber(item) && item->valuedouble >= 1 &&
-            item->valuedouble <= 4294967295.0)
+            item->valuedouble <= (double)RBS_EVERY_MAX)
             o->config.every = (uint32_t)item->valuedouble;
         cJSON_Delete(root);
     }
@@ -520,6 +522,142 @@ static int same_file(const char *a, const char *b)
              strcmp(ka.name, kb.name) == 0));
 }
 
+
+/* A path without "./" parts, doubled or trailing slashes ("pd/./a//" is
+ * "pd/a"), into out (n bytes); -1 if it does not fit. */
+static int tidy_path(const char *path, char *out, size_t n)
+{
+    size_t used = 0;
+    const char *p = path;
+    if (n == 0)
+        return -1;
+    if (*p == '/')
+        out[used++] = '/';
+    while (*p) {
+        size_t len;
+        while (*p == '/')
+            p++;
+        len = strcspn(p, "/");
+        if (len == 0)
+            break;
+        if (!(len == 1 && p[0] == '.')) {
+            if (used > 0 && out[used - 1] != '/')
+                out[used++] = '/';
+            if (used + len + 1 >= n)
+                return -1;
+            memcpy(out + used, p, len);
+            used += len;
+        }
+        p += len;
+    }
+    if (used == 0)
+        out[used++] = '.';
+    out[used] = '\0';
+    return 0;
+}
+
+/* Are a and b one folder: the same text once tidied, or both existing with
+ * one device and inode? */
+static int same_dir(const char *a, const char *b)
+{
+    char ta[4096], tb[4096];
+    struct stat sa, sb;
+    if (tidy_path(a, ta, sizeof ta) == 0 && tidy_path(b, tb, sizeof tb) == 0 &&
+        strcmp(ta, tb) == 0)
+        return 1;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && S_ISDIR(sa.st_mode) &&
+           sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* Is name one the sdl renderer gives a frame: "frame_" then the number as
+ * "%06llu" prints it (six digits, or more without a leading zero), ".png"? */
+static int is_frame_png(const char *name)
+{
+    size_t d = 0;
+    if (strncmp(name, "frame_", 6) != 0)
+        return 0;
+    name += 6;
+    while (name[d] >= '0' && name[d] <= '9')
+        d++;
+    return (d == 6 || (d > 6 && name[0] != '0')) && strcmp(name + d, ".png") == 0;
+}
+
+/* Would the sdl output folder dir (entry JSON json) write the file path?
+ * The renderer writes DIR/frame_NNNNNN.png (one view, or views tiled),
+ * DIR/viewK/frame_NNNNNN.png for K < views (several views, not tiled) and
+ * DIR/contact_sheet.png (unless "contact_sheet": false); see
+ * frontends/sdl/README.md, "Files".  Nonzero if so, with the pattern in
+ * what. */
+static int png_folder_writes(const char *dir, const char *json,
+                             const char *path, const char **what)
+{
+    char parent[4096], grand[4096];
+    const char *slash = strrchr(path, '/'), *name, *gslash;
+    int views = 1, tile = 0, sheet = 1;
+    size_t n;
+    cJSON *root = json ? cJSON_Parse(json) : NULL;
+    if (root != NULL) {
+        const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "views");
+        const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "tile");
+        const cJSON *c = cJSON_GetObjectItemCaseSensitive(root, "contact_sheet");
+        if (cJSON_IsArray(v) && cJSON_GetArraySize(v) > 0)
+            views = cJSON_GetArraySize(v);
+        tile = cJSON_IsTrue(t);
+        sheet = !cJSON_IsFalse(c);
+        cJSON_Delete(root);
+    }
+    name = slash ? slash + 1 : path;
+    n = slash ? (size_t)(slash - path) : 0;
+    if (n >= sizeof parent)
+        return 0;
+    if (slash == NULL)
+        strcpy(parent, ".");
+    else if (n == 0)
+        strcpy(parent, "/");
+    else {
+        memcpy(parent, path, n);
+        parent[n] = '\0';
+    }
+    if (same_dir(parent, dir)) {
+        if (sheet && strcmp(name, "contact_sheet.png") == 0) {
+            *what = "contact_sheet.png";
+            return 1;
+        }
+        if ((views == 1 || tile) && is_frame_png(name)) {
+            *what = "frame_NNNNNN.png";
+            return 1;
+        }
+        return 0;
+    }
+    /* DIR/viewK/frame_NNNNNN.png */
+    if (views == 1 || tile || !is_frame_png(name))
+        return 0;
+    gslash = strrchr(parent, '/');
+    {
+        const char *vname = gslash ? gslash + 1 : parent;
+        char *end;
+        unsigned long k;
+        if (strncmp(vname, "view", 4) != 0 || vname[4] < '0' || vname[4] > '9' ||
+            (vname[4] == '0' && vname[5] != '\0'))
+            return 0;
+        k = strtoul(vname + 4, &end, 10);
+        if (*end != '\0' || k >= (unsigned long)views)
+            return 0;
+    }
+    if (gslash == NULL)
+        strcpy(grand, ".");
+    else if (gslash == parent)
+        strcpy(grand, "/");
+    else {
+        memcpy(grand, parent, (size_t)(gslash - parent));
+        grand[gslash - parent] = '\0';
+    }
+    if (!same_dir(grand, dir))
+        return 0;
+    *what = "viewK/frame_NNNNNN.png";
+    return 1;
+}
+
 /* No two outputs may write one file (standard output included), and none
  * may overwrite the scene or the checkpoint being resumed. */
 static int check_distinct(const output *outs, uint32_t n, const char *scene,
@@ -554,6 +692,20 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
             fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
                             "scene\n", outs[i].config.type, a);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
+        }
+        for (j = 0; j < n; j++) {
+            const char *b = outs[j].config.path, *what = NULL;
+            if (j == i || b == NULL || strcmp(b, "-") == 0 ||
+                strcmp(outs[j].config.type, "sdl") != 0 ||
+                strcmp(outs[i].config.type, "sdl") == 0 ||
+                !png_folder_writes(b, outs[j].config.json, a, &what))
+                continue;
+            fprintf(stderr, "rbsim run: the %s output '%s' is a file the sdl "
+                            "output writes in its folder '%s' (%s): give it "
+                            "another name\n",
+                    outs[i].config.type, a, b, what);
+            return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
+                                                            : RBSF_EXIT_USAGE;
         }
         for (j = 0; j < i; j++) {
             const char *b = outs[j].config.path;
@@ -784,9 +936,17 @@ static int check_checkpoint_path(const char *path, const char *target,
     }
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
+        const char *what = NULL;
         if (a != NULL && strcmp(a, "-") != 0 && same_file(a, target)) {
             fprintf(stderr, "rbsim run: --checkpoint '%s' is also the %s "
                             "output\n", path, outs[i].config.type);
+            return RBSF_EXIT_USAGE;
+        }
+        if (a != NULL && strcmp(outs[i].config.type, "sdl") == 0 &&
+            png_folder_writes(a, outs[i].config.json, target, &what)) {
+            fprintf(stderr, "rbsim run: --checkpoint '%s' is a file the sdl "
+                            "output writes in its folder '%s' (%s): give it "
+                            "another name\n", path, a, what);
             return RBSF_EXIT_USAGE;
         }
     }
@@ -1165,7 +1325,7 @@ int rbsf_run_main(int argc, char **argv)
         code = RBSF_EXIT_SCENE;
         goto out;
     }
-    if (o.steps || o.dt > 0 || o.method) {
+    if (o.steps || o.dt > 0 || o.method) { /* steps 0: no override */
         st = rbs_scene_override(scene, o.steps, o.dt, o.method);
         if (st != RBS_OK) {
             if (rbs_scene_error_count(scene) > 0)
@@ -1218,7 +1378,8 @@ int rbsf_run_main(int argc, char **argv)
         world = ck;
         start_frame = rbs_world_step_count(world);
     }
-    target = rbs_scene_steps(scene);
+    /* --steps 0 (frame 0 only) needs no override: 0 steps always fit. */
+    target = o.steps_given && o.steps == 0 ? 0 : rbs_scene_steps(scene);
     if (o.resume && start_frame >= target) {
         fprintf(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
                         "%llu and the run ends at step %llu: nothing to run "

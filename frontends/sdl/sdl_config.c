@@ -80,9 +80,18 @@ static rbs_status get_uint(const cJSON *item, const char *where,
         return fail(err, errlen, "%s%s: must be an integer, got %s", where,
                     key, json_kind(item));
     v = item->valuedouble;
-    if (!(v == floor(v)) || v < (double)lo || v > (double)hi)
-        return fail(err, errlen, "%s%s: must be an integer in [%u, %u], got %g",
-                    where, key, lo, hi, v);
+    if (!(v == floor(v)) || v < (double)lo || v > (double)hi) {
+        /* the value in its shortest exact form (3000000000, not 3e+09) */
+        char got[40];
+        int prec;
+        for (prec = 15; prec <= 17; prec++) {
+            snprintf(got, sizeof got, "%.*g", prec, v);
+            if (strtod(got, NULL) == v)
+                break;
+        }
+        return fail(err, errlen, "%s%s: must be an integer in [%u, %u], got %s",
+                    where, key, lo, hi, got);
+    }
     *out = (uint32_t)v;
     return RBS_OK;
 }
@@ -412,7 +421,7 @@ static rbs_status parse_entry(const cJSON *root, rbsf__config *config,
         strcpy(config->path, f->valuestring);
     }
     if ((f = cJSON_GetObjectItemCaseSensitive(root, "every")) != NULL &&
-        (st = get_uint(f, "", "every", 1, 0x7fffffffu, &config->every, err,
+        (st = get_uint(f, "", "every", 1, RBS_EVERY_MAX, &config->every, err,
                        errlen)) != RBS_OK)
         return st;
     if ((f = cJSON_GetObjectItemCaseSensitive(root, "width")) != NULL &&

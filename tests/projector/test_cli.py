@@ -115,7 +115,10 @@ class CliTests(Base):
         s = self.scene()
         cases = [
             (["--steps", "abc"], "--steps"),
-            (["--steps", "0"], "--steps"),
+            (["--steps", "2^53+1"], "--steps: expected a whole number from 0 to 2^53"),
+            (["--every", "2147483648"],
+             "--every: expected a whole number from 1 to 2147483647 (2^31 - 1), "
+             "got '2147483648'"),
             (["--steps=-3"], "--steps"),
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
@@ -349,6 +352,99 @@ class CliTests(Base):
         self.assertEqual(json.loads(lines[0])["frame"], 0)
         self.assertEqual(json.loads(lines[0])["t"], 0)
         self.assertIn("simulated 0 s", r.stderr)
+
+    def test_steps_zero_flag_as_scene(self):
+        # --steps 0 is frame 0 only, exactly as "steps": 0 in the scene.
+        sim = dict(SCENE["simulation"], steps=0)
+        a = self.rbsim("run", self.scene("zero.json", simulation=sim),
+                       "--csv", "a.csv", "--quiet")
+        self.assertEqual(a.returncode, 0, a.stderr)
+        b = self.rbsim("run", self.scene(), "--steps", "0", "--csv", "b.csv",
+                       "--quiet")
+        self.assertEqual(b.returncode, 0, b.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 1)
+        with open(self.path("a.csv"), "rb") as fa, \
+                open(self.path("b.csv"), "rb") as fb:
+            self.assertEqual(fa.read(), fb.read())
+
+    def test_every_limit_is_one_everywhere(self):
+        # The flag, the scene key and the PNG renderer share 1..2^31-1, and
+        # each message gives the range and the value as written.
+        top = 2147483647
+        r = self.rbsim("run", self.scene(), "--every", str(top), "--csv",
+                       "a.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted({int(x[0]) for x in
+                                 self.read_csv(self.path("a.csv"))}), [0, 300])
+        for value in ("2147483648", "3000000000", "5000000000"):
+            s = self.scene("ev.json", renderers=[
+                {"type": "csv", "path": "ev.csv", "every": int(value)}])
+            r = self.rbsim("check", s)
+            self.assertEqual(r.returncode, 3, r.stderr)
+            self.assertIn("must be an integer from 1 to 2147483647 (2^31 - 1), "
+                          "got " + value, r.stdout + r.stderr)
+            r = self.rbsim("run", self.scene(), "--every", value, "--png", "pd")
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("from 1 to 2147483647 (2^31 - 1), got '%s'" % value,
+                          r.stderr)
+            self.assertNotIn("e+09", r.stderr)
+        r = self.rbsim("run", self.scene(), "--steps", "3", "--every",
+                       str(top), "--png", "pd", "--quiet")
+        if "without SDL" not in r.stderr:
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(sorted(os.listdir(self.path("pd"))),
+                             ["contact_sheet.png", "frame_000000.png",
+                              "frame_000003.png"])
+
+    def test_no_output_among_the_png_folder_files(self):
+        # A file the sdl renderer writes in its folder (frame_NNNNNN.png,
+        # contact_sheet.png, viewK/frame_NNNNNN.png) cannot be another
+        # output: exit 2, nothing written.  Other names in the folder can.
+        s = self.scene()
+        probe = self.rbsim("run", s, "--steps", "1", "--png", "probe",
+                           "--quiet")
+        if "without SDL" in probe.stderr:
+            self.skipTest("built without SDL")
+        cases = [
+            (["--png", "pd", "--csv", "pd/frame_000003.png"], "frame_NNNNNN.png"),
+            (["--png", "pd", "--stats", "pd/contact_sheet.png"],
+             "contact_sheet.png"),
+            (["--png", "pd/", "--json", "./pd//frame_1234567.png"],
+             "frame_NNNNNN.png"),
+        ]
+        for extra, what in cases:
+            r = self.rbsim("run", s, "--steps", "5", *extra)
+            self.assertEqual(r.returncode, 2, (extra, r.stderr))
+            self.assertIn("the sdl output writes in its folder", r.stderr)
+            self.assertIn(what, r.stderr)
+            self.assertFalse(os.path.exists(self.path("pd")), extra)
+        os.mkdir(self.path("pk"))
+        r = self.rbsim("run", s, "--steps", "5", "--png", "pk",
+                       "--checkpoint", "pk/frame_000000.png")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("the sdl output writes in its folder 'pk' "
+                      "(frame_NNNNNN.png)", r.stderr)
+        self.assertEqual(os.listdir(self.path("pk")), [])
+        # Two views, not tiled: viewK/ for K < 2, and no frames in DIR.
+        views = [{"position": [3, -3, 2], "target": [0, 0, 0]},
+                 {"position": [-3, 3, 2], "target": [0, 0, 0]}]
+        sv = self.scene("views.json", renderers=[
+            {"type": "sdl", "path": "pv", "views": views, "window": False}])
+        r = self.rbsim("run", sv, "--steps", "5", "--csv",
+                       "pv/view1/frame_000005.png")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("viewK/frame_NNNNNN.png", r.stderr)
+        for name in ("pv/frame_000005.png", "pv/view2/frame_000005.png",
+                     "pv/frame_00005.png", "pv/frame_0000005.png",
+                     "pv/run.csv"):
+            r = self.rbsim("run", sv, "--steps", "5", "--csv", name, "--quiet")
+            self.assertEqual(r.returncode, 0, (name, r.stderr))
+            self.assertEqual(self.assert_whole_frames(self.path(name)), 6)
+        r = self.rbsim("run", s, "--steps", "5", "--png", "pn", "--csv",
+                       "pn/frame_000003.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(
+            self.path("pn/frame_000003.csv")), 6)
 
     def test_stdin_end_does_not_stop_the_run(self):
         s = self.scene()

@@ -638,6 +638,74 @@ static void numerical_failure_stops_the_run(void **state)
     fx_done(&fx);
 }
 
+/* Real time, the simulation a reel ahead: pause holds the display at once
+ * on the frame the reply names; step N shows N more; a step past the end
+ * saturates (no wrap-around); recorders get every frame once, in order. */
+static void realtime_pause_holds_the_display(void **state)
+{
+    fixture fx;
+    rbs_run_info info;
+    char reply[512], want[96];
+    unsigned long long held;
+    uint64_t k;
+    struct timespec nap = {0, 20 * 1000 * 1000};
+    int tries;
+    rec *r;
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 2000;
+    fx.def.realtime = 1;
+    fx.def.speed = 0.05; /* dt 1 ms: a frame every 20 ms */
+    fx.def.reel_capacity = 64;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
+    for (tries = 0; tries < 500; tries++) {
+        CHECK_OK(rbs_projector_status(fx.p, &info));
+        if (info.drawn >= 4)
+            break;
+        nanosleep(&nap, NULL);
+    }
+    CHECK_OK(rbs_projector_command(fx.p, "pause", reply, sizeof reply));
+    assert_int_equal(sscanf(reply, "paused at frame %llu", &held), 1);
+    /* 0.2 s: ten frames' time; the display stays on the frame named. */
+    for (tries = 0; tries < 10; tries++)
+        nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_int_equal(info.frame, held);
+    assert_true(info.captured > held + 1); /* the simulation is ahead */
+
+    /* step 2: two more frames on display. */
+    CHECK_OK(rbs_projector_command(fx.p, "step 2", reply, sizeof reply));
+    snprintf(want, sizeof want, "then paused at frame %llu", held + 2);
+    assert_non_null(strstr(reply, want));
+    for (tries = 0; tries < 200; tries++) {
+        CHECK_OK(rbs_projector_status(fx.p, &info));
+        if (info.frame == held + 2)
+            break;
+        nanosleep(&nap, NULL);
+    }
+    for (tries = 0; tries < 5; tries++)
+        nanosleep(&nap, NULL);
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_int_equal(info.frame, held + 2);
+
+    /* The largest count, then more: saturated at the last frame. */
+    CHECK_OK(rbs_projector_command(fx.p, "pause", reply, sizeof reply));
+    CHECK_OK(rbs_projector_command(fx.p, "step 18446744073709551615", reply,
+                                   sizeof reply));
+    assert_non_null(strstr(reply, "the run ends at frame 2000"));
+    CHECK_OK(rbs_projector_command(fx.p, "step 2", reply, sizeof reply));
+    assert_non_null(strstr(reply, "stepping 0 frames (asked 2"));
+    assert_non_null(strstr(reply, "paused at frame 2000"));
+    CHECK_OK(rbs_projector_command(fx.p, "speed 1000000", reply, sizeof reply));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_OK);
+    r = fx.ctx.made[0];
+    assert_int_equal(r->count, 2001);
+    for (k = 0; k <= 2000; k++)
+        assert_int_equal(r->numbers[k], k);
+    fx_done(&fx);
+}
+
 /* Commands while running: pause holds the simulation, step N advances N
  * frames, status reports, resume goes on, renderer commands are answered on
  * the renderer thread, quit stops with RBS_E_CLOSED and every frame drawn
@@ -1111,6 +1179,7 @@ int main(void)
         cmocka_unit_test(destroy_while_running),
         cmocka_unit_test(realtime_paces_frames),
         cmocka_unit_test(live_view_gets_repeats_while_paused),
+        cmocka_unit_test(realtime_pause_holds_the_display),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

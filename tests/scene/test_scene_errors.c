@@ -219,7 +219,7 @@ static const bad_case cases[] = {
      {E("{\"type\": \"csv\", \"path\": \"out/4.csv\"}", 1, 0,
         "renderers[4]: at most 4 renderers may be attached, this is number 5")}},
     {"bad/renderer_every_zero.json", RBS_E_SCENE,
-     {E("0}", 1, 0, "renderers[0].every: must be an integer >= 1, got 0")}},
+     {E("0}", 1, 0, "renderers[0].every: must be an integer from 1 to 2147483647 (2^31 - 1), got 0")}},
     {"bad/renderer_missing_type.json", RBS_E_SCENE,
      {E("{\"path\"", 1, 0,
         "renderers[0]: missing required key \"type\" (the renderer type, e.g. \"csv\", "
@@ -296,7 +296,7 @@ static const bad_case cases[] = {
         "simulation.gravity: must be an array of 3 numbers [x, y, z], got an array of 2 "
         "elements"),
       E("-1", 1, 0, "simulation.mutual_gravity.G: must be > 0, got -1"),
-      E("every=0", 1, 6, "renderers[0].every: must be an integer >= 1, got 0"),
+      E("every=0", 1, 6, "renderers[0].every: must be an integer from 1 to 2147483647 (2^31 - 1), got 0"),
       EIN("bad/text_bad_values/objects.txt", "nan", 1, 0,
           "bodies[0].position[2]: must be a number, got \"nan\"")}},
 };

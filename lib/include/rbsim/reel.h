@@ -25,6 +25,10 @@ extern "C" {
 /** Most renderers attached to one run (the seed's limit). */
 #define RBS_RENDERERS_MAX 4
 
+/** Largest "every" (keep every K-th frame) a renderer entry, --every and
+ * the scene's "every" accept: 2^31 - 1, so it fits any renderer's int. */
+#define RBS_EVERY_MAX 2147483647
+
 /** One body in a frame: its physical representation and velocities. */
 typedef struct rbs_frame_body {
     int32_t type;              /**< rbs_body_type */
@@ -132,7 +136,8 @@ typedef struct rbs_renderer_config {
     const char *path;      /**< output path (file or folder) or NULL */
     uint32_t every;        /**< keep frames whose number is a multiple of
                                 K, the starting frame and the last; the
-                                projector does the keeping; 0 means 1 */
+                                projector does the keeping; 0 means 1;
+                                at most RBS_EVERY_MAX */
     const char *json;      /**< the scene entry as JSON text, or NULL */
     const char *file;      /**< scene file for messages, or NULL */
     int32_t line, column;  /**< place of the entry in file, 1-based, or 0 */

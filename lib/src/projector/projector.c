@@ -6,7 +6,7 @@
  * Design.
  *  - The world belongs to the simulation thread from start to the end of
  *    wait; renderers see only frames (copies in the reel).
- *  - One mutex (mu) guards the control state (paused, step budget, speed,
+ *  - One mutex (mu) guards the control state (paused, show_until, speed,
  *    quit), the counters and the first error.  One condition (cond, on the
  *    monotonic clock) is broadcast on every change of that state: the
  *    simulation thread waits on it while paused, the renderer thread while
@@ -70,7 +70,11 @@ struct rbs_projector {
     pthread_cond_t cond;
     /* --- guarded by mu --- */
     int paused;
-    uint64_t budget;      /* frames to make while paused ("step N") */
+    uint64_t show_until;  /* while paused, frames up to this number may be
+                             made and drawn (pause: the frame on display;
+                             "step N" adds N, saturating at the last) */
+    uint64_t frame_taken; /* the frame on display: the last one the renderer
+                             thread took to draw */
     double speed;
     int pace_reset;       /* resume/speed: re-anchor the real-time clock */
     int quit;
@@ -334,6 +338,13 @@ rbs_status rbs_projector_create(rbs_world *world,
                       r->label, c->type);
             return RBS_E_NOT_FOUND;
         }
+        if (c->every > RBS_EVERY_MAX) {
+            set_error(p, RBS_E_INVALID,
+                      "%s: every must be from 1 to %lu (0 means 1), got %lu",
+                      r->label, (unsigned long)RBS_EVERY_MAX,
+                      (unsigned long)c->every);
+            return RBS_E_INVALID;
+        }
         r->every = c->every == 0 ? 1 : c->every;
         r->live = (r->cls->flags & RBS_RENDERER_LIVE) != 0;
     }
@@ -430,9 +441,9 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     pthread_mutex_lock(&p->mu);
     if (p->def.pause_on_collision && info->colliding > 0 && !last) {
         p->paused = 1;
-        p->budget = 0;
+        p->show_until = slot->number; /* show up to this frame, then hold */
     }
-    paused = p->paused && p->budget == 0 && !last;
+    paused = p->paused && slot->number >= p->show_until && !last;
     speed = p->speed;
     if (p->captured == 0 && !p->def.skip_first_frame)
         p->energy_initial = slot->stats.total;
@@ -459,16 +470,14 @@ static void *sim_main(void *arg)
     /* Frame 0 (the initial state) was published by rbs_projector_start. */
     for (k = 1; endless || k <= steps; k++) {
         rbs_status st;
-        /* Wait while paused, unless "step N" gave a budget. */
+        /* Wait while paused, unless "step N" allows this frame. */
         pthread_mutex_lock(&p->mu);
-        while (!p->quit && p->paused && p->budget == 0)
+        while (!p->quit && p->paused && p->first_frame + k > p->show_until)
             pthread_cond_wait(&p->cond, &p->mu);
         if (p->quit) {
             pthread_mutex_unlock(&p->mu);
             break;
         }
-        if (p->paused)
-            p->budget--;
         pthread_mutex_unlock(&p->mu);
 
         memset(&info, 0, sizeof info);
@@ -690,6 +699,53 @@ static void *ren_main(void *arg)
         pthread_mutex_unlock(&p->mu);
         if (p->def.realtime && !quit)
             late = pace(p, f, &base_wall, &base_sim, &anchored);
+
+        /* Paused: hold this frame back (the display stays on the frame
+         * taken last) until resumed, stepped up to it, or quit; live views
+         * get the held frame again meanwhile.  A latest-only reel may have
+         * dropped the frames up to show_until: then the next one is shown. */
+        {
+            int waited = 0, failed = 0;
+            pthread_mutex_lock(&p->mu);
+            while (!p->quit && p->paused && f->number > p->show_until &&
+                   p->frame_taken >= p->show_until) {
+                waited = 1;
+                if (p->cmd_pending) {
+                    pthread_mutex_unlock(&p->mu);
+                    serve_command(p);
+                    pthread_mutex_lock(&p->mu);
+                    continue;
+                }
+                if (p->live_count > 0 && p->have_hold) {
+                    ts = rbs__deadline_after(HOLD_PERIOD);
+                    if (pthread_cond_timedwait(&p->cond, &p->mu, &ts) ==
+                        ETIMEDOUT) {
+                        pthread_mutex_unlock(&p->mu);
+                        p->hold.paused = 1;
+                        failed = draw_frame(p, &p->hold, first, 1, 1) != 0;
+                        pthread_mutex_lock(&p->mu);
+                        if (failed)
+                            break;
+                    }
+                } else {
+                    pthread_cond_wait(&p->cond, &p->mu);
+                }
+            }
+            p->frame_taken = f->number;
+            if (waited)
+                p->pace_reset = 0; /* anchored at this frame, below */
+            pthread_mutex_unlock(&p->mu);
+            if (failed) {
+                rbs_reel_end_read(p->reel);
+                break;
+            }
+            if (waited && p->def.realtime) {
+                base_wall = rbs__now();
+                base_sim = f->time;
+                anchored = 1;
+                late = 0;
+            }
+        }
         {
             /* Live views skip late frames, but not all of them. */
             double now = rbs__now();
@@ -759,6 +815,8 @@ rbs_status rbs_projector_start(rbs_projector *p)
     pthread_mutex_lock(&p->mu);
     ok = p->usable && !p->started;
     if (ok) {
+        p->first_frame = rbs_world_step_count(p->world);
+        p->frame_taken = p->show_until = p->first_frame;
         if (p->def.start_paused)
             p->paused = 1;
         p->t_start = rbs__now();
@@ -941,6 +999,7 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
     char word[32];
     const char *rest;
     rbs_run_info info;
+    uint64_t held = 0;
 
     if (reply && reply_size)
         reply[0] = '\0';
@@ -968,10 +1027,14 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         if (quit) {
             p->quit = 1;
         } else {
+            /* Pause holds the display at once: the frame on display is the
+             * last one drawn (the simulation may be ahead, its frames wait
+             * in the reel). */
             p->paused = pause;
-            p->budget = 0;
+            p->show_until = p->frame_taken;
             p->pace_reset = 1;
         }
+        held = p->frame_taken;
         status_locked(p, &info);
         pthread_cond_broadcast(&p->cond);
         pthread_mutex_unlock(&p->mu);
@@ -986,9 +1049,8 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         } else {
             if (p->reel)
                 rbs__reel_kick(p->reel);
-            reply_to(reply, reply_size, "%s at frame %llu (t = %g s)",
-                     pause ? "paused" : "resumed",
-                     (unsigned long long)info.frame, info.time);
+            reply_to(reply, reply_size, "%s at frame %llu",
+                     pause ? "paused" : "resumed", (unsigned long long)held);
         }
         return RBS_OK;
     }
@@ -1000,13 +1062,35 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
                      rest);
             return RBS_E_INVALID;
         }
-        pthread_mutex_lock(&p->mu);
-        p->paused = 1;
-        p->budget += n;
-        pthread_cond_broadcast(&p->cond);
-        pthread_mutex_unlock(&p->mu);
-        reply_to(reply, reply_size, "stepping %llu frame%s, then paused",
-                 (unsigned long long)n, n == 1 ? "" : "s");
+        {
+            /* From where the display holds (or will hold after earlier
+             * steps), saturating at the run's last frame (UINT64_MAX when
+             * endless). */
+            uint64_t base, end, to, last;
+            pthread_mutex_lock(&p->mu);
+            base = p->paused ? p->show_until : p->frame_taken;
+            last = p->def.endless || p->first_frame > UINT64_MAX - p->def.steps
+                       ? UINT64_MAX
+                       : p->first_frame + p->def.steps;
+            end = base >= last ? base : last;
+            to = n > end - base ? end : base + n;
+            p->paused = 1;
+            p->show_until = to;
+            pthread_cond_broadcast(&p->cond);
+            pthread_mutex_unlock(&p->mu);
+            if (to - base < n)
+                reply_to(reply, reply_size,
+                         "stepping %llu frame%s (asked %llu; the run ends at "
+                         "frame %llu), then paused at frame %llu",
+                         (unsigned long long)(to - base),
+                         to - base == 1 ? "" : "s", (unsigned long long)n,
+                         (unsigned long long)last, (unsigned long long)to);
+            else
+                reply_to(reply, reply_size,
+                         "stepping %llu frame%s, then paused at frame %llu",
+                         (unsigned long long)n, n == 1 ? "" : "s",
+                         (unsigned long long)to);
+        }
         return RBS_OK;
     }
     if (strcmp(word, "speed") == 0) {

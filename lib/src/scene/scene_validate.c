@@ -9,6 +9,7 @@
  * start, camera mounts) run after the local checks.
  */
 #include "scene/scene_internal.h"
+#include "rbsim/reel.h" /* RBS_EVERY_MAX */
 
 #include <math.h>
 #include <stdarg.h>
@@ -1927,7 +1928,8 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     if ((c = member(r, "every")) != NULL) {
         uint64_t k;
         saved = push_key(v, "every");
-        (void)get_integer(v, c, 1, 4294967295.0, "an integer >= 1", &k);
+        (void)get_integer(v, c, 1, (double)RBS_EVERY_MAX,
+                          "an integer from 1 to 2147483647 (2^31 - 1)", &k);
         pop(v, saved);
     }
     if (type != NULL && strcmp(type, "sdl") == 0) {
