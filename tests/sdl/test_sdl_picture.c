@@ -428,6 +428,36 @@ static void test_default_camera_follows(void **state)
     assert_true(cy[0] - cy[2] > 20);
 }
 
+/* fov 1e-6 degrees, the eye 1.7e8 m away: the sphere is still a disc of
+ * radius f r / d = 40 px (the ray-sphere test must not cancel |c|^2 against
+ * tc^2).  The corners of its bounding square, 0.93 radii out along each
+ * diagonal (1.3 radii from the centre), are background; its centre is red. */
+static void test_narrow_fov_disc(void **state)
+{
+    char json[1024];
+    tu_frame f;
+    SDL_Surface *s;
+    int x0, y0, x1, y1;
+    double fov = 1e-6, r = 0.5;
+    double focal = (H / 2.0) / tan(0.5 * fov * kPi / 180.0), rpx = 40.0;
+    double d = focal * r / rpx;
+    const double eye[3] = {0, -d, 1};
+    (void)state;
+    camera_json(json, sizeof json, eye, kTarget, kUp, fov);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_sphere(&f, "ball", 0, 0, 1, r, 0xd03030);
+    s = render(json, "narrow_fov", &f);
+    assert_true(tu_bbox(s, 0, 0, W, H, is_red, &x0, &y0, &x1, &y1) > 0);
+    assert_true(fabs((x1 - x0 + 1) / 2.0 - rpx) <= 1.0);
+    assert_true(fabs((y1 - y0 + 1) / 2.0 - rpx) <= 1.0);
+    assert_true(is_red(tu_pixel(s, W / 2, H / 2)));
+    assert_false(is_red(tu_pixel(s, x0 + 3, y0 + 3)));
+    assert_false(is_red(tu_pixel(s, x1 - 3, y0 + 3)));
+    assert_false(is_red(tu_pixel(s, x0 + 3, y1 - 3)));
+    assert_false(is_red(tu_pixel(s, x1 - 3, y1 - 3)));
+    SDL_FreeSurface(s);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -439,6 +469,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_texture_rotates),
         cmocka_unit_test(test_mounted_camera),
         cmocka_unit_test(test_scripted_path),
+        cmocka_unit_test(test_narrow_fov_disc),
         cmocka_unit_test(test_default_camera_follows),
     };
     tu_set_base(argc > 1 ? argv[1] : ".");
