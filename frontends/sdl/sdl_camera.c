@@ -8,6 +8,14 @@
  * azimuth -60 degrees and elevation 30 degrees (in the frame of the camera's
  * up vector), far enough that the box's bounding sphere fills about 80% of
  * the vertical field of view.
+ *
+ * Usable views: positions and targets within +-kCoordMax m, the target at
+ * least kDistMin m from the eye (so every square in the ray caster is finite
+ * and nonzero).  Commands that would leave that range are refused and leave
+ * the camera as it was.  When the view direction comes within kParallel
+ * (sine of the angle) of up, as a path can pass straight above its target,
+ * the picture keeps the previous frame's right vector (made perpendicular to
+ * the view); with no previous frame it takes up's first in-plane axis e1.
  */
 #include <math.h>
 #include <stdio.h>
@@ -21,6 +29,10 @@ static const double kDefaultAzimuth = -60.0;
 static const double kDefaultElevation = 30.0;
 /* Orbits keep the elevation within this many degrees of the horizon. */
 static const double kMaxElevation = 89.0;
+/* Limits of a usable view (see the top of the file and FORMAT.md). */
+static const double kCoordMax = 1e100;
+static const double kDistMin = 1e-100;
+static const double kParallel = 1e-9;
 
 static rbs_vec3 v3(double x, double y, double z)
 {
@@ -212,13 +224,52 @@ static void path_at(const rbsf__camera_def *def, double t, rbs_vec3 *position,
                   scale(sub(def->path[hi].target, def->path[lo].target), s));
 }
 
+/* The view basis from position to target: fwd, right = fwd x up (or, within
+ * kParallel of up, prev_right or e1 made perpendicular to fwd) and up.
+ * Returns NULL, or why position/target make no usable view. */
+static const char *basis(rbs_vec3 position, rbs_vec3 target, rbs_vec3 up,
+                         const rbs_vec3 *prev_right, rbs_vec3 *fwd,
+                         rbs_vec3 *right, rbs_vec3 *vup)
+{
+    const double c[6] = {position.x, position.y, position.z,
+                         target.x,   target.y,   target.z};
+    rbs_vec3 r;
+    double l;
+    int i;
+    for (i = 0; i < 6; i++)
+        if (!(fabs(c[i]) <= kCoordMax))
+            return i < 3 ? "position: not finite or beyond 1e100 m"
+                         : "target: not finite or beyond 1e100 m";
+    *fwd = sub(target, position);
+    l = len(*fwd);
+    if (!(l >= kDistMin)) return "target: closer than 1e-100 m to the position";
+    *fwd = scale(*fwd, 1.0 / l);
+    r = cross(*fwd, up);
+    l = len(r);
+    if (!(l > kParallel)) {
+        /* Looking along up: keep the last right vector (a continuous rule). */
+        rbs_vec3 e1, e2;
+        up_frame(up, &e1, &e2);
+        r = e1;
+        if (prev_right != NULL) {
+            rbs_vec3 p = sub(*prev_right, scale(*fwd, dot(*prev_right, *fwd)));
+            if (len(p) > 0.5) r = *prev_right;
+        }
+        r = sub(r, scale(*fwd, dot(r, *fwd)));
+        l = len(r);
+    }
+    *right = scale(r, 1.0 / l);
+    *vup = cross(*right, *fwd);
+    return NULL;
+}
+
 rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
                              uint32_t width, uint32_t height, rbsf__view *out,
                              char *err, size_t errlen)
 {
     const rbsf__camera_def *def = camera->def;
-    rbs_vec3 position, target, right;
-    double l;
+    rbs_vec3 position, target;
+    const char *why;
     rbs_status st = rbsf__camera_resolve(camera, frame, err, errlen);
     if (st != RBS_OK) return st;
 
@@ -249,28 +300,19 @@ rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
             }
         }
     }
-    if (!(isfinite(position.x) && isfinite(position.y) && isfinite(position.z) &&
-          isfinite(target.x) && isfinite(target.y) && isfinite(target.z))) {
-        snprintf(err, errlen, "position: not finite (from the path or the mounted body)");
+    why = basis(position, target, camera->up,
+                camera->has_last_right ? &camera->last_right : NULL, &out->fwd,
+                &out->right, &out->up);
+    if (why != NULL) {
+        snprintf(err, errlen, "%s at frame %llu (from the %s)", why,
+                 (unsigned long long)frame->number,
+                 def->mode == RBSF__CAMERA_MOUNTED ? "mounted body and offset"
+                 : def->path_count > 0 ? "path" : "camera's place");
         return RBS_E_INVALID;
     }
-
     out->eye = position;
-    out->fwd = sub(target, position);
-    l = len(out->fwd);
-    if (!(l > 0.0)) {
-        snprintf(err, errlen, "target: equals the position");
-        return RBS_E_INVALID;
-    }
-    out->fwd = scale(out->fwd, 1.0 / l);
-    right = cross(out->fwd, camera->up);
-    l = len(right);
-    if (!(l > 1e-9)) {
-        snprintf(err, errlen, "up: the camera looks along its up vector");
-        return RBS_E_INVALID;
-    }
-    out->right = scale(right, 1.0 / l);
-    out->up = cross(out->right, out->fwd);
+    camera->last_right = out->right;
+    camera->has_last_right = 1;
     out->focal = 0.5 * (double)height / tan(0.5 * camera->fov * kPi / 180.0);
     out->znear = camera->znear;
     out->zfar = camera->zfar;
@@ -287,10 +329,29 @@ static rbs_vec3 *arm(rbsf__camera *camera, rbs_vec3 *scratch)
     return scratch;
 }
 
-static void set_arm(rbsf__camera *camera, rbs_vec3 v)
+/* Move the camera to a new arm (and, for free cameras, target) if that
+ * makes a usable view; otherwise refuse with the reason and keep the camera
+ * as it was.  A mounted camera's view is checked as seen from its body. */
+static rbs_status place(rbsf__camera *camera, rbs_vec3 arm_v, rbs_vec3 target,
+                        const char *what, char *out, size_t outlen)
 {
-    if (camera->def->mode == RBSF__CAMERA_MOUNTED) camera->offset = v;
-    else camera->position = add(camera->target, v);
+    rbs_vec3 f, r, u, origin = v3(0, 0, 0);
+    int mounted = camera->def->mode == RBSF__CAMERA_MOUNTED;
+    rbs_vec3 position = mounted ? arm_v : add(target, arm_v);
+    const char *why = basis(position, mounted ? origin : target, camera->up,
+                            NULL, &f, &r, &u);
+    if (why != NULL) {
+        snprintf(out, outlen, "%s: refused, the camera would have no usable view "
+                 "(%s); it stays where it was", what, why);
+        return RBS_E_INVALID;
+    }
+    if (mounted) {
+        camera->offset = arm_v;
+    } else {
+        camera->position = position;
+        camera->target = target;
+    }
+    return RBS_OK;
 }
 
 /* Commands move free cameras (and orbit/zoom mounted ones). */
@@ -333,7 +394,8 @@ rbs_status rbsf__camera_orbit(rbsf__camera *camera, double dyaw, double dpitch,
     el = asin(fmax(-1.0, fmin(1.0, dot(*a, camera->up) / d))) * 180.0 / kPi + dpitch;
     el = fmax(-kMaxElevation, fmin(kMaxElevation, el));
     v = scale(direction(camera->up, az, el), d);
-    set_arm(camera, v);
+    if ((st = place(camera, v, camera->target, "orbit", out, outlen)) != RBS_OK)
+        return st;
     snprintf(out, outlen, "orbit: azimuth %.1f deg, elevation %.1f deg, "
              "distance %.3g m", fmod(az + 540.0, 360.0) - 180.0, el, d);
     return RBS_OK;
@@ -349,14 +411,16 @@ rbs_status rbsf__camera_pan(rbsf__camera *camera, double dx, double dy,
         snprintf(out, outlen, "pan: distances must be finite metres");
         return RBS_E_INVALID;
     }
-    fwd = sub(camera->target, camera->position);
-    fwd = scale(fwd, 1.0 / len(fwd));
-    right = cross(fwd, camera->up);
-    right = scale(right, 1.0 / len(right));
-    up = cross(right, fwd);
+    if (basis(camera->position, camera->target, camera->up,
+              camera->has_last_right ? &camera->last_right : NULL, &fwd, &right,
+              &up) != NULL) {
+        snprintf(out, outlen, "pan: the camera has no usable view to pan in");
+        return RBS_E_INVALID;
+    }
     shift = add(scale(right, dx), scale(up, dy));
-    camera->position = add(camera->position, shift);
-    camera->target = add(camera->target, shift);
+    st = place(camera, sub(camera->position, camera->target),
+               add(camera->target, shift), "pan", out, outlen);
+    if (st != RBS_OK) return st;
     snprintf(out, outlen, "pan: target (%.3g, %.3g, %.3g) m", camera->target.x,
              camera->target.y, camera->target.z);
     return RBS_OK;
@@ -380,7 +444,8 @@ rbs_status rbsf__camera_zoom(rbsf__camera *camera, double factor, char *out,
         snprintf(out, outlen, "zoom: distance %g m / %g is out of range", d, factor);
         return RBS_E_INVALID;
     }
-    set_arm(camera, scale(*a, 1.0 / factor));
+    st = place(camera, scale(*a, 1.0 / factor), camera->target, "zoom", out, outlen);
+    if (st != RBS_OK) return st;
     snprintf(out, outlen, "zoom: distance %.3g m -> %.3g m", d, d / factor);
     return RBS_OK;
 }

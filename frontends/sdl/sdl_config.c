@@ -143,6 +143,22 @@ static rbs_status get_vec3(const cJSON *item, const char *where,
 
 static double vlen(rbs_vec3 a) { return sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
 
+/* Limits that keep every square of the ray caster finite and nonzero (the
+ * same as sdl_camera.c and the scene check; see scenes/FORMAT.md). */
+static const double kCoordMax = 1e100; /* m, |each coordinate| */
+static const double kDistMin = 1e-100; /* m, eye to target, |offset| */
+static const double kFovMin = 1e-6;    /* degrees */
+
+/* A position, target or offset: each coordinate within +-kCoordMax m. */
+static rbs_status check_coords(rbs_vec3 p, const char *where, const char *key,
+                               char *err, size_t errlen)
+{
+    if (fabs(p.x) <= kCoordMax && fabs(p.y) <= kCoordMax && fabs(p.z) <= kCoordMax)
+        return RBS_OK;
+    return fail(err, errlen, "%s%s: coordinates must be within +-1e100 m, got "
+                "[%g, %g, %g]", where, key, p.x, p.y, p.z);
+}
+
 /* Sine of the angle between up and the view direction (1 = perpendicular). */
 static double up_sine(rbs_vec3 from, rbs_vec3 to, rbs_vec3 up)
 {
@@ -160,8 +176,11 @@ static rbs_status check_aim(rbs_vec3 position, rbs_vec3 target, rbs_vec3 up,
 {
     rbs_vec3 d = {target.x - position.x, target.y - position.y,
                   target.z - position.z};
-    if (vlen(d) == 0.0)
+    if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0)
         return fail(err, errlen, "%s%s: target equals position", where, key);
+    if (!(vlen(d) >= kDistMin))
+        return fail(err, errlen, "%s%s: target within 1e-100 m of position "
+                    "(too close to aim)", where, key);
     if (up_sine(position, target, up) < 1e-6)
         return fail(err, errlen,
                     "%s%s: the view direction is parallel to up; choose "
@@ -250,6 +269,10 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
         char w[64];
         snprintf(w, sizeof w, "%s.", where);
 
+        /* Without "mode", a camera with "mount" is mounted. */
+        if (cJSON_GetObjectItemCaseSensitive(obj, "mode") == NULL &&
+            cJSON_GetObjectItemCaseSensitive(obj, "mount") != NULL)
+            cam->mode = RBSF__CAMERA_MOUNTED;
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "mode")) != NULL) {
             if (!cJSON_IsString(f))
                 return fail(err, errlen, "%smode: must be \"fixed\", \"mounted\" "
@@ -265,18 +288,28 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
                             "or \"free\", got \"%s\"", w, f->valuestring);
         }
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "position")) != NULL) {
-            if ((st = get_vec3(f, w, "position", &cam->position, err, errlen)) != RBS_OK)
+            if ((st = get_vec3(f, w, "position", &cam->position, err, errlen)) != RBS_OK ||
+                (st = check_coords(cam->position, w, "position", err, errlen)) != RBS_OK)
                 return st;
             cam->has_position = 1;
         }
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "target")) != NULL) {
-            if ((st = get_vec3(f, w, "target", &cam->target, err, errlen)) != RBS_OK)
+            if ((st = get_vec3(f, w, "target", &cam->target, err, errlen)) != RBS_OK ||
+                (st = check_coords(cam->target, w, "target", err, errlen)) != RBS_OK)
                 return st;
             cam->has_target = 1;
         }
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "up")) != NULL) {
             if ((st = get_vec3(f, w, "up", &cam->up, err, errlen)) != RBS_OK)
                 return st;
+            /* Scale by the largest component first, so tiny ups do not
+             * underflow. */
+            len = fmax(fabs(cam->up.x), fmax(fabs(cam->up.y), fabs(cam->up.z)));
+            if (len > 0.0) {
+                cam->up.x /= len;
+                cam->up.y /= len;
+                cam->up.z /= len;
+            }
             len = vlen(cam->up);
             if (!(len > 0.0))
                 return fail(err, errlen, "%sup: must be a nonzero vector", w);
@@ -287,9 +320,9 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "fov")) != NULL) {
             if ((st = get_number(f, w, "fov", &cam->fov, err, errlen)) != RBS_OK)
                 return st;
-            if (!(cam->fov > 0.0 && cam->fov < 180.0))
-                return fail(err, errlen, "%sfov: must be in (0, 180) degrees, got %g",
-                            w, cam->fov);
+            if (!(cam->fov >= kFovMin && cam->fov < 180.0))
+                return fail(err, errlen, "%sfov: must be in [1e-6, 180) degrees, "
+                            "got %g", w, cam->fov);
         }
         if ((f = cJSON_GetObjectItemCaseSensitive(obj, "near")) != NULL) {
             if ((st = get_number(f, w, "near", &cam->znear, err, errlen)) != RBS_OK)
@@ -321,11 +354,16 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
             if (cam->mode != RBSF__CAMERA_MOUNTED)
                 return fail(err, errlen,
                             "%soffset: only with \"mode\": \"mounted\"", w);
-            if ((st = get_vec3(f, w, "offset", &cam->offset, err, errlen)) != RBS_OK)
+            if ((st = get_vec3(f, w, "offset", &cam->offset, err, errlen)) != RBS_OK ||
+                (st = check_coords(cam->offset, w, "offset", err, errlen)) != RBS_OK)
                 return st;
-            if (vlen(cam->offset) == 0.0)
+            if (cam->offset.x == 0.0 && cam->offset.y == 0.0 && cam->offset.z == 0.0)
                 return fail(err, errlen, "%soffset: must be nonzero (the camera "
                             "would sit inside the body)", w);
+            if (!(vlen(cam->offset) >= kDistMin))
+                return fail(err, errlen, "%soffset: shorter than 1e-100 m (too "
+                            "close to the body to aim), got [%g, %g, %g]", w,
+                            cam->offset.x, cam->offset.y, cam->offset.z);
             if (up_sine(cam->offset, (rbs_vec3){0, 0, 0}, cam->up) < 1e-6)
                 return fail(err, errlen, "%soffset: parallel to up; choose "
                             "another up or offset", w);
@@ -353,7 +391,12 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
                 return st;
             for (i = 0; i < (int)cam->path_count; i++) {
                 char k[64];
+                snprintf(k, sizeof k, "path[%d].position", i);
+                if ((st = check_coords(cam->path[i].position, w, k, err, errlen)) != RBS_OK)
+                    return st;
                 snprintf(k, sizeof k, "path[%d].target", i);
+                if ((st = check_coords(cam->path[i].target, w, k, err, errlen)) != RBS_OK)
+                    return st;
                 if ((st = check_aim(cam->path[i].position, cam->path[i].target,
                                     cam->up, w, k, err, errlen)) != RBS_OK)
                     return st;

@@ -59,7 +59,7 @@ typedef struct rbsf__camera_def {
     int has_position, has_target, has_offset, has_far;
     rbs_vec3 position, target, offset; /**< m */
     rbs_vec3 up;                       /**< unit; default 0,0,1 */
-    double fov;                        /**< vertical, degrees, (0, 180) */
+    double fov;                        /**< vertical, degrees, [1e-6, 180) */
     double znear, zfar;                /**< m, 0 < near < far */
     char mount[RBS_NAME_MAX];          /**< body name (mounted mode) */
     uint32_t path_count;
@@ -109,6 +109,8 @@ typedef struct rbsf__camera {
     int track;                   /**< the default camera: follows the spheres'
                                       bounding-box centre across up */
     rbs_vec3 track_origin;       /**< that centre at the first frame, m */
+    int has_last_right;          /**< last_right holds a drawn frame's */
+    rbs_vec3 last_right;         /**< unit right vector of the last view */
 } rbsf__camera;
 
 /** A camera's pose for one frame: an orthonormal basis and the pinhole. */

@@ -271,7 +271,7 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
 {
     int w = (int)v->width, h = (int)v->height, i0, i1, j0, j1, i, j;
     v3 rel, c;
-    double r = b->radius, cc, a, bb;
+    double r = b->radius, a, bb;
     double base[3], dark[3];
     uint32_t rgb = b->color;
     if (!(r > 0.0) || !isfinite(r)) return;
@@ -294,7 +294,6 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
         j0 = 0;
         j1 = h - 1;
     }
-    cc = dot3(c, c) - r * r;
     base[0] = (double)((rgb >> 16) & 0xff);
     base[1] = (double)((rgb >> 8) & 0xff);
     base[2] = (double)(rgb & 0xff);
@@ -307,17 +306,21 @@ static void draw_sphere(const rbsf__canvas *cv, const rbsf__view *v,
         double *depth = cv->depth + (size_t)j * (size_t)w;
         for (i = i0; i <= i1; i++) {
             double rx = cv->ray_x[i];
+            /* Stable: tc is the ray parameter nearest the centre, q the
+             * perpendicular from the centre to the ray (|c|^2 - tc^2 dd
+             * would cancel catastrophically when the sphere is far away). */
             double dd = rx * rx + ry * ry + 1.0;
-            double dc = rx * c.x + ry * c.y + c.z;
-            double disc = dc * dc - dd * cc, sq, t, k, lum;
+            double tc = (rx * c.x + ry * c.y + c.z) / dd, half, t, k, lum;
+            double qx = tc * rx - c.x, qy = tc * ry - c.y, qz = tc - c.z;
+            double h2 = r * r - (qx * qx + qy * qy + qz * qz);
             int inside = 0;
             const double *col;
             v3 n, nw;
-            if (disc < 0.0) continue;
-            sq = sqrt(disc);
-            t = (dc - sq) / dd;
+            if (h2 < 0.0) continue;
+            half = sqrt(h2 / dd);
+            t = tc - half;
             if (t < v->znear) {
-                t = (dc + sq) / dd;
+                t = tc + half;
                 inside = 1;
             }
             if (t < v->znear || t > v->zfar || t >= depth[i]) continue;

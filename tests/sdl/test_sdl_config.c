@@ -50,14 +50,26 @@ static const bad_case kBad[] = {
     {"{\"camera\":{\"position\":[1,2]}}", "camera.position", "3 numbers"},
     {"{\"camera\":{\"target\":[1,\"a\",2]}}", "camera.target[1]", "finite number"},
     {"{\"camera\":{\"up\":[0,0,0]}}", "camera.up", "nonzero"},
-    {"{\"camera\":{\"fov\":180}}", "camera.fov", "(0, 180)"},
-    {"{\"camera\":{\"fov\":0}}", "camera.fov", "(0, 180)"},
+    {"{\"camera\":{\"fov\":180}}", "camera.fov", "[1e-6, 180)"},
+    {"{\"camera\":{\"fov\":0}}", "camera.fov", "[1e-6, 180)"},
+    {"{\"camera\":{\"fov\":1e-300}}", "camera.fov", "[1e-6, 180)"},
+    {"{\"camera\":{\"position\":[1e300,0,0],\"target\":[0,0,0]}}", "camera.position",
+     "within +-1e100 m"},
+    {"{\"camera\":{\"target\":[0,-1e101,0]}}", "camera.target", "within +-1e100 m"},
+    {"{\"camera\":{\"position\":[1e-300,0,0],\"target\":[0,0,0]}}", "camera.target",
+     "within 1e-100 m"},
     {"{\"camera\":{\"near\":0}}", "camera.near", "> 0"},
     {"{\"camera\":{\"near\":1,\"far\":0.5}}", "camera.far", "> near"},
     {"{\"camera\":{\"position\":[1,1,1],\"target\":[1,1,1]}}", "camera.target", "equals"},
     {"{\"camera\":{\"position\":[0,0,5],\"target\":[0,0,0]}}", "camera.target", "parallel to up"},
     {"{\"camera\":{\"mode\":\"mounted\"}}", "camera.mount", "missing"},
-    {"{\"camera\":{\"mount\":\"ball\"}}", "camera.mount", "mounted"},
+    {"{\"camera\":{\"mode\":\"fixed\",\"mount\":\"ball\"}}", "camera.mount", "mounted"},
+    {"{\"camera\":{\"mount\":\"b\",\"offset\":[1e300,0,0]}}", "camera.offset",
+     "within +-1e100 m"},
+    {"{\"camera\":{\"mount\":\"b\",\"offset\":[0,1e-300,0]}}", "camera.offset",
+     "shorter than 1e-100 m"},
+    {"{\"camera\":{\"path\":[{\"t\":0,\"position\":[1,0,3],\"target\":[0,0,-1e200]}]}}",
+     "camera.path[0].target", "within +-1e100 m"},
     {"{\"camera\":{\"mode\":\"mounted\",\"mount\":\"\"}}", "camera.mount", "body name"},
     {"{\"camera\":{\"offset\":[1,0,0]}}", "camera.offset", "mounted"},
     {"{\"camera\":{\"mode\":\"mounted\",\"mount\":\"b\",\"offset\":[0,0,0]}}",
@@ -78,7 +90,7 @@ static const bad_case kBad[] = {
     {"{\"camera\":{\"position\":[0,-1,0],\"path\":[{\"t\":0,\"position\":[0,-1,0],"
      "\"target\":[0,0,0]}]}}",
      "camera.position", "path"},
-    {"{\"views\":[{},{\"fov\":-5}]}", "views[1].fov", "(0, 180)"},
+    {"{\"views\":[{},{\"fov\":-5}]}", "views[1].fov", "[1e-6, 180)"},
     {"{\"views\":[{},{},\"cam\"]}", "views[2]", "object"},
 };
 
@@ -139,6 +151,8 @@ static void test_good_entries(void **state)
         "\"up\":[0,0,2],\"fov\":70,\"near\":0.1,\"far\":50}}",
         "{\"camera\":{\"mode\":\"mounted\",\"mount\":\"ball\",\"offset\":[0,-2,1]}}",
         "{\"camera\":{\"mode\":\"free\"}}",
+        "{\"camera\":{\"mount\":\"ball\",\"offset\":[0,-2,1]}}",
+        "{\"camera\":{\"fov\":1e-6,\"up\":[0,1e-300,1e-300]}}",
         "{\"views\":[{},{\"mode\":\"free\"},{\"position\":[0,-3,0],\"target\":[0,0,0]},"
         "{\"path\":[{\"t\":0,\"position\":[0,-1,0],\"target\":[0,0,0]}]}]}",
         "{\"window\":false}",
@@ -165,7 +179,7 @@ static void test_message_place(void **state)
                                     "scenes/demo.json", 12, 7, NULL, NULL, &inst, err,
                                     sizeof err),
                      RBS_E_INVALID);
-    assert_string_equal(err, "camera.fov: must be in (0, 180) degrees, got 200");
+    assert_string_equal(err, "camera.fov: must be in [1e-6, 180) degrees, got 200");
 }
 
 /* No folder given anywhere. */
@@ -227,6 +241,15 @@ static void test_draw_errors(void **state)
     /* Once the body is there, the camera works. */
     f.bodies[0].name = "rover";
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+
+    /* "mount" without "mode": a mounted camera (FORMAT.md's default). */
+    assert_int_equal(tu_create("{\"window\":false,\"camera\":{\"mount\":\"rover\"}}",
+                               tu_dir("mountdefault"), &inst, err, sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->command(inst, "camera", err, sizeof err), RBS_OK);
+    assert_non_null(strstr(err, "mounted on \"rover\""));
     cls->destroy(inst);
 
     /* Frames that are not frames. */

@@ -412,6 +412,43 @@ static void test_camera_commands_exact(void **state)
     }
 }
 
+/* Commands whose camera would have no usable view (not finite, beyond
+ * 1e100 m, or the eye on the target) are refused with the reason; the camera
+ * keeps its place and the next frame is drawn. */
+static void test_commands_refused(void **state)
+{
+    static const char *const bad[] = {"zoom 1e300", "zoom 1e-300", "pan 1e308 0",
+                                      "pan 1e308 0", "pan 0 1e200"};
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512], out[512], before[512];
+    void *inst = NULL;
+    tu_frame f;
+    size_t i;
+    (void)state;
+    assert_int_equal(tu_create("{\"width\":64,\"height\":48,\"window\":false,"
+                               "\"contact_sheet\":false}",
+                               tu_dir("refused"), &inst, err, sizeof err),
+                     RBS_OK);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    assert_int_equal(cls->command(inst, "camera", before, sizeof before), RBS_OK);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(cls->command(inst, bad[i], out, sizeof out), RBS_E_INVALID);
+        assert_non_null(strstr(out, "refused"));
+        assert_null(strstr(out, "nan"));
+        assert_int_equal(cls->command(inst, "camera", out, sizeof out), RBS_OK);
+        assert_string_equal(out, before);
+    }
+    f.frame.number = 1;
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    /* A large but usable zoom still works. */
+    assert_int_equal(cls->command(inst, "zoom 1e-50", out, sizeof out), RBS_OK);
+    f.frame.number = 2;
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -422,6 +459,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_contact_sheet),
         cmocka_unit_test(test_io_error),
         cmocka_unit_test(test_commands),
+        cmocka_unit_test(test_commands_refused),
         cmocka_unit_test(test_camera_commands_exact),
     };
     tu_set_base(argc > 1 ? argv[1] : ".");

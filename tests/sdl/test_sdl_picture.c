@@ -428,6 +428,80 @@ static void test_default_camera_follows(void **state)
     assert_true(cy[0] - cy[2] > 20);
 }
 
+/* A path that passes straight above its target (the view along up at
+ * t = 1) draws every frame: there the picture keeps the previous frame's
+ * right vector; a first frame already along up takes up's first in-plane
+ * axis.  The target sphere stays centred throughout. */
+static void test_path_over_target(void **state)
+{
+    const char *json =
+        "{\"type\":\"sdl\",\"width\":320,\"height\":240,\"window\":false,"
+        "\"contact_sheet\":false,\"camera\":{\"path\":["
+        "{\"t\":0,\"position\":[1,0,3],\"target\":[0,0,0]},"
+        "{\"t\":2,\"position\":[-1,0,3],\"target\":[0,0,0]}]}}";
+    static const double times[2][3] = {{0.0, 1.0, 2.0}, {1.0, 1.5, 2.0}};
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    int run, k;
+    (void)state;
+    for (run = 0; run < 2; run++) {
+        void *inst = NULL;
+        char err[512], path[1400], name[32];
+        snprintf(name, sizeof name, "over%d", run);
+        assert_int_equal(tu_create(json, tu_dir(name), &inst, err, sizeof err), RBS_OK);
+        for (k = 0; k < 3; k++) {
+            tu_frame f;
+            rbs_status st;
+            tu_frame_init(&f, (uint64_t)k, times[run][k]);
+            tu_add_sphere(&f, "ball", 0, 0, 0, 0.3, 0xd03030);
+            st = cls->draw(inst, &f.frame, err, sizeof err);
+            if (st != RBS_OK) fprintf(stderr, "draw t=%g: %s\n", times[run][k], err);
+            assert_int_equal(st, RBS_OK);
+        }
+        cls->destroy(inst);
+        for (k = 0; k < 3; k++) {
+            SDL_Surface *s;
+            int x0, y0, x1, y1;
+            snprintf(path, sizeof path, "%s/frame_%06d.png", tu_dir(name), k);
+            s = tu_load(path);
+            assert_non_null(s);
+            assert_true(tu_bbox(s, 0, 0, W, H, is_red, &x0, &y0, &x1, &y1) > 0);
+            assert_true(fabs((x0 + x1 + 1) / 2.0 - W / 2.0) <= 1.0);
+            assert_true(fabs((y0 + y1 + 1) / 2.0 - H / 2.0) <= 1.0);
+            SDL_FreeSurface(s);
+        }
+    }
+}
+
+/* fov 1e-6 degrees, the eye 1.7e8 m away: the sphere is still a disc of
+ * radius f r / d = 40 px (the ray-sphere test must not cancel |c|^2 against
+ * tc^2).  The corners of its bounding square, 0.93 radii out along each
+ * diagonal (1.3 radii from the centre), are background; its centre is red. */
+static void test_narrow_fov_disc(void **state)
+{
+    char json[1024];
+    tu_frame f;
+    SDL_Surface *s;
+    int x0, y0, x1, y1;
+    double fov = 1e-6, r = 0.5;
+    double focal = (H / 2.0) / tan(0.5 * fov * kPi / 180.0), rpx = 40.0;
+    double d = focal * r / rpx;
+    const double eye[3] = {0, -d, 1};
+    (void)state;
+    camera_json(json, sizeof json, eye, kTarget, kUp, fov);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_sphere(&f, "ball", 0, 0, 1, r, 0xd03030);
+    s = render(json, "narrow_fov", &f);
+    assert_true(tu_bbox(s, 0, 0, W, H, is_red, &x0, &y0, &x1, &y1) > 0);
+    assert_true(fabs((x1 - x0 + 1) / 2.0 - rpx) <= 1.0);
+    assert_true(fabs((y1 - y0 + 1) / 2.0 - rpx) <= 1.0);
+    assert_true(is_red(tu_pixel(s, W / 2, H / 2)));
+    assert_false(is_red(tu_pixel(s, x0 + 3, y0 + 3)));
+    assert_false(is_red(tu_pixel(s, x1 - 3, y0 + 3)));
+    assert_false(is_red(tu_pixel(s, x0 + 3, y1 - 3)));
+    assert_false(is_red(tu_pixel(s, x1 - 3, y1 - 3)));
+    SDL_FreeSurface(s);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -439,6 +513,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_texture_rotates),
         cmocka_unit_test(test_mounted_camera),
         cmocka_unit_test(test_scripted_path),
+        cmocka_unit_test(test_path_over_target),
+        cmocka_unit_test(test_narrow_fov_disc),
         cmocka_unit_test(test_default_camera_follows),
     };
     tu_set_base(argc > 1 ? argv[1] : ".");

@@ -1673,6 +1673,28 @@ static const char *const camera_keys[] = {"mode", "position", "target", "up",   
 static const char *const camera_modes[] = {"fixed", "mounted", "free"};
 static const char *const path_keys[] = {"t", "position", "target"};
 
+/* Camera limits that keep the SDL ray caster's squares finite and nonzero
+ * (the same as frontends/sdl; see scenes/FORMAT.md). */
+static const double kCamCoordMax = 1e100; /* m, |each coordinate| */
+static const double kCamDistMin = 1e-100; /* m, eye to target, |offset| */
+static const double kCamFovMin = 1e-6;    /* degrees */
+static const double kSdlPixelsMax = 16.0 * 1024 * 1024; /* per view */
+
+/* A camera position, target or offset: a 3-vector within +-kCamCoordMax m. */
+static int get_cam_vec3(vctx *v, const cJSON *item, rbs_vec3 *out)
+{
+    if (get_vec3(v, item, out) != 0) {
+        return -1;
+    }
+    if (!(fabs(out->x) <= kCamCoordMax && fabs(out->y) <= kCamCoordMax &&
+          fabs(out->z) <= kCamCoordMax)) {
+        err(v, loc_value(v, item), "coordinates must be within +-1e100 m, got [%g, %g, %g]",
+            out->x, out->y, out->z);
+        return -1;
+    }
+    return 0;
+}
+
 static int find_sphere(const rbs_scene *s, const char *name)
 {
     uint32_t i;
@@ -1726,12 +1748,12 @@ static void check_camera(vctx *v, const cJSON *cam)
     }
     if ((c = member(cam, "position")) != NULL) {
         saved = push_key(v, "position");
-        pos_ok = get_vec3(v, c, &pos) == 0;
+        pos_ok = get_cam_vec3(v, c, &pos) == 0;
         pop(v, saved);
     }
     if ((c = member(cam, "target")) != NULL) {
         saved = push_key(v, "target");
-        target_ok = get_vec3(v, c, &target) == 0;
+        target_ok = get_cam_vec3(v, c, &target) == 0;
         pop(v, saved);
     }
     if ((c = member(cam, "up")) != NULL) {
@@ -1744,9 +1766,25 @@ static void check_camera(vctx *v, const cJSON *cam)
         rbs_vec3 x = {d.y * up.z - d.z * up.y, d.z * up.x - d.x * up.z,
                       d.x * up.y - d.y * up.x};
         double ld = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-        double lu = sqrt(up.x * up.x + up.y * up.y + up.z * up.z);
-        double lx = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
-        if (!(ld > 0)) {
+        /* up scaled by its largest component, so a tiny up does not underflow */
+        double um = fmax(fabs(up.x), fmax(fabs(up.y), fabs(up.z)));
+        double lu = 0.0, lx = 0.0;
+        if (um > 0) {
+            rbs_vec3 un = {up.x / um, up.y / um, up.z / um};
+            lu = sqrt(un.x * un.x + un.y * un.y + un.z * un.z);
+            x.x = d.y * un.z - d.z * un.y;
+            x.y = d.z * un.x - d.x * un.z;
+            x.z = d.x * un.y - d.y * un.x;
+            lx = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
+        }
+        int same = d.x == 0 && d.y == 0 && d.z == 0;
+        if (!same && !(ld >= kCamDistMin)) {
+            c = member(cam, "target") != NULL ? member(cam, "target") : cam;
+            saved = push_key(v, "target");
+            err(v, loc_value(v, c), "must be at least 1e-100 m from the position (too close "
+                "to aim), got [%g, %g, %g] m apart", d.x, d.y, d.z);
+            pop(v, saved);
+        } else if (same) {
             c = member(cam, "target") != NULL ? member(cam, "target") : cam;
             saved = push_key(v, "target");
             err(v, loc_value(v, c), "must differ from the position, got [%g, %g, %g] for both",
@@ -1765,10 +1803,10 @@ static void check_camera(vctx *v, const cJSON *cam)
     if ((c = member(cam, "fov")) != NULL) {
         double f;
         saved = push_key(v, "fov");
-        if (get_number(v, c, &f) == 0 && !(f > 0 && f < 180)) {
+        if (get_number(v, c, &f) == 0 && !(f >= kCamFovMin && f < 180)) {
             char g[64];
             got(v, c, g, sizeof g);
-            err(v, loc_value(v, c), "must be in (0, 180) degrees, got %s", g);
+            err(v, loc_value(v, c), "must be in [1e-6, 180) degrees, got %s", g);
         }
         pop(v, saved);
     }
@@ -1815,7 +1853,15 @@ static void check_camera(vctx *v, const cJSON *cam)
     if ((c = member(cam, "offset")) != NULL) {
         rbs_vec3 o;
         saved = push_key(v, "offset");
-        (void)get_vec3(v, c, &o);
+        if (get_cam_vec3(v, c, &o) == 0) {
+            double lo = sqrt(o.x * o.x + o.y * o.y + o.z * o.z);
+            if (o.x == 0 && o.y == 0 && o.z == 0) {
+                err(v, loc_value(v, c), "must be nonzero (the camera would sit inside the body)");
+            } else if (!(lo >= kCamDistMin)) {
+                err(v, loc_value(v, c), "must be at least 1e-100 m long (too close to the body "
+                    "to aim), got [%g, %g, %g]", o.x, o.y, o.z);
+            }
+        }
         pop(v, saved);
     }
     if ((c = member(cam, "path")) != NULL) {
@@ -1855,14 +1901,14 @@ static void check_camera(vctx *v, const cJSON *cam)
                     }
                     if ((e = member(kf, "position")) != NULL) {
                         s3 = push_key(v, "position");
-                        (void)get_vec3(v, e, &tmp);
+                        (void)get_cam_vec3(v, e, &tmp);
                         pop(v, s3);
                     } else {
                         missing(v, kf, "position", "the camera position, m");
                     }
                     if ((e = member(kf, "target")) != NULL) {
                         s3 = push_key(v, "target");
-                        (void)get_vec3(v, e, &tmp);
+                        (void)get_cam_vec3(v, e, &tmp);
                         pop(v, s3);
                     } else {
                         missing(v, kf, "target", "the point looked at, m");
@@ -1934,15 +1980,27 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     }
     if (type != NULL && strcmp(type, "sdl") == 0) {
         const char *const dims[] = {"width", "height"};
+        double side[2] = {640, 480};
         int d;
         const cJSON *cam = member(r, "camera"), *views = member(r, "views");
         for (d = 0; d < 2; d++) {
             if ((c = member(r, dims[d])) != NULL) {
                 uint64_t k;
                 saved = push_key(v, dims[d]);
-                (void)get_integer(v, c, 16, 8192, "an integer in 16..8192 (pixels)", &k);
+                if (get_integer(v, c, 16, 8192, "an integer in 16..8192 (pixels)", &k) == 0) {
+                    side[d] = (double)k;
+                }
                 pop(v, saved);
             }
+        }
+        if (side[0] * side[1] > kSdlPixelsMax) {
+            const char *key = member(r, "height") != NULL ? "height" : "width";
+            c = member(r, key);
+            saved = push_key(v, key);
+            err(v, loc_value(v, c),
+                "%g x %g pixels is too large (at most 16 Mpixel = 16777216 per view)",
+                side[0], side[1]);
+            pop(v, saved);
         }
         if ((c = member(r, "window")) != NULL) {
             saved = push_key(v, "window");
