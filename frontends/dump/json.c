@@ -16,6 +16,10 @@ static cJSON *number(double x)
     char b[40];
     if (!isfinite(x))
         return cJSON_CreateNull();
+    /* negative zero as -0.0: a reader that maps "-0" to the integer 0
+     * (Python's json) would lose its sign */
+    if (x == 0.0 && signbit(x))
+        return cJSON_CreateRaw("-0.0");
     rbsf_format_double(b, sizeof b, x);
     return cJSON_CreateRaw(b);
 }

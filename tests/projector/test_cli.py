@@ -305,6 +305,22 @@ class CliTests(Base):
         self.assertEqual([w[1:] if w.startswith("'") else w for w in written],
                          names)
 
+    def test_negative_zero_keeps_its_sign(self):
+        # -0.0 in: "-0" in CSV, "-0.0" in JSON (json.loads maps "-0" to the
+        # integer 0, whose sign is gone); both read back as -0.0
+        bodies = [{"name": "ball", "type": "sphere", "radius": 0.1, "mass": 1,
+                   "position": [-0.0, 0, 5]}]
+        s = self.scene("negz.json", bodies=bodies)
+        r = self.rbsim("run", s, "--csv", "z.csv", "--json", "z.jsonl",
+                       "--steps", "1")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        x_csv = float(self.read_csv(self.path("z.csv"))[0][4])
+        with open(self.path("z.jsonl")) as f:
+            x_json = json.loads(f.readline())["bodies"][0]["position"][0]
+        self.assertIsInstance(x_json, float)
+        self.assertEqual(math.copysign(1.0, x_csv), -1.0)
+        self.assertEqual(math.copysign(1.0, x_json), -1.0)
+
     def test_json_lines_valid_and_equal_to_csv(self):
         s = self.scene()
         r = self.rbsim("run", s, "--csv", "a.csv", "--json", "a.jsonl",
