@@ -364,9 +364,9 @@ static rbs_status parse_camera(const cJSON *obj, const char *where,
                 return fail(err, errlen, "%soffset: shorter than 1e-100 m (too "
                             "close to the body to aim), got [%g, %g, %g]", w,
                             cam->offset.x, cam->offset.y, cam->offset.z);
-            if (up_sine(cam->offset, (rbs_vec3){0, 0, 0}, cam->up) < 1e-6)
-                return fail(err, errlen, "%soffset: parallel to up; choose "
-                            "another up or offset", w);
+            /* (an offset along up -- the camera straight above or below
+             * its body -- is drawn by the along-up rule of sdl_camera.c,
+             * as check accepts it) */
             cam->has_offset = 1;
         }
         if (cam->mode == RBSF__CAMERA_MOUNTED) {

@@ -152,6 +152,9 @@ static void test_good_entries(void **state)
         "{\"camera\":{\"mode\":\"mounted\",\"mount\":\"ball\",\"offset\":[0,-2,1]}}",
         "{\"camera\":{\"mode\":\"free\"}}",
         "{\"camera\":{\"mount\":\"ball\",\"offset\":[0,-2,1]}}",
+        /* straight above its body, along up: the along-up rule draws it,
+         * as check accepts it */
+        "{\"camera\":{\"mount\":\"ball\",\"offset\":[0,0,3]}}",
         "{\"camera\":{\"fov\":1e-6,\"up\":[0,1e-300,1e-300]}}",
         "{\"views\":[{},{\"mode\":\"free\"},{\"position\":[0,-3,0],\"target\":[0,0,0]},"
         "{\"path\":[{\"t\":0,\"position\":[0,-1,0],\"target\":[0,0,0]}]}]}",
