@@ -804,6 +804,65 @@ static void loosest_slop_still_stops_tunnelling(void **state)
     }
 }
 
+/* A ball on top of a fixed sphere, nudged, leaves the surface where the
+ * normal force vanishes: with its centre on a circle of radius L = R + r,
+ * m g cos(t) = m v^2 / L, and energy gives v^2.
+ *   frictionless: v^2 = 2 g L (1 - cos t) + v0^2, so cos t = 2/3 + v0^2/(3 g L);
+ *   rolling (solid, v = w r): (7/10) v^2 = g L (1 - cos t) + (7/10) v0^2, so
+ *   cos t = 10/17 + 7 v0^2/(17 g L)
+ * (Meriam & Kraige; the rolling case holds while mu_s >= 2 sin t / (17 cos t
+ * - 10), which mu = 1e3 keeps to within 1e-4 of the departure).  The
+ * departure is the last step a contact holds the ball (touching or resting).
+ * Tolerance 3e-4 in cos t: two steps of the angle, v dt / L = 1.9e-4 rad at
+ * dt = 1e-4 s, times sin t <= 0.81. */
+static double departure_cos(rbs_method method, double mu)
+{
+    rbs_world *w = make_world(4, 1e-4, -9.81, 0.0);
+    rbs_material_id m = {0, 0};
+    rbs_body_id big, b;
+    rbs_sphere_def s;
+    double last = -2.0;
+    int k;
+    CHECK_OK(rbs_world_set_method(w, method, 0.0));
+    if (mu > 0.0)
+        m = material(w, "m", mu, mu, 0.0);
+    rbs_sphere_def_init(&s);
+    s.radius = 1.0;
+    s.fixed = 1;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &big));
+    b = ball(w, 0.1, 1.0, 0.0, 0.0, 1.1, 0.01, 0.0, 0.0, m);
+    for (k = 0; k < 32000; ++k) {
+        rbs_step_info info;
+        rbs_body_state st;
+        CHECK_OK(rbs_world_step(w, &info));
+        st = state_of(w, b);
+        if (info.contacts == 0 && info.resting == 0 && k > 100)
+            break;
+        last = st.position.z / sqrt(st.position.x * st.position.x + st.position.z * st.position.z);
+    }
+    assert_true(k < 32000); /* it left (rolling: at t = 2.62 s) */
+    (void)big;
+    rbs_world_destroy(w);
+    return last;
+}
+
+static void ball_leaves_a_sphere_where_the_normal_force_vanishes(void **state)
+{
+    const double L = 1.1, g = 9.81, v0 = 0.01;
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE};
+    int i;
+    (void)state;
+    for (i = 0; i < 2; ++i) {
+        double slide = departure_cos(methods[i], 0.0), roll = departure_cos(methods[i], 1e3);
+        printf("%s: cos at departure, sliding %.6f (exact %.6f), rolling %.6f (exact %.6f)\n",
+               rbs_method_name(methods[i]), slide, 2.0 / 3.0 + v0 * v0 / (3.0 * g * L), roll,
+               10.0 / 17.0 + 7.0 * v0 * v0 / (17.0 * g * L));
+        assert_true(fabs(slide - (2.0 / 3.0 + v0 * v0 / (3.0 * g * L))) < 3e-4);
+        assert_true(fabs(roll - (10.0 / 17.0 + 7.0 * v0 * v0 / (17.0 * g * L))) < 3e-4);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -831,6 +890,7 @@ int main(void)
         cmocka_unit_test(impact_inside_the_reach_bounces),
         cmocka_unit_test(slop_accepts_shallow_impacts),
         cmocka_unit_test(loosest_slop_still_stops_tunnelling),
+        cmocka_unit_test(ball_leaves_a_sphere_where_the_normal_force_vanishes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
