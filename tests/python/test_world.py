@@ -159,6 +159,30 @@ def test_body_setters_and_state():
     assert w.velocities[ball.slot].tolist() == [1.0, 2.0, 3.0]
 
 
+def test_body_inertia_and_centre_of_mass():
+    # I about the centre: 2/5 m r^2 (solid), 2/3 m r^2 (hollow); about a
+    # centre of mass offset c along x (parallel-axis rule): I - m c^2 on
+    # the y and z axes, unchanged on x.
+    w = rbsim.World(max_bodies=4)
+    solid = w.add_sphere("solid", radius=0.2, mass=3.0, position=(0, 0, 1))
+    hollow = w.add_sphere("hollow", radius=0.2, mass=3.0, inertia="hollow",
+                          position=(1, 0, 1))
+    off = w.add_sphere("off", radius=0.2, mass=3.0, center_of_mass=(0.05, 0, 0),
+                       position=(2, 0, 1))
+    floor = w.add_plane("floor")
+    i0 = 0.4 * 3.0 * 0.2 ** 2
+    assert np.allclose(solid.inertia, np.diag([i0] * 3), rtol=1e-15, atol=0)
+    assert np.allclose(hollow.inertia, np.diag([3.0 * 0.04 * 2 / 3] * 3), rtol=1e-15, atol=0)
+    assert solid.center_of_mass.tolist() == [0.0, 0.0, 0.0]
+    assert off.center_of_mass.tolist() == [0.05, 0.0, 0.0]
+    want = np.diag([i0, i0 - 3.0 * 0.05 ** 2, i0 - 3.0 * 0.05 ** 2])
+    assert np.allclose(off.inertia, want, rtol=1e-14, atol=0)
+    assert floor.inertia.tolist() == [[0.0] * 3] * 3
+    w.remove_body(off)
+    with pytest.raises(rbsim.StaleIdError):
+        off.inertia
+
+
 def test_remove_body_makes_handles_stale():
     w = make_world()
     ball = w.bodies["ball"]

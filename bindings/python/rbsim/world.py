@@ -267,6 +267,17 @@ class Body:
         return float(self._world._body_state(self._bid()).mass)
 
     @property
+    def center_of_mass(self) -> np.ndarray:
+        """Offset of the centre of mass from the centre, body frame, m."""
+        return self._world._body_inertia(self._bid())[0]
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """Inertia tensor about the centre of mass, body frame, kg m^2
+        (3 x 3, a copy; zeros for planes)."""
+        return self._world._body_inertia(self._bid())[1]
+
+    @property
     def normal(self) -> np.ndarray:
         """Outward unit normal (planes)."""
         s = self._world._body_state(self._bid())  # keep the owner alive
@@ -663,6 +674,15 @@ class World:
         self._query("body {%d, %d}: removed, or not of this world" % bid,
                     lib.rbs_body_get_state, cid[0], out)
         return out
+
+    def _body_inertia(self, bid: Tuple[int, int]) -> Tuple[np.ndarray, np.ndarray]:
+        cid = ffi.new("rbs_body_id *")
+        cid.index, cid.generation = bid
+        com = ffi.new("rbs_vec3 *")
+        tensor = ffi.new("double[9]")
+        self._query("body {%d, %d}: removed, or not of this world" % bid,
+                    lib.rbs_body_get_inertia, cid[0], com, tensor)
+        return _vec3(com[0]), np.array(list(tensor), dtype=np.float64).reshape(3, 3)
 
     def _set_vec(self, fn: Any, body: Body, value: Vector, what: str) -> None:
         v = _check.vector(value, what)
