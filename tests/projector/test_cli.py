@@ -9,6 +9,7 @@ import json
 import math
 import os
 import resource
+import shutil
 import signal
 import struct
 import subprocess
@@ -546,6 +547,22 @@ class CliTests(Base):
         self.assertIn("frame 10 of 1000", out)
         self.assertIn("paused", out)
         self.assertEqual(self.assert_whole_frames(self.path("p.csv")), 11)
+
+    def test_readme_examples_run(self):
+        # Every "$R ..." line of the README's "Using it" block, run as
+        # written in a copy of scenes/ (one of them once named a scene the
+        # method it asked for refuses, and exited 4).
+        top = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        with open(os.path.join(top, "README.md")) as f:
+            text = f.read()
+        block = text.split("## Using it", 1)[1].split("```sh", 1)[1].split("```", 1)[0]
+        lines = [l.split("#", 1)[0].split()[1:] for l in block.splitlines()
+                 if l.startswith("$R ")]
+        self.assertGreaterEqual(len(lines), 8)
+        shutil.copytree(os.path.join(top, "scenes"), self.path("scenes"))
+        for args in lines:
+            r = self.rbsim(*args, timeout=300)
+            self.assertEqual(r.returncode, 0, (args, r.stderr))
 
     def test_convert_round_trip(self):
         s = self.scene()
