@@ -65,6 +65,63 @@ static void old_shorter_defs_get_defaults(void **state)
     rbs_world_destroy(w);
 }
 
+/* A struct_size that ends inside a field (no header version has it: every
+ * sizeof is a multiple of the alignment of doubles and pointers) is
+ * refused, never read half from the caller and half from the defaults. */
+static void struct_size_inside_a_field_is_rejected(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_sphere_def s;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.dt = 0.5;
+    d.struct_size = 28; /* inside dt */
+    assert_int_equal(rbs_world_create(&d, &w), RBS_E_INVALID);
+    assert_null(w);
+    w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_sphere_def_init(&s);
+    s.name = "n";
+    s.struct_size = 12; /* inside the name pointer */
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    {
+        rbs_body_id id;
+        assert_int_equal(rbs_world_body_at(w, 0, &id), RBS_E_NOT_FOUND); /* nothing added */
+    }
+    rbs_world_destroy(w);
+}
+
+/* rbs_world_set_dt changes the steps after it, not the time before: a
+ * ball at 1 m/s without gravity, 100 steps of 1 ms then 10 of 10 ms, is at
+ * x = 0.2 m at t = 0.2 s (before, the time was recomputed as 110 * 10 ms);
+ * a checkpoint keeps the time. */
+static void set_dt_keeps_the_elapsed_time(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 0.5), *r = NULL;
+    rbs_body_id b = ball(w, 0.1, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, (rbs_material_id){0, 0});
+    size_t n;
+    unsigned char *buf;
+    (void)state;
+    step_n(w, 100);
+    assert_true(fabs(rbs_world_time(w) - 0.1) < 1e-15);
+    CHECK_OK(rbs_world_set_dt(w, 0.01));
+    assert_true(fabs(rbs_world_time(w) - 0.1) < 1e-15);
+    step_n(w, 10);
+    assert_true(fabs(rbs_world_time(w) - 0.2) < 1e-15);
+    assert_true(fabs(state_of(w, b).position.x - rbs_world_time(w)) < 1e-14);
+    CHECK_OK(rbs_world_set_dt(w, 0.01)); /* the same dt: nothing moves */
+    assert_true(fabs(rbs_world_time(w) - 0.2) < 1e-15);
+    n = rbs_world_checkpoint_size(w);
+    buf = malloc(n);
+    assert_non_null(buf);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, n, NULL));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &r));
+    assert_true(rbs_world_time(r) == rbs_world_time(w));
+    free(buf);
+    rbs_world_destroy(r);
+    rbs_world_destroy(w);
+}
+
 static void uninitialised_def_is_rejected(void **state)
 {
     rbs_world_def d;
@@ -542,6 +599,8 @@ int main(void)
         cmocka_unit_test(method_names_round_trip),
         cmocka_unit_test(old_shorter_defs_get_defaults),
         cmocka_unit_test(uninitialised_def_is_rejected),
+        cmocka_unit_test(struct_size_inside_a_field_is_rejected),
+        cmocka_unit_test(set_dt_keeps_the_elapsed_time),
         cmocka_unit_test(create_in_caller_memory),
         cmocka_unit_test(capacity_error_leaves_world_unchanged),
         cmocka_unit_test(contact_capacity_error_keeps_state),

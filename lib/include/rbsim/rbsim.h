@@ -424,11 +424,13 @@ typedef struct rbs_step_info {
  * last good state.  info may be NULL.  Allocates nothing. */
 RBS_API rbs_status rbs_world_step(rbs_world *world, rbs_step_info *info);
 
-/** Simulated time, s (= step count * dt). */
+/** Simulated time, s: step count * dt, each step counted with the dt it
+ * was taken with (rbs_world_set_dt changes the steps after it only). */
 RBS_API double rbs_world_time(const rbs_world *world);
 /** Steps taken since creation (or the checkpoint's count). */
 RBS_API uint64_t rbs_world_step_count(const rbs_world *world);
-/** Change the step size, s (> 0). */
+/** Change the step size, s (finite, > 0) for the steps from now on; the
+ * time elapsed so far is kept. */
 RBS_API rbs_status rbs_world_set_dt(rbs_world *world, double dt);
 /** Change the method and its tolerance (tolerance <= 0 keeps the current). */
 RBS_API rbs_status rbs_world_set_method(rbs_world *world, rbs_method method,

@@ -22,6 +22,7 @@
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,7 +34,7 @@
 /* The arrays are the world's block verbatim, so the version changes with
  * its layout: 1 lost the warm table's extent; 2 carried it; 3 has contacts
  * of 136 bytes (levers along n, the pair's row) and a default pair row; 4
- * adds the name index. */
+ * adds the name index and the time base of rbs_world_set_dt. */
 #define CKPT_VERSION 4u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
@@ -51,6 +52,8 @@ typedef struct counters {
     uint32_t slots, bodies, free_count, materials, pairs, contacts_high;
     uint32_t warm_used; /* the warm-start table's part in use (version 2) */
     uint32_t reserved;  /* 0 */
+    double time_base;   /* the time at step_base (version 4: rbs_world_set_dt) */
+    uint64_t step_base;
 } counters;
 
 static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n)
@@ -92,6 +95,8 @@ rbs_status rbs_world_checkpoint_write(const rbs_world *w, void *buf, size_t size
     h.arrays = (uint64_t)(w->bytes - arrays_offset());
     memset(&c, 0, sizeof c);
     c.step_count = w->step_count;
+    c.time_base = w->time_base;
+    c.step_base = w->step_base;
     c.slots = w->slots;
     c.bodies = w->bodies;
     c.free_count = w->free_count;
@@ -164,6 +169,11 @@ static rbs_status ckpt_check(const unsigned char *in, size_t size, rbs_world_def
     }
     memcpy(def, in + sizeof h, sizeof *def);
     memcpy(c, in + sizeof h + sizeof *def, sizeof *c);
+    if (!isfinite(c->time_base) || c->step_base > c->step_count) {
+        snprintf(msg, len, "its time base is not a time (%g s at step %llu of %llu)", c->time_base,
+                 (unsigned long long)c->step_base, (unsigned long long)c->step_count);
+        return RBS_E_CORRUPT;
+    }
     *arrays = h.arrays;
     return RBS_OK;
 }
@@ -198,6 +208,8 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     memcpy((unsigned char *)w + arrays_offset(),
            in + sizeof(header) + sizeof(rbs_world_def) + sizeof(counters), (size_t)arrays);
     w->step_count = c.step_count;
+    w->time_base = c.time_base;
+    w->step_base = c.step_base;
     w->slots = c.slots;
     w->bodies = c.bodies;
     w->free_count = c.free_count;

@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "core/world_internal.h"
@@ -18,11 +19,21 @@
 
 /* Copy a caller's def (whose first member is its struct_size) over a fully
  * defaulted one, taking only the bytes the caller's header knew about. */
+/* Every def holds doubles and pointers, so the sizeof of any version of
+ * one is a multiple of their alignment; a struct_size that is not ends
+ * inside a field (half a name pointer, half of dt) and is refused. */
+struct def_align_double { char c; double d; };
+struct def_align_pointer { char c; void *p; };
+#define DEF_ALIGN                                                                              \
+    (offsetof(struct def_align_double, d) > offsetof(struct def_align_pointer, p)              \
+         ? offsetof(struct def_align_double, d)                                                \
+         : offsetof(struct def_align_pointer, p))
+
 static int def_read(void *dst, size_t dst_size, const void *src)
 {
     uint32_t size;
     memcpy(&size, src, sizeof size);
-    if (size < sizeof(uint32_t) || size > 65536u)
+    if (size < sizeof(uint32_t) || size > 65536u || size % DEF_ALIGN != 0)
         return 0;
     memcpy(dst, src, size < dst_size ? size : dst_size);
     ((uint32_t *)dst)[0] = (uint32_t)dst_size;
@@ -1218,7 +1229,7 @@ double rbs_world_time(const rbs_world *w)
 {
     if (w == NULL || w->magic != WORLD_MAGIC)
         return 0.0;
-    return (double)w->step_count * w->def.dt;
+    return w->time_base + (double)(w->step_count - w->step_base) * w->def.dt;
 }
 
 uint64_t rbs_world_step_count(const rbs_world *w)
@@ -1232,7 +1243,12 @@ rbs_status rbs_world_set_dt(rbs_world *w, double dt)
         return RBS_E_INVALID;
     if (!(dt > 0.0) || !isfinite(dt))
         FAIL(w, RBS_E_INVALID, "dt must be finite and > 0, got %g", dt);
-    w->def.dt = dt;
+    if (dt != w->def.dt) {
+        /* the time so far stays: the new step counts from here */
+        w->time_base = rbs_world_time(w);
+        w->step_base = w->step_count;
+        w->def.dt = dt;
+    }
     return RBS_OK;
 }
 

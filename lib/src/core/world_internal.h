@@ -96,6 +96,10 @@ struct rbs_world {
     char error[RBS__ERROR_MAX];
 
     uint64_t step_count;
+    double time_base;   /* simulated time at step step_base, s: the time is
+                           time_base + (step_count - step_base) dt, so that
+                           rbs_world_set_dt changes only the steps after it */
+    uint64_t step_base;
     uint32_t slots;       /* high-water mark of used slots */
     uint32_t bodies;      /* live bodies */
     uint32_t free_count;  /* entries in free_list */
