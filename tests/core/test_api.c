@@ -122,6 +122,44 @@ static void set_dt_keeps_the_elapsed_time(void **state)
     rbs_world_destroy(w);
 }
 
+/* Values a double cannot carry are named for what they are; a NULL def
+ * sets the error text too; a colour is 0xRRGGBB, not masked; a finite
+ * quaternion or normal whose norm overflows is still a direction. */
+static void messages_name_the_real_cause(void **state)
+{
+    rbs_world *w = make_world(8, 1e-3, -9.81, 0.5);
+    rbs_sphere_def s;
+    rbs_plane_def p;
+    rbs_body_id id;
+    (void)state;
+    rbs_sphere_def_init(&s);
+    s.radius = 1e-300;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "underflow or overflow"));
+    assert_int_equal(rbs_world_add_sphere(w, NULL, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "def is NULL"));
+    assert_int_equal(rbs_world_set_pair(w, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "def is NULL"));
+    rbs_sphere_def_init(&s);
+    s.color = 0x1000000u;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "0xRRGGBB"));
+    rbs_sphere_def_init(&s);
+    s.orientation.w = 1e300;
+    s.orientation.x = 1e300; /* norm overflows; a 90-degree turn about x */
+    s.orientation.y = s.orientation.z = 0.0;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    assert_true(fabs(state_of(w, id).orientation.w - sqrt(0.5)) < 1e-15);
+    assert_true(fabs(state_of(w, id).orientation.x - sqrt(0.5)) < 1e-15);
+    rbs_plane_def_init(&p);
+    p.normal.x = 1e300;
+    p.normal.y = 1e300;
+    p.normal.z = 0.0;
+    CHECK_OK(rbs_world_add_plane(w, &p, &id));
+    assert_true(fabs(state_of(w, id).normal.x - sqrt(0.5)) < 1e-15);
+    rbs_world_destroy(w);
+}
+
 static void uninitialised_def_is_rejected(void **state)
 {
     rbs_world_def d;
@@ -601,6 +639,7 @@ int main(void)
         cmocka_unit_test(uninitialised_def_is_rejected),
         cmocka_unit_test(struct_size_inside_a_field_is_rejected),
         cmocka_unit_test(set_dt_keeps_the_elapsed_time),
+        cmocka_unit_test(messages_name_the_real_cause),
         cmocka_unit_test(create_in_caller_memory),
         cmocka_unit_test(capacity_error_leaves_world_unchanged),
         cmocka_unit_test(contact_capacity_error_keeps_state),

@@ -2,6 +2,7 @@
  * world.c - world creation in one memory block, bodies, materials, state
  * access and diagnostics.
  */
+#include <float.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -605,9 +606,11 @@ rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
     rbs_pair_def d;
     int64_t a, b;
     uint32_t p;
-    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+    if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     w->error[0] = '\0';
+    if (def == NULL)
+        FAIL(w, RBS_E_INVALID, "set_pair: def is NULL");
     rbs_pair_def_init(&d);
     if (!def_read(&d, sizeof d, def))
         FAIL(w, RBS_E_INVALID, "pair def not initialised (use rbs_pair_def_init)");
@@ -829,13 +832,16 @@ static rbs_status take_slot(rbs_world *w, const char *kind, rbs_body_type type, 
         FAIL(w, RBS_E_STALE_ID, "%s: unknown material id", kind);
     if (texture < RBS_TEXTURE_NONE || texture > RBS_TEXTURE_CHECKER)
         FAIL(w, RBS_E_INVALID, "%s texture %d is not a rbs_texture", kind, (int)texture);
+    if (color > 0xffffffu)
+        FAIL(w, RBS_E_INVALID, "%s color 0x%lx is not 0xRRGGBB (at most 0xffffff)", kind,
+             (unsigned long)color);
     s = slot_take(w);
     if (s == UINT32_MAX)
         FAIL(w, RBS_E_CAPACITY, "%s: world holds at most %u bodies", kind, (unsigned)w->def.max_bodies);
     w->type[s] = type;
     w->fixed[s] = 1;
     w->material[s] = (uint32_t)mat;
-    w->color[s] = color & 0xffffffu;
+    w->color[s] = color;
     w->texture[s] = texture;
     /* A free slot holds zeros (the block starts zeroed; remove_body clears
      * what it wrote), so only what differs from zero is written: the
@@ -875,9 +881,11 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     rbs_status st;
     int k;
 
-    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+    if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     w->error[0] = '\0';
+    if (def == NULL)
+        FAIL(w, RBS_E_INVALID, "add_sphere: def is NULL");
     rbs_sphere_def_init(&d);
     if (!def_read(&d, sizeof d, def))
         FAIL(w, RBS_E_INVALID, "sphere def not initialised (use rbs_sphere_def_init)");
@@ -904,9 +912,18 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         !v3_finite(t))
         FAIL(w, RBS_E_NUMERIC, "sphere: position, velocities, centre of mass, force and torque must be finite");
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
+    if (!isfinite(q.w) || !isfinite(q.x) || !isfinite(q.y) || !isfinite(q.z))
+        FAIL(w, RBS_E_NUMERIC, "sphere orientation must be finite");
     qn = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (!(qn > 0.0) || !isfinite(qn))
-        FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero finite quaternion");
+    if (!(qn > 1e-150) || !isfinite(qn)) {
+        /* a finite quaternion whose norm overflows or underflows (1e300,
+         * 1e-200) is still a rotation: scaled by its largest component
+         * first (only then, so that ordinary input rounds as before) */
+        double big = fmax(fmax(fabs(q.w), fabs(q.x)), fmax(fabs(q.y), fabs(q.z)));
+        if (!(big > 0.0))
+            FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero quaternion");
+        q.w /= big; q.x /= big; q.y /= big; q.z /= big;
+    }
     q = q_normalize(q);
     if (!(v3_len(c) < d.radius))
         FAIL(w, RBS_E_INVALID, "sphere centre of mass offset %g must be < radius %g", v3_len(c), d.radius);
@@ -930,6 +947,10 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     default:
         FAIL(w, RBS_E_INVALID, "sphere inertia_kind %d is not a rbs_inertia_kind", (int)d.inertia_kind);
     }
+    if (!(I[0] >= DBL_MIN && I[4] >= DBL_MIN && I[8] >= DBL_MIN) || !isfinite(I[0] + I[4] + I[8]))
+        FAIL(w, RBS_E_INVALID,
+             "sphere moments of inertia (%g, %g, %g kg m^2 from radius %g m, mass %g kg) underflow or "
+             "overflow a double", I[0], I[4], I[8], d.radius, mass);
     /* Parallel-axis rule: move the inertia from the centre to the COM. */
     c2 = v3_dot(c, c);
     {
@@ -994,9 +1015,11 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
     double len;
     uint32_t s;
     rbs_status st;
-    if (w == NULL || w->magic != WORLD_MAGIC || def == NULL)
+    if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     w->error[0] = '\0';
+    if (def == NULL)
+        FAIL(w, RBS_E_INVALID, "add_plane: def is NULL");
     rbs_plane_def_init(&d);
     if (!def_read(&d, sizeof d, def))
         FAIL(w, RBS_E_INVALID, "plane def not initialised (use rbs_plane_def_init)");
@@ -1006,9 +1029,19 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
     n = v3_make(d.normal.x, d.normal.y, d.normal.z);
     if (!v3_finite(p) || !v3_finite(n))
         FAIL(w, RBS_E_NUMERIC, "plane point and normal must be finite");
-    len = v3_len(n);
-    if (!(len > 0.0) || !isfinite(len))
-        FAIL(w, RBS_E_INVALID, "plane normal must be nonzero");
+    {
+        /* scaled by its largest component first: a finite normal whose
+         * length would overflow or underflow (1e300, 1e-200) is still a
+         * direction */
+        double big = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
+        if (!(big > 0.0))
+            FAIL(w, RBS_E_INVALID, "plane normal must be nonzero");
+        len = v3_len(n);
+        if (!(len > 1e-150) || !isfinite(len)) { /* (only then: ordinary input rounds as before) */
+            n = v3_scale(n, 1.0 / big);
+            len = v3_len(n);
+        }
+    }
     n = v3_scale(n, 1.0 / len);
     st = take_slot(w, "plane", RBS_BODY_PLANE, d.material, d.texture, d.color, d.name, &s);
     if (st != RBS_OK)
