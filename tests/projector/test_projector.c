@@ -59,6 +59,7 @@ static rbs_world *make_world(void)
 
 typedef struct rec_opts {
     int fail_check, fail_create, fail_draw_at, fail_finish;
+    int draw_code; /* what draw returns at fail_draw_at (0: RBS_E_IO) */
     int quit_at;          /* send "quit" through control at this frame, -1 */
     int live;
     int *created, *destroyed; /* counters shared by the test */
@@ -138,7 +139,7 @@ static rbs_status rec_draw(void *instance, const rbs_frame *f, char *err,
     }
     if (r->opts.fail_draw_at >= 0 && f->number == (uint64_t)r->opts.fail_draw_at) {
         snprintf(err, errlen, "disk on fire");
-        return RBS_E_IO;
+        return r->opts.draw_code != 0 ? (rbs_status)r->opts.draw_code : RBS_E_IO;
     }
     if (r->count < r->cap) {
         r->numbers[r->count] = f->number;
@@ -592,6 +593,26 @@ static void failing_draw_stops_the_run(void **state)
         assert_int_equal(fx.ctx.made[0]->numbers[k], k);
     assert_int_equal(fx.ctx.made[0]->finished, 1);
     assert_int_equal(fx.other.made[0]->finished, 1);
+    fx_done(&fx);
+}
+
+/* A draw that returns a code that is no rbs_status (a renderer's own 5)
+ * ends the run with RBS_E_RENDERER naming the code, never with 5. */
+static void foreign_draw_code_is_a_renderer_error(void **state)
+{
+    fixture fx;
+    rbs_run_info info;
+    (void)state;
+    fx_init(&fx, "good", "bad");
+    fx.other.opts.fail_draw_at = 3;
+    fx.other.opts.draw_code = 5;
+    fx.cfg[1].path = "x.out";
+    fx.def.steps = 100;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_RENDERER);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "draw returned 5, not an rbs_status"));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_int_equal(info.result, RBS_E_RENDERER);
     fx_done(&fx);
 }
 
@@ -1168,6 +1189,7 @@ int main(void)
         cmocka_unit_test(failing_check_creates_nothing),
         cmocka_unit_test(failing_create_destroys_the_others),
         cmocka_unit_test(failing_draw_stops_the_run),
+        cmocka_unit_test(foreign_draw_code_is_a_renderer_error),
         cmocka_unit_test(failing_finish_is_reported),
         cmocka_unit_test(numerical_failure_stops_the_run),
         cmocka_unit_test(commands_steer_the_run),

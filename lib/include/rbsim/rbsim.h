@@ -228,7 +228,10 @@ typedef struct rbs_sphere_def {
     rbs_vec3 velocity;          /**< velocity of the centre of mass, m/s */
     rbs_vec3 angular_velocity;  /**< rad/s, world frame */
     rbs_vec3 center_of_mass;    /**< offset from the centre, body frame, m;
-                                     |c| < radius */
+                                     |c| < radius, and the inertia about
+                                     the COM must stay positive definite
+                                     (solid: |c| < sqrt(2/5) r = 0.632 r,
+                                     hollow: sqrt(2/3) r = 0.816 r) */
     rbs_vec3 force;             /**< constant applied force at the COM, N, world */
     rbs_vec3 torque;            /**< constant applied torque, N m, world */
     rbs_material_id material;   /**< null: no material (matches only "*") */
@@ -287,16 +290,24 @@ RBS_API size_t rbs_world_memory_size(const rbs_world_def *def);
 
 /** Build a world inside caller memory of at least rbs_world_memory_size()
  * bytes, aligned to 16.  The caller owns the buffer and frees it after
- * rbs_world_destroy().  No other memory is taken, now or later.  The whole
- * buffer is written (zeroed) here, so every page of it is resident from the
- * start: the choice for a program that must not take a page fault while
- * stepping. */
+ * rbs_world_destroy().  No other memory is taken, now or later -- except by
+ * the adaptive method, whose GSL workspaces GSL allocates (malloc) when a
+ * world is created with or switched to it.  The first
+ * rbs_world_memory_size() bytes of the buffer are written (zeroed) here
+ * (bytes past them are not touched), so every page the world uses is
+ * resident from the start: the choice for a program that must not take a
+ * page fault while stepping. */
 RBS_API rbs_status rbs_world_create_in(void *buffer, size_t bytes,
                                        const rbs_world_def *def,
                                        rbs_world **out);
 
-/** Allocate exactly once (calloc of rbs_world_memory_size() bytes) and build
- * a world there.  Free with rbs_world_destroy().  Stepping allocates nothing;
+/** Allocate exactly once (calloc of rbs_world_memory_size() bytes; the
+ * adaptive method's GSL workspaces besides, as for rbs_world_create_in) and
+ * build a world there.  Free with rbs_world_destroy().  GSL's default error
+ * handler aborts when its allocator fails; a program that must survive that
+ * turns it off once at start (gsl_set_error_handler_off(), process-wide: its
+ * decision, not the library's), and the failure is then RBS_E_MEMORY.
+ * Stepping allocates nothing;
  * the operating system backs the block's pages as they are first written, so
  * resident memory is what the run uses (capacity never reached costs
  * address space only). */
@@ -370,7 +381,7 @@ typedef struct rbs_body_state {
     rbs_vec3 angular_velocity; /**< rad/s */
     rbs_vec3 normal;           /**< planes only */
     double radius;             /**< spheres only, m */
-    double mass;               /**< kg; 0 for planes and fixed spheres' inverse */
+    double mass;               /**< kg as given (fixed spheres too); 0 for planes */
     rbs_vec3 force, torque;
     rbs_material_id material;
     uint32_t color;
@@ -389,8 +400,10 @@ RBS_API rbs_status rbs_body_get_state(const rbs_world *world, rbs_body_id id,
  * thread changes the world. */
 RBS_API rbs_status rbs_body_get_inertia(const rbs_world *world, rbs_body_id id,
                                         rbs_vec3 *center_of_mass, double inertia[9]);
-/** Setters: finite values only (RBS_E_NUMERIC otherwise, world unchanged).
- * Moving a body into overlap is allowed; the next step separates it. */
+/** Setters: finite values only (RBS_E_NUMERIC otherwise, world unchanged);
+ * RBS_E_STALE_ID for a stale id; the velocity setters refuse a body that
+ * does not move (a plane or fixed sphere: RBS_E_INVALID).  Moving a body
+ * into overlap is allowed; the next step separates it. */
 RBS_API rbs_status rbs_body_set_position(rbs_world *world, rbs_body_id id, rbs_vec3 p);
 RBS_API rbs_status rbs_body_set_orientation(rbs_world *world, rbs_body_id id, rbs_quat q);
 RBS_API rbs_status rbs_body_set_velocity(rbs_world *world, rbs_body_id id, rbs_vec3 v);

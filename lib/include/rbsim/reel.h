@@ -101,7 +101,9 @@ typedef struct rbs_reel rbs_reel;
 
 /** Create a reel of `capacity` frames (>= 2), each with room for
  * `max_bodies` (>= 1) bodies; all memory is reserved here, none later.
- * RBS_E_INVALID for bad arguments, RBS_E_MEMORY if out of memory. */
+ * RBS_E_INVALID for bad arguments, RBS_E_CAPACITY if capacity x
+ * max_bodies is beyond what one allocation can hold, RBS_E_MEMORY if out of
+ * memory. */
 RBS_API rbs_status rbs_reel_create(uint32_t capacity, uint32_t max_bodies,
                                    rbs_reel_policy policy, rbs_reel **out);
 /** Free a reel (no thread may be using it).  NULL ok. */
@@ -163,6 +165,8 @@ typedef struct rbs_renderer_class {
     rbs_status (*create)(void *context, const rbs_renderer_config *config,
                          const rbs_world *world, void **instance, char *err,
                          size_t errlen);
+    /** RBS_OK, or an rbs_status with a message in err (a code that is no
+     * rbs_status ends the run as RBS_E_RENDERER, naming it). */
     rbs_status (*draw)(void *instance, const rbs_frame *frame, char *err,
                        size_t errlen);
     rbs_status (*finish)(void *instance, char *err, size_t errlen);

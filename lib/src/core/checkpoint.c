@@ -334,8 +334,11 @@ rbs_status rbs_world_load(const char *path, rbs_world **out, char *message, size
     rbs_status st;
     if (out)
         *out = NULL;
-    if (path == NULL || out == NULL)
+    if (path == NULL || out == NULL) {
+        if (message && message_size > 0)
+            snprintf(message, message_size, "%s is NULL", path == NULL ? "path" : "out");
         return RBS_E_INVALID;
+    }
     f = fopen(path, "rb");
     if (f == NULL) {
         snprintf(msg, sizeof msg, "%s: cannot open: %s", path, strerror(errno));

@@ -593,6 +593,13 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
             continue;
         err[0] = '\0';
         st = r->cls->draw(r->instance, f, err, sizeof err);
+        if (st != RBS_OK && strcmp(rbs_status_name(st), "UNKNOWN") == 0) {
+            /* not an rbs_status (a renderer's own code): the run's result
+             * must be one */
+            fail(p, RBS_E_RENDERER, "%s: frame %llu: draw returned %d, not an rbs_status%s%s",
+                 r->label, (unsigned long long)f->number, (int)st, err[0] ? ": " : "", err);
+            return -1;
+        }
         if (st != RBS_OK) {
             fail(p, st == RBS_E_INVALID ? RBS_E_RENDERER : st,
                  "%s: frame %llu: %s", r->label,
