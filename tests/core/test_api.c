@@ -120,6 +120,24 @@ static void set_dt_keeps_the_elapsed_time(void **state)
     free(buf);
     rbs_world_destroy(r);
     rbs_world_destroy(w);
+    /* a time that overflowed (steps of a huge dt) is still a checkpoint's
+     * time (the fuzzer found it refused as corrupt) */
+    w = make_world(4, 1e-3, 0.0, 0.5);
+    (void)ball(w, 0.1, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, (rbs_material_id){0, 0});
+    step_n(w, 1);
+    CHECK_OK(rbs_world_set_dt(w, 1e308));
+    step_n(w, 2);
+    CHECK_OK(rbs_world_set_dt(w, 1.0));
+    assert_true(isinf(rbs_world_time(w)));
+    n = rbs_world_checkpoint_size(w);
+    buf = malloc(n);
+    assert_non_null(buf);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, n, NULL));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &r));
+    assert_true(isinf(rbs_world_time(r)));
+    free(buf);
+    rbs_world_destroy(r);
+    rbs_world_destroy(w);
 }
 
 /* Values a double cannot carry are named for what they are; a NULL def
