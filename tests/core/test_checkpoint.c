@@ -175,7 +175,10 @@ static void save_keeps_devices_and_links(void **state)
     assert_int_equal(rbs_world_save(a, fifo), RBS_E_IO);
     assert_int_equal(lstat(fifo, &sb), 0);
     assert_true(S_ISFIFO(sb.st_mode));
-    assert_int_equal(rbs_world_save(a, dir), RBS_E_IO); /* a folder */
+    assert_int_equal(rbs_world_save_v2(a, dir, msg, sizeof msg), RBS_E_IO); /* a folder */
+    assert_non_null(strstr(msg, "is a folder"));
+    assert_int_equal(rbs_world_save_v2(a, fifo, msg, sizeof msg), RBS_E_IO);
+    assert_non_null(strstr(msg, "not a regular file"));
     assert_int_equal(lstat(dir, &sb), 0);
     assert_true(S_ISDIR(sb.st_mode));
     assert_int_equal(symlink(real, link), 0);

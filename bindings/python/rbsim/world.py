@@ -18,8 +18,6 @@ Design notes
 
 from __future__ import annotations
 
-import os
-import stat
 import threading
 from dataclasses import dataclass
 from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
@@ -76,24 +74,6 @@ def _quat(q: Any) -> np.ndarray:
 
 def _set_vec3(dst: Any, v: Tuple[float, ...]) -> None:
     dst.x, dst.y, dst.z = v
-
-
-def _save_reason(raw: bytes) -> str:
-    """Why rbs_world_save refused a path, as far as the file system says
-    (the C call returns a status only)."""
-    try:
-        st = os.stat(raw)
-    except FileNotFoundError:
-        via = " (the folder of the file its symbolic link names)" if os.path.islink(raw) else ""
-        folder = os.path.dirname(os.path.realpath(raw)) or b"."
-        if not os.path.isdir(folder):
-            return ": its folder does not exist%s" % via
-        return ": its folder is not writable" if not os.access(folder, os.W_OK) else ""
-    except OSError as exc:
-        return ": %s" % exc.strerror
-    if not stat.S_ISREG(st.st_mode):
-        return ": exists and is not a regular file (a folder, device or FIFO is never replaced)"
-    return ""
 
 
 def _str(p: Any) -> str:
@@ -1186,14 +1166,14 @@ class World:
         """Save a checkpoint to a file atomically (a crash mid-write leaves
         any previous file intact); restore it with :meth:`World.restore`."""
         raw = _check.path(path, "path")
+        msg = ffi.new("char[]", 600)
         w = self._acquire()
         try:
-            status = lib.rbs_world_save(w, raw)
+            status = lib.rbs_world_save_v2(w, raw, msg, 600)
         finally:
             self._lock.release()
         if status != lib.RBS_OK:
-            raise _e.error_class(status)("cannot save %s%s" % (raw.decode("utf-8", "replace"),
-                                                               _save_reason(raw)))
+            raise _e.error_class(status)("cannot save %s" % _str(msg))
 
     def explain(self) -> str:
         """The pipeline a step runs for this world as it is now: bodies,

@@ -529,6 +529,11 @@ RBS_API rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size
  * it points to is written (created if missing) and the link kept.
  * Reads the world only: safe while no thread steps it. */
 RBS_API rbs_status rbs_world_save(const rbs_world *world, const char *path);
+/** rbs_world_save, and on failure "PATH: REASON" (the file that could not
+ * be written -- a link's target -- and why) in message (message_size
+ * bytes, NUL-terminated; "" on success).  message may be NULL. */
+RBS_API rbs_status rbs_world_save_v2(const rbs_world *world, const char *path, char *message,
+                                     size_t message_size);
 
 /** Load a world saved by rbs_world_save().  On error *out is NULL and, when
  * message is not NULL, the reason is written there. */

@@ -262,7 +262,15 @@ char *rbs__link_target(const char *path)
     return NULL;
 }
 
-rbs_status rbs_world_save(const rbs_world *w, const char *path)
+/* "PATH: why" into message (if any), and st. */
+static rbs_status save_fail(char *message, size_t size, rbs_status st, const char *path, const char *why)
+{
+    if (message != NULL && size > 0)
+        snprintf(message, size, "%s: %s", path, why);
+    return st;
+}
+
+rbs_status rbs_world_save_v2(const rbs_world *w, const char *path, char *message, size_t message_size)
 {
     size_t n = rbs_world_checkpoint_size(w), len;
     unsigned char *buf;
@@ -270,18 +278,25 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
     int fd;
     struct stat sb;
     rbs_status st = RBS_OK;
+    const char *why = NULL;
+    if (message != NULL && message_size > 0)
+        message[0] = '\0';
     if (n == 0 || path == NULL || path[0] == '\0')
-        return RBS_E_INVALID;
+        return save_fail(message, message_size, RBS_E_INVALID, path ? path : "(null)",
+                         n == 0 ? "not a world" : "no path");
     /* The rename would replace whatever the path names: refuse what is
      * not a regular file (a device such as /dev/null, a FIFO, a folder);
      * through a symbolic link, write the file it points to (the link
      * stays). */
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
-        return RBS_E_IO;
+        return save_fail(message, message_size, RBS_E_IO, path,
+                         S_ISDIR(sb.st_mode) ? "is a folder, not a regular file"
+                                             : "exists and is not a regular file (never replaced)");
     if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
         target = rbs__link_target(path);
         if (target == NULL)
-            return RBS_E_IO; /* a loop, or out of memory */
+            return save_fail(message, message_size, RBS_E_IO, path,
+                             "a loop of symbolic links (or out of memory)");
         path = target;
     }
     len = strlen(path);
@@ -291,14 +306,16 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
     if (buf == NULL || tmp == NULL) {
         free(buf);
         free(tmp);
+        st = save_fail(message, message_size, RBS_E_MEMORY, path, "out of memory");
         free(target);
-        return RBS_E_MEMORY;
+        return st;
     }
     rbs_world_checkpoint_write(w, buf, n, NULL);
     snprintf(tmp, len + 16, "%s.tmp%ld", path, (long)getpid());
     fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd < 0) {
         st = RBS_E_IO;
+        why = errno == ENOENT ? "its folder does not exist" : strerror(errno);
     } else {
         size_t at = 0;
         while (at < n) {
@@ -307,23 +324,37 @@ rbs_status rbs_world_save(const rbs_world *w, const char *path)
                 continue;
             if (k <= 0) {
                 st = RBS_E_IO;
+                why = k < 0 ? strerror(errno) : "no room to write";
                 break;
             }
             at += (size_t)k;
         }
-        if (st == RBS_OK && fsync(fd) != 0)
+        if (st == RBS_OK && fsync(fd) != 0) {
             st = RBS_E_IO;
-        if (close(fd) != 0)
+            why = strerror(errno);
+        }
+        if (close(fd) != 0 && st == RBS_OK) {
             st = RBS_E_IO;
-        if (st == RBS_OK && rename(tmp, path) != 0)
+            why = strerror(errno);
+        }
+        if (st == RBS_OK && rename(tmp, path) != 0) {
             st = RBS_E_IO;
+            why = strerror(errno);
+        }
         if (st != RBS_OK)
             unlink(tmp);
     }
+    if (st != RBS_OK)
+        (void)save_fail(message, message_size, st, path, why ? why : "cannot be written");
     free(buf);
     free(tmp);
     free(target);
     return st;
+}
+
+rbs_status rbs_world_save(const rbs_world *w, const char *path)
+{
+    return rbs_world_save_v2(w, path, NULL, 0);
 }
 
 rbs_status rbs_world_load(const char *path, rbs_world **out, char *message, size_t message_size)
