@@ -435,46 +435,50 @@ rbs_status rbs_world_get_def(const rbs_world *w, rbs_world_def *out)
 /* Materials                                                                 */
 /* ------------------------------------------------------------------------- */
 
-/* 1 if s is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates
- * or code points above U+10FFFF), so names written to JSON frames and
- * read by Python are always text. */
-static int utf8_ok(const unsigned char *s)
+size_t rbs__utf8_seq(const char *text, size_t len, size_t i)
 {
-    while (*s) {
-        unsigned c = *s, n, k;
-        uint32_t cp;
-        if (c < 0x80) {
-            s++;
-            continue;
-        }
-        if (c >= 0xc2 && c <= 0xdf) {
-            n = 1;
-            cp = c & 0x1f;
-        } else if (c >= 0xe0 && c <= 0xef) {
-            n = 2;
-            cp = c & 0x0f;
-        } else if (c >= 0xf0 && c <= 0xf4) {
-            n = 3;
-            cp = c & 0x07;
-        } else {
-            return 0;
-        }
-        for (k = 1; k <= n; ++k) {
-            if ((s[k] & 0xc0) != 0x80)
-                return 0; /* (also stops at the NUL) */
-            cp = (cp << 6) | (s[k] & 0x3fu);
-        }
-        if ((n == 2 && (cp < 0x800 || (cp >= 0xd800 && cp <= 0xdfff))) ||
-            (n == 3 && (cp < 0x10000 || cp > 0x10ffff)))
-            return 0;
-        s += n + 1;
+    const unsigned char *s = (const unsigned char *)text;
+    unsigned char c = s[i], lo = 0x80, hi = 0xBF;
+    size_t n, k;
+    if (c < 0x80) {
+        return 1;
     }
-    return 1;
+    if (c >= 0xC2 && c <= 0xDF) {
+        n = 2;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        lo = c == 0xE0 ? 0xA0 : 0x80; /* no overlong forms */
+        hi = c == 0xED ? 0x9F : 0xBF; /* no surrogates */
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        lo = c == 0xF0 ? 0x90 : 0x80;
+        hi = c == 0xF4 ? 0x8F : 0xBF; /* at most U+10FFFF */
+    } else {
+        return 0;
+    }
+    if (len - i < n) {
+        return 0;
+    }
+    for (k = 1; k < n; k++) {
+        unsigned char b = s[i + k];
+        if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) {
+            return 0;
+        }
+    }
+    return n;
 }
 
 static int name_ok(const char *name)
 {
-    return name != NULL && strlen(name) < RBS_NAME_MAX && utf8_ok((const unsigned char *)name);
+    size_t len, i, n;
+    if (name == NULL || (len = strlen(name)) >= RBS_NAME_MAX)
+        return 0;
+    /* UTF-8 (RFC 3629), so that names written to JSON frames and read by
+     * Python are always text */
+    for (i = 0; i < len; i += n)
+        if ((n = rbs__utf8_seq(name, len, i)) == 0)
+            return 0;
+    return 1;
 }
 
 rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_id *out)

@@ -354,6 +354,12 @@ void rbs__heap_sort(void *base, uint32_t n, size_t size, rbs__greater_fn greater
  * rename then lands on the link's target and the link stays. */
 char *rbs__link_target(const char *path);
 
+/* Length in bytes of the well-formed UTF-8 sequence at text[i] (i < len),
+ * or 0 if it is not one (RFC 3629: no overlong forms, surrogates or code
+ * points above U+10FFFF).  Body and material names (world.c) and scene
+ * text (scene_json.c, scene_text.c) are checked with it. */
+size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
+
 /* Forces (step.c). */
 void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
 

@@ -173,10 +173,7 @@ int rbs__posmap_init(rbs__posmap *map, size_t expected);
 void rbs__posmap_fini(rbs__posmap *map);
 int rbs__posmap_put(rbs__posmap *map, const rbs__pos *pos);
 const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item);
-/** Length in bytes of the well-formed UTF-8 sequence at text[i] (i < len), or
- * 0 if it is not one (RFC 3629: no overlong forms, surrogates or code points
- * above U+10FFFF). */
-size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
+/* rbs__utf8_seq: core/world_internal.h (names are checked there too) */
 
 /* scene_json.c: JSON text -> tree + positions */
 /** Parse JSON text into *tree with positions for every item (file index

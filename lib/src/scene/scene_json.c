@@ -12,6 +12,7 @@
  * "C" locale (set per thread by the callers, see rbs__c_locale_push).
  */
 #include "scene/scene_internal.h"
+#include "core/world_internal.h" /* rbs__utf8_seq */
 
 #include <stdio.h>
 #include <stdlib.h>

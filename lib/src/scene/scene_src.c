@@ -162,35 +162,3 @@ const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item)
     return NULL;
 }
 
-size_t rbs__utf8_seq(const char *text, size_t len, size_t i)
-{
-    const unsigned char *s = (const unsigned char *)text;
-    unsigned char c = s[i], lo = 0x80, hi = 0xBF;
-    size_t n, k;
-    if (c < 0x80) {
-        return 1;
-    }
-    if (c >= 0xC2 && c <= 0xDF) {
-        n = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-        n = 3;
-        lo = c == 0xE0 ? 0xA0 : 0x80; /* no overlong forms */
-        hi = c == 0xED ? 0x9F : 0xBF; /* no surrogates */
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        n = 4;
-        lo = c == 0xF0 ? 0x90 : 0x80;
-        hi = c == 0xF4 ? 0x8F : 0xBF; /* at most U+10FFFF */
-    } else {
-        return 0;
-    }
-    if (len - i < n) {
-        return 0;
-    }
-    for (k = 1; k < n; k++) {
-        unsigned char b = s[i + k];
-        if (b < (k == 1 ? lo : 0x80) || b > (k == 1 ? hi : 0xBF)) {
-            return 0;
-        }
-    }
-    return n;
-}

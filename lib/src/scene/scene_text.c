@@ -13,6 +13,7 @@
  * booleans, anything else is a string.
  */
 #include "scene/scene_internal.h"
+#include "core/world_internal.h" /* rbs__utf8_seq */
 
 #include <stdio.h>
 #include <stdlib.h>
