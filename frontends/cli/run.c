@@ -469,8 +469,28 @@ static char *resolve_links(const char *path)
     return NULL;
 }
 
-/* Two names for one file (the same text, or an existing file reached twice,
- * e.g. "a.csv" and "./a.csv"). */
+/* The folder of path into out (n bytes): "." for a bare name, "/" for a
+ * name at the root; the name after it into *name (if not NULL).  -1 if it
+ * does not fit. */
+static int folder_of(const char *path, char *out, size_t n, const char **name)
+{
+    const char *slash = strrchr(path, '/');
+    size_t len = slash ? (size_t)(slash - path) : 0;
+    if (name)
+        *name = slash ? slash + 1 : path;
+    if (len + 2 > n)
+        return -1;
+    if (slash == NULL)
+        strcpy(out, ".");
+    else if (len == 0)
+        strcpy(out, "/");
+    else {
+        memcpy(out, path, len);
+        out[len] = '\0';
+    }
+    return 0;
+}
+
 /* Where a path leads: an existing file's device and inode; for a new file,
  * its folder's, plus the name.  0 if neither can be found. */
 typedef struct file_key {
@@ -482,33 +502,22 @@ typedef struct file_key {
 static int key_of(const char *path, file_key *k)
 {
     struct stat sb;
-    const char *slash = strrchr(path, '/');
     char dir[4096];
-    size_t n = slash ? (size_t)(slash - path) : 0;
     if (stat(path, &sb) == 0) {
         k->dev = sb.st_dev;
         k->ino = sb.st_ino;
         k->name = NULL;
         return 1;
     }
-    if (n >= sizeof dir)
-        return 0;
-    if (slash == NULL)
-        strcpy(dir, ".");
-    else if (n == 0)
-        strcpy(dir, "/");
-    else {
-        memcpy(dir, path, n);
-        dir[n] = '\0';
-    }
-    if (stat(dir, &sb) != 0)
+    if (folder_of(path, dir, sizeof dir, &k->name) != 0 || stat(dir, &sb) != 0)
         return 0;
     k->dev = sb.st_dev;
     k->ino = sb.st_ino;
-    k->name = slash ? slash + 1 : path;
     return 1;
 }
 
+/* Two names for one file (the same text, or an existing file reached twice,
+ * e.g. "a.csv" and "./a.csv"). */
 static int same_file(const char *a, const char *b)
 {
     file_key ka, kb;
@@ -592,9 +601,8 @@ static int png_folder_writes(const char *dir, const char *json,
                              const char *path, const char **what)
 {
     char parent[4096], grand[4096];
-    const char *slash = strrchr(path, '/'), *name, *gslash;
+    const char *name, *vname;
     int views = 1, tile = 0, sheet = 1;
-    size_t n;
     cJSON *root = json ? cJSON_Parse(json) : NULL;
     if (root != NULL) {
         const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "views");
@@ -606,18 +614,8 @@ static int png_folder_writes(const char *dir, const char *json,
         sheet = !cJSON_IsFalse(c);
         cJSON_Delete(root);
     }
-    name = slash ? slash + 1 : path;
-    n = slash ? (size_t)(slash - path) : 0;
-    if (n >= sizeof parent)
+    if (folder_of(path, parent, sizeof parent, &name) != 0)
         return 0;
-    if (slash == NULL)
-        strcpy(parent, ".");
-    else if (n == 0)
-        strcpy(parent, "/");
-    else {
-        memcpy(parent, path, n);
-        parent[n] = '\0';
-    }
     if (same_dir(parent, dir)) {
         if (sheet && strcmp(name, "contact_sheet.png") == 0) {
             *what = "contact_sheet.png";
@@ -632,9 +630,9 @@ static int png_folder_writes(const char *dir, const char *json,
     /* DIR/viewK/frame_NNNNNN.png */
     if (views == 1 || tile || !is_frame_png(name))
         return 0;
-    gslash = strrchr(parent, '/');
+    if (folder_of(parent, grand, sizeof grand, &vname) != 0)
+        return 0;
     {
-        const char *vname = gslash ? gslash + 1 : parent;
         char *end;
         unsigned long k;
         if (strncmp(vname, "view", 4) != 0 || vname[4] < '0' || vname[4] > '9' ||
@@ -643,14 +641,6 @@ static int png_folder_writes(const char *dir, const char *json,
         k = strtoul(vname + 4, &end, 10);
         if (*end != '\0' || k >= (unsigned long)views)
             return 0;
-    }
-    if (gslash == NULL)
-        strcpy(grand, ".");
-    else if (gslash == parent)
-        strcpy(grand, "/");
-    else {
-        memcpy(grand, parent, (size_t)(gslash - parent));
-        grand[gslash - parent] = '\0';
     }
     if (!same_dir(grand, dir))
         return 0;
