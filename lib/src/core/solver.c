@@ -18,93 +18,7 @@
  */
 #include <string.h>
 
-#include "core/world_internal.h"
-
-/* K u for the pair: (1/ma + 1/mb) u + (Ia^-1 (ra x u)) x ra + (Ib^-1 (rb x u)) x rb. */
-static v3 k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
-{
-    v3 r = v3_scale(u, w->inv_mass[c->a] + w->inv_mass[c->b]), t;
-    if (w->inv_mass[c->a] != 0.0) {
-        v3 ra = rbs__contact_ra(w, c);
-        rbs__body_inv_inertia_world(w, c->a, v3_cross(ra, u), &t);
-        r = v3_add(r, v3_cross(t, ra));
-    }
-    if (w->inv_mass[c->b] != 0.0) {
-        v3 rb = rbs__contact_rb(w, c);
-        rbs__body_inv_inertia_world(w, c->b, v3_cross(rb, u), &t);
-        r = v3_add(r, v3_cross(t, rb));
-    }
-    return r;
-}
-
-/* The relative velocity at a contact, and an impulse on its pair (j on a,
- * -j on b).  With both levers along n (no off-centre mass: no RBS__OFF flag)
- *     v_rel = v_a - v_b + (la w_a - lb w_b) x n,
- *     dw_a = I_a^-1 (la (n x j)),  dw_b = I_b^-1 (-lb (n x j)):
- * one cross product each instead of two; the fast sweep below makes the
- * same operations, so the two sweeps agree bit for bit. */
-static inline v3 along_rel_velocity(const rbs__contact *c, v3 va, v3 wa, v3 vb, v3 wb)
-{
-    return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, c->la), v3_scale(wb, c->lb)), c->n));
-}
-
-static v3 rel_velocity(const rbs_world *w, const rbs__contact *c)
-{
-    if (!(c->flags & RBS__OFF))
-        return along_rel_velocity(c, v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
-                                  v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
-    return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
-                  rbs__point_velocity(w, c->b, rbs__contact_rb(w, c)));
-}
-
-static void apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
-{
-    if (!(c->flags & RBS__OFF)) {
-        v3 t = v3_cross(c->n, j);
-        rbs__apply_impulse_torque(w, c->a, j, v3_scale(t, c->la));
-        rbs__apply_impulse_torque(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
-        return;
-    }
-    rbs__apply_impulse(w, c->a, rbs__contact_ra(w, c), j);
-    rbs__apply_impulse(w, c->b, rbs__contact_rb(w, c), v3_scale(j, -1.0));
-}
-
-/* Tangential impulse that stops the slip vt (in the tangent plane): solves
- * the 2x2 system K_tt j = -vt in the basis (t1 = vt/|vt|, t2 = n x t1). */
-static v3 stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
-{
-    double s = v3_len(vt), k11, k12, k21, k22, det, j1, j2;
-    v3 t1, t2, kt1, kt2;
-    if (!(s > 0.0))
-        return v3_make(0, 0, 0);
-    if (c->kt_inv > 0.0)
-        return v3_scale(vt, -c->kt_inv); /* isotropic tangent plane */
-    t1 = v3_scale(vt, 1.0 / s);
-    t2 = v3_cross(c->n, t1);
-    kt1 = k_apply(w, c, t1);
-    kt2 = k_apply(w, c, t2);
-    k11 = v3_dot(t1, kt1);
-    k12 = v3_dot(t1, kt2);
-    k21 = v3_dot(t2, kt1);
-    k22 = v3_dot(t2, kt2);
-    det = k11 * k22 - k12 * k21;
-    if (k12 == 0.0 && k21 == 0.0) {
-        /* the common case (centred spheres): decoupled */
-        j1 = -s / k11;
-        j2 = 0.0;
-    } else {
-        j1 = -s * k22 / det;
-        j2 = s * k21 / det;
-    }
-    return v3_add(v3_scale(t1, j1), v3_scale(t2, j2));
-}
-
-/* Tangential part of the relative velocity at a contact. */
-static v3 slip(const rbs_world *w, const rbs__contact *c)
-{
-    v3 v = rel_velocity(w, c);
-    return v3_mad(v, c->n, -v3_dot(v, c->n));
-}
+#include "core/rows.h"
 
 /* One collision impulse at a contact approaching at vn < 0: the normal
  * impulse that makes it leave at -e vn, then Coulomb friction. */
@@ -112,20 +26,20 @@ void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
 {
     const rbs__pair *p = rbs__contact_pair(w, c);
     double jn = -(1.0 + c->e) * vn / c->kn;
-    apply_pair(w, c, v3_scale(c->n, jn));
+    rbs__apply_pair(w, c, v3_scale(c->n, jn));
     if (w->plan.friction && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
-        v3 vt = slip(w, c);
-        v3 jt = stick_impulse(w, c, vt);
+        v3 vt = rbs__slip(w, c);
+        v3 jt = rbs__stick_impulse(w, c, vt);
         double l = v3_len(jt);
         if (l > p->mu_s * jn)
             jt = v3_scale(jt, p->mu_k * jn / l);
-        apply_pair(w, c, jt);
+        rbs__apply_pair(w, c, jt);
     }
 }
 
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c)
 {
-    return v3_dot(rel_velocity(w, c), c->n);
+    return v3_dot(rbs__rel_velocity(w, c), c->n);
 }
 
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
@@ -136,7 +50,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
         c->jn = 0.0; /* used as a "collided" mark here */
         /* a speculative contact approaching as an impact (the test a
          * touching one gets below, on the velocities before any impulse) */
-        c->bias = (c->flags & RBS__APART) && v3_dot(rel_velocity(w, c), c->n) < -c->thr ? -1.0 : 0.0;
+        c->bias = (c->flags & RBS__APART) && v3_dot(rbs__rel_velocity(w, c), c->n) < -c->thr ? -1.0 : 0.0;
     }
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
         int active = 0;
@@ -145,7 +59,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
             double vn;
             if (c->flags & RBS__APART)
                 continue; /* speculative: not touching */
-            vn = v3_dot(rel_velocity(w, c), c->n);
+            vn = v3_dot(rbs__rel_velocity(w, c), c->n);
             if (!(vn < -c->thr) || vn >= 0.0)
                 continue;
             rbs__collide(w, c, vn);
@@ -320,7 +234,7 @@ static void shock_propagation(rbs_world *w)
         for (k = 0; k < n; ++k) {
             rbs__contact *c = &w->contact[order[k]];
             double vn, kk;
-            vn = v3_dot(rel_velocity(w, c), c->n) + c->bias; /* (jn > 0: bias >= 0) */
+            vn = v3_dot(rbs__rel_velocity(w, c), c->n) + c->bias; /* (jn > 0: bias >= 0) */
             if (!(vn < 0.0))
                 continue;
             if (level[c->a] > level[c->b]) {
@@ -343,27 +257,17 @@ void rbs__solve_resting(rbs_world *w, rbs_step_info *info)
     rbs__solve_resting_warm(w, info, 0.0);
 }
 
-/* The two sweeps below share their arithmetic through these helpers, so
- * they agree bit for bit.  normal_row: the accumulated normal impulse that
- * cancels the approach vn beyond the contact's bias, the approach a
- * speculative contact may keep (Jn >= 0; a touching contact's bias is 0,
- * which leaves vn the same number).  cone: the accumulated
- * friction impulse jt + stick kept within Coulomb's cone (|Jt| <= mu_s Jn
- * sticks, else mu_k Jn against the slip). */
+/* The two sweeps below share their arithmetic through these helpers (and
+ * rows.h's), so they agree bit for bit.  normal_row: the accumulated normal
+ * impulse that cancels the approach vn beyond the contact's bias, the
+ * approach a speculative contact may keep (Jn >= 0; a touching contact's
+ * bias is 0, which leaves vn the same number). */
 static inline double normal_row(const rbs__contact *c, double vn)
 {
     double jn_new = c->jn - (vn + c->bias) / c->kn;
     return jn_new < 0.0 ? 0.0 : jn_new;
 }
 
-static inline v3 cone(const rbs__contact *c, const rbs__pair *p, v3 stick)
-{
-    v3 cand = v3_add(c->jt, stick);
-    double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
-    if (l2 > lim * lim) /* (a square root only to slide) */
-        cand = v3_scale(cand, p->mu_k * c->jn / sqrt(l2));
-    return cand;
-}
 
 /* One Gauss-Seidel sweep over every contact (any body, any resistance).
  * *change: the largest velocity change, m/s (the sweep keeps its square:
@@ -382,7 +286,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
-        rv = rel_velocity(w, c);
+        rv = rbs__rel_velocity(w, c);
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -406,12 +310,12 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 vt = v3_mad(rv, c->n, -vn);
             } else {
                 if (push)
-                    apply_pair(w, c, j);
+                    rbs__apply_pair(w, c, j);
                 push = 0;
-                vt = slip(w, c);
+                vt = rbs__slip(w, c);
             }
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                v3 cand = cone(c, p, stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
+                v3 cand = rbs__cone(c, p, rbs__stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
@@ -420,7 +324,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
             }
         }
         if (push)
-            apply_pair(w, c, j);
+            rbs__apply_pair(w, c, j);
         if (!friction || c->jn == 0.0)
             continue;
         if (p->rolling > 0.0 || p->spinning > 0.0) {
@@ -479,7 +383,6 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
  * slot: v, w, 1/m, 1/I) instead of reading five arrays per impulse.  The
  * arithmetic is sweep_generic's, operation for operation, so results are
  * bit-identical; fast_eligible says when it applies. */
-#define SB(w, i) (&(w)->solver_body[RBS__SOLVER_STRIDE * (i)])
 
 static int fast_eligible(const rbs_world *w, int friction)
 {
@@ -500,7 +403,7 @@ static int fast_eligible(const rbs_world *w, int friction)
 
 static void gather_body(rbs_world *w, uint32_t i)
 {
-    double *b = SB(w, i);
+    double *b = RBS__SB(w, i);
     memcpy(b, &w->vel[3 * i], 3 * sizeof(double));
     memcpy(b + 3, &w->avel[3 * i], 3 * sizeof(double));
     b[6] = w->inv_mass[i];
@@ -509,7 +412,7 @@ static void gather_body(rbs_world *w, uint32_t i)
 
 static void scatter_body(rbs_world *w, uint32_t i)
 {
-    const double *b = SB(w, i);
+    const double *b = RBS__SB(w, i);
     if (b[6] == 0.0)
         return; /* impulses never change a body that does not move */
     memcpy(&w->vel[3 * i], b, 3 * sizeof(double));
@@ -535,22 +438,6 @@ static void gather_scatter(rbs_world *w, void (*fn)(rbs_world *, uint32_t))
         fn(w, w->planes[i]);
 }
 
-/* rbs__apply_impulse_torque and apply_pair on gathered bodies. */
-static inline void sb_apply(double *b, v3 j, v3 tau)
-{
-    if (b[6] == 0.0)
-        return;
-    v3_store(b, v3_mad(v3_load(b), j, b[6]));
-    v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(tau, b[7])));
-}
-
-static inline void sb_apply_pair(double *ba, double *bb, const rbs__contact *c, v3 j)
-{
-    v3 t = v3_cross(c->n, j);
-    sb_apply(ba, j, v3_scale(t, c->la));
-    sb_apply(bb, v3_scale(j, -1.0), v3_scale(t, -c->lb));
-}
-
 static int sweep_fast(rbs_world *w, int friction, double *change_out, double *total_out)
 {
     uint32_t i;
@@ -559,13 +446,13 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
-        double *ba = SB(w, c->a), *bb = SB(w, c->b), jn_new, d, vn;
+        double *ba = RBS__SB(w, c->a), *bb = RBS__SB(w, c->b), jn_new, d, vn;
         v3 rv, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         /* levers along n (fast_eligible: no off-centre mass) */
-        rv = along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
+        rv = rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -585,7 +472,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
                 v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
-                v3 cand = cone(c, p, stick), dj = v3_sub(cand, c->jt);
+                v3 cand = rbs__cone(c, p, stick), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
@@ -594,7 +481,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             }
         }
         if (push)
-            sb_apply_pair(ba, bb, c, j);
+            rbs__sb_apply_pair(ba, bb, c, j);
     }
     *change_out = sqrt(change); /* change held its square */
     *total_out = total;
@@ -635,7 +522,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                     if (v3_len(c->jt) > p->mu_s * c->jn)
                         c->jt = v3_make(0, 0, 0);
                 }
-                apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
+                rbs__apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
                 any = 1;
             }
         }

@@ -1,0 +1,129 @@
+/*
+ * rows.h - the arithmetic of one contact row (internal): the relative
+ * velocity at a contact, an impulse on its pair, the impulse that stops a
+ * slip and Coulomb's cone.  Shared by the resting pass (solver.c) and the
+ * soft step (step_soft.c), so both make the same operations.
+ */
+#ifndef RBS_CORE_ROWS_H
+#define RBS_CORE_ROWS_H
+
+#include "core/world_internal.h"
+
+/* K u for the pair: (1/ma + 1/mb) u + (Ia^-1 (ra x u)) x ra + (Ib^-1 (rb x u)) x rb. */
+static inline v3 rbs__k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
+{
+    v3 r = v3_scale(u, w->inv_mass[c->a] + w->inv_mass[c->b]), t;
+    if (w->inv_mass[c->a] != 0.0) {
+        v3 ra = rbs__contact_ra(w, c);
+        rbs__body_inv_inertia_world(w, c->a, v3_cross(ra, u), &t);
+        r = v3_add(r, v3_cross(t, ra));
+    }
+    if (w->inv_mass[c->b] != 0.0) {
+        v3 rb = rbs__contact_rb(w, c);
+        rbs__body_inv_inertia_world(w, c->b, v3_cross(rb, u), &t);
+        r = v3_add(r, v3_cross(t, rb));
+    }
+    return r;
+}
+
+/* The relative velocity at a contact, and an impulse on its pair (j on a,
+ * -j on b).  With both levers along n (no off-centre mass: no RBS__OFF flag)
+ *     v_rel = v_a - v_b + (la w_a - lb w_b) x n,
+ *     dw_a = I_a^-1 (la (n x j)),  dw_b = I_b^-1 (-lb (n x j)):
+ * one cross product each instead of two; the fast sweep below makes the
+ * same operations, so the two sweeps agree bit for bit. */
+static inline v3 rbs__along_rel_velocity(const rbs__contact *c, v3 va, v3 wa, v3 vb, v3 wb)
+{
+    return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, c->la), v3_scale(wb, c->lb)), c->n));
+}
+
+static inline v3 rbs__rel_velocity(const rbs_world *w, const rbs__contact *c)
+{
+    if (!(c->flags & RBS__OFF))
+        return rbs__along_rel_velocity(c, v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
+                                  v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
+    return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
+                  rbs__point_velocity(w, c->b, rbs__contact_rb(w, c)));
+}
+
+static inline void rbs__apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
+{
+    if (!(c->flags & RBS__OFF)) {
+        v3 t = v3_cross(c->n, j);
+        rbs__apply_impulse_torque(w, c->a, j, v3_scale(t, c->la));
+        rbs__apply_impulse_torque(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
+        return;
+    }
+    rbs__apply_impulse(w, c->a, rbs__contact_ra(w, c), j);
+    rbs__apply_impulse(w, c->b, rbs__contact_rb(w, c), v3_scale(j, -1.0));
+}
+
+/* Tangential impulse that stops the slip vt (in the tangent plane): solves
+ * the 2x2 system K_tt j = -vt in the basis (t1 = vt/|vt|, t2 = n x t1). */
+static inline v3 rbs__stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
+{
+    double s = v3_len(vt), k11, k12, k21, k22, det, j1, j2;
+    v3 t1, t2, kt1, kt2;
+    if (!(s > 0.0))
+        return v3_make(0, 0, 0);
+    if (c->kt_inv > 0.0)
+        return v3_scale(vt, -c->kt_inv); /* isotropic tangent plane */
+    t1 = v3_scale(vt, 1.0 / s);
+    t2 = v3_cross(c->n, t1);
+    kt1 = rbs__k_apply(w, c, t1);
+    kt2 = rbs__k_apply(w, c, t2);
+    k11 = v3_dot(t1, kt1);
+    k12 = v3_dot(t1, kt2);
+    k21 = v3_dot(t2, kt1);
+    k22 = v3_dot(t2, kt2);
+    det = k11 * k22 - k12 * k21;
+    if (k12 == 0.0 && k21 == 0.0) {
+        /* the common case (centred spheres): decoupled */
+        j1 = -s / k11;
+        j2 = 0.0;
+    } else {
+        j1 = -s * k22 / det;
+        j2 = s * k21 / det;
+    }
+    return v3_add(v3_scale(t1, j1), v3_scale(t2, j2));
+}
+
+/* Tangential part of the relative velocity at a contact. */
+static inline v3 rbs__slip(const rbs_world *w, const rbs__contact *c)
+{
+    v3 v = rbs__rel_velocity(w, c);
+    return v3_mad(v, c->n, -v3_dot(v, c->n));
+}
+
+/* The accumulated friction impulse jt + stick kept within Coulomb's cone
+ * (|Jt| <= mu_s Jn sticks, else mu_k Jn against the slip). */
+static inline v3 rbs__cone(const rbs__contact *c, const rbs__pair *p, v3 stick)
+{
+    v3 cand = v3_add(c->jt, stick);
+    double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
+    if (l2 > lim * lim) /* (a square root only to slide) */
+        cand = v3_scale(cand, p->mu_k * c->jn / sqrt(l2));
+    return cand;
+}
+
+/* rbs__apply_impulse_torque and rbs__apply_pair on gathered bodies. */
+static inline void rbs__sb_apply(double *b, v3 j, v3 tau)
+{
+    if (b[6] == 0.0)
+        return;
+    v3_store(b, v3_mad(v3_load(b), j, b[6]));
+    v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(tau, b[7])));
+}
+
+static inline void rbs__sb_apply_pair(double *ba, double *bb, const rbs__contact *c, v3 j)
+{
+    v3 t = v3_cross(c->n, j);
+    rbs__sb_apply(ba, j, v3_scale(t, c->la));
+    rbs__sb_apply(bb, v3_scale(j, -1.0), v3_scale(t, -c->lb));
+}
+
+/* A body's compact record in w->solver_body (RBS__SOLVER_STRIDE doubles a
+ * slot: v, w, 1/m, 1/I), read by the fast sweeps. */
+#define RBS__SB(w, i) (&(w)->solver_body[RBS__SOLVER_STRIDE * (i)])
+
+#endif
