@@ -269,6 +269,58 @@ static inline double normal_row(const rbs__contact *c, double vn)
 }
 
 
+/* Rolling and spinning resistance at contact i (its pair has some, and
+ * Jn > 0): the resisting angular impulses, accumulated in
+ * w->contact_resist[i] and kept within rolling * radius * Jn and
+ * spinning * Jn.  Returns the square of the largest velocity change it made
+ * (as the sweeps measure it), 0 if none. */
+double rbs__resist_row(rbs_world *w, uint32_t i)
+{
+    const rbs__contact *c = &w->contact[i];
+    const rbs__pair *p = rbs__contact_pair(w, c);
+    rbs__resist *rs = &w->contact_resist[i];
+    v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
+    double ws = v3_dot(wrel, c->n);
+    v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
+    double lr = v3_len(wr);
+    if (p->rolling > 0.0 && lr > 0.0) {
+        v3 u = v3_scale(wr, 1.0 / lr), cand;
+        double k = 0.0, lim = p->rolling * rs->radius * c->jn, l;
+        rbs__body_inv_inertia_world(w, c->a, u, &ia);
+        rbs__body_inv_inertia_world(w, c->b, u, &ib);
+        k = v3_dot(u, ia) + v3_dot(u, ib);
+        cand = v3_mad(rs->jroll, u, -lr / k);
+        l = v3_len(cand);
+        if (l > lim)
+            cand = v3_scale(cand, lim / l);
+        dl = v3_add(dl, v3_sub(cand, rs->jroll));
+        rs->jroll = cand;
+    }
+    if (p->spinning > 0.0 && ws != 0.0) {
+        double k, cand, lim = p->spinning * c->jn;
+        rbs__body_inv_inertia_world(w, c->a, c->n, &ia);
+        rbs__body_inv_inertia_world(w, c->b, c->n, &ib);
+        k = v3_dot(c->n, ia) + v3_dot(c->n, ib);
+        cand = rs->jspin - ws / k;
+        if (cand > lim) cand = lim;
+        if (cand < -lim) cand = -lim;
+        dl = v3_mad(dl, c->n, cand - rs->jspin);
+        rs->jspin = cand;
+    }
+    if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
+        double lever = rs->radius > 0.0 ? rs->radius : 1.0;
+        double dl2 = v3_dot(dl, dl) * c->kn * c->kn / (lever * lever); /* squared, as change */
+        rbs__body_inv_inertia_world(w, c->a, dl, &ia);
+        rbs__body_inv_inertia_world(w, c->b, dl, &ib);
+        if (w->inv_mass[c->a] != 0.0)
+            v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
+        if (w->inv_mass[c->b] != 0.0)
+            v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+        return dl2;
+    }
+    return 0.0;
+}
+
 /* One Gauss-Seidel sweep over every contact (any body, any resistance).
  * *change: the largest velocity change, m/s (the sweep keeps its square:
  * no square root a row); *total: the sum of normal
@@ -328,47 +380,9 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
         if (!friction || c->jn == 0.0)
             continue;
         if (p->rolling > 0.0 || p->spinning > 0.0) {
-            rbs__resist *rs = &w->contact_resist[i];
-            v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
-            double ws = v3_dot(wrel, c->n);
-            v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
-            double lr = v3_len(wr);
-            if (p->rolling > 0.0 && lr > 0.0) {
-                v3 u = v3_scale(wr, 1.0 / lr), cand;
-                double k = 0.0, lim = p->rolling * rs->radius * c->jn, l;
-                rbs__body_inv_inertia_world(w, c->a, u, &ia);
-                rbs__body_inv_inertia_world(w, c->b, u, &ib);
-                k = v3_dot(u, ia) + v3_dot(u, ib);
-                cand = v3_mad(rs->jroll, u, -lr / k);
-                l = v3_len(cand);
-                if (l > lim)
-                    cand = v3_scale(cand, lim / l);
-                dl = v3_add(dl, v3_sub(cand, rs->jroll));
-                rs->jroll = cand;
-            }
-            if (p->spinning > 0.0 && ws != 0.0) {
-                double k, cand, lim = p->spinning * c->jn;
-                rbs__body_inv_inertia_world(w, c->a, c->n, &ia);
-                rbs__body_inv_inertia_world(w, c->b, c->n, &ib);
-                k = v3_dot(c->n, ia) + v3_dot(c->n, ib);
-                cand = rs->jspin - ws / k;
-                if (cand > lim) cand = lim;
-                if (cand < -lim) cand = -lim;
-                dl = v3_mad(dl, c->n, cand - rs->jspin);
-                rs->jspin = cand;
-            }
-            if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
-                double lever = rs->radius > 0.0 ? rs->radius : 1.0;
-                double dl2 = v3_dot(dl, dl) * c->kn * c->kn / (lever * lever); /* squared, as change */
-                rbs__body_inv_inertia_world(w, c->a, dl, &ia);
-                rbs__body_inv_inertia_world(w, c->b, dl, &ib);
-                if (w->inv_mass[c->a] != 0.0)
-                    v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
-                if (w->inv_mass[c->b] != 0.0)
-                    v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
-                if (dl2 > change)
-                    change = dl2;
-            }
+            double dl2 = rbs__resist_row(w, i);
+            if (dl2 > change)
+                change = dl2;
         }
     }
     *change_out = sqrt(change); /* change held its square */

@@ -330,6 +330,9 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap);
 double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
+/* Rolling and spinning resistance at contact i, Jn > 0 (solver.c); returns
+ * the square of the velocity change it made, 0 if none. */
+double rbs__resist_row(rbs_world *w, uint32_t i);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
