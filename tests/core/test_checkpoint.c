@@ -133,17 +133,19 @@ static void damaged_checkpoints_are_rejected(void **state)
     buf[n / 2] ^= 0x10;
     assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_CORRUPT);
     buf[n / 2] ^= 0x10;
-    /* another format version: a later one, and versions 2 and 3, whose
+    /* another format version: a later one, and versions 2, 3 and 4, whose
      * blocks were laid out differently (the arrays are the block verbatim:
-     * 2's contacts, 3 without the name index) */
+     * 2's contacts, 3 without the name index, 4 without soft_substeps) */
     {
         unsigned char current = buf[8];
-        assert_int_equal(current, 4);
+        assert_int_equal(current, 5);
         buf[8] = 9;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = 2;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = 3;
+        assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
+        buf[8] = 4;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = current;
     }

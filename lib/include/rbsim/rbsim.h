@@ -126,7 +126,9 @@ typedef enum rbs_method {
     RBS_METHOD_VERLET = 3,    /**< velocity Verlet between contacts */
     RBS_METHOD_RK4 = 4,       /**< classical Runge-Kutta between contacts */
     RBS_METHOD_ADAPTIVE = 5,  /**< GSL odeiv2 with error control */
-    RBS_METHOD_COUNT = 6,
+    RBS_METHOD_SOFT = 6,      /**< fixed sub-steps with soft contacts and a
+                                   restitution pass (piles; docs/methods.md) */
+    RBS_METHOD_COUNT = 7,
     RBS_METHOD_FORCE32 = 0x7fffffff
 } rbs_method;
 
@@ -207,6 +209,11 @@ typedef struct rbs_world_def {
                                    events (event; then RBS_E_UNSUPPORTED), 25x
                                    this many adaptive steps (then
                                    RBS_E_NUMERIC); default 4096, >= 1 */
+    uint32_t soft_substeps;   /**< sub-steps per frame of RBS_METHOD_SOFT, each
+                                   one solve and one relax pass over the
+                                   contacts; default 4, 1 to 1000.  More
+                                   make piles stiffer (less overlap) at a
+                                   cost in proportion (docs/methods.md) */
 } rbs_world_def;
 
 /** Fill a world definition with defaults.  Prefer the rbs_world_def_init macro. */

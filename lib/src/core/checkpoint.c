@@ -7,10 +7,10 @@
  * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
  * precedes it.  Reading checks everything before it builds anything.
  *
- * Format version 4 (little or big endian as written; a reader on the other
+ * Format version 5 (little or big endian as written; a reader on the other
  * byte order rejects it as foreign; see CKPT_VERSION for the earlier ones):
  *   char     magic[8]   "RBSCKPT\0"
- *   uint32   version    4
+ *   uint32   version    5
  *   uint32   endian     0x01020304
  *   uint32   def_size   sizeof(rbs_world_def)
  *   uint32   reserved   0
@@ -34,8 +34,9 @@
 /* The arrays are the world's block verbatim, so the version changes with
  * its layout: 1 lost the warm table's extent; 2 carried it; 3 has contacts
  * of 136 bytes (levers along n, the pair's row) and a default pair row; 4
- * adds the name index and the time base of rbs_world_set_dt. */
-#define CKPT_VERSION 4u
+ * adds the name index and the time base of rbs_world_set_dt; 5 has
+ * rbs_world_def.soft_substeps. */
+#define CKPT_VERSION 5u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

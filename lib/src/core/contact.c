@@ -151,6 +151,7 @@ typedef struct detect_ctx {
     rbs_world *w;
     double dt;
     double reach; /* speculative: a bound on every pair's creep reach, m (0: none) */
+    int swept;    /* rbs__detect_swept: every pair the broad phase reports */
     rbs_status status;
 } detect_ctx;
 
@@ -180,8 +181,10 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     slop = w->def.slop * rmin;
     dist = v3_len(d);
     gap = dist - ra - rb;
-    if (gap > slop && !(gap <= slop + ctx->reach && w->contact_count < w->def.max_contacts))
-        return; /* (a full list takes touching contacts only) */
+    /* (a full list takes touching contacts only; swept: the broad phase's
+     * reaches are the bodies' sweeps, so every pair it reports is one) */
+    if (gap > slop && !((ctx->swept || gap <= slop + ctx->reach) && w->contact_count < w->def.max_contacts))
+        return;
     c = contact_new(w, &ctx->status);
     if (c == NULL)
         return;
@@ -191,21 +194,26 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     rbs__contact_set(w, c, dist, gap);
     rbs__contact_finish(w, c, ctx->dt);
-    if (beyond_reach(c, slop, ctx->dt)) {
+    if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
         w->contact_count--;
         return;
     }
     resist_init(w, c, ra * rb / (ra + rb));
 }
 
-rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
+/* The contacts of the state as it is.  margin (swept only): per slot, how
+ * far the body may move within the step, m; a pair is a contact when its
+ * gap is at most the slop plus both margins (a plane's is 0).  Otherwise
+ * half is half of the creep reach of speculative contacts (0: none). */
+static rbs_status detect(rbs_world *w, double dt, double half, const double *margin)
 {
     uint32_t i, k;
-    double slop_rel = w->def.slop, half = speculative ? creep_bound(w, dt) : 0.0;
+    double slop_rel = w->def.slop;
     detect_ctx ctx;
     ctx.w = w;
     ctx.dt = dt;
     ctx.reach = 2.0 * half;
+    ctx.swept = margin != NULL;
     ctx.status = RBS_OK;
     w->contact_count = 0;
 
@@ -213,7 +221,7 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         v3 pa = v3_load(&w->pos[3 * a]);
-        double ra = w->radius[a];
+        double ra = w->radius[a], reach = margin != NULL ? margin[a] : half;
         if (w->fixed[a])
             continue;
         for (k = 0; k < w->plane_count; ++k) {
@@ -224,7 +232,7 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
             rbs__contact *c;
             /* (a plane does not accelerate: thr <= |a_a| dt; a full list
              * takes touching contacts only) */
-            if (gap > slop && !(gap <= slop + half && w->contact_count < w->def.max_contacts))
+            if (gap > slop && !(gap <= slop + reach && w->contact_count < w->def.max_contacts))
                 continue;
             c = contact_new(w, &ctx.status);
             if (c == NULL)
@@ -234,7 +242,7 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
             c->n = n;
             rbs__contact_set(w, c, 0.0, gap);
             rbs__contact_finish(w, c, dt);
-            if (beyond_reach(c, slop, dt)) {
+            if (margin == NULL && beyond_reach(c, slop, dt)) {
                 w->contact_count--;
                 continue;
             }
@@ -246,13 +254,23 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
         for (i = 0; i < w->sphere_count; ++i) {
             uint32_t a = w->spheres[i];
             memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
-            w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + half;
+            w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + (margin != NULL ? margin[a] : half);
         }
         rbs__broadphase_pairs(w, w->sphere_count, NULL, detect_pair, &ctx);
     }
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;
     return ctx.status;
+}
+
+rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
+{
+    return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL);
+}
+
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin)
+{
+    return detect(w, dt, 0.0, margin);
 }
 
 uint32_t rbs__touching(const rbs_world *w)

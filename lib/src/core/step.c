@@ -168,6 +168,9 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     case RBS_METHOD_EVENT:
         st = rbs__step_event(w, info);
         break;
+    case RBS_METHOD_SOFT:
+        st = rbs__step_soft(w, info);
+        break;
     default:
         st = (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available",
                                                rbs_method_name(w->def.method));
@@ -176,10 +179,12 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     /* Overlap the step did not make (bodies placed overlapping, or left by
      * the rollback floor) is pushed apart now, so the next step starts
      * clean; the report then describes the separated state. */
-    if (st == RBS_OK && (w->overlap_unmeasured || info->max_overlap > w->def.slop * w->plan.min_radius)) {
+    if (st == RBS_OK && w->def.method != RBS_METHOD_SOFT &&
+        (w->overlap_unmeasured || info->max_overlap > w->def.slop * w->plan.min_radius)) {
         /* (separation moves nothing when no overlap exceeds the slop, so a
          * method that did not measure can always take this path; it
-         * reports the deepest overlap of the state it leaves) */
+         * reports the deepest overlap of the state it leaves).  The soft step
+     * pushes overlap out with its contacts' springs and is left alone. */
         double pen;
         rbs__separate(w, &pen);
         info->max_overlap = pen;

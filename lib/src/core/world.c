@@ -66,6 +66,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.softening = 0.0;
     d.prune = 1;
     d.max_substeps = 4096;
+    d.soft_substeps = 4;
     memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
     def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
 }
@@ -175,6 +176,11 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
     }
     if (d.max_substeps < 1) {
         snprintf(msg, len, "max_substeps must be >= 1");
+        return RBS_E_INVALID;
+    }
+    if (d.soft_substeps < 1 || d.soft_substeps > RBS__SOFT_SUBSTEPS_MAX) {
+        snprintf(msg, len, "soft_substeps must be in [1, %u], got %u", (unsigned)RBS__SOFT_SUBSTEPS_MAX,
+                 (unsigned)d.soft_substeps);
         return RBS_E_INVALID;
     }
     if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {

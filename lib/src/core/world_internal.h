@@ -34,7 +34,9 @@ typedef struct rbs__contact {
                       centre to the contact point (minus the centre of mass
                       offset R c when off; rbs__contact_ra, rbs__contact_rb) */
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
-    double thr;    /* approach speed below which the contact is resting, m/s */
+    double thr;    /* approach speed below which the contact is resting, m/s
+                      (the soft step takes its test at the frame's start and
+                      then keeps the effective mass 1 / kn here, kg) */
     double bias;   /* speculative contact (gap > slop): the approach speed
                       the resting pass allows, (gap - slop) / h, or -1 when
                       the pair approaches as an impact (left to the
@@ -54,6 +56,9 @@ typedef struct rbs__contact {
 #define RBS__OFF_B 2u
 #define RBS__OFF (RBS__OFF_A | RBS__OFF_B)
 #define RBS__APART 4u
+#define RBS__TOUCHED 8u  /* soft step: it took a normal impulse this frame */
+#define RBS__BOUNCE 16u  /* soft step: it approached faster than thr at the frame's
+                            start, with e > 0 (the restitution pass takes it) */
 
 /* The rolling and spinning resistance of contact i, beside the contact
  * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
@@ -256,6 +261,11 @@ void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
  * resting approach (slower than thr) closes in one step (see contact.c);
  * only for methods whose resting pass takes them (euler, selective). */
 rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
+/* Contacts for a method that steps with them for a whole frame (soft):
+ * margin[slot] is how far a moving sphere may travel within the frame, m;
+ * every pair whose gap is at most the slop plus the two margins is a
+ * contact (speculative when apart), as long as max_contacts has room. */
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin);
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
@@ -428,8 +438,10 @@ rbs_status rbs__adaptive_reserve(rbs_world *w);
 void rbs__adaptive_release(rbs_world *w);
 rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info);
 rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info);
+rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info);
 
 #define RBS__SAVE_STRIDE 13
+#define RBS__SOFT_SUBSTEPS_MAX 1000u /* rbs_world_def.soft_substeps */
 #define RBS__SOLVER_STRIDE 8   /* doubles per slot of solver_body */
 #define RBS__SCRATCH_STRIDE 40 /* doubles per slot of method_scratch */
 

@@ -1,0 +1,444 @@
+/*
+ * step_soft.c - the soft step: sub-steps with soft contacts, for piles.
+ *
+ * Catto's "soft step" (Box2D v3's solver; E. Catto, "Solver2D", 2024, and
+ * "Soft Constraints", GDC 2011), for spheres and planes.  One frame of dt:
+ *
+ *   detect once, with every pair the bodies' sweeps over the frame can
+ *   close (rbs__detect_swept: margins |v| dt + |a| dt^2);
+ *   for each of SOFT_SUBSTEPS sub-steps of h = dt / SOFT_SUBSTEPS:
+ *     v += a h                      (forces)
+ *     warm start                    (apply the accumulated impulses again)
+ *     solve, with bias              (one Gauss-Seidel pass: soft normal rows
+ *                                    that also push out overlap, rigid
+ *                                    Coulomb friction)
+ *     x += v h                      (positions)
+ *     relax, without bias           (one pass: rigid rows, which take back
+ *                                    the velocity the push gave)
+ *   restitution                     (contacts that were approaching faster
+ *                                    than their resting threshold at the
+ *                                    frame's start leave at e times that)
+ *   store the impulses for the next frame's warm start.
+ *
+ * The separation of a contact during the frame is its gap at detection plus
+ * the bodies' displacement along the normal since then (exact for a plane,
+ * linearised for a pair of spheres).  A contact apart by s > 0 lets its pair
+ * close at s / h and no faster (speculative); a touching one may overlap by
+ * the slop, and deeper overlap is pushed out (at most SOFT_PUSH of the
+ * smaller radius a sub-step, as Box2D caps its push speed) by a damped
+ * spring of frequency
+ * omega = 2 pi SOFT_HERTZ / h and damping ratio SOFT_ZETA, as the soft
+ * constraint's coefficients (Catto 2011) express it for an implicit step:
+ *   bias rate = omega / (2 zeta + h omega),
+ *   mass scale = h omega (2 zeta + h omega) / (1 + h omega (2 zeta + h omega)),
+ *   impulse scale = 1 / (1 + h omega (2 zeta + h omega)).
+ * A body resting under load L (N) on a contact of effective mass m sinks to
+ * about L / (m omega^2) beyond the slop (g / omega^2 = 0.25 um for a ball's
+ * own weight at dt = 1 ms): the compliance that buys convergence in one pass.
+ * Nothing is rolled back and no overlap is projected away (rbs_world_step
+ * leaves it to the method): an impact lands within the sub-step, and the
+ * bounce comes from the restitution pass, with the approach speed of the
+ * frame's start.
+ *
+ * Two body layouts: centred isotropic spheres without rolling or spinning
+ * resistance and without mutual gravity (every pile) are gathered into one
+ * record per slot in w->method_scratch (v, w, 1/m, 1/I, the displacement
+ * and the rotation of the frame) and written back at its end, the rotation
+ * as one turn by the sum of the sub-steps' w h (the order of the sub-steps'
+ * turns is lost: an error of order (|w| dt)^2 in the orientation, which a
+ * centred isotropic sphere's motion never reads).  Every other world steps
+ * on its own arrays through the general rows and integrators.
+ */
+#include <string.h>
+
+#include "core/rows.h"
+
+#define SOFT_HERTZ 0.25 /* contact frequency, as a fraction of the sub-step rate */
+#define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
+#define SOFT_ZETA 10.0  /* damping ratio of the contact spring */
+#define REC 16          /* doubles a slot in the gathered layout */
+/* record: v 0-2, w 3-5, 1/m 6, 1/I 7, displacement 8-10, rotation 11-13,
+ * slop length 14 (def.slop r), push speed limit 15 (SOFT_PUSH r / h); both
+ * infinite for a plane */
+
+typedef struct soft_pass {
+    rbs_world *w;
+    double *rec;          /* gathered records (fast), else NULL */
+    double inv_h;
+    double bias_rate, mass_scale, impulse_scale;
+    int friction;
+    uint32_t restituted;  /* contacts the restitution pass changed */
+} soft_pass;
+
+enum { SOLVE, RELAX, RESTITUTION };
+
+/* The displacement of slot i since the frame's start. */
+static v3 displacement(const soft_pass *sp, uint32_t i)
+{
+    const rbs_world *w = sp->w;
+    if (sp->rec != NULL)
+        return v3_load(&sp->rec[REC * i + 8]);
+    return v3_sub(v3_load(&w->pos[3 * i]), v3_load(&w->step_save[RBS__SAVE_STRIDE * i]));
+}
+
+/* A contact's separation now, m: its gap at detection plus the motion of
+ * its bodies along n. */
+static double separation(const soft_pass *sp, const rbs__contact *c)
+{
+    return c->gap + v3_dot(c->n, v3_sub(displacement(sp, c->a), displacement(sp, c->b)));
+}
+
+static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
+{
+    if (sp->rec != NULL) {
+        const double *ba = &sp->rec[REC * c->a], *bb = &sp->rec[REC * c->b];
+        return rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
+    }
+    return rbs__rel_velocity(sp->w, c);
+}
+
+static void push(soft_pass *sp, const rbs__contact *c, v3 j)
+{
+    if (sp->rec != NULL)
+        rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c, j);
+    else
+        rbs__apply_pair(sp->w, c, j);
+}
+
+/* One pass over the contacts: stage SOLVE (soft, with bias), RELAX (rigid)
+ * or RESTITUTION. */
+static void pass(soft_pass *sp, int stage)
+{
+    rbs_world *w = sp->w;
+    uint32_t i;
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
+        v3 rv = relative_velocity(sp, c), j;
+        double vn = v3_dot(rv, c->n), jn, dj;
+        if (stage == RESTITUTION) {
+            /* c->bias holds the approach speed at the frame's start */
+            if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
+                continue;
+            jn = c->jn - (vn + c->e * c->bias) * c->thr;
+            jn = jn < 0.0 ? 0.0 : jn;
+            if (jn != c->jn) {
+                push(sp, c, v3_scale(c->n, jn - c->jn));
+                c->jn = jn;
+                sp->restituted++;
+            }
+            continue;
+        }
+        {
+            double s = separation(sp, c), slop = rbs__contact_slop(w, c);
+            double most = SOFT_PUSH * slop / w->def.slop * sp->inv_h; /* (the smaller radius, as the slop's) */
+            if (s > 0.0) {
+                /* apart: it may close the gap within the sub-step, no more */
+                dj = -(vn + s * sp->inv_h) * c->thr;
+            } else if (stage == SOLVE) {
+                double over = s + slop < 0.0 ? s + slop : 0.0; /* overlap beyond the slop */
+                double push = sp->bias_rate * over;
+                dj = -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
+            } else {
+                dj = -vn * c->thr;
+            }
+        }
+        jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
+        j = v3_scale(c->n, jn - c->jn);
+        c->jn = jn;
+        if (jn > 0.0)
+            c->flags |= RBS__TOUCHED;
+        if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && (jn > 0.0 || c->jt.x != 0.0 ||
+                                                                 c->jt.y != 0.0 || c->jt.z != 0.0)) {
+            v3 vt, stick, cand;
+            if (sp->rec != NULL) {
+                /* levers along n: the normal impulse leaves the slip as it was */
+                vt = v3_mad(rv, c->n, -vn);
+                stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
+            } else {
+                push(sp, c, j);
+                j = v3_make(0, 0, 0);
+                vt = rbs__slip(w, c);
+                stick = rbs__stick_impulse(w, c, vt);
+            }
+            cand = rbs__cone(c, p, stick);
+            j = v3_add(j, v3_sub(cand, c->jt));
+            c->jt = cand;
+        }
+        push(sp, c, j);
+        if (sp->rec == NULL && sp->friction && jn > 0.0 && (p->rolling > 0.0 || p->spinning > 0.0))
+            (void)rbs__resist_row(w, i);
+    }
+}
+
+/* pass() for the gathered layout: the same rows with the records inline
+ * (levers along n, isotropic bodies: the normal impulse leaves the slip as
+ * it was, and the stick impulse is -vt / kt). */
+static void pass_fast(soft_pass *sp, int stage)
+{
+    rbs_world *w = sp->w;
+    double *rec = sp->rec;
+    uint32_t i;
+    const double inv_h = sp->inv_h, bias_rate = sp->bias_rate, mass_scale = sp->mass_scale,
+                 impulse_scale = sp->impulse_scale;
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        double *ba = &rec[REC * c->a], *bb = &rec[REC * c->b];
+        v3 rv = rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3)), j;
+        double vn = v3_dot(rv, c->n), jn, dj, s;
+        if (stage == RESTITUTION) {
+            if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
+                continue;
+            jn = c->jn - (vn + c->e * c->bias) * c->thr;
+            jn = jn < 0.0 ? 0.0 : jn;
+            if (jn != c->jn) {
+                rbs__sb_apply_pair(ba, bb, c, v3_scale(c->n, jn - c->jn));
+                c->jn = jn;
+                sp->restituted++;
+            }
+            continue;
+        }
+        s = c->gap + v3_dot(c->n, v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
+        if (s > 0.0) {
+            dj = -(vn + s * inv_h) * c->thr;
+        } else if (stage == SOLVE) {
+            /* the pair's slop: the smaller of the records' (a plane's is
+             * infinite), as rbs__contact_slop computes it */
+            double slop = ba[14] < bb[14] ? ba[14] : bb[14], over = s + slop < 0.0 ? s + slop : 0.0;
+            double push = bias_rate * over, most = ba[15] < bb[15] ? ba[15] : bb[15];
+            dj = -mass_scale * (vn + (push < -most ? -most : push)) * c->thr - impulse_scale * c->jn;
+        } else {
+            dj = -vn * c->thr;
+        }
+        jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
+        j = v3_scale(c->n, jn - c->jn);
+        c->jn = jn;
+        if (jn > 0.0)
+            c->flags |= RBS__TOUCHED;
+        if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
+            const rbs__pair *p = rbs__contact_pair(w, c);
+            if (p->mu_s > 0.0 || p->mu_k > 0.0) {
+                v3 vt = v3_mad(rv, c->n, -vn), cand;
+                cand = rbs__cone(c, p, v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0));
+                j = v3_add(j, v3_sub(cand, c->jt));
+                c->jt = cand;
+            }
+        }
+        rbs__sb_apply_pair(ba, bb, c, j);
+    }
+}
+
+/* Apply the accumulated impulses again (each sub-step starts from them). */
+static void warm_start(soft_pass *sp)
+{
+    rbs_world *w = sp->w;
+    uint32_t i;
+    if (sp->rec != NULL) {
+        for (i = 0; i < w->contact_count; ++i) {
+            const rbs__contact *c = &w->contact[i];
+            if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
+                rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c,
+                                   v3_add(v3_scale(c->n, c->jn), c->jt));
+        }
+        return;
+    }
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
+            push(sp, c, v3_add(v3_scale(c->n, c->jn), c->jt));
+        if (sp->rec == NULL && c->jn > 0.0 && rbs__contact_pair(w, c)->rolling + rbs__contact_pair(w, c)->spinning > 0.0) {
+            const rbs__resist *rs = &w->contact_resist[i];
+            v3 ia, ib, dl = v3_mad(rs->jroll, c->n, rs->jspin);
+            rbs__body_inv_inertia_world(w, c->a, dl, &ia);
+            rbs__body_inv_inertia_world(w, c->b, dl, &ib);
+            if (w->inv_mass[c->a] != 0.0)
+                v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
+            if (w->inv_mass[c->b] != 0.0)
+                v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+        }
+    }
+}
+
+/* Whether every body and pair suits the gathered layout. */
+static int gather_eligible(const rbs_world *w)
+{
+    uint32_t k;
+    if (w->plan.mutual || !w->def.prune)
+        return 0;
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        if (!w->isotropic[i] || w->com_body[3 * i] != 0.0 || w->com_body[3 * i + 1] != 0.0 ||
+            w->com_body[3 * i + 2] != 0.0)
+            return 0;
+    }
+    for (k = 0; k < w->pairs; ++k)
+        if (w->pair[k].rolling > 0.0 || w->pair[k].spinning > 0.0)
+            return 0;
+    return 1;
+}
+
+/* How far each moving sphere may travel within the frame: |v| dt + |a| dt^2
+ * (a: the applied forces and gravity; with mutual gravity its field now),
+ * into margin[slot]. */
+static void margins(rbs_world *w, double dt, double *margin)
+{
+    uint32_t k;
+    if (w->plan.mutual)
+        rbs__mutual_gravity(w);
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        v3 a, tau;
+        double m;
+        rbs__accelerations(w, i, &a, &tau);
+        if (w->plan.mutual)
+            a = v3_add(a, v3_load(&w->acc[3 * i]));
+        m = v3_len(v3_load(&w->vel[3 * i])) * dt + v3_len(a) * dt * dt;
+        margin[i] = w->fixed[i] || !isfinite(m) ? 0.0 : m;
+    }
+}
+
+rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
+{
+    const uint32_t n = w->def.soft_substeps;
+    const double dt = w->def.dt, h = dt / n;
+    const double omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
+    const double a1 = 2.0 * SOFT_ZETA + h * omega, a2 = h * omega * a1;
+    const uint32_t B = w->def.max_bodies;
+    double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
+    uint32_t i, k, at = 0;
+    uint32_t s;
+    soft_pass sp;
+    rbs_status st;
+
+    margins(w, dt, inc); /* (inc as scratch: margins are read by detection only) */
+    st = rbs__detect_swept(w, dt, inc);
+    if (st != RBS_OK)
+        return st;
+    sp.w = w;
+    sp.inv_h = 1.0 / h;
+    sp.bias_rate = omega / a1;
+    sp.mass_scale = a2 / (1.0 + a2);
+    sp.impulse_scale = 1.0 / (1.0 + a2);
+    sp.friction = w->plan.friction;
+    sp.restituted = 0;
+    if (gather_eligible(w)) {
+        rec = w->method_scratch;
+        for (i = 0; i < w->slots; ++i) {
+            double *b = &rec[REC * i];
+            v3 a, tau;
+            memcpy(b, &w->vel[3 * i], 3 * sizeof(double));
+            memcpy(b + 3, &w->avel[3 * i], 3 * sizeof(double));
+            b[6] = w->inv_mass[i];
+            b[7] = w->type[i] == RBS_BODY_SPHERE ? w->iso_inv_inertia[i] : 0.0;
+            memset(b + 8, 0, 6 * sizeof(double));
+            b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
+            b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
+            rbs__accelerations(w, i, &a, &tau);
+            v3_store(&inc[6 * i], v3_scale(a, h));
+            v3_store(&inc[6 * i + 3], v3_scale(tau, b[7] * h));
+        }
+    }
+    sp.rec = rec;
+
+    /* Prepare: the approach speed at the frame's start (for restitution, in
+     * c->bias), and the impulses of the last frame for the warm start. */
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
+        const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
+        c->bias = v3_dot(relative_velocity(&sp, c), c->n);
+        c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE);
+        if (c->e > 0.0 && c->bias < -c->thr)
+            c->flags |= RBS__BOUNCE;
+        c->thr = 1.0 / c->kn; /* (its test is taken: from here the effective mass) */
+        if (p->rolling > 0.0 || p->spinning > 0.0) {
+            w->contact_resist[i].jroll = v3_make(0, 0, 0);
+            w->contact_resist[i].jspin = 0.0;
+        }
+        if (m == NULL)
+            continue;
+        c->jn = m->n * h;
+        if (sp.friction) {
+            v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's tangent plane */
+            c->jt = v3_scale(t, h);
+            if (v3_len(c->jt) > p->mu_s * c->jn)
+                c->jt = v3_make(0, 0, 0);
+        }
+    }
+
+    for (s = 0; s < n; ++s) {
+        if (rec != NULL) {
+            for (k = 0; k < w->sphere_count; ++k) {
+                uint32_t b = w->spheres[k];
+                double *r = &rec[REC * b];
+                if (r[6] == 0.0)
+                    continue;
+                v3_store(r, v3_add(v3_load(r), v3_load(&inc[6 * b])));
+                v3_store(r + 3, v3_add(v3_load(r + 3), v3_load(&inc[6 * b + 3])));
+            }
+        } else {
+            rbs__integrate_velocities(w, h);
+        }
+        warm_start(&sp);
+        if (rec != NULL)
+            pass_fast(&sp, SOLVE);
+        else
+            pass(&sp, SOLVE);
+        if (rec != NULL) {
+            for (k = 0; k < w->sphere_count; ++k) {
+                double *r = &rec[REC * w->spheres[k]];
+                if (r[6] == 0.0)
+                    continue;
+                v3_store(r + 8, v3_mad(v3_load(r + 8), v3_load(r), h));
+                v3_store(r + 11, v3_mad(v3_load(r + 11), v3_load(r + 3), h));
+            }
+        } else {
+            rbs__integrate_positions(w, h);
+        }
+        if (rec != NULL)
+            pass_fast(&sp, RELAX);
+        else
+            pass(&sp, RELAX);
+    }
+    if (rec != NULL)
+        pass_fast(&sp, RESTITUTION);
+    else
+        pass(&sp, RESTITUTION);
+
+    /* Write the gathered bodies back: x += displacement, one turn by the
+     * frame's rotation. */
+    if (rec != NULL) {
+        for (k = 0; k < w->sphere_count; ++k) {
+            uint32_t b = w->spheres[k];
+            const double *r = &rec[REC * b];
+            v3 th = v3_load(r + 11);
+            if (r[6] == 0.0)
+                continue;
+            memcpy(&w->vel[3 * b], r, 3 * sizeof(double));
+            memcpy(&w->avel[3 * b], r + 3, 3 * sizeof(double));
+            v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + 8)));
+            if (th.x != 0.0 || th.y != 0.0 || th.z != 0.0)
+                q_store(&w->orient[4 * b],
+                        q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b]))));
+        }
+    }
+
+    /* Report: contacts touching at the end and the deepest overlap. */
+    info->substeps = n;
+    info->colliding = sp.restituted;
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        double sep = c->gap + v3_dot(c->n, v3_sub(v3_sub(v3_load(&w->pos[3 * c->a]),
+                                                         v3_load(&w->step_save[RBS__SAVE_STRIDE * c->a])),
+                                                  v3_sub(v3_load(&w->pos[3 * c->b]),
+                                                         v3_load(&w->step_save[RBS__SAVE_STRIDE * c->b]))));
+        if (sep <= rbs__contact_slop(w, c))
+            info->contacts++;
+        if (-sep > info->max_overlap)
+            info->max_overlap = -sep;
+        if (c->jn > 0.0)
+            info->resting++;
+    }
+    rbs__warm_store(w, h);
+    return RBS_OK;
+}
