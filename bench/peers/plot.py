@@ -20,7 +20,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLORS = {"rbsim": "#c0392b", "rbsim_sel": "#e67e22", "rbsim_tol": "#7b241c", "ode": "#2c7fb8", "ode_sap": "#7fb8d8", "bullet": "#31a354",
+COLORS = {"rbsim": "#c0392b", "rbsim_sel": "#e67e22", "rbsim_tol": "#7b241c", "rbsim_soft": "#8e44ad", "ode": "#2c7fb8", "ode_sap": "#7fb8d8", "bullet": "#31a354",
           "mujoco": "#756bb1"}
 
 
@@ -84,7 +84,7 @@ def plot_scaling(rows, path):
     labels = {"lattice": "falling lattice (no contacts)", "stack": "settled stack (resting contacts)"}
     any_pts = False
     for kind, color in (("lattice", "#2c7fb8"), ("stack", "#c0392b")):
-        for engine, style in (("rbsim", "-"), ("rbsim_sel", "--")):
+        for engine, style in (("rbsim", "-"), ("rbsim_sel", "--"), ("rbsim_soft", ":")):
             pts = medians(rows, kind, "ns_per_body_step").get(engine, [])
             if not pts:
                 continue

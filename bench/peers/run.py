@@ -36,9 +36,11 @@ import scenes  # noqa: E402
 # TOL_SLOP (0.5 % of the radius, half the 1 % overlap bound) instead of
 # the library's 1e-6, so an impact shallower than that is kept where the step
 # finds it instead of being rolled back to the moment of touch.
-ENGINES = ["rbsim", "rbsim_sel", "rbsim_tol", "ode", "ode_sap", "bullet", "mujoco"]
-RBSIM = ("rbsim", "rbsim_sel", "rbsim_tol")
-SCALED = ("rbsim", "rbsim_sel")  # the 10^3 .. 10^6 series
+# "rbsim_soft" is rbsim with RBS_METHOD_SOFT (the soft step: fixed sub-steps
+# with soft contacts, default soft_substeps = 4), the pile method.
+ENGINES = ["rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft", "ode", "ode_sap", "bullet", "mujoco"]
+RBSIM = ("rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft")
+SCALED = ("rbsim", "rbsim_sel", "rbsim_soft")  # the 10^3 .. 10^6 series
 TOL_SLOP = 0.005
 
 # Bytes rbsim must move per body-step at the least (its state layout, see
@@ -74,11 +76,14 @@ def plan(quick):
     return [
         ("ball", 1, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
         ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
-        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "rbsim_tol": (5, 60), "ode": (5, 60),
+        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "rbsim_tol": (5, 60), "rbsim_soft": (5, 60),
+                              "ode": (5, 60),
                               "ode_sap": (3, 60), "bullet": (2, 90), "mujoco": (3, 60)}),
-        ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_sel": (3, 90), "rbsim_tol": (2, 150), "ode": (2, 200),
+        ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_sel": (3, 90), "rbsim_tol": (2, 150), "rbsim_soft": (3, 90),
+                              "ode": (2, 200),
                               "ode_sap": (1, 150), "bullet": (1, 200), "mujoco": (1, 150)}),
-        ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "ode": (1, 100),
+        ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
+                              "ode": (1, 100),
                               "bullet": (1, 60), "mujoco": (1, 60)}),
     ]
 
@@ -102,6 +107,8 @@ def driver_cmd(build, engine, scene_path, steps, cap, state_path):
         cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "selective"]
     elif engine == "rbsim_tol":
         cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--slop", str(TOL_SLOP)]
+    elif engine == "rbsim_soft":
+        cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "soft"]
     elif engine == "ode_sap":
         cmd = [os.path.join(build, "bench", "peers", "peers_ode"), "--method", "sap"]
     else:
