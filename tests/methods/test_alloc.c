@@ -64,10 +64,10 @@ static rbs_world *scene(rbs_method m)
 
 static void no_allocation_while_stepping(void **state)
 {
-    const rbs_method ms[3] = {RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE};
+    const rbs_method ms[4] = {RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE, RBS_METHOD_SOFT};
     int k, i;
     (void)state;
-    for (k = 0; k < 3; ++k) {
+    for (k = 0; k < 4; ++k) {
         rbs_world *w;
         rbs_step_info info;
         long contacts = 0;

@@ -12,7 +12,8 @@
 #include "methods_common.h"
 
 static const rbs_method all_methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_EVENT,
-                                         RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE};
+                                         RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE,
+                                         RBS_METHOD_SOFT};
 #define N_METHODS (sizeof all_methods / sizeof all_methods[0])
 
 typedef void (*scene_fn)(rbs_world *w);

@@ -263,7 +263,9 @@ static void warm_start(soft_pass *sp)
 static int gather_eligible(const rbs_world *w)
 {
     uint32_t k;
-    if (w->plan.mutual || !w->def.prune)
+    /* (decided from the bodies alone, not from the plan: a pruned and a
+     * full pipeline take the same layout and agree bit for bit) */
+    if (w->def.mutual_gravity)
         return 0;
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
