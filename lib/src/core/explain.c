@@ -66,6 +66,9 @@ static const char *method_summary(rbs_method m)
     case RBS_METHOD_ADAPTIVE:
         return "GSL odeiv2 rk8pd with error control between contacts; contact times by Brent root "
                "finding (GSL roots); frames with resting contact use RK4 sub-steps";
+    case RBS_METHOD_SOFT:
+        return "the soft step: fixed semi-implicit Euler sub-steps with soft contacts (one solve and "
+               "one relax pass each), restitution at the frame's end";
     default:
         return "unknown";
     }
@@ -100,7 +103,11 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         rbs_method_name(w->def.method), w->def.dt, w->def.slop, w->def.tolerance,
         w->def.prune ? "on" : "off (every stage runs)");
     put(&t, "  %s\n", method_summary(w->def.method));
-    if (w->def.method != RBS_METHOD_EVENT)
+    if (w->def.method == RBS_METHOD_SOFT)
+        put(&t, "  %u sub-steps of dt/%u; contacts found once a frame within each body's sweep; no "
+                "rollback: overlap beyond the slop is pushed out by springs of omega = pi/(2h)\n",
+            (unsigned)w->def.soft_substeps, (unsigned)w->def.soft_substeps);
+    else if (w->def.method != RBS_METHOD_EVENT)
         put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
             (unsigned)w->def.max_halvings);
     why = w->def.prune ? "" : " (pruning off)";
@@ -199,6 +206,8 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         put(&t, "in frames with lasting contact, on RK4 sub-steps\n");
     else if (w->def.method == RBS_METHOD_EVENT)
         put(&t, "the event method keeps rolling and sliding in closed form\n");
+    else if (w->def.method == RBS_METHOD_SOFT)
+        put(&t, "a solve and a relax pass per sub-step, warm-started (the soft step's own rows)\n");
     else
         put(&t, "once per sub-step, after the forces\n");
     if (moving > 0 && w->def.method != RBS_METHOD_EVENT) {
@@ -211,6 +220,21 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         for (i = 0; i < w->pairs; ++i)
             if (w->pair[i].rolling > 0.0 || w->pair[i].spinning > 0.0)
                 break;
+        if (w->def.method == RBS_METHOD_SOFT) {
+            /* the soft step's layout follows the bodies alone (step_soft.c) */
+            stage(&t, odd == UINT32_MAX && i == w->pairs && !w->def.mutual_gravity, "gathered body records");
+            if (w->def.mutual_gravity) {
+                put(&t, "mutual gravity: the general rows on the world's arrays\n");
+            } else if (odd != UINT32_MAX) {
+                body_name(&t, w, odd);
+                put(&t, " has anisotropic inertia or an off-centre mass: the general rows\n");
+            } else if (i < w->pairs) {
+                put(&t, "a pair has rolling or spinning resistance: the general rows\n");
+            } else {
+                put(&t, "centred isotropic spheres: v, w, 1/m, 1/I and the frame's motion in one "
+                        "record per body\n");
+            }
+        } else {
         stage(&t, w->def.prune && odd == UINT32_MAX && i == w->pairs, "compact resting sweep");
         if (!w->def.prune) {
             put(&t, "every impulse through the general sweep (pruning off)\n");
@@ -226,6 +250,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         } else {
             put(&t, "centred isotropic spheres without rolling or spinning resistance: the sweeps read "
                     "v, w, 1/m and 1/I from one compact record per body\n");
+        }
         }
     }
 
