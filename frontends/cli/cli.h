@@ -78,4 +78,10 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 
+/* ---- main.c ---- */
+/** The stepping methods the library knows, as "euler, selective, ... or
+ * soft" (from rbs_method_name, so a new method is named in every message);
+ * cut short if it does not fit in size bytes. */
+void rbsf_method_list(char *out, size_t size);
+
 #endif

@@ -45,7 +45,7 @@ static const char run_text[] =
     "  --steps N     steps to take, 0 to 2^53: frames 0..N at t = k dt\n"
     "                (0: frame 0 only, as \"steps\": 0 in a scene)\n"
     "  --dt S        time step, seconds (> 0)\n"
-    "  --method M    euler, selective, event, verlet, rk4 or adaptive\n"
+    "  --method M    euler, selective, event, verlet, rk4, adaptive or soft\n"
     "  --slop X      overlap an impact may end a step with before it is\n"
     "                rolled back, of the smaller radius, in (0, 0.1)\n"
     "                (default the scene's simulation.slop, else 1e-6)\n"
@@ -102,7 +102,8 @@ static const char explain_text[] =
     "world and print the pipeline rbs_world_step() runs for it: the bodies, the\n"
     "method and its sub-steps, and each stage in or out with the reason.\n"
     "--method M explains the scene with another method (euler, selective,\n"
-    "event, verlet, rk4, adaptive).  Exit 0, 2 (usage) or 3 (scene error).\n";
+    "event, verlet, rk4, adaptive, soft).  Exit 0, 2 (usage) or 3 (scene\n"
+    "error).\n";
 
 static const char convert_text[] =
     "usage: rbsim convert IN OUT\n"
@@ -115,6 +116,24 @@ static const char convert_text[] =
     "device or FIFO is never replaced; a symbolic link's target is written.\n"
     "Exit 0, 2 (usage), 3 (IN is not a valid scene) or 4 (OUT could not be\n"
     "written).\n";
+
+void rbsf_method_list(char *out, size_t size)
+{
+    size_t used = 0;
+    int k;
+    if (size == 0)
+        return;
+    out[0] = '\0';
+    for (k = 0; k < RBS_METHOD_COUNT; k++) {
+        const char *name = rbs_method_name((rbs_method)k);
+        int w = snprintf(out + used, size - used, "%s%s",
+                         k == 0 ? "" : (k == RBS_METHOD_COUNT - 1 ? " or " : ", "),
+                         name != NULL ? name : "?");
+        if (w < 0 || (size_t)w >= size - used)
+            return; /* cut short: what fitted stays */
+        used += (size_t)w;
+    }
+}
 
 int rbsf_help(FILE *out, const char *command)
 {
@@ -271,9 +290,10 @@ static int explain_main(int argc, char **argv)
                 return RBSF_EXIT_USAGE;
             }
             if (rbs_method_from_name(v, &m) != RBS_OK) {
+                char list[256];
+                rbsf_method_list(list, sizeof list);
                 fprintf(stderr, "rbsim explain: --method: unknown method '%s'; "
-                                "expected euler, selective, event, verlet, rk4 "
-                                "or adaptive\n", v);
+                                "expected %s\n", v, list);
                 return RBSF_EXIT_USAGE;
             }
             method = v;

@@ -223,10 +223,12 @@ static int parse_run_args(int argc, char **argv, run_options *o)
                                    "got '%s'%s", value, "");
         } else if (strcmp(name, "--method") == 0) {
             rbs_method m;
-            if (rbs_method_from_name(value, &m) != RBS_OK)
-                return usage_error("--method: unknown method '%s'; expected "
-                                   "euler, selective, event, verlet, rk4 or "
-                                   "adaptive%s", value, "");
+            char list[256];
+            if (rbs_method_from_name(value, &m) != RBS_OK) {
+                rbsf_method_list(list, sizeof list);
+                return usage_error("--method: unknown method '%s'; expected %s",
+                                   value, list);
+            }
             o->method = value;
         } else if (strcmp(name, "--every") == 0) {
             if (parse_u64(value, 1, RBS_EVERY_MAX, &u) != 0)
@@ -1184,6 +1186,7 @@ static int checkpoint_matches(const rbs_world *scene_world,
     DIFF_D(slop, "slop")
     DIFF_D(max_halvings, "max_halvings")
     DIFF_D(max_sweeps, "max_sweeps")
+    DIFF_D(soft_substeps, "soft_substeps")
     DIFF_D(max_substeps, "max_substeps")
     DIFF_D(mutual_gravity, "mutual_gravity")
     DIFF_D(gravity_constant, "gravity_constant")

@@ -123,7 +123,8 @@ class CliTests(Base):
             (["--steps=-3"], "--steps"),
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
-            (["--method", "leapfrog"], "unknown method 'leapfrog'"),
+            (["--method", "leapfrog"], "unknown method 'leapfrog'; expected euler, "
+             "selective, event, verlet, rk4, adaptive or soft"),
             (["--slop", "0.1"], "--slop: expected a fraction of the smaller radius in (0, 0.1)"),
             (["--slop", "0"], "--slop: expected"),
             (["--slop", "nan"], "--slop: expected"),
@@ -150,6 +151,55 @@ class CliTests(Base):
             self.assertEqual(r.returncode, 2, (extra, r.stderr))
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
+
+    def test_soft_method(self):
+        """--method soft runs a scene (frames 0..50, the method reported
+        in explain); the scene's simulation.soft_substeps reaches the
+        world, and a checkpoint made with one soft_substeps does not resume
+        with another."""
+        s = self.scene()
+        r = self.rbsim("run", s, "--method", "soft", "--steps", "50", "--quiet",
+                       "--csv", "soft.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.assert_whole_frames(self.path("soft.csv")), 51)
+        r = self.rbsim("explain", s, "--method", "soft")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("method: soft", r.stdout)
+        sim8 = dict(SCENE["simulation"], method="soft", soft_substeps=8)
+        s8 = self.scene("soft8.json", simulation=sim8)
+        r = self.rbsim("run", s8, "--steps", "20", "--quiet", "--checkpoint", "c.ckpt")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s4 = self.scene("soft4.json", simulation=dict(sim8, soft_substeps=4))
+        r = self.rbsim("run", s4, "--resume", "c.ckpt", "--quiet", "--csv", "c2.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("soft_substeps: the scene has 4, the checkpoint 8", r.stderr)
+        r = self.rbsim("run", s8, "--steps", "40", "--resume", "c.ckpt", "--quiet",
+                       "--csv", "c3.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        bad = self.scene("bad.json", simulation=dict(sim8, soft_substeps=1001))
+        r = self.rbsim("check", bad)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("simulation.soft_substeps: must be an integer from 1 to 1000, "
+                      "got 1001", r.stdout)
+
+    def test_help_lists_every_method(self):
+        """The unknown-method messages of run and explain name the
+        library's methods (rbs_method_name); the help of run and explain
+        lists each of them."""
+        s = self.scene()
+        r = self.rbsim("run", s, "--method", "leapfrog")
+        self.assertEqual(r.returncode, 2)
+        tail = r.stderr.split("expected ", 1)[1].splitlines()[0]
+        names = tail.replace(" or ", ", ").split(", ")
+        self.assertEqual(names, ["euler", "selective", "event", "verlet", "rk4",
+                                 "adaptive", "soft"])
+        r = self.rbsim("explain", s, "--method", "leapfrog")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--method: unknown method 'leapfrog'; expected " + tail, r.stderr)
+        for command in ("run", "explain"):
+            text = " ".join(self.rbsim("help", command).stdout.split())
+            for name in names:
+                self.assertRegex(text, r"--method M.*\b%s\b" % name, (command, name))
 
     def test_slop_option(self):
         """--slop overrides simulation.slop: a ball of r = 0.1 m dropped

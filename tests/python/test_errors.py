@@ -71,6 +71,18 @@ def test_invalid_from_c_names_the_field():
         rbsim.World(max_bodies=0)
 
 
+def test_soft_substeps_out_of_range_names_it():
+    """soft_substeps is 1 to 1000: 0 and 1001 are refused by the library
+    with its own words (the field, the range and the value)."""
+    for bad in (0, 1001):
+        with pytest.raises(rbsim.InvalidError,
+                           match=r"soft_substeps must be in \[1, 1000\], got %d" % bad) as info:
+            rbsim.World(soft_substeps=bad)
+        assert info.value.status == lib.RBS_E_INVALID
+    for good in (1, 1000):
+        assert rbsim.World(soft_substeps=good).settings["soft_substeps"] == good
+
+
 def test_capacity_stale_notfound_closed():
     w = rbsim.World(max_bodies=1)
     w.add_sphere("a")
@@ -154,7 +166,7 @@ def check_raises_rbsim(fn, *args, **kw):
 
 def test_bad_arguments_to_the_world_constructor():
     for key in ("max_bodies", "max_materials", "max_pairs", "max_contacts",
-                "max_halvings", "max_sweeps"):
+                "max_halvings", "max_sweeps", "soft_substeps"):
         for bad in BAD_INTS:
             check_raises_rbsim(rbsim.World, **{key: bad})
     for key in ("dt", "restitution", "tolerance", "slop", "gravity_constant",

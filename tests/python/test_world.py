@@ -63,7 +63,7 @@ def test_settings_round_trip():
     w = rbsim.World(max_bodies=5, max_materials=3, max_pairs=7, max_contacts=40,
                     dt=0.002, gravity=(0.0, -1.0, -3.0), gravity_mode="force",
                     restitution=0.25, tolerance=1e-7, slop=1e-5,
-                    max_halvings=12, max_sweeps=20, mutual_gravity=True,
+                    max_halvings=12, max_sweeps=20, soft_substeps=9, mutual_gravity=True,
                     gravity_constant=1.5, softening=0.01, prune=False)
     s = w.settings
     assert s["max_bodies"] == 5 and s["max_materials"] == 3
@@ -72,6 +72,8 @@ def test_settings_round_trip():
     assert s["gravity_mode"] == "force" and s["restitution"] == 0.25
     assert s["tolerance"] == 1e-7 and s["slop"] == 1e-5
     assert s["max_halvings"] == 12 and s["max_sweeps"] == 20
+    assert s["soft_substeps"] == 9
+    assert rbsim.World().settings["soft_substeps"] == 4  # the library's default
     assert s["mutual_gravity"] is True and s["gravity_constant"] == 1.5
     assert s["softening"] == 0.01 and s["prune"] is False
     assert s["method"] == "euler" == w.method
@@ -105,6 +107,25 @@ def test_dt_method_and_tolerance_are_settable():
     with pytest.raises(rbsim.InvalidError, match="dt"):
         w.dt = -1.0
     assert w.dt == 0.0005 and w.tolerance == 1e-6
+
+
+def test_soft_method():
+    """"soft" is a method like the others: listed, accepted by World(),
+    the property and the settings, and it steps (a ball falls onto the
+    ground and stays above it, up to the overlap a soft contact allows)."""
+    assert "soft" in rbsim.METHODS
+    assert rbsim.METHODS[-1] == "soft"  # RBS_METHOD_SOFT = 6, the last
+    w = make_world(method="soft", soft_substeps=8)
+    assert w.method == "soft" and w.settings["method"] == "soft"
+    assert w.settings["soft_substeps"] == 8
+    w.step(1500)
+    ball = w.bodies["ball"]
+    assert 0.09 < ball.position[2] < 0.2
+    w.method = "euler"
+    assert w.method == "euler"
+    w.method = "soft"
+    assert w.method == "soft"
+    w.step(10)
 
 
 def test_every_method_is_accepted_or_refused_cleanly():

@@ -107,6 +107,13 @@ static const bad_case cases[] = {
      {E("0}", 1, 0, "simulation.max_sweeps: must be an integer from 1 to 100000, got 0")}},
     {"bad/max_sweeps_fraction.json", RBS_E_SCENE,
      {E("2.5}", 1, 0, "simulation.max_sweeps: must be an integer from 1 to 100000, got 2.5")}},
+    {"bad/soft_substeps_zero.json", RBS_E_SCENE,
+     {E("0}", 1, 0, "simulation.soft_substeps: must be an integer from 1 to 1000, got 0")}},
+    {"bad/soft_substeps_too_large.json", RBS_E_SCENE,
+     {E("1001}", 1, 0,
+        "simulation.soft_substeps: must be an integer from 1 to 1000, got 1001")}},
+    {"bad/soft_substeps_fraction.json", RBS_E_SCENE,
+     {E("2.5}", 1, 0, "simulation.soft_substeps: must be an integer from 1 to 1000, got 2.5")}},
     {"bad/slop_not_a_number.json", RBS_E_SCENE,
      {E("\"loose\"", 1, 0, "simulation.slop: must be a number, got \"loose\"")}},
     {"bad/zero_normal.json", RBS_E_SCENE,
@@ -175,7 +182,7 @@ static const bad_case cases[] = {
     {"bad/unknown_method.json", RBS_E_SCENE,
      {E("\"rk45\"", 1, 0,
         "simulation.method: must be \"euler\", \"selective\", \"event\", \"verlet\", "
-        "\"rk4\" or \"adaptive\", got \"rk45\" (did you mean \"rk4\"?)")}},
+        "\"rk4\", \"adaptive\" or \"soft\", got \"rk45\" (did you mean \"rk4\"?)")}},
     {"bad/unknown_gravity_mode.json", RBS_E_SCENE,
      {E("\"accel\"", 1, 0,
         "simulation.gravity_mode: must be \"acceleration\" or \"force\", got \"accel\" "
@@ -515,12 +522,30 @@ static void test_override(void **state)
     assert_string_equal(e.text, "command line: --dt: must be a finite number > 0, got inf");
     assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
     assert_string_equal(e.text, "command line: --method: unknown method \"rk5\" (did you mean "
-                                "\"rk4\"?); expected euler, selective, event, verlet, rk4 or "
-                                "adaptive");
+                                "\"rk4\"?); expected euler, selective, event, verlet, rk4, "
+                                "adaptive or soft");
     assert_int_equal(rbs_scene_steps(scene), 10);
     assert_true(rbs_scene_dt(scene) == 0.002);
     assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);
     rbs_scene_free(scene);
+
+    /* every method the library names is a valid override, "soft" among them */
+    {
+        int k;
+        for (k = 0; k < RBS_METHOD_COUNT; k++) {
+            const char *name = rbs_method_name((rbs_method)k);
+            assert_non_null(name);
+            assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json",
+                                            RBS_SCENE_AUTO, &scene),
+                             RBS_OK);
+            assert_int_equal(rbs_scene_override(scene, 0, 0.0, name), RBS_OK);
+            assert_int_equal(rbs_scene_world_def(scene, &def), RBS_OK);
+            assert_int_equal(def.method, k);
+            rbs_scene_free(scene);
+        }
+        assert_int_equal(rbs_method_from_name("soft", &def.method), RBS_OK);
+        assert_int_equal(def.method, RBS_METHOD_SOFT);
+    }
 
     assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
                      RBS_OK);
@@ -633,7 +658,8 @@ static void test_material_rules(void **state)
 /* simulation.slop reaches the world, and is the overlap a scene may start
  * with: a ball 0.4 % of its radius inside the floor loads with slop 0.005
  * and is an error with the world's default (1e-6); absent, the world's
- * default is what the world gets.  simulation.max_sweeps reaches it too. */
+ * default is what the world gets.  simulation.max_sweeps and
+ * simulation.soft_substeps reach it too. */
 static void test_slop(void **state)
 {
     static const char fmt[] =
@@ -664,6 +690,8 @@ static void test_slop(void **state)
     assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
     assert_true(d.slop == def0.slop);
     assert_int_equal(d.max_sweeps, def0.max_sweeps);
+    assert_int_equal(d.soft_substeps, def0.soft_substeps);
+    assert_int_equal(d.soft_substeps, 4);
     rbs_scene_free(scene);
     /* simulation.max_sweeps likewise */
     snprintf(text, sizeof text, fmt, ", \"max_sweeps\": 5", "0.5");
@@ -671,6 +699,31 @@ static void test_slop(void **state)
     assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
     assert_int_equal(d.max_sweeps, 5);
     rbs_scene_free(scene);
+    /* simulation.soft_substeps likewise, at both ends of its range, and the
+     * world takes it */
+    {
+        static const char *const values[] = {"1", "13", "1000"};
+        static const uint32_t expect_n[] = {1, 13, 1000};
+        size_t i;
+        for (i = 0; i < 3; i++) {
+            char key[64];
+            rbs_world *world = NULL;
+            rbs_world_def got;
+            snprintf(key, sizeof key, ", \"method\": \"soft\", \"soft_substeps\": %s",
+                     values[i]);
+            snprintf(text, sizeof text, fmt, key, "0.5");
+            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "soft", &scene), RBS_OK);
+            assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+            assert_int_equal(d.soft_substeps, expect_n[i]);
+            assert_int_equal(d.method, RBS_METHOD_SOFT);
+            assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+            rbs_world_def_init(&got);
+            assert_int_equal(rbs_world_get_def(world, &got), RBS_OK);
+            assert_int_equal(got.soft_substeps, expect_n[i]);
+            rbs_world_destroy(world);
+            rbs_scene_free(scene);
+        }
+    }
 }
 
 /* Overlap at the start is found wherever the two spheres are in the body

@@ -407,6 +407,8 @@ class World:
         max_halvings: rollback floor dt / 2**max_halvings.
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
                 and separation iterations.
+        soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
+                (default 4); more make piles stiffer, at a cost in proportion.
         mutual_gravity: Newtonian attraction between bodies.
         gravity_constant: G, m^3 kg^-1 s^-2.
         softening: Plummer softening length, m.
@@ -430,6 +432,7 @@ class World:
                  slop: Optional[float] = None,
                  max_halvings: Optional[int] = None,
                  max_sweeps: Optional[int] = None,
+                 soft_substeps: Optional[int] = None,
                  mutual_gravity: Optional[bool] = None,
                  gravity_constant: Optional[float] = None,
                  softening: Optional[float] = None,
@@ -439,7 +442,8 @@ class World:
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
                            ("max_pairs", max_pairs), ("max_contacts", max_contacts),
-                           ("max_halvings", max_halvings), ("max_sweeps", max_sweeps)):
+                           ("max_halvings", max_halvings), ("max_sweeps", max_sweeps),
+                           ("soft_substeps", soft_substeps)):
             if value is not None:
                 setattr(d, key, _check.u32(value, key))
         for key, value in (("dt", dt), ("restitution", restitution),
@@ -1066,6 +1070,7 @@ class World:
             "restitution": float(d.restitution), "method": METHODS[int(d.method)],
             "tolerance": float(d.tolerance), "slop": float(d.slop),
             "max_halvings": int(d.max_halvings), "max_sweeps": int(d.max_sweeps),
+            "soft_substeps": int(d.soft_substeps),
             "mutual_gravity": bool(d.mutual_gravity),
             "gravity_constant": float(d.gravity_constant),
             "softening": float(d.softening), "prune": bool(d.prune),

@@ -46,6 +46,7 @@ rbs_scene *rbs__scene_new(void)
     rbs_world_def_init(&def);
     scene->slop = def.slop; /* the world's defaults */
     scene->max_sweeps = def.max_sweeps;
+    scene->soft_substeps = def.soft_substeps;
     scene->dt = 0.001;
     scene->gravity.z = -9.81;
     scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
@@ -486,6 +487,7 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->tolerance = scene->tolerance;
     out->slop = scene->slop;
     out->max_sweeps = scene->max_sweeps;
+    out->soft_substeps = scene->soft_substeps;
     out->mutual_gravity = scene->mutual_gravity;
     out->gravity_constant = scene->gravity_constant;
     out->softening = scene->softening;
@@ -644,19 +646,30 @@ static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
     if (method != NULL && rbs_method_from_name(method, &new_method) != RBS_OK) {
         const char *names[RBS_METHOD_COUNT];
         const char *hint;
+        char list[256];
+        size_t used = 0;
         int k;
+        /* the names and the list "euler, ... or soft" from the library's
+         * own table, so that a new method is named here too */
+        list[0] = '\0';
         for (k = 0; k < RBS_METHOD_COUNT; k++) {
+            int w;
             names[k] = rbs_method_name((rbs_method)k);
             if (names[k] == NULL) {
                 names[k] = "";
             }
+            w = snprintf(list + used, sizeof list - used, "%s%s",
+                         k == 0 ? "" : (k == RBS_METHOD_COUNT - 1 ? " or " : ", "),
+                         names[k]);
+            if (w > 0 && (size_t)w < sizeof list - used) {
+                used += (size_t)w;
+            }
         }
         hint = rbs__suggest(method, names, RBS_METHOD_COUNT);
         rbs__scene_error(scene, none, "--method",
-                         "unknown method \"%.64s\"%s%s%s; expected euler, selective, "
-                         "event, verlet, rk4 or adaptive",
-                         method, hint ? " (did you mean \"" : "", hint ? hint : "",
-                         hint ? "\"?)" : "");
+                         "unknown method \"%.64s\"%s%s%s; expected %s", method,
+                         hint ? " (did you mean \"" : "", hint ? hint : "",
+                         hint ? "\"?)" : "", list);
     }
     if (scene->error_count != before) {
         return RBS_E_SCENE;

@@ -28,8 +28,9 @@
 /** Largest steps value: every frame time k*dt keeps an exact integer k. */
 #define RBS__SCENE_STEPS_MAX 9007199254740992.0 /* 2^53 */
 /* The world's ranges (rbs_world_def_validate, world.c), checked at load so
- * that the error names the key: slop in (0, RBS__SCENE_SLOP_MAX), and
- * max_sweeps in 1..RBS__SCENE_SWEEPS_MAX. */
+ * that the error names the key: slop in (0, RBS__SCENE_SLOP_MAX),
+ * max_sweeps in 1..RBS__SCENE_SWEEPS_MAX, and soft_substeps in
+ * 1..RBS__SOFT_SUBSTEPS_MAX (core/world_internal.h, the world's own). */
 #define RBS__SCENE_SLOP_MAX 0.1
 #define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
 #define RBS__SCENE_SWEEPS_MAX 100000
@@ -132,6 +133,8 @@ struct rbs_scene {
     double tolerance;
     double slop; /* allowed overlap and contact margin, of the smaller radius */
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
+    uint32_t soft_substeps; /* sub-steps per frame of the soft method
+                               (rbs_world_def.soft_substeps) */
     double restitution;
     int32_t pause_on_collision;
     int32_t mutual_gravity;

@@ -9,6 +9,7 @@
  * start, camera mounts) run after the local checks.
  */
 #include "scene/scene_internal.h"
+#include "core/world_internal.h" /* RBS__SOFT_SUBSTEPS_MAX */
 #include "rbsim/reel.h" /* RBS_EVERY_MAX */
 
 #include <math.h>
@@ -504,7 +505,8 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 
 static const char *const sim_keys[] = {
     "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
-    "max_sweeps", "restitution", "pause_on_collision", "mutual_gravity"};
+    "max_sweeps", "soft_substeps", "restitution", "pause_on_collision",
+    "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
 
@@ -604,6 +606,17 @@ static void check_simulation(vctx *v, const cJSON *sim)
         saved = push_key(v, "max_sweeps");
         if (get_integer(v, c, 1, RBS__SCENE_SWEEPS_MAX, "an integer from 1 to 100000", &n) == 0) {
             s->max_sweeps = (uint32_t)n;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "soft_substeps")) != NULL) {
+        uint64_t n;
+        char what[48];
+        snprintf(what, sizeof what, "an integer from 1 to %u",
+                 (unsigned)RBS__SOFT_SUBSTEPS_MAX);
+        saved = push_key(v, "soft_substeps");
+        if (get_integer(v, c, 1, RBS__SOFT_SUBSTEPS_MAX, what, &n) == 0) {
+            s->soft_substeps = (uint32_t)n;
         }
         pop(v, saved);
     }
