@@ -482,7 +482,7 @@ int main(int argc, char **argv)
     size_t c;
     fit fits[RBS_METHOD_COUNT];
     const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_EVENT,
-                                  RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE};
+                                  RBS_METHOD_VERLET, RBS_METHOD_RK4, RBS_METHOD_ADAPTIVE, RBS_METHOD_SOFT};
     memset(fits, 0, sizeof fits);
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0)

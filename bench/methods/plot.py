@@ -16,9 +16,9 @@ import sys
 from collections import OrderedDict
 
 FLOOR = 1e-17  # errors of exactly 0 are drawn here
-ORDER = ["euler", "selective", "event", "verlet", "rk4", "adaptive"]
-COLOR = {"euler": "C0", "selective": "C1", "event": "C2", "verlet": "C3", "rk4": "C4", "adaptive": "C5"}
-MARK = {"euler": "o", "selective": "s", "event": "^", "verlet": "v", "rk4": "D", "adaptive": "*"}
+ORDER = ["euler", "selective", "event", "verlet", "rk4", "adaptive", "soft"]
+COLOR = {"euler": "C0", "selective": "C1", "event": "C2", "verlet": "C3", "rk4": "C4", "adaptive": "C5", "soft": "C6"}
+MARK = {"euler": "o", "selective": "s", "event": "^", "verlet": "v", "rk4": "D", "adaptive": "*", "soft": "P"}
 
 
 def machine():

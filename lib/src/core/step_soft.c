@@ -68,6 +68,7 @@ typedef struct soft_pass {
     double bias_rate, mass_scale, impulse_scale;
     int friction;
     uint32_t restituted;  /* contacts the restitution pass changed */
+    uint32_t plane_contacts; /* the leading contacts whose b is a plane */
 } soft_pass;
 
 enum { SOLVE, RELAX, RESTITUTION };
@@ -171,61 +172,76 @@ static void pass(soft_pass *sp, int stage)
     }
 }
 
-/* pass() for the gathered layout: the same rows with the records inline
+/* One row of pass() for the gathered layout, with the records inline
  * (levers along n, isotropic bodies: the normal impulse leaves the slip as
- * it was, and the stick impulse is -vt / kt). */
+ * it was, and the stick impulse is -vt / kt).  b_static: body b is a plane
+ * (no velocity, no motion, never pushed), known at compile time in each of
+ * pass_fast's two loops. */
+static inline void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_static)
+{
+    const rbs_world *w = sp->w;
+    double *ba = &sp->rec[REC * c->a], *bb = &sp->rec[REC * c->b];
+    v3 va = v3_load(ba), wa = v3_load(ba + 3), rv, j;
+    double vn, jn, dj, s;
+    if (b_static)
+        rv = v3_add(va, v3_cross(v3_scale(wa, c->la), c->n));
+    else
+        rv = rbs__along_rel_velocity(c, va, wa, v3_load(bb), v3_load(bb + 3));
+    vn = v3_dot(rv, c->n);
+    if (stage == RESTITUTION) {
+        if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
+            return;
+        jn = c->jn - (vn + c->e * c->bias) * c->thr;
+        jn = jn < 0.0 ? 0.0 : jn;
+        if (jn != c->jn) {
+            rbs__sb_apply_pair(ba, bb, c, v3_scale(c->n, jn - c->jn));
+            c->jn = jn;
+            sp->restituted++;
+        }
+        return;
+    }
+    s = c->gap + v3_dot(c->n, b_static ? v3_load(ba + 8) : v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
+    if (s > 0.0) {
+        dj = -(vn + s * sp->inv_h) * c->thr;
+    } else if (stage == SOLVE) {
+        /* the pair's slop and push limit: the smaller of the records' (a
+         * plane's are infinite), as rbs__contact_slop computes the slop */
+        double slop = b_static || ba[14] < bb[14] ? ba[14] : bb[14], over = s + slop < 0.0 ? s + slop : 0.0;
+        double push = sp->bias_rate * over, most = b_static || ba[15] < bb[15] ? ba[15] : bb[15];
+        dj = -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
+    } else {
+        dj = -vn * c->thr;
+    }
+    jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
+    j = v3_scale(c->n, jn - c->jn);
+    c->jn = jn;
+    if (jn > 0.0)
+        c->flags |= RBS__TOUCHED;
+    if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
+        const rbs__pair *p = rbs__contact_pair(w, c);
+        if (p->mu_s > 0.0 || p->mu_k > 0.0) {
+            v3 vt = v3_mad(rv, c->n, -vn), cand;
+            cand = rbs__cone(c, p, v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0));
+            j = v3_add(j, v3_sub(cand, c->jt));
+            c->jt = cand;
+        }
+    }
+    if (b_static)
+        rbs__sb_apply(ba, j, v3_scale(v3_cross(c->n, j), c->la));
+    else
+        rbs__sb_apply_pair(ba, bb, c, j);
+}
+
+/* pass() for the gathered layout: the contacts with a plane come first
+ * (detection makes them first), then the pairs of spheres. */
 static void pass_fast(soft_pass *sp, int stage)
 {
-    rbs_world *w = sp->w;
-    double *rec = sp->rec;
-    uint32_t i;
-    const double inv_h = sp->inv_h, bias_rate = sp->bias_rate, mass_scale = sp->mass_scale,
-                 impulse_scale = sp->impulse_scale;
-    for (i = 0; i < w->contact_count; ++i) {
-        rbs__contact *c = &w->contact[i];
-        double *ba = &rec[REC * c->a], *bb = &rec[REC * c->b];
-        v3 rv = rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3)), j;
-        double vn = v3_dot(rv, c->n), jn, dj, s;
-        if (stage == RESTITUTION) {
-            if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
-                continue;
-            jn = c->jn - (vn + c->e * c->bias) * c->thr;
-            jn = jn < 0.0 ? 0.0 : jn;
-            if (jn != c->jn) {
-                rbs__sb_apply_pair(ba, bb, c, v3_scale(c->n, jn - c->jn));
-                c->jn = jn;
-                sp->restituted++;
-            }
-            continue;
-        }
-        s = c->gap + v3_dot(c->n, v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
-        if (s > 0.0) {
-            dj = -(vn + s * inv_h) * c->thr;
-        } else if (stage == SOLVE) {
-            /* the pair's slop: the smaller of the records' (a plane's is
-             * infinite), as rbs__contact_slop computes it */
-            double slop = ba[14] < bb[14] ? ba[14] : bb[14], over = s + slop < 0.0 ? s + slop : 0.0;
-            double push = bias_rate * over, most = ba[15] < bb[15] ? ba[15] : bb[15];
-            dj = -mass_scale * (vn + (push < -most ? -most : push)) * c->thr - impulse_scale * c->jn;
-        } else {
-            dj = -vn * c->thr;
-        }
-        jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
-        j = v3_scale(c->n, jn - c->jn);
-        c->jn = jn;
-        if (jn > 0.0)
-            c->flags |= RBS__TOUCHED;
-        if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
-            const rbs__pair *p = rbs__contact_pair(w, c);
-            if (p->mu_s > 0.0 || p->mu_k > 0.0) {
-                v3 vt = v3_mad(rv, c->n, -vn), cand;
-                cand = rbs__cone(c, p, v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0));
-                j = v3_add(j, v3_sub(cand, c->jt));
-                c->jt = cand;
-            }
-        }
-        rbs__sb_apply_pair(ba, bb, c, j);
-    }
+    rbs__contact *c = sp->w->contact;
+    uint32_t i, n = sp->w->contact_count, planes = sp->plane_contacts;
+    for (i = 0; i < planes; ++i)
+        row_fast(sp, &c[i], stage, 1);
+    for (i = planes; i < n; ++i)
+        row_fast(sp, &c[i], stage, 0);
 }
 
 /* Apply the accumulated impulses again (each sub-step starts from them). */
@@ -234,7 +250,13 @@ static void warm_start(soft_pass *sp)
     rbs_world *w = sp->w;
     uint32_t i;
     if (sp->rec != NULL) {
-        for (i = 0; i < w->contact_count; ++i) {
+        /* (the contacts with a plane first: only body a takes the impulse) */
+        for (i = 0; i < sp->plane_contacts; ++i) {
+            const rbs__contact *c = &w->contact[i];
+            v3 j = v3_add(v3_scale(c->n, c->jn), c->jt);
+            rbs__sb_apply(&sp->rec[REC * c->a], j, v3_scale(v3_cross(c->n, j), c->la));
+        }
+        for (; i < w->contact_count; ++i) {
             const rbs__contact *c = &w->contact[i];
             if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
                 rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c,
@@ -344,6 +366,9 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
 
     /* Prepare: the approach speed at the frame's start (for restitution, in
      * c->bias), and the impulses of the last frame for the warm start. */
+    sp.plane_contacts = 0;
+    while (sp.plane_contacts < w->contact_count && w->type[w->contact[sp.plane_contacts].b] == RBS_BODY_PLANE)
+        sp.plane_contacts++;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
