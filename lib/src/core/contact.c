@@ -77,19 +77,18 @@ void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double g
                (gap > rbs__contact_slop(w, c) ? RBS__APART : 0u);
 }
 
-void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
+/* rbs__contact_finish with the bodies' accelerations aa, ab given. */
+static void contact_finish(rbs_world *w, rbs__contact *c, double dt, v3 aa, v3 ab)
 {
     uint32_t n = w->def.max_materials + 1;
     int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
-    v3 aa, ab, ta, ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
+    v3 ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
     const rbs__pair *p;
     /* No row for this pair: the default row, frictionless with the world's
      * restitution (documented in rbsim.h; scenes reject this case). */
     c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
     p = rbs__contact_pair(w, c);
     c->e = p->e >= 0.0 ? p->e : w->def.restitution;
-    rbs__accelerations(w, c->a, &aa, &ta);
-    rbs__accelerations(w, c->b, &ab, &ta);
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, ra, c->b, rb, c->n);
     /* Isotropic bodies with both levers along n (no RBS__OFF flag: a fixed
@@ -105,6 +104,24 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
     c->bias = 0.0;
     c->jn = 0.0;
     c->jt = v3_make(0, 0, 0);
+}
+
+void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
+{
+    v3 aa, ab, t;
+    rbs__accelerations(w, c->a, &aa, &t);
+    rbs__accelerations(w, c->b, &ab, &t);
+    contact_finish(w, c, dt, aa, ab);
+}
+
+/* A new contact's accelerations: from the swept detection's table (6
+ * doubles a slot: acceleration, torque) or computed. */
+static void finish_new(rbs_world *w, rbs__contact *c, double dt, const double *acc)
+{
+    if (acc != NULL)
+        contact_finish(w, c, dt, v3_load(&acc[6 * c->a]), v3_load(&acc[6 * c->b]));
+    else
+        rbs__contact_finish(w, c, dt);
 }
 
 /* A detected contact with rolling or spinning resistance: its lever and
@@ -152,6 +169,7 @@ typedef struct detect_ctx {
     double dt;
     double reach; /* speculative: a bound on every pair's creep reach, m (0: none) */
     int swept;    /* rbs__detect_swept: every pair the broad phase reports */
+    const double *acc; /* swept: the bodies' accelerations (6 a slot), else NULL */
     rbs_status status;
 } detect_ctx;
 
@@ -193,7 +211,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     /* Coincident centres have no normal: pick +z (documented). */
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     rbs__contact_set(w, c, dist, gap);
-    rbs__contact_finish(w, c, ctx->dt);
+    finish_new(w, c, ctx->dt, ctx->acc);
     if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
         w->contact_count--;
         return;
@@ -205,7 +223,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
  * far the body may move within the step, m; a pair is a contact when its
  * gap is at most the slop plus both margins (a plane's is 0).  Otherwise
  * half is half of the creep reach of speculative contacts (0: none). */
-static rbs_status detect(rbs_world *w, double dt, double half, const double *margin)
+static rbs_status detect(rbs_world *w, double dt, double half, const double *margin, const double *acc)
 {
     uint32_t i, k;
     double slop_rel = w->def.slop;
@@ -214,6 +232,7 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
     ctx.dt = dt;
     ctx.reach = 2.0 * half;
     ctx.swept = margin != NULL;
+    ctx.acc = acc;
     ctx.status = RBS_OK;
     w->contact_count = 0;
 
@@ -241,7 +260,7 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
             c->b = b;
             c->n = n;
             rbs__contact_set(w, c, 0.0, gap);
-            rbs__contact_finish(w, c, dt);
+            finish_new(w, c, dt, acc);
             if (margin == NULL && beyond_reach(c, slop, dt)) {
                 w->contact_count--;
                 continue;
@@ -265,12 +284,12 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
 
 rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
 {
-    return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL);
+    return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL);
 }
 
-rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin)
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc)
 {
-    return detect(w, dt, 0.0, margin);
+    return detect(w, dt, 0.0, margin, acc);
 }
 
 uint32_t rbs__touching(const rbs_world *w)

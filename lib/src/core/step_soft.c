@@ -301,21 +301,26 @@ static int gather_eligible(const rbs_world *w)
     return 1;
 }
 
-/* How far each moving sphere may travel within the frame: |v| dt + |a| dt^2
- * (a: the applied forces and gravity; with mutual gravity its field now),
- * into margin[slot]. */
-static void margins(rbs_world *w, double dt, double *margin)
+/* Each body's acceleration a and torque (the applied forces and gravity;
+ * with mutual gravity its field now) into acc[6 slot ..], zero for planes,
+ * and how far each moving sphere may travel within the frame, |v| dt +
+ * |a| dt^2, into margin[slot]. */
+static void margins(rbs_world *w, double dt, double *acc, double *margin)
 {
     uint32_t k;
     if (w->plan.mutual)
         rbs__mutual_gravity(w);
+    for (k = 0; k < w->plane_count; ++k)
+        memset(&acc[6 * w->planes[k]], 0, 6 * sizeof(double));
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         v3 a, tau;
         double m;
         rbs__accelerations(w, i, &a, &tau);
-        if (w->plan.mutual)
+        if (w->plan.mutual && !w->fixed[i])
             a = v3_add(a, v3_load(&w->acc[3 * i]));
+        v3_store(&acc[6 * i], a);
+        v3_store(&acc[6 * i + 3], tau);
         m = v3_len(v3_load(&w->vel[3 * i])) * dt + v3_len(a) * dt * dt;
         margin[i] = w->fixed[i] || !isfinite(m) ? 0.0 : m;
     }
@@ -334,8 +339,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     soft_pass sp;
     rbs_status st;
 
-    margins(w, dt, inc); /* (inc as scratch: margins are read by detection only) */
-    st = rbs__detect_swept(w, dt, inc);
+    /* inc: accelerations and torques for detection, then (gathered) their
+     * velocity increments a h, alpha h; the margins after inc */
+    margins(w, dt, inc, inc + (size_t)6 * B);
+    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, inc);
     if (st != RBS_OK)
         return st;
     sp.w = w;
@@ -349,7 +356,6 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         rec = w->method_scratch;
         for (i = 0; i < w->slots; ++i) {
             double *b = &rec[REC * i];
-            v3 a, tau;
             memcpy(b, &w->vel[3 * i], 3 * sizeof(double));
             memcpy(b + 3, &w->avel[3 * i], 3 * sizeof(double));
             b[6] = w->inv_mass[i];
@@ -357,9 +363,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             memset(b + 8, 0, 6 * sizeof(double));
             b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
             b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
-            rbs__accelerations(w, i, &a, &tau);
-            v3_store(&inc[6 * i], v3_scale(a, h));
-            v3_store(&inc[6 * i + 3], v3_scale(tau, b[7] * h));
+            v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), h));
+            v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * h));
         }
     }
     sp.rec = rec;
@@ -455,10 +460,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     info->colliding = sp.restituted;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
-        double sep = c->gap + v3_dot(c->n, v3_sub(v3_sub(v3_load(&w->pos[3 * c->a]),
-                                                         v3_load(&w->step_save[RBS__SAVE_STRIDE * c->a])),
-                                                  v3_sub(v3_load(&w->pos[3 * c->b]),
-                                                         v3_load(&w->step_save[RBS__SAVE_STRIDE * c->b]))));
+        double sep = separation(&sp, c);
         if (sep <= rbs__contact_slop(w, c))
             info->contacts++;
         if (-sep > info->max_overlap)

@@ -264,8 +264,10 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
 /* Contacts for a method that steps with them for a whole frame (soft):
  * margin[slot] is how far a moving sphere may travel within the frame, m;
  * every pair whose gap is at most the slop plus the two margins is a
- * contact (speculative when apart), as long as max_contacts has room. */
-rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin);
+ * contact (speculative when apart), as long as max_contacts has room.
+ * acc: 6 doubles a slot, each body's acceleration (m/s^2, the resting
+ * threshold's) and then anything (the caller's). */
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc);
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
