@@ -122,6 +122,19 @@ static inline void rbs__sb_apply_pair(double *ba, double *bb, const rbs__contact
     rbs__sb_apply(bb, v3_scale(j, -1.0), v3_scale(t, -c->lb));
 }
 
+/* An angular impulse dl on a contact's pair: +dl on a, -dl on b (bodies
+ * that do not move take nothing): rolling and spinning resistance. */
+static inline void rbs__apply_angular_pair(rbs_world *w, const rbs__contact *c, v3 dl)
+{
+    v3 ia, ib;
+    rbs__body_inv_inertia_world(w, c->a, dl, &ia);
+    rbs__body_inv_inertia_world(w, c->b, dl, &ib);
+    if (w->inv_mass[c->a] != 0.0)
+        v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
+    if (w->inv_mass[c->b] != 0.0)
+        v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+}
+
 /* A body's compact record in w->solver_body (RBS__SOLVER_STRIDE doubles a
  * slot: v, w, 1/m, 1/I), read by the fast sweeps. */
 #define RBS__SB(w, i) (&(w)->solver_body[RBS__SOLVER_STRIDE * (i)])

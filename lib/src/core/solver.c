@@ -310,12 +310,7 @@ double rbs__resist_row(rbs_world *w, uint32_t i)
     if (dl.x != 0.0 || dl.y != 0.0 || dl.z != 0.0) {
         double lever = rs->radius > 0.0 ? rs->radius : 1.0;
         double dl2 = v3_dot(dl, dl) * c->kn * c->kn / (lever * lever); /* squared, as change */
-        rbs__body_inv_inertia_world(w, c->a, dl, &ia);
-        rbs__body_inv_inertia_world(w, c->b, dl, &ib);
-        if (w->inv_mass[c->a] != 0.0)
-            v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
-        if (w->inv_mass[c->b] != 0.0)
-            v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+        rbs__apply_angular_pair(w, c, dl);
         return dl2;
     }
     return 0.0;

@@ -106,6 +106,37 @@ static void push(soft_pass *sp, const rbs__contact *c, v3 j)
         rbs__apply_pair(sp->w, c, j);
 }
 
+/* The change of a contact's accumulated normal impulse in a SOLVE or RELAX
+ * row: vn its normal approach, s its separation, slop and most its pair's
+ * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
+ * within the sub-step and no more; touching, the solve's soft row pushes
+ * out the overlap beyond the slop and the relax's rigid row stops the
+ * approach. */
+static inline double normal_change(const soft_pass *sp, const rbs__contact *c, int stage, double vn, double s,
+                                   double slop, double most)
+{
+    double over, push;
+    if (s > 0.0)
+        return -(vn + s * sp->inv_h) * c->thr;
+    if (stage != SOLVE)
+        return -vn * c->thr;
+    over = s + slop < 0.0 ? s + slop : 0.0;
+    push = sp->bias_rate * over;
+    return -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
+}
+
+/* Accumulate dj into c's normal impulse (kept >= 0); the impulse it adds,
+ * along n. */
+static inline v3 normal_accumulate(rbs__contact *c, double dj)
+{
+    double jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
+    v3 j = v3_scale(c->n, jn - c->jn);
+    c->jn = jn;
+    if (jn > 0.0)
+        c->flags |= RBS__TOUCHED;
+    return j;
+}
+
 /* One pass over the contacts: stage SOLVE (soft, with bias), RELAX (rigid)
  * or RESTITUTION. */
 static void pass(soft_pass *sp, int stage)
@@ -131,24 +162,13 @@ static void pass(soft_pass *sp, int stage)
             continue;
         }
         {
-            double s = separation(sp, c), slop = rbs__contact_slop(w, c);
-            double most = SOFT_PUSH * slop / w->def.slop * sp->inv_h; /* (the smaller radius, as the slop's) */
-            if (s > 0.0) {
-                /* apart: it may close the gap within the sub-step, no more */
-                dj = -(vn + s * sp->inv_h) * c->thr;
-            } else if (stage == SOLVE) {
-                double over = s + slop < 0.0 ? s + slop : 0.0; /* overlap beyond the slop */
-                double push = sp->bias_rate * over;
-                dj = -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
-            } else {
-                dj = -vn * c->thr;
-            }
+            double slop = rbs__contact_slop(w, c);
+            /* (the push limit from the smaller radius, as the slop's) */
+            dj = normal_change(sp, c, stage, vn, separation(sp, c), slop,
+                               SOFT_PUSH * slop / w->def.slop * sp->inv_h);
         }
-        jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
-        j = v3_scale(c->n, jn - c->jn);
-        c->jn = jn;
-        if (jn > 0.0)
-            c->flags |= RBS__TOUCHED;
+        j = normal_accumulate(c, dj);
+        jn = c->jn;
         if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && (jn > 0.0 || c->jt.x != 0.0 ||
                                                                  c->jt.y != 0.0 || c->jt.z != 0.0)) {
             v3 vt, stick, cand;
@@ -201,22 +221,12 @@ static inline void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_sta
         return;
     }
     s = c->gap + v3_dot(c->n, b_static ? v3_load(ba + 8) : v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
-    if (s > 0.0) {
-        dj = -(vn + s * sp->inv_h) * c->thr;
-    } else if (stage == SOLVE) {
-        /* the pair's slop and push limit: the smaller of the records' (a
-         * plane's are infinite), as rbs__contact_slop computes the slop */
-        double slop = b_static || ba[14] < bb[14] ? ba[14] : bb[14], over = s + slop < 0.0 ? s + slop : 0.0;
-        double push = sp->bias_rate * over, most = b_static || ba[15] < bb[15] ? ba[15] : bb[15];
-        dj = -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
-    } else {
-        dj = -vn * c->thr;
-    }
-    jn = c->jn + dj < 0.0 ? 0.0 : c->jn + dj;
-    j = v3_scale(c->n, jn - c->jn);
-    c->jn = jn;
-    if (jn > 0.0)
-        c->flags |= RBS__TOUCHED;
+    /* the pair's slop and push limit: the smaller of the records' (a
+     * plane's are infinite), as rbs__contact_slop computes the slop */
+    dj = normal_change(sp, c, stage, vn, s, b_static || ba[14] < bb[14] ? ba[14] : bb[14],
+                       b_static || ba[15] < bb[15] ? ba[15] : bb[15]);
+    j = normal_accumulate(c, dj);
+    jn = c->jn;
     if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
         const rbs__pair *p = rbs__contact_pair(w, c);
         if (p->mu_s > 0.0 || p->mu_k > 0.0) {
@@ -268,15 +278,12 @@ static void warm_start(soft_pass *sp)
         const rbs__contact *c = &w->contact[i];
         if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
             push(sp, c, v3_add(v3_scale(c->n, c->jn), c->jt));
-        if (sp->rec == NULL && c->jn > 0.0 && rbs__contact_pair(w, c)->rolling + rbs__contact_pair(w, c)->spinning > 0.0) {
-            const rbs__resist *rs = &w->contact_resist[i];
-            v3 ia, ib, dl = v3_mad(rs->jroll, c->n, rs->jspin);
-            rbs__body_inv_inertia_world(w, c->a, dl, &ia);
-            rbs__body_inv_inertia_world(w, c->b, dl, &ib);
-            if (w->inv_mass[c->a] != 0.0)
-                v3_store(&w->avel[3 * c->a], v3_add(v3_load(&w->avel[3 * c->a]), ia));
-            if (w->inv_mass[c->b] != 0.0)
-                v3_store(&w->avel[3 * c->b], v3_sub(v3_load(&w->avel[3 * c->b]), ib));
+        if (c->jn > 0.0) {
+            const rbs__pair *p = rbs__contact_pair(w, c);
+            if (p->rolling > 0.0 || p->spinning > 0.0) {
+                const rbs__resist *rs = &w->contact_resist[i];
+                rbs__apply_angular_pair(w, c, v3_mad(rs->jroll, c->n, rs->jspin));
+            }
         }
     }
 }
