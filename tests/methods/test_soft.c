@@ -154,6 +154,37 @@ static void head_on_impacts_follow_the_impact_law(void **state)
         }
 }
 
+/* A ball (no spin, no gravity) meets the floor obliquely, at vx along it
+ * and vz into it, e = 0.5.  The impact law (Coulomb friction through the
+ * whole impulse, e.g. Brach, "Mechanical Impact Dynamics", 1991): when
+ * 7/2 mu (1 + e) vz < vx it slides throughout, vx' = vx - mu (1 + e) vz;
+ * otherwise it sticks and leaves rolling, vx' = 5/7 vx; and vz' = e vz.
+ * Without forces the approach speed of the frame's start is the impact
+ * speed, and the restitution row's friction keeps the cone of the whole
+ * normal impulse: exact to rounding (1e-12 of the speeds). */
+static void oblique_bounce_follows_the_impact_law(void **state)
+{
+    const double vx = 2.0, vz = 1.0, e = 0.5, r = 0.1, mus[2] = {0.2, 0.8};
+    int i;
+    (void)state;
+    for (i = 0; i < 2; ++i) {
+        rbs_world *w = soft_world(4, 1e-3, 0.0, e, 4);
+        rbs_material_id m = material(w, "m", mus[i], mus[i], -1.0);
+        rbs_body_id b;
+        double slides = 3.5 * mus[i] * (1.0 + e) * vz < vx;
+        rbs_body_state st;
+        floor_plane(w, m);
+        b = ball(w, r, 1.0, 0, 0, r + 0.0123, vx, 0, -vz, m);
+        step_n(w, 100);
+        st = state_of(w, b);
+        ASSERT_NEAR(st.velocity.z, e * vz, 1e-12);
+        ASSERT_NEAR(st.velocity.x, slides ? vx - mus[i] * (1.0 + e) * vz : 5.0 / 7.0 * vx, 1e-12);
+        if (!slides)
+            ASSERT_NEAR(st.angular_velocity.y * r, st.velocity.x, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
 /* A ball dropped from h onto the floor with e = 0.5: its rebound speeds are
  * e^n sqrt(2 g h) and its apexes h e^(2n) (rigid contact, exact).  The soft
  * method stops the ball within the sub-step of impact and sends it back at
@@ -496,6 +527,7 @@ int main(void)
         cmocka_unit_test(stack_sinks_by_its_loads),
         cmocka_unit_test(free_fall_lags_by_g_t_h_over_2),
         cmocka_unit_test(head_on_impacts_follow_the_impact_law),
+        cmocka_unit_test(oblique_bounce_follows_the_impact_law),
         cmocka_unit_test(bouncing_ball_apexes),
         cmocka_unit_test(elastic_bounce_never_gains_energy),
         cmocka_unit_test(sliding_sphere_starts_rolling),

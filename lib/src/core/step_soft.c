@@ -17,7 +17,9 @@
  *                                    the velocity the push gave)
  *   restitution                     (contacts that were approaching faster
  *                                    than their resting threshold at the
- *                                    frame's start leave at e times that)
+ *                                    frame's start leave at e times that,
+ *                                    with friction in the cone of the
+ *                                    normal impulse so grown)
  *   store the impulses for the next frame's warm start.
  *
  * The separation of a contact during the frame is its gap at detection plus
@@ -125,6 +127,20 @@ static inline double normal_change(const soft_pass *sp, const rbs__contact *c, i
     return -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
 }
 
+/* Whether the restitution pass takes c: it approached faster than its
+ * resting threshold at the frame's start, with e > 0, and took an impulse. */
+static inline int bounces(const rbs__contact *c)
+{
+    return (c->flags & (RBS__BOUNCE | RBS__TOUCHED)) == (RBS__BOUNCE | RBS__TOUCHED);
+}
+
+/* The restitution row's change of the normal impulse: the pair leaves at e
+ * times its approach speed at the frame's start (c->bias). */
+static inline double restitution_change(const rbs__contact *c, double vn)
+{
+    return -(vn + c->e * c->bias) * c->thr;
+}
+
 /* Accumulate dj into c's normal impulse (kept >= 0); the impulse it adds,
  * along n. */
 static inline v3 normal_accumulate(rbs__contact *c, double dj)
@@ -138,7 +154,9 @@ static inline v3 normal_accumulate(rbs__contact *c, double dj)
 }
 
 /* One pass over the contacts: stage SOLVE (soft, with bias), RELAX (rigid)
- * or RESTITUTION. */
+ * or RESTITUTION (normal rows that make the pair leave at e times its
+ * approach, and friction within Coulomb's cone of the grown normal
+ * impulse, so that an oblique bounce follows the impact law). */
 static void pass(soft_pass *sp, int stage)
 {
     rbs_world *w = sp->w;
@@ -149,25 +167,19 @@ static void pass(soft_pass *sp, int stage)
         v3 rv = relative_velocity(sp, c), j;
         double vn = v3_dot(rv, c->n), jn, dj;
         if (stage == RESTITUTION) {
-            /* c->bias holds the approach speed at the frame's start */
-            if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
+            if (!bounces(c))
                 continue;
-            jn = c->jn - (vn + c->e * c->bias) * c->thr;
-            jn = jn < 0.0 ? 0.0 : jn;
-            if (jn != c->jn) {
-                push(sp, c, v3_scale(c->n, jn - c->jn));
-                c->jn = jn;
-                sp->restituted++;
-            }
-            continue;
-        }
-        {
+            dj = restitution_change(c, vn);
+        } else {
             double slop = rbs__contact_slop(w, c);
             /* (the push limit from the smaller radius, as the slop's) */
             dj = normal_change(sp, c, stage, vn, separation(sp, c), slop,
                                SOFT_PUSH * slop / w->def.slop * sp->inv_h);
         }
+        jn = c->jn;
         j = normal_accumulate(c, dj);
+        if (stage == RESTITUTION && c->jn != jn)
+            sp->restituted++;
         jn = c->jn;
         if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && (jn > 0.0 || c->jt.x != 0.0 ||
                                                                  c->jt.y != 0.0 || c->jt.z != 0.0)) {
@@ -209,23 +221,20 @@ static inline void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_sta
         rv = rbs__along_rel_velocity(c, va, wa, v3_load(bb), v3_load(bb + 3));
     vn = v3_dot(rv, c->n);
     if (stage == RESTITUTION) {
-        if ((c->flags & (RBS__BOUNCE | RBS__TOUCHED)) != (RBS__BOUNCE | RBS__TOUCHED))
+        if (!bounces(c))
             return;
-        jn = c->jn - (vn + c->e * c->bias) * c->thr;
-        jn = jn < 0.0 ? 0.0 : jn;
-        if (jn != c->jn) {
-            rbs__sb_apply_pair(ba, bb, c, v3_scale(c->n, jn - c->jn));
-            c->jn = jn;
-            sp->restituted++;
-        }
-        return;
+        dj = restitution_change(c, vn);
+    } else {
+        s = c->gap + v3_dot(c->n, b_static ? v3_load(ba + 8) : v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
+        /* the pair's slop and push limit: the smaller of the records' (a
+         * plane's are infinite), as rbs__contact_slop computes the slop */
+        dj = normal_change(sp, c, stage, vn, s, b_static || ba[14] < bb[14] ? ba[14] : bb[14],
+                           b_static || ba[15] < bb[15] ? ba[15] : bb[15]);
     }
-    s = c->gap + v3_dot(c->n, b_static ? v3_load(ba + 8) : v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
-    /* the pair's slop and push limit: the smaller of the records' (a
-     * plane's are infinite), as rbs__contact_slop computes the slop */
-    dj = normal_change(sp, c, stage, vn, s, b_static || ba[14] < bb[14] ? ba[14] : bb[14],
-                       b_static || ba[15] < bb[15] ? ba[15] : bb[15]);
+    jn = c->jn;
     j = normal_accumulate(c, dj);
+    if (stage == RESTITUTION && c->jn != jn)
+        sp->restituted++;
     jn = c->jn;
     if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
         const rbs__pair *p = rbs__contact_pair(w, c);
