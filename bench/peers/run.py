@@ -80,7 +80,7 @@ def plan(quick):
                               "ode": (5, 60),
                               "ode_sap": (3, 60), "bullet": (2, 90), "mujoco": (3, 60)}),
         ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_sel": (3, 90), "rbsim_tol": (2, 150), "rbsim_soft": (3, 90),
-                              "ode": (2, 200),
+                              "ode": (2, 400),
                               "ode_sap": (1, 150), "bullet": (1, 200), "mujoco": (1, 150)}),
         ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
                               "ode": (1, 100),
