@@ -437,8 +437,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     d.gravity = vec(&r);
     d.gravity_mode = (rbs_gravity_mode)(u8(&r) % 3);
     d.restitution = num(&r);
-    d.method = (rbs_method)(u8(&r) % 7);
-    d.max_halvings = u8(&r) % 32;
+    d.method = (rbs_method)(u8(&r) % 7); /* every method (6 = soft); set_method tries an invalid one */
+    {
+        /* one byte for both, so that inputs kept from before soft_substeps
+         * read as they did: halvings 0..31, soft sub-steps 1..8 */
+        uint8_t b = u8(&r);
+        d.max_halvings = b % 32u;
+        d.soft_substeps = 1u + b / 32u;
+    }
     d.mutual_gravity = u8(&r) & 1;
     d.prune = u8(&r) & 1;
     /* every method's work per step is bounded by max_substeps; a small cap
