@@ -101,6 +101,63 @@ static inline void step_n(rbs_world *w, int n)
                      #a, a_, b_, t_, fabs(a_ - b_));                            \
     } while (0)
 
+/* The incline scene: a plane through the origin at angle th (normal
+ * (-sin th, 0, cos th)) whose material has mu_s = mu_k = mu, and a solid
+ * 1 kg ball of radius r set on it at rest; returns the ball. */
+static inline rbs_body_id incline_ball(rbs_world *w, double th, double mu, double r)
+{
+    rbs_material_id m = material(w, "m", mu, mu, -1.0);
+    rbs_plane_def p;
+    double nx = -sin(th), nz = cos(th);
+    rbs_plane_def_init(&p);
+    p.normal.x = nx;
+    p.normal.z = nz;
+    p.material = m;
+    CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+    return ball(w, r, 1.0, r * nx, 0, r * nz, 0, 0, 0, m);
+}
+
+/* Exact acceleration down that incline under gravity g: a solid ball rolls
+ * without slipping when tan(th) <= 7/2 mu, at 5/7 g sin(th); otherwise it
+ * slides at g (sin(th) - mu cos(th)). */
+static inline double incline_acceleration(double th, double mu, double g)
+{
+    return tan(th) <= 3.5 * mu ? 5.0 / 7.0 * g * sin(th) : g * (sin(th) - mu * cos(th));
+}
+
+/* A ball's speed down the incline (the plane z = x tan(th) falls towards
+ * -x: down the slope is (-cos th, 0, -sin th)) and along its normal. */
+static inline void incline_speeds(rbs_body_state s, double th, double *down, double *normal)
+{
+    *down = -(s.velocity.x * cos(th) + s.velocity.z * sin(th));
+    *normal = s.velocity.x * -sin(th) + s.velocity.z * cos(th);
+}
+
+/* A solid 1 kg ball of radius r rolling at v0 along x on the floor, their
+ * pair with mu = 0.5 and rolling resistance mur; returns the ball. */
+static inline rbs_body_id rolling_resistance_ball(rbs_world *w, double r, double v0, double mur)
+{
+    rbs_material_id m;
+    rbs_pair_def p;
+    rbs_sphere_def s;
+    rbs_body_id b;
+    CHECK_OK(rbs_world_add_material(w, "m", &m));
+    rbs_pair_def_init(&p);
+    p.a = p.b = m;
+    p.static_friction = p.kinetic_friction = 0.5;
+    p.rolling = mur;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    floor_plane(w, m);
+    rbs_sphere_def_init(&s);
+    s.radius = r;
+    s.position.z = r;
+    s.velocity.x = v0;
+    s.angular_velocity.y = v0 / r;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+    return b;
+}
+
 /* Newton's cradle: five 0.1 m, 1 kg balls on the x axis, the first 0.1 m
  * short of the touching row and arriving at 1 m/s (no gravity or friction
  * intended: the world's settings are the caller's). */

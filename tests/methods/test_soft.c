@@ -290,23 +290,12 @@ static void incline_rolls_or_slides(void **state)
     (void)state;
     for (i = 0; i < 2; ++i) {
         rbs_world *w = soft_world(4, 1e-3, -G, 0.0, 4);
-        rbs_material_id m = material(w, "m", mus[i], mus[i], -1.0);
-        rbs_plane_def p;
-        rbs_body_id b;
-        double nx = -sin(th), nz = cos(th), a, v_along;
-        rbs_body_state s;
-        rbs_plane_def_init(&p);
-        p.normal.x = nx;
-        p.normal.z = nz;
-        p.material = m;
-        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
-        b = ball(w, r, 1.0, r * nx, 0, r * nz, 0, 0, 0, m);
+        rbs_body_id b = incline_ball(w, th, mus[i], r);
+        double down, normal;
         step_n(w, 1000);
-        s = state_of(w, b);
-        v_along = -(s.velocity.x * cos(th) + s.velocity.z * sin(th));
-        a = tan(th) <= 3.5 * mus[i] ? 5.0 / 7.0 * G * sin(th) : G * (sin(th) - mus[i] * cos(th));
-        ASSERT_NEAR(v_along, a * T, 1e-6);
-        ASSERT_NEAR(s.velocity.x * nx + s.velocity.z * nz, 0.0, 1e-6);
+        incline_speeds(state_of(w, b), th, &down, &normal);
+        ASSERT_NEAR(down, incline_acceleration(th, mus[i], G) * T, 1e-6);
+        ASSERT_NEAR(normal, 0.0, 1e-6);
         rbs_world_destroy(w);
     }
 }
@@ -318,25 +307,8 @@ static void rolling_resistance_decelerates(void **state)
 {
     const double r = 0.1, v0 = 2.0, mur = 0.02, T = 1.0;
     rbs_world *w = soft_world(4, 1e-3, -G, 0.0, 4);
-    rbs_material_id m;
-    rbs_pair_def p;
-    rbs_sphere_def s;
-    rbs_body_id b;
+    rbs_body_id b = rolling_resistance_ball(w, r, v0, mur);
     (void)state;
-    CHECK_OK(rbs_world_add_material(w, "m", &m));
-    rbs_pair_def_init(&p);
-    p.a = p.b = m;
-    p.static_friction = p.kinetic_friction = 0.5;
-    p.rolling = mur;
-    CHECK_OK(rbs_world_set_pair(w, &p));
-    floor_plane(w, m);
-    rbs_sphere_def_init(&s);
-    s.radius = r;
-    s.position.z = r;
-    s.velocity.x = v0;
-    s.angular_velocity.y = v0 / r;
-    s.material = m;
-    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
     step_n(w, (int)(T / 1e-3 + 0.5));
     ASSERT_NEAR(state_of(w, b).velocity.x, v0 - 5.0 / 7.0 * mur * G * T, 1e-6);
     rbs_world_destroy(w);

@@ -263,6 +263,15 @@ static void pass_fast(soft_pass *sp, int stage)
         row_fast(sp, &c[i], stage, 0);
 }
 
+/* A pass in the layout the frame took. */
+static void run_pass(soft_pass *sp, int stage)
+{
+    if (sp->rec != NULL)
+        pass_fast(sp, stage);
+    else
+        pass(sp, stage);
+}
+
 /* Apply the accumulated impulses again (each sub-step starts from them). */
 static void warm_start(soft_pass *sp)
 {
@@ -428,10 +437,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             rbs__integrate_velocities(w, h);
         }
         warm_start(&sp);
-        if (rec != NULL)
-            pass_fast(&sp, SOLVE);
-        else
-            pass(&sp, SOLVE);
+        run_pass(&sp, SOLVE);
         if (rec != NULL) {
             for (k = 0; k < w->sphere_count; ++k) {
                 double *r = &rec[REC * w->spheres[k]];
@@ -443,15 +449,9 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         } else {
             rbs__integrate_positions(w, h);
         }
-        if (rec != NULL)
-            pass_fast(&sp, RELAX);
-        else
-            pass(&sp, RELAX);
+        run_pass(&sp, RELAX);
     }
-    if (rec != NULL)
-        pass_fast(&sp, RESTITUTION);
-    else
-        pass(&sp, RESTITUTION);
+    run_pass(&sp, RESTITUTION);
 
     /* Write the gathered bodies back: x += displacement, one turn by the
      * frame's rotation. */
