@@ -133,6 +133,28 @@ static inline void incline_speeds(rbs_body_state s, double th, double *down, dou
     *normal = s.velocity.x * -sin(th) + s.velocity.z * cos(th);
 }
 
+/* A solid 1 kg ball of radius r launched sliding at v0 along x, without
+ * spin, on a floor whose pair has mu_s = mu_k = mu; stepped `steps` frames.
+ * Returns the time of the first frame at which it rolls (|v - w r| below
+ * tol v0), -1 if none; *b: the ball. */
+static inline double slide_to_roll(rbs_world *w, double v0, double mu, double r, int steps, double tol,
+                                   rbs_body_id *b)
+{
+    rbs_material_id m = material(w, "m", mu, mu, -1.0);
+    double t_seen = -1.0;
+    int k;
+    floor_plane(w, m);
+    *b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
+    for (k = 0; k < steps; ++k) {
+        rbs_body_state s;
+        step_n(w, 1);
+        s = state_of(w, *b);
+        if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < tol * v0)
+            t_seen = rbs_world_time(w);
+    }
+    return t_seen;
+}
+
 /* A solid 1 kg ball of radius r rolling at v0 along x on the floor, their
  * pair with mu = 0.5 and rolling resistance mur; returns the ball. */
 static inline rbs_body_id rolling_resistance_ball(rbs_world *w, double r, double v0, double mur)

@@ -131,20 +131,9 @@ static void sliding_sphere_starts_rolling(void **state)
     const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3;
     const double t_roll = 2.0 * v0 / (7.0 * mu * G);
     rbs_world *w = make_world(4, dt, -G, 0.5);
-    rbs_material_id m = material(w, "m", mu, mu, -1.0);
     rbs_body_id b;
-    double t_seen = -1.0;
-    int k;
+    double t_seen = slide_to_roll(w, v0, mu, r, 3000, 1e-12, &b);
     (void)state;
-    floor_plane(w, m);
-    b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
-    for (k = 0; k < 3000; ++k) {
-        rbs_body_state s;
-        step_n(w, 1);
-        s = state_of(w, b);
-        if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < 1e-12 * v0)
-            t_seen = rbs_world_time(w);
-    }
     assert_true(t_seen >= t_roll && t_seen <= t_roll + dt);
     ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
     ASSERT_NEAR(state_of(w, b).angular_velocity.y * r, 5.0 / 7.0 * v0, 1e-12 * v0);
