@@ -179,9 +179,11 @@ typedef struct rbs_world_def {
     uint32_t max_pairs;       /**< material-pair rows; default 64 */
     uint32_t max_contacts;    /**< contacts per step; default 4*max_bodies+16.
                                    euler and selective also keep pairs a
-                                   resting approach closes within the step
-                                   (speculative contacts) while room is left;
-                                   only touching pairs beyond it are an error */
+                                   resting approach closes within the step,
+                                   soft every pair the bodies' motion can
+                                   close within it (speculative contacts),
+                                   while room is left; only touching pairs
+                                   beyond it are an error */
     double dt;                /**< step, s; default 0.001, > 0 */
     rbs_vec3 gravity;         /**< m/s^2 (or N in force mode); default 0,0,-9.81 */
     rbs_gravity_mode gravity_mode; /**< default acceleration */

@@ -6,7 +6,7 @@
  *
  *   detect once, with every pair the bodies' sweeps over the frame can
  *   close (rbs__detect_swept: margins |v| dt + |a| dt^2);
- *   for each of SOFT_SUBSTEPS sub-steps of h = dt / SOFT_SUBSTEPS:
+ *   for each of n = def.soft_substeps sub-steps of h = dt / n:
  *     v += a h                      (forces)
  *     warm start                    (apply the accumulated impulses again)
  *     solve, with bias              (one Gauss-Seidel pass: soft normal rows
@@ -34,9 +34,10 @@
  *   bias rate = omega / (2 zeta + h omega),
  *   mass scale = h omega (2 zeta + h omega) / (1 + h omega (2 zeta + h omega)),
  *   impulse scale = 1 / (1 + h omega (2 zeta + h omega)).
- * A body resting under load L (N) on a contact of effective mass m sinks to
- * about L / (m omega^2) beyond the slop (g / omega^2 = 0.25 um for a ball's
- * own weight at dt = 1 ms): the compliance that buys convergence in one pass.
+ * A contact of effective mass m under a steady load L (N) sinks to exactly
+ * L / (m omega^2) beyond the slop -- the soft row's fixed point after the
+ * warm start -- (g / omega^2 = 0.25 um for a ball's own weight at dt = 1 ms
+ * and 4 sub-steps): the compliance that buys convergence in one pass.
  * Nothing is rolled back and no overlap is projected away (rbs_world_step
  * leaves it to the method): an impact lands within the sub-step, and the
  * bounce comes from the restitution pass, with the approach speed of the
@@ -45,7 +46,9 @@
  * Two body layouts: centred isotropic spheres without rolling or spinning
  * resistance and without mutual gravity (every pile) are gathered into one
  * record per slot in w->method_scratch (v, w, 1/m, 1/I, the displacement
- * and the rotation of the frame) and written back at its end, the rotation
+ * and the rotation of the frame, the slop and the push limit; after the
+ * records each slot's velocity increments and its sweep margin) and
+ * written back at its end, the rotation
  * as one turn by the sum of the sub-steps' w h (the order of the sub-steps'
  * turns is lost: an error of order (|w| dt)^2 in the orientation, which a
  * centred isotropic sphere's motion never reads).  Every other world steps
