@@ -103,14 +103,6 @@ static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
     return rbs__rel_velocity(sp->w, c);
 }
 
-static void push(soft_pass *sp, const rbs__contact *c, v3 j)
-{
-    if (sp->rec != NULL)
-        rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c, j);
-    else
-        rbs__apply_pair(sp->w, c, j);
-}
-
 /* The change of a contact's accumulated normal impulse in a SOLVE or RELAX
  * row: vn its normal approach, s its separation, slop and most its pair's
  * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
@@ -156,10 +148,11 @@ static inline v3 normal_accumulate(rbs__contact *c, double dj)
     return j;
 }
 
-/* One pass over the contacts: stage SOLVE (soft, with bias), RELAX (rigid)
- * or RESTITUTION (normal rows that make the pair leave at e times its
- * approach, and friction within Coulomb's cone of the grown normal
- * impulse, so that an oblique bounce follows the impact law). */
+/* One pass over the contacts, on the world's own arrays (the general
+ * layout; row_fast is the gathered one): stage SOLVE (soft, with bias),
+ * RELAX (rigid) or RESTITUTION (normal rows that make the pair leave at e
+ * times its approach, and friction within Coulomb's cone of the grown
+ * normal impulse, so that an oblique bounce follows the impact law). */
 static void pass(soft_pass *sp, int stage)
 {
     rbs_world *w = sp->w;
@@ -186,23 +179,15 @@ static void pass(soft_pass *sp, int stage)
         jn = c->jn;
         if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && (jn > 0.0 || c->jt.x != 0.0 ||
                                                                  c->jt.y != 0.0 || c->jt.z != 0.0)) {
-            v3 vt, stick, cand;
-            if (sp->rec != NULL) {
-                /* levers along n: the normal impulse leaves the slip as it was */
-                vt = v3_mad(rv, c->n, -vn);
-                stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
-            } else {
-                push(sp, c, j);
-                j = v3_make(0, 0, 0);
-                vt = rbs__slip(w, c);
-                stick = rbs__stick_impulse(w, c, vt);
-            }
-            cand = rbs__cone(c, p, stick);
-            j = v3_add(j, v3_sub(cand, c->jt));
+            /* the slip after the normal impulse (levers need not lie along n) */
+            v3 cand;
+            rbs__apply_pair(w, c, j);
+            cand = rbs__cone(c, p, rbs__stick_impulse(w, c, rbs__slip(w, c)));
+            j = v3_sub(cand, c->jt);
             c->jt = cand;
         }
-        push(sp, c, j);
-        if (sp->rec == NULL && sp->friction && jn > 0.0 && (p->rolling > 0.0 || p->spinning > 0.0))
+        rbs__apply_pair(w, c, j);
+        if (sp->friction && jn > 0.0 && (p->rolling > 0.0 || p->spinning > 0.0))
             (void)rbs__resist_row(w, i);
     }
 }
@@ -298,7 +283,7 @@ static void warm_start(soft_pass *sp)
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
         if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
-            push(sp, c, v3_add(v3_scale(c->n, c->jn), c->jt));
+            rbs__apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
         if (c->jn > 0.0) {
             const rbs__pair *p = rbs__contact_pair(w, c);
             if (p->rolling > 0.0 || p->spinning > 0.0) {
