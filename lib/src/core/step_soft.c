@@ -61,6 +61,11 @@
 #define SOFT_HERTZ 0.25 /* contact frequency, as a fraction of the sub-step rate */
 #define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
 #define SOFT_ZETA 10.0  /* damping ratio of the contact spring */
+#if defined(__GNUC__)
+#define SOFT_INLINE inline __attribute__((always_inline)) /* one copy per stage */
+#else
+#define SOFT_INLINE inline
+#endif
 #define REC 16          /* doubles a slot in the gathered layout */
 /* record: v 0-2, w 3-5, 1/m 6, 1/I 7, displacement 8-10, rotation 11-13,
  * slop length 14 (def.slop r), push speed limit 15 (SOFT_PUSH r / h); both
@@ -74,6 +79,7 @@ typedef struct soft_pass {
     int friction;
     uint32_t restituted;  /* contacts the restitution pass changed */
     uint32_t plane_contacts; /* the leading contacts whose b is a plane */
+    uint32_t quarter;     /* ceil(pair contacts / 4) */
 } soft_pass;
 
 enum { SOLVE, RELAX, RESTITUTION };
@@ -197,7 +203,7 @@ static void pass(soft_pass *sp, int stage)
  * it was, and the stick impulse is -vt / kt).  b_static: body b is a plane
  * (no velocity, no motion, never pushed), known at compile time in each of
  * pass_fast's two loops. */
-static inline void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_static)
+static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_static)
 {
     const rbs_world *w = sp->w;
     double *ba = &sp->rec[REC * c->a], *bb = &sp->rec[REC * c->b];
@@ -239,16 +245,38 @@ static inline void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_sta
         rbs__sb_apply_pair(ba, bb, c, j);
 }
 
-/* pass() for the gathered layout: the contacts with a plane come first
- * (detection makes them first), then the pairs of spheres. */
-static void pass_fast(soft_pass *sp, int stage)
+/* pass() for the gathered layout: the contacts with a plane first
+ * (detection makes them first), then the pairs of spheres in four
+ * interleaved runs (the k-th of each quarter in turn): rows next to each
+ * other then seldom share a body, so one row need not wait for the last
+ * one's stores (about 4 % faster on the 1,000 pile; the order is fixed, so
+ * results stay deterministic).  Inlined for each stage, so that a row is
+ * compiled for its stage and kind of pair. */
+static SOFT_INLINE void pass_fast_stage(soft_pass *sp, int stage)
 {
     rbs__contact *c = sp->w->contact;
-    uint32_t i, n = sp->w->contact_count, planes = sp->plane_contacts;
+    uint32_t i, n = sp->w->contact_count, planes = sp->plane_contacts, q = sp->quarter;
     for (i = 0; i < planes; ++i)
         row_fast(sp, &c[i], stage, 1);
-    for (i = planes; i < n; ++i)
+    for (i = planes; i < planes + q; ++i) {
         row_fast(sp, &c[i], stage, 0);
+        if (i + q < n)
+            row_fast(sp, &c[i + q], stage, 0);
+        if (i + 2 * q < n)
+            row_fast(sp, &c[i + 2 * q], stage, 0);
+        if (i + 3 * q < n)
+            row_fast(sp, &c[i + 3 * q], stage, 0);
+    }
+}
+
+static void pass_fast(soft_pass *sp, int stage)
+{
+    if (stage == SOLVE)
+        pass_fast_stage(sp, SOLVE);
+    else if (stage == RELAX)
+        pass_fast_stage(sp, RELAX);
+    else
+        pass_fast_stage(sp, RESTITUTION);
 }
 
 /* A pass in the layout the frame took. */
@@ -387,6 +415,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.plane_contacts = 0;
     while (sp.plane_contacts < w->contact_count && w->type[w->contact[sp.plane_contacts].b] == RBS_BODY_PLANE)
         sp.plane_contacts++;
+    sp.quarter = (w->contact_count - sp.plane_contacts + 3) / 4;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
