@@ -133,6 +133,13 @@ static uint32_t first_bad(const rbs_world *w)
     return UINT32_MAX;
 }
 
+rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad)
+{
+    return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+        "step %llu: body %u (\"%s\") became NaN or infinite; the world is left at its last good state",
+        (unsigned long long)w->step_count + 1, (unsigned)bad, w->name[bad]);
+}
+
 rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
 {
     rbs_step_info local;
@@ -146,7 +153,11 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     memset(info, 0, sizeof *info);
     if (w->plan_dirty)
         rbs__world_plan(w);
-    rbs__save_state(w, w->step_save);
+    /* the state to go back to if the step fails (the soft step saves it
+     * itself, and only for the layout that needs it: see step_soft.c) */
+    w->step_saved = w->def.method != RBS_METHOD_SOFT;
+    if (w->step_saved)
+        rbs__save_state(w, w->step_save);
     w->spin_left = (uint64_t)w->def.max_substeps * 256u;
     w->overlap_unmeasured = 0;
     switch (w->def.method) {
@@ -191,11 +202,11 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     }
     w->overlap_unmeasured = 0;
     if (st == RBS_OK && (bad = first_bad(w)) != UINT32_MAX)
-        st = (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
-            "step %llu: body %u (\"%s\") became NaN or infinite; the world is left at its last good state",
-            (unsigned long long)w->step_count + 1, (unsigned)bad, w->name[bad]);
+        st = rbs__numeric_error(w, bad);
     if (st != RBS_OK) {
-        rbs__restore_state(w, w->step_save);
+        /* (a step that saved nothing wrote nothing either) */
+        if (w->step_saved)
+            rbs__restore_state(w, w->step_save);
         return st;
     }
     w->step_count++;

@@ -407,6 +407,11 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), h));
             v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * h));
         }
+    } else {
+        /* the general layout steps the world's arrays: their state at the
+         * frame's start, to measure displacements and to go back to */
+        rbs__save_state(w, w->step_save);
+        w->step_saved = 1;
     }
     sp.rec = rec;
 
@@ -471,8 +476,21 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     run_pass(&sp, RESTITUTION);
 
     /* Write the gathered bodies back: x += displacement, one turn by the
-     * frame's rotation. */
+     * frame's rotation; first making sure that all of it is finite, since
+     * nothing was saved (a failed step leaves the world as it was). */
     if (rec != NULL) {
+        for (k = 0; k < w->sphere_count; ++k) {
+            uint32_t b = w->spheres[k], d;
+            const double *r = &rec[REC * b];
+            int ok = 1;
+            if (r[6] == 0.0)
+                continue;
+            for (d = 0; d < 3; ++d)
+                ok &= isfinite(r[d]) && isfinite(r[3 + d]) && isfinite(r[11 + d]) &&
+                      isfinite(w->pos[3 * b + d] + r[8 + d]);
+            if (!ok)
+                return rbs__numeric_error(w, b);
+        }
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t b = w->spheres[k];
             const double *r = &rec[REC * b];

@@ -115,6 +115,9 @@ struct rbs_world {
     rbs__plan plan;
     int plan_dirty;
     int overlap_unmeasured; /* set by a method that leaves info->max_overlap to rbs_world_step */
+    int step_saved; /* step_save holds the state at this step's start (a failed
+                       step restores it); the soft step's gathered layout
+                       needs no save and leaves it 0 */
     uint64_t spin_left; /* rotation sub-steps this step may still take (rbs__spin_substeps) */
 
     /* per body (capacity def.max_bodies) */
@@ -381,6 +384,9 @@ void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque)
 /* State save/restore (step.c). */
 void rbs__save_state(const rbs_world *w, double *save);
 void rbs__restore_state(rbs_world *w, const double *save);
+/* RBS_E_NUMERIC for slot bad, with the message of a step that made it NaN
+ * or infinite (step.c). */
+rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad);
 
 /* The shared rollback loop and Euler's pieces (step_euler.c).  An advance
  * function moves velocities and positions over one sub-step of h seconds,
