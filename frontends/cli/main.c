@@ -45,7 +45,9 @@ static const char run_text[] =
     "  --steps N     steps to take, 0 to 2^53: frames 0..N at t = k dt\n"
     "                (0: frame 0 only, as \"steps\": 0 in a scene)\n"
     "  --dt S        time step, seconds (> 0)\n"
-    "  --method M    euler, selective, event, verlet, rk4, adaptive or soft\n"
+    "  --method M    euler, selective, event, verlet, rk4, adaptive, soft or\n"
+    "                auto (a scene's default: soft from 64 moving spheres\n"
+    "                on without mutual gravity, else euler)\n"
     "  --slop X      overlap an impact may end a step with before it is\n"
     "                rolled back, of the smaller radius, in (0, 0.1)\n"
     "                (default the scene's simulation.slop, else 1e-6)\n"
@@ -102,8 +104,8 @@ static const char explain_text[] =
     "world and print the pipeline rbs_world_step() runs for it: the bodies, the\n"
     "method and its sub-steps, and each stage in or out with the reason.\n"
     "--method M explains the scene with another method (euler, selective,\n"
-    "event, verlet, rk4, adaptive, soft).  Exit 0, 2 (usage) or 3 (scene\n"
-    "error).\n";
+    "event, verlet, rk4, adaptive, soft, auto; for auto it says which one it\n"
+    "takes and why).  Exit 0, 2 (usage) or 3 (scene error).\n";
 
 static const char convert_text[] =
     "usage: rbsim convert IN OUT\n"

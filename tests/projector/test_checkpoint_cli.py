@@ -196,7 +196,8 @@ class ProjectorTests(CkptBase):
         r = self.rbsim("explain", s)
         self.assertEqual(r.returncode, 0, r.stderr)
         for line in ("world: 3 spheres (3 moving, 0 fixed), 1 planes",
-                     "method: euler, dt = 0.001 s", "stages:",
+                     "method: auto, dt = 0.001 s",
+                     "  auto: euler, since 3 spheres move (soft from 64 on)", "stages:",
                      "  in   contacts sphere-plane",
                      "  in   contacts sphere-sphere",
                      "  in   friction, rolling and spinning resistance",

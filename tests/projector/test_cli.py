@@ -124,7 +124,7 @@ class CliTests(Base):
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
             (["--method", "leapfrog"], "unknown method 'leapfrog'; expected euler, "
-             "selective, event, verlet, rk4, adaptive or soft"),
+             "selective, event, verlet, rk4, adaptive, soft or auto"),
             (["--slop", "0.1"], "--slop: expected a fraction of the smaller radius in (0, 0.1)"),
             (["--slop", "0"], "--slop: expected"),
             (["--slop", "nan"], "--slop: expected"),
@@ -192,7 +192,7 @@ class CliTests(Base):
         tail = r.stderr.split("expected ", 1)[1].splitlines()[0]
         names = tail.replace(" or ", ", ").split(", ")
         self.assertEqual(names, ["euler", "selective", "event", "verlet", "rk4",
-                                 "adaptive", "soft"])
+                                 "adaptive", "soft", "auto"])
         r = self.rbsim("explain", s, "--method", "leapfrog")
         self.assertEqual(r.returncode, 2)
         self.assertIn("--method: unknown method 'leapfrog'; expected " + tail, r.stderr)

@@ -76,7 +76,7 @@ def test_settings_round_trip():
     assert rbsim.World().settings["soft_substeps"] == 4  # the library's default
     assert s["mutual_gravity"] is True and s["gravity_constant"] == 1.5
     assert s["softening"] == 0.01 and s["prune"] is False
-    assert s["method"] == "euler" == w.method
+    assert s["method"] == "auto" == w.method and w.method_in_use == "euler"
     assert list(w.gravity) == [0.0, -1.0, -3.0]
 
 
@@ -109,12 +109,38 @@ def test_dt_method_and_tolerance_are_settable():
     assert w.dt == 0.0005 and w.tolerance == 1e-6
 
 
+def test_auto_method_follows_the_bodies():
+    """The default method "auto" takes "euler" below 64 moving spheres and
+    "soft" from 64 on; method_in_use says which, and the state after 50
+    steps is the one the named method gives, bit for bit."""
+    assert rbsim.METHODS[-1] == "auto"
+
+    def heap(n, method=None):
+        kw = {} if method is None else {"method": method}
+        w = rbsim.World(max_bodies=n + 1, dt=0.001, **kw)
+        w.add_plane("ground")
+        for i in range(n):
+            w.add_sphere(radius=0.05, mass=0.1,
+                         position=(0.11 * (i % 8), 0.11 * (i // 8 % 8), 0.06 + 0.11 * (i // 64)))
+        return w
+
+    for n, chosen in ((63, "euler"), (64, "soft")):
+        a, b = heap(n), heap(n, chosen)
+        assert a.method == "auto" and a.method_in_use == chosen
+        assert b.method_in_use == chosen
+        a.step(50)
+        b.step(50)
+        assert a.hash() == b.hash() and np.array_equal(a.positions, b.positions)
+    a.method = "euler"
+    assert a.method == a.method_in_use == "euler"
+
+
 def test_soft_method():
     """"soft" is a method like the others: listed, accepted by World(),
     the property and the settings, and it steps (a ball falls onto the
     ground and stays above it, up to the overlap a soft contact allows)."""
     assert "soft" in rbsim.METHODS
-    assert rbsim.METHODS[-1] == "soft"  # RBS_METHOD_SOFT = 6, the last
+    assert rbsim.METHODS.index("soft") == 6  # RBS_METHOD_SOFT
     w = make_world(method="soft", soft_substeps=8)
     assert w.method == "soft" and w.settings["method"] == "soft"
     assert w.settings["soft_substeps"] == 8

@@ -182,7 +182,7 @@ static const bad_case cases[] = {
     {"bad/unknown_method.json", RBS_E_SCENE,
      {E("\"rk45\"", 1, 0,
         "simulation.method: must be \"euler\", \"selective\", \"event\", \"verlet\", "
-        "\"rk4\", \"adaptive\" or \"soft\", got \"rk45\" (did you mean \"rk4\"?)")}},
+        "\"rk4\", \"adaptive\", \"soft\" or \"auto\", got \"rk45\" (did you mean \"rk4\"?)")}},
     {"bad/unknown_gravity_mode.json", RBS_E_SCENE,
      {E("\"accel\"", 1, 0,
         "simulation.gravity_mode: must be \"acceleration\" or \"force\", got \"accel\" "
@@ -523,7 +523,7 @@ static void test_override(void **state)
     assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
     assert_string_equal(e.text, "command line: --method: unknown method \"rk5\" (did you mean "
                                 "\"rk4\"?); expected euler, selective, event, verlet, rk4, "
-                                "adaptive or soft");
+                                "adaptive, soft or auto");
     assert_int_equal(rbs_scene_steps(scene), 10);
     assert_true(rbs_scene_dt(scene) == 0.002);
     assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);

@@ -401,7 +401,9 @@ class World:
         gravity: m/s^2, or N in "force" mode (default (0, 0, -9.81)).
         gravity_mode: "acceleration" (default) or "force".
         restitution: fallback coefficient of restitution in [0, 1].
-        method: one of :data:`METHODS` (default "euler").
+        method: one of :data:`METHODS` (default "auto": "soft" from
+                64 moving spheres on without mutual gravity, else "euler";
+                see :attr:`World.method_in_use`).
         tolerance: the adaptive method's error tolerance (> 0).
         slop: allowed overlap relative to the smaller radius of a pair.
         max_halvings: rollback floor dt / 2**max_halvings.
@@ -1038,6 +1040,12 @@ class World:
     @method.setter
     def method(self, value: str) -> None:
         self._call(lib.rbs_world_set_method, _method_value(value), 0.0)
+
+    @property
+    def method_in_use(self) -> str:
+        """The method the next step takes: :attr:`method`, or for "auto" the
+        one it resolves to for the world as it is now ("euler" or "soft")."""
+        return METHODS[int(self._value(lib.rbs_world_method_in_use))]
 
     @property
     def tolerance(self) -> float:

@@ -120,7 +120,7 @@ typedef enum rbs_gravity_mode {
 
 /** Stepping method (see docs/methods.md). */
 typedef enum rbs_method {
-    RBS_METHOD_EULER = 0,     /**< semi-implicit Euler, global rollback (default) */
+    RBS_METHOD_EULER = 0,     /**< semi-implicit Euler, global rollback */
     RBS_METHOD_SELECTIVE = 1, /**< Euler, only overlapping groups roll back */
     RBS_METHOD_EVENT = 2,     /**< exact event-driven stepping */
     RBS_METHOD_VERLET = 3,    /**< velocity Verlet between contacts */
@@ -128,9 +128,21 @@ typedef enum rbs_method {
     RBS_METHOD_ADAPTIVE = 5,  /**< GSL odeiv2 with error control */
     RBS_METHOD_SOFT = 6,      /**< fixed sub-steps with soft contacts and a
                                    restitution pass (piles; docs/methods.md) */
-    RBS_METHOD_COUNT = 7,
+    RBS_METHOD_AUTO = 7,      /**< (default) chosen at each step from the world:
+                                   RBS_METHOD_SOFT when at least
+                                   RBS_METHOD_AUTO_SOFT_BODIES spheres move and
+                                   there is no mutual gravity, else
+                                   RBS_METHOD_EULER -- bit for bit the method
+                                   chosen (rbs_world_method_in_use) */
+    RBS_METHOD_COUNT = 8,
     RBS_METHOD_FORCE32 = 0x7fffffff
 } rbs_method;
+
+/** RBS_METHOD_AUTO takes RBS_METHOD_SOFT from this many moving spheres on:
+ * below it a scene keeps Euler's exact impacts (cradles, billiards, stacks),
+ * from it on Euler's global rollback costs 4x to 50x the soft step on a pile
+ * (docs/methods.md, "auto"). */
+#define RBS_METHOD_AUTO_SOFT_BODIES 64
 
 /** Name of a method ("euler", ...), or NULL when out of range. */
 RBS_API const char *rbs_method_name(rbs_method method);
@@ -189,7 +201,7 @@ typedef struct rbs_world_def {
     rbs_gravity_mode gravity_mode; /**< default acceleration */
     double restitution;       /**< fallback coefficient of restitution, [0,1];
                                    default 0.5 */
-    rbs_method method;        /**< default RBS_METHOD_EULER */
+    rbs_method method;        /**< default RBS_METHOD_AUTO */
     double tolerance;         /**< adaptive method's error tolerance; default 1e-9,
                                    >= 1e-15 */
     double slop;              /**< allowed overlap and contact margin, relative to
@@ -454,6 +466,12 @@ RBS_API uint64_t rbs_world_step_count(const rbs_world *world);
 /** Change the step size, s (finite, > 0) for the steps from now on; the
  * time elapsed so far is kept. */
 RBS_API rbs_status rbs_world_set_dt(rbs_world *world, double dt);
+/** The method the next step takes: def.method, or for RBS_METHOD_AUTO the
+ * one it resolves to for the world as it is now (RBS_METHOD_EULER or
+ * RBS_METHOD_SOFT).  RBS_METHOD_COUNT for a NULL or destroyed world.  Not
+ * thread-safe against calls that change the world. */
+RBS_API rbs_method rbs_world_method_in_use(const rbs_world *world);
+
 /** Change the method and its tolerance (tolerance <= 0 keeps the current). */
 RBS_API rbs_status rbs_world_set_method(rbs_world *world, rbs_method method,
                                         double tolerance);

@@ -80,6 +80,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     rbs__plan p;
     uint32_t i, k, moving = 0, fixed = 0;
     const char *why;
+    rbs_method m;
     if (needed)
         *needed = 0;
     if (w == NULL || w->magic != 0x72627377u || (buf == NULL && size > 0))
@@ -88,6 +89,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     t.size = size;
     t.len = 0;
     rbs__plan_compute(w, &p);
+    m = p.method;
     for (k = 0; k < w->sphere_count; ++k) {
         if (w->fixed[w->spheres[k]])
             fixed++;
@@ -102,12 +104,22 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     put(&t, "method: %s, dt = %g s, slop = %g of the smaller radius, tolerance = %g, pruning %s\n",
         rbs_method_name(w->def.method), w->def.dt, w->def.slop, w->def.tolerance,
         w->def.prune ? "on" : "off (every stage runs)");
-    put(&t, "  %s\n", method_summary(w->def.method));
-    if (w->def.method == RBS_METHOD_SOFT)
+    if (w->def.method == RBS_METHOD_AUTO) {
+        if (m == RBS_METHOD_SOFT)
+            put(&t, "  auto: soft, since %u spheres move (soft from %u on, without mutual gravity)\n",
+                (unsigned)moving, (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);
+        else if (w->def.mutual_gravity)
+            put(&t, "  auto: euler, since there is mutual gravity\n");
+        else
+            put(&t, "  auto: euler, since %u sphere%s move%s (soft from %u on)\n", (unsigned)moving,
+                moving == 1 ? "" : "s", moving == 1 ? "s" : "", (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);
+    }
+    put(&t, "  %s\n", method_summary(m));
+    if (m == RBS_METHOD_SOFT)
         put(&t, "  %u sub-steps of dt/%u; contacts found once a frame within each body's sweep; no "
                 "rollback: overlap beyond the slop is pushed out by springs of omega = pi/(2h)\n",
             (unsigned)w->def.soft_substeps, (unsigned)w->def.soft_substeps);
-    else if (w->def.method != RBS_METHOD_EVENT)
+    else if (m != RBS_METHOD_EVENT)
         put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
             (unsigned)w->def.max_halvings);
     why = w->def.prune ? "" : " (pruning off)";
@@ -199,18 +211,18 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
             (unsigned)(w->sphere_count * (w->sphere_count - 1) / 2));
 
     /* Resting contact. */
-    stage(&t, moving > 0 && w->def.method != RBS_METHOD_EVENT, "resting-contact pass");
-    if (w->def.method == RBS_METHOD_VERLET || w->def.method == RBS_METHOD_RK4)
+    stage(&t, moving > 0 && m != RBS_METHOD_EVENT, "resting-contact pass");
+    if (m == RBS_METHOD_VERLET || m == RBS_METHOD_RK4)
         put(&t, "once per sub-step, on the end velocities (positions move by half of its change)\n");
-    else if (w->def.method == RBS_METHOD_ADAPTIVE)
+    else if (m == RBS_METHOD_ADAPTIVE)
         put(&t, "in frames with lasting contact, on RK4 sub-steps\n");
-    else if (w->def.method == RBS_METHOD_EVENT)
+    else if (m == RBS_METHOD_EVENT)
         put(&t, "the event method keeps rolling and sliding in closed form\n");
-    else if (w->def.method == RBS_METHOD_SOFT)
+    else if (m == RBS_METHOD_SOFT)
         put(&t, "a solve and a relax pass per sub-step, warm-started (the soft step's own rows)\n");
     else
         put(&t, "once per sub-step, after the forces\n");
-    if (moving > 0 && w->def.method != RBS_METHOD_EVENT) {
+    if (moving > 0 && m != RBS_METHOD_EVENT) {
         /* the compact sweep (solver.c) decides per pass, from the pass's
          * contacts; here: whether every pass can take it */
         uint32_t odd = UINT32_MAX;
@@ -220,7 +232,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         for (i = 0; i < w->pairs; ++i)
             if (w->pair[i].rolling > 0.0 || w->pair[i].spinning > 0.0)
                 break;
-        if (w->def.method == RBS_METHOD_SOFT) {
+        if (m == RBS_METHOD_SOFT) {
             /* the soft step's layout follows the bodies alone (step_soft.c) */
             stage(&t, odd == UINT32_MAX && i == w->pairs && !w->def.mutual_gravity, "gathered body records");
             if (w->def.mutual_gravity) {

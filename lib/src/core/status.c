@@ -30,7 +30,7 @@ const char *rbs_version(void) { return RBS_VERSION_STRING; }
 uint32_t rbs_version_number(void) { return (uint32_t)RBS_VERSION_NUMBER; }
 
 static const char *const method_names[RBS_METHOD_COUNT] = {
-    "euler", "selective", "event", "verlet", "rk4", "adaptive", "soft",
+    "euler", "selective", "event", "verlet", "rk4", "adaptive", "soft", "auto",
 };
 
 const char *rbs_method_name(rbs_method method)

@@ -58,6 +58,10 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
             p.min_radius = r;
     }
     p.mutual = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
+    p.method = w->def.method;
+    if (p.method == RBS_METHOD_AUTO)
+        p.method = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity ? RBS_METHOD_SOFT
+                                                                                 : RBS_METHOD_EULER;
     if (!w->def.prune) {
         p.angular = p.gyroscopic = p.friction = p.sphere_pairs = 1;
         p.mutual = w->def.mutual_gravity != 0;
@@ -155,12 +159,12 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         rbs__world_plan(w);
     /* the state to go back to if the step fails (the soft step saves it
      * itself, and only for the layout that needs it: see step_soft.c) */
-    w->step_saved = w->def.method != RBS_METHOD_SOFT;
+    w->step_saved = w->plan.method != RBS_METHOD_SOFT;
     if (w->step_saved)
         rbs__save_state(w, w->step_save);
     w->spin_left = (uint64_t)w->def.max_substeps * 256u;
     w->overlap_unmeasured = 0;
-    switch (w->def.method) {
+    switch (w->plan.method) {
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);
         break;
@@ -184,13 +188,13 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         break;
     default:
         st = (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED, "method \"%s\" is not available",
-                                               rbs_method_name(w->def.method));
+                                               rbs_method_name(w->plan.method));
         break;
     }
     /* Overlap the step did not make (bodies placed overlapping, or left by
      * the rollback floor) is pushed apart now, so the next step starts
      * clean; the report then describes the separated state. */
-    if (st == RBS_OK && w->def.method != RBS_METHOD_SOFT &&
+    if (st == RBS_OK && w->plan.method != RBS_METHOD_SOFT &&
         (w->overlap_unmeasured || info->max_overlap > w->def.slop * w->plan.min_radius)) {
         /* (separation moves nothing when no overlap exceeds the slop, so a
          * method that did not measure can always take this path; it

@@ -56,7 +56,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.gravity.z = -9.81;
     d.gravity_mode = RBS_GRAVITY_ACCELERATION;
     d.restitution = 0.5;
-    d.method = RBS_METHOD_EULER;
+    d.method = RBS_METHOD_AUTO;
     d.tolerance = 1e-9;
     d.slop = 1e-6;
     d.max_halvings = 30;
@@ -1306,9 +1306,21 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
     if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
         FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;
+    w->plan_dirty = 1; /* (the plan holds the method a step takes) */
     if (tolerance > 0.0)
         w->def.tolerance = tolerance;
     return RBS_OK;
+}
+
+rbs_method rbs_world_method_in_use(const rbs_world *w)
+{
+    rbs__plan p;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_METHOD_COUNT;
+    if (!w->plan_dirty)
+        return w->plan.method;
+    rbs__plan_compute(w, &p);
+    return p.method;
 }
 
 rbs_status rbs_world_state(const rbs_world *w, rbs_state_view *out)

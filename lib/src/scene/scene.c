@@ -50,7 +50,7 @@ rbs_scene *rbs__scene_new(void)
     scene->dt = 0.001;
     scene->gravity.z = -9.81;
     scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
-    scene->method = RBS_METHOD_EULER;
+    scene->method = RBS_METHOD_AUTO;
     scene->tolerance = 1e-9;
     scene->restitution = 0.5;
     scene->gravity_constant = 6.674e-11;

@@ -1,0 +1,168 @@
+/*
+ * test_auto.c - RBS_METHOD_AUTO, the default: it takes RBS_METHOD_SOFT from
+ * RBS_METHOD_AUTO_SOFT_BODIES moving spheres on (without mutual gravity) and
+ * RBS_METHOD_EULER otherwise, bit for bit -- the same state hash after every
+ * step as the method it names -- and it says which (rbs_world_method_in_use,
+ * rbs_world_explain).  Fixed spheres do not count; the choice follows the
+ * bodies as they are added and removed, and survives a checkpoint.
+ */
+#include "common.h"
+
+#define N_AUTO RBS_METHOD_AUTO_SOFT_BODIES
+
+/* A heap of `moving` spheres on a 0.11 m lattice over a floor, and `fixed`
+ * fixed spheres under the floor's far end, with friction: every stage of a
+ * pile runs (impacts, rest, friction, sphere pairs). */
+static rbs_world *heap(rbs_method method, uint32_t moving, uint32_t fixed, int mutual, int prune)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id m;
+    rbs_sphere_def s;
+    uint32_t i;
+    rbs_world_def_init(&d);
+    d.max_bodies = moving + fixed + 2;
+    d.method = method;
+    d.mutual_gravity = mutual;
+    d.prune = prune;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.4, 0.5);
+    floor_plane(w, m);
+    for (i = 0; i < moving; ++i)
+        ball(w, 0.05, 0.1, 0.11 * (i % 8) + 0.003 * (i % 3), 0.11 * ((i / 8) % 8), 0.06 + 0.11 * (i / 64), 0, 0,
+             -0.1 * (i % 5), m);
+    for (i = 0; i < fixed; ++i) {
+        rbs_sphere_def_init(&s);
+        s.radius = 0.05;
+        s.fixed = 1;
+        s.position.x = 5.0 + 0.2 * i;
+        s.position.z = -1.0;
+        s.material = m;
+        CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    }
+    return w;
+}
+
+/* Steps a and b side by side; every step's hash must agree. */
+static void same_steps(rbs_world *a, rbs_world *b, int steps)
+{
+    int k;
+    for (k = 0; k < steps; ++k) {
+        CHECK_OK(rbs_world_step(a, NULL));
+        CHECK_OK(rbs_world_step(b, NULL));
+        if (rbs_world_hash(a) != rbs_world_hash(b))
+            fail_msg("step %d: the hashes differ", k + 1);
+    }
+}
+
+static void defaults_and_names(void **state)
+{
+    rbs_world_def d;
+    rbs_method m = RBS_METHOD_EULER;
+    (void)state;
+    rbs_world_def_init(&d);
+    assert_int_equal(d.method, RBS_METHOD_AUTO);
+    assert_string_equal(rbs_method_name(RBS_METHOD_AUTO), "auto");
+    CHECK_OK(rbs_method_from_name("auto", &m));
+    assert_int_equal(m, RBS_METHOD_AUTO);
+    assert_int_equal(rbs_world_method_in_use(NULL), RBS_METHOD_COUNT);
+}
+
+/* One moving sphere short of the threshold, with fixed ones besides (they
+ * do not count): Euler, bit for bit. */
+static void below_threshold_is_euler(void **state)
+{
+    rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO - 1, 8, 0, 1), *b = heap(RBS_METHOD_EULER, N_AUTO - 1, 8, 0, 1);
+    (void)state;
+    assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_EULER);
+    same_steps(a, b, 300);
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+}
+
+/* At the threshold: soft, bit for bit, with pruning on and off. */
+static void from_threshold_is_soft(void **state)
+{
+    int prune;
+    (void)state;
+    for (prune = 0; prune <= 1; ++prune) {
+        rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO, 0, 0, prune), *b = heap(RBS_METHOD_SOFT, N_AUTO, 0, 0, prune);
+        assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_SOFT);
+        same_steps(a, b, 300);
+        rbs_world_destroy(a);
+        rbs_world_destroy(b);
+    }
+}
+
+/* Mutual gravity keeps Euler however many spheres move. */
+static void mutual_gravity_is_euler(void **state)
+{
+    rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO, 0, 1, 1), *b = heap(RBS_METHOD_EULER, N_AUTO, 0, 1, 1);
+    (void)state;
+    assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_EULER);
+    same_steps(a, b, 20);
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+}
+
+/* The choice follows the bodies: adding the 64th moving sphere takes soft
+ * from the next step on, removing one takes Euler again; an explicit method
+ * is kept whatever the count; explain names the choice and its reason. */
+static void follows_the_bodies(void **state)
+{
+    rbs_world *w = heap(RBS_METHOD_AUTO, N_AUTO - 1, 0, 0, 1);
+    rbs_body_id extra;
+    char buf[8192];
+    (void)state;
+    step_n(w, 10);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "method: auto, dt = 0.001 s"));
+    assert_non_null(strstr(buf, "  auto: euler, since 63 spheres move (soft from 64 on)\n"));
+    extra = ball(w, 0.05, 0.1, 0.0, 0.0, 2.0, 0, 0, 0, (rbs_material_id){0, 0});
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft, since 64 spheres move (soft from 64 on, without mutual gravity)\n"
+                                "  the soft step:"));
+    step_n(w, 10);
+    CHECK_OK(rbs_world_remove_body(w, extra));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    step_n(w, 10);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_RK4, 0.0));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_RK4);
+    rbs_world_destroy(w);
+}
+
+/* A checkpoint keeps "auto" and its choice: the resumed world continues bit
+ * for bit. */
+static void checkpoint_keeps_auto(void **state)
+{
+    rbs_world *w = heap(RBS_METHOD_AUTO, N_AUTO + 10, 0, 0, 1), *c = NULL;
+    rbs_world_def d;
+    static unsigned char buf[1 << 21];
+    size_t n = 0;
+    (void)state;
+    step_n(w, 100);
+    assert_true(rbs_world_checkpoint_size(w) <= sizeof buf);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, sizeof buf, &n));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &c));
+    CHECK_OK(rbs_world_get_def(c, &d));
+    assert_int_equal(d.method, RBS_METHOD_AUTO);
+    assert_int_equal(rbs_world_method_in_use(c), RBS_METHOD_SOFT);
+    same_steps(w, c, 100);
+    rbs_world_destroy(c);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(defaults_and_names),
+        cmocka_unit_test(below_threshold_is_euler),
+        cmocka_unit_test(from_threshold_is_soft),
+        cmocka_unit_test(mutual_gravity_is_euler),
+        cmocka_unit_test(follows_the_bodies),
+        cmocka_unit_test(checkpoint_keeps_auto),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
