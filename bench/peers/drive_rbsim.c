@@ -7,8 +7,9 @@
  * Contacts: one "*"/"*" material-pair row with mu_s = mu_k = friction and
  * e = restitution, and the world's restitution the same, so every contact
  * (sphere-sphere and sphere-plane) has the scene's coefficients.  Everything
- * else is the library's default (max_halvings, max_sweeps, contacts; the slop
- * too unless --slop gives one).
+ * else is the library's default (the method -- auto: soft from 64 moving
+ * spheres on, else euler -- unless --method names one; max_halvings,
+ * max_sweeps, contacts; the slop too unless --slop gives one).
  * Only the stepping loop is timed; creation is reported as setup time.
  */
 #include <stdint.h>
@@ -191,12 +192,12 @@ int main(int argc, char **argv)
     rbs_world_usage(w, &usage_info);
     rbs_world_energy(w, &energy);
 
-    printf("RESULT {\"engine\": \"rbsim\", \"version\": \"%s\", \"method\": \"%s\", \"n\": %zu, "
+    printf("RESULT {\"engine\": \"rbsim\", \"version\": \"%s\", \"method\": \"%s\", \"method_in_use\": \"%s\", \"n\": %zu, "
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
            "\"substeps\": %llu, \"rollbacks\": %llu, \"floor_hits\": %llu, \"sweep_limit\": %llu, "
            "\"contacts_max\": %u, \"contacts_high\": %u, \"step_max_overlap\": %.9g, "
            "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"energy_lib\": %.12g, \"apex\": ",
-           rbs_version(), rbs_method_name(def.method), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0,
+           rbs_version(), rbs_method_name(def.method), rbs_method_name(rbs_world_method_in_use(w)), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0,
            t_setup, (unsigned long long)substeps, (unsigned long long)rollbacks,
            (unsigned long long)floor_hits, (unsigned long long)sweep_limit, contacts_max,
            usage_info.contacts_high, overlap_max, usage_info.bytes, def.max_contacts,

@@ -73,8 +73,9 @@ def peers_tables(rows, meta):
     L.append("### Speed\n")
     L.append("Medians over repeats.  *cost* = wall seconds per simulated second; "
              "*speed-up* = the engine's cost / rbsim's cost in the same repeat (median), "
-             "so above 1 means rbsim is faster; one column for rbsim's default method (Euler with "
-             "global rollback), one for RBS_METHOD_SELECTIVE and one for the default method with "
+             "so above 1 means rbsim is faster; one column for rbsim's default method (auto: the "
+             "soft step from 64 moving spheres on, so every pile, else Euler with global rollback), "
+             "one for RBS_METHOD_SELECTIVE and one for RBS_METHOD_EULER with "
              "slop 0.005 (rbsim_tol: impacts shallower than 0.5 % of the radius are not rolled back), "
              "and one for RBS_METHOD_SOFT (rbsim_soft: the soft step, 4 sub-steps a frame).  *simulated* = the simulated time "
              "a run covered (less than planned when the run hit its wall-time cap; then costs "
@@ -243,8 +244,8 @@ def scaling_table(rows):
     L.append("### rbsim alone from 10^3 to 10^6 spheres\n")
     L.append("20 steps (dt = 1 ms) of a falling lattice (10 layers, spacing 0.12 m, no contacts "
              "yet) and of a settled stack (10 layers of touching spheres on the floor, walls "
-             "touching: every sphere in resting contact), with rbsim's default method and with "
-             "RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  One run each; a run that "
+             "touching: every sphere in resting contact), with rbsim's default method (auto: soft "
+             "at these sizes), with RBS_METHOD_SOFT and with RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  One run each; a run that "
              "hits its wall-time cap (status capped: fewer than 20 steps) stops the larger sizes "
              "of that scene and method.\n")
     L.append("| rbsim | scene | N | status | steps | wall (s) | setup (s) | ns/body-step | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
@@ -273,8 +274,9 @@ def scaling_table(rows):
 
 def targets(rows, meta):
     L = ["### Against the targets of issue 9\n"]
-    L.append("For rbsim's default method (**rbsim**), for RBS_METHOD_SELECTIVE (**rbsim_sel**) and for "
-             "the default method with slop 0.005 (**rbsim_tol**, `simulation.slop` in a scene) and for "
+    L.append("For rbsim's default method (**rbsim**, RBS_METHOD_AUTO: the soft step on every pile "
+             "here, Euler on the ball and the billiards), for RBS_METHOD_SELECTIVE (**rbsim_sel**) and for "
+             "RBS_METHOD_EULER with slop 0.005 (**rbsim_tol**, `simulation.slop` in a scene) and for "
              "RBS_METHOD_SOFT (**rbsim_soft**, `\"method\": \"soft\"` in a scene: the soft step); "
              "ODE is ODE with the issue's dHashSpace (ratios against ode_sap are in the speed "
              "table).\n")
@@ -358,7 +360,7 @@ Scenes (one file per scene, written by `bench/peers/scenes.py`, read by all four
 
 Engines:
 
-- **rbsim** (this repository, the commit named below): `rbs_world_def` defaults (method Euler,
+- **rbsim** (this repository, the commit named below): `rbs_world_def` defaults (method auto: soft on the piles, Euler on ball and billiards,
   slop 1e-6 r, max_halvings 30, max_sweeps 20, contact slots 4 per body + 16), one "*"/"*"
   material pair with μs = μk = 0.5, e = 0.5.
 - **ODE** (Debian libode-dev, double precision, C API): dHashSpace at its default levels

@@ -32,7 +32,10 @@ import scenes  # noqa: E402
 # (N <= 8000) to keep the comparison fair to ODE.
 # "rbsim_sel" is rbsim with RBS_METHOD_SELECTIVE (only overlapping groups roll
 # back) instead of the default method.
-# "rbsim_tol" is rbsim's default method with a looser impact tolerance: slop
+# "rbsim" is rbsim's default method, RBS_METHOD_AUTO: the soft step from 64
+# moving spheres on (every pile here), Euler with global rollback below (the
+# ball, the billiards break).
+# "rbsim_tol" is rbsim's Euler method with a looser impact tolerance: slop
 # TOL_SLOP (0.5 % of the radius, half the 1 % overlap bound) instead of
 # the library's 1e-6, so an impact shallower than that is kept where the step
 # finds it instead of being rolled back to the moment of touch.
@@ -106,7 +109,7 @@ def driver_cmd(build, engine, scene_path, steps, cap, state_path):
     elif engine == "rbsim_sel":
         cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "selective"]
     elif engine == "rbsim_tol":
-        cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--slop", str(TOL_SLOP)]
+        cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "euler", "--slop", str(TOL_SLOP)]
     elif engine == "rbsim_soft":
         cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "soft"]
     elif engine == "ode_sap":
