@@ -20,6 +20,21 @@
             fail_msg("%s -> %s", #call, rbs_status_name(st_));                  \
     } while (0)
 
+/* Body b gets a force of 1e308 N: the next step overflows, which must be
+ * RBS_E_NUMERIC with the text `what` in the message, and leave the world bit
+ * for bit as it was, still at `steps` steps. */
+static inline void overflow_keeps_state(rbs_world *w, rbs_body_id b, const char *what, uint64_t steps)
+{
+    rbs_vec3 f = {1e308, 0, 0};
+    uint64_t h;
+    CHECK_OK(rbs_body_set_force(w, b, f));
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+    assert_non_null(strstr(rbs_world_last_error(w), what));
+    assert_true(rbs_world_hash(w) == h);
+    assert_int_equal(rbs_world_step_count(w), steps);
+}
+
 /* A world with default settings and room for n bodies. */
 static inline rbs_world *make_world(uint32_t n, double dt, double gz, double e)
 {

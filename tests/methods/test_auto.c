@@ -68,41 +68,39 @@ static void defaults_and_names(void **state)
     assert_int_equal(rbs_world_method_in_use(NULL), RBS_METHOD_COUNT);
 }
 
+/* auto on a heap of `moving` spheres (and `fixed` ones) takes `chosen`,
+ * says so, and steps bit for bit as `chosen` does. */
+static void auto_is(rbs_method chosen, uint32_t moving, uint32_t fixed, int mutual, int prune, int steps)
+{
+    rbs_world *a = heap(RBS_METHOD_AUTO, moving, fixed, mutual, prune);
+    rbs_world *b = heap(chosen, moving, fixed, mutual, prune);
+    assert_int_equal(rbs_world_method_in_use(a), chosen);
+    same_steps(a, b, steps);
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+}
+
 /* One moving sphere short of the threshold, with fixed ones besides (they
  * do not count): Euler, bit for bit. */
 static void below_threshold_is_euler(void **state)
 {
-    rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO - 1, 8, 0, 1), *b = heap(RBS_METHOD_EULER, N_AUTO - 1, 8, 0, 1);
     (void)state;
-    assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_EULER);
-    same_steps(a, b, 300);
-    rbs_world_destroy(a);
-    rbs_world_destroy(b);
+    auto_is(RBS_METHOD_EULER, N_AUTO - 1, 8, 0, 1, 300);
 }
 
 /* At the threshold: soft, bit for bit, with pruning on and off. */
 static void from_threshold_is_soft(void **state)
 {
-    int prune;
     (void)state;
-    for (prune = 0; prune <= 1; ++prune) {
-        rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO, 0, 0, prune), *b = heap(RBS_METHOD_SOFT, N_AUTO, 0, 0, prune);
-        assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_SOFT);
-        same_steps(a, b, 300);
-        rbs_world_destroy(a);
-        rbs_world_destroy(b);
-    }
+    auto_is(RBS_METHOD_SOFT, N_AUTO, 0, 0, 1, 300);
+    auto_is(RBS_METHOD_SOFT, N_AUTO, 0, 0, 0, 300);
 }
 
 /* Mutual gravity keeps Euler however many spheres move. */
 static void mutual_gravity_is_euler(void **state)
 {
-    rbs_world *a = heap(RBS_METHOD_AUTO, N_AUTO, 0, 1, 1), *b = heap(RBS_METHOD_EULER, N_AUTO, 0, 1, 1);
     (void)state;
-    assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_EULER);
-    same_steps(a, b, 20);
-    rbs_world_destroy(a);
-    rbs_world_destroy(b);
+    auto_is(RBS_METHOD_EULER, N_AUTO, 0, 1, 1, 20);
 }
 
 /* The choice follows the bodies: adding the 64th moving sphere takes soft

@@ -462,8 +462,6 @@ static void overflow_keeps_last_good_state(void **state)
         rbs_world *w = soft_world(8, 1e-3, -G, 0.5, 4);
         rbs_sphere_def s;
         rbs_body_id b;
-        rbs_vec3 f = {1e308, 0, 0};
-        uint64_t h;
         int i;
         floor_plane(w, (rbs_material_id){0, 0});
         for (i = 0; i < 3; ++i)
@@ -482,12 +480,7 @@ static void overflow_keeps_last_good_state(void **state)
         }
         CHECK_OK(rbs_world_add_sphere(w, &s, &b));
         step_n(w, 50);
-        CHECK_OK(rbs_body_set_force(w, b, f));
-        h = rbs_world_hash(w);
-        assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
-        assert_non_null(strstr(rbs_world_last_error(w), "(\"hot\") became NaN or infinite"));
-        assert_true(rbs_world_hash(w) == h);
-        assert_int_equal(rbs_world_step_count(w), 50);
+        overflow_keeps_state(w, b, "(\"hot\") became NaN or infinite", 50);
         rbs_world_destroy(w);
     }
 }
