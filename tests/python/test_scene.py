@@ -126,3 +126,24 @@ def test_scene_renderers_are_listed_and_not_silently_dropped():
         w.run(3)
     assert record[0].filename == __file__  # points at the caller
     w.run(3)  # warned once per world
+
+
+def test_scene_without_method_is_auto():
+    """A scene that names no method gets "auto": "euler" for a few spheres,
+    "soft" for a heap of 64, and loading it with method="euler" keeps
+    Euler whatever the count."""
+    import json
+
+    def scene(n):
+        bodies = [{"type": "plane", "name": "floor", "normal": [0, 0, 1], "point": [0, 0, 0]}]
+        bodies += [{"type": "sphere", "name": "s%d" % i, "radius": 0.05, "mass": 0.1,
+                    "position": [0.11 * (i % 8), 0.11 * (i // 8 % 8), 0.06 + 0.11 * (i // 64)]}
+                   for i in range(n)]
+        return json.dumps({"simulation": {"steps": 10, "dt": 0.001}, "bodies": bodies,
+                           "materials": [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.4}]})
+
+    few, heap = rbsim.parse_json(scene(3)), rbsim.parse_json(scene(64))
+    assert few.method == heap.method == "auto"
+    assert few.method_in_use == "euler" and heap.method_in_use == "soft"
+    assert rbsim.parse_json(scene(64), method="euler").method_in_use == "euler"
+    heap.step(10)
