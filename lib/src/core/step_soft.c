@@ -358,15 +358,15 @@ static int gather_eligible(const rbs_world *w)
 }
 
 /* Each body's acceleration a and torque (the applied forces and gravity;
- * with mutual gravity its field now) into acc[6 slot ..], zero for planes,
- * and how far each moving sphere may travel within the frame, |v| dt +
- * |a| dt^2, into margin[slot]. */
+ * with mutual gravity its field now) into acc[6 slot ..], zero for planes
+ * (unless acc is NULL), and how far each moving sphere may travel within
+ * the frame, |v| dt + |a| dt^2, into margin[slot]. */
 static void margins(rbs_world *w, double dt, double *acc, double *margin)
 {
     uint32_t k;
     if (w->plan.mutual)
         rbs__mutual_gravity(w);
-    for (k = 0; k < w->plane_count; ++k)
+    for (k = 0; acc != NULL && k < w->plane_count; ++k)
         memset(&acc[6 * w->planes[k]], 0, 6 * sizeof(double));
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
@@ -375,11 +375,41 @@ static void margins(rbs_world *w, double dt, double *acc, double *margin)
         rbs__accelerations(w, i, &a, &tau);
         if (w->plan.mutual && !w->fixed[i])
             a = v3_add(a, v3_load(&w->acc[3 * i]));
-        v3_store(&acc[6 * i], a);
-        v3_store(&acc[6 * i + 3], tau);
+        if (acc != NULL) {
+            v3_store(&acc[6 * i], a);
+            v3_store(&acc[6 * i + 3], tau);
+        }
         m = v3_len(v3_load(&w->vel[3 * i])) * dt + v3_len(a) * dt * dt;
         margin[i] = w->fixed[i] || !isfinite(m) ? 0.0 : m;
     }
+}
+
+/* Whether every moving sphere has one and the same acceleration and no
+ * angular one -- gravity as an acceleration and no applied force or torque,
+ * as in every pile -- and then that acceleration's increment over a sub-step
+ * of h into inc[0..5] (a h, then 0 for the angular part: what the table of
+ * increments would hold for each body, bit for bit). */
+static int uniform_increment(const rbs_world *w, double h, double *inc)
+{
+    uint32_t k;
+    v3 a = v3_make(0, 0, 0), tau;
+    int first = 1;
+    if (w->def.gravity_mode != RBS_GRAVITY_ACCELERATION)
+        return 0;
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t i = w->spheres[k];
+        const double *f = &w->force[3 * i], *t = &w->torque[3 * i];
+        if (w->fixed[i])
+            continue;
+        if (f[0] != 0.0 || f[1] != 0.0 || f[2] != 0.0 || t[0] != 0.0 || t[1] != 0.0 || t[2] != 0.0)
+            return 0;
+        if (first)
+            rbs__accelerations(w, i, &a, &tau);
+        first = 0;
+    }
+    v3_store(inc, v3_scale(a, h));
+    v3_store(inc + 3, v3_make(0, 0, 0));
+    return 1;
 }
 
 rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
@@ -390,16 +420,21 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     const double a1 = 2.0 * SOFT_ZETA + h * omega, a2 = h * omega * a1;
     const uint32_t B = w->def.max_bodies;
     double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
-    double *touched = NULL;
+    double *touched = NULL, shared_inc[6];
     uint32_t i, k, at = 0;
     uint32_t s;
     soft_pass sp;
     rbs_status st;
+    const int gather = gather_eligible(w);
+    /* one increment for every body (shared_inc), or a table of them */
+    const int shared = gather && uniform_increment(w, h, shared_inc);
 
     /* inc: accelerations and torques for detection, then (gathered) their
-     * velocity increments a h, alpha h; the margins after inc */
-    margins(w, dt, inc, inc + (size_t)6 * B);
-    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, inc);
+     * velocity increments a h, alpha h -- untouched when the increment is
+     * shared, and detection then computes the accelerations it needs, the
+     * same values; the margins after inc */
+    margins(w, dt, shared ? NULL : inc, inc + (size_t)6 * B);
+    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc);
     if (st != RBS_OK)
         return st;
     sp.w = w;
@@ -409,7 +444,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.impulse_scale = 1.0 / (1.0 + a2);
     sp.friction = w->plan.friction;
     sp.restituted = 0;
-    if (gather_eligible(w)) {
+    if (gather) {
         rec = w->method_scratch;
         for (i = 0; i < w->slots; ++i) {
             double *b = &rec[REC * i];
@@ -420,8 +455,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             memset(b + 8, 0, 6 * sizeof(double));
             b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
             b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
-            v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), h));
-            v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * h));
+            if (!shared) {
+                v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), h));
+                v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * h));
+            }
         }
     } else {
         /* the general layout steps the world's arrays: their state at the
@@ -483,10 +520,11 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             for (k = 0; k < w->sphere_count; ++k) {
                 uint32_t b = w->spheres[k];
                 double *r = &rec[REC * b];
+                const double *ib = shared ? shared_inc : &inc[6 * b];
                 if (touched[b] == 0.0 || r[6] == 0.0) /* (the flag first: a free body's record is not read) */
                     continue;
-                v3_store(r, v3_add(v3_load(r), v3_load(&inc[6 * b])));
-                v3_store(r + 3, v3_add(v3_load(r + 3), v3_load(&inc[6 * b + 3])));
+                v3_store(r, v3_add(v3_load(r), v3_load(ib)));
+                v3_store(r + 3, v3_add(v3_load(r + 3), v3_load(ib + 3)));
             }
         } else {
             rbs__integrate_velocities(w, h);
@@ -510,10 +548,16 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t b = w->spheres[k];
             double *r = &rec[REC * b];
-            v3 v = v3_load(r), om = v3_load(r + 3), d = v3_load(r + 8), th = v3_load(r + 11);
-            const v3 dv = v3_load(&inc[6 * b]), dw = v3_load(&inc[6 * b + 3]);
-            if (r[6] == 0.0 || touched[b] != 0.0)
+            const double *ib = shared ? shared_inc : &inc[6 * b];
+            v3 v, om, d, th, dv, dw;
+            if (touched[b] != 0.0 || r[6] == 0.0)
                 continue;
+            v = v3_load(r);
+            om = v3_load(r + 3);
+            d = v3_load(r + 8);
+            th = v3_load(r + 11);
+            dv = v3_load(ib);
+            dw = v3_load(ib + 3);
             for (s = 0; s < n; ++s) {
                 v = v3_add(v, dv);
                 om = v3_add(om, dw);
