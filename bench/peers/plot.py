@@ -7,8 +7,9 @@ peers.png: cost (wall seconds per simulated second, and nanoseconds per
 body-step) against the number of spheres in the pile, log-log, one line per
 engine; hollow markers are runs that hit their wall-time cap (they covered
 less simulated time than planned).
-scaling.png: rbsim's cost per body-step from 1e3 to 1e6 spheres (20 steps of
-a falling lattice and of a settled stack); flat means linear scaling.
+scaling.png: rbsim's cost per body-step from 1e3 to 1e6 spheres (200 steps
+up to 1e4, then 2e6/N down to 20, of a falling lattice and of a settled
+stack); flat means linear scaling.
 """
 import csv
 import os
@@ -97,7 +98,7 @@ def plot_scaling(rows, path):
     ax.set_yscale("log")
     ax.set_xlabel("spheres, N")
     ax.set_ylabel("rbsim cost per body-step (ns)")
-    ax.set_title("rbsim scaling, 20 steps (hollow: run hit its time cap)")
+    ax.set_title("rbsim scaling, 200 steps to N = 1e4, then 2e6/N down to 20 (hollow: capped)")
     ax.grid(True, which="both", alpha=0.3)
     if any_pts:
         ax.legend(fontsize=8)
