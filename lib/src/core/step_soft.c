@@ -53,6 +53,13 @@
  * turns is lost: an error of order (|w| dt)^2 in the orientation, which a
  * centred isotropic sphere's motion never reads).  Every other world steps
  * on its own arrays through the general rows and integrators.
+ *
+ * The gathered layout saves nothing at the frame's start (the world's
+ * arrays are written only at its end, once every value is known finite),
+ * takes all the sub-steps of a body that no contact touches at once, shares
+ * one velocity increment among the bodies when none has its own force, and
+ * measures the report in its last relax pass; each of these gives the same
+ * bits as the sweeps it replaces (docs/methods.md, "soft").
  */
 #include <string.h>
 
