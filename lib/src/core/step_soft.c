@@ -580,33 +580,41 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     run_pass(&sp, RESTITUTION);
 
     /* Write the gathered bodies back: x += displacement, one turn by the
-     * frame's rotation; first making sure that all of it is finite, since
-     * nothing was saved (a failed step leaves the world as it was). */
+     * frame's rotation.  Nothing was saved, so a failed step must leave the
+     * world as it was: first every new value is made and checked finite (a
+     * finite rotation too large to square gives a NaN turn), the new
+     * orientation kept in the record (rotation 11-13 and slop 14, free now;
+     * 15: whether it turned), then all of it is written. */
     if (rec != NULL) {
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t b = w->spheres[k], d;
-            const double *r = &rec[REC * b];
-            int ok = 1;
+            double *r = &rec[REC * b];
+            v3 th = v3_load(r + 11);
+            int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
+            quat q;
             if (r[6] == 0.0)
                 continue;
             for (d = 0; d < 3; ++d)
-                ok &= isfinite(r[d]) && isfinite(r[3 + d]) && isfinite(r[11 + d]) &&
-                      isfinite(w->pos[3 * b + d] + r[8 + d]);
+                ok &= isfinite(r[d]) && isfinite(r[3 + d]) && isfinite(w->pos[3 * b + d] + r[8 + d]);
+            if (turns) {
+                q = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
+                ok &= isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
+                q_store(r + 11, q);
+            }
             if (!ok)
                 return rbs__numeric_error(w, b);
+            r[15] = turns;
         }
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t b = w->spheres[k];
             const double *r = &rec[REC * b];
-            v3 th = v3_load(r + 11);
             if (r[6] == 0.0)
                 continue;
             memcpy(&w->vel[3 * b], r, 3 * sizeof(double));
             memcpy(&w->avel[3 * b], r + 3, 3 * sizeof(double));
             v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + 8)));
-            if (th.x != 0.0 || th.y != 0.0 || th.z != 0.0)
-                q_store(&w->orient[4 * b],
-                        q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b]))));
+            if (r[15] != 0.0)
+                memcpy(&w->orient[4 * b], r + 11, 4 * sizeof(double));
         }
     }
 
