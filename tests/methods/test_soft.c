@@ -449,6 +449,33 @@ static void general_rows_rest(void **state)
         fail_msg("rocking ball's energy rise: %.3g J at 4 sub-steps, %.3g J at 16", r4, r16);
 }
 
+/* Three balls resting on a floor and a "hot" ball of mass m in the air at
+ * x = -0.5 m, z = 0.3 m: centred isotropic (the gathered layout), or with
+ * anisotropic inertia (the general layout) when general. */
+static rbs_world *hot_ball_world(int general, double m, rbs_body_id *hot)
+{
+    rbs_world *w = soft_world(8, 1e-3, -G, 0.5, 4);
+    rbs_sphere_def s;
+    int i;
+    floor_plane(w, (rbs_material_id){0, 0});
+    for (i = 0; i < 3; ++i)
+        ball(w, 0.1, 1.0, 0.3 * i, 0, 0.1, 0, 0, 0, (rbs_material_id){0, 0});
+    rbs_sphere_def_init(&s);
+    s.name = "hot";
+    s.radius = 0.1;
+    s.mass = m;
+    s.position.x = -0.5;
+    s.position.z = 0.3;
+    if (general) {
+        s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+        s.inertia.x = 0.4 * m * 0.01;
+        s.inertia.y = 0.5 * m * 0.01;
+        s.inertia.z = 0.6 * m * 0.01;
+    }
+    CHECK_OK(rbs_world_add_sphere(w, &s, hot));
+    return w;
+}
+
 /* A step that overflows (a = 1e313 from a huge force) is RBS_E_NUMERIC and
  * leaves the world bit for bit at its last good state, in both layouts:
  * the gathered one saves nothing at the frame's start and writes the world
@@ -459,26 +486,8 @@ static void overflow_keeps_last_good_state(void **state)
     int general;
     (void)state;
     for (general = 0; general <= 1; ++general) {
-        rbs_world *w = soft_world(8, 1e-3, -G, 0.5, 4);
-        rbs_sphere_def s;
         rbs_body_id b;
-        int i;
-        floor_plane(w, (rbs_material_id){0, 0});
-        for (i = 0; i < 3; ++i)
-            ball(w, 0.1, 1.0, 0.3 * i, 0, 0.1, 0, 0, 0, (rbs_material_id){0, 0});
-        rbs_sphere_def_init(&s);
-        s.name = "hot";
-        s.radius = 0.1;
-        s.mass = 1e-5;
-        s.position.x = -0.5;
-        s.position.z = 0.3;
-        if (general) {
-            s.inertia_kind = RBS_INERTIA_PRINCIPAL;
-            s.inertia.x = 4e-8;
-            s.inertia.y = 5e-8;
-            s.inertia.z = 6e-8;
-        }
-        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+        rbs_world *w = hot_ball_world(general, 1e-5, &b);
         step_n(w, 50);
         overflow_keeps_state(w, b, "(\"hot\") became NaN or infinite", 50);
         rbs_world_destroy(w);
@@ -495,26 +504,15 @@ static void spin_overflow_keeps_last_good_state(void **state)
     int general;
     (void)state;
     for (general = 0; general <= 1; ++general) {
-        rbs_world *w = soft_world(4, 1e-3, -G, 0.5, 4);
-        rbs_sphere_def s;
         rbs_body_id b;
+        rbs_world *w = hot_ball_world(general, 1.0, &b);
         rbs_vec3 spin = {1e157, 1e157, 1e157};
         uint64_t h;
-        floor_plane(w, (rbs_material_id){0, 0});
-        ball(w, 0.1, 1.0, 1.0, 0, 0.1, 0, 0, 0, (rbs_material_id){0, 0});
-        rbs_sphere_def_init(&s);
-        s.radius = 0.1;
-        s.position.z = 2.0;
-        if (general) {
-            s.inertia_kind = RBS_INERTIA_PRINCIPAL;
-            s.inertia.x = s.inertia.y = s.inertia.z = 0.004; /* (principal: not marked isotropic) */
-            s.inertia.z = 0.005;
-        }
-        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
         step_n(w, 5);
         CHECK_OK(rbs_body_set_angular_velocity(w, b, spin));
         h = rbs_world_hash(w);
         assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+        assert_non_null(strstr(rbs_world_last_error(w), "(\"hot\") became NaN or infinite"));
         assert_true(rbs_world_hash(w) == h);
         assert_int_equal(rbs_world_step_count(w), 5);
         rbs_world_destroy(w);
