@@ -40,6 +40,8 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
         if (w->fixed[s])
             continue;
         moving++;
+        if (nonzero3(&w->force[3 * s]) || nonzero3(&w->torque[3 * s]))
+            p.applied = 1;
         if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
             p.angular = 1;
         /* anisotropic: contact impulses leave rounding-level spin (the lever

@@ -400,20 +400,14 @@ static int uniform_increment(const rbs_world *w, double h, double *inc)
 {
     uint32_t k;
     v3 a = v3_make(0, 0, 0), tau;
-    int first = 1;
-    if (w->def.gravity_mode != RBS_GRAVITY_ACCELERATION)
+    /* (the plan knows whether any moving sphere has a force or torque) */
+    if (w->def.gravity_mode != RBS_GRAVITY_ACCELERATION || w->plan.applied)
         return 0;
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t i = w->spheres[k];
-        const double *f = &w->force[3 * i], *t = &w->torque[3 * i];
-        if (w->fixed[i])
-            continue;
-        if (f[0] != 0.0 || f[1] != 0.0 || f[2] != 0.0 || t[0] != 0.0 || t[1] != 0.0 || t[2] != 0.0)
-            return 0;
-        if (first)
-            rbs__accelerations(w, i, &a, &tau);
-        first = 0;
-    }
+    for (k = 0; k < w->sphere_count; ++k)
+        if (!w->fixed[w->spheres[k]]) {
+            rbs__accelerations(w, w->spheres[k], &a, &tau);
+            break;
+        }
     v3_store(inc, v3_scale(a, h));
     v3_store(inc + 3, v3_make(0, 0, 0));
     return 1;

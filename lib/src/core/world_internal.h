@@ -91,6 +91,8 @@ typedef struct rbs__plan {
     int sphere_pairs; /* two or more spheres, at least one moving */
     int mutual;       /* mutual gravity */
     double min_radius; /* smallest sphere radius (0 if none), m */
+    int applied;       /* some moving sphere has an applied force or torque
+                          (not a stage: never set by pruning off) */
     rbs_method method; /* the method a step takes (RBS_METHOD_AUTO resolved;
                           never pruned: the same with pruning off) */
 } rbs__plan;
