@@ -13,6 +13,11 @@
 #include <string.h>
 #include <unistd.h>
 
+/* A macro's value as a string literal (the help texts quote the library's
+ * constants instead of copying them). */
+#define CLI_STR_(x) #x
+#define CLI_STR(x) CLI_STR_(x)
+
 static const char usage_text[] =
     "usage: rbsim COMMAND [ARGUMENTS]\n"
     "\n"
@@ -46,7 +51,7 @@ static const char run_text[] =
     "                (0: frame 0 only, as \"steps\": 0 in a scene)\n"
     "  --dt S        time step, seconds (> 0)\n"
     "  --method M    euler, selective, event, verlet, rk4, adaptive, soft or\n"
-    "                auto (a scene's default: soft from 64 moving spheres\n"
+    "                auto (a scene's default: soft from " CLI_STR(RBS_METHOD_AUTO_SOFT_BODIES) " moving spheres\n"
     "                on without mutual gravity, else euler)\n"
     "  --slop X      overlap an impact may end a step with before it is\n"
     "                rolled back, of the smaller radius, in (0, 0.1)\n"

@@ -233,8 +233,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
             if (w->pair[i].rolling > 0.0 || w->pair[i].spinning > 0.0)
                 break;
         if (m == RBS_METHOD_SOFT) {
-            /* the soft step's layout follows the bodies alone (step_soft.c) */
-            stage(&t, odd == UINT32_MAX && i == w->pairs && !w->def.mutual_gravity, "gathered body records");
+            /* the soft step's layout follows the bodies alone (the plan's
+             * gather; the lines below name what keeps it off) */
+            stage(&t, p.gather, "gathered body records");
             if (w->def.mutual_gravity) {
                 put(&t, "mutual gravity: the general rows on the world's arrays\n");
             } else if (odd != UINT32_MAX) {

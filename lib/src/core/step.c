@@ -30,13 +30,18 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     rbs__plan p;
     uint32_t i, moving = 0;
     memset(&p, 0, sizeof p);
+    p.gather = !w->def.mutual_gravity;
     for (i = 0; i < w->pairs; ++i) {
         const rbs__pair *r = &w->pair[i];
         if (r->mu_s > 0.0 || r->mu_k > 0.0 || r->rolling > 0.0 || r->spinning > 0.0)
             p.friction = 1;
+        if (r->rolling > 0.0 || r->spinning > 0.0)
+            p.gather = 0;
     }
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t s = w->spheres[i];
+        if (!w->isotropic[s] || nonzero3(&w->com_body[3 * s]))
+            p.gather = 0; /* (fixed spheres too: their records are read) */
         if (w->fixed[s])
             continue;
         moving++;

@@ -344,26 +344,6 @@ static void warm_start(soft_pass *sp)
     }
 }
 
-/* Whether every body and pair suits the gathered layout. */
-static int gather_eligible(const rbs_world *w)
-{
-    uint32_t k;
-    /* (decided from the bodies alone, not from the plan: a pruned and a
-     * full pipeline take the same layout and agree bit for bit) */
-    if (w->def.mutual_gravity)
-        return 0;
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t i = w->spheres[k];
-        if (!w->isotropic[i] || w->com_body[3 * i] != 0.0 || w->com_body[3 * i + 1] != 0.0 ||
-            w->com_body[3 * i + 2] != 0.0)
-            return 0;
-    }
-    for (k = 0; k < w->pairs; ++k)
-        if (w->pair[k].rolling > 0.0 || w->pair[k].spinning > 0.0)
-            return 0;
-    return 1;
-}
-
 /* Each body's acceleration a and torque (the applied forces and gravity;
  * with mutual gravity its field now) into acc[6 slot ..], zero for planes
  * (unless acc is NULL), and how far each moving sphere may travel within
@@ -426,7 +406,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     uint32_t s;
     soft_pass sp;
     rbs_status st;
-    const int gather = gather_eligible(w);
+    const int gather = w->plan.gather; /* (rbs__plan_compute) */
     /* one increment for every body (shared_inc), or a table of them */
     const int shared = gather && uniform_increment(w, h, shared_inc);
 

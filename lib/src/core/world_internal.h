@@ -95,6 +95,11 @@ typedef struct rbs__plan {
                           (not a stage: never set by pruning off) */
     rbs_method method; /* the method a step takes (RBS_METHOD_AUTO resolved;
                           never pruned: the same with pruning off) */
+    int gather;        /* the soft step may gather body records: every sphere
+                          centred and isotropic, no pair with rolling or
+                          spinning resistance, no mutual gravity (from the
+                          bodies alone, never pruned: a pruned and a full
+                          pipeline take the same layout, bit for bit) */
 } rbs__plan;
 
 struct rbs_world {
