@@ -561,19 +561,30 @@ static void shared_increment_is_the_table(void **state)
     rbs_world_destroy(b);
 }
 
+/* A heap of 30 balls (r 0.05 m, 0.1 kg) in three layers of 5 x 3 over a
+ * floor, of material m (mu_s 0.5, mu_k 0.4), all moving at vx along x;
+ * the material through *m. */
+static rbs_world *heap_world(double e, double vx, rbs_material_id *m)
+{
+    rbs_world *w = soft_world(40, 1e-3, -G, e, 4);
+    int i;
+    *m = material(w, "m", 0.5, 0.4, -1.0);
+    floor_plane(w, *m);
+    for (i = 0; i < 30; ++i)
+        ball(w, 0.05, 0.1, 0.11 * (i % 5), 0.11 * ((i / 5) % 3), 0.06 + 0.11 * (i / 15), vx, 0, 0, *m);
+    return w;
+}
+
 /* Checkpoints: a soft run stopped half-way and resumed from its checkpoint
  * continues bit for bit (the warm-start table is in the world's block). */
 static void checkpoint_resumes_bit_for_bit(void **state)
 {
-    rbs_world *w = soft_world(40, 1e-3, -G, 0.5, 4), *c = NULL;
-    rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+    rbs_material_id m;
+    rbs_world *w = heap_world(0.5, 0.0, &m), *c = NULL;
     static unsigned char buf[1 << 20];
     size_t n = 0;
     int i;
     (void)state;
-    floor_plane(w, m);
-    for (i = 0; i < 30; ++i)
-        ball(w, 0.05, 0.1, 0.11 * (i % 5), 0.11 * ((i / 5) % 3), 0.06 + 0.11 * (i / 15), 0, 0, 0, m);
     step_n(w, 300);
     assert_true(rbs_world_checkpoint_size(w) <= sizeof buf);
     CHECK_OK(rbs_world_checkpoint_write(w, buf, sizeof buf, &n));
@@ -602,16 +613,13 @@ static void checkpoint_resumes_bit_for_bit(void **state)
  * the balls roll further). */
 static void layout_follows_changes(void **state)
 {
-    rbs_world *w = soft_world(40, 1e-3, -G, 0.3, 4), *c = NULL;
-    rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+    rbs_material_id m;
+    rbs_world *w = heap_world(0.3, 0.5, &m), *c = NULL;
     static unsigned char buf[1 << 20];
     rbs_pair_def p;
     size_t n = 0;
     int i;
     (void)state;
-    floor_plane(w, m);
-    for (i = 0; i < 30; ++i)
-        ball(w, 0.05, 0.1, 0.11 * (i % 5), 0.11 * ((i / 5) % 3), 0.06 + 0.11 * (i / 15), 0.5, 0, 0, m);
     step_n(w, 100);
     rbs_pair_def_init(&p);
     p.a = p.b = m;
