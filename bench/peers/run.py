@@ -79,6 +79,9 @@ def plan(quick):
     return [
         ("ball", 1, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
         ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
+        # the small pile: the baseline of the marginal memory per body (report.py)
+        ("pile", 125, 2000, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
+                             "ode": (3, 60), "ode_sap": (1, 60), "bullet": (1, 60), "mujoco": (1, 60)}),
         ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "rbsim_tol": (5, 60), "rbsim_soft": (5, 60),
                               "ode": (5, 60),
                               "ode_sap": (3, 60), "bullet": (2, 90), "mujoco": (3, 60)}),
@@ -419,7 +422,8 @@ def main(argv):
             notes.append("Rows of " + ", ".join(f"{e} {sc} {n}" for e, sc, n in got) +
                          f" come from an earlier run of this benchmark ({os.path.basename(path)}, "
                          "given with --merge-from); ratios against them compare runs made at "
-                         "different times, on a machine whose speed may have drifted.")
+                         "different times, possibly on another machine (see Machine for this "
+                         "run's): they are not same-run ratios.")
     write_csv(os.path.join(results, "peers.csv"), rows)
     git = subprocess.run(["git", "-C", HERE, "rev-parse", "--short", "HEAD"],
                          capture_output=True, text=True).stdout.strip()
