@@ -133,8 +133,8 @@ def peers_tables(rows, meta):
              "libraries.  Python engines carry the interpreter (~50–70 MB) in their peak.  "
              f"*marginal* = (peak − the same engine's peak on the pile of {SMALL_PILE}) / (N − {SMALL_PILE}): "
              "the same, without what any pile costs whatever its size -- the code and library pages "
-             "a pile touches and the ball does not (rbsim's soft step, and libm's tables for the "
-             "spheres' rotations, about 250 KB) and fixed-size tables.\n")
+             "a pile touches and the ball does not (rbsim's soft step and detection, about 80 KB, "
+             "and the C library's) and fixed-size tables.\n")
     L.append("| N | engine | peak (MB) | per body (bytes) | per body / ODE's | marginal (bytes) | marginal / ODE's |")
     L.append("|---:|---|---:|---:|---:|---:|---:|")
     base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, BASE_OF.get(e, e))])

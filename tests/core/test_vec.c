@@ -1,0 +1,179 @@
+/*
+ * test_vec.c - the core's own sine and cosine for small angles, and that a
+ * step of spinning spheres never calls libm's.
+ *
+ * rbs__sincos (lib/src/core/vec.h) sums the Taylor series of sin and cos
+ * for |x| <= 1/8 and calls libm beyond.  Its answers are compared with
+ * sinl and cosl (x87 extended precision, 64-bit significands: their error,
+ * about 2^-64 relative, is far below a double's ulp), and must be within
+ * one ulp of the double nearest the true value: the series' remainders
+ * are under 3e-18 and 3e-20 (x^11 / 11!, x^12 / 12! at 1/8), and the Horner
+ * sums round about half an ulp each.  Beyond 1/8 the answers are libm's,
+ * bit for bit.  Internal: linked against the library's objects, with
+ * sin, cos and sincos wrapped at link time, so that the count of libm
+ * calls made while piles of spinning spheres step can be checked: zero.
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "common.h"
+#include "core/vec.h"
+
+/* libm, counted: the library's objects call these through the wraps. */
+static unsigned long libm_calls; /* (test-only counter; one thread) */
+double __real_sin(double x);
+double __real_cos(double x);
+void __real_sincos(double x, double *s, double *c);
+double __wrap_sin(double x);
+double __wrap_cos(double x);
+void __wrap_sincos(double x, double *s, double *c);
+double __wrap_sin(double x)
+{
+    libm_calls++;
+    return __real_sin(x);
+}
+double __wrap_cos(double x)
+{
+    libm_calls++;
+    return __real_cos(x);
+}
+void __wrap_sincos(double x, double *s, double *c)
+{
+    libm_calls++;
+    __real_sincos(x, s, c);
+}
+
+/* |got - want| in ulps of the double nearest want. */
+static double ulps(double got, long double want)
+{
+    double near = (double)want;
+    double ulp = nextafter(fabs(near), INFINITY) - fabs(near);
+    if (near == 0.0)
+        ulp = (DBL_MIN * DBL_EPSILON);
+    return (double)(fabsl((long double)got - want) / ulp);
+}
+
+static void small_angles_within_an_ulp(void **state)
+{
+    const int n = 200000;
+    double worst_s = 0.0, worst_c = 0.0;
+    int i;
+    (void)state;
+    for (i = -n; i <= n; ++i) {
+        double x = 0.125 * i / n, s, c;
+        rbs__sincos(x, &s, &c);
+        worst_s = fmax(worst_s, ulps(s, sinl((long double)x)));
+        worst_c = fmax(worst_c, ulps(c, cosl((long double)x)));
+    }
+    /* tiny, subnormal and signed zero arguments: sin x = x, cos x = 1 */
+    {
+        const double tiny[] = {0.0, -0.0, (DBL_MIN * DBL_EPSILON), -DBL_MIN, 1e-300, 1e-8, -3e-5, 0.125, -0.125};
+        for (i = 0; i < (int)(sizeof tiny / sizeof tiny[0]); ++i) {
+            double s, c;
+            rbs__sincos(tiny[i], &s, &c);
+            worst_s = fmax(worst_s, ulps(s, sinl((long double)tiny[i])));
+            worst_c = fmax(worst_c, ulps(c, cosl((long double)tiny[i])));
+            assert_true(!signbit(s) == !signbit(tiny[i]));
+        }
+    }
+    print_message("worst error: sin %.3f ulp, cos %.3f ulp\n", worst_s, worst_c);
+    assert_true(worst_s <= 1.0);
+    assert_true(worst_c <= 1.0);
+}
+
+static void larger_angles_are_libms(void **state)
+{
+    const double xs[] = {0.12500000000000003, -0.13, 0.5, 1.0, -2.0, 3.14159, 100.0, 1e6};
+    int i;
+    (void)state;
+    for (i = 0; i < (int)(sizeof xs / sizeof xs[0]); ++i) {
+        double s, c;
+        rbs__sincos(xs[i], &s, &c);
+        assert_true(s == sin(xs[i]));
+        assert_true(c == cos(xs[i]));
+    }
+}
+
+/* q_from_rotation turns by |w| h about w: a quarter turn about z takes x to
+ * y, and a small turn about an oblique axis keeps the axis and turns a
+ * perpendicular vector by the angle (rounding: 1e-15). */
+static v3 rotate(quat q, v3 v)
+{
+    quat p = {0.0, v.x, v.y, v.z}, qc = {q.w, -q.x, -q.y, -q.z}, r = q_mul(q_mul(q, p), qc);
+    return v3_make(r.x, r.y, r.z);
+}
+
+static void rotations_turn_by_the_angle(void **state)
+{
+    const double angles[] = {1e-9, 1e-4, 0.01, 0.2, 0.25, 0.26, 1.5707963267948966, 3.0};
+    v3 axis = v3_scale(v3_make(1.0, 2.0, 2.0), 1.0 / 3.0), perp = v3_scale(v3_make(2.0, 1.0, -2.0), 1.0 / 3.0);
+    int i;
+    (void)state;
+    for (i = 0; i < (int)(sizeof angles / sizeof angles[0]); ++i) {
+        double a = angles[i];
+        quat q = q_from_rotation(v3_scale(axis, 2.0), 0.5 * a); /* |w| h = a */
+        v3 ra = rotate(q, axis), rp = rotate(q, perp);
+        v3 want = v3_add(v3_scale(perp, cos(a)), v3_scale(v3_cross(axis, perp), sin(a)));
+        assert_true(fabs(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z - 1.0) < 1e-15);
+        assert_true(v3_len(v3_sub(ra, axis)) < 1e-15);
+        assert_true(v3_len(v3_sub(rp, want)) < 1e-15);
+    }
+}
+
+/* A heap of spheres, each spinning at up to 40 rad/s, on a floor with
+ * friction: stepped by the pile's method and by euler, no call of libm's
+ * sine or cosine, and every sphere has turned. */
+static void spinning_piles_never_call_libm(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_SOFT, RBS_METHOD_EULER, RBS_METHOD_AUTO};
+    int m;
+    (void)state;
+    for (m = 0; m < 3; ++m) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_plane_def p;
+        rbs_body_id id[40];
+        int i, k;
+        rbs_world_def_init(&d);
+        d.max_bodies = 41;
+        d.gravity.z = -9.81;
+        d.method = methods[m];
+        CHECK_OK(rbs_world_create(&d, &w));
+        rbs_plane_def_init(&p);
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        for (i = 0; i < 40; ++i) {
+            rbs_sphere_def s;
+            rbs_sphere_def_init(&s);
+            s.radius = 0.05;
+            s.position.x = 0.1 * (i % 5);
+            s.position.y = 0.1 * ((i / 5) % 4);
+            s.position.z = 0.05 + 0.11 * (i / 20);
+            s.angular_velocity.x = (double)(i % 7) - 3.0;
+            s.angular_velocity.z = 40.0 * ((i % 3) - 1);
+            s.angular_velocity.y = 5.0;
+            CHECK_OK(rbs_world_add_sphere(w, &s, &id[i]));
+        }
+        libm_calls = 0;
+        for (k = 0; k < 200; ++k)
+            CHECK_OK(rbs_world_step(w, NULL));
+        assert_int_equal(libm_calls, 0);
+        for (i = 0; i < 40; ++i) {
+            rbs_body_state bs;
+            CHECK_OK(rbs_body_get_state(w, id[i], &bs));
+            assert_true(fabs(bs.orientation.w) < 1.0 - 1e-6);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(small_angles_within_an_ulp),
+        cmocka_unit_test(larger_angles_are_libms),
+        cmocka_unit_test(rotations_turn_by_the_angle),
+        cmocka_unit_test(spinning_piles_never_call_libm),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
