@@ -177,13 +177,13 @@ static void rounds(rbs_world *w, double r, double L, int sorted, const char *wha
                 w->bp_center[i] += 0.1 * L * (2.0 * uniform(seed) - 1.0);
         }
         got.count = 0;
-        rbs__broadphase_pairs(w, n, NULL, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
         brute(w, n, NULL, &want);
         check(w, &got, &want, sorted, what, round);
         for (i = 0; i < n; ++i)
             query[i] = uniform(seed) < 0.2;
         got.count = 0;
-        rbs__broadphase_pairs(w, n, query, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, query, record, &got);
         brute(w, n, query, &want);
         check(w, &got, &want, sorted, what, round);
     }

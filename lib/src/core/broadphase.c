@@ -69,10 +69,10 @@ static inline void visit_if_close(const double *C, const double *R, double extra
 
 /* The grid pass: fn for every pair of items whose centres are closer than
  * the sum of their reaches plus extra (m; 0 for the callers' own test). */
-static void grid_pairs(rbs_world *w, uint32_t n, const uint8_t *query, double extra, rbs__pair_fn fn,
-                       void *ctx)
+static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t *query, double extra,
+                       rbs__pair_fn fn, void *ctx)
 {
-    const double *C = w->bp_center, *R = w->bp_reach;
+    const double *R = w->bp_reach;
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
     int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
@@ -267,15 +267,16 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
     w->vl_count++;
 }
 
-/* Build the list at margin m; 0 (and no list) if it does not fit. */
-static int list_build(rbs_world *w, uint32_t n, double m)
+/* Build the list at margin m from the centres C; 0 (and no list) if it
+ * does not fit. */
+static int list_build(rbs_world *w, const double *C, uint32_t n, double m)
 {
     /* bp_start and bp_fill (2 n entries and more each) are free once the
      * grid pass is over */
     uint32_t *start = w->bp_start, *next = w->bp_fill, *P = w->vl_pair, i, k;
     w->vl_valid = 0;
     w->vl_count = 0;
-    grid_pairs(w, n, NULL, m, list_collect, w);
+    grid_pairs(w, C, n, NULL, m, list_collect, w);
     if (w->vl_count > w->vl_cap)
         return 0;
     /* sorted in place by the first item (American flag sort: McIlroy,
@@ -310,7 +311,7 @@ static int list_build(rbs_world *w, uint32_t n, double m)
         }
         P[2 * at + 1] = b;
     }
-    memcpy(w->vl_pos, w->bp_center, 3 * (size_t)n * sizeof(double));
+    memcpy(w->vl_pos, C, 3 * (size_t)n * sizeof(double));
     memcpy(w->vl_reach, w->bp_reach, (size_t)n * sizeof(double));
     w->vl_items = n;
     w->vl_margin = m;
@@ -318,9 +319,10 @@ static int list_build(rbs_world *w, uint32_t n, double m)
     return 1;
 }
 
-void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx)
+void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query,
+                           rbs__pair_fn fn, void *ctx)
 {
-    const double *C = w->bp_center, *R = w->bp_reach;
+    const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
     double need = 0.0, size = 0.0, rsum = 0.0, rmax = 0.0, guard, m;
     int reuse = w->vl_valid && w->vl_items == n;
     uint32_t i, k;
@@ -345,10 +347,10 @@ void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__
     if (!(reuse && 2.0 * need + guard <= w->vl_margin)) {
         /* grown by a skin, so that it lasts; else just what this pass needs */
         m = LIST_SKIN * rsum / n + guard;
-        if (!list_build(w, n, m) && !list_build(w, n, guard)) {
+        if (!list_build(w, C, n, m) && !list_build(w, C, n, guard)) {
             /* more candidate pairs than the list holds: the grid itself (its
              * own order; a function of this pass's centres only) */
-            grid_pairs(w, n, query, 0.0, fn, ctx);
+            grid_pairs(w, C, n, query, 0.0, fn, ctx);
             return;
         }
     }

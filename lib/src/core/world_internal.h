@@ -258,14 +258,16 @@ static inline v3 rbs__inertia_times(const rbs_world *w, uint32_t i, quat q, v3 o
 }
 
 /* Broad phase (broadphase.c): fn(ctx, i, j) for every pair of items i < j
- * (indexes into w->spheres) whose centres (w->bp_center) are closer than
+ * (indexes into w->spheres) whose centres (centers, 3 doubles an item; NULL:
+ * w->bp_center) are closer than
  * the sum of their reaches (w->bp_reach) and of which at least one is
  * queried (query[i] != 0; query NULL: every pair), in order of (i, j).  The
  * pairs come from a candidate list kept between passes while the items
  * move little, built from a uniform grid (see broadphase.c); the results do
  * not depend on when the list was built. */
 typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
-void rbs__broadphase_pairs(rbs_world *w, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx);
+void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query,
+                           rbs__pair_fn fn, void *ctx);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
