@@ -173,6 +173,19 @@ typedef struct detect_ctx {
     rbs_status status;
 } detect_ctx;
 
+/* The spheres' centres for the broad phase, 3 doubles an item: their
+ * positions in place when they hold consecutive slots (plan.consecutive),
+ * else copied into bp_center (24 bytes a sphere made resident). */
+static const double *sphere_centres(rbs_world *w)
+{
+    uint32_t i;
+    if (w->plan.consecutive)
+        return &w->pos[3 * w->spheres[0]];
+    for (i = 0; i < w->sphere_count; ++i)
+        memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
+    return w->bp_center;
+}
+
 static rbs__contact *contact_new(rbs_world *w, rbs_status *status)
 {
     if (w->contact_count >= w->def.max_contacts) {
@@ -270,21 +283,12 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
     }
     /* sphere - sphere, through the broad phase */
     if (w->plan.sphere_pairs) {
-        /* the centres are the positions: read in place when the spheres
-         * hold consecutive slots (a scene of planes then spheres, every
-         * pile), else copied (24 bytes a sphere made resident) */
-        uint32_t first = w->spheres[0];
-        int in_place = 1;
-        for (i = 0; i < w->sphere_count && in_place; ++i)
-            in_place = w->spheres[i] == first + i;
+        const double *centres = sphere_centres(w);
         for (i = 0; i < w->sphere_count; ++i) {
             uint32_t a = w->spheres[i];
-            if (!in_place)
-                memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
             w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + (margin != NULL ? margin[a] : half);
         }
-        rbs__broadphase_pairs(w, in_place ? &w->pos[3 * first] : w->bp_center, w->sphere_count, NULL,
-                              detect_pair, &ctx);
+        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, detect_pair, &ctx);
     }
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;
@@ -594,12 +598,10 @@ int rbs__separate(rbs_world *w, double *max_pen)
         }
     }
     if (w->plan.sphere_pairs) {
-        for (i = 0; i < w->sphere_count; ++i) {
-            uint32_t a = w->spheres[i];
-            memcpy(&w->bp_center[3 * i], &w->pos[3 * a], 3 * sizeof(double));
-            w->bp_reach[i] = w->radius[a] * (1.0 + SEP_MARGIN);
-        }
-        rbs__broadphase_pairs(w, NULL, w->sphere_count, NULL, separate_pair, &ctx);
+        const double *centres = sphere_centres(w);
+        for (i = 0; i < w->sphere_count; ++i)
+            w->bp_reach[i] = w->radius[w->spheres[i]] * (1.0 + SEP_MARGIN);
+        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, separate_pair, &ctx);
     }
     if (max_pen)
         *max_pen = ctx.worst;

@@ -64,6 +64,9 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
         if (p.min_radius == 0.0 || r < p.min_radius)
             p.min_radius = r;
     }
+    p.consecutive = w->sphere_count > 0;
+    for (i = 0; i < w->sphere_count && p.consecutive; ++i)
+        p.consecutive = w->spheres[i] == w->spheres[0] + i;
     p.mutual = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
     p.method = w->def.method;
     if (p.method == RBS_METHOD_AUTO)

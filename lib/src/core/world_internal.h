@@ -100,6 +100,11 @@ typedef struct rbs__plan {
                           spinning resistance, no mutual gravity (from the
                           bodies alone, never pruned: a pruned and a full
                           pipeline take the same layout, bit for bit) */
+    int consecutive;   /* the spheres hold consecutive slots (spheres[k] =
+                          spheres[0] + k: a scene of planes then spheres,
+                          every pile): detection reads their centres from
+                          pos in place instead of copying them (never
+                          pruned) */
 } rbs__plan;
 
 struct rbs_world {
