@@ -83,12 +83,9 @@ static void contact_finish(rbs_world *w, rbs__contact *c, double dt, v3 aa, v3 a
     uint32_t n = w->def.max_materials + 1;
     int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
     v3 ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
-    const rbs__pair *p;
     /* No row for this pair: the default row, frictionless with the world's
      * restitution (documented in rbsim.h; scenes reject this case). */
     c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
-    p = rbs__contact_pair(w, c);
-    c->e = p->e >= 0.0 ? p->e : w->def.restitution;
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, ra, c->b, rb, c->n);
     /* Isotropic bodies with both levers along n (no RBS__OFF flag: a fixed

@@ -25,7 +25,7 @@
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
 {
     const rbs__pair *p = rbs__contact_pair(w, c);
-    double jn = -(1.0 + c->e) * vn / c->kn;
+    double jn = -(1.0 + rbs__contact_e(w, c)) * vn / c->kn;
     rbs__apply_pair(w, c, v3_scale(c->n, jn));
     if (w->plan.friction && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
         v3 vt = rbs__slip(w, c);

@@ -425,7 +425,7 @@ static rbs_status resolve_contacts(rbs_world *w, double dt, rbs_step_info *info)
         rbs__contact *c = &w->contact[k];
         double vn = rbs__normal_velocity(w, c);
         if (vn < 0.0 && -vn <= c->thr)
-            c->e = 0.0; /* resting: the Zeno cascade ends here */
+            c->flags |= RBS__INELASTIC; /* resting: the Zeno cascade ends here */
         c->thr = 0.0;
     }
     rbs__solve_collisions(w, info);

@@ -308,7 +308,7 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
     if (!(vn < 0.0))
         return;
     if (-vn <= c.thr)
-        c.e = 0.0; /* slower than one step of the forces builds: resting */
+        c.flags |= RBS__INELASTIC; /* slower than one step of the forces builds: resting */
     rbs__collide(w, &c, vn);
     info->colliding++;
 }

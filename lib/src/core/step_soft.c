@@ -149,9 +149,9 @@ static inline int bounces(const rbs__contact *c)
 
 /* The restitution row's change of the normal impulse: the pair leaves at e
  * times its approach speed at the frame's start (c->bias). */
-static inline double restitution_change(const rbs__contact *c, double vn)
+static inline double restitution_change(const rbs_world *w, const rbs__contact *c, double vn)
 {
-    return -(vn + c->e * c->bias) * c->thr;
+    return -(vn + rbs__contact_e(w, c) * c->bias) * c->thr;
 }
 
 /* Accumulate dj into c's normal impulse (kept >= 0); the impulse it adds,
@@ -183,7 +183,7 @@ static void pass(soft_pass *sp, int stage)
         if (stage == RESTITUTION) {
             if (!bounces(c))
                 continue;
-            dj = restitution_change(c, vn);
+            dj = restitution_change(w, c, vn);
         } else {
             double slop = rbs__contact_slop(w, c);
             /* (the push limit from the smaller radius, as the slop's) */
@@ -233,7 +233,7 @@ static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int 
         rv = rbs__along_rel_velocity(c, va, wa, v3_load(bb), v3_load(bb + 3));
     vn = v3_dot(rv, c->n);
     if (stage == RESTITUTION) {
-        dj = restitution_change(c, vn);
+        dj = restitution_change(w, c, vn);
     } else {
         /* the pair's slop and push limit: the smaller of the records' (a
          * plane's are infinite), as rbs__contact_slop computes the slop */
@@ -461,7 +461,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
         c->bias = v3_dot(relative_velocity(&sp, c), c->n);
         c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE);
-        if (c->e > 0.0 && c->bias < -c->thr)
+        if (rbs__contact_e(w, c) > 0.0 && c->bias < -c->thr)
             c->flags |= RBS__BOUNCE;
         c->thr = 1.0 / c->kn; /* (its test is taken: from here the effective mass) */
         if (p->rolling > 0.0 || p->spinning > 0.0) {

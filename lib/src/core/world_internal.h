@@ -28,7 +28,8 @@ typedef struct rbs__contact {
     uint32_t flags; /* RBS__OFF_A | RBS__OFF_B: that body's centre of mass
                        is off its centre (the lever needs its rotation);
                        RBS__APART: gap > the pair's slop (a speculative
-                       contact, not touching) */
+                       contact, not touching); RBS__INELASTIC: restitution
+                       0 for this contact (rbs__contact_e) */
     v3 n;          /* unit normal, from b to a */
     double la, lb; /* levers along n: ra = la n and rb = lb n from each body's
                       centre to the contact point (minus the centre of mass
@@ -41,8 +42,6 @@ typedef struct rbs__contact {
                       the resting pass allows, (gap - slop) / h, or -1 when
                       the pair approaches as an impact (left to the
                       method's rollback); 0 for a touching contact */
-    double e;      /* restitution (the event method sets it to 0 for a
-                      resting approach) */
     double kn;     /* n . K n : inverse effective mass along n */
     double kt_inv; /* 1 / (t . K t), the same for every tangent t when K is
                       isotropic in the tangent plane (centred isotropic
@@ -59,6 +58,8 @@ typedef struct rbs__contact {
 #define RBS__TOUCHED 8u  /* soft step: it took a normal impulse this frame */
 #define RBS__BOUNCE 16u  /* soft step: it approached faster than thr at the frame's
                             start, with e > 0 (the restitution pass takes it) */
+#define RBS__INELASTIC 32u /* restitution 0 whatever its pair's (the event and
+                              selective methods: a resting approach) */
 
 /* The rolling and spinning resistance of contact i, beside the contact
  * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
@@ -331,6 +332,17 @@ static inline double rbs__contact_slop(const rbs_world *w, const rbs__contact *c
 static inline const rbs__pair *rbs__contact_pair(const rbs_world *w, const rbs__contact *c)
 {
     return &w->pair[c->row];
+}
+
+/* A contact's coefficient of restitution: its pair row's (e < 0 there: the
+ * world's), 0 when it is marked RBS__INELASTIC.  Looked up rather than kept
+ * in the contact, so that a contact is 128 bytes (two cache lines). */
+static inline double rbs__contact_e(const rbs_world *w, const rbs__contact *c)
+{
+    const rbs__pair *p = rbs__contact_pair(w, c);
+    if (c->flags & RBS__INELASTIC)
+        return 0.0;
+    return p->e >= 0.0 ? p->e : w->def.restitution;
 }
 
 /* Impulse j and angular impulse tau (= r x j) on body i (nothing for fixed
