@@ -70,7 +70,6 @@ static int com_off(const rbs_world *w, uint32_t i)
  * lever: it never moves). */
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap)
 {
-    c->la = -w->radius[c->a];
     c->lb = w->type[c->b] == RBS_BODY_PLANE ? 0.0 : dist - w->radius[c->a];
     c->gap = gap;
     c->flags = (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u) |

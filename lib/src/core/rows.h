@@ -32,15 +32,15 @@ static inline v3 rbs__k_apply(const rbs_world *w, const rbs__contact *c, v3 u)
  *     dw_a = I_a^-1 (la (n x j)),  dw_b = I_b^-1 (-lb (n x j)):
  * one cross product each instead of two; the fast sweep below makes the
  * same operations, so the two sweeps agree bit for bit. */
-static inline v3 rbs__along_rel_velocity(const rbs__contact *c, v3 va, v3 wa, v3 vb, v3 wb)
+static inline v3 rbs__along_rel_velocity(const rbs__contact *c, double la, v3 va, v3 wa, v3 vb, v3 wb)
 {
-    return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, c->la), v3_scale(wb, c->lb)), c->n));
+    return v3_add(v3_sub(va, vb), v3_cross(v3_sub(v3_scale(wa, la), v3_scale(wb, c->lb)), c->n));
 }
 
 static inline v3 rbs__rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
     if (!(c->flags & RBS__OFF))
-        return rbs__along_rel_velocity(c, v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
+        return rbs__along_rel_velocity(c, rbs__contact_la(w, c), v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
                                   v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
     return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
                   rbs__point_velocity(w, c->b, rbs__contact_rb(w, c)));
@@ -50,7 +50,7 @@ static inline void rbs__apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
 {
     if (!(c->flags & RBS__OFF)) {
         v3 t = v3_cross(c->n, j);
-        rbs__apply_impulse_torque(w, c->a, j, v3_scale(t, c->la));
+        rbs__apply_impulse_torque(w, c->a, j, v3_scale(t, rbs__contact_la(w, c)));
         rbs__apply_impulse_torque(w, c->b, v3_scale(j, -1.0), v3_scale(t, -c->lb));
         return;
     }
@@ -115,10 +115,10 @@ static inline void rbs__sb_apply(double *b, v3 j, v3 tau)
     v3_store(b + 3, v3_add(v3_load(b + 3), v3_scale(tau, b[7])));
 }
 
-static inline void rbs__sb_apply_pair(double *ba, double *bb, const rbs__contact *c, v3 j)
+static inline void rbs__sb_apply_pair(double *ba, double *bb, const rbs__contact *c, double la, v3 j)
 {
     v3 t = v3_cross(c->n, j);
-    rbs__sb_apply(ba, j, v3_scale(t, c->la));
+    rbs__sb_apply(ba, j, v3_scale(t, la));
     rbs__sb_apply(bb, v3_scale(j, -1.0), v3_scale(t, -c->lb));
 }
 

@@ -455,13 +455,14 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
-        double *ba = RBS__SB(w, c->a), *bb = RBS__SB(w, c->b), jn_new, d, vn;
+        double *ba = RBS__SB(w, c->a), *bb = RBS__SB(w, c->b), jn_new, d, vn, la;
         v3 rv, j = {0, 0, 0};
         int push;
         if (c->bias < 0.0)
             continue; /* an impact on its way (speculative) */
         /* levers along n (fast_eligible: no off-centre mass) */
-        rv = rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
+        la = rbs__contact_la(w, c);
+        rv = rbs__along_rel_velocity(c, la, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
         vn = v3_dot(rv, c->n);
         jn_new = normal_row(c, vn);
         d = jn_new - c->jn;
@@ -490,7 +491,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             }
         }
         if (push)
-            rbs__sb_apply_pair(ba, bb, c, j);
+            rbs__sb_apply_pair(ba, bb, c, la, j);
     }
     *change_out = sqrt(change); /* change held its square */
     *total_out = total;

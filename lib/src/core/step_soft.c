@@ -116,7 +116,8 @@ static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
 {
     if (sp->rec != NULL) {
         const double *ba = &sp->rec[REC * c->a], *bb = &sp->rec[REC * c->b];
-        return rbs__along_rel_velocity(c, v3_load(ba), v3_load(ba + 3), v3_load(bb), v3_load(bb + 3));
+        return rbs__along_rel_velocity(c, rbs__contact_la(sp->w, c), v3_load(ba), v3_load(ba + 3), v3_load(bb),
+                                       v3_load(bb + 3));
     }
     return rbs__rel_velocity(sp->w, c);
 }
@@ -220,17 +221,18 @@ static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int 
     const rbs_world *w = sp->w;
     double *ba, *bb;
     v3 va, wa, rv, j;
-    double vn, jn, dj, s;
+    double vn, jn, dj, s, la;
     if (stage == RESTITUTION && !bounces(c))
         return; /* (before its bodies are read: most contacts do not bounce) */
     ba = &sp->rec[REC * c->a];
     bb = &sp->rec[REC * c->b];
     va = v3_load(ba);
     wa = v3_load(ba + 3);
+    la = rbs__contact_la(w, c);
     if (b_static)
-        rv = v3_add(va, v3_cross(v3_scale(wa, c->la), c->n));
+        rv = v3_add(va, v3_cross(v3_scale(wa, la), c->n));
     else
-        rv = rbs__along_rel_velocity(c, va, wa, v3_load(bb), v3_load(bb + 3));
+        rv = rbs__along_rel_velocity(c, la, va, wa, v3_load(bb), v3_load(bb + 3));
     vn = v3_dot(rv, c->n);
     if (stage == RESTITUTION) {
         dj = restitution_change(w, c, vn);
@@ -260,9 +262,9 @@ static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int 
         }
     }
     if (b_static)
-        rbs__sb_apply(ba, j, v3_scale(v3_cross(c->n, j), c->la));
+        rbs__sb_apply(ba, j, v3_scale(v3_cross(c->n, j), la));
     else
-        rbs__sb_apply_pair(ba, bb, c, j);
+        rbs__sb_apply_pair(ba, bb, c, la, j);
 }
 
 /* pass() for the gathered layout: the contacts with a plane first
@@ -320,12 +322,12 @@ static void warm_start(soft_pass *sp)
         for (i = 0; i < sp->plane_contacts; ++i) {
             const rbs__contact *c = &w->contact[i];
             v3 j = v3_add(v3_scale(c->n, c->jn), c->jt);
-            rbs__sb_apply(&sp->rec[REC * c->a], j, v3_scale(v3_cross(c->n, j), c->la));
+            rbs__sb_apply(&sp->rec[REC * c->a], j, v3_scale(v3_cross(c->n, j), rbs__contact_la(w, c)));
         }
         for (; i < w->contact_count; ++i) {
             const rbs__contact *c = &w->contact[i];
             if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
-                rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c,
+                rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c, rbs__contact_la(w, c),
                                    v3_add(v3_scale(c->n, c->jn), c->jt));
         }
         return;

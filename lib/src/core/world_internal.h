@@ -31,9 +31,10 @@ typedef struct rbs__contact {
                        contact, not touching); RBS__INELASTIC: restitution
                        0 for this contact (rbs__contact_e) */
     v3 n;          /* unit normal, from b to a */
-    double la, lb; /* levers along n: ra = la n and rb = lb n from each body's
-                      centre to the contact point (minus the centre of mass
-                      offset R c when off; rbs__contact_ra, rbs__contact_rb) */
+    double lb;     /* lever along n: rb = lb n from b's centre to the contact
+                      point (minus the centre of mass offset R c when off;
+                      rbs__contact_rb); a's is la = -r_a (rbs__contact_la),
+                      looked up rather than kept, for a 120-byte contact */
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
     double thr;    /* approach speed below which the contact is resting, m/s
                       (the soft step takes its test at the frame's start and
@@ -313,9 +314,15 @@ static inline v3 rbs__contact_lever(const rbs_world *w, const rbs__contact *c, u
         r = v3_sub(r, q_rotate(q_load(&w->orient[4 * i]), v3_load(&w->com_body[3 * i])));
     return r;
 }
+/* Body a's lever along n: the contact point is a's surface point, r_a
+ * behind its centre (a is always a sphere). */
+static inline double rbs__contact_la(const rbs_world *w, const rbs__contact *c)
+{
+    return -w->radius[c->a];
+}
 static inline v3 rbs__contact_ra(const rbs_world *w, const rbs__contact *c)
 {
-    return rbs__contact_lever(w, c, c->a, c->la, RBS__OFF_A);
+    return rbs__contact_lever(w, c, c->a, rbs__contact_la(w, c), RBS__OFF_A);
 }
 static inline v3 rbs__contact_rb(const rbs_world *w, const rbs__contact *c)
 {
