@@ -99,7 +99,7 @@ def main(argv):
     res = {"engine": "bullet", "version": f"pybullet API {p.getAPIVersion()}",
            "n": sc.n, "steps": k, "dt": sc.dt, "sim_time": k * sc.dt, "wall": wall,
            "setup_wall": t_setup, "solver_iterations": params.get("numSolverIterations"),
-           "apex": apex.z, "error": ""}
+           "apex": apex.z, "rss_anon_kb": scenes.rss_anon_kb(), "error": ""}
     print("RESULT " + json.dumps(res), flush=True)
     p.disconnect(physicsClientId=cid)
     return 0

@@ -121,7 +121,7 @@ def main(argv):
            "dt": sc.dt, "sim_time": k * sc.dt, "wall": wall, "setup_wall": t_setup,
            "contacts_max": ncon_max, "arena_mb": mem_mb,
            "solref": [TIMECONST, dampratio(sc.restitution)], "warnings": warnings,
-           "apex": apex.z,
+           "apex": apex.z, "rss_anon_kb": scenes.rss_anon_kb(),
            "error": ("MuJoCo warnings: " + json.dumps(warnings)) if warnings else ""}
     print("RESULT " + json.dumps(res), flush=True)
     return 0

@@ -76,7 +76,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "peers_ode: --slop is rbsim's option\n%s", usage);
         return 2;
     }
-    if (peers_scene_read(opt.scene_path, &sc))
+    if (peers_scene_open(opt.scene_path, &sc))
         return 2;
     if (opt.extra != NULL && strcmp(opt.extra, "hash") != 0 && strcmp(opt.extra, "sap") != 0 &&
         strcmp(opt.extra, "simple") != 0) {
@@ -112,9 +112,12 @@ int main(int argc, char **argv)
         return 2;
     }
     for (i = 0; i < sc.n; ++i) {
-        const double *q = &sc.spheres[8 * i];
+        double q[8];
         dMass m;
-        dGeomID g = dCreateSphere(space, q[0]);
+        dGeomID g;
+        if (peers_scene_sphere(&sc, q))
+            return 2;
+        g = dCreateSphere(space, q[0]);
         body[i] = dBodyCreate(world);
         dMassSetSphereTotal(&m, q[1], q[0]);
         dBodySetMass(body[i], &m);
@@ -153,24 +156,23 @@ int main(int argc, char **argv)
     t1 = peers_now();
 
     if (opt.state_path) {
-        double *out = malloc(9 * sc.n * sizeof(double) + 1);
-        if (out == NULL) {
-            fprintf(stderr, "peers_ode: out of memory for the state\n");
+        FILE *f = peers_state_open(opt.state_path, sc.n);
+        if (f == NULL)
             return 2;
-        }
-        for (i = 0; i < sc.n; ++i) {
-            memcpy(&out[9 * i], dBodyGetPosition(body[i]), 3 * sizeof(double));
-            memcpy(&out[9 * i + 3], dBodyGetLinearVel(body[i]), 3 * sizeof(double));
-            memcpy(&out[9 * i + 6], dBodyGetAngularVel(body[i]), 3 * sizeof(double));
-        }
-        if (peers_state_write(opt.state_path, sc.n, out))
+        for (i = 0; i < sc.n; ++i)
+            if (peers_state_put(f, dBodyGetPosition(body[i]), dBodyGetLinearVel(body[i]),
+                                dBodyGetAngularVel(body[i]))) {
+                (void)peers_state_close(f, opt.state_path);
+                return 2;
+            }
+        if (peers_state_close(f, opt.state_path))
             return 2;
-        free(out);
     }
     printf("RESULT {\"engine\": \"ode\", \"version\": \"%s\", \"space\": \"%s\", \"n\": %zu, "
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
-           "\"contacts_max\": %lu, \"apex\": ",
-           dGetConfiguration(), opt.extra ? opt.extra : "hash", sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0, t_setup, contacts_max);
+           "\"contacts_max\": %lu, \"rss_anon_kb\": %ld, \"apex\": ",
+           dGetConfiguration(), opt.extra ? opt.extra : "hash", sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0, t_setup, contacts_max,
+           peers_rss_anon_kb());
     peers_print_apex(stdout, &apex);
     printf(", \"error\": \"\"}\n");
     dJointGroupDestroy(ctx.group);

@@ -80,7 +80,7 @@ int main(int argc, char **argv)
 
     if (argc == 2 && strcmp(argv[1], "--layout") == 0)
         return print_layout();
-    if (peers_parse_args(argc, argv, &opt, usage) || peers_scene_read(opt.scene_path, &sc))
+    if (peers_parse_args(argc, argv, &opt, usage) || peers_scene_open(opt.scene_path, &sc))
         return 2;
     steps = opt.steps >= 0 ? opt.steps : sc.steps;
 
@@ -123,7 +123,9 @@ int main(int argc, char **argv)
     for (i = 0; i < sc.n; ++i) {
         rbs_sphere_def s;
         rbs_body_id id;
-        const double *q = &sc.spheres[8 * i];
+        double q[8];
+        if (peers_scene_sphere(&sc, q))
+            return 2;
         rbs_sphere_def_init(&s);
         s.radius = q[0];
         s.mass = q[1];
@@ -173,20 +175,18 @@ int main(int argc, char **argv)
 
     /* Final state (the spheres, in scene order: slots after the planes). */
     if (opt.state_path) {
-        double *out = malloc(9 * sc.n * sizeof(double) + 1);
         size_t first = sc.n_planes;
-        if (out == NULL) {
-            fprintf(stderr, "peers_rbsim: out of memory for the state\n");
+        FILE *f = peers_state_open(opt.state_path, sc.n);
+        if (f == NULL)
             return 2;
-        }
-        for (i = 0; i < sc.n; ++i) {
-            memcpy(&out[9 * i], &view.position[3 * (first + i)], 3 * sizeof(double));
-            memcpy(&out[9 * i + 3], &view.velocity[3 * (first + i)], 3 * sizeof(double));
-            memcpy(&out[9 * i + 6], &view.angular_velocity[3 * (first + i)], 3 * sizeof(double));
-        }
-        if (peers_state_write(opt.state_path, sc.n, out))
+        for (i = 0; i < sc.n; ++i)
+            if (peers_state_put(f, &view.position[3 * (first + i)], &view.velocity[3 * (first + i)],
+                                &view.angular_velocity[3 * (first + i)])) {
+                (void)peers_state_close(f, opt.state_path);
+                return 2;
+            }
+        if (peers_state_close(f, opt.state_path))
             return 2;
-        free(out);
     }
     rbs_world_get_def(w, &def);
     rbs_world_usage(w, &usage_info);
@@ -196,12 +196,12 @@ int main(int argc, char **argv)
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
            "\"substeps\": %llu, \"rollbacks\": %llu, \"floor_hits\": %llu, \"sweep_limit\": %llu, "
            "\"contacts_max\": %u, \"contacts_high\": %u, \"step_max_overlap\": %.9g, "
-           "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"energy_lib\": %.12g, \"apex\": ",
+           "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"energy_lib\": %.12g, \"rss_anon_kb\": %ld, \"apex\": ",
            rbs_version(), rbs_method_name(def.method), rbs_method_name(rbs_world_method_in_use(w)), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0,
            t_setup, (unsigned long long)substeps, (unsigned long long)rollbacks,
            (unsigned long long)floor_hits, (unsigned long long)sweep_limit, contacts_max,
            usage_info.contacts_high, overlap_max, usage_info.bytes, def.max_contacts,
-           def.slop, energy.total);
+           def.slop, energy.total, peers_rss_anon_kb());
     peers_print_apex(stdout, &apex);
     printf(", \"error\": \"");
     for (; *error; ++error)

@@ -69,12 +69,13 @@ static int read_doubles(FILE *f, double *out, size_t count)
     return fread(out, sizeof(double), count, f) == count ? 0 : 1;
 }
 
-int peers_scene_read(const char *path, peers_scene *s)
+int peers_scene_open(const char *path, peers_scene *s)
 {
     char magic[8];
     double h[8];
     FILE *f = fopen(path, "rb");
     memset(s, 0, sizeof *s);
+    s->path = path;
     if (f == NULL) {
         fprintf(stderr, "scene %s: cannot open\n", path);
         return 1;
@@ -99,15 +100,44 @@ int peers_scene_read(const char *path, peers_scene *s)
     s->friction = h[6];
     s->track_apex = h[7] != 0.0;
     s->planes = malloc((s->n_planes * 6 + 1) * sizeof(double));
-    s->spheres = malloc((s->n * 8 + 1) * sizeof(double));
-    if (s->planes == NULL || s->spheres == NULL || read_doubles(f, s->planes, s->n_planes * 6) ||
-        read_doubles(f, s->spheres, s->n * 8)) {
-        fprintf(stderr, "scene %s: truncated or out of memory (n=%zu)\n", path, s->n);
+    if (s->planes == NULL || read_doubles(f, s->planes, s->n_planes * 6)) {
+        fprintf(stderr, "scene %s: truncated or out of memory (planes=%zu)\n", path, s->n_planes);
         fclose(f);
         peers_scene_free(s);
         return 1;
     }
-    fclose(f);
+    s->file = f;
+    return 0;
+}
+
+int peers_scene_sphere(peers_scene *s, double q[8])
+{
+    if (s->file == NULL || s->next >= s->n || read_doubles(s->file, q, 8)) {
+        fprintf(stderr, "scene %s: truncated at sphere %zu of %zu\n", s->path, s->next, s->n);
+        return 1;
+    }
+    s->next++;
+    return 0;
+}
+
+int peers_scene_read(const char *path, peers_scene *s)
+{
+    size_t i;
+    if (peers_scene_open(path, s))
+        return 1;
+    s->spheres = malloc((s->n * 8 + 1) * sizeof(double));
+    if (s->spheres == NULL) {
+        fprintf(stderr, "scene %s: out of memory (n=%zu)\n", path, s->n);
+        peers_scene_free(s);
+        return 1;
+    }
+    for (i = 0; i < s->n; ++i)
+        if (peers_scene_sphere(s, &s->spheres[8 * i])) {
+            peers_scene_free(s);
+            return 1;
+        }
+    fclose(s->file);
+    s->file = NULL;
     return 0;
 }
 
@@ -116,19 +146,36 @@ void peers_scene_free(peers_scene *s)
     free(s->planes);
     free(s->spheres);
     s->planes = s->spheres = NULL;
+    if (s->file != NULL)
+        fclose(s->file);
+    s->file = NULL;
 }
 
-int peers_state_write(const char *path, size_t n, const double *state9)
+FILE *peers_state_open(const char *path, size_t n)
 {
     double dn = (double)n;
     FILE *f = fopen(path, "wb");
-    int bad;
     if (f == NULL) {
         fprintf(stderr, "state %s: cannot create\n", path);
-        return 1;
+        return NULL;
     }
-    bad = fwrite("RBSSTAT1", 1, 8, f) != 8 || fwrite(&dn, sizeof dn, 1, f) != 1 ||
-          fwrite(state9, sizeof(double), 9 * n, f) != 9 * n;
+    if (fwrite("RBSSTAT1", 1, 8, f) != 8 || fwrite(&dn, sizeof dn, 1, f) != 1) {
+        fprintf(stderr, "state %s: write failed\n", path);
+        fclose(f);
+        return NULL;
+    }
+    return f;
+}
+
+int peers_state_put(FILE *f, const double pos[3], const double vel[3], const double avel[3])
+{
+    return fwrite(pos, sizeof(double), 3, f) != 3 || fwrite(vel, sizeof(double), 3, f) != 3 ||
+           fwrite(avel, sizeof(double), 3, f) != 3;
+}
+
+int peers_state_close(FILE *f, const char *path)
+{
+    int bad = ferror(f) != 0;
     bad |= fclose(f) != 0;
     if (bad)
         fprintf(stderr, "state %s: write failed\n", path);
@@ -140,6 +187,25 @@ double peers_now(void)
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+long peers_rss_anon_kb(void)
+{
+    char line[256];
+    long kb = -1;
+    FILE *f = fopen("/proc/self/status", "r");
+    if (f == NULL)
+        return -1;
+    while (fgets(line, sizeof line, f) != NULL)
+        if (strncmp(line, "RssAnon:", 8) == 0) {
+            char *end = NULL;
+            long v = strtol(line + 8, &end, 10);
+            if (end != line + 8 && v >= 0)
+                kb = v;
+            break;
+        }
+    fclose(f);
+    return kb;
 }
 
 void peers_apex_init(peers_apex *a, double gravity_z)

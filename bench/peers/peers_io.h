@@ -14,7 +14,8 @@
  *
  * Driver protocol (all four engines): stdout carries "# progress STEPS WALL"
  * lines while stepping (so a killed run still tells how far it got) and one
- * final line "RESULT {json}".
+ * final line "RESULT {json}", which carries "rss_anon_kb" (peers_rss_anon_kb,
+ * read after the run, before the engine's world is destroyed).
  */
 #ifndef PEERS_IO_H
 #define PEERS_IO_H
@@ -29,7 +30,10 @@ typedef struct peers_scene {
     long steps;
     int track_apex;
     double *planes;    /* n_planes x 6 */
-    double *spheres;   /* n x 8 */
+    double *spheres;   /* n x 8 (peers_scene_read; NULL after peers_scene_open) */
+    FILE *file;        /* peers_scene_open: positioned at the next sphere */
+    const char *path;
+    size_t next;       /* spheres peers_scene_sphere has read */
 } peers_scene;
 
 /* Command-line options every driver takes. */
@@ -45,15 +49,36 @@ typedef struct peers_options {
 /* Parse argv; on error prints the reason to stderr and returns nonzero. */
 int peers_parse_args(int argc, char **argv, peers_options *opt, const char *usage);
 
-/* Read a scene; on error prints "scene FILE: reason" and returns nonzero. */
+/* Read a scene, spheres and all; on error prints "scene FILE: reason" and
+ * returns nonzero. */
 int peers_scene_read(const char *path, peers_scene *s);
+/* Read a scene's header and planes and leave its spheres in the file, for
+ * peers_scene_sphere to read one at a time: the drivers make their bodies
+ * so, and the benchmark's peak memory then holds no copy of the scene (a
+ * freed 64 KB buffer stays resident in the C library's heap). */
+int peers_scene_open(const char *path, peers_scene *s);
+/* The next sphere of an opened scene into q[8]; nonzero (with the reason
+ * on stderr) when the file ends early. */
+int peers_scene_sphere(peers_scene *s, double q[8]);
+/* Free the arrays and close the file; keeps the counts. */
 void peers_scene_free(peers_scene *s);
 
-/* Write n x 9 doubles (pos, vel, avel); returns nonzero on failure. */
-int peers_state_write(const char *path, size_t n, const double *state9);
+/* The final state, written sphere by sphere (no copy of the whole state):
+ * peers_state_open, then peers_state_put for each of the n spheres, then
+ * peers_state_close; each returns nonzero (NULL) on failure, with the reason
+ * on stderr. */
+FILE *peers_state_open(const char *path, size_t n);
+int peers_state_put(FILE *f, const double pos[3], const double vel[3], const double avel[3]);
+int peers_state_close(FILE *f, const char *path);
 
 /* Monotonic clock, s. */
 double peers_now(void);
+
+/* This process's anonymous resident memory now, kB (RssAnon of
+ * /proc/self/status: the heap and private mappings, without the shared
+ * code and data pages of the program and its libraries), or -1 where the
+ * system does not report it. */
+long peers_rss_anon_kb(void);
 
 /* Apex tracker for sphere 0 (the bouncing-ball scene): feed z and vz after
  * every step; an apex is recorded where vz turns from > 0 to <= 0, as the

@@ -187,12 +187,12 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
             row["steps"], row["wall"] = progress
             row["sim_time"] = progress[0] * scenes.DT
     else:
-        for k in ("steps", "sim_time", "wall", "setup_wall", "version"):
+        for k in ("steps", "sim_time", "wall", "setup_wall", "version", "rss_anon_kb"):
             row[k] = res.get(k)
         row["apex"] = ";".join(f"{z:.6f}" for z in res.get("apex", [])[:6])
         extra = {k: v for k, v in res.items()
                  if k not in ("engine", "n", "steps", "sim_time", "wall", "setup_wall", "apex",
-                              "error", "version", "dt")}
+                              "error", "version", "dt", "rss_anon_kb")}
         row["extra"] = json.dumps(extra, sort_keys=True)
         row["error"] = res.get("error", "")
         if row["error"]:
@@ -444,7 +444,7 @@ def main(argv):
 
 CSV_FIELDS = ["scene", "n", "engine", "rep", "status", "steps_planned", "steps", "sim_time",
               "wall", "setup_wall", "process_s", "cap_s", "wall_per_sim_s", "body_steps_per_s",
-              "ns_per_body_step", "maxrss_kb", "escaped", "nonfinite", "max_ss_overlap_rel",
+              "ns_per_body_step", "maxrss_kb", "rss_anon_kb", "escaped", "nonfinite", "max_ss_overlap_rel",
               "max_sp_overlap_rel", "ss_over_1pct", "sp_over_1pct", "kinetic", "potential",
               "energy", "apex", "version", "error", "extra"]
 

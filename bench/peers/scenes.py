@@ -144,6 +144,20 @@ def write_state(path, state9):
         state9.tofile(f)
 
 
+def rss_anon_kb():
+    """This process's anonymous resident memory now, kB (RssAnon of
+    /proc/self/status, as peers_io.c reads it), or -1 where it is not
+    reported."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("RssAnon:"):
+                    return int(line.split()[1])
+    except (OSError, ValueError, IndexError):
+        pass
+    return -1
+
+
 class Apex:
     """Apexes of sphere 0: where vz turns from > 0 to <= 0, taken as the
     ballistic peak from the step before (as peers_io.c does)."""
