@@ -40,8 +40,9 @@ static inline v3 rbs__along_rel_velocity(const rbs__contact *c, double la, v3 va
 static inline v3 rbs__rel_velocity(const rbs_world *w, const rbs__contact *c)
 {
     if (!(c->flags & RBS__OFF))
-        return rbs__along_rel_velocity(c, rbs__contact_la(w, c), v3_load(&w->vel[3 * c->a]), v3_load(&w->avel[3 * c->a]),
-                                  v3_load(&w->vel[3 * c->b]), v3_load(&w->avel[3 * c->b]));
+        return rbs__along_rel_velocity(c, rbs__contact_la(w, c), v3_load(&w->vel[3 * c->a]),
+                                       v3_load(&w->avel[3 * c->a]), v3_load(&w->vel[3 * c->b]),
+                                       v3_load(&w->avel[3 * c->b]));
     return v3_sub(rbs__point_velocity(w, c->a, rbs__contact_ra(w, c)),
                   rbs__point_velocity(w, c->b, rbs__contact_rb(w, c)));
 }
