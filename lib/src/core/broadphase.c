@@ -58,21 +58,20 @@ static inline uint32_t cell_key(int32_t x, int32_t y, int32_t z, uint32_t mask, 
 
 /* Items i and o are candidates when their centres are closer than the sum
  * of their reaches: then fn visits them, the lower item first. */
-static inline void visit_if_close(const double *C, const double *R, double extra, uint32_t i,
+static inline void visit_if_close(const double *C, const double *R, uint32_t i,
                                   uint32_t o, rbs__pair_fn fn, void *ctx)
 {
     double ex = C[3 * i] - C[3 * o], ey = C[3 * i + 1] - C[3 * o + 1], ez = C[3 * i + 2] - C[3 * o + 2];
-    double sr = R[i] + R[o] + extra;
+    double sr = R[i] + R[o];
     if (ex * ex + ey * ey + ez * ez <= sr * sr)
         fn(ctx, i < o ? i : o, i < o ? o : i);
 }
 
-/* The grid pass: fn for every pair of items whose centres are closer than
- * the sum of their reaches plus extra (m; 0 for the callers' own test). */
-static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t *query, double extra,
+/* The grid pass: fn for every pair of items whose centres C are closer
+ * than the sum of their reaches R. */
+static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t n, const uint8_t *query,
                        rbs__pair_fn fn, void *ctx)
 {
-    const double *R = w->bp_reach;
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
     int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
@@ -92,7 +91,7 @@ static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t 
         else if (R[i] > cell)
             cell = R[i];
     }
-    cell = 2.0 * cell + extra; /* every pair the test can take is within one cell */
+    cell = 2.0 * cell; /* every pair the test can take is within one cell */
     if (!(cell > 0.0) || !isfinite(cell))
         cell = 1.0;
     inv = 1.0 / cell;
@@ -183,7 +182,7 @@ static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t 
                     uint32_t o = w->bp_item[k];
                     if (o == i || (o < i && m == 0))
                         continue;
-                    visit_if_close(C, R, extra, i, o, fn, ctx);
+                    visit_if_close(C, R, i, o, fn, ctx);
                 }
             }
         }
@@ -223,7 +222,7 @@ static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t 
                             if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
                                            w->bp_cell[3 * o + 2] != cz + dz))
                                 continue;
-                            visit_if_close(C, R, extra, i, o, fn, ctx);
+                            visit_if_close(C, R, i, o, fn, ctx);
                         }
                     }
         }
@@ -236,26 +235,38 @@ static void grid_pairs(rbs_world *w, const double *C, uint32_t n, const uint8_t 
                 continue; /* big-big pairs once */
             if (query && !query[i] && !query[b])
                 continue;
-            visit_if_close(C, R, extra, i, b, fn, ctx);
+            visit_if_close(C, R, i, b, fn, ctx);
         }
     }
 }
 
 
-/* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967).
- * Built from the grid with every pair's reach grown by a margin m, it holds
- * each pair (i < j) whose centres were closer than R_Li + R_Lj + m, sorted
- * by (i, j), with the centres c_L and reaches R_L it was built at.  A later
- * pass with centres c and reaches R can take its pairs from the list when
- * no item has moved, plus grown its reach, by more than half the margin:
- *   max_i (R_i - R_Li + |c_i - c_Li|) <= m / 2
- * -- then every pair closer than R_i + R_j was closer than R_Li + R_Lj + m
- * at the build, so it is on the list.  The list is tested with the pass's
- * own R_i + R_j, so a pass visits the same pairs in the same (sorted) order
- * whether the list was built for it or reused: results never depend on
- * when it was built (nor on a checkpoint's resume, which starts without
- * one). */
-#define LIST_SKIN 0.1 /* the margin, of the mean radius */
+/* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967),
+ * with a skin of its own for each item.  Built from the grid with each
+ * item's reach R_Li grown by its skin s_i to a list reach L_i = R_Li + s_i,
+ * it holds each pair (i < j) whose centres were closer than L_i + L_j,
+ * sorted by (i, j), with the centres c_L it was built at.  A later pass with
+ * centres c and reaches R can take its pairs from the list while every item
+ * stays within its list reach:
+ *   R_i + |c_i - c_Li| <= L_i   for every i
+ * -- then a pair closer than R_i + R_j now was closer than
+ * R_i + |c_i - c_Li| + R_j + |c_j - c_Lj| <= L_i + L_j at the build (the
+ * triangle inequality), so it is on the list.  The list is tested with the
+ * pass's own R_i + R_j, so a pass visits the same pairs in the same (sorted)
+ * order whether the list was built for it or reused: results never depend
+ * on when it was built, nor on the skins (nor on a checkpoint's resume,
+ * which starts without a list).
+ *
+ * The skin is a base of LIST_SKIN / 2 of the mean radius plus LIST_AHEAD
+ * times the item's own motion in its reach (R_i - r_i: the caller's sweep
+ * margin, |v| dt + |a| dt^2 for detection), at most LIST_SKIN_MAX of the
+ * mean radius.  With one skin for all, any sphere moving faster than the
+ * skin a frame (a pile's fall, a sphere kicked from rest by an impact) forced
+ * a rebuild every frame; with its own, it forces one per LIST_AHEAD frames
+ * or so, and the slow majority keeps the small base. */
+#define LIST_SKIN 0.1     /* the base margin of a pair, of the mean radius */
+#define LIST_AHEAD 4.0    /* frames of an item's own motion its skin holds */
+#define LIST_SKIN_MAX 0.5 /* the most skin of an item, of the mean radius */
 
 static void list_collect(void *vctx, uint32_t i, uint32_t j)
 {
@@ -267,16 +278,22 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
     w->vl_count++;
 }
 
-/* Build the list at margin m from the centres C; 0 (and no list) if it
- * does not fit. */
-static int list_build(rbs_world *w, const double *C, uint32_t n, double m)
+/* Build the list from the centres C and the reaches in w->bp_reach, each
+ * grown by base (m) and ahead times the item's motion (at most most, m);
+ * 0 (and no list) if it does not fit. */
+static int list_build(rbs_world *w, const double *C, uint32_t n, double base, double ahead, double most)
 {
     /* bp_start and bp_fill (2 n entries and more each) are free once the
      * grid pass is over */
     uint32_t *start = w->bp_start, *next = w->bp_fill, *P = w->vl_pair, i, k;
     w->vl_valid = 0;
     w->vl_count = 0;
-    grid_pairs(w, C, n, NULL, m, list_collect, w);
+    for (i = 0; i < n; ++i) {
+        double motion = w->bp_reach[i] - w->radius[w->spheres[i]], skin = ahead * motion;
+        skin = motion > 0.0 ? (skin < most ? skin : most) : 0.0;
+        w->vl_reach[i] = w->bp_reach[i] + (base + skin);
+    }
+    grid_pairs(w, C, w->vl_reach, n, NULL, list_collect, w);
     if (w->vl_count > w->vl_cap)
         return 0;
     /* sorted in place by the first item (American flag sort: McIlroy,
@@ -312,9 +329,7 @@ static int list_build(rbs_world *w, const double *C, uint32_t n, double m)
         P[2 * at + 1] = b;
     }
     memcpy(w->vl_pos, C, 3 * (size_t)n * sizeof(double));
-    memcpy(w->vl_reach, w->bp_reach, (size_t)n * sizeof(double));
     w->vl_items = n;
-    w->vl_margin = m;
     w->vl_valid = 1;
     return 1;
 }
@@ -323,8 +338,8 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
                            rbs__pair_fn fn, void *ctx)
 {
     const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
-    double need = 0.0, size = 0.0, rsum = 0.0, rmax = 0.0, guard, m;
-    int reuse = w->vl_valid && w->vl_items == n;
+    double size = 0.0, rsum = 0.0, rmax = 0.0, guard, mean;
+    int reuse = w->vl_valid && w->vl_items == n, fits = 1;
     uint32_t i, k;
     if (n < 2)
         return;
@@ -333,24 +348,22 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
         rmax = R[i] > rmax ? R[i] : rmax;
         for (k = 0; k < 3; ++k)
             size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
-        if (reuse) {
-            double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
-                   dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
-            double d = R[i] - w->vl_reach[i] + sqrt(dx * dx + dy * dy + dz * dz);
-            need = d > need ? d : need;
-        }
     }
     /* rounding of the distances behind both tests, with room to spare */
     guard = 64.0 * DBL_EPSILON * (size + rmax);
-    if (!isfinite(need) || !isfinite(guard))
-        reuse = 0;
-    if (!(reuse && 2.0 * need + guard <= w->vl_margin)) {
-        /* grown by a skin, so that it lasts; else just what this pass needs */
-        m = LIST_SKIN * rsum / n + guard;
-        if (!list_build(w, C, n, m) && !list_build(w, C, n, guard)) {
+    for (i = 0; reuse && fits && i < n; ++i) {
+        double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
+               dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
+        fits = R[i] + sqrt(dx * dx + dy * dy + dz * dz) + guard <= w->vl_reach[i]; /* (false for a NaN) */
+    }
+    if (!(reuse && fits && isfinite(guard))) {
+        /* grown by skins, so that it lasts; else just what this pass needs */
+        mean = rsum / n;
+        if (!list_build(w, C, n, 0.5 * LIST_SKIN * mean + guard, LIST_AHEAD, LIST_SKIN_MAX * mean) &&
+            !list_build(w, C, n, guard, 0.0, 0.0)) {
             /* more candidate pairs than the list holds: the grid itself (its
              * own order; a function of this pass's centres only) */
-            grid_pairs(w, C, n, query, 0.0, fn, ctx);
+            grid_pairs(w, C, R, n, query, fn, ctx);
             return;
         }
     }

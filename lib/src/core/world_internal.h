@@ -194,13 +194,12 @@ struct rbs_world {
     int32_t *bp_cell;                     /* 3 per item: grid cell */
     /* the candidate-pair list (broadphase.c, rbs__broadphase_pairs) */
     double *vl_pos;                       /* 3 per item: centres at its build */
-    double *vl_reach;                     /* per item: reaches at its build */
+    double *vl_reach;                     /* per item: list reach (reach at its build + skin) */
     uint32_t *vl_pair;                    /* 2 per pair, vl_cap pairs, sorted */
     uint32_t vl_cap;                      /* max_contacts */
     uint32_t vl_count;                    /* pairs on the list */
     uint32_t vl_items;                    /* items it was built for */
     int vl_valid;                         /* 0: none (cleared when items change) */
-    double vl_margin;                     /* its margin m, m */
 
     /* event method (step_event.c): per body motion between events */
     double *ev_alpha;                     /* 3 per slot: angular acceleration */
