@@ -10,7 +10,10 @@
  * large ones and teleports (it must be rebuilt), growing reaches, query
  * masks, radii a thousand times apart, positions 1e6 m from the origin, and
  * a list too small for the pairs (the grid's own walk: the same set, in any
- * order).  Internal: linked against the library's objects.
+ * order).  One case follows a single fast sphere: its own skin (grown with
+ * the motion in its reach) keeps the list over several frames of its
+ * travel, and the list is rebuilt once the sphere leaves it.  Internal:
+ * linked against the library's objects.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -225,11 +228,57 @@ static void list_too_small_takes_the_grid(void **state)
     assert_true(grid_passes > 0);
 }
 
+/* One sphere of a still crowd moves at d a frame, its reach grown by d (a
+ * sweep's margin, as detection's): the list built at its start must be kept
+ * while the sphere stays within its skin (the base 0.05 r plus four frames of
+ * its motion, so more than one frame's travel although d is beyond the base
+ * skin), each pass the brute force's pairs in order, and rebuilt once it
+ * has travelled beyond that skin. */
+static void fast_sphere_keeps_its_list(void **state)
+{
+    uint64_t seed = 777;
+    const double r = 0.05, d = 0.1 * r; /* twice the base skin a frame */
+    uint32_t n, i, frame, builds = 0, kept = 0, first_build = 0;
+    rbs_world *w;
+    (void)state;
+    w = crowd(N_MAX, 0, r, 0.9, 0.0, 0, &seed);
+    n = w->sphere_count;
+    for (i = 0; i < n; ++i) {
+        memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
+        w->bp_reach[i] = r; /* the others at rest: no margin */
+    }
+    w->bp_reach[0] = r + d;
+    for (frame = 0; frame < 12; ++frame) {
+        got.count = 0;
+        rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
+        brute(w, n, NULL, &want);
+        assert_true(w->vl_valid);
+        same(&got, &want, 1, "fast sphere", (int)frame);
+        if (memcmp(w->vl_pos, w->bp_center, 3 * (size_t)n * sizeof(double)) == 0) {
+            builds++;
+            if (frame > 0 && first_build == 0)
+                first_build = frame;
+        } else {
+            kept++;
+        }
+        w->bp_center[0] += d;
+    }
+    /* built at frame 0; its skin, 0.05 r + 4 d = 0.45 r (under the cap of
+     * half a radius), lasts while its travel k d stays within it: kept for
+     * frames 1..4, rebuilt at 5 and 10 (a single skin of 0.05 r for all, as
+     * before, rebuilt every frame) */
+    assert_int_equal(first_build, 5);
+    assert_true(kept >= 8);
+    assert_true(builds <= 4);
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(list_matches_brute_force),
         cmocka_unit_test(list_too_small_takes_the_grid),
+        cmocka_unit_test(fast_sphere_keeps_its_list),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
