@@ -372,9 +372,16 @@ def targets(rows, meta):
                          f"{'within' if mr / mo <= 0.2 else 'beyond'} 1/5; "
                          "the line above is the verdict)")
             ar, ao = anon_per_body(rows, eng, n), anon_per_body(rows, "ode", n)
-            if ar is not None and ao:
-                L.append(f"  (anonymous memory only, without shared code pages: {fmt(ar / ao)} of ODE's — "
-                         f"{'within' if ar / ao <= 0.2 else 'beyond'} 1/5; the peak-RSS line above is the verdict)")
+            # (ODE's peak per body, to tell whether its anon at the end still holds its step memory)
+            op = (po - base["ode"]) * 1024.0 / n if po and base["ode"] else None
+            if ar is not None and ao and op and ao < 0.5 * op:
+                L.append(f"  (anonymous memory at the end of the run: not comparable here — ODE's, "
+                         f"{fmt(ao)} bytes a body, is under half its peak's {fmt(op)}: it had freed its "
+                         f"step memory by then; rbsim's is {fmt(ar)} bytes, its peak too)")
+            elif ar is not None and ao:
+                L.append(f"  (anonymous memory at the end of the run, without shared code pages: {fmt(ar / ao)} "
+                         f"of ODE's — {'within' if ar / ao <= 0.2 else 'beyond'} 1/5; the peak-RSS line above "
+                         "is the verdict)")
         for n in (1000, 8000, 27000):
             rs = [r for r in sel(rows, "pile", n, eng) if r.get("escaped") not in (None, "")]
             if rs:
