@@ -273,12 +273,60 @@ static void fast_sphere_keeps_its_list(void **state)
     rbs_world_destroy(w);
 }
 
+/* Pairs of n items (centres of w, all of reach R) closer than 2 R. */
+static uint32_t pairs_within(const rbs_world *w, uint32_t n, double R)
+{
+    uint32_t a, b, count = 0;
+    for (a = 0; a < n; ++a)
+        for (b = a + 1; b < n; ++b) {
+            const double *p = &w->pos[3 * w->spheres[a]], *q = &w->pos[3 * w->spheres[b]];
+            double ex = p[0] - q[0], ey = p[1] - q[1], ez = p[2] - q[2];
+            count += ex * ex + ey * ey + ez * ez <= 4.0 * R * R;
+        }
+    return count;
+}
+
+/* Every item moving (reach r + d): the list with their own skins (0.05 r +
+ * 4 d each) holds more pairs than the world has room for, the list with the
+ * base skin alone (0.05 r) fits -- and must be the one built, not the list
+ * of this pass's reaches alone (rebuilt every pass). */
+static void skins_that_overflow_fall_back_to_the_base(void **state)
+{
+    const double r = 0.05, d = 0.1 * r;
+    uint64_t seed = 4242, again = 4242;
+    uint32_t n, i, base_pairs, skin_pairs, cap;
+    rbs_world *w;
+    (void)state;
+    w = crowd(N_MAX, 0, r, 0.9, 0.0, 0, &seed);
+    n = w->sphere_count;
+    base_pairs = pairs_within(w, n, r + d + 0.05 * r);
+    skin_pairs = pairs_within(w, n, r + d + 0.45 * r);
+    rbs_world_destroy(w);
+    assert_true(skin_pairs > base_pairs + 4);
+    cap = base_pairs + (skin_pairs - base_pairs) / 2;
+    w = crowd(N_MAX, cap, r, 0.9, 0.0, 0, &again); /* (the same crowd) */
+    assert_int_equal(w->vl_cap, cap);
+    for (i = 0; i < n; ++i) {
+        memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
+        w->bp_reach[i] = r + d;
+    }
+    got.count = 0;
+    rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
+    brute(w, n, NULL, &want);
+    assert_true(w->vl_valid);
+    same(&got, &want, 1, "skins that overflow", 0);
+    for (i = 0; i < n; ++i) /* the base skin: 0.05 r beyond the reach (plus rounding's guard) */
+        assert_true(w->vl_reach[i] > r + d + 0.049 * r && w->vl_reach[i] < r + d + 0.051 * r);
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(list_matches_brute_force),
         cmocka_unit_test(list_too_small_takes_the_grid),
         cmocka_unit_test(fast_sphere_keeps_its_list),
+        cmocka_unit_test(skins_that_overflow_fall_back_to_the_base),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -263,7 +263,9 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
  * mean radius.  With one skin for all, any sphere moving faster than the
  * skin a frame (a pile's fall, a sphere kicked from rest by an impact) forced
  * a rebuild every frame; with its own, it forces one per LIST_AHEAD frames
- * or so, and the slow majority keeps the small base. */
+ * or so, and the slow majority keeps the small base.  A list so grown that
+ * it holds more pairs than there is room for is built with the base skin
+ * alone, and failing that with no skin (a list for this pass only). */
 #define LIST_SKIN 0.1     /* the base margin of a pair, of the mean radius */
 #define LIST_AHEAD 4.0    /* frames of an item's own motion its skin holds */
 #define LIST_SKIN_MAX 0.5 /* the most skin of an item, of the mean radius */
@@ -280,8 +282,10 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
 
 /* Build the list from the centres C and the reaches in w->bp_reach, each
  * grown by base (m) and ahead times the item's motion (at most most, m);
- * 0 (and no list) if it does not fit. */
-static int list_build(rbs_world *w, const double *C, uint32_t n, double base, double ahead, double most)
+ * 0 (and no list) if it does not fit.  *grown: the largest skin beyond the
+ * base, m. */
+static int list_build(rbs_world *w, const double *C, uint32_t n, double base, double ahead, double most,
+                      double *grown)
 {
     /* bp_start and bp_fill (2 n entries and more each) are free once the
      * grid pass is over */
@@ -292,6 +296,7 @@ static int list_build(rbs_world *w, const double *C, uint32_t n, double base, do
         double motion = w->bp_reach[i] - w->radius[w->spheres[i]], skin = ahead * motion;
         skin = motion > 0.0 ? (skin < most ? skin : most) : 0.0;
         w->vl_reach[i] = w->bp_reach[i] + (base + skin);
+        *grown = skin > *grown ? skin : *grown;
     }
     grid_pairs(w, C, w->vl_reach, n, NULL, list_collect, w);
     if (w->vl_count > w->vl_cap)
@@ -338,7 +343,7 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
                            rbs__pair_fn fn, void *ctx)
 {
     const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
-    double size = 0.0, rsum = 0.0, rmax = 0.0, guard, mean;
+    double size = 0.0, rsum = 0.0, rmax = 0.0, guard, mean, base, grown = 0.0;
     int reuse = w->vl_valid && w->vl_items == n, fits = 1;
     uint32_t i, k;
     if (n < 2)
@@ -357,10 +362,14 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
         fits = R[i] + sqrt(dx * dx + dy * dy + dz * dz) + guard <= w->vl_reach[i]; /* (false for a NaN) */
     }
     if (!(reuse && fits && isfinite(guard))) {
-        /* grown by skins, so that it lasts; else just what this pass needs */
+        /* grown by skins, so that it lasts; if that holds more pairs than
+         * the list has room for, by the base skin alone; else just what this
+         * pass needs */
         mean = rsum / n;
-        if (!list_build(w, C, n, 0.5 * LIST_SKIN * mean + guard, LIST_AHEAD, LIST_SKIN_MAX * mean) &&
-            !list_build(w, C, n, guard, 0.0, 0.0)) {
+        base = 0.5 * LIST_SKIN * mean + guard;
+        if (!list_build(w, C, n, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) &&
+            !(grown > base && list_build(w, C, n, base, 0.0, 0.0, &grown)) &&
+            !list_build(w, C, n, guard, 0.0, 0.0, &grown)) {
             /* more candidate pairs than the list holds: the grid itself (its
              * own order; a function of this pass's centres only) */
             grid_pairs(w, C, R, n, query, fn, ctx);
