@@ -7,20 +7,6 @@
 
 #include "core/world_internal.h"
 
-void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *torque)
-{
-    v3 g = v3_make(w->def.gravity.x, w->def.gravity.y, w->def.gravity.z);
-    if (!rbs__body_moves(w, i)) {
-        *lin = v3_make(0, 0, 0);
-        *torque = v3_make(0, 0, 0);
-        return;
-    }
-    if (w->def.gravity_mode == RBS_GRAVITY_FORCE)
-        g = v3_scale(g, w->inv_mass[i]);
-    *lin = v3_mad(g, v3_load(&w->force[3 * i]), w->inv_mass[i]);
-    *torque = v3_load(&w->torque[3 * i]);
-}
-
 static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2] != 0.0; }
 
 /* Decide which stages can change the result.  A stage left out is one whose

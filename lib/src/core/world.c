@@ -1132,11 +1132,6 @@ v3 rbs__body_com(const rbs_world *w, uint32_t i)
     return p;
 }
 
-int rbs__body_moves(const rbs_world *w, uint32_t i)
-{
-    return w->type[i] == RBS_BODY_SPHERE && !w->fixed[i];
-}
-
 rbs_status rbs_body_get_state(const rbs_world *w, rbs_body_id id, rbs_body_state *out)
 {
     uint32_t s = id.index;

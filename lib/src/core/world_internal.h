@@ -228,7 +228,12 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 
 /* Body helpers (world.c). */
 v3 rbs__body_com(const rbs_world *w, uint32_t i);
-int rbs__body_moves(const rbs_world *w, uint32_t i);
+/* Whether body i moves: a sphere that is not fixed.  Inline, as the
+ * accelerations below: detection asks it for both bodies of every contact. */
+static inline int rbs__body_moves(const rbs_world *w, uint32_t i)
+{
+    return w->type[i] == RBS_BODY_SPHERE && !w->fixed[i];
+}
 /* I^-1 u in world axes (scalar for isotropic bodies).  Inline: the contact
  * solver's inner loop calls it and the two below for every impulse. */
 static inline void rbs__body_inv_inertia_world(const rbs_world *w, uint32_t i, v3 u, v3 *out)
@@ -412,8 +417,22 @@ char *rbs__link_target(const char *path);
  * text (scene_json.c, scene_text.c) are checked with it. */
 size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
 
-/* Forces (step.c). */
-void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *ang_torque);
+/* Forces: body i's linear acceleration (gravity, and its applied force over
+ * its mass) and its applied torque; zero for a body that does not move.
+ * Inline: detection takes it for both bodies of every contact. */
+static inline void rbs__accelerations(const rbs_world *w, uint32_t i, v3 *lin, v3 *torque)
+{
+    v3 g = v3_make(w->def.gravity.x, w->def.gravity.y, w->def.gravity.z);
+    if (!rbs__body_moves(w, i)) {
+        *lin = v3_make(0, 0, 0);
+        *torque = v3_make(0, 0, 0);
+        return;
+    }
+    if (w->def.gravity_mode == RBS_GRAVITY_FORCE)
+        g = v3_scale(g, w->inv_mass[i]);
+    *lin = v3_mad(g, v3_load(&w->force[3 * i]), w->inv_mass[i]);
+    *torque = v3_load(&w->torque[3 * i]);
+}
 
 /* State save/restore (step.c). */
 void rbs__save_state(const rbs_world *w, double *save);
