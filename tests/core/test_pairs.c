@@ -273,17 +273,17 @@ static void fast_sphere_keeps_its_list(void **state)
     rbs_world_destroy(w);
 }
 
-/* Pairs of n items (centres of w, all of reach R) closer than 2 R. */
-static uint32_t pairs_within(const rbs_world *w, uint32_t n, double R)
+/* Pairs of the crowd's n items closer than 2 R (the brute force, with
+ * every reach R). */
+static uint32_t pairs_within(rbs_world *w, uint32_t n, double R)
 {
-    uint32_t a, b, count = 0;
-    for (a = 0; a < n; ++a)
-        for (b = a + 1; b < n; ++b) {
-            const double *p = &w->pos[3 * w->spheres[a]], *q = &w->pos[3 * w->spheres[b]];
-            double ex = p[0] - q[0], ey = p[1] - q[1], ez = p[2] - q[2];
-            count += ex * ex + ey * ey + ez * ez <= 4.0 * R * R;
-        }
-    return count;
+    uint32_t i;
+    for (i = 0; i < n; ++i) {
+        memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
+        w->bp_reach[i] = R;
+    }
+    brute(w, n, NULL, &want);
+    return want.count;
 }
 
 /* Every item moving (reach r + d): the list with their own skins (0.05 r +
