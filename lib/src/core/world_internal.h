@@ -226,7 +226,7 @@ void rbs__world_plan(rbs_world *w);
 void rbs__rebuild_lists(rbs_world *w); /* spheres, planes, item */
 void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 
-/* Body helpers (world.c). */
+/* Body helpers (world.c; the inline ones here). */
 v3 rbs__body_com(const rbs_world *w, uint32_t i);
 /* Whether body i moves: a sphere that is not fixed.  Inline, as the
  * accelerations below: detection asks it for both bodies of every contact. */
@@ -350,9 +350,10 @@ static inline const rbs__pair *rbs__contact_pair(const rbs_world *w, const rbs__
  * in the contact, so that a contact is 128 bytes (two cache lines). */
 static inline double rbs__contact_e(const rbs_world *w, const rbs__contact *c)
 {
-    const rbs__pair *p = rbs__contact_pair(w, c);
+    const rbs__pair *p;
     if (c->flags & RBS__INELASTIC)
         return 0.0;
+    p = rbs__contact_pair(w, c);
     return p->e >= 0.0 ? p->e : w->def.restitution;
 }
 
