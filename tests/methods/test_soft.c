@@ -639,6 +639,153 @@ static void layout_follows_changes(void **state)
     rbs_world_destroy(w);
 }
 
+/* soft_tolerance: default 0 (every frame takes soft_substeps), and the
+ * range [0, 1] checked with a message that names it. */
+static void tolerance_default_and_range(void **state)
+{
+    rbs_world_def d;
+    char msg[256];
+    (void)state;
+    rbs_world_def_init(&d);
+    assert_true(d.soft_tolerance == 0.0);
+    d.soft_tolerance = -0.1;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "soft_tolerance must be in [0, 1] (a fraction of the radius), got -0.1"));
+    d.soft_tolerance = 1.5;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    d.soft_tolerance = NAN;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "soft_tolerance"));
+    d.soft_tolerance = 1.0;
+    CHECK_OK(rbs_world_def_validate(&d, msg, sizeof msg));
+}
+
+/* A world of soft_substeps n and soft_tolerance tol (else soft_world's). */
+static rbs_world *tolerant_world(uint32_t bodies, double gz, uint32_t n, double tol)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_world_def_init(&d);
+    d.max_bodies = bodies;
+    d.dt = 1e-3;
+    d.gravity.z = gz;
+    d.restitution = 0.5;
+    d.method = RBS_METHOD_SOFT;
+    d.soft_substeps = n;
+    d.soft_tolerance = tol;
+    CHECK_OK(rbs_world_create(&d, &w));
+    return w;
+}
+
+/* The frame's sub-steps follow the rule (rbsim.h, soft_tolerance): a ball
+ * of radius r = 0.1 m a gap of 1e-4 m over the floor, approaching it at v
+ * with no gravity, can reach an overlap of v dt - 1e-4 m in the frame; of
+ * r, over tol = 0.01, that is q = 0.9, 0.4 and 0.1 for v = 1, 0.5 and 0.2
+ * m/s, so of 4 sub-steps the frame takes 4 (q >= 1/2), 2 (q < 1/2) and 1
+ * (q < 1/4) -- far from the thresholds, so the detected gap's rounding
+ * cannot move them.  Each bounce still follows the soft step's impact law,
+ * v' = e v (the approach of the frame's start, no force), to rounding. */
+static void tolerance_sets_the_substeps(void **state)
+{
+    const double vs[3] = {1.0, 0.5, 0.2};
+    const uint32_t want[3] = {4, 2, 1};
+    int i;
+    (void)state;
+    for (i = 0; i < 3; ++i) {
+        rbs_world *w = tolerant_world(2, 0.0, 4, 0.01);
+        rbs_body_id b;
+        rbs_step_info info;
+        floor_plane(w, (rbs_material_id){0, 0});
+        b = ball(w, 0.1, 1.0, 0, 0, 0.1 + 1e-4, 0, 0, -vs[i], (rbs_material_id){0, 0});
+        CHECK_OK(rbs_world_step(w, &info));
+        assert_int_equal(info.substeps, want[i]);
+        ASSERT_NEAR(state_of(w, b).velocity.z, 0.5 * vs[i], 1e-12);
+        CHECK_OK(rbs_world_step(w, &info)); /* (leaving: nothing can overlap) */
+        assert_int_equal(info.substeps, 1);
+        rbs_world_destroy(w);
+    }
+}
+
+/* With a tolerance a ball resting on the floor takes one sub-step a frame
+ * (its reachable overlap, the static deflection, is about 4e-5 of r, far
+ * under tol / 4), and so sinks to the deflection of h = dt:
+ * slop r + g / omega(dt, 1)^2, to 1e-6 of itself as in
+ * resting_ball_sinks_to_the_static_deflection.  A ball in free fall beside
+ * it still takes all 4 sub-steps (its lag g T h / 2 with h = dt / 4, to
+ * 1e-12 m as in free_fall_lags_by_g_t_h_over_2) and ends bit for bit as it
+ * does with no tolerance: the tolerance concerns contacts only. */
+static void tolerance_rests_on_one_substep_and_keeps_free_flight(void **state)
+{
+    const double r = 0.1, dt = 1e-3, T = 1.0;
+    rbs_world *w = tolerant_world(4, -G, 4, 0.01), *z = tolerant_world(4, -G, 4, 0.0);
+    rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+    double om = soft_omega(dt, 1), sink = 1e-6 * r + G / (om * om);
+    rbs_body_id rest, fly, fz;
+    rbs_step_info info;
+    rbs_body_state a, b;
+    (void)state;
+    floor_plane(w, m);
+    rest = ball(w, r, 1.0, 0, 0, r, 0, 0, 0, m);
+    fly = ball(w, r, 1.0, 5.0, 0, 10.0, 0, 0, 0, m);
+    fz = ball(z, r, 1.0, 5.0, 0, 10.0, 0, 0, 0, (rbs_material_id){0, 0});
+    step_n(w, 999);
+    step_n(z, 1000);
+    CHECK_OK(rbs_world_step(w, &info));
+    assert_int_equal(info.substeps, 1);
+    ASSERT_NEAR(r - state_of(w, rest).position.z, sink, 1e-6 * sink);
+    a = state_of(w, fly);
+    b = state_of(z, fz);
+    ASSERT_NEAR(a.position.z, 10.0 - 0.5 * G * T * T - 0.5 * G * T * dt / 4.0, 1e-12);
+    assert_memory_equal(&a.position, &b.position, sizeof a.position);
+    assert_memory_equal(&a.velocity, &b.velocity, sizeof a.velocity);
+    rbs_world_destroy(w);
+    rbs_world_destroy(z);
+}
+
+/* A falling heap of 27 balls with tol = 0.01: the rule reads only the state
+ * at the frame's start, so a run resumed from a checkpoint continues bit for
+ * bit; the settled heap takes fewer than 4 sub-steps a frame on average
+ * over its last 200 frames, and no overlap (info.max_overlap, the deepest
+ * of each frame) ever exceeds 1 % of the radius, the tolerance's scale. */
+static void tolerance_heap_resumes_and_settles(void **state)
+{
+    enum { N = 27 };
+    rbs_body_id ids[N];
+    rbs_world *w = tolerant_world(N + 2, -G, 4, 0.01), *c = NULL;
+    rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+    static unsigned char buf[1 << 20];
+    size_t n = 0;
+    uint32_t late = 0;
+    double deepest = 0.0;
+    int i;
+    (void)state;
+    floor_plane(w, m);
+    for (i = 0; i < N; ++i)
+        ids[i] = ball(w, 0.05, 0.1, 0.1 * (i % 3) + 0.01 * (i % 2), 0.1 * ((i / 3) % 3), 0.06 + 0.1 * (i / 9),
+                      0.2 * (i % 4), 0, 0, m);
+    step_n(w, 300);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, sizeof buf, &n));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &c));
+    for (i = 0; i < 1700; ++i) {
+        rbs_step_info info;
+        CHECK_OK(rbs_world_step(w, &info));
+        if (info.max_overlap > deepest)
+            deepest = info.max_overlap;
+        if (i >= 1500)
+            late += info.substeps;
+    }
+    step_n(c, 1700);
+    for (i = 0; i < N; ++i) {
+        rbs_body_state s1 = state_of(w, ids[i]), s2 = state_of(c, ids[i]);
+        assert_memory_equal(&s1.position, &s2.position, sizeof s1.position);
+        assert_memory_equal(&s1.velocity, &s2.velocity, sizeof s1.velocity);
+    }
+    assert_true(late < 4 * 200);
+    assert_true(deepest < 0.01 * 0.05);
+    rbs_world_destroy(c);
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -661,6 +808,10 @@ int main(void)
         cmocka_unit_test(shared_increment_is_the_table),
         cmocka_unit_test(spin_overflow_keeps_last_good_state),
         cmocka_unit_test(layout_follows_changes),
+        cmocka_unit_test(tolerance_default_and_range),
+        cmocka_unit_test(tolerance_sets_the_substeps),
+        cmocka_unit_test(tolerance_rests_on_one_substep_and_keeps_free_flight),
+        cmocka_unit_test(tolerance_heap_resumes_and_settles),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

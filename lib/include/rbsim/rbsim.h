@@ -228,6 +228,21 @@ typedef struct rbs_world_def {
                                    contacts; default 4, 1 to 1000.  More
                                    make piles stiffer (less overlap) at a
                                    cost in proportion (docs/methods.md) */
+    double soft_tolerance;    /**< RBS_METHOD_SOFT: 0 (default) takes
+                                   soft_substeps every frame; > 0 lets a frame
+                                   take the fewest n of soft_substeps halved
+                                   (down to 1) for which every contact's
+                                   reachable overlap -- its overlap at the
+                                   frame's start plus its approach over the
+                                   frame -- is under soft_tolerance x n /
+                                   soft_substeps of its pair's smaller radius.
+                                   Bodies no contact touches always take
+                                   soft_substeps, and so does every world the
+                                   soft step takes in its general layout
+                                   (mutual gravity, rolling or spinning
+                                   resistance, an anisotropic or off-centre
+                                   sphere).  A fraction of the radius,
+                                   [0, 1] (docs/methods.md, "soft") */
 } rbs_world_def;
 
 /** Fill a world definition with defaults.  Prefer the rbs_world_def_init macro. */

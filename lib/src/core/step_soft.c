@@ -395,22 +395,49 @@ static int uniform_increment(const rbs_world *w, double h, double *inc)
     return 1;
 }
 
+/* The sub-steps of this frame (def.soft_tolerance; after detection): the
+ * fewest of soft_substeps halved (down to 1) for which every contact's
+ * reachable overlap -- its overlap now plus its approach over the frame,
+ * -gap + max(0, -vn dt), as a fraction of its pair's smaller radius -- is
+ * under soft_tolerance n / soft_substeps; else soft_substeps (a NaN or an
+ * infinite approach too).  Read from the state at the frame's start, so a
+ * checkpoint needs nothing more to resume it. */
+static uint32_t frame_substeps(const rbs_world *w)
+{
+    const uint32_t full = w->def.soft_substeps;
+    uint32_t n = full, i;
+    double q = 0.0; /* the deepest reachable overlap, of its radius */
+    if (w->def.soft_tolerance == 0.0 || full == 1 || !w->plan.gather)
+        return full;
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        double close = -v3_dot(rbs__rel_velocity(w, c), c->n) * w->def.dt;
+        double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
+        if (!(d <= q))
+            q = d; /* (a NaN stays, and keeps every sub-step) */
+    }
+    q /= w->def.soft_tolerance;
+    while (n > 1 && q < (double)(n / 2) / (double)full)
+        n /= 2;
+    return n;
+}
+
 rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
 {
-    const uint32_t n = w->def.soft_substeps;
-    const double dt = w->def.dt, h = dt / n;
-    const double omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
-    const double a1 = 2.0 * SOFT_ZETA + h * omega, a2 = h * omega * a1;
+    const uint32_t full = w->def.soft_substeps;
+    const double dt = w->def.dt, h_full = dt / full;
+    uint32_t n;
+    double h, omega, a1, a2;
     const uint32_t B = w->def.max_bodies;
     double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
-    double *touched = NULL, shared_inc[6];
+    double *touched = NULL, shared_inc[6], free_inc[6];
     uint32_t i, k, at = 0;
     uint32_t s;
     soft_pass sp;
     rbs_status st;
     const int gather = w->plan.gather; /* (rbs__plan_compute) */
     /* one increment for every body (shared_inc), or a table of them */
-    const int shared = gather && uniform_increment(w, h, shared_inc);
+    const int shared = gather && uniform_increment(w, h_full, free_inc);
 
     /* inc: accelerations and torques for detection, then (gathered) their
      * velocity increments a h, alpha h -- untouched when the increment is
@@ -420,6 +447,31 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc);
     if (st != RBS_OK)
         return st;
+    n = frame_substeps(w);
+    h = dt / n;
+    omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
+    a1 = 2.0 * SOFT_ZETA + h * omega;
+    a2 = h * omega * a1;
+    if (shared)
+        (void)uniform_increment(w, h, shared_inc); /* (free_inc: h_full's) */
+
+    /* A gathered body that no contact of the frame touches moves alone: all
+     * its sub-steps are taken after the loop, body by body (the same
+     * operations in the same order, so the same bits), instead of in one
+     * sweep over every record per sub-step -- at a million bodies those
+     * sweeps were most of a falling lattice's cost -- and always all
+     * soft_substeps of them, of h_full (def.soft_tolerance concerns
+     * contacts).  touched[slot]: 1 for a body in a contact (the margins'
+     * room, free after detection). */
+    if (gather) {
+        touched = inc + (size_t)6 * B;
+        for (k = 0; k < w->sphere_count; ++k)
+            touched[w->spheres[k]] = 0.0;
+        for (i = 0; i < w->contact_count; ++i) {
+            touched[w->contact[i].a] = 1.0;
+            touched[w->contact[i].b] = 1.0;
+        }
+    }
     sp.w = w;
     sp.inv_h = 1.0 / h;
     sp.bias_rate = omega / a1;
@@ -439,8 +491,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
             b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
             if (!shared) {
-                v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), h));
-                v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * h));
+                /* (a body of no contact, or a plane: the full sub-steps') */
+                const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
+                v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
+                v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * hi));
             }
         }
     } else {
@@ -481,21 +535,6 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         }
     }
 
-    /* A gathered body that no contact of the frame touches moves alone: all
-     * its sub-steps are taken after the loop, body by body (the same
-     * operations in the same order, so the same bits), instead of in one
-     * sweep over every record per sub-step -- at a million bodies those
-     * sweeps were most of a falling lattice's cost.  touched[slot]: 1 for a
-     * body in a contact (the margins' room, free after detection). */
-    if (rec != NULL) {
-        touched = inc + (size_t)6 * B;
-        for (k = 0; k < w->sphere_count; ++k)
-            touched[w->spheres[k]] = 0.0;
-        for (i = 0; i < w->contact_count; ++i) {
-            touched[w->contact[i].a] = 1.0;
-            touched[w->contact[i].b] = 1.0;
-        }
-    }
     sp.touching = 0;
     sp.deepest = 0.0;
     for (s = 0; s < n; ++s) {
@@ -531,7 +570,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t b = w->spheres[k];
             double *r = &rec[REC * b];
-            const double *ib = shared ? shared_inc : &inc[6 * b];
+            const double *ib = shared ? free_inc : &inc[6 * b];
             v3 v, om, d, th, dv, dw;
             if (touched[b] != 0.0 || r[6] == 0.0)
                 continue;
@@ -541,11 +580,11 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             th = v3_load(r + 11);
             dv = v3_load(ib);
             dw = v3_load(ib + 3);
-            for (s = 0; s < n; ++s) {
+            for (s = 0; s < full; ++s) {
                 v = v3_add(v, dv);
                 om = v3_add(om, dw);
-                d = v3_mad(d, v, h);
-                th = v3_mad(th, om, h);
+                d = v3_mad(d, v, h_full);
+                th = v3_mad(th, om, h_full);
             }
             v3_store(r, v);
             v3_store(r + 3, om);

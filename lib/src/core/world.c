@@ -67,6 +67,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.prune = 1;
     d.max_substeps = 4096;
     d.soft_substeps = 4;
+    d.soft_tolerance = 0.0;
     memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
     def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
 }
@@ -181,6 +182,10 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
     if (d.soft_substeps < 1 || d.soft_substeps > RBS__SOFT_SUBSTEPS_MAX) {
         snprintf(msg, len, "soft_substeps must be in [1, %u], got %u", (unsigned)RBS__SOFT_SUBSTEPS_MAX,
                  (unsigned)d.soft_substeps);
+        return RBS_E_INVALID;
+    }
+    if (!(d.soft_tolerance >= 0.0 && d.soft_tolerance <= 1.0)) {
+        snprintf(msg, len, "soft_tolerance must be in [0, 1] (a fraction of the radius), got %g", d.soft_tolerance);
         return RBS_E_INVALID;
     }
     if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {
