@@ -1187,6 +1187,7 @@ static int checkpoint_matches(const rbs_world *scene_world,
     DIFF_D(max_halvings, "max_halvings")
     DIFF_D(max_sweeps, "max_sweeps")
     DIFF_D(soft_substeps, "soft_substeps")
+    DIFF_D(soft_tolerance, "soft_tolerance")
     DIFF_D(max_substeps, "max_substeps")
     DIFF_D(mutual_gravity, "mutual_gravity")
     DIFF_D(gravity_constant, "gravity_constant")

@@ -182,6 +182,27 @@ class CliTests(Base):
         self.assertIn("simulation.soft_substeps: must be an integer from 1 to 1000, "
                       "got 1001", r.stdout)
 
+    def test_soft_tolerance(self):
+        """The scene's simulation.soft_tolerance reaches the world: a
+        checkpoint made with one soft_tolerance does not resume with another,
+        and resumes with the same; out of [0, 1] the scene is rejected."""
+        sim = dict(SCENE["simulation"], method="soft", soft_tolerance=0.25)
+        s = self.scene("tol.json", simulation=sim)
+        r = self.rbsim("run", s, "--steps", "20", "--quiet", "--checkpoint", "t.ckpt")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        s0 = self.scene("tol0.json", simulation=dict(sim, soft_tolerance=0))
+        r = self.rbsim("run", s0, "--resume", "t.ckpt", "--quiet", "--csv", "t2.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("soft_tolerance: the scene has 0, the checkpoint 0.25", r.stderr)
+        r = self.rbsim("run", s, "--steps", "40", "--resume", "t.ckpt", "--quiet",
+                       "--csv", "t3.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        bad = self.scene("bad.json", simulation=dict(sim, soft_tolerance=2))
+        r = self.rbsim("check", bad)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("simulation.soft_tolerance: must be a number from 0 to 1, got 2",
+                      r.stdout)
+
     def test_help_lists_every_method(self):
         """The unknown-method messages of run and explain name the
         library's methods (rbs_method_name); the help of run and explain

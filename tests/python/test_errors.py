@@ -83,6 +83,19 @@ def test_soft_substeps_out_of_range_names_it():
         assert rbsim.World(soft_substeps=good).settings["soft_substeps"] == good
 
 
+def test_soft_tolerance_out_of_range_names_it():
+    """soft_tolerance is 0 to 1: -0.1 and 2 are refused by the library with
+    its own words (the field, the range and the value)."""
+    for bad in (-0.1, 2.0):
+        with pytest.raises(rbsim.InvalidError,
+                           match=r"soft_tolerance must be in \[0, 1\] \(a fraction of the "
+                                 r"radius\), got %g" % bad) as info:
+            rbsim.World(soft_tolerance=bad)
+        assert info.value.status == lib.RBS_E_INVALID
+    for good in (0.0, 1.0):
+        assert rbsim.World(soft_tolerance=good).settings["soft_tolerance"] == good
+
+
 def test_capacity_stale_notfound_closed():
     w = rbsim.World(max_bodies=1)
     w.add_sphere("a")
@@ -169,8 +182,8 @@ def test_bad_arguments_to_the_world_constructor():
                 "max_halvings", "max_sweeps", "soft_substeps"):
         for bad in BAD_INTS:
             check_raises_rbsim(rbsim.World, **{key: bad})
-    for key in ("dt", "restitution", "tolerance", "slop", "gravity_constant",
-                "softening"):
+    for key in ("dt", "restitution", "tolerance", "slop", "soft_tolerance",
+                "gravity_constant", "softening"):
         for bad in BAD_REALS:
             check_raises_rbsim(rbsim.World, **{key: bad})
     for bad in BAD_VECTORS:

@@ -63,8 +63,8 @@ def test_settings_round_trip():
     w = rbsim.World(max_bodies=5, max_materials=3, max_pairs=7, max_contacts=40,
                     dt=0.002, gravity=(0.0, -1.0, -3.0), gravity_mode="force",
                     restitution=0.25, tolerance=1e-7, slop=1e-5,
-                    max_halvings=12, max_sweeps=20, soft_substeps=9, mutual_gravity=True,
-                    gravity_constant=1.5, softening=0.01, prune=False)
+                    max_halvings=12, max_sweeps=20, soft_substeps=9, soft_tolerance=0.015625,
+                    mutual_gravity=True, gravity_constant=1.5, softening=0.01, prune=False)
     s = w.settings
     assert s["max_bodies"] == 5 and s["max_materials"] == 3
     assert s["max_pairs"] == 7 and s["max_contacts"] == 40
@@ -74,6 +74,8 @@ def test_settings_round_trip():
     assert s["max_halvings"] == 12 and s["max_sweeps"] == 20
     assert s["soft_substeps"] == 9
     assert rbsim.World().settings["soft_substeps"] == 4  # the library's default
+    assert s["soft_tolerance"] == 0.015625
+    assert rbsim.World().settings["soft_tolerance"] == 0.0  # the library's default
     assert s["mutual_gravity"] is True and s["gravity_constant"] == 1.5
     assert s["softening"] == 0.01 and s["prune"] is False
     assert s["method"] == "auto" == w.method and w.method_in_use == "euler"
@@ -133,6 +135,27 @@ def test_auto_method_follows_the_bodies():
         assert a.hash() == b.hash() and np.array_equal(a.positions, b.positions)
     a.method = "euler"
     assert a.method == a.method_in_use == "euler"
+
+
+def test_soft_tolerance():
+    """soft_tolerance reaches the world and reads back exactly, at both ends
+    of its range and between; out of range, the library refuses it in its
+    own words; a "soft" world with it steps like the others."""
+    from rbsim._native import ffi, lib
+    d = ffi.new("rbs_world_def *")
+    lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
+    assert rbsim.World().settings["soft_tolerance"] == d.soft_tolerance == 0.0
+    for good in (0.0, 0.015625, 1.0, 1):
+        assert rbsim.World(soft_tolerance=good).settings["soft_tolerance"] == good
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"soft_tolerance must be in \[0, 1\] \(a fraction of the "
+                             r"radius\), got 2$") as info:
+        rbsim.World(soft_tolerance=2)
+    assert info.value.status == lib.RBS_E_INVALID
+    w = make_world(method="soft", soft_substeps=8, soft_tolerance=0.25)
+    assert w.settings["soft_tolerance"] == 0.25 and w.settings["soft_substeps"] == 8
+    w.step(1500)
+    assert 0.09 < w.bodies["ball"].position[2] < 0.2
 
 
 def test_soft_method():

@@ -114,6 +114,13 @@ static const bad_case cases[] = {
         "simulation.soft_substeps: must be an integer from 1 to 1000, got 1001")}},
     {"bad/soft_substeps_fraction.json", RBS_E_SCENE,
      {E("2.5}", 1, 0, "simulation.soft_substeps: must be an integer from 1 to 1000, got 2.5")}},
+    {"bad/soft_tolerance_negative.json", RBS_E_SCENE,
+     {E("-0.1}", 1, 0, "simulation.soft_tolerance: must be a number from 0 to 1, got -0.1")}},
+    {"bad/soft_tolerance_too_large.json", RBS_E_SCENE,
+     {E("2}", 1, 0, "simulation.soft_tolerance: must be a number from 0 to 1, got 2")}},
+    {"bad/soft_tolerance_string.json", RBS_E_SCENE,
+     {E("\"0.1\"}", 1, 0,
+        "simulation.soft_tolerance: must be a number from 0 to 1, got \"0.1\"")}},
     {"bad/slop_not_a_number.json", RBS_E_SCENE,
      {E("\"loose\"", 1, 0, "simulation.slop: must be a number, got \"loose\"")}},
     {"bad/zero_normal.json", RBS_E_SCENE,
@@ -658,8 +665,8 @@ static void test_material_rules(void **state)
 /* simulation.slop reaches the world, and is the overlap a scene may start
  * with: a ball 0.4 % of its radius inside the floor loads with slop 0.005
  * and is an error with the world's default (1e-6); absent, the world's
- * default is what the world gets.  simulation.max_sweeps and
- * simulation.soft_substeps reach it too. */
+ * default is what the world gets.  simulation.max_sweeps,
+ * simulation.soft_substeps and simulation.soft_tolerance reach it too. */
 static void test_slop(void **state)
 {
     static const char fmt[] =
@@ -692,6 +699,8 @@ static void test_slop(void **state)
     assert_int_equal(d.max_sweeps, def0.max_sweeps);
     assert_int_equal(d.soft_substeps, def0.soft_substeps);
     assert_int_equal(d.soft_substeps, 4);
+    assert_true(d.soft_tolerance == def0.soft_tolerance);
+    assert_true(d.soft_tolerance == 0.0);
     rbs_scene_free(scene);
     /* simulation.max_sweeps likewise */
     snprintf(text, sizeof text, fmt, ", \"max_sweeps\": 5", "0.5");
@@ -720,6 +729,30 @@ static void test_slop(void **state)
             rbs_world_def_init(&got);
             assert_int_equal(rbs_world_get_def(world, &got), RBS_OK);
             assert_int_equal(got.soft_substeps, expect_n[i]);
+            rbs_world_destroy(world);
+            rbs_scene_free(scene);
+        }
+    }
+    /* simulation.soft_tolerance likewise, at both ends of its range and
+     * between, and the world takes it */
+    {
+        static const char *const values[] = {"0", "0.015625", "1"};
+        static const double expect_x[] = {0.0, 0.015625, 1.0};
+        size_t i;
+        for (i = 0; i < 3; i++) {
+            char key[64];
+            rbs_world *world = NULL;
+            rbs_world_def got;
+            snprintf(key, sizeof key, ", \"method\": \"soft\", \"soft_tolerance\": %s",
+                     values[i]);
+            snprintf(text, sizeof text, fmt, key, "0.5");
+            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "soft", &scene), RBS_OK);
+            assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+            assert_true(d.soft_tolerance == expect_x[i]);
+            assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+            rbs_world_def_init(&got);
+            assert_int_equal(rbs_world_get_def(world, &got), RBS_OK);
+            assert_true(got.soft_tolerance == expect_x[i]);
             rbs_world_destroy(world);
             rbs_scene_free(scene);
         }

@@ -411,6 +411,12 @@ class World:
                 and separation iterations.
         soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
                 (default 4); more make piles stiffer, at a cost in proportion.
+        soft_tolerance: the "soft" method's overlap budget, a fraction of the
+                smaller radius of a pair, 0 to 1 (default 0: every frame
+                takes soft_substeps); > 0 lets a frame take fewer sub-steps
+                (soft_substeps halved, down to 1) while every contact's
+                reachable overlap stays under
+                soft_tolerance * n / soft_substeps of that radius.
         mutual_gravity: Newtonian attraction between bodies.
         gravity_constant: G, m^3 kg^-1 s^-2.
         softening: Plummer softening length, m.
@@ -435,6 +441,7 @@ class World:
                  max_halvings: Optional[int] = None,
                  max_sweeps: Optional[int] = None,
                  soft_substeps: Optional[int] = None,
+                 soft_tolerance: Optional[float] = None,
                  mutual_gravity: Optional[bool] = None,
                  gravity_constant: Optional[float] = None,
                  softening: Optional[float] = None,
@@ -450,6 +457,7 @@ class World:
                 setattr(d, key, _check.u32(value, key))
         for key, value in (("dt", dt), ("restitution", restitution),
                            ("tolerance", tolerance), ("slop", slop),
+                           ("soft_tolerance", soft_tolerance),
                            ("gravity_constant", gravity_constant),
                            ("softening", softening)):
             if value is not None:
@@ -1079,6 +1087,7 @@ class World:
             "tolerance": float(d.tolerance), "slop": float(d.slop),
             "max_halvings": int(d.max_halvings), "max_sweeps": int(d.max_sweeps),
             "soft_substeps": int(d.soft_substeps),
+            "soft_tolerance": float(d.soft_tolerance),
             "mutual_gravity": bool(d.mutual_gravity),
             "gravity_constant": float(d.gravity_constant),
             "softening": float(d.softening), "prune": bool(d.prune),

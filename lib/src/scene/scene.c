@@ -47,6 +47,7 @@ rbs_scene *rbs__scene_new(void)
     scene->slop = def.slop; /* the world's defaults */
     scene->max_sweeps = def.max_sweeps;
     scene->soft_substeps = def.soft_substeps;
+    scene->soft_tolerance = def.soft_tolerance;
     scene->dt = 0.001;
     scene->gravity.z = -9.81;
     scene->gravity_mode = RBS_GRAVITY_ACCELERATION;
@@ -488,6 +489,7 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->slop = scene->slop;
     out->max_sweeps = scene->max_sweeps;
     out->soft_substeps = scene->soft_substeps;
+    out->soft_tolerance = scene->soft_tolerance;
     out->mutual_gravity = scene->mutual_gravity;
     out->gravity_constant = scene->gravity_constant;
     out->softening = scene->softening;

@@ -29,8 +29,9 @@
 #define RBS__SCENE_STEPS_MAX 9007199254740992.0 /* 2^53 */
 /* The world's ranges (rbs_world_def_validate, world.c), checked at load so
  * that the error names the key: slop in (0, RBS__SCENE_SLOP_MAX),
- * max_sweeps in 1..RBS__SCENE_SWEEPS_MAX, and soft_substeps in
- * 1..RBS__SOFT_SUBSTEPS_MAX (core/world_internal.h, the world's own). */
+ * max_sweeps in 1..RBS__SCENE_SWEEPS_MAX, soft_substeps in
+ * 1..RBS__SOFT_SUBSTEPS_MAX (core/world_internal.h, the world's own), and
+ * soft_tolerance in [0, 1]. */
 #define RBS__SCENE_SLOP_MAX 0.1
 #define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
 #define RBS__SCENE_SWEEPS_MAX 100000
@@ -135,6 +136,9 @@ struct rbs_scene {
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
     uint32_t soft_substeps; /* sub-steps per frame of the soft method
                                (rbs_world_def.soft_substeps) */
+    double soft_tolerance; /* the soft method's overlap budget, a fraction
+                              of the smaller radius, in [0, 1]
+                              (rbs_world_def.soft_tolerance) */
     double restitution;
     int32_t pause_on_collision;
     int32_t mutual_gravity;

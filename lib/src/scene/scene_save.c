@@ -286,6 +286,8 @@ static void put_simulation(FILE *f, const key_style *k, const key_style *g, cons
     fprintf(f, "%u", (unsigned)s->max_sweeps);
     put_key(f, k, "soft_substeps", KEY_NEXT);
     fprintf(f, "%u", (unsigned)s->soft_substeps);
+    put_key(f, k, "soft_tolerance", KEY_NEXT);
+    put_num(f, s->soft_tolerance);
     put_key(f, k, "restitution", KEY_NEXT);
     put_num(f, s->restitution);
     put_key(f, k, "pause_on_collision", KEY_NEXT);

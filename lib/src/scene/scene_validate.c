@@ -505,8 +505,8 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 
 static const char *const sim_keys[] = {
     "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
-    "max_sweeps", "soft_substeps", "restitution", "pause_on_collision",
-    "mutual_gravity"};
+    "max_sweeps", "soft_substeps", "soft_tolerance", "restitution",
+    "pause_on_collision", "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
 
@@ -617,6 +617,26 @@ static void check_simulation(vctx *v, const cJSON *sim)
         saved = push_key(v, "soft_substeps");
         if (get_integer(v, c, 1, RBS__SOFT_SUBSTEPS_MAX, what, &n) == 0) {
             s->soft_substeps = (uint32_t)n;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "soft_tolerance")) != NULL) {
+        /* the world's range (rbs_world_def_validate): a fraction of the
+         * pair's smaller radius */
+        static const char what[] = "a number from 0 to 1";
+        double x;
+        char g[64];
+        saved = push_key(v, "soft_tolerance");
+        if (!cJSON_IsNumber(c)) {
+            got(v, c, g, sizeof g);
+            err(v, loc_value(v, c), "must be %s, got %s", what, g);
+        } else if (get_number(v, c, &x) == 0) {
+            if (x >= 0.0 && x <= 1.0) {
+                s->soft_tolerance = x;
+            } else {
+                got(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be %s, got %s", what, g);
+            }
         }
         pop(v, saved);
     }
