@@ -2,14 +2,15 @@
  * drive_rbsim.c - runs a peers scene in rbsim and reports time and counters.
  *
  *   peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE]
- *               [--method NAME] [--slop X]
+ *               [--method NAME] [--slop X] [--soft-tolerance X]
  *
  * Contacts: one "*"/"*" material-pair row with mu_s = mu_k = friction and
  * e = restitution, and the world's restitution the same, so every contact
  * (sphere-sphere and sphere-plane) has the scene's coefficients.  Everything
  * else is the library's default (the method -- auto: soft from 64 moving
  * spheres on, else euler -- unless --method names one; max_halvings,
- * max_sweeps, contacts; the slop too unless --slop gives one).
+ * max_sweeps, contacts; the slop and soft_tolerance too unless --slop and
+ * --soft-tolerance give them).
  * Only the stepping loop is timed; creation is reported as setup time.
  */
 #include <stdint.h>
@@ -22,6 +23,7 @@
 static const char usage[] =
     "usage: peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE] [--method NAME]\n"
     "                   [--slop X]   (rbs_world_def.slop, a fraction of the radius; default the library's)\n"
+    "                   [--soft-tolerance X]   (rbs_world_def.soft_tolerance; default the library's)\n"
     "       peers_rbsim --layout    (bytes of the world per body and per contact)\n";
 
 /* Bytes the world takes per body and per contact slot, from the public
@@ -97,6 +99,8 @@ int main(int argc, char **argv)
         return 2;
     if (opt.slop != 0.0)
         def.slop = opt.slop;
+    if (opt.soft_tolerance >= 0.0)
+        def.soft_tolerance = opt.soft_tolerance;
     {
         char why[256];
         if (rbs_world_def_validate(&def, why, sizeof why) != RBS_OK) {

@@ -14,6 +14,7 @@ int peers_parse_args(int argc, char **argv, peers_options *opt, const char *usag
     int i;
     memset(opt, 0, sizeof *opt);
     opt->steps = -1;
+    opt->soft_tolerance = -1.0;
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -49,6 +50,13 @@ int peers_parse_args(int argc, char **argv, peers_options *opt, const char *usag
             opt->slop = strtod(v, &end);
             if (*v == '\0' || *end != '\0' || !(opt->slop > 0.0)) {
                 fprintf(stderr, "%s: --slop wants a fraction of a radius > 0, got \"%s\"\n", argv[0], v);
+                return 1;
+            }
+        } else if (strcmp(a, "--soft-tolerance") == 0) {
+            /* (its range is the library's to check) */
+            opt->soft_tolerance = strtod(v, &end);
+            if (*v == '\0' || *end != '\0' || !(opt->soft_tolerance >= 0.0)) {
+                fprintf(stderr, "%s: --soft-tolerance wants a fraction of a radius >= 0, got \"%s\"\n", argv[0], v);
                 return 1;
             }
         } else {

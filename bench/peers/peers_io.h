@@ -44,6 +44,7 @@ typedef struct peers_options {
     double max_wall;          /* --max-wall S: stop stepping after S s (0: none) */
     const char *extra;        /* --method NAME etc. (driver-specific) */
     double slop;              /* --slop X: rbsim's slop (0: the library's default) */
+    double soft_tolerance;    /* --soft-tolerance X: rbsim's (< 0: the library's default) */
 } peers_options;
 
 /* Parse argv; on error prints the reason to stderr and returns nonzero. */
