@@ -395,39 +395,61 @@ static int uniform_increment(const rbs_world *w, double h, double *inc)
     return 1;
 }
 
-/* The sub-steps of this frame (def.soft_tolerance; after detection): the
- * fewest of soft_substeps halved (down to 1) for which every contact's
- * reachable overlap -- its overlap now plus its approach over the frame,
+/* The sub-steps of a frame under def.soft_tolerance: the fewest of
+ * soft_substeps halved (down to 1) for which every contact's reachable
+ * overlap -- its overlap now plus its approach over the frame,
  * -gap + max(0, -vn dt), as a fraction of its pair's smaller radius -- is
- * under soft_tolerance n / soft_substeps; else soft_substeps (a NaN or an
- * infinite approach too).  Read from the state at the frame's start, so a
- * checkpoint needs nothing more to resume it. */
-static uint32_t frame_substeps(const rbs_world *w)
+ * under soft_tolerance n / soft_substeps; q: the deepest of them over
+ * soft_tolerance (a NaN keeps every sub-step).  It reads only the state at
+ * the frame's start, so a checkpoint needs nothing more to resume it. */
+static uint32_t tolerated_substeps(const rbs_world *w, double q)
 {
     const uint32_t full = w->def.soft_substeps;
-    uint32_t n = full, i;
-    double q = 0.0; /* the deepest reachable overlap, of its radius */
-    if (w->def.soft_tolerance == 0.0 || full == 1 || !w->plan.gather)
-        return full;
-    for (i = 0; i < w->contact_count; ++i) {
-        const rbs__contact *c = &w->contact[i];
-        double close = -v3_dot(rbs__rel_velocity(w, c), c->n) * w->def.dt;
-        double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
-        if (!(d <= q))
-            q = d; /* (a NaN stays, and keeps every sub-step) */
-    }
-    q /= w->def.soft_tolerance;
+    uint32_t n = full;
     while (n > 1 && q < (double)(n / 2) / (double)full)
         n /= 2;
     return n;
+}
+
+/* The parts of gathered slot i that depend on the sub-step h: its push
+ * limit and (without a shared increment) its velocity increments, from the
+ * accelerations in inc -- those of a body of no contact, or a plane's (0),
+ * for the full sub-steps h_full. */
+static inline void record_for_h(const rbs_world *w, double *b, double *inc, uint32_t i, int shared,
+                                const double *touched, double h, double h_full)
+{
+    b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
+    if (!shared) {
+        const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
+        v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
+        v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * hi));
+    }
+}
+
+/* A contact's warm start for sub-steps of h from the last frame's forces:
+ * fn along n, ft its tangent force (in today's tangent plane; only with
+ * friction), dropped if outside the static cone. */
+static inline void warm_for_h(rbs__contact *c, const rbs__pair *p, int friction, double fn, v3 ft, double h)
+{
+    c->jn = fn * h;
+    if (friction) {
+        c->jt = v3_scale(ft, h);
+        if (v3_len(c->jt) > p->mu_s * c->jn)
+            c->jt = v3_make(0, 0, 0);
+    }
 }
 
 rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
 {
     const uint32_t full = w->def.soft_substeps;
     const double dt = w->def.dt, h_full = dt / full;
-    uint32_t n;
-    double h, omega, a1, a2;
+    /* adapt: def.soft_tolerance may take fewer sub-steps (the gathered
+     * layout only); the frame's n and h are known once the prepare pass
+     * has measured every contact's reachable overlap (q, over the
+     * tolerance), and what depends on h waits for them */
+    const int adapt = w->def.soft_tolerance > 0.0 && full > 1 && w->plan.gather;
+    uint32_t n = full;
+    double h = h_full, omega, a1, a2, q = 0.0;
     const uint32_t B = w->def.max_bodies;
     double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
     double *touched = NULL, shared_inc[6], free_inc[6];
@@ -447,13 +469,6 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc);
     if (st != RBS_OK)
         return st;
-    n = frame_substeps(w);
-    h = dt / n;
-    omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
-    a1 = 2.0 * SOFT_ZETA + h * omega;
-    a2 = h * omega * a1;
-    if (shared)
-        (void)uniform_increment(w, h, shared_inc); /* (free_inc: h_full's) */
 
     /* A gathered body that no contact of the frame touches moves alone: all
      * its sub-steps are taken after the loop, body by body (the same
@@ -473,10 +488,6 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         }
     }
     sp.w = w;
-    sp.inv_h = 1.0 / h;
-    sp.bias_rate = omega / a1;
-    sp.mass_scale = a2 / (1.0 + a2);
-    sp.impulse_scale = 1.0 / (1.0 + a2);
     sp.friction = w->plan.friction;
     sp.restituted = 0;
     if (gather) {
@@ -489,13 +500,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             b[7] = w->type[i] == RBS_BODY_SPHERE ? w->iso_inv_inertia[i] : 0.0;
             memset(b + 8, 0, 6 * sizeof(double));
             b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
-            b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
-            if (!shared) {
-                /* (a body of no contact, or a plane: the full sub-steps') */
-                const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
-                v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
-                v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * hi));
-            }
+            if (!adapt)
+                record_for_h(w, b, inc, i, shared, touched, h, h_full);
         }
     } else {
         /* the general layout steps the world's arrays: their state at the
@@ -516,6 +522,12 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         const rbs__pair *p = rbs__contact_pair(w, c);
         const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
         c->bias = v3_dot(relative_velocity(&sp, c), c->n);
+        if (adapt) {
+            double close = -c->bias * dt;
+            double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
+            if (!(d <= q))
+                q = d; /* (a NaN stays, and keeps every sub-step) */
+        }
         c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE);
         if (rbs__contact_e(w, c) > 0.0 && c->bias < -c->thr)
             c->flags |= RBS__BOUNCE;
@@ -526,14 +538,34 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         }
         if (m == NULL)
             continue;
-        c->jn = m->n * h;
-        if (sp.friction) {
-            v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's tangent plane */
-            c->jt = v3_scale(t, h);
-            if (v3_len(c->jt) > p->mu_s * c->jn)
-                c->jt = v3_make(0, 0, 0);
+        /* (adapt: the forces, until h is known; detection made both 0) */
+        if (adapt) {
+            c->jn = m->n;
+            if (sp.friction)
+                c->jt = v3_mad(m->t, c->n, -v3_dot(m->t, c->n));
+        } else {
+            warm_for_h(c, p, sp.friction, m->n, v3_mad(m->t, c->n, -v3_dot(m->t, c->n)), h);
         }
     }
+    if (adapt) {
+        n = tolerated_substeps(w, q / w->def.soft_tolerance);
+        h = dt / n;
+        for (i = 0; i < w->slots; ++i)
+            record_for_h(w, &rec[REC * i], inc, i, shared, touched, h, h_full);
+        for (i = 0; i < w->contact_count; ++i) {
+            rbs__contact *c = &w->contact[i];
+            warm_for_h(c, rbs__contact_pair(w, c), sp.friction, c->jn, c->jt, h);
+        }
+    }
+    omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
+    a1 = 2.0 * SOFT_ZETA + h * omega;
+    a2 = h * omega * a1;
+    sp.inv_h = 1.0 / h;
+    sp.bias_rate = omega / a1;
+    sp.mass_scale = a2 / (1.0 + a2);
+    sp.impulse_scale = 1.0 / (1.0 + a2);
+    if (shared)
+        (void)uniform_increment(w, h, shared_inc); /* (free_inc: h_full's) */
 
     sp.touching = 0;
     sp.deepest = 0.0;
