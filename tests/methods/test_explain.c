@@ -136,6 +136,38 @@ static void buffers_like_snprintf(void **state)
     rbs_world_destroy(w);
 }
 
+/* The soft method with a sub-step tolerance says what the tolerance does,
+ * and that it is not used once a sphere with anisotropic inertia puts the
+ * world in the general layout. */
+static void soft_tolerance_is_explained(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_sphere_def s;
+    const char *t;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.method = RBS_METHOD_SOFT;
+    d.soft_tolerance = 0.01;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    t = explain(w);
+    ASSERT_HAS(t, "  4 sub-steps of dt/4;");
+    ASSERT_HAS(t, "  soft_tolerance 0.01: a frame takes fewer (halved, down to 1) while no contact can "
+                  "reach an overlap of 0.01 x n/4 of its radius\n");
+    rbs_sphere_def_init(&s);
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
+    s.position.x = 1.0;
+    s.position.z = 1.0;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    t = explain(w);
+    ASSERT_HAS(t, "  soft_tolerance 0.01: not used, every frame takes all sub-steps (this world steps "
+                  "in the general layout");
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -143,6 +175,7 @@ int main(void)
         cmocka_unit_test(stages_name_their_reason),
         cmocka_unit_test(follows_changes_and_prune_off),
         cmocka_unit_test(buffers_like_snprintf),
+        cmocka_unit_test(soft_tolerance_is_explained),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -115,13 +115,22 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
                 moving == 1 ? "" : "s", moving == 1 ? "s" : "", (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);
     }
     put(&t, "  %s\n", method_summary(m));
-    if (m == RBS_METHOD_SOFT)
+    if (m == RBS_METHOD_SOFT) {
         put(&t, "  %u sub-steps of dt/%u; contacts found once a frame within each body's sweep; no "
                 "rollback: overlap beyond the slop is pushed out by springs of omega = pi/(2h)\n",
             (unsigned)w->def.soft_substeps, (unsigned)w->def.soft_substeps);
-    else if (m != RBS_METHOD_EVENT)
+        if (w->def.soft_tolerance > 0.0 && p.gather)
+            put(&t, "  soft_tolerance %g: a frame takes fewer (halved, down to 1) while no contact can "
+                    "reach an overlap of %g x n/%u of its radius\n",
+                w->def.soft_tolerance, w->def.soft_tolerance, (unsigned)w->def.soft_substeps);
+        else if (w->def.soft_tolerance > 0.0)
+            put(&t, "  soft_tolerance %g: not used, every frame takes all sub-steps (this world steps "
+                    "in the general layout: mutual gravity, rolling or spinning resistance, or an "
+                    "anisotropic or off-centre sphere)\n", w->def.soft_tolerance);
+    } else if (m != RBS_METHOD_EVENT) {
         put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
             (unsigned)w->def.max_halvings);
+    }
     why = w->def.prune ? "" : " (pruning off)";
     put(&t, "stages:\n");
 
