@@ -23,6 +23,20 @@ static const char *explain(const rbs_world *w)
             fail_msg("missing \"%s\" in:\n%s", (what), (text));               \
     } while (0)
 
+/* A sphere of anisotropic inertia (1, 2, 2.5 g m^2) at (x, 0, 1) m. */
+static void add_anisotropic(rbs_world *w, const char *name, double x, rbs_material_id m)
+{
+    rbs_sphere_def s;
+    rbs_sphere_def_init(&s);
+    s.name = name;
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
+    s.position.x = x;
+    s.position.z = 1.0;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+}
+
 static void single_ball_prunes(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -47,7 +61,6 @@ static void stages_name_their_reason(void **state)
     rbs_world_def d;
     rbs_world *w;
     rbs_material_id m;
-    rbs_sphere_def s;
     const char *t;
     (void)state;
     rbs_world_def_init(&d);
@@ -56,13 +69,7 @@ static void stages_name_their_reason(void **state)
     CHECK_OK(rbs_world_create(&d, &w));
     m = material(w, "felt", 0.4, 0.2, -1.0);
     floor_plane(w, m);
-    rbs_sphere_def_init(&s);
-    s.name = "top";
-    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
-    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
-    s.position.z = 1.0;
-    s.material = m;
-    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    add_anisotropic(w, "top", 0.0, m);
     ball(w, 0.1, 1.0, 1, 0, 0.1, 0, 0, 0, m);
     t = explain(w);
     ASSERT_HAS(t, "method: rk4");
@@ -143,7 +150,6 @@ static void soft_tolerance_is_explained(void **state)
 {
     rbs_world_def d;
     rbs_world *w;
-    rbs_sphere_def s;
     const char *t;
     (void)state;
     rbs_world_def_init(&d);
@@ -156,12 +162,7 @@ static void soft_tolerance_is_explained(void **state)
     ASSERT_HAS(t, "  4 sub-steps of dt/4;");
     ASSERT_HAS(t, "  soft_tolerance 0.01: a frame takes fewer (halved, down to 1) while no contact can "
                   "reach an overlap of 0.01 x n/4 of its radius\n");
-    rbs_sphere_def_init(&s);
-    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
-    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 2.5e-3;
-    s.position.x = 1.0;
-    s.position.z = 1.0;
-    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    add_anisotropic(w, NULL, 1.0, (rbs_material_id){0, 0});
     t = explain(w);
     ASSERT_HAS(t, "  soft_tolerance 0.01: not used, every frame takes all sub-steps (this world steps "
                   "in the general layout");

@@ -165,43 +165,34 @@ class CliTests(Base):
         r = self.rbsim("explain", s, "--method", "soft")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("method: soft", r.stdout)
-        sim8 = dict(SCENE["simulation"], method="soft", soft_substeps=8)
-        s8 = self.scene("soft8.json", simulation=sim8)
-        r = self.rbsim("run", s8, "--steps", "20", "--quiet", "--checkpoint", "c.ckpt")
-        self.assertEqual(r.returncode, 0, r.stderr)
-        s4 = self.scene("soft4.json", simulation=dict(sim8, soft_substeps=4))
-        r = self.rbsim("run", s4, "--resume", "c.ckpt", "--quiet", "--csv", "c2.csv")
-        self.assertEqual(r.returncode, 3, r.stderr)
-        self.assertIn("soft_substeps: the scene has 4, the checkpoint 8", r.stderr)
-        r = self.rbsim("run", s8, "--steps", "40", "--resume", "c.ckpt", "--quiet",
-                       "--csv", "c3.csv")
-        self.assertEqual(r.returncode, 0, r.stderr)
-        bad = self.scene("bad.json", simulation=dict(sim8, soft_substeps=1001))
-        r = self.rbsim("check", bad)
-        self.assertEqual(r.returncode, 3)
-        self.assertIn("simulation.soft_substeps: must be an integer from 1 to 1000, "
-                      "got 1001", r.stdout)
+        self.setting_binds_checkpoint("soft_substeps", 8, 4, 1001,
+                                      "must be an integer from 1 to 1000, got 1001")
 
     def test_soft_tolerance(self):
-        """The scene's simulation.soft_tolerance reaches the world: a
-        checkpoint made with one soft_tolerance does not resume with another,
-        and resumes with the same; out of [0, 1] the scene is rejected."""
-        sim = dict(SCENE["simulation"], method="soft", soft_tolerance=0.25)
-        s = self.scene("tol.json", simulation=sim)
-        r = self.rbsim("run", s, "--steps", "20", "--quiet", "--checkpoint", "t.ckpt")
+        """The scene's simulation.soft_tolerance reaches the world (as
+        soft_substeps does, above); out of [0, 1] the scene is rejected."""
+        self.setting_binds_checkpoint("soft_tolerance", 0.25, 0, 2,
+                                      "must be a number from 0 to 1, got 2")
+
+    def setting_binds_checkpoint(self, key, made, other, bad, message):
+        """A soft scene's simulation.KEY reaches the world: a checkpoint
+        made with KEY = made does not resume with KEY = other, and resumes
+        with made; KEY = bad is rejected by check with the message."""
+        sim = dict(SCENE["simulation"], method="soft", **{key: made})
+        s = self.scene(f"{key}_made.json", simulation=sim)
+        r = self.rbsim("run", s, "--steps", "20", "--quiet", "--checkpoint", f"{key}.ckpt")
         self.assertEqual(r.returncode, 0, r.stderr)
-        s0 = self.scene("tol0.json", simulation=dict(sim, soft_tolerance=0))
-        r = self.rbsim("run", s0, "--resume", "t.ckpt", "--quiet", "--csv", "t2.csv")
+        s2 = self.scene(f"{key}_other.json", simulation=dict(sim, **{key: other}))
+        r = self.rbsim("run", s2, "--resume", f"{key}.ckpt", "--quiet", "--csv", f"{key}2.csv")
         self.assertEqual(r.returncode, 3, r.stderr)
-        self.assertIn("soft_tolerance: the scene has 0, the checkpoint 0.25", r.stderr)
-        r = self.rbsim("run", s, "--steps", "40", "--resume", "t.ckpt", "--quiet",
-                       "--csv", "t3.csv")
+        self.assertIn(f"{key}: the scene has {other}, the checkpoint {made}", r.stderr)
+        r = self.rbsim("run", s, "--steps", "40", "--resume", f"{key}.ckpt", "--quiet",
+                       "--csv", f"{key}3.csv")
         self.assertEqual(r.returncode, 0, r.stderr)
-        bad = self.scene("bad.json", simulation=dict(sim, soft_tolerance=2))
-        r = self.rbsim("check", bad)
+        b = self.scene(f"{key}_bad.json", simulation=dict(sim, **{key: bad}))
+        r = self.rbsim("check", b)
         self.assertEqual(r.returncode, 3)
-        self.assertIn("simulation.soft_tolerance: must be a number from 0 to 1, got 2",
-                      r.stdout)
+        self.assertIn(f"simulation.{key}: {message}", r.stdout)
 
     def test_help_lists_every_method(self):
         """The unknown-method messages of run and explain name the

@@ -708,51 +708,33 @@ static void test_slop(void **state)
     assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
     assert_int_equal(d.max_sweeps, 5);
     rbs_scene_free(scene);
-    /* simulation.soft_substeps likewise, at both ends of its range, and the
-     * world takes it */
+    /* simulation.soft_substeps and soft_tolerance likewise, at both ends of
+     * their ranges and between, and the world takes them */
     {
-        static const char *const values[] = {"1", "13", "1000"};
-        static const uint32_t expect_n[] = {1, 13, 1000};
+        static const struct {
+            const char *json;
+            uint32_t n;
+            double tol;
+        } cases[] = {{"\"soft_substeps\": 1", 1, 0.0},          {"\"soft_substeps\": 13", 13, 0.0},
+                     {"\"soft_substeps\": 1000", 1000, 0.0},    {"\"soft_tolerance\": 0", 4, 0.0},
+                     {"\"soft_tolerance\": 0.015625", 4, 0.015625}, {"\"soft_tolerance\": 1", 4, 1.0}};
         size_t i;
-        for (i = 0; i < 3; i++) {
-            char key[64];
+        for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+            char key[80];
             rbs_world *world = NULL;
             rbs_world_def got;
-            snprintf(key, sizeof key, ", \"method\": \"soft\", \"soft_substeps\": %s",
-                     values[i]);
+            snprintf(key, sizeof key, ", \"method\": \"soft\", %s", cases[i].json);
             snprintf(text, sizeof text, fmt, key, "0.5");
             assert_int_equal(rbs_scene_parse_json(text, strlen(text), "soft", &scene), RBS_OK);
             assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
-            assert_int_equal(d.soft_substeps, expect_n[i]);
+            assert_int_equal(d.soft_substeps, cases[i].n);
+            assert_true(d.soft_tolerance == cases[i].tol);
             assert_int_equal(d.method, RBS_METHOD_SOFT);
             assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
             rbs_world_def_init(&got);
             assert_int_equal(rbs_world_get_def(world, &got), RBS_OK);
-            assert_int_equal(got.soft_substeps, expect_n[i]);
-            rbs_world_destroy(world);
-            rbs_scene_free(scene);
-        }
-    }
-    /* simulation.soft_tolerance likewise, at both ends of its range and
-     * between, and the world takes it */
-    {
-        static const char *const values[] = {"0", "0.015625", "1"};
-        static const double expect_x[] = {0.0, 0.015625, 1.0};
-        size_t i;
-        for (i = 0; i < 3; i++) {
-            char key[64];
-            rbs_world *world = NULL;
-            rbs_world_def got;
-            snprintf(key, sizeof key, ", \"method\": \"soft\", \"soft_tolerance\": %s",
-                     values[i]);
-            snprintf(text, sizeof text, fmt, key, "0.5");
-            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "soft", &scene), RBS_OK);
-            assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
-            assert_true(d.soft_tolerance == expect_x[i]);
-            assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
-            rbs_world_def_init(&got);
-            assert_int_equal(rbs_world_get_def(world, &got), RBS_OK);
-            assert_true(got.soft_tolerance == expect_x[i]);
+            assert_int_equal(got.soft_substeps, cases[i].n);
+            assert_true(got.soft_tolerance == cases[i].tol);
             rbs_world_destroy(world);
             rbs_scene_free(scene);
         }
