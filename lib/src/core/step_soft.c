@@ -6,7 +6,8 @@
  *
  *   detect once, with every pair the bodies' sweeps over the frame can
  *   close (rbs__detect_swept: margins |v| dt + |a| dt^2);
- *   for each of n = def.soft_substeps sub-steps of h = dt / n:
+ *   for each of n sub-steps of h = dt / n (n = def.soft_substeps, or with
+ *   def.soft_tolerance fewer when no contact can go deep; tolerated_substeps):
  *     v += a h                      (forces)
  *     warm start                    (apply the accumulated impulses again)
  *     solve, with bias              (one Gauss-Seidel pass: soft normal rows
@@ -375,10 +376,8 @@ static void margins(rbs_world *w, double dt, double *acc, double *margin)
 
 /* Whether every moving sphere has one and the same acceleration and no
  * angular one -- gravity as an acceleration and no applied force or torque,
- * as in every pile -- and then that acceleration's increment over a sub-step
- * of h into inc[0..5] (a h, then 0 for the angular part: what the table of
- * increments would hold for each body, bit for bit). */
-static int uniform_increment(const rbs_world *w, double h, double *inc)
+ * as in every pile -- and then that acceleration into *a_out. */
+static int uniform_acceleration(const rbs_world *w, v3 *a_out)
 {
     uint32_t k;
     v3 a = v3_make(0, 0, 0), tau;
@@ -390,9 +389,17 @@ static int uniform_increment(const rbs_world *w, double h, double *inc)
             rbs__accelerations(w, w->spheres[k], &a, &tau);
             break;
         }
+    *a_out = a;
+    return 1;
+}
+
+/* The shared increment over a sub-step of h into inc[0..5]: a h, then 0 for
+ * the angular part (what the table of increments would hold for each body,
+ * bit for bit). */
+static void shared_increment(v3 a, double h, double *inc)
+{
     v3_store(inc, v3_scale(a, h));
     v3_store(inc + 3, v3_make(0, 0, 0));
-    return 1;
 }
 
 /* The sub-steps of a frame under def.soft_tolerance: the fewest of
@@ -453,13 +460,15 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     const uint32_t B = w->def.max_bodies;
     double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
     double *touched = NULL, shared_inc[6], free_inc[6];
+    v3 shared_a = v3_make(0, 0, 0);
     uint32_t i, k, at = 0;
     uint32_t s;
     soft_pass sp;
     rbs_status st;
     const int gather = w->plan.gather; /* (rbs__plan_compute) */
-    /* one increment for every body (shared_inc), or a table of them */
-    const int shared = gather && uniform_increment(w, h_full, free_inc);
+    /* one increment for every body (shared_inc for the frame's sub-steps,
+     * free_inc for the full ones of bodies in no contact), or a table */
+    const int shared = gather && uniform_acceleration(w, &shared_a);
 
     /* inc: accelerations and torques for detection, then (gathered) their
      * velocity increments a h, alpha h -- untouched when the increment is
@@ -564,8 +573,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.bias_rate = omega / a1;
     sp.mass_scale = a2 / (1.0 + a2);
     sp.impulse_scale = 1.0 / (1.0 + a2);
-    if (shared)
-        (void)uniform_increment(w, h, shared_inc); /* (free_inc: h_full's) */
+    if (shared) {
+        shared_increment(shared_a, h, shared_inc);
+        shared_increment(shared_a, h_full, free_inc);
+    }
 
     sp.touching = 0;
     sp.deepest = 0.0;
