@@ -172,7 +172,7 @@ class CliTests(Base):
         """The scene's simulation.soft_tolerance reaches the world (as
         soft_substeps does, above); out of [0, 1] the scene is rejected."""
         self.setting_binds_checkpoint("soft_tolerance", 0.25, 0, 2,
-                                      "must be a number from 0 to 1, got 2")
+                                      "must be in [0, 1], got 2")
 
     def setting_binds_checkpoint(self, key, made, other, bad, message):
         """A soft scene's simulation.KEY reaches the world: a checkpoint

@@ -621,23 +621,10 @@ static void check_simulation(vctx *v, const cJSON *sim)
         pop(v, saved);
     }
     if ((c = member(sim, "soft_tolerance")) != NULL) {
-        /* the world's range (rbs_world_def_validate): a fraction of the
-         * pair's smaller radius */
-        static const char what[] = "a number from 0 to 1";
-        double x;
-        char g[64];
+        /* (the world's range, rbs_world_def_validate: a fraction of the
+         * pair's smaller radius) */
         saved = push_key(v, "soft_tolerance");
-        if (!cJSON_IsNumber(c)) {
-            got(v, c, g, sizeof g);
-            err(v, loc_value(v, c), "must be %s, got %s", what, g);
-        } else if (get_number(v, c, &x) == 0) {
-            if (x >= 0.0 && x <= 1.0) {
-                s->soft_tolerance = x;
-            } else {
-                got(v, c, g, sizeof g);
-                err(v, loc_value(v, c), "must be %s, got %s", what, g);
-            }
-        }
+        (void)get_ranged(v, c, R_UNIT, &s->soft_tolerance);
         pop(v, saved);
     }
     if ((c = member(sim, "restitution")) != NULL) {
