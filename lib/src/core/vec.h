@@ -4,6 +4,8 @@
 
 #include <math.h>
 
+#include "core/ieee.h"
+
 #define RBS__PI 3.14159265358979323846
 
 typedef struct v3 {

@@ -7,6 +7,8 @@
 
 #include "rbsim/reel.h"
 
+#include "core/ieee.h"
+
 #include <time.h>
 
 /** Like rbs_reel_begin_read, but gives up at `deadline` (CLOCK_MONOTONIC,

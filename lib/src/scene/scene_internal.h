@@ -17,6 +17,8 @@
 #include "rbsim/reel.h"
 #include "rbsim/scene.h"
 
+#include "core/ieee.h"
+
 /** Deepest nesting of JSON arrays/objects accepted (cJSON allows 1000). */
 #define RBS__SCENE_DEPTH_MAX 64
 /** Longest number literal accepted (cJSON copies numbers into 64 bytes). */
