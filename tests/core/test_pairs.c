@@ -180,13 +180,13 @@ static void rounds(rbs_world *w, double r, double L, int sorted, const char *wha
                 w->bp_center[i] += 0.1 * L * (2.0 * uniform(seed) - 1.0);
         }
         got.count = 0;
-        rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, NULL, 0.0, record, &got);
         brute(w, n, NULL, &want);
         check(w, &got, &want, sorted, what, round);
         for (i = 0; i < n; ++i)
             query[i] = uniform(seed) < 0.2;
         got.count = 0;
-        rbs__broadphase_pairs(w, NULL, n, query, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, query, 0.0, record, &got);
         brute(w, n, query, &want);
         check(w, &got, &want, sorted, what, round);
     }
@@ -250,7 +250,7 @@ static void fast_sphere_keeps_its_list(void **state)
     w->bp_reach[0] = r + d;
     for (frame = 0; frame < 12; ++frame) {
         got.count = 0;
-        rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, NULL, 0.0, record, &got);
         brute(w, n, NULL, &want);
         assert_true(w->vl_valid);
         same(&got, &want, 1, "fast sphere", (int)frame);
@@ -311,7 +311,7 @@ static void skins_that_overflow_fall_back_to_the_base(void **state)
         w->bp_reach[i] = r + d;
     }
     got.count = 0;
-    rbs__broadphase_pairs(w, NULL, n, NULL, record, &got);
+    rbs__broadphase_pairs(w, NULL, n, NULL, 0.0, record, &got);
     brute(w, n, NULL, &want);
     assert_true(w->vl_valid);
     same(&got, &want, 1, "skins that overflow", 0);

@@ -284,7 +284,7 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
             uint32_t a = w->spheres[i];
             w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + (margin != NULL ? margin[a] : half);
         }
-        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, detect_pair, &ctx);
+        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, slop_rel, detect_pair, &ctx);
     }
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;
@@ -408,7 +408,7 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
             v3_store(&w->bp_center[3 * i], v3_scale(v3_add(a0, a1), 0.5));
             w->bp_reach[i] = w->radius[a] + 0.5 * v3_len(v3_sub(a1, a0));
         }
-        rbs__broadphase_pairs(w, NULL, w->sphere_count, NULL, overlap_pair, &ctx);
+        rbs__broadphase_pairs(w, NULL, w->sphere_count, NULL, 0.0, overlap_pair, &ctx);
     }
     *max_pen = ctx.worst;
     if (first)
@@ -597,7 +597,7 @@ int rbs__separate(rbs_world *w, double *max_pen)
         const double *centres = sphere_centres(w);
         for (i = 0; i < w->sphere_count; ++i)
             w->bp_reach[i] = w->radius[w->spheres[i]] * (1.0 + SEP_MARGIN);
-        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, separate_pair, &ctx);
+        rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, SEP_MARGIN, separate_pair, &ctx);
     }
     if (max_pen)
         *max_pen = ctx.worst;

@@ -225,7 +225,7 @@ static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
         w->bp_reach[i] = w->radius[a] * (masked ? 1.0 : 1.0 + SKIN) + 0.5 * v3_len(v3_sub(p1, p0));
     }
     ctx->building = !masked;
-    rbs__broadphase_pairs(w, NULL, w->sphere_count, masked ? w->bp_query : NULL, search_pair, ctx);
+    rbs__broadphase_pairs(w, NULL, w->sphere_count, masked ? w->bp_query : NULL, masked ? 0.0 : SKIN, search_pair, ctx);
     ctx->building = 0;
     *list_ok = !masked && !ctx->list_full;
     return ctx->count;

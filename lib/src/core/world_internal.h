@@ -275,9 +275,11 @@ static inline v3 rbs__inertia_times(const rbs_world *w, uint32_t i, quat q, v3 o
  * queried (query[i] != 0; query NULL: every pair), in order of (i, j).  The
  * pairs come from a candidate list kept between passes while the items
  * move little, built from a uniform grid (see broadphase.c); the results do
- * not depend on when the list was built. */
+ * not depend on when the list was built.  fixed: the part of each reach
+ * that is not the item's motion, as a fraction of its radius (a reach is
+ * r (1 + fixed) + motion); only the motion grows the list's skin. */
 typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
-void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query,
+void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
                            rbs__pair_fn fn, void *ctx);
 
 /* Contacts (contact.c). */
