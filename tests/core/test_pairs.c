@@ -156,7 +156,7 @@ static void rounds(rbs_world *w, double r, double L, int sorted, const char *wha
         w->bp_reach[i] = w->radius[w->spheres[i]] * 1.01;
     }
     for (round = 0; round < 200; ++round) {
-        double u = uniform(seed);
+        double u = uniform(seed), fixed;
         if (u < 0.6) {
             /* small moves: within the list's margin, mostly */
             for (i = 0; i < 3 * n; ++i)
@@ -179,14 +179,17 @@ static void rounds(rbs_world *w, double r, double L, int sorted, const char *wha
             for (i = 0; i < 3 * n; ++i)
                 w->bp_center[i] += 0.1 * L * (2.0 * uniform(seed) - 1.0);
         }
+        /* the callers' fixed part of the reach (it only sizes the skins):
+         * none, some, and more than any reach (no motion at all) */
+        fixed = round % 3 == 0 ? 0.0 : round % 3 == 1 ? 0.1 : 10.0;
         got.count = 0;
-        rbs__broadphase_pairs(w, NULL, n, NULL, 0.0, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, NULL, fixed, record, &got);
         brute(w, n, NULL, &want);
         check(w, &got, &want, sorted, what, round);
         for (i = 0; i < n; ++i)
             query[i] = uniform(seed) < 0.2;
         got.count = 0;
-        rbs__broadphase_pairs(w, NULL, n, query, 0.0, record, &got);
+        rbs__broadphase_pairs(w, NULL, n, query, fixed, record, &got);
         brute(w, n, query, &want);
         check(w, &got, &want, sorted, what, round);
     }

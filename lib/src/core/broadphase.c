@@ -258,13 +258,11 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
  * which starts without a list).
  *
  * The skin is a base of LIST_SKIN / 2 of the mean radius plus LIST_AHEAD
- * times the item's own motion in its reach (R_i - r_i (1 + fixed), with the
- * caller's fixed part of the reach left out: the sweep margin
- * |v| dt + |a| dt^2 for detection, half the path for the selective
- * method's search; a sphere at rest then gets the base alone, where a
- * fixed skin of the caller's was grown fourfold before, at 1,000 and 8,000
- * spheres 0.92x and 0.90x of the selective method's time, the same bits),
- * at most LIST_SKIN_MAX of the mean radius.  With one skin for all, any sphere moving faster than the
+ * times the item's own motion in its reach, R_i - r_i (1 + fixed) (the
+ * caller's fixed part left out: the sweep margin |v| dt + |a| dt^2 for
+ * detection, half the path for the selective method's search, so that a
+ * sphere at rest gets the base alone), at most LIST_SKIN_MAX of the mean
+ * radius.  With one skin for all, any sphere moving faster than the
  * skin a frame (a pile's fall, a sphere kicked from rest by an impact) forced
  * a rebuild every frame; with its own, it forces one per LIST_AHEAD frames
  * or so, and the slow majority keeps the small base.  A list so grown that

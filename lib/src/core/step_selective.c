@@ -196,7 +196,7 @@ static void search_pair(void *vctx, uint32_t i, uint32_t j)
 static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
 {
     rbs_world *w = ctx->w;
-    double h = ctx->h;
+    double h = ctx->h, skin = masked ? 0.0 : SKIN; /* (of the radius, in the reach) */
     uint32_t i, k;
     ctx->count = 0;
     for (i = 0; i < w->sphere_count; ++i) {
@@ -222,10 +222,10 @@ static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
         uint32_t a = w->spheres[i];
         v3 p0 = pos_at(w, a, T0(w, a), h), p1 = v3_load(&w->pos[3 * a]);
         v3_store(&w->bp_center[3 * i], v3_scale(v3_add(p0, p1), 0.5));
-        w->bp_reach[i] = w->radius[a] * (masked ? 1.0 : 1.0 + SKIN) + 0.5 * v3_len(v3_sub(p1, p0));
+        w->bp_reach[i] = w->radius[a] * (1.0 + skin) + 0.5 * v3_len(v3_sub(p1, p0));
     }
     ctx->building = !masked;
-    rbs__broadphase_pairs(w, NULL, w->sphere_count, masked ? w->bp_query : NULL, masked ? 0.0 : SKIN, search_pair, ctx);
+    rbs__broadphase_pairs(w, NULL, w->sphere_count, masked ? w->bp_query : NULL, skin, search_pair, ctx);
     ctx->building = 0;
     *list_ok = !masked && !ctx->list_full;
     return ctx->count;
