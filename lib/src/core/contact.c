@@ -19,6 +19,10 @@
  * more than the slop (50 nm for 5 cm spheres) dropped out of the resting
  * pass and lost their warm start, and came back the next step as creeping
  * overlaps: the pile flickered and never settled.
+ *
+ * Swept contacts (the soft step): every pair within the slop plus both
+ * bodies' sweeps over the frame; a closing pair of spheres that is apart
+ * takes the normal of its touch on the straight paths (impact_normal).
  */
 #include <string.h>
 
@@ -193,6 +197,44 @@ static rbs__contact *contact_new(rbs_world *w, rbs_status *status)
     return &w->contact[w->contact_count++];
 }
 
+/* The normal of a swept pair apart at the frame's start (d: from b's centre
+ * to a's, ra + rb the sum of the radii) from the straight paths of the
+ * frame-start velocities over the frame (u = v_a - v_b, 0 <= t <= dt):
+ * where they first bring the spheres into touch, the unit n* of d + u t*
+ * with t* the smaller root of |d + u t| = ra + rb; otherwise the unit of
+ * d + u t at their closest approach within the frame (t = -d.u / u.u, or dt
+ * if they are still closing then).  *gap is n* . d - ra - rb, the
+ * separation along n* at the frame's start: along the straight paths it
+ * reaches 0 at t* and no sooner, and it is never more than the true gap
+ * (|d| >= n* . d).  *lb is b's lever at that moment: r_b at the touch,
+ * else to a's surface point (as rbs__contact_set's).  Returns 0 (nothing
+ * written) for a pair that is not closing. */
+static int impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double ra, double rb, double dt,
+                         v3 *n, double *gap, double *lb)
+{
+    v3 u = v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), at;
+    double rsum = ra + rb, uu = v3_dot(u, u), du = v3_dot(d, u), dd = v3_dot(d, d) - rsum * rsum, disc, len, t;
+    int hit;
+    if (!(du < 0.0 && dd > 0.0))
+        return 0; /* not closing, or touching already */
+    disc = du * du - uu * dd;
+    hit = disc >= 0.0;
+    t = hit ? dd / (sqrt(disc) - du) : -du / uu; /* (-du - sqrt(disc)) / uu without cancellation */
+    if (!(t <= dt)) {
+        hit = 0;
+        t = -du / uu;
+        t = t < dt ? t : dt;
+    }
+    at = v3_mad(d, u, t);
+    len = v3_len(at);
+    if (!(len > 0.0 && isfinite(len)))
+        return 0;
+    *n = v3_scale(at, 1.0 / len);
+    *gap = v3_dot(*n, d) - rsum;
+    *lb = hit ? rb : rb + (len - rsum);
+    return 1;
+}
+
 static void detect_pair(void *vctx, uint32_t i, uint32_t j)
 {
     detect_ctx *ctx = (detect_ctx *)vctx;
@@ -220,6 +262,23 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     /* Coincident centres have no normal: pick +z (documented). */
     c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
     rbs__contact_set(w, c, dist, gap);
+    /* Swept (the soft step): a closing pair that is apart takes the normal
+     * of the moment its straight paths touch within the frame (or, if they
+     * do not, come closest in it), with the separation along it and the
+     * levers of that moment, so that an oblique impact pushes along the
+     * line of centres at impact and a pair that passes is not stopped short
+     * (exact for straight paths: two spheres under one uniform gravity
+     * have no relative acceleration).  The frame-start normal, as Catto's
+     * speculative contacts take it, turned a 30-degree hit at 2 m/s by 0.1
+     * degree, and stopped glancing pairs before they touched (a third of
+     * the speed wrong at dt = 10 ms).  The prediction stops at the frame's
+     * end: beyond it the frame's other impulses make it a guess (the whole
+     * path's closest approach let a falling heap of 27 balls overlap by
+     * 1.1 % of a radius instead of 0.15 %).  Spheres with the centre of
+     * mass off the centre keep the frame-start normal (their centres do
+     * not move straight); the flags keep the true gap. */
+    if (ctx->swept && (c->flags & RBS__APART) && !(c->flags & RBS__OFF))
+        (void)impact_normal(w, a, b, d, ra, rb, ctx->dt, &c->n, &c->gap, &c->lb);
     finish_new(w, c, ctx->dt, ctx->acc);
     if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
         w->contact_count--;

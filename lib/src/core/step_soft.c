@@ -25,7 +25,8 @@
  *
  * The separation of a contact during the frame is its gap at detection plus
  * the bodies' displacement along the normal since then (exact for a plane,
- * linearised for a pair of spheres).  A contact apart by s > 0 lets its pair
+ * linearised for a pair of spheres, along the normal of their touch on the
+ * straight paths when they are apart: rbs__detect_swept).  A contact apart by s > 0 lets its pair
  * close at s / h and no faster (speculative); a touching one may overlap by
  * the slop, and deeper overlap is pushed out (at most SOFT_PUSH of the
  * smaller radius a sub-step, as Box2D caps its push speed) by a damped
@@ -88,6 +89,8 @@ typedef struct soft_pass {
     uint32_t restituted;  /* contacts the restitution pass changed */
     uint32_t plane_contacts; /* the leading contacts whose b is a plane */
     uint32_t quarter;     /* ceil(pair contacts / 4) */
+    int last;             /* the frame's last sub-step (pass() reads it; the
+                             gathered rows have RELAX_REPORT) */
     uint32_t touching;    /* RELAX_REPORT: contacts within their slop */
     double deepest;       /* RELAX_REPORT: the deepest overlap, m (>= 0) */
 } soft_pass;
@@ -128,13 +131,26 @@ static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
  * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
  * within the sub-step and no more; touching, the solve's soft row pushes
  * out the overlap beyond the slop and the relax's rigid row stops the
- * approach. */
+ * approach.  In the frame's last relax (last != 0) a pair still apart by
+ * more than the slop that took no impulse in the frame -- an impact due
+ * after the frame's end -- takes no new impulse (it may only give some
+ * back): the next frame detects it again and meets the impact along the
+ * normal of the touch, with the whole approach for restitution.  (Clipped
+ * here to close its gap in one more sub-step, such an impact was split over
+ * two frames along two normals and bounced from the clipped approach: up to
+ * 11 % of the relative speed off in glancing impacts at dt = 10 ms.  A pair
+ * within the slop has met, up to rounding, and one that took impulses is a
+ * pile's contact: their rows stay as in every other relax, since leaving
+ * every apart pair to the next frame made the 1,000 pile's deepest
+ * overlap 18 % deeper, median of 8 piles.) */
 static inline double normal_change(const soft_pass *sp, const rbs__contact *c, int stage, double vn, double s,
-                                   double slop, double most)
+                                   double slop, double most, int last)
 {
     double over, push;
-    if (s > 0.0)
-        return -(vn + s * sp->inv_h) * c->thr;
+    if (s > 0.0) {
+        double dj = -(vn + s * sp->inv_h) * c->thr;
+        return last && dj > 0.0 && s > slop && !(c->flags & RBS__TOUCHED) ? 0.0 : dj;
+    }
     if (stage != SOLVE)
         return -vn * c->thr;
     over = s + slop < 0.0 ? s + slop : 0.0;
@@ -190,7 +206,7 @@ static void pass(soft_pass *sp, int stage)
             double slop = rbs__contact_slop(w, c);
             /* (the push limit from the smaller radius, as the slop's) */
             dj = normal_change(sp, c, stage, vn, separation(sp, c), slop,
-                               SOFT_PUSH * slop / w->def.slop * sp->inv_h);
+                               SOFT_PUSH * slop / w->def.slop * sp->inv_h, stage == RELAX && sp->last);
         }
         jn = c->jn;
         j = normal_accumulate(c, dj);
@@ -246,7 +262,8 @@ static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int 
             sp->touching += s <= slop;
             sp->deepest = -s > sp->deepest ? -s : sp->deepest;
         }
-        dj = normal_change(sp, c, stage, vn, s, slop, b_static || ba[15] < bb[15] ? ba[15] : bb[15]);
+        dj = normal_change(sp, c, stage, vn, s, slop, b_static || ba[15] < bb[15] ? ba[15] : bb[15],
+                           stage == RELAX_REPORT);
     }
     jn = c->jn;
     j = normal_accumulate(c, dj);
@@ -607,7 +624,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         } else {
             rbs__integrate_positions(w, h);
         }
-        run_pass(&sp, rec != NULL && s == n - 1 ? RELAX_REPORT : RELAX);
+        sp.last = s == n - 1;
+        run_pass(&sp, rec != NULL && sp.last ? RELAX_REPORT : RELAX);
     }
     if (rec != NULL) {
         for (k = 0; k < w->sphere_count; ++k) {
