@@ -169,20 +169,38 @@ static void head_on_impacts_follow_the_impact_law(void **state)
  * layouts (anisotropic inertia: the general rows).  With the frame-start
  * normal, a 30-degree hit at 2 m/s and dt = 1 ms was 2e-3 of the speed off,
  * and glancing hits at dt = 10 ms a third. */
-static rbs_vec3 vec_(double x, double y, double z)
+/* a + s b */
+static rbs_vec3 vmad_(rbs_vec3 a, rbs_vec3 b, double s)
 {
-    rbs_vec3 r;
-    r.x = x;
-    r.y = y;
-    r.z = z;
+    rbs_vec3 r = {a.x + s * b.x, a.y + s * b.y, a.z + s * b.z};
     return r;
 }
-/* a + s b */
-static rbs_vec3 vmad_(rbs_vec3 a, rbs_vec3 b, double s) { return vec_(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
 static double vdot_(rbs_vec3 a, rbs_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 static double vdiff_(rbs_vec3 a, rbs_vec3 b)
 {
     return fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
+}
+
+/* A frictionless sphere of radius r and mass m at p moving at v; general:
+ * with anisotropic principal moments (0.3, 0.4, 0.5) m r^2. */
+static rbs_body_id impact_sphere(rbs_world *w, rbs_material_id mat, double r, double m, rbs_vec3 p, rbs_vec3 v,
+                                 int general)
+{
+    rbs_sphere_def s;
+    rbs_body_id id;
+    rbs_vec3 moments = {0.3 * m * r * r, 0.4 * m * r * r, 0.5 * m * r * r};
+    rbs_sphere_def_init(&s);
+    s.material = mat;
+    s.radius = r;
+    s.mass = m;
+    s.position = p;
+    s.velocity = v;
+    if (general) {
+        s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+        s.inertia = moments;
+    }
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    return id;
 }
 
 /* One oblique impact of oblique_sphere_impacts_follow_the_impact_law: the
@@ -192,33 +210,17 @@ static double oblique_pair_error(double th, double mb, double e, double dt, doub
     const double ra = 0.1, rb = 0.03, R = ra + rb, ma = 1.0, tilt = 20.0 * PI_ / 180.0;
     /* b moves too; u = va - vb points along -x; n at the touch is th off +x
      * and tilted 20 degrees out of the x-y plane */
-    const rbs_vec3 vb = vec_(0.3 * v, -0.2 * v, 0.1 * v), va = vec_(vb.x - v, vb.y, vb.z);
-    const rbs_vec3 u = vmad_(va, vb, -1.0), n = vec_(cos(th) * cos(tilt), sin(th) * cos(tilt), sin(tilt));
+    const rbs_vec3 vb = {0.3 * v, -0.2 * v, 0.1 * v}, va = {vb.x - v, vb.y, vb.z};
+    const rbs_vec3 u = vmad_(va, vb, -1.0), n = {cos(th) * cos(tilt), sin(th) * cos(tilt), sin(tilt)};
     /* the touch at T, 5 frames and frac of one in: a starts back along the
      * relative path from the touch (b's frame), b at (0, 0, 1) */
     const double T = (5.0 + frac) * dt;
-    const rbs_vec3 pb = vec_(0.0, 0.0, 1.0), pa = vmad_(vmad_(pb, n, R), u, -T);
+    const rbs_vec3 pb = {0.0, 0.0, 1.0}, pa = vmad_(vmad_(pb, n, R), u, -T);
     const double J = -(1.0 + e) * vdot_(u, n) / (1.0 / ma + 1.0 / mb);
     rbs_world *w = soft_world(4, dt, 0.0, e, 4);
     rbs_material_id m = material(w, "ice", 0.0, 0.0, -1.0);
-    rbs_sphere_def s;
-    rbs_body_id a, b;
+    rbs_body_id a = impact_sphere(w, m, ra, ma, pa, va, general), b = impact_sphere(w, m, rb, mb, pb, vb, general);
     double err;
-    rbs_sphere_def_init(&s);
-    s.material = m;
-    s.inertia_kind = general ? RBS_INERTIA_PRINCIPAL : s.inertia_kind;
-    s.radius = ra;
-    s.mass = ma;
-    s.position = pa;
-    s.velocity = va;
-    s.inertia = vec_(0.3 * ma * ra * ra, 0.4 * ma * ra * ra, 0.5 * ma * ra * ra);
-    CHECK_OK(rbs_world_add_sphere(w, &s, &a));
-    s.radius = rb;
-    s.mass = mb;
-    s.position = pb;
-    s.velocity = vb;
-    s.inertia = vec_(0.3 * mb * rb * rb, 0.4 * mb * rb * rb, 0.5 * mb * rb * rb);
-    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
     step_n(w, 12);
     err = fmax(vdiff_(state_of(w, a).velocity, vmad_(va, n, J / ma)),
                vdiff_(state_of(w, b).velocity, vmad_(vb, n, -J / mb)));
