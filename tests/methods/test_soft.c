@@ -154,21 +154,6 @@ static void head_on_impacts_follow_the_impact_law(void **state)
         }
 }
 
-/* Two spheres meet obliquely, without forces or friction: the impulse acts
- * along the line of centres at the moment of touch, n = (d + u t*) / R
- * (u = v_a - v_b, R = r_a + r_b), and the impact law gives
- * v_a' = v_a + J n / m_a, v_b' = v_b - J n / m_b with
- * J = -(1 + e) (u . n) / (1/m_a + 1/m_b) (Goldsmith, "Impact", 1960, ch. 2).
- * The swept detection takes the normal of the touch on the straight paths,
- * and a pair due to touch just after a frame's end is left to the next
- * frame, so the soft step meets this to rounding (1e-12 of |u|; measured
- * 1e-15 gathered, 1e-13 general) wherever the touch falls in its frame
- * (early, middle, late), with 20 to 88 degrees between the approach and
- * the line of centres (head-on: the test above), both bodies moving, for mass ratios
- * 1e-3 to 1e3, e = 0, 0.5 and 1, dt = 1 and 10 ms, 0.5 and 20 m/s, in both
- * layouts (anisotropic inertia: the general rows).  With the frame-start
- * normal, a 30-degree hit at 2 m/s and dt = 1 ms was 2e-3 of the speed off,
- * and glancing hits at dt = 10 ms a third. */
 /* a + s b */
 static rbs_vec3 vmad_(rbs_vec3 a, rbs_vec3 b, double s)
 {
@@ -176,13 +161,29 @@ static rbs_vec3 vmad_(rbs_vec3 a, rbs_vec3 b, double s)
     return r;
 }
 static double vdot_(rbs_vec3 a, rbs_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static rbs_vec3 vcross_(rbs_vec3 a, rbs_vec3 b)
+{
+    rbs_vec3 r = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return r;
+}
 static double vdiff_(rbs_vec3 a, rbs_vec3 b)
 {
     return fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
 }
 
-/* A frictionless sphere of radius r and mass m at p moving at v; general:
- * with anisotropic principal moments (0.3, 0.4, 0.5) m r^2. */
+/* One oblique impact of two spheres (a: r 0.1 m, 1 kg; b: r 0.03 m, m_b),
+ * both moving, without forces, set up so that they touch T = (5 + frac) dt
+ * into the run with the line of centres n (unit, b to a) th off +x in the
+ * x-y plane and tilted 20 degrees out of it; u = v_a - v_b = (-v, 0, 0). */
+typedef struct oblique_pair {
+    rbs_world *w;
+    rbs_body_id a, b;
+    double ra, rb, ma, mb;
+    rbs_vec3 va, vb, u, n;
+} oblique_pair;
+
+/* A sphere of material mat; general: with anisotropic principal moments
+ * (0.3, 0.4, 0.5) m r^2 (the soft step's general rows), else solid. */
 static rbs_body_id impact_sphere(rbs_world *w, rbs_material_id mat, double r, double m, rbs_vec3 p, rbs_vec3 v,
                                  int general)
 {
@@ -203,31 +204,51 @@ static rbs_body_id impact_sphere(rbs_world *w, rbs_material_id mat, double r, do
     return id;
 }
 
-/* One oblique impact of oblique_sphere_impacts_follow_the_impact_law: the
- * largest error of the two velocities against the impact law, m/s. */
-static double oblique_pair_error(double th, double mb, double e, double dt, double frac, double v, int general)
+/* The pair of oblique_pair's comment in a soft world of dt, restitution e,
+ * friction mu (static and kinetic), stepped 12 frames (past the touch). */
+static oblique_pair oblique_impact(double th, double mb, double e, double mu, double dt, double frac, double v,
+                                   int general)
 {
-    const double ra = 0.1, rb = 0.03, R = ra + rb, ma = 1.0, tilt = 20.0 * PI_ / 180.0;
-    /* b moves too; u = va - vb points along -x; n at the touch is th off +x
-     * and tilted 20 degrees out of the x-y plane */
-    const rbs_vec3 vb = {0.3 * v, -0.2 * v, 0.1 * v}, va = {vb.x - v, vb.y, vb.z};
-    const rbs_vec3 u = vmad_(va, vb, -1.0), n = {cos(th) * cos(tilt), sin(th) * cos(tilt), sin(tilt)};
-    /* the touch at T, 5 frames and frac of one in: a starts back along the
-     * relative path from the touch (b's frame), b at (0, 0, 1) */
-    const double T = (5.0 + frac) * dt;
-    const rbs_vec3 pb = {0.0, 0.0, 1.0}, pa = vmad_(vmad_(pb, n, R), u, -T);
-    const double J = -(1.0 + e) * vdot_(u, n) / (1.0 / ma + 1.0 / mb);
-    rbs_world *w = soft_world(4, dt, 0.0, e, 4);
-    rbs_material_id m = material(w, "ice", 0.0, 0.0, -1.0);
-    rbs_body_id a = impact_sphere(w, m, ra, ma, pa, va, general), b = impact_sphere(w, m, rb, mb, pb, vb, general);
-    double err;
-    step_n(w, 12);
-    err = fmax(vdiff_(state_of(w, a).velocity, vmad_(va, n, J / ma)),
-               vdiff_(state_of(w, b).velocity, vmad_(vb, n, -J / mb)));
-    rbs_world_destroy(w);
-    return err;
+    const double tilt = 20.0 * PI_ / 180.0;
+    oblique_pair q;
+    rbs_material_id m;
+    rbs_vec3 pb = {0.0, 0.0, 1.0}, pa, n = {cos(th) * cos(tilt), sin(th) * cos(tilt), sin(tilt)};
+    q.ra = 0.1;
+    q.rb = 0.03;
+    q.ma = 1.0;
+    q.mb = mb;
+    q.vb.x = 0.3 * v;
+    q.vb.y = -0.2 * v;
+    q.vb.z = 0.1 * v;
+    q.va = q.vb;
+    q.va.x -= v;
+    q.u = vmad_(q.va, q.vb, -1.0);
+    q.n = n;
+    /* a starts back along the relative path from the touch (b's frame) */
+    pa = vmad_(vmad_(pb, n, q.ra + q.rb), q.u, -(5.0 + frac) * dt);
+    q.w = soft_world(4, dt, 0.0, e, 4);
+    m = material(q.w, "m", mu, mu, -1.0);
+    q.a = impact_sphere(q.w, m, q.ra, q.ma, pa, q.va, general);
+    q.b = impact_sphere(q.w, m, q.rb, q.mb, pb, q.vb, general);
+    step_n(q.w, 12);
+    return q;
 }
 
+/* Two spheres meet obliquely, without forces or friction: the impulse acts
+ * along the line of centres at the moment of touch, n = (d + u t*) / R
+ * (u = v_a - v_b, R = r_a + r_b), and the impact law gives
+ * v_a' = v_a + J n / m_a, v_b' = v_b - J n / m_b with
+ * J = -(1 + e) (u . n) / (1/m_a + 1/m_b) (Goldsmith, "Impact", 1960, ch. 2).
+ * The swept detection takes the normal of the touch on the straight paths,
+ * and a pair due to touch just after a frame's end is left to the next
+ * frame, so the soft step meets this to rounding (1e-12 of |u|; measured
+ * 1e-15 gathered, 1e-13 general) wherever the touch falls in its frame
+ * (early, middle, late), with 20 to 88 degrees between the approach and
+ * the line of centres (head-on: the test above), both bodies moving, for
+ * mass ratios 1e-3 to 1e3, e = 0, 0.5 and 1, dt = 1 and 10 ms, 0.5 and
+ * 20 m/s, in both layouts (anisotropic inertia: the general rows).  With
+ * the frame-start normal, a 30-degree hit at 2 m/s and dt = 1 ms was 2e-3
+ * of the speed off, and glancing hits at dt = 10 ms a third. */
 static void oblique_sphere_impacts_follow_the_impact_law(void **state)
 {
     const double angles[5] = {0.0, 30.0, 60.0, 80.0, 88.0}, ratios[3] = {1e-3, 1.0, 1e3};
@@ -242,8 +263,12 @@ static void oblique_sphere_impacts_follow_the_impact_law(void **state)
                     for (ifr = 0; ifr < 3; ++ifr)
                         for (iv = 0; iv < 2; ++iv)
                             for (general = 0; general < 2; ++general) {
-                                double err = oblique_pair_error(angles[ia] * PI_ / 180.0, ratios[im], es[ie],
+                                oblique_pair q = oblique_impact(angles[ia] * PI_ / 180.0, ratios[im], es[ie], 0.0,
                                                                 dts[id], fracs[ifr], speeds[iv], general);
+                                double J = -(1.0 + es[ie]) * vdot_(q.u, q.n) / (1.0 / q.ma + 1.0 / q.mb), err;
+                                err = fmax(vdiff_(state_of(q.w, q.a).velocity, vmad_(q.va, q.n, J / q.ma)),
+                                           vdiff_(state_of(q.w, q.b).velocity, vmad_(q.vb, q.n, -J / q.mb)));
+                                rbs_world_destroy(q.w);
                                 if (!(err <= 1e-12 * speeds[iv]))
                                     fail_msg("%.0f deg in-plane (20 tilted), m_b %g, e %g, dt %g, touch at %.2f "
                                              "of a frame, %g m/s, %s layout: velocities %.3g m/s off the impact law",
@@ -266,51 +291,38 @@ static void oblique_sphere_impacts_follow_the_impact_law(void **state)
 static void oblique_sphere_impacts_with_friction_follow_the_impact_law(void **state)
 {
     const double mus[3] = {0.05, 0.2, 1.0}, angles[4] = {20.0, 45.0, 70.0, 88.0}, es[3] = {0.0, 0.5, 1.0};
-    const double ratios[3] = {1e-3, 1.0, 1e3}, ra = 0.1, rb = 0.03, R = ra + rb, ma = 1.0, v = 2.0, dt = 1e-3;
-    const double tilt = 20.0 * PI_ / 180.0;
+    const double ratios[3] = {1e-3, 1.0, 1e3}, v = 2.0;
     int im, ia, ie, ir, sticks = 0, slides = 0;
     (void)state;
     for (im = 0; im < 3; ++im)
         for (ia = 0; ia < 4; ++ia)
             for (ie = 0; ie < 3; ++ie)
                 for (ir = 0; ir < 3; ++ir) {
-                    const double th = angles[ia] * PI_ / 180.0, mu = mus[im], e = es[ie], mb = ratios[ir];
-                    const rbs_vec3 vb = {0.3 * v, -0.2 * v, 0.1 * v}, va = {vb.x - v, vb.y, vb.z};
-                    const rbs_vec3 u = vmad_(va, vb, -1.0);
-                    const rbs_vec3 n = {cos(th) * cos(tilt), sin(th) * cos(tilt), sin(tilt)};
-                    const rbs_vec3 pb = {0.0, 0.0, 1.0}, pa = vmad_(vmad_(pb, n, R), u, -5.5 * dt);
-                    const double kn = 1.0 / ma + 1.0 / mb, un = vdot_(u, n), jn = -(1.0 + e) * un / kn;
-                    const rbs_vec3 ut = vmad_(u, n, -un);
+                    const double mu = mus[im], e = es[ie];
+                    oblique_pair q = oblique_impact(angles[ia] * PI_ / 180.0, ratios[ir], e, mu, 1e-3, 0.5, v, 0);
+                    const double kn = 1.0 / q.ma + 1.0 / q.mb, un = vdot_(q.u, q.n), jn = -(1.0 + e) * un / kn;
+                    const rbs_vec3 ut = vmad_(q.u, q.n, -un);
                     const double slip = sqrt(vdot_(ut, ut)), stick = slip / (3.5 * kn);
                     const double jt = mu * jn >= stick ? stick : mu * jn;
-                    const rbs_vec3 zero = {0.0, 0.0, 0.0}, J = vmad_(vmad_(zero, n, jn), ut, -jt / slip);
-                    const double ia_ = 0.4 * ma * ra * ra, ib_ = 0.4 * mb * rb * rb;
-                    /* spins: (lever x J) / I, lever -r_a n for a, r_b n with -J for b */
-                    const rbs_vec3 wa = {-ra * (n.y * J.z - n.z * J.y) / ia_, -ra * (n.z * J.x - n.x * J.z) / ia_,
-                                         -ra * (n.x * J.y - n.y * J.x) / ia_};
-                    const rbs_vec3 wb = {-rb * (n.y * J.z - n.z * J.y) / ib_, -rb * (n.z * J.x - n.x * J.z) / ib_,
-                                         -rb * (n.x * J.y - n.y * J.x) / ib_};
-                    rbs_world *w = soft_world(4, dt, 0.0, e, 4);
-                    rbs_material_id m = material(w, "m", mu, mu, -1.0);
-                    rbs_body_id a = impact_sphere(w, m, ra, ma, pa, va, 0), b = impact_sphere(w, m, rb, mb, pb, vb, 0);
-                    rbs_body_state sa, sb;
-                    double err;
-                    step_n(w, 12);
-                    sa = state_of(w, a);
-                    sb = state_of(w, b);
-                    err = fmax(fmax(vdiff_(sa.velocity, vmad_(va, J, 1.0 / ma)) / v,
-                                    vdiff_(sb.velocity, vmad_(vb, J, -1.0 / mb)) / v),
-                               fmax(vdiff_(sa.angular_velocity, wa) * ra / v,
-                                    vdiff_(sb.angular_velocity, wb) * rb / v));
+                    const rbs_vec3 zero = {0.0, 0.0, 0.0}, J = vmad_(vmad_(zero, q.n, jn), ut, -jt / slip);
+                    /* spins: lever x impulse / I, lever -r_a n with J for a, r_b n with -J for b */
+                    const rbs_vec3 nj = vcross_(q.n, J);
+                    const rbs_vec3 wa = vmad_(zero, nj, -q.ra / (0.4 * q.ma * q.ra * q.ra));
+                    const rbs_vec3 wb = vmad_(zero, nj, -q.rb / (0.4 * q.mb * q.rb * q.rb));
+                    rbs_body_state sa = state_of(q.w, q.a), sb = state_of(q.w, q.b);
+                    double err = fmax(fmax(vdiff_(sa.velocity, vmad_(q.va, J, 1.0 / q.ma)) / v,
+                                           vdiff_(sb.velocity, vmad_(q.vb, J, -1.0 / q.mb)) / v),
+                                      fmax(vdiff_(sa.angular_velocity, wa) * q.ra / v,
+                                           vdiff_(sb.angular_velocity, wb) * q.rb / v));
+                    rbs_world_destroy(q.w);
                     if (!(err <= 1e-12))
                         fail_msg("mu %g, %.0f deg in-plane (20 tilted), e %g, m_b %g (%s): %.3g of the speed off "
                                  "the impact law",
-                                 mu, angles[ia], e, mb, mu * jn >= stick ? "sticks" : "slides", err);
+                                 mu, angles[ia], e, ratios[ir], mu * jn >= stick ? "sticks" : "slides", err);
                     if (mu * jn >= stick)
                         sticks++;
                     else
                         slides++;
-                    rbs_world_destroy(w);
                 }
     /* (the set takes both branches of the law) */
     assert_true(sticks > 0 && slides > 0);

@@ -213,19 +213,17 @@ static int impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, doubl
                          v3 *n, double *gap, double *lb)
 {
     v3 u = v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), at;
-    double rsum = ra + rb, uu = v3_dot(u, u), du = v3_dot(d, u), dd = v3_dot(d, d) - rsum * rsum, disc, len, t;
+    double rsum = ra + rb, uu = v3_dot(u, u), du = v3_dot(d, u), dd = v3_dot(d, d) - rsum * rsum;
+    double disc, touch, closest, len;
     int hit;
     if (!(du < 0.0 && dd > 0.0))
         return 0; /* not closing, or touching already */
     disc = du * du - uu * dd;
-    hit = disc >= 0.0;
-    t = hit ? dd / (sqrt(disc) - du) : -du / uu; /* (-du - sqrt(disc)) / uu without cancellation */
-    if (!(t <= dt)) {
-        hit = 0;
-        t = -du / uu;
-        t = t < dt ? t : dt;
-    }
-    at = v3_mad(d, u, t);
+    /* (-du - sqrt(disc)) / uu without cancellation; no root: they pass */
+    touch = disc >= 0.0 ? dd / (sqrt(disc) - du) : INFINITY;
+    closest = -du / uu;
+    hit = touch <= dt;
+    at = v3_mad(d, u, hit ? touch : (closest < dt ? closest : dt));
     len = v3_len(at);
     if (!(len > 0.0 && isfinite(len)))
         return 0;

@@ -26,11 +26,11 @@
  * The separation of a contact during the frame is its gap at detection plus
  * the bodies' displacement along the normal since then (exact for a plane,
  * linearised for a pair of spheres, along the normal of their touch on the
- * straight paths when they are apart: rbs__detect_swept).  A contact apart by s > 0 lets its pair
- * close at s / h and no faster (speculative); a touching one may overlap by
- * the slop, and deeper overlap is pushed out (at most SOFT_PUSH of the
- * smaller radius a sub-step, as Box2D caps its push speed) by a damped
- * spring of frequency
+ * straight paths when they are apart: rbs__detect_swept).  A contact apart
+ * by s > 0 lets its pair close at s / h and no faster (speculative); a
+ * touching one may overlap by the slop, and deeper overlap is pushed out
+ * (at most SOFT_PUSH of the smaller radius a sub-step, as Box2D caps its
+ * push speed) by a damped spring of frequency
  * omega = 2 pi SOFT_HERTZ / h and damping ratio SOFT_ZETA, as the soft
  * constraint's coefficients (Catto 2011) express it for an implicit step:
  *   bias rate = omega / (2 zeta + h omega),
