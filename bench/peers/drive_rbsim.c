@@ -3,6 +3,7 @@
  *
  *   peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE]
  *               [--method NAME] [--slop X] [--soft-tolerance X]
+ *               [--substeps K]
  *
  * Contacts: one "*"/"*" material-pair row with mu_s = mu_k = friction and
  * e = restitution, and the world's restitution the same, so every contact
@@ -24,6 +25,7 @@ static const char usage[] =
     "usage: peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE] [--method NAME]\n"
     "                   [--slop X]   (rbs_world_def.slop, a fraction of the radius; default the library's)\n"
     "                   [--soft-tolerance X]   (rbs_world_def.soft_tolerance; default the library's)\n"
+    "                   [--substeps K]   (rbs_world_def.soft_substeps; default the library's)\n"
     "       peers_rbsim --layout    (bytes of the world per body and per contact)\n";
 
 /* Bytes the world takes per body and per contact slot, from the public
@@ -101,6 +103,8 @@ int main(int argc, char **argv)
         def.slop = opt.slop;
     if (opt.soft_tolerance >= 0.0)
         def.soft_tolerance = opt.soft_tolerance;
+    if (opt.substeps > 0)
+        def.soft_substeps = (uint32_t)opt.substeps;
     {
         char why[256];
         if (rbs_world_def_validate(&def, why, sizeof why) != RBS_OK) {

@@ -45,6 +45,7 @@ typedef struct peers_options {
     const char *extra;        /* --method NAME etc. (driver-specific) */
     double slop;              /* --slop X: rbsim's slop (0: the library's default) */
     double soft_tolerance;    /* --soft-tolerance X: rbsim's (< 0: the library's default) */
+    long substeps;            /* --substeps K: rbsim's soft_substeps (0: the library's default) */
 } peers_options;
 
 /* Parse argv; on error prints the reason to stderr and returns nonzero. */
