@@ -61,6 +61,12 @@ typedef struct rbs__contact {
                             start, with e > 0 (the restitution pass takes it) */
 #define RBS__INELASTIC 32u /* restitution 0 whatever its pair's (the event and
                               selective methods: a resting approach) */
+#define RBS__GUARD 64u   /* soft step: a pair only a kick within the frame can
+                            close (rbs__detect_swept's second pass); its rows
+                            let it overlap by RBS__GUARD_DEPTH of the smaller
+                            radius before they act */
+#define RBS__GUARD_DEPTH 0.5 /* of the smaller radius (of the smallest sphere
+                                 for the kicks detection takes) */
 
 /* The rolling and spinning resistance of contact i, beside the contact
  * array (w->contact_resist[i] for w->contact[i]) so that the contacts the
@@ -293,8 +299,10 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
  * every pair whose gap is at most the slop plus the two margins is a
  * contact (speculative when apart), as long as max_contacts has room.
  * acc: 6 doubles a slot, each body's acceleration (m/s^2, the resting
- * threshold's) and then anything (the caller's). */
-rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc);
+ * threshold's) and then anything (the caller's).  kick: scratch, a double
+ * a slot, for the guards against kicks within the frame (contact.c,
+ * detect_kicked), or NULL for none. */
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick);
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
