@@ -524,9 +524,9 @@ static rbs_world *ball_line(int n, double r, double gap, double v, double dt, in
  * another, and each passes the whole velocity on (the impact law for equal
  * masses), so at the end the last ball leaves at v and the others rest.
  * The soft step meets each impact whole in its own frame -- the struck
- * ball's next pair is not a contact of the frame it is struck in, or only
- * a guard that a kick of less than RBS__GUARD_DEPTH leaves alone (a guard
- * acting at 1 % of the radius gave errors of up to 0.6 v) -- so the answer
+ * ball's next pair is no contact of the frame it is struck in, since a
+ * kick of less than RBS__GUARD_DEPTH of the radius makes no guard (guards
+ * acting at 1 % of it gave errors of up to 0.6 v) -- so the answer
  * is exact to rounding: 1e-12 of v, for 3, 5 and 8 balls, gaps of 1e-3 to
  * 1.5 of v dt, 0.5 to 20 m/s (up to 0.4 of a radius a frame) and both
  * layouts. */
@@ -606,9 +606,9 @@ static void kicked_ball_stops_at_the_guard_depth(void **state)
  * balls on the floor, e = 1: the struck balls are kicked within the frame
  * into their neighbours.  Without guards they went 0.97 radii deep and the
  * grid came out with 19 % more energy than the shot brought; with them no
- * pair overlaps by more than 0.7 of a radius (measured 0.502) and the
- * energy never grows (1e-9 of it: the floor's springs hold the grid's
- * weight). */
+ * pair overlaps by more than 0.7 of a radius (measured 0.50) and the
+ * energy never grows (1e-9 of it, for rounding: the grid settling into
+ * the floor's springs only gives energy up). */
 static void shot_into_a_grid_gains_no_energy(void **state)
 {
     const double r = 0.05;
