@@ -514,9 +514,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     /* inc: accelerations and torques for detection, then (gathered) their
      * velocity increments a h, alpha h -- untouched when the increment is
      * shared, and detection then computes the accelerations it needs, the
-     * same values; the margins after inc, and detection's kicks after them */
+     * same values; the margins after inc; detection's kicks in the records'
+     * room (filled only after detection) */
     margins(w, dt, shared ? NULL : inc, inc + (size_t)6 * B);
-    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc, inc + (size_t)7 * B);
+    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc, w->method_scratch);
     if (st != RBS_OK)
         return st;
 
