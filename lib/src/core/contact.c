@@ -165,6 +165,14 @@ static double creep_bound(const rbs_world *w, double dt)
     return isfinite(most) ? most : 0.0;
 }
 
+/* Sphere a's reach for the broad phase: its radius and slop plus m, how
+ * far it may move (one expression, so that detect_pair's second pass
+ * repeats the first pass's test bit for bit). */
+static inline double sphere_reach(const rbs_world *w, uint32_t a, double m)
+{
+    return w->radius[a] * (1.0 + w->def.slop) + m;
+}
+
 /* Detection state passed through the broad phase. */
 typedef struct detect_ctx {
     rbs_world *w;
@@ -269,9 +277,9 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     if (ctx->first != NULL) {
         /* the second pass: a pair within the first pass's reaches is one
          * of its contacts (the broad phase's own test, the same bits) */
-        const double *C = ctx->centres, s = w->def.slop;
+        const double *C = ctx->centres;
         double ex = C[3 * i] - C[3 * j], ey = C[3 * i + 1] - C[3 * j + 1], ez = C[3 * i + 2] - C[3 * j + 2];
-        double sr = (ra * (1.0 + s) + ctx->first[a]) + (rb * (1.0 + s) + ctx->first[b]);
+        double sr = sphere_reach(w, a, ctx->first[a]) + sphere_reach(w, b, ctx->first[b]);
         if (ex * ex + ey * ey + ez * ez <= sr * sr)
             return;
     }
@@ -375,11 +383,9 @@ static rbs_status plane_contacts(rbs_world *w, detect_ctx *ctx, uint32_t a, doub
  * impact a kick brings about is still met whole in the next frame.  None of
  * the benchmark's piles has such a kick: their results are the same bits
  * as without this pass. */
-static rbs_status detect_kicked(rbs_world *w, detect_ctx *ctx, const double *margin, double *kick,
-                                const double *centres)
+static void detect_kicked(rbs_world *w, detect_ctx *ctx, const double *margin, double *kick, const double *centres)
 {
     uint32_t i, kicked = 0;
-    const double slop_rel = w->def.slop;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         double grow = w->fixed[a] || !isfinite(kick[a]) ? 0.0 : kick[a] * ctx->dt;
@@ -387,18 +393,17 @@ static rbs_status detect_kicked(rbs_world *w, detect_ctx *ctx, const double *mar
         kick[a] = margin[a] + (take ? grow : 0.0); /* (from here the grown margin) */
         w->bp_query[i] = (uint8_t)take;
         kicked += (uint32_t)take;
-        w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + kick[a];
+        w->bp_reach[i] = sphere_reach(w, a, kick[a]);
     }
     if (kicked == 0)
-        return ctx->status;
+        return;
     ctx->kick = NULL;
     ctx->first = margin;
     ctx->centres = centres;
-    rbs__broadphase_pairs(w, centres, w->sphere_count, w->bp_query, slop_rel, detect_pair, ctx);
+    rbs__broadphase_pairs(w, centres, w->sphere_count, w->bp_query, w->def.slop, detect_pair, ctx);
     for (i = 0; i < w->sphere_count && ctx->status == RBS_OK; ++i)
         if (w->bp_query[i])
             (void)plane_contacts(w, ctx, w->spheres[i], kick[w->spheres[i]], margin[w->spheres[i]]);
-    return ctx->status;
 }
 
 /* The contacts of the state as it is.  margin (swept only): per slot, how
@@ -436,14 +441,14 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
         const double *centres = sphere_centres(w);
         for (i = 0; i < w->sphere_count; ++i) {
             uint32_t a = w->spheres[i];
-            w->bp_reach[i] = w->radius[a] * (1.0 + slop_rel) + (margin != NULL ? margin[a] : half);
+            w->bp_reach[i] = sphere_reach(w, a, margin != NULL ? margin[a] : half);
             if (kick != NULL)
                 kick[a] = 0.0;
         }
         ctx.kick = margin != NULL ? kick : NULL;
         rbs__broadphase_pairs(w, centres, w->sphere_count, NULL, slop_rel, detect_pair, &ctx);
         if (ctx.kick != NULL && ctx.status == RBS_OK)
-            (void)detect_kicked(w, &ctx, margin, kick, centres);
+            detect_kicked(w, &ctx, margin, kick, centres);
     }
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;

@@ -127,38 +127,6 @@ static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
     return rbs__rel_velocity(sp->w, c);
 }
 
-/* The change of a contact's accumulated normal impulse in a SOLVE or RELAX
- * row: vn its normal approach, s its separation, slop and most its pair's
- * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
- * within the sub-step and no more; touching, the solve's soft row pushes
- * out the overlap beyond the slop and the relax's rigid row stops the
- * approach.  In the frame's last relax (last != 0) a pair still apart by
- * more than the slop that took no impulse in the frame -- an impact due
- * after the frame's end -- takes no new impulse (it may only give some
- * back): the next frame detects it again and meets the impact along the
- * normal of the touch, with the whole approach for restitution.  (Clipped
- * here to close its gap in one more sub-step, such an impact was split over
- * two frames along two normals and bounced from the clipped approach: up to
- * 11 % of the relative speed off in glancing impacts at dt = 10 ms.  A pair
- * within the slop has met, up to rounding, and one that took impulses is a
- * pile's contact: their rows stay as in every other relax, since leaving
- * every apart pair to the next frame made the 1,000 pile's deepest
- * overlap 18 % deeper, median of 8 piles.) */
-static inline double normal_change(const soft_pass *sp, const rbs__contact *c, int stage, double vn, double s,
-                                   double slop, double most, int last)
-{
-    double over, push;
-    if (s > 0.0) {
-        double dj = -(vn + s * sp->inv_h) * c->thr;
-        return last && dj > 0.0 && s > slop && !(c->flags & RBS__TOUCHED) ? 0.0 : dj;
-    }
-    if (stage != SOLVE)
-        return -vn * c->thr;
-    over = s + slop < 0.0 ? s + slop : 0.0;
-    push = sp->bias_rate * over;
-    return -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
-}
-
 /* The depth a guard contact (RBS__GUARD) may overlap before its rows act,
  * m: RBS__GUARD_DEPTH of the smaller radius (slop: the pair's slop, def.slop
  * of that radius).  A pair that only a kick within the frame can close is
@@ -176,6 +144,41 @@ static inline double normal_change(const soft_pass *sp, const rbs__contact *c, i
 static inline double guard_depth(const soft_pass *sp, double slop)
 {
     return RBS__GUARD_DEPTH * slop / sp->w->def.slop;
+}
+
+/* The change of a contact's accumulated normal impulse in a SOLVE or RELAX
+ * row: vn its normal approach, s its separation, slop and most its pair's
+ * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
+ * within the sub-step and no more; touching, the solve's soft row pushes
+ * out the overlap beyond the slop and the relax's rigid row stops the
+ * approach; a guard's s is taken guard_depth deeper.  In the frame's last
+ * relax (last != 0) a pair still apart by
+ * more than the slop that took no impulse in the frame -- an impact due
+ * after the frame's end -- takes no new impulse (it may only give some
+ * back): the next frame detects it again and meets the impact along the
+ * normal of the touch, with the whole approach for restitution.  (Clipped
+ * here to close its gap in one more sub-step, such an impact was split over
+ * two frames along two normals and bounced from the clipped approach: up to
+ * 11 % of the relative speed off in glancing impacts at dt = 10 ms.  A pair
+ * within the slop has met, up to rounding, and one that took impulses is a
+ * pile's contact: their rows stay as in every other relax, since leaving
+ * every apart pair to the next frame made the 1,000 pile's deepest
+ * overlap 18 % deeper, median of 8 piles.) */
+static inline double normal_change(const soft_pass *sp, const rbs__contact *c, int stage, double vn, double s,
+                                   double slop, double most, int last)
+{
+    double over, push;
+    if (c->flags & RBS__GUARD)
+        s += guard_depth(sp, slop);
+    if (s > 0.0) {
+        double dj = -(vn + s * sp->inv_h) * c->thr;
+        return last && dj > 0.0 && s > slop && !(c->flags & RBS__TOUCHED) ? 0.0 : dj;
+    }
+    if (stage != SOLVE)
+        return -vn * c->thr;
+    over = s + slop < 0.0 ? s + slop : 0.0;
+    push = sp->bias_rate * over;
+    return -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
 }
 
 /* Whether the restitution pass takes c: it approached faster than its
@@ -223,12 +226,10 @@ static void pass(soft_pass *sp, int stage)
                 continue;
             dj = restitution_change(w, c, vn);
         } else {
-            double slop = rbs__contact_slop(w, c), s = separation(sp, c);
-            if (c->flags & RBS__GUARD)
-                s += guard_depth(sp, slop);
+            double slop = rbs__contact_slop(w, c);
             /* (the push limit from the smaller radius, as the slop's) */
-            dj = normal_change(sp, c, stage, vn, s, slop, SOFT_PUSH * slop / w->def.slop * sp->inv_h,
-                               stage == RELAX && sp->last);
+            dj = normal_change(sp, c, stage, vn, separation(sp, c), slop,
+                               SOFT_PUSH * slop / w->def.slop * sp->inv_h, stage == RELAX && sp->last);
         }
         jn = c->jn;
         j = normal_accumulate(c, dj);
@@ -284,8 +285,6 @@ static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int 
             sp->touching += s <= slop;
             sp->deepest = -s > sp->deepest ? -s : sp->deepest;
         }
-        if (c->flags & RBS__GUARD)
-            s += guard_depth(sp, slop);
         dj = normal_change(sp, c, stage, vn, s, slop, b_static || ba[15] < bb[15] ? ba[15] : bb[15],
                            stage == RELAX_REPORT);
     }
