@@ -76,21 +76,23 @@ static int com_off(const rbs_world *w, uint32_t i)
  * lever: it never moves). */
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap)
 {
+    uint32_t n = w->def.max_materials + 1;
+    int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
+    /* No row for this pair: the default row, frictionless with the world's
+     * restitution (documented in rbsim.h; scenes reject this case). */
+    c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
     c->lb = w->type[c->b] == RBS_BODY_PLANE ? 0.0 : dist - w->radius[c->a];
     c->gap = gap;
-    c->flags = (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u) |
-               (gap > rbs__contact_slop(w, c) ? RBS__APART : 0u);
+    /* (the plan's gather: every sphere centred, no body off) */
+    c->flags = gap > rbs__contact_slop(w, c) ? RBS__APART : 0u;
+    if (!w->plan.gather)
+        c->flags |= (com_off(w, c->a) ? RBS__OFF_A : 0u) | (com_off(w, c->b) ? RBS__OFF_B : 0u);
 }
 
 /* rbs__contact_finish with the bodies' accelerations aa, ab given. */
 static void contact_finish(rbs_world *w, rbs__contact *c, double dt, v3 aa, v3 ab)
 {
-    uint32_t n = w->def.max_materials + 1;
-    int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
     v3 ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
-    /* No row for this pair: the default row, frictionless with the world's
-     * restitution (documented in rbsim.h; scenes reject this case). */
-    c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
     c->thr = rbs__resting_threshold(aa, ab, c->n, dt);
     c->kn = inv_mass_along(w, c->a, ra, c->b, rb, c->n);
     /* Isotropic bodies with both levers along n (no RBS__OFF flag: a fixed
@@ -185,6 +187,9 @@ typedef struct detect_ctx {
     const double *first; /* swept, second pass: the first pass's margins
                             (per slot), whose pairs it skips; else NULL */
     const double *centres; /* the broad phase's centres (the second pass) */
+    rbs__contact_sink sink; /* swept: where contacts go instead of w->contact
+                               (NULL: there), with sink_ctx */
+    void *sink_ctx;
     rbs_status status;
 } detect_ctx;
 
@@ -201,15 +206,41 @@ static const double *sphere_centres(rbs_world *w)
     return w->bp_center;
 }
 
-static rbs__contact *contact_new(rbs_world *w, rbs_status *status)
+/* A new contact: the next of w->contact, or with a sink the caller's tmp
+ * (counted all the same); NULL when max_contacts are taken. */
+static rbs__contact *contact_new(rbs_world *w, detect_ctx *ctx, rbs__contact *tmp)
 {
     if (w->contact_count >= w->def.max_contacts) {
-        if (*status == RBS_OK)
-            *status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
+        if (ctx->status == RBS_OK)
+            ctx->status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
                 "more than max_contacts = %u contacts in one step", (unsigned)w->def.max_contacts);
         return NULL;
     }
+    if (ctx->sink != NULL) {
+        w->contact_count++;
+        return tmp;
+    }
     return &w->contact[w->contact_count++];
+}
+
+/* A new contact is complete: to the sink, or finished in place (its
+ * material, thresholds and effective masses); 0 when it is not a contact
+ * after all (a speculative contact beyond its creep reach, taken back) or
+ * the sink failed. */
+static int contact_done(rbs_world *w, detect_ctx *ctx, rbs__contact *c, double slop)
+{
+    if (ctx->sink != NULL) {
+        rbs_status st = ctx->sink(ctx->sink_ctx, c);
+        if (st != RBS_OK && ctx->status == RBS_OK)
+            ctx->status = st;
+        return 0;
+    }
+    finish_new(w, c, ctx->dt, ctx->acc);
+    if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
+        w->contact_count--;
+        return 0;
+    }
+    return 1;
 }
 
 /* The normal of a swept pair apart at the frame's start (d: from b's centre
@@ -271,7 +302,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     uint32_t a = w->spheres[i], b = w->spheres[j];
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, slop, dist, gap;
     v3 pa, d;
-    rbs__contact *c;
+    rbs__contact *c, tmp;
     if (w->fixed[a] && w->fixed[b])
         return;
     if (ctx->first != NULL) {
@@ -294,7 +325,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
      * reaches are the bodies' sweeps, so every pair it reports is one) */
     if (gap > slop && !((ctx->swept || gap <= slop + ctx->reach) && w->contact_count < w->def.max_contacts))
         return;
-    c = contact_new(w, &ctx->status);
+    c = contact_new(w, ctx, &tmp);
     if (c == NULL)
         return;
     c->a = a;
@@ -321,12 +352,8 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
         (void)impact_normal(w, a, b, d, ra, rb, ctx->dt, &c->n, &c->gap, &c->lb);
     if (ctx->first != NULL)
         c->flags |= RBS__GUARD;
-    finish_new(w, c, ctx->dt, ctx->acc);
-    if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
-        w->contact_count--;
-        return;
-    }
-    resist_init(w, c, ra * rb / (ra + rb));
+    if (contact_done(w, ctx, c, slop))
+        resist_init(w, c, ra * rb / (ra + rb));
 }
 
 /* The contacts of sphere a (slot) with the planes: those within the slop
@@ -342,14 +369,14 @@ static rbs_status plane_contacts(rbs_world *w, detect_ctx *ctx, uint32_t a, doub
         uint32_t b = w->planes[k];
         v3 n = v3_load(&w->normal[3 * b]);
         double gap = v3_dot(v3_sub(pa, v3_load(&w->pos[3 * b])), n) - ra;
-        rbs__contact *c;
+        rbs__contact *c, tmp;
         /* (a plane does not accelerate: thr <= |a_a| dt; a full list
          * takes touching contacts only) */
         if (gap > slop && !(gap <= slop + reach && w->contact_count < w->def.max_contacts))
             continue;
         if (skip >= 0.0 && (gap <= slop || gap <= slop + skip))
             continue;
-        c = contact_new(w, &ctx->status);
+        c = contact_new(w, ctx, &tmp);
         if (c == NULL)
             return ctx->status;
         c->a = a;
@@ -358,12 +385,10 @@ static rbs_status plane_contacts(rbs_world *w, detect_ctx *ctx, uint32_t a, doub
         rbs__contact_set(w, c, 0.0, gap);
         if (skip >= 0.0)
             c->flags |= RBS__GUARD;
-        finish_new(w, c, ctx->dt, ctx->acc);
-        if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
-            w->contact_count--;
-            continue;
-        }
-        resist_init(w, c, ra);
+        if (contact_done(w, ctx, c, slop))
+            resist_init(w, c, ra);
+        if (ctx->status != RBS_OK)
+            return ctx->status;
     }
     return RBS_OK;
 }
@@ -412,7 +437,7 @@ static void detect_kicked(rbs_world *w, detect_ctx *ctx, const double *margin, d
  * (per slot, scratch) the guards of detect_kicked follow.  Otherwise half
  * is half of the creep reach of speculative contacts (0: none). */
 static rbs_status detect(rbs_world *w, double dt, double half, const double *margin, const double *acc,
-                         double *kick)
+                         double *kick, rbs__contact_sink sink, void *sink_ctx)
 {
     uint32_t i;
     double slop_rel = w->def.slop;
@@ -425,6 +450,8 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
     ctx.kick = NULL;
     ctx.first = NULL;
     ctx.centres = NULL;
+    ctx.sink = sink;
+    ctx.sink_ctx = sink_ctx;
     ctx.status = RBS_OK;
     w->contact_count = 0;
 
@@ -457,12 +484,13 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
 
 rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
 {
-    return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL);
+    return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL, NULL, NULL);
 }
 
-rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick)
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick,
+                             rbs__contact_sink sink, void *sink_ctx)
 {
-    return detect(w, dt, 0.0, margin, acc, kick);
+    return detect(w, dt, 0.0, margin, acc, kick, sink, sink_ctx);
 }
 
 uint32_t rbs__touching(const rbs_world *w)

@@ -85,7 +85,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
  * below 2^24.) */
 uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c)
 {
-    return ((uint64_t)(w->type[c->b] != RBS_BODY_PLANE) << 63) | ((uint64_t)c->a << 32) | (uint64_t)c->b;
+    return rbs__warm_key_of(w->type[c->b] == RBS_BODY_PLANE, c->a, c->b);
 }
 
 /* The entry of key k, or NULL.  *at: where the previous search ended; the
@@ -119,10 +119,17 @@ const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at)
 
 /* Key order, for rbs__heap_sort: a pass whose contacts were not in key
  * order (pairs from the grid's own walk, when the candidate list could not
- * hold them) is sorted in place. */
+ * hold them; the soft step's guards) is sorted in place. */
 static int warm_greater(const void *x, const void *y)
 {
     return ((const rbs__warm *)x)->key > ((const rbs__warm *)y)->key;
+}
+
+void rbs__warm_finish(rbs_world *w, uint32_t n, int sorted)
+{
+    if (!sorted)
+        rbs__heap_sort(w->warm, n, sizeof *w->warm, warm_greater);
+    w->warm_used = n;
 }
 
 /* Store this pass's impulse rates: one entry per contact that held (at most
@@ -144,9 +151,7 @@ void rbs__warm_store(rbs_world *w, double h)
         e->t = v3_scale(c->jt, 1.0 / h);
         n++;
     }
-    if (!sorted)
-        rbs__heap_sort(w->warm, n, sizeof *w->warm, warm_greater);
-    w->warm_used = n;
+    rbs__warm_finish(w, n, sorted);
 }
 
 /* Inverse effective mass of one body of a contact along n (the other held). */

@@ -67,46 +67,28 @@
 #include <string.h>
 
 #include "core/rows.h"
+#include "core/soft_chunks.h"
 
 #define SOFT_HERTZ 0.25 /* contact frequency, as a fraction of the sub-step rate */
 #define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
 #define SOFT_ZETA 10.0  /* damping ratio of the contact spring */
-#if defined(__GNUC__)
-#define SOFT_INLINE inline __attribute__((always_inline)) /* one copy per stage */
-#else
-#define SOFT_INLINE inline
-#endif
-#define REC 16          /* doubles a slot in the gathered layout */
-/* record: v 0-2, w 3-5, 1/m 6, 1/I 7, displacement 8-10, rotation 11-13,
- * slop length 14 (def.slop r), push speed limit 15 (SOFT_PUSH r / h); both
- * infinite for a plane */
 
+/* The general layout's pass state (the gathered one's is rbs__soft_rows). */
 typedef struct soft_pass {
     rbs_world *w;
-    double *rec;          /* gathered records (fast), else NULL */
     double inv_h;
     double bias_rate, mass_scale, impulse_scale;
     int friction;
     uint32_t restituted;  /* contacts the restitution pass changed */
-    uint32_t plane_contacts; /* the leading contacts whose b is a plane */
-    uint32_t quarter;     /* ceil(pair contacts / 4) */
-    int last;             /* the frame's last sub-step (pass() reads it; the
-                             gathered rows have RELAX_REPORT) */
-    uint32_t touching;    /* RELAX_REPORT: contacts within their slop */
-    double deepest;       /* RELAX_REPORT: the deepest overlap, m (>= 0) */
+    int last;             /* the frame's last sub-step */
 } soft_pass;
 
-/* RELAX_REPORT: the last sub-step's relax pass in the gathered layout, which
- * also counts the contacts touching at the frame's end and the deepest
- * overlap (the positions are final once it runs) */
-enum { SOLVE, RELAX, RESTITUTION, RELAX_REPORT };
+enum { SOLVE = RBS__SOFT_SOLVE, RELAX = RBS__SOFT_RELAX, RESTITUTION = RBS__SOFT_RESTITUTION };
 
 /* The displacement of slot i since the frame's start. */
 static v3 displacement(const soft_pass *sp, uint32_t i)
 {
     const rbs_world *w = sp->w;
-    if (sp->rec != NULL)
-        return v3_load(&sp->rec[REC * i + 8]);
     return v3_sub(v3_load(&w->pos[3 * i]), v3_load(&w->step_save[RBS__SAVE_STRIDE * i]));
 }
 
@@ -119,11 +101,6 @@ static double separation(const soft_pass *sp, const rbs__contact *c)
 
 static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
 {
-    if (sp->rec != NULL) {
-        const double *ba = &sp->rec[REC * c->a], *bb = &sp->rec[REC * c->b];
-        return rbs__along_rel_velocity(c, rbs__contact_la(sp->w, c), v3_load(ba), v3_load(ba + 3), v3_load(bb),
-                                       v3_load(bb + 3));
-    }
     return rbs__rel_velocity(sp->w, c);
 }
 
@@ -251,128 +228,11 @@ static void pass(soft_pass *sp, int stage)
     }
 }
 
-/* One row of pass() for the gathered layout, with the records inline
- * (levers along n, isotropic bodies: the normal impulse leaves the slip as
- * it was, and the stick impulse is -vt / kt).  b_static: body b is a plane
- * (no velocity, no motion, never pushed), known at compile time in each of
- * pass_fast's two loops. */
-static SOFT_INLINE void row_fast(soft_pass *sp, rbs__contact *c, int stage, int b_static)
-{
-    const rbs_world *w = sp->w;
-    double *ba, *bb;
-    v3 va, wa, rv, j;
-    double vn, jn, dj, s, la;
-    if (stage == RESTITUTION && !bounces(c))
-        return; /* (before its bodies are read: most contacts do not bounce) */
-    ba = &sp->rec[REC * c->a];
-    bb = &sp->rec[REC * c->b];
-    va = v3_load(ba);
-    wa = v3_load(ba + 3);
-    la = rbs__contact_la(w, c);
-    if (b_static)
-        rv = v3_add(va, v3_cross(v3_scale(wa, la), c->n));
-    else
-        rv = rbs__along_rel_velocity(c, la, va, wa, v3_load(bb), v3_load(bb + 3));
-    vn = v3_dot(rv, c->n);
-    if (stage == RESTITUTION) {
-        dj = restitution_change(w, c, vn);
-    } else {
-        /* the pair's slop and push limit: the smaller of the records' (a
-         * plane's are infinite), as rbs__contact_slop computes the slop */
-        double slop = b_static || ba[14] < bb[14] ? ba[14] : bb[14];
-        s = c->gap + v3_dot(c->n, b_static ? v3_load(ba + 8) : v3_sub(v3_load(ba + 8), v3_load(bb + 8)));
-        if (stage == RELAX_REPORT) {
-            sp->touching += s <= slop;
-            sp->deepest = -s > sp->deepest ? -s : sp->deepest;
-        }
-        dj = normal_change(sp, c, stage, vn, s, slop, b_static || ba[15] < bb[15] ? ba[15] : bb[15],
-                           stage == RELAX_REPORT);
-    }
-    jn = c->jn;
-    j = normal_accumulate(c, dj);
-    if (stage == RESTITUTION && c->jn != jn)
-        sp->restituted++;
-    jn = c->jn;
-    if (sp->friction && (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
-        const rbs__pair *p = rbs__contact_pair(w, c);
-        if (p->mu_s > 0.0 || p->mu_k > 0.0) {
-            v3 vt = v3_mad(rv, c->n, -vn), cand;
-            cand = rbs__cone(c, p, v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0));
-            j = v3_add(j, v3_sub(cand, c->jt));
-            c->jt = cand;
-        }
-    }
-    if (b_static)
-        rbs__sb_apply(ba, j, v3_scale(v3_cross(c->n, j), la));
-    else
-        rbs__sb_apply_pair(ba, bb, c, la, j);
-}
-
-/* pass() for the gathered layout: the contacts with a plane first
- * (detection makes them first), then the pairs of spheres in four
- * interleaved runs (the k-th of each quarter in turn): rows next to each
- * other then seldom share a body, so one row need not wait for the last
- * one's stores (about 4 % faster on the 1,000 pile; the order is fixed, so
- * results stay deterministic).  Inlined for each stage, so that a row is
- * compiled for its stage and kind of pair. */
-static SOFT_INLINE void pass_fast_stage(soft_pass *sp, int stage)
-{
-    rbs__contact *c = sp->w->contact;
-    uint32_t i, n = sp->w->contact_count, planes = sp->plane_contacts, q = sp->quarter;
-    for (i = 0; i < planes; ++i)
-        row_fast(sp, &c[i], stage, 1);
-    for (i = planes; i < planes + q; ++i) {
-        row_fast(sp, &c[i], stage, 0);
-        if (i + q < n)
-            row_fast(sp, &c[i + q], stage, 0);
-        if (i + 2 * q < n)
-            row_fast(sp, &c[i + 2 * q], stage, 0);
-        if (i + 3 * q < n)
-            row_fast(sp, &c[i + 3 * q], stage, 0);
-    }
-}
-
-static void pass_fast(soft_pass *sp, int stage)
-{
-    if (stage == SOLVE)
-        pass_fast_stage(sp, SOLVE);
-    else if (stage == RELAX)
-        pass_fast_stage(sp, RELAX);
-    else if (stage == RELAX_REPORT)
-        pass_fast_stage(sp, RELAX_REPORT);
-    else
-        pass_fast_stage(sp, RESTITUTION);
-}
-
-/* A pass in the layout the frame took. */
-static void run_pass(soft_pass *sp, int stage)
-{
-    if (sp->rec != NULL)
-        pass_fast(sp, stage);
-    else
-        pass(sp, stage);
-}
-
 /* Apply the accumulated impulses again (each sub-step starts from them). */
 static void warm_start(soft_pass *sp)
 {
     rbs_world *w = sp->w;
     uint32_t i;
-    if (sp->rec != NULL) {
-        /* (the contacts with a plane first: only body a takes the impulse) */
-        for (i = 0; i < sp->plane_contacts; ++i) {
-            const rbs__contact *c = &w->contact[i];
-            v3 j = v3_add(v3_scale(c->n, c->jn), c->jt);
-            rbs__sb_apply(&sp->rec[REC * c->a], j, v3_scale(v3_cross(c->n, j), rbs__contact_la(w, c)));
-        }
-        for (; i < w->contact_count; ++i) {
-            const rbs__contact *c = &w->contact[i];
-            if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
-                rbs__sb_apply_pair(&sp->rec[REC * c->a], &sp->rec[REC * c->b], c, rbs__contact_la(w, c),
-                                   v3_add(v3_scale(c->n, c->jn), c->jt));
-        }
-        return;
-    }
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
         if (c->jn != 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)
@@ -458,19 +318,15 @@ static uint32_t tolerated_substeps(const rbs_world *w, double q)
     return n;
 }
 
-/* The parts of gathered slot i that depend on the sub-step h: its push
- * limit and (without a shared increment) its velocity increments, from the
- * accelerations in inc -- those of a body of no contact, or a plane's (0),
- * for the full sub-steps h_full. */
-static inline void record_for_h(const rbs_world *w, double *b, double *inc, uint32_t i, int shared,
-                                const double *touched, double h, double h_full)
+/* The velocity increments of slot i (without a shared increment) for
+ * sub-steps of h, from the accelerations in inc -- those of a body of no
+ * contact, or a plane's (0), for the full sub-steps h_full; ii its 1/I. */
+static inline void increments_for_h(const rbs_world *w, double *inc, uint32_t i, double ii, const double *touched,
+                                    double h, double h_full)
 {
-    b[15] = w->type[i] == RBS_BODY_SPHERE ? SOFT_PUSH * w->radius[i] / h : INFINITY;
-    if (!shared) {
-        const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
-        v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
-        v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), b[7] * hi));
-    }
+    const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
+    v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
+    v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), ii * hi));
 }
 
 /* A contact's warm start for sub-steps of h from the last frame's forces:
@@ -486,98 +342,419 @@ static inline void warm_for_h(rbs__contact *c, const rbs__pair *p, int friction,
     }
 }
 
-rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
+/* The row kernels of this processor: AVX where the build has them and the
+ * processor runs them, else the plain ones (the same bits). */
+const rbs__soft_kernels *rbs__soft_kernels_best(void)
 {
-    const uint32_t full = w->def.soft_substeps;
-    const double dt = w->def.dt, h_full = dt / full;
-    /* adapt: def.soft_tolerance may take fewer sub-steps (the gathered
-     * layout only); the frame's n and h are known once the prepare pass
-     * has measured every contact's reachable overlap (q, over the
-     * tolerance), and what depends on h waits for them */
-    const int adapt = w->def.soft_tolerance > 0.0 && full > 1 && w->plan.gather;
-    uint32_t n = full;
-    double h = h_full, omega, a1, a2, q = 0.0;
-    const uint32_t B = w->def.max_bodies;
-    double *rec = NULL, *inc = w->method_scratch + (size_t)REC * B; /* per slot: a h, alpha h */
-    double *touched = NULL, shared_inc[6], free_inc[6];
-    v3 shared_a = v3_make(0, 0, 0);
-    uint32_t i, k, at = 0;
-    uint32_t s;
-    soft_pass sp;
-    rbs_status st;
-    const int gather = w->plan.gather; /* (rbs__plan_compute) */
-    /* one increment for every body (shared_inc for the frame's sub-steps,
-     * free_inc for the full ones of bodies in no contact), or a table */
-    const int shared = gather && uniform_acceleration(w, &shared_a);
+#if defined(RBS_HAVE_AVX_KERNELS)
+    if (__builtin_cpu_supports("avx"))
+        return &rbs__soft_kernels_avx;
+#endif
+    return &rbs__soft_kernels_plain;
+}
 
-    /* inc: accelerations and torques for detection, then (gathered) their
-     * velocity increments a h, alpha h -- untouched when the increment is
-     * shared, and detection then computes the accelerations it needs, the
-     * same values; the margins after inc; detection's kicks in the records'
-     * room (filled only after detection) */
-    margins(w, dt, shared ? NULL : inc, inc + (size_t)6 * B);
-    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, shared ? NULL : inc, w->method_scratch);
-    if (st != RBS_OK)
-        return st;
+/* Slot i's record at the frame's start (soft.h): 1/I 0 for a body that does
+ * not move, so that an impulse leaves it as it was. */
+static void record_start(const rbs_world *w, double *r, uint32_t i)
+{
+    const int sphere = w->type[i] == RBS_BODY_SPHERE;
+    memcpy(r + RBS__REC_V, &w->vel[3 * i], 3 * sizeof(double));
+    memcpy(r + RBS__REC_W, &w->avel[3 * i], 3 * sizeof(double));
+    memset(r + RBS__REC_D, 0, 3 * sizeof(double));
+    r[RBS__REC_IM] = w->inv_mass[i];
+    r[RBS__REC_II] = sphere && w->inv_mass[i] != 0.0 ? w->iso_inv_inertia[i] : 0.0;
+    r[RBS__REC_R] = sphere ? w->radius[i] : 0.0;
+    memset(r + RBS__REC_ROT, 0, 4 * sizeof(double));
+}
 
-    /* A gathered body that no contact of the frame touches moves alone: all
-     * its sub-steps are taken after the loop, body by body (the same
-     * operations in the same order, so the same bits), instead of in one
-     * sweep over every record per sub-step -- at a million bodies those
-     * sweeps were most of a falling lattice's cost -- and always all
-     * soft_substeps of them, of h_full (def.soft_tolerance concerns
-     * contacts).  touched[slot]: 1 for a body in a contact (the margins'
-     * room, free after detection). */
-    if (gather) {
-        touched = inc + (size_t)6 * B;
-        for (k = 0; k < w->sphere_count; ++k)
-            touched[w->spheres[k]] = 0.0;
-        for (i = 0; i < w->contact_count; ++i) {
-            touched[w->contact[i].a] = 1.0;
-            touched[w->contact[i].b] = 1.0;
+/* The gathered layout's prepare, contact by contact as detection finds them
+ * (rbs__detect_swept's sink): each goes into a chunk lane with what its
+ * rows read -- its effective masses (levers along n: 1/(1/m_a + 1/m_b)
+ * along n, 1/(1/m_a + 1/m_b + r_a^2/I_a + l_b^2/I_b) across it), its
+ * pair's friction, its approach speed at the frame's start (restitution's
+ * target e v0, and whether it bounces: faster than its resting threshold)
+ * and the last frame's impulses for the warm start. */
+typedef struct soft_emit {
+    rbs_world *w;
+    rbs__chunker ch;
+    double *touched;      /* per slot: 1 once in a contact */
+    const double *acc;    /* per slot, 6 doubles: the accelerations, or NULL:
+                             shared_a for every moving sphere */
+    v3 shared_a;
+    double thr_shared;    /* acc NULL: the resting threshold of two moving
+                             spheres (the same for every normal) */
+    double dt;
+    double h;             /* the sub-step, or 0 until it is known (adapt) */
+    double q;             /* adapt: the deepest reachable overlap, of the slop */
+    int friction;
+    uint32_t at;          /* where the last warm-table search ended */
+    uint64_t key;         /* the last contact's key */
+    uint32_t *map;        /* per contact in detection's order: chunk * 4 + lane */
+    uint32_t count;
+} soft_emit;
+
+/* A contact's resting threshold (rbs__resting_threshold of its bodies'
+ * accelerations). */
+static double emit_threshold(const soft_emit *e, uint32_t a, uint32_t b, v3 n)
+{
+    const rbs_world *w = e->w;
+    int ma = rbs__body_moves(w, a), mb = rbs__body_moves(w, b);
+    v3 z = v3_make(0, 0, 0);
+    if (e->acc != NULL)
+        return rbs__resting_threshold(v3_load(&e->acc[6 * a]), v3_load(&e->acc[6 * b]), n, e->dt);
+    if (ma && mb)
+        return e->thr_shared;
+    return rbs__resting_threshold(ma ? e->shared_a : z, mb ? e->shared_a : z, n, e->dt);
+}
+
+/* The warm-start entry of key k, or NULL: the table is in key order, and so
+ * are detection's contacts but for the guards, so the search steps forward
+ * from the last one's entry (and searches the table otherwise). */
+static const rbs__warm *emit_warm(soft_emit *e, uint64_t k)
+{
+    const rbs__warm *t = e->w->warm;
+    const uint32_t used = e->w->warm_used;
+    if (k < e->key)
+        return rbs__warm_find(e->w, k, &e->at);
+    e->key = k;
+    while (e->at < used && t[e->at].key < k)
+        e->at++;
+    return e->at < used && t[e->at].key == k ? &t[e->at] : NULL;
+}
+
+/* A chunk lane's warm start from the last frame's forces fn (normal) and ft
+ * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
+ * dropped outside the static cone (as warm_for_h). */
+static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double fn, v3 ft, double h)
+{
+    k->jn[l] = fn * h;
+    if (friction) {
+        v3 jt = v3_scale(ft, h);
+        if (v3_len(jt) > k->mus[l] * k->jn[l])
+            jt = v3_make(0, 0, 0);
+        k->jx[l] = jt.x;
+        k->jy[l] = jt.y;
+        k->jz[l] = jt.z;
+    }
+}
+
+static rbs_status emit_contact(void *ctx, const rbs__contact *c)
+{
+    soft_emit *e = (soft_emit *)ctx;
+    rbs_world *w = e->w;
+    const uint32_t a = c->a, b = c->b;
+    const int plane = w->type[b] == RBS_BODY_PLANE;
+    const rbs__pair *p = rbs__contact_pair(w, c);
+    const double ima = w->inv_mass[a], imb = w->inv_mass[b];
+    const double iia = ima != 0.0 ? w->iso_inv_inertia[a] : 0.0;
+    const double iib = !plane && imb != 0.0 ? w->iso_inv_inertia[b] : 0.0;
+    const double la = -w->radius[a], kt = ima + imb + la * la * iia + c->lb * c->lb * iib;
+    const rbs__warm *m;
+    double bias, rest;
+    v3 u, rv;
+    uint32_t l;
+    rbs__chunk *k = rbs__chunker_place(&e->ch, a, b, plane, &l);
+    if (k == NULL)
+        return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY, "the soft step's contact chunks are full");
+    e->map[e->count++] = (uint32_t)(k - e->ch.chunk) * 4u + l;
+    e->touched[a] = e->touched[b] = 1.0;
+    k->nx[l] = c->n.x;
+    k->ny[l] = c->n.y;
+    k->nz[l] = c->n.z;
+    k->lb[l] = c->lb;
+    k->gap[l] = c->gap;
+    k->mn[l] = 1.0 / (ima + imb);
+    k->mt[l] = kt > 0.0 ? 1.0 / kt : 0.0;
+    k->mus[l] = p->mu_s;
+    k->muk[l] = p->mu_k;
+    /* the approach at the frame's start (levers along n), restitution's
+     * target, and whether it bounces */
+    u = v3_sub(v3_scale(v3_load(&w->avel[3 * a]), la), v3_scale(v3_load(&w->avel[3 * b]), c->lb));
+    rv = v3_add(v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), v3_cross(u, c->n));
+    bias = v3_dot(rv, c->n);
+    rest = rbs__contact_e(w, c);
+    k->eb[l] = rest * bias;
+    if (rest > 0.0 && bias < -emit_threshold(e, a, b, c->n))
+        k->flags |= 1u << (RBS__CH_BOUNCE + l);
+    if (c->flags & RBS__GUARD)
+        k->flags |= 1u << (RBS__CH_GUARD + l);
+    if (e->h == 0.0) {
+        /* adapt: how deep it can go within the frame, of its slop */
+        double close = -bias * e->dt;
+        double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
+        if (!(d <= e->q))
+            e->q = d; /* (a NaN stays, and keeps every sub-step) */
+    }
+    m = emit_warm(e, rbs__warm_key_of(plane, a, b));
+    if (m != NULL) {
+        v3 ft = e->friction ? v3_mad(m->t, c->n, -v3_dot(m->t, c->n)) : v3_make(0, 0, 0);
+        if (e->h == 0.0) {
+            /* (adapt: the forces, until h is known) */
+            k->jn[l] = m->n;
+            k->jx[l] = ft.x;
+            k->jy[l] = ft.y;
+            k->jz[l] = ft.z;
+        } else {
+            lane_warm(k, l, e->friction, m->n, ft, e->h);
         }
     }
+    return RBS_OK;
+}
+
+/* The impulse rates of the frame's lanes into the warm-start table, in
+ * detection's order (key order, but for the guards). */
+static void warm_store_lanes(rbs_world *w, const rbs__chunk *chunk, const uint32_t *map, uint32_t count, double h)
+{
+    uint32_t i, n = 0;
+    int sorted = 1;
+    for (i = 0; i < count; ++i) {
+        const rbs__chunk *k = &chunk[map[i] / 4u];
+        const uint32_t l = map[i] % 4u;
+        rbs__warm *e = &w->warm[n];
+        if (k->jn[l] == 0.0)
+            continue;
+        e->key = rbs__warm_key_of((int)(k->flags >> (RBS__CH_PLANE + l) & 1u), k->a[l], k->b[l]);
+        if (n > 0 && !(w->warm[n - 1].key < e->key))
+            sorted = 0;
+        e->n = k->jn[l] / h;
+        e->t = v3_scale(v3_make(k->jx[l], k->jy[l], k->jz[l]), 1.0 / h);
+        n++;
+    }
+    rbs__warm_finish(w, n, sorted);
+}
+
+/* The soft step's coefficients for sub-steps of h into the rows. */
+static void rows_for_h(rbs__soft_rows *rows, double h)
+{
+    const double omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
+    const double a1 = 2.0 * SOFT_ZETA + h * omega, a2 = h * omega * a1;
+    rows->inv_h = 1.0 / h;
+    rows->bias_rate = omega / a1;
+    rows->mass_scale = a2 / (1.0 + a2);
+    rows->impulse_scale = 1.0 / (1.0 + a2);
+    rows->push = SOFT_PUSH * rows->inv_h;
+}
+
+/* A frame in the gathered layout (the plan's gather): records, chunks and
+ * the row kernels (soft.h). */
+static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
+{
+    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies;
+    const double dt = w->def.dt, h_full = dt / full;
+    /* adapt: def.soft_tolerance may take fewer sub-steps; the frame's n and
+     * h are known once detection has measured every contact's reachable
+     * overlap (emit.q), and the warm starts wait for them */
+    const int adapt = w->def.soft_tolerance > 0.0 && full > 1;
+    /* per slot: the records (64-byte aligned), the velocity increments
+     * a h, alpha h, the margins, and touched */
+    double *rec = (double *)(void *)((unsigned char *)w->method_scratch +
+                                     (64u - (uintptr_t)w->method_scratch % 64u) % 64u);
+    double *inc = rec + (size_t)RBS__REC * B, *margin = inc + (size_t)6 * B, *touched = margin + B;
+    double shared_inc[6], free_inc[6], h = h_full;
+    uint32_t n = full, i, k, s, color_start[RBS__COLORS + 2];
+    rbs__soft_rows rows;
+    soft_emit e;
+    rbs_status st;
+    /* one increment for every body (shared_inc for the frame's sub-steps,
+     * free_inc for the full ones of bodies in no contact), or a table */
+    const int shared = uniform_acceleration(w, &e.shared_a);
+
+    /* inc: accelerations and torques for detection, then their velocity
+     * increments a h, alpha h -- untouched when the increment is shared;
+     * detection's kicks in the records' room (filled only after it) */
+    margins(w, dt, shared ? NULL : inc, margin);
+    for (k = 0; k < w->sphere_count; ++k)
+        touched[w->spheres[k]] = 0.0;
+    e.w = w;
+    e.touched = touched;
+    e.acc = shared ? NULL : inc;
+    e.dt = dt;
+    e.h = adapt ? 0.0 : h_full;
+    e.q = 0.0;
+    e.friction = w->plan.friction;
+    e.at = 0;
+    e.key = 0;
+    e.thr_shared = rbs__resting_threshold(e.shared_a, e.shared_a, v3_make(0, 0, 1), dt);
+    e.map = w->shock_order;
+    e.count = 0;
+    rbs__chunker_start(&e.ch, w->chunk, w->chunk_cap, w->chunk_color);
+    st = rbs__detect_swept(w, dt, margin, e.acc, rec, emit_contact, &e);
+    rbs__chunker_finish(&e.ch, w->chunk_order, color_start);
+    if (st != RBS_OK)
+        return st;
+    if (adapt) {
+        n = tolerated_substeps(w, e.q / w->def.soft_tolerance);
+        h = dt / n;
+        for (i = 0; i < e.count; ++i) {
+            rbs__chunk *c = &w->chunk[e.map[i] / 4u];
+            const uint32_t l = e.map[i] % 4u;
+            lane_warm(c, l, e.friction, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
+        }
+    }
+
+    /* A body that no contact of the frame touches moves alone: all its
+     * sub-steps are taken after the loop, body by body (the same operations
+     * in the same order, so the same bits), instead of in one sweep over
+     * every record per sub-step -- at a million bodies those sweeps were
+     * most of a falling lattice's cost -- and always all soft_substeps of
+     * them, of h_full (def.soft_tolerance concerns contacts). */
+    for (i = 0; i < w->slots; ++i) {
+        record_start(w, &rec[RBS__REC * i], i);
+        if (!shared)
+            increments_for_h(w, inc, i, rec[RBS__REC * i + RBS__REC_II], touched, h, h_full);
+    }
+    if (shared) {
+        shared_increment(e.shared_a, h, shared_inc);
+        shared_increment(e.shared_a, h_full, free_inc);
+    }
+    rows.rec = rec;
+    rows.chunk = w->chunk;
+    rows.order = w->chunk_order;
+    rows.chunks = e.ch.used;
+    rows.friction = e.friction;
+    rows.slop = w->def.slop;
+    rows.guard = RBS__GUARD_DEPTH;
+    rows.touching = 0;
+    rows.deepest = 0.0;
+    rows.restituted = 0;
+    rows_for_h(&rows, h);
+
+    for (s = 0; s < n; ++s) {
+        for (k = 0; k < w->sphere_count; ++k) {
+            uint32_t b = w->spheres[k];
+            double *r = &rec[RBS__REC * b];
+            const double *ib = shared ? shared_inc : &inc[6 * b];
+            if (touched[b] == 0.0 || r[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
+                continue;
+            v3_store(r + RBS__REC_V, v3_add(v3_load(r + RBS__REC_V), v3_load(ib)));
+            v3_store(r + RBS__REC_W, v3_add(v3_load(r + RBS__REC_W), v3_load(ib + 3)));
+        }
+        w->soft_kernels->warm(&rows);
+        w->soft_kernels->pass(&rows, RBS__SOFT_SOLVE);
+        for (k = 0; k < w->sphere_count; ++k) {
+            double *r = &rec[RBS__REC * w->spheres[k]];
+            if (touched[w->spheres[k]] == 0.0 || r[RBS__REC_IM] == 0.0)
+                continue;
+            v3_store(r + RBS__REC_D, v3_mad(v3_load(r + RBS__REC_D), v3_load(r + RBS__REC_V), h));
+            v3_store(r + RBS__REC_ROT, v3_mad(v3_load(r + RBS__REC_ROT), v3_load(r + RBS__REC_W), h));
+        }
+        /* (the last relax also measures the report: positions are final) */
+        w->soft_kernels->pass(&rows, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX);
+    }
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t b = w->spheres[k];
+        double *r = &rec[RBS__REC * b];
+        const double *ib = shared ? free_inc : &inc[6 * b];
+        v3 v, om, d, th, dv, dw;
+        if (touched[b] != 0.0 || r[RBS__REC_IM] == 0.0)
+            continue;
+        v = v3_load(r + RBS__REC_V);
+        om = v3_load(r + RBS__REC_W);
+        d = v3_load(r + RBS__REC_D);
+        th = v3_load(r + RBS__REC_ROT);
+        dv = v3_load(ib);
+        dw = v3_load(ib + 3);
+        for (s = 0; s < full; ++s) {
+            v = v3_add(v, dv);
+            om = v3_add(om, dw);
+            d = v3_mad(d, v, h_full);
+            th = v3_mad(th, om, h_full);
+        }
+        v3_store(r + RBS__REC_V, v);
+        v3_store(r + RBS__REC_W, om);
+        v3_store(r + RBS__REC_D, d);
+        v3_store(r + RBS__REC_ROT, th);
+    }
+    w->soft_kernels->pass(&rows, RBS__SOFT_RESTITUTION);
+
+    /* Write the bodies back: x += displacement, one turn by the frame's
+     * rotation.  Nothing was saved, so a failed step must leave the world as
+     * it was: first every new value is made and checked finite (a finite
+     * rotation too large to square gives a NaN turn), the new orientation
+     * kept in the record (the rotation and the spare double after it, free
+     * now; in the radius' place, free too, whether it turned), then all of
+     * it is written. */
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t b = w->spheres[k], d;
+        double *r = &rec[RBS__REC * b];
+        v3 th = v3_load(r + RBS__REC_ROT);
+        int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
+        quat qt;
+        if (r[RBS__REC_IM] == 0.0)
+            continue;
+        for (d = 0; d < 3; ++d)
+            ok &= isfinite(r[RBS__REC_V + d]) && isfinite(r[RBS__REC_W + d]) &&
+                  isfinite(w->pos[3 * b + d] + r[RBS__REC_D + d]);
+        if (turns) {
+            qt = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
+            ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
+            q_store(r + RBS__REC_ROT, qt);
+        }
+        if (!ok)
+            return rbs__numeric_error(w, b);
+        r[RBS__REC_R] = turns;
+    }
+    for (k = 0; k < w->sphere_count; ++k) {
+        uint32_t b = w->spheres[k];
+        const double *r = &rec[RBS__REC * b];
+        if (r[RBS__REC_IM] == 0.0)
+            continue;
+        memcpy(&w->vel[3 * b], r + RBS__REC_V, 3 * sizeof(double));
+        memcpy(&w->avel[3 * b], r + RBS__REC_W, 3 * sizeof(double));
+        v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + RBS__REC_D)));
+        if (r[RBS__REC_R] != 0.0)
+            memcpy(&w->orient[4 * b], r + RBS__REC_ROT, 4 * sizeof(double));
+    }
+
+    /* Report: contacts touching at the end and the deepest overlap (the
+     * last relax measured them), those holding, and the impacts. */
+    info->substeps = n;
+    info->colliding = rows.restituted;
+    info->contacts = rows.touching;
+    info->max_overlap = rows.deepest;
+    for (i = 0; i < rows.chunks; ++i) {
+        const rbs__chunk *c = &w->chunk[i];
+        for (k = 0; k < c->count; ++k)
+            info->resting += c->jn[k] > 0.0;
+    }
+    warm_store_lanes(w, w->chunk, e.map, e.count, h);
+    return RBS_OK;
+}
+
+rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
+{
+    const uint32_t n = w->def.soft_substeps;
+    const double dt = w->def.dt, h = dt / n;
+    const uint32_t B = w->def.max_bodies;
+    double *inc = w->method_scratch; /* per slot: the accelerations (6), then the margins */
+    double omega, a1, a2;
+    uint32_t i, at = 0, s;
+    soft_pass sp;
+    rbs_status st;
+
+    if (w->plan.gather)
+        return step_gathered(w, info);
+
+    /* The general layout steps the world's arrays (their state at the
+     * frame's start saved, to measure displacements and to go back to),
+     * through the general rows and integrators. */
+    margins(w, dt, inc, inc + (size_t)6 * B);
+    st = rbs__detect_swept(w, dt, inc + (size_t)6 * B, inc, inc + (size_t)7 * B, NULL, NULL);
+    if (st != RBS_OK)
+        return st;
+    rbs__save_state(w, w->step_save);
+    w->step_saved = 1;
     sp.w = w;
     sp.friction = w->plan.friction;
     sp.restituted = 0;
-    if (gather) {
-        rec = w->method_scratch;
-        for (i = 0; i < w->slots; ++i) {
-            double *b = &rec[REC * i];
-            memcpy(b, &w->vel[3 * i], 3 * sizeof(double));
-            memcpy(b + 3, &w->avel[3 * i], 3 * sizeof(double));
-            b[6] = w->inv_mass[i];
-            b[7] = w->type[i] == RBS_BODY_SPHERE ? w->iso_inv_inertia[i] : 0.0;
-            memset(b + 8, 0, 6 * sizeof(double));
-            b[14] = w->type[i] == RBS_BODY_SPHERE ? w->def.slop * w->radius[i] : INFINITY;
-            if (!adapt)
-                record_for_h(w, b, inc, i, shared, touched, h, h_full);
-        }
-    } else {
-        /* the general layout steps the world's arrays: their state at the
-         * frame's start, to measure displacements and to go back to */
-        rbs__save_state(w, w->step_save);
-        w->step_saved = 1;
-    }
-    sp.rec = rec;
 
     /* Prepare: the approach speed at the frame's start (for restitution, in
      * c->bias), and the impulses of the last frame for the warm start. */
-    sp.plane_contacts = 0;
-    while (sp.plane_contacts < w->contact_count && w->type[w->contact[sp.plane_contacts].b] == RBS_BODY_PLANE)
-        sp.plane_contacts++;
-    sp.quarter = (w->contact_count - sp.plane_contacts + 3) / 4;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
         const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
         c->bias = v3_dot(relative_velocity(&sp, c), c->n);
-        if (adapt) {
-            double close = -c->bias * dt;
-            double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
-            if (!(d <= q))
-                q = d; /* (a NaN stays, and keeps every sub-step) */
-        }
         c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE);
         if (rbs__contact_e(w, c) > 0.0 && c->bias < -c->thr)
             c->flags |= RBS__BOUNCE;
@@ -586,26 +763,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;
         }
-        if (m == NULL)
-            continue;
-        /* (adapt: the forces, until h is known; detection made both 0) */
-        if (adapt) {
-            c->jn = m->n;
-            if (sp.friction)
-                c->jt = v3_mad(m->t, c->n, -v3_dot(m->t, c->n));
-        } else {
+        if (m != NULL)
             warm_for_h(c, p, sp.friction, m->n, v3_mad(m->t, c->n, -v3_dot(m->t, c->n)), h);
-        }
-    }
-    if (adapt) {
-        n = tolerated_substeps(w, q / w->def.soft_tolerance);
-        h = dt / n;
-        for (i = 0; i < w->slots; ++i)
-            record_for_h(w, &rec[REC * i], inc, i, shared, touched, h, h_full);
-        for (i = 0; i < w->contact_count; ++i) {
-            rbs__contact *c = &w->contact[i];
-            warm_for_h(c, rbs__contact_pair(w, c), sp.friction, c->jn, c->jt, h);
-        }
     }
     omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
     a1 = 2.0 * SOFT_ZETA + h * omega;
@@ -614,122 +773,18 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.bias_rate = omega / a1;
     sp.mass_scale = a2 / (1.0 + a2);
     sp.impulse_scale = 1.0 / (1.0 + a2);
-    if (shared) {
-        shared_increment(shared_a, h, shared_inc);
-        shared_increment(shared_a, h_full, free_inc);
-    }
 
-    sp.touching = 0;
-    sp.deepest = 0.0;
     for (s = 0; s < n; ++s) {
-        if (rec != NULL) {
-            for (k = 0; k < w->sphere_count; ++k) {
-                uint32_t b = w->spheres[k];
-                double *r = &rec[REC * b];
-                const double *ib = shared ? shared_inc : &inc[6 * b];
-                if (touched[b] == 0.0 || r[6] == 0.0) /* (the flag first: a free body's record is not read) */
-                    continue;
-                v3_store(r, v3_add(v3_load(r), v3_load(ib)));
-                v3_store(r + 3, v3_add(v3_load(r + 3), v3_load(ib + 3)));
-            }
-        } else {
-            rbs__integrate_velocities(w, h);
-        }
+        rbs__integrate_velocities(w, h);
         warm_start(&sp);
-        run_pass(&sp, SOLVE);
-        if (rec != NULL) {
-            for (k = 0; k < w->sphere_count; ++k) {
-                double *r = &rec[REC * w->spheres[k]];
-                if (touched[w->spheres[k]] == 0.0 || r[6] == 0.0)
-                    continue;
-                v3_store(r + 8, v3_mad(v3_load(r + 8), v3_load(r), h));
-                v3_store(r + 11, v3_mad(v3_load(r + 11), v3_load(r + 3), h));
-            }
-        } else {
-            rbs__integrate_positions(w, h);
-        }
+        pass(&sp, SOLVE);
+        rbs__integrate_positions(w, h);
         sp.last = s == n - 1;
-        run_pass(&sp, rec != NULL && sp.last ? RELAX_REPORT : RELAX);
+        pass(&sp, RELAX);
     }
-    if (rec != NULL) {
-        for (k = 0; k < w->sphere_count; ++k) {
-            uint32_t b = w->spheres[k];
-            double *r = &rec[REC * b];
-            const double *ib = shared ? free_inc : &inc[6 * b];
-            v3 v, om, d, th, dv, dw;
-            if (touched[b] != 0.0 || r[6] == 0.0)
-                continue;
-            v = v3_load(r);
-            om = v3_load(r + 3);
-            d = v3_load(r + 8);
-            th = v3_load(r + 11);
-            dv = v3_load(ib);
-            dw = v3_load(ib + 3);
-            for (s = 0; s < full; ++s) {
-                v = v3_add(v, dv);
-                om = v3_add(om, dw);
-                d = v3_mad(d, v, h_full);
-                th = v3_mad(th, om, h_full);
-            }
-            v3_store(r, v);
-            v3_store(r + 3, om);
-            v3_store(r + 8, d);
-            v3_store(r + 11, th);
-        }
-    }
-    run_pass(&sp, RESTITUTION);
-
-    /* Write the gathered bodies back: x += displacement, one turn by the
-     * frame's rotation.  Nothing was saved, so a failed step must leave the
-     * world as it was: first every new value is made and checked finite (a
-     * finite rotation too large to square gives a NaN turn), the new
-     * orientation kept in the record (rotation 11-13 and slop 14, free now;
-     * 15: whether it turned), then all of it is written. */
-    if (rec != NULL) {
-        for (k = 0; k < w->sphere_count; ++k) {
-            uint32_t b = w->spheres[k], d;
-            double *r = &rec[REC * b];
-            v3 th = v3_load(r + 11);
-            int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
-            quat q;
-            if (r[6] == 0.0)
-                continue;
-            for (d = 0; d < 3; ++d)
-                ok &= isfinite(r[d]) && isfinite(r[3 + d]) && isfinite(w->pos[3 * b + d] + r[8 + d]);
-            if (turns) {
-                q = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
-                ok &= isfinite(q.w) && isfinite(q.x) && isfinite(q.y) && isfinite(q.z);
-                q_store(r + 11, q);
-            }
-            if (!ok)
-                return rbs__numeric_error(w, b);
-            r[15] = turns;
-        }
-        for (k = 0; k < w->sphere_count; ++k) {
-            uint32_t b = w->spheres[k];
-            const double *r = &rec[REC * b];
-            if (r[6] == 0.0)
-                continue;
-            memcpy(&w->vel[3 * b], r, 3 * sizeof(double));
-            memcpy(&w->avel[3 * b], r + 3, 3 * sizeof(double));
-            v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + 8)));
-            if (r[15] != 0.0)
-                memcpy(&w->orient[4 * b], r + 11, 4 * sizeof(double));
-        }
-    }
-
-    /* Report: contacts touching at the end and the deepest overlap. */
+    pass(&sp, RESTITUTION);
     info->substeps = n;
     info->colliding = sp.restituted;
-    if (rec != NULL) {
-        /* (the last relax pass measured the separations) */
-        info->contacts = sp.touching;
-        info->max_overlap = sp.deepest;
-        for (i = 0; i < w->contact_count; ++i)
-            info->resting += w->contact[i].jn > 0.0;
-        rbs__warm_store(w, h);
-        return RBS_OK;
-    }
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         double sep = separation(&sp, c);

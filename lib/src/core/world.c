@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "core/world_internal.h"
+#include "core/soft_chunks.h"
 
 #define WORLD_MAGIC 0x72627377u /* "rbsw" */
 #define ALIGN 16u
@@ -273,7 +273,19 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->material_name = carve(base, &at, M * RBS_NAME_MAX);
     x->pair = carve(base, &at, (P + 1) * sizeof(rbs__pair)); /* + the default row */
     x->pair_table = carve(base, &at, T * sizeof(int32_t));
-    x->contact = carve(base, &at, C * sizeof(rbs__contact));
+    {
+        /* the contacts, or in the soft step's gathered layout its chunks
+         * (soft.h, 64-byte aligned at use): a step takes one or the other,
+         * and neither outlives it */
+        size_t K = RBS__CHUNKS(C), chunks = K * sizeof(rbs__chunk) + 64, contacts = C * sizeof(rbs__contact);
+        unsigned char *p = carve(base, &at, chunks > contacts ? chunks : contacts);
+        x->contact = (rbs__contact *)(void *)p;
+        x->chunk_cap = (uint32_t)K;
+        if (p != NULL)
+            x->chunk = (rbs__chunk *)(void *)(p + (64u - (uintptr_t)p % 64u) % 64u);
+        x->chunk_order = carve(base, &at, K * sizeof(uint32_t));
+        x->chunk_color = carve(base, &at, B * sizeof(uint64_t));
+    }
     x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));
     {
         size_t W = C; /* an entry for every contact (solver.c) */
@@ -281,7 +293,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->warm = carve(base, &at, W * sizeof(rbs__warm));
     }
     x->solver_body = carve(base, &at, RBS__SOLVER_STRIDE * B * sizeof(double));
-    x->method_scratch = carve(base, &at, RBS__SCRATCH_STRIDE * B * sizeof(double));
+    x->method_scratch = carve(base, &at, (RBS__SCRATCH_STRIDE * B + RBS__SCRATCH_EXTRA) * sizeof(double));
     x->method_state = carve(base, &at, 8 * sizeof(double));
     {
         size_t T = 16;
@@ -354,6 +366,7 @@ static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *d
     /* the default row (index max_pairs) of a contact no row matches:
      * frictionless (zeros), the world's restitution */
     w->pair[d.max_pairs].e = -1.0;
+    w->soft_kernels = rbs__soft_kernels_best();
     rebuild_pair_table(w);
     w->plan_dirty = 1;
     /* the adaptive method's GSL workspaces: the one allocation outside the

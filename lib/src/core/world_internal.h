@@ -215,8 +215,19 @@ struct rbs_world {
                                              propagation's contacts by level and
                                              its per-level counts (solver.c) */
 
-    /* methods (step_verlet.c, step_rk4.c, step_adaptive.c) */
-    double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot */
+    /* the soft step's gathered layout (soft.h) */
+    struct rbs__chunk *chunk;             /* RBS__CHUNKS(max_contacts) chunks of four
+                                             contacts (64-byte aligned) */
+    uint32_t chunk_cap;
+    uint32_t *chunk_order;                /* chunk_cap: the order the passes take them */
+    uint64_t *chunk_color;                /* per slot: the colours of its contacts
+                                             (soft_chunks.c; zero between frames) */
+    const struct rbs__soft_kernels *soft_kernels; /* the rows' kernels (soft.h):
+                                             chosen for the processor at creation */
+
+    /* methods (step_verlet.c, step_rk4.c, step_adaptive.c, step_soft.c) */
+    double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot, and
+                                             RBS__SCRATCH_EXTRA more */
     double *method_state;                 /* 8: adaptive's step-size suggestion, ... */
     struct rbs__adaptive *adaptive;       /* GSL workspaces (malloc'd); NULL unless reserved */
 };
@@ -301,8 +312,13 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
  * acc: 6 doubles a slot, each body's acceleration (m/s^2, the resting
  * threshold's) and then anything (the caller's).  kick: scratch, a double
  * a slot, for the guards against kicks within the frame (contact.c,
- * detect_kicked), or NULL for none. */
-rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick);
+ * detect_kicked), or NULL for none.  sink (NULL: none): each contact's
+ * geometry -- a, b, n, gap, lb, flags -- goes to sink(sink_ctx, c) instead
+ * of w->contact (which it leaves untouched; contact_count still counts
+ * them), and its first failure is the detection's. */
+typedef rbs_status (*rbs__contact_sink)(void *ctx, const rbs__contact *c);
+rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick,
+                             rbs__contact_sink sink, void *sink_ctx);
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
@@ -390,7 +406,7 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
-/* Levers, gap and flags of contact c (a, b, n set) whose centres are dist
+/* Material-pair row, levers, gap and flags of contact c (a, b, n set) whose centres are dist
  * apart (a sphere pair; unused for a plane) and whose surfaces gap. */
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap);
 double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
@@ -407,7 +423,16 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
  * for a pass of h seconds, sorted by key; find key k's entry (NULL: none),
  * searching from *at, where the previous search ended (0 to start). */
 uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c);
+/* The key of the pair of slots a, b (plane: b is a plane): planes before
+ * pairs of spheres, each by (a, b). */
+static inline uint64_t rbs__warm_key_of(int plane, uint32_t a, uint32_t b)
+{
+    return ((uint64_t)(plane == 0) << 63) | ((uint64_t)a << 32) | (uint64_t)b;
+}
 void rbs__warm_store(rbs_world *w, double h);
+/* The table's first n entries are written (sorted: in key order; else they
+ * are sorted now). */
+void rbs__warm_finish(rbs_world *w, uint32_t n, int sorted);
 const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at);
 
 /* In-place heap sort of n elements of size bytes into ascending order of
@@ -516,5 +541,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info);
 #define RBS__SOFT_SUBSTEPS_MAX 1000u /* rbs_world_def.soft_substeps */
 #define RBS__SOLVER_STRIDE 8   /* doubles per slot of solver_body */
 #define RBS__SCRATCH_STRIDE 40 /* doubles per slot of method_scratch */
+#define RBS__SCRATCH_EXTRA 8   /* doubles more: the alignment of the soft step's
+                                  records */
 
 #endif

@@ -1,0 +1,105 @@
+/*
+ * soft.h - the soft step's gathered layout (internal): body records,
+ * contact chunks and the row kernels that sweep them (soft_rows.h).
+ *
+ * A frame of the soft step in the gathered layout (step_soft.c) copies each
+ * body into a record of RBS__REC doubles, laid out so that four of them
+ * load as four lanes in three blocks of four doubles:
+ *   block 0: v.x v.y v.z w.x     block 1: w.y w.z d.x d.y
+ *   block 2: d.z 1/m 1/I r       block 3: rotation (3), spare
+ * (v velocity, w angular velocity, d the displacement since the frame's
+ * start, r the radius; 1/m and 1/I are 0 for a fixed sphere and a plane).
+ * The contacts are packed in chunks of four lanes whose bodies differ, so a
+ * row of each lane runs side by side and the four rows of a chunk give
+ * what they would one after the other (soft_chunks.c).  An unused lane
+ * reads and writes a record of zeros of the pass's own, so a row there
+ * moves nothing.
+ */
+#ifndef RBS_CORE_SOFT_H
+#define RBS_CORE_SOFT_H
+
+#include "core/world_internal.h"
+
+#define RBS__LANES 4         /* contacts a chunk (core/wide.h: lanes) */
+#define RBS__REC 16          /* doubles a body record */
+#define RBS__REC_V 0         /* velocity */
+#define RBS__REC_W 3         /* angular velocity */
+#define RBS__REC_D 6         /* displacement since the frame's start */
+#define RBS__REC_IM 9        /* 1/m */
+#define RBS__REC_II 10       /* 1/I */
+#define RBS__REC_R 11        /* radius (0 for a plane) */
+#define RBS__REC_ROT 12      /* rotation since the frame's start, rad */
+
+/* Four contacts side by side (one lane each).  Unused lanes (beyond count)
+ * hold zeros. */
+typedef struct rbs__chunk {
+    double nx[4], ny[4], nz[4]; /* unit normal, from b towards a */
+    double lb[4];               /* b's lever along n, m (0 for a plane) */
+    double gap[4];              /* separation at the frame's start, m */
+    double mn[4];               /* normal effective mass 1 / (n . K n), kg */
+    double mt[4];               /* tangent effective mass 1 / (t . K t), kg */
+    double jn[4];               /* accumulated normal impulse, N s */
+    double jx[4], jy[4], jz[4]; /* accumulated friction impulse, N s */
+    double mus[4], muk[4];      /* the pair's static and kinetic friction */
+    double eb[4];               /* e times the approach speed at the frame's
+                                   start (restitution's target), m/s */
+    uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
+    uint32_t count;             /* lanes in use: the first count */
+    uint32_t flags;             /* RBS__CH_* bits, 4 a field (bit l: lane l) */
+    uint32_t color;             /* its colour (soft_chunks.c); RBS__COLORS:
+                                   serial */
+    uint32_t pad[5];
+} rbs__chunk;
+
+#define RBS__COLORS 64 /* colours a frame may take (soft_chunks.c) */
+
+#define RBS__CH_TOUCHED 0u  /* took a normal impulse this frame */
+#define RBS__CH_BOUNCE 4u   /* restitution takes it (approached faster than
+                               its resting threshold at the frame's start) */
+#define RBS__CH_GUARD 8u    /* a guard contact (RBS__GUARD) */
+#define RBS__CH_PLANE 12u   /* body b is a plane: only a moves */
+#define RBS__CH_SERIAL 16u  /* one bit: the lanes may share bodies, and are
+                               taken one after the other */
+
+/* The passes of a frame (step_soft.c). */
+enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_REPORT };
+
+/* What a pass reads and reports. */
+typedef struct rbs__soft_rows {
+    double *rec;           /* records, RBS__REC doubles a slot */
+    rbs__chunk *chunk;     /* the chunks */
+    const uint32_t *order; /* the order the passes take them in */
+    uint32_t chunks;
+    int friction;          /* some pair has friction */
+    double inv_h;          /* 1 / h, h the sub-step */
+    double bias_rate, mass_scale, impulse_scale; /* the soft row's coefficients */
+    double slop;           /* def.slop, of the smaller radius */
+    double push;           /* SOFT_PUSH / h: the push speed limit per metre of
+                              the smaller radius, 1/s */
+    double guard;          /* RBS__GUARD_DEPTH */
+    /* reports of the last pass that makes them */
+    uint32_t touching;     /* RELAX_REPORT: lanes within their slop */
+    double deepest;        /* RELAX_REPORT: the deepest overlap, m */
+    uint32_t restituted;   /* RESTITUTION: lanes whose impulse it changed */
+} rbs__soft_rows;
+
+/* The row kernels: one per backend of core/wide.h, the same bits. */
+typedef struct rbs__soft_kernels {
+    void (*warm)(rbs__soft_rows *k); /* apply every chunk's impulses */
+    void (*pass)(rbs__soft_rows *k, int stage);
+} rbs__soft_kernels;
+
+/* The AVX kernels (soft_rows_avx.c): built by GCC and Clang for x86. */
+#if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#define RBS_HAVE_AVX_KERNELS 1
+#endif
+
+extern const rbs__soft_kernels rbs__soft_kernels_plain;
+/* The kernels of this processor (step_soft.c): AVX where the build has them
+ * and the processor runs them, else the plain ones. */
+const rbs__soft_kernels *rbs__soft_kernels_best(void);
+#if defined(RBS_HAVE_AVX_KERNELS)
+extern const rbs__soft_kernels rbs__soft_kernels_avx;
+#endif
+
+#endif

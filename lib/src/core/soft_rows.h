@@ -1,0 +1,360 @@
+/*
+ * soft_rows.h - the soft step's contact rows, four lanes at a time
+ * (internal; the body of soft_rows.c and soft_rows_avx.c, which include it
+ * once each with their backend of core/wide.h and name the table it ends
+ * with through RBS__SOFT_KERNELS).
+ *
+ * A row is step_soft.c's row of one contact (docs/methods.md, "soft"):
+ *   relative velocity at the contact  rv = v_a - v_b + (la w_a - lb w_b) x n
+ *   (la = -r_a: both levers along n, the bodies centred and isotropic)
+ *   normal impulse change dj:
+ *     apart (s > 0)       -(vn + s / h) mn          close the gap, no more
+ *                         (the frame's last relax: 0 for a pair still apart
+ *                         by more than the slop that took no impulse yet)
+ *     touching, solve     -mass_scale (vn + max(push, -most)) mn
+ *                         - impulse_scale jn        soft: pushes the overlap
+ *                                                   beyond the slop out
+ *     touching, relax     -vn mn                    rigid
+ *     restitution         -(vn + e v0) mn           leave at e times v0
+ *   (s the separation now, gap + n . (d_a - d_b); a guard's s is taken
+ *   RBS__GUARD_DEPTH of the smaller radius deeper), accumulated as jn >= 0;
+ *   friction within Coulomb's cone of the new jn: the stick impulse
+ *   -vt mt added to the accumulated jt, scaled to mu_k jn when it leaves
+ *   the static cone mu_s jn; both impulses applied to the pair.
+ * Each branch is computed for every lane and the lane's own is selected, as
+ * C's ?: would pick it, so a lane gives the bits the row gives alone.
+ */
+#include <string.h>
+
+#include "core/soft.h"
+#include "core/wide.h"
+
+/* Inlined into each stage's pass, so that a row is compiled for its stage
+ * and kind of contact (GCC and Clang). */
+#if defined(__GNUC__)
+#define ROW_INLINE inline __attribute__((always_inline))
+#else
+#define ROW_INLINE inline
+#endif
+
+/* The number of bits set among four. */
+static inline unsigned bits4(unsigned b) { return (b & 1u) + (b >> 1 & 1u) + (b >> 2 & 1u) + (b >> 3 & 1u); }
+
+/* The bodies of a chunk as lanes: x[0..11] = v (3), w (3), d (3), 1/m,
+ * 1/I, r (the records' first three blocks). */
+enum { BV = 0, BW = 3, BD = 6, BIM = 9, BII = 10, BR = 11 };
+
+static ROW_INLINE void gather(const rbs__soft_rows *k, const rbs__chunk *c, const uint32_t *slot, double *zero,
+                              rbs__wd *x, double **rec)
+{
+    /* (one by one: GCC would make vector arithmetic of a loop here) */
+    rec[0] = k->rec + (size_t)RBS__REC * slot[0];
+    rec[1] = k->rec + (size_t)RBS__REC * slot[1];
+    rec[2] = k->rec + (size_t)RBS__REC * slot[2];
+    rec[3] = k->rec + (size_t)RBS__REC * slot[3];
+    if (c->count < RBS__LANES) {
+        /* unused lanes: a record of zeros of this row's own */
+        uint32_t l;
+        memset(zero, 0, RBS__REC * sizeof(double));
+        for (l = c->count; l < RBS__LANES; ++l)
+            rec[l] = zero;
+    }
+    wd_gather((const double *const *)rec, 3, x);
+}
+
+/* An impulse j on the lanes' bodies x, with the angular impulse t (per unit
+ * of lever) times lever l: v += j / m, w += (t l) / I. */
+static ROW_INLINE void take(rbs__wd *x, rbs__wd jx, rbs__wd jy, rbs__wd jz, const rbs__wd *t, rbs__wd l)
+{
+    x[BV] = wd_add(x[BV], wd_mul(jx, x[BIM]));
+    x[BV + 1] = wd_add(x[BV + 1], wd_mul(jy, x[BIM]));
+    x[BV + 2] = wd_add(x[BV + 2], wd_mul(jz, x[BIM]));
+    x[BW] = wd_add(x[BW], wd_mul(wd_mul(t[0], l), x[BII]));
+    x[BW + 1] = wd_add(x[BW + 1], wd_mul(wd_mul(t[1], l), x[BII]));
+    x[BW + 2] = wd_add(x[BW + 2], wd_mul(wd_mul(t[2], l), x[BII]));
+}
+
+/* Apply the impulse j (on a; -j on b) to the lanes' bodies and write their
+ * velocities back (b not at all when it is a plane). */
+static ROW_INLINE void apply(rbs__wd *xa, rbs__wd *xb, double **ra, double **rb, rbs__wd nx, rbs__wd ny, rbs__wd nz,
+                         rbs__wd jx, rbs__wd jy, rbs__wd jz, rbs__wd lb, int plane)
+{
+    /* t = n x j; a takes t la (la = -r_a), b takes -t lb */
+    rbs__wd t[3];
+    t[0] = wd_sub(wd_mul(ny, jz), wd_mul(nz, jy));
+    t[1] = wd_sub(wd_mul(nz, jx), wd_mul(nx, jz));
+    t[2] = wd_sub(wd_mul(nx, jy), wd_mul(ny, jx));
+    take(xa, jx, jy, jz, t, wd_neg(xa[BR]));
+    wd_scatter(ra, 2, xa);
+    if (plane)
+        return;
+    take(xb, wd_neg(jx), wd_neg(jy), wd_neg(jz), t, wd_neg(lb));
+    wd_scatter(rb, 2, xb);
+}
+
+/* Apply every lane's accumulated impulses again (the warm start of a
+ * sub-step): j = n jn + jt. */
+static ROW_INLINE void warm_chunk(const rbs__soft_rows *k, rbs__chunk *c, int plane)
+{
+    rbs__wd xa[12], xb[12], nx, ny, nz, jn, jx, jy, jz;
+    double *ra[RBS__LANES], *rb[RBS__LANES], za[RBS__REC], zb[RBS__REC];
+    jn = wd_load(c->jn);
+    jx = wd_load(c->jx);
+    jy = wd_load(c->jy);
+    jz = wd_load(c->jz);
+    if (wm_bits(wm_or(wm_or(wm_ne(jn, wd_zero()), wm_ne(jx, wd_zero())), wm_or(wm_ne(jy, wd_zero()),
+                                                                            wm_ne(jz, wd_zero())))) == 0)
+        return; /* (nothing to apply: a pile's falling contacts) */
+    nx = wd_load(c->nx);
+    ny = wd_load(c->ny);
+    nz = wd_load(c->nz);
+    jx = wd_add(wd_mul(nx, jn), jx);
+    jy = wd_add(wd_mul(ny, jn), jy);
+    jz = wd_add(wd_mul(nz, jn), jz);
+    gather(k, c, c->a, za, xa, ra);
+    if (!plane)
+        gather(k, c, c->b, zb, xb, rb);
+    apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, wd_load(c->lb), plane);
+}
+
+/* One row of each lane of c in stage; active: the lanes it may change (bit
+ * l: lane l; the others keep their impulses and give nothing). */
+static ROW_INLINE void row_chunk(rbs__soft_rows *k, rbs__chunk *c, int stage, int plane, unsigned active)
+{
+    rbs__wd xa[12], xb[12], nx, ny, nz, la, ux, uy, uz, rvx, rvy, rvz, vn, mn, jn0, jn1, dj, t, dn, jx, jy, jz;
+    rbs__wd jtx, jty, jtz;
+    rbs__wm act;
+    double *ra[RBS__LANES], *rb[RBS__LANES], za[RBS__REC], zb[RBS__REC];
+    const rbs__wd zero = wd_zero();
+    unsigned flags = c->flags;
+
+    gather(k, c, c->a, za, xa, ra);
+    if (!plane)
+        gather(k, c, c->b, zb, xb, rb);
+    nx = wd_load(c->nx);
+    ny = wd_load(c->ny);
+    nz = wd_load(c->nz);
+    la = wd_neg(xa[BR]);
+
+    /* rv = v_a - v_b + (la w_a - lb w_b) x n, and its normal part */
+    if (plane) {
+        ux = wd_mul(la, xa[BW]);
+        uy = wd_mul(la, xa[BW + 1]);
+        uz = wd_mul(la, xa[BW + 2]);
+        rvx = xa[BV];
+        rvy = xa[BV + 1];
+        rvz = xa[BV + 2];
+    } else {
+        rbs__wd lb = wd_load(c->lb);
+        ux = wd_sub(wd_mul(la, xa[BW]), wd_mul(lb, xb[BW]));
+        uy = wd_sub(wd_mul(la, xa[BW + 1]), wd_mul(lb, xb[BW + 1]));
+        uz = wd_sub(wd_mul(la, xa[BW + 2]), wd_mul(lb, xb[BW + 2]));
+        rvx = wd_sub(xa[BV], xb[BV]);
+        rvy = wd_sub(xa[BV + 1], xb[BV + 1]);
+        rvz = wd_sub(xa[BV + 2], xb[BV + 2]);
+    }
+    rvx = wd_add(rvx, wd_sub(wd_mul(uy, nz), wd_mul(uz, ny)));
+    rvy = wd_add(rvy, wd_sub(wd_mul(uz, nx), wd_mul(ux, nz)));
+    rvz = wd_add(rvz, wd_sub(wd_mul(ux, ny), wd_mul(uy, nx)));
+    vn = wd_dot3(rvx, rvy, rvz, nx, ny, nz);
+    mn = wd_load(c->mn);
+    jn0 = wd_load(c->jn);
+
+    if (stage == RBS__SOFT_RESTITUTION) {
+        dj = wd_mul(wd_neg(wd_add(vn, wd_load(c->eb))), mn);
+    } else {
+        /* the pair's smaller radius, its slop and push limit */
+        rbs__wd rmin = plane ? xa[BR] : wd_sel(wm_lt(xa[BR], xb[BR]), xa[BR], xb[BR]);
+        rbs__wd slop = wd_mul(wd_set(k->slop), rmin), s, apart, touch;
+        rbs__wm touched = wm_from_bits(flags >> RBS__CH_TOUCHED);
+        if (plane) {
+            s = wd_add(wd_load(c->gap), wd_dot3(nx, ny, nz, xa[BD], xa[BD + 1], xa[BD + 2]));
+        } else {
+            s = wd_add(wd_load(c->gap), wd_dot3(nx, ny, nz, wd_sub(xa[BD], xb[BD]), wd_sub(xa[BD + 1], xb[BD + 1]),
+                                                wd_sub(xa[BD + 2], xb[BD + 2])));
+        }
+        if (stage == RBS__SOFT_RELAX_REPORT) {
+            /* (the frame's positions are final: the report of its end) */
+            int l;
+            double deep[RBS__LANES];
+            k->touching += bits4(wm_bits(wm_le(s, slop)) & active);
+            wd_store(deep, wd_neg(s));
+            for (l = 0; l < RBS__LANES; ++l)
+                if ((active >> l & 1u) && deep[l] > k->deepest)
+                    k->deepest = deep[l];
+        }
+        if (flags >> RBS__CH_GUARD & 15u)
+            s = wd_sel(wm_from_bits(flags >> RBS__CH_GUARD), wd_add(s, wd_mul(wd_set(k->guard), rmin)), s);
+        /* apart: close the gap within the sub-step and no more */
+        apart = wd_mul(wd_neg(wd_add(vn, wd_mul(s, wd_set(k->inv_h)))), mn);
+        if (stage == RBS__SOFT_RELAX_REPORT) {
+            /* an impact due after the frame's end waits for the next one */
+            rbs__wm wait = wm_andnot(wm_and(wm_gt(apart, zero), wm_gt(s, slop)), touched);
+            apart = wd_sel(wait, zero, apart);
+        }
+        if (stage == RBS__SOFT_SOLVE) {
+            rbs__wd over = wd_add(s, slop), most = wd_neg(wd_mul(wd_set(k->push), rmin)), push;
+            over = wd_sel(wm_lt(over, zero), over, zero);
+            push = wd_mul(wd_set(k->bias_rate), over);
+            push = wd_sel(wm_lt(push, most), most, push);
+            touch = wd_sub(wd_mul(wd_mul(wd_neg(wd_set(k->mass_scale)), wd_add(vn, push)), mn),
+                           wd_mul(wd_set(k->impulse_scale), jn0));
+        } else {
+            touch = wd_mul(wd_neg(vn), mn);
+        }
+        dj = wd_sel(wm_gt(s, zero), apart, touch);
+    }
+
+    /* accumulate: jn >= 0, the impulse along n */
+    t = wd_add(jn0, dj);
+    jn1 = wd_sel(wm_lt(t, zero), zero, t);
+    act = wm_from_bits(active);
+    if (stage == RBS__SOFT_RESTITUTION)
+        jn1 = wd_sel(act, jn1, jn0);
+    dn = wd_sub(jn1, jn0);
+    jx = wd_mul(nx, dn);
+    jy = wd_mul(ny, dn);
+    jz = wd_mul(nz, dn);
+    if (stage == RBS__SOFT_RESTITUTION)
+        k->restituted += bits4(wm_bits(wm_ne(jn1, jn0)) & active);
+    flags |= (wm_bits(wm_gt(jn1, zero)) & active) << RBS__CH_TOUCHED;
+    wd_store(c->jn, jn1);
+
+    jtx = wd_load(c->jx);
+    jty = wd_load(c->jy);
+    jtz = wd_load(c->jz);
+    if (k->friction) {
+        /* the stick impulse, kept in the cone of the new jn */
+        rbs__wd mus = wd_load(c->mus), muk = wd_load(c->muk), vtx, vty, vtz, cx, cy, cz, l2, lim;
+        rbs__wm on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
+                            wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
+        rbs__wd mt = wd_neg(wd_load(c->mt));
+        rbs__wm stick;
+        if (stage == RBS__SOFT_RESTITUTION)
+            on = wm_and(on, act);
+        vtx = wd_sub(rvx, wd_mul(nx, vn));
+        vty = wd_sub(rvy, wd_mul(ny, vn));
+        vtz = wd_sub(rvz, wd_mul(nz, vn));
+        stick = wm_gt(wd_dot3(vtx, vty, vtz, vtx, vty, vtz), zero);
+        cx = wd_add(jtx, wd_sel(stick, wd_mul(vtx, mt), zero));
+        cy = wd_add(jty, wd_sel(stick, wd_mul(vty, mt), zero));
+        cz = wd_add(jtz, wd_sel(stick, wd_mul(vtz, mt), zero));
+        l2 = wd_dot3(cx, cy, cz, cx, cy, cz);
+        lim = wd_mul(mus, jn1);
+        if (wm_bits(wm_and(wm_gt(l2, wd_mul(lim, lim)), on))) {
+            /* (a square root only when a lane slides) */
+            rbs__wm slide = wm_gt(l2, wd_mul(lim, lim));
+            rbs__wd scale = wd_div(wd_mul(muk, jn1), wd_sqrt(l2));
+            cx = wd_sel(slide, wd_mul(cx, scale), cx);
+            cy = wd_sel(slide, wd_mul(cy, scale), cy);
+            cz = wd_sel(slide, wd_mul(cz, scale), cz);
+        }
+        jx = wd_sel(on, wd_add(jx, wd_sub(cx, jtx)), jx);
+        jy = wd_sel(on, wd_add(jy, wd_sub(cy, jty)), jy);
+        jz = wd_sel(on, wd_add(jz, wd_sub(cz, jtz)), jz);
+        wd_store(c->jx, wd_sel(on, cx, jtx));
+        wd_store(c->jy, wd_sel(on, cy, jty));
+        wd_store(c->jz, wd_sel(on, cz, jtz));
+    }
+    c->flags = flags;
+    apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, wd_load(c->lb), plane);
+}
+
+/* The lanes of a serial chunk one after the other, each alone in a chunk
+ * of its own (lane 0; the others unused). */
+static void row_serial(rbs__soft_rows *k, rbs__chunk *c, int stage)
+{
+    uint32_t l;
+    for (l = 0; l < c->count; ++l) {
+        rbs__chunk one;
+        unsigned bit = 1u << l, f = c->flags;
+        int plane = (f >> RBS__CH_PLANE & bit) != 0;
+        memset(&one, 0, sizeof one);
+        one.a[0] = c->a[l];
+        one.b[0] = c->b[l];
+        one.nx[0] = c->nx[l];
+        one.ny[0] = c->ny[l];
+        one.nz[0] = c->nz[l];
+        one.lb[0] = c->lb[l];
+        one.gap[0] = c->gap[l];
+        one.mn[0] = c->mn[l];
+        one.mt[0] = c->mt[l];
+        one.jn[0] = c->jn[l];
+        one.jx[0] = c->jx[l];
+        one.jy[0] = c->jy[l];
+        one.jz[0] = c->jz[l];
+        one.mus[0] = c->mus[l];
+        one.muk[0] = c->muk[l];
+        one.eb[0] = c->eb[l];
+        one.count = 1;
+        one.flags = ((f >> RBS__CH_TOUCHED >> l & 1u) << RBS__CH_TOUCHED) |
+                    ((f >> RBS__CH_BOUNCE >> l & 1u) << RBS__CH_BOUNCE) |
+                    ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
+                    ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE);
+        if (stage < 0) {
+            warm_chunk(k, &one, plane);
+            continue;
+        }
+        if (stage == RBS__SOFT_RESTITUTION &&
+            !((one.flags >> RBS__CH_TOUCHED) & (one.flags >> RBS__CH_BOUNCE) & 1u))
+            continue;
+        if (plane)
+            row_chunk(k, &one, stage, 1, 1u);
+        else
+            row_chunk(k, &one, stage, 0, 1u);
+        c->jn[l] = one.jn[0];
+        c->jx[l] = one.jx[0];
+        c->jy[l] = one.jy[0];
+        c->jz[l] = one.jz[0];
+        c->flags |= (one.flags >> RBS__CH_TOUCHED & 1u) << (RBS__CH_TOUCHED + l);
+    }
+}
+
+/* One pass over the chunks in stage (stage < 0: the warm start). */
+static ROW_INLINE void pass_stage(rbs__soft_rows *k, int stage)
+{
+    uint32_t i;
+    for (i = 0; i < k->chunks; ++i) {
+        rbs__chunk *c = &k->chunk[k->order[i]];
+        unsigned f = c->flags, used = (1u << c->count) - 1u, active = used;
+        int plane = (f >> RBS__CH_PLANE & 1u) != 0;
+        if (f >> RBS__CH_SERIAL & 1u) {
+            row_serial(k, c, stage);
+            continue;
+        }
+        if (stage < 0) {
+            if (plane)
+                warm_chunk(k, c, 1);
+            else
+                warm_chunk(k, c, 0);
+            continue;
+        }
+        if (stage == RBS__SOFT_RESTITUTION) {
+            /* only the lanes that bounce, and not a chunk without one */
+            active = (f >> RBS__CH_TOUCHED) & (f >> RBS__CH_BOUNCE) & used;
+            if (active == 0)
+                continue;
+        }
+        if (plane)
+            row_chunk(k, c, stage, 1, active);
+        else
+            row_chunk(k, c, stage, 0, active);
+    }
+}
+
+static void kernel_warm(rbs__soft_rows *k) { pass_stage(k, -1); }
+
+static void kernel_pass(rbs__soft_rows *k, int stage)
+{
+    /* (each stage compiled on its own, its branches known) */
+    if (stage == RBS__SOFT_SOLVE)
+        pass_stage(k, RBS__SOFT_SOLVE);
+    else if (stage == RBS__SOFT_RELAX)
+        pass_stage(k, RBS__SOFT_RELAX);
+    else if (stage == RBS__SOFT_RELAX_REPORT)
+        pass_stage(k, RBS__SOFT_RELAX_REPORT);
+    else
+        pass_stage(k, RBS__SOFT_RESTITUTION);
+}
+
+const rbs__soft_kernels RBS__SOFT_KERNELS = {kernel_warm, kernel_pass};
