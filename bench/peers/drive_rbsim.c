@@ -20,12 +20,15 @@
 
 #include "peers_io.h"
 #include "rbsim/rbsim.h"
+#include "rbsim/reel.h"
 
 static const char usage[] =
     "usage: peers_rbsim --scene FILE [--steps K] [--max-wall S] [--state-out FILE] [--method NAME]\n"
     "                   [--slop X]   (rbs_world_def.slop, a fraction of the radius; default the library's)\n"
     "                   [--soft-tolerance X]   (rbs_world_def.soft_tolerance; default the library's)\n"
     "                   [--substeps K]   (rbs_world_def.soft_substeps; default the library's)\n"
+    "                   [--threads K]   (threads that step the world, its own included: a pool of\n"
+    "                                    K - 1 (rbs_pool_create); default 1)\n"
     "       peers_rbsim --layout    (bytes of the world per body and per contact)\n";
 
 /* Bytes the world takes per body and per contact slot, from the public
@@ -67,6 +70,7 @@ int main(int argc, char **argv)
     peers_scene sc;
     rbs_world_def def;
     rbs_world *w = NULL;
+    rbs_pool *pool = NULL;
     rbs_pair_def pair;
     rbs_state_view view;
     rbs_usage usage_info;
@@ -145,6 +149,15 @@ int main(int argc, char **argv)
             slot0 = id.index;
     }
     peers_scene_free(&sc); /* keeps the counts */
+    if (opt.threads > 1) {
+        rbs_workers workers;
+        if (check(NULL, rbs_pool_create((uint32_t)(opt.threads - 1), &pool), "rbs_pool_create"))
+            return 2;
+        rbs_workers_init(&workers);
+        if (check(NULL, rbs_pool_workers(pool, &workers), "rbs_pool_workers") ||
+            check(w, rbs_world_set_workers(w, &workers), "rbs_world_set_workers"))
+            return 2;
+    }
     rbs_world_state(w, &view);
     peers_apex_init(&apex, sc.gravity_z);
     t1 = peers_now();
@@ -204,17 +217,18 @@ int main(int argc, char **argv)
            "\"steps\": %ld, \"dt\": %.9g, \"sim_time\": %.9g, \"wall\": %.9g, \"setup_wall\": %.9g, "
            "\"substeps\": %llu, \"rollbacks\": %llu, \"floor_hits\": %llu, \"sweep_limit\": %llu, "
            "\"contacts_max\": %u, \"contacts_high\": %u, \"step_max_overlap\": %.9g, "
-           "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"energy_lib\": %.12g, \"rss_anon_kb\": %ld, \"apex\": ",
+           "\"world_bytes\": %zu, \"max_contacts\": %u, \"slop\": %.9g, \"threads\": %u, \"energy_lib\": %.12g, \"rss_anon_kb\": %ld, \"apex\": ",
            rbs_version(), rbs_method_name(def.method), rbs_method_name(rbs_world_method_in_use(w)), sc.n, k, sc.dt, (double)k * sc.dt, t1 - t0,
            t_setup, (unsigned long long)substeps, (unsigned long long)rollbacks,
            (unsigned long long)floor_hits, (unsigned long long)sweep_limit, contacts_max,
            usage_info.contacts_high, overlap_max, usage_info.bytes, def.max_contacts,
-           def.slop, energy.total, peers_rss_anon_kb());
+           def.slop, rbs_world_workers(w), energy.total, peers_rss_anon_kb());
     peers_print_apex(stdout, &apex);
     printf(", \"error\": \"");
     for (; *error; ++error)
         putchar(*error == '"' || *error == '\\' ? '\'' : *error);
     printf("\"}\n");
     rbs_world_destroy(w);
+    rbs_pool_destroy(pool);
     return st == RBS_OK ? 0 : 1;
 }

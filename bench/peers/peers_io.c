@@ -59,6 +59,13 @@ int peers_parse_args(int argc, char **argv, peers_options *opt, const char *usag
                 fprintf(stderr, "%s: --soft-tolerance wants a fraction of a radius >= 0, got \"%s\"\n", argv[0], v);
                 return 1;
             }
+        } else if (strcmp(a, "--threads") == 0) {
+            /* (its range is the library's to check) */
+            opt->threads = strtol(v, &end, 10);
+            if (*v == '\0' || *end != '\0' || opt->threads < 1) {
+                fprintf(stderr, "%s: --threads wants a count >= 1, got \"%s\"\n", argv[0], v);
+                return 1;
+            }
         } else if (strcmp(a, "--substeps") == 0) {
             /* (its range is the library's to check) */
             opt->substeps = strtol(v, &end, 10);

@@ -46,6 +46,7 @@ typedef struct peers_options {
     double slop;              /* --slop X: rbsim's slop (0: the library's default) */
     double soft_tolerance;    /* --soft-tolerance X: rbsim's (< 0: the library's default) */
     long substeps;            /* --substeps K: rbsim's soft_substeps (0: the library's default) */
+    long threads;             /* --threads K: rbsim's threads, its own included (0: 1) */
 } peers_options;
 
 /* Parse argv; on error prints the reason to stderr and returns nonzero. */

@@ -507,6 +507,52 @@ typedef struct rbs_state_view {
 RBS_API rbs_status rbs_world_state(const rbs_world *world, rbs_state_view *out);
 
 /* ------------------------------------------------------------------------- */
+/* Worker threads                                                            */
+/* ------------------------------------------------------------------------- */
+
+/** The most threads a world steps on (rbs_workers.count). */
+#define RBS_WORKERS_MAX 16
+
+/** A task a step gives to the caller's threads: fn(task, k), k = 1 .. n. */
+typedef void rbs_task_fn(void *task, uint32_t k);
+
+/** Threads the caller lends a world's steps.  The library never starts a
+ * thread of its own: a step calls start once, to run the step's task on up
+ * to count - 1 other threads while its own thread runs it too, and finish
+ * before it returns.  The soft step's gathered layout (every pile) then
+ * splits its stages among them; every other step runs on the caller's
+ * thread alone.  Results are the same bits whatever count is, and whether
+ * the pool runs the tasks at once, late or never (the step's thread takes
+ * every share no other thread has claimed; it never waits for a task to
+ * begin).  rbs_pool_create (reel.h) makes such a pool.  Initialise with
+ * rbs_workers_init(&w): count 1, no callbacks. */
+typedef struct rbs_workers {
+    uint32_t struct_size; /**< set by the init macro */
+    uint32_t count;       /**< threads, the step's own included: 1 (default,
+                               the caller's thread only) to RBS_WORKERS_MAX */
+    /** Start fn(task, k) for k = 1 .. n, each on a thread of its own, and
+     * return without waiting for them.  Called from the stepping thread. */
+    void (*start)(void *user, rbs_task_fn *fn, void *task, uint32_t n);
+    /** Return when every fn the last start started has returned. */
+    void (*finish)(void *user);
+    void *user;           /**< passed to start and finish */
+} rbs_workers;
+
+RBS_API void rbs_workers_init_sized(rbs_workers *workers, size_t size);
+#define rbs_workers_init(w) rbs_workers_init_sized((w), sizeof *(w))
+
+/** Lend the world threads for its steps (copied; workers NULL or count 1:
+ * the caller's thread only, the default).  RBS_E_INVALID for a count
+ * outside 1 .. RBS_WORKERS_MAX or, with count > 1, a NULL start or finish;
+ * RBS_E_UNSUPPORTED when the library was built without atomics (a compiler
+ * other than GCC or Clang).  The pool must outlive its use: set NULL before
+ * destroying it.  Not a checkpoint's (a loaded world has none).  Not
+ * thread-safe: call it between steps. */
+RBS_API rbs_status rbs_world_set_workers(rbs_world *world, const rbs_workers *workers);
+/** The threads the world's steps may use (1 without a pool). */
+RBS_API uint32_t rbs_world_workers(const rbs_world *world);
+
+/* ------------------------------------------------------------------------- */
 /* Diagnostics                                                               */
 /* ------------------------------------------------------------------------- */
 

@@ -127,6 +127,29 @@ RBS_API void rbs_reel_close(rbs_reel *reel);
 RBS_API uint64_t rbs_reel_dropped(rbs_reel *reel);
 
 /* ------------------------------------------------------------------------- */
+/* Worker pool                                                               */
+/* ------------------------------------------------------------------------- */
+
+/** Threads of the library's own to lend a world's steps (rbs_workers,
+ * rbsim.h): the core starts none, the pool does.  Between tasks a thread
+ * spins for a few tens of microseconds (a step follows another closely),
+ * then sleeps.  Opaque; one world's steps at a time (start and finish are
+ * not for two worlds stepping at once). */
+typedef struct rbs_pool rbs_pool;
+
+/** A pool of `threads` (1 .. RBS_WORKERS_MAX - 1) threads besides the
+ * caller's.  RBS_E_INVALID for a count out of range, RBS_E_MEMORY when a
+ * thread or its memory cannot be had (nothing is left behind). */
+RBS_API rbs_status rbs_pool_create(uint32_t threads, rbs_pool **out);
+/** The workers to lend a world (rbs_world_set_workers): count = the pool's
+ * threads + 1, the stepping thread included.  Initialise *out with
+ * rbs_workers_init first. */
+RBS_API rbs_status rbs_pool_workers(rbs_pool *pool, rbs_workers *out);
+/** Stop and join the threads and free the pool.  No world may still use it
+ * (rbs_world_set_workers(world, NULL) first).  NULL ok. */
+RBS_API void rbs_pool_destroy(rbs_pool *pool);
+
+/* ------------------------------------------------------------------------- */
 /* Renderer factory                                                          */
 /* ------------------------------------------------------------------------- */
 

@@ -64,12 +64,11 @@ typedef struct rbs__chunk {
 /* The passes of a frame (step_soft.c). */
 enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_REPORT };
 
-/* What a pass reads and reports. */
+/* What a pass reads (the same for every thread of a step). */
 typedef struct rbs__soft_rows {
     double *rec;           /* records, RBS__REC doubles a slot */
     rbs__chunk *chunk;     /* the chunks */
     const uint32_t *order; /* the order the passes take them in */
-    uint32_t chunks;
     int friction;          /* some pair has friction */
     double inv_h;          /* 1 / h, h the sub-step */
     double bias_rate, mass_scale, impulse_scale; /* the soft row's coefficients */
@@ -77,16 +76,22 @@ typedef struct rbs__soft_rows {
     double push;           /* SOFT_PUSH / h: the push speed limit per metre of
                               the smaller radius, 1/s */
     double guard;          /* RBS__GUARD_DEPTH */
-    /* reports of the last pass that makes them */
-    uint32_t touching;     /* RELAX_REPORT: lanes within their slop */
-    double deepest;        /* RELAX_REPORT: the deepest overlap, m */
-    uint32_t restituted;   /* RESTITUTION: lanes whose impulse it changed */
 } rbs__soft_rows;
 
-/* The row kernels: one per backend of core/wide.h, the same bits. */
+/* What a pass reports, per share of it (a cache line each). */
+typedef struct rbs__soft_report {
+    uint32_t touching;     /* RELAX_REPORT: lanes within their slop */
+    uint32_t restituted;   /* RESTITUTION: lanes whose impulse it changed */
+    double deepest;        /* RELAX_REPORT: the deepest overlap, m (>= 0) */
+    unsigned char pad[48];
+} rbs__soft_report;
+
+/* The row kernels: one per backend of core/wide.h, the same bits.  Each
+ * takes the chunks order[begin .. end - 1] (stage < 0: the warm start,
+ * which applies every lane's accumulated impulses again) and adds what it
+ * reports to *report. */
 typedef struct rbs__soft_kernels {
-    void (*warm)(rbs__soft_rows *k); /* apply every chunk's impulses */
-    void (*pass)(rbs__soft_rows *k, int stage);
+    void (*pass)(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end, rbs__soft_report *report);
 } rbs__soft_kernels;
 
 /* The AVX kernels (soft_rows_avx.c): built by GCC and Clang for x86. */

@@ -119,7 +119,8 @@ static ROW_INLINE void warm_chunk(const rbs__soft_rows *k, rbs__chunk *c, int pl
 
 /* One row of each lane of c in stage; active: the lanes it may change (bit
  * l: lane l; the others keep their impulses and give nothing). */
-static ROW_INLINE void row_chunk(rbs__soft_rows *k, rbs__chunk *c, int stage, int plane, unsigned active)
+static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int stage, int plane, unsigned active,
+                                 rbs__soft_report *report)
 {
     rbs__wd xa[12], xb[12], nx, ny, nz, la, ux, uy, uz, rvx, rvy, rvz, vn, mn, jn0, jn1, dj, t, dn, jx, jy, jz;
     rbs__wd jtx, jty, jtz;
@@ -177,11 +178,11 @@ static ROW_INLINE void row_chunk(rbs__soft_rows *k, rbs__chunk *c, int stage, in
             /* (the frame's positions are final: the report of its end) */
             int l;
             double deep[RBS__LANES];
-            k->touching += bits4(wm_bits(wm_le(s, slop)) & active);
+            report->touching += bits4(wm_bits(wm_le(s, slop)) & active);
             wd_store(deep, wd_neg(s));
             for (l = 0; l < RBS__LANES; ++l)
-                if ((active >> l & 1u) && deep[l] > k->deepest)
-                    k->deepest = deep[l];
+                if ((active >> l & 1u) && deep[l] > report->deepest)
+                    report->deepest = deep[l];
         }
         if (flags >> RBS__CH_GUARD & 15u)
             s = wd_sel(wm_from_bits(flags >> RBS__CH_GUARD), wd_add(s, wd_mul(wd_set(k->guard), rmin)), s);
@@ -216,7 +217,7 @@ static ROW_INLINE void row_chunk(rbs__soft_rows *k, rbs__chunk *c, int stage, in
     jy = wd_mul(ny, dn);
     jz = wd_mul(nz, dn);
     if (stage == RBS__SOFT_RESTITUTION)
-        k->restituted += bits4(wm_bits(wm_ne(jn1, jn0)) & active);
+        report->restituted += bits4(wm_bits(wm_ne(jn1, jn0)) & active);
     flags |= (wm_bits(wm_gt(jn1, zero)) & active) << RBS__CH_TOUCHED;
     wd_store(c->jn, jn1);
 
@@ -262,7 +263,7 @@ static ROW_INLINE void row_chunk(rbs__soft_rows *k, rbs__chunk *c, int stage, in
 
 /* The lanes of a serial chunk one after the other, each alone in a chunk
  * of its own (lane 0; the others unused). */
-static void row_serial(rbs__soft_rows *k, rbs__chunk *c, int stage)
+static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__soft_report *report)
 {
     uint32_t l;
     for (l = 0; l < c->count; ++l) {
@@ -299,9 +300,9 @@ static void row_serial(rbs__soft_rows *k, rbs__chunk *c, int stage)
             !((one.flags >> RBS__CH_TOUCHED) & (one.flags >> RBS__CH_BOUNCE) & 1u))
             continue;
         if (plane)
-            row_chunk(k, &one, stage, 1, 1u);
+            row_chunk(k, &one, stage, 1, 1u, report);
         else
-            row_chunk(k, &one, stage, 0, 1u);
+            row_chunk(k, &one, stage, 0, 1u, report);
         c->jn[l] = one.jn[0];
         c->jx[l] = one.jx[0];
         c->jy[l] = one.jy[0];
@@ -310,16 +311,18 @@ static void row_serial(rbs__soft_rows *k, rbs__chunk *c, int stage)
     }
 }
 
-/* One pass over the chunks in stage (stage < 0: the warm start). */
-static ROW_INLINE void pass_stage(rbs__soft_rows *k, int stage)
+/* One pass over the chunks order[begin .. end - 1] in stage (stage < 0:
+ * the warm start). */
+static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end,
+                                  rbs__soft_report *report)
 {
     uint32_t i;
-    for (i = 0; i < k->chunks; ++i) {
+    for (i = begin; i < end; ++i) {
         rbs__chunk *c = &k->chunk[k->order[i]];
         unsigned f = c->flags, used = (1u << c->count) - 1u, active = used;
         int plane = (f >> RBS__CH_PLANE & 1u) != 0;
         if (f >> RBS__CH_SERIAL & 1u) {
-            row_serial(k, c, stage);
+            row_serial(k, c, stage, report);
             continue;
         }
         if (stage < 0) {
@@ -336,25 +339,25 @@ static ROW_INLINE void pass_stage(rbs__soft_rows *k, int stage)
                 continue;
         }
         if (plane)
-            row_chunk(k, c, stage, 1, active);
+            row_chunk(k, c, stage, 1, active, report);
         else
-            row_chunk(k, c, stage, 0, active);
+            row_chunk(k, c, stage, 0, active, report);
     }
 }
 
-static void kernel_warm(rbs__soft_rows *k) { pass_stage(k, -1); }
-
-static void kernel_pass(rbs__soft_rows *k, int stage)
+static void kernel_pass(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end, rbs__soft_report *report)
 {
     /* (each stage compiled on its own, its branches known) */
-    if (stage == RBS__SOFT_SOLVE)
-        pass_stage(k, RBS__SOFT_SOLVE);
+    if (stage < 0)
+        pass_stage(k, -1, begin, end, report);
+    else if (stage == RBS__SOFT_SOLVE)
+        pass_stage(k, RBS__SOFT_SOLVE, begin, end, report);
     else if (stage == RBS__SOFT_RELAX)
-        pass_stage(k, RBS__SOFT_RELAX);
+        pass_stage(k, RBS__SOFT_RELAX, begin, end, report);
     else if (stage == RBS__SOFT_RELAX_REPORT)
-        pass_stage(k, RBS__SOFT_RELAX_REPORT);
+        pass_stage(k, RBS__SOFT_RELAX_REPORT, begin, end, report);
     else
-        pass_stage(k, RBS__SOFT_RESTITUTION);
+        pass_stage(k, RBS__SOFT_RESTITUTION, begin, end, report);
 }
 
-const rbs__soft_kernels RBS__SOFT_KERNELS = {kernel_warm, kernel_pass};
+const rbs__soft_kernels RBS__SOFT_KERNELS = {kernel_pass};

@@ -68,6 +68,7 @@
 
 #include "core/rows.h"
 #include "core/soft_chunks.h"
+#include "core/team.h"
 
 #define SOFT_HERTZ 0.25 /* contact frequency, as a fraction of the sub-step rate */
 #define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
@@ -535,11 +536,192 @@ static void rows_for_h(rbs__soft_rows *rows, double h)
     rows->push = SOFT_PUSH * rows->inv_h;
 }
 
+/* A frame of the gathered layout: what its stages (team.h) read and write.
+ * The per-body stages take the spheres spheres[begin .. end - 1]; the rows'
+ * the chunks of one colour. */
+typedef struct soft_frame {
+    rbs_world *w;
+    double *rec, *inc, *touched;
+    const double *ib_frame, *ib_free; /* the shared increments (shared), else NULL */
+    int shared;
+    double h, h_full;
+    uint32_t full;
+    rbs__soft_rows rows;
+    int stage;                        /* the rows' stage of this pass */
+    uint32_t first;                   /* the colour's first chunk in the order */
+    uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
+    rbs__soft_report report[RBS_WORKERS_MAX];
+} soft_frame;
+
+/* Records at the frame's start (and, without a shared increment, each
+ * body's velocity increments for its sub-steps). */
+static void stage_records(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    uint32_t i;
+    (void)share;
+    for (i = begin; i < end; ++i) {
+        record_start(f->w, &f->rec[RBS__REC * i], i);
+        if (!f->shared)
+            increments_for_h(f->w, f->inc, i, f->rec[RBS__REC * i + RBS__REC_II], f->touched, f->h, f->h_full);
+    }
+}
+
+/* v += a h for the spheres in a contact (each sub-step). */
+static void stage_velocities(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    const rbs_world *w = f->w;
+    uint32_t k;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        uint32_t b = w->spheres[k];
+        double *r = &f->rec[RBS__REC * b];
+        const double *ib = f->shared ? f->ib_frame : &f->inc[6 * b];
+        if (f->touched[b] == 0.0 || r[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
+            continue;
+        v3_store(r + RBS__REC_V, v3_add(v3_load(r + RBS__REC_V), v3_load(ib)));
+        v3_store(r + RBS__REC_W, v3_add(v3_load(r + RBS__REC_W), v3_load(ib + 3)));
+    }
+}
+
+/* d += v h, rotation += w h for the spheres in a contact (each sub-step). */
+static void stage_positions(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    const rbs_world *w = f->w;
+    uint32_t k;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        double *r = &f->rec[RBS__REC * w->spheres[k]];
+        if (f->touched[w->spheres[k]] == 0.0 || r[RBS__REC_IM] == 0.0)
+            continue;
+        v3_store(r + RBS__REC_D, v3_mad(v3_load(r + RBS__REC_D), v3_load(r + RBS__REC_V), f->h));
+        v3_store(r + RBS__REC_ROT, v3_mad(v3_load(r + RBS__REC_ROT), v3_load(r + RBS__REC_W), f->h));
+    }
+}
+
+/* The spheres no contact touched: all their sub-steps at once, of h_full. */
+static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    const rbs_world *w = f->w;
+    uint32_t k, s;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        uint32_t b = w->spheres[k];
+        double *r = &f->rec[RBS__REC * b];
+        const double *ib = f->shared ? f->ib_free : &f->inc[6 * b];
+        v3 v, om, d, th, dv, dw;
+        if (f->touched[b] != 0.0 || r[RBS__REC_IM] == 0.0)
+            continue;
+        v = v3_load(r + RBS__REC_V);
+        om = v3_load(r + RBS__REC_W);
+        d = v3_load(r + RBS__REC_D);
+        th = v3_load(r + RBS__REC_ROT);
+        dv = v3_load(ib);
+        dw = v3_load(ib + 3);
+        for (s = 0; s < f->full; ++s) {
+            v = v3_add(v, dv);
+            om = v3_add(om, dw);
+            d = v3_mad(d, v, f->h_full);
+            th = v3_mad(th, om, f->h_full);
+        }
+        v3_store(r + RBS__REC_V, v);
+        v3_store(r + RBS__REC_W, om);
+        v3_store(r + RBS__REC_D, d);
+        v3_store(r + RBS__REC_ROT, th);
+    }
+}
+
+/* The write-back's first half: every new value made and checked finite (a
+ * finite rotation too large to square gives a NaN turn), the new
+ * orientation kept in the record (the rotation and the spare double after
+ * it, free now; in the radius' place, free too, whether it turned); the
+ * share's first sphere that is not, in bad[share]. */
+static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    const rbs_world *w = f->w;
+    uint32_t k;
+    f->bad[share] = UINT32_MAX;
+    for (k = begin; k < end; ++k) {
+        uint32_t b = w->spheres[k], d;
+        double *r = &f->rec[RBS__REC * b];
+        v3 th = v3_load(r + RBS__REC_ROT);
+        int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
+        quat qt;
+        if (r[RBS__REC_IM] == 0.0)
+            continue;
+        for (d = 0; d < 3; ++d)
+            ok &= isfinite(r[RBS__REC_V + d]) && isfinite(r[RBS__REC_W + d]) &&
+                  isfinite(w->pos[3 * b + d] + r[RBS__REC_D + d]);
+        if (turns) {
+            qt = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
+            ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
+            q_store(r + RBS__REC_ROT, qt);
+        }
+        if (!ok) {
+            f->bad[share] = b;
+            return;
+        }
+        r[RBS__REC_R] = turns;
+    }
+}
+
+/* The write-back's second half, once every value is known good: x +=
+ * displacement, the velocities, the turned orientations. */
+static void stage_write(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    rbs_world *w = f->w;
+    uint32_t k;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        uint32_t b = w->spheres[k];
+        const double *r = &f->rec[RBS__REC * b];
+        if (r[RBS__REC_IM] == 0.0)
+            continue;
+        memcpy(&w->vel[3 * b], r + RBS__REC_V, 3 * sizeof(double));
+        memcpy(&w->avel[3 * b], r + RBS__REC_W, 3 * sizeof(double));
+        v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + RBS__REC_D)));
+        if (r[RBS__REC_R] != 0.0)
+            memcpy(&w->orient[4 * b], r + RBS__REC_ROT, 4 * sizeof(double));
+    }
+}
+
+/* One colour's chunks in the frame's current rows stage. */
+static void stage_rows(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    f->w->soft_kernels->pass(&f->rows, f->stage, f->first + begin, f->first + end, &f->report[share]);
+}
+
+/* Chunks a colour needs to be split among threads: below, the time to
+ * hand it out is more than its work (about a microsecond a thread). */
+#define SPLIT_CHUNKS 16
+
+/* One pass of the rows (stage; < 0 the warm start) over every chunk, a
+ * colour at a time: a large colour in two shares a thread (one that starts
+ * late takes fewer), a small one -- and the serial chunks, last -- on the
+ * step's thread alone. */
+static void rows_pass(soft_frame *f, int stage, const uint32_t *color_start)
+{
+    const uint32_t threads = rbs__team_threads(f->w);
+    uint32_t k;
+    f->stage = stage;
+    for (k = 0; k <= RBS__COLORS; ++k) {
+        uint32_t n = color_start[k + 1] - color_start[k];
+        f->first = color_start[k];
+        rbs__team_run(f->w, stage_rows, f, n, k < RBS__COLORS && n >= SPLIT_CHUNKS ? threads : 1);
+    }
+}
+
 /* A frame in the gathered layout (the plan's gather): records, chunks and
- * the row kernels (soft.h). */
+ * the row kernels (soft.h), its stages on the world's threads (team.h). */
 static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
 {
-    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies;
+    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies, threads = rbs__team_threads(w);
     const double dt = w->def.dt, h_full = dt / full;
     /* adapt: def.soft_tolerance may take fewer sub-steps; the frame's n and
      * h are known once detection has measured every contact's reachable
@@ -552,13 +734,16 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     double *inc = rec + (size_t)RBS__REC * B, *margin = inc + (size_t)6 * B, *touched = margin + B;
     double shared_inc[6], free_inc[6], h = h_full;
     uint32_t n = full, i, k, s, color_start[RBS__COLORS + 2];
-    rbs__soft_rows rows;
+    soft_frame f;
     soft_emit e;
     rbs_status st;
     /* one increment for every body (shared_inc for the frame's sub-steps,
      * free_inc for the full ones of bodies in no contact), or a table */
     const int shared = uniform_acceleration(w, &e.shared_a);
 
+    /* The lent threads start now, so that they are awake when detection
+     * is over (they wait for the first stage meanwhile). */
+    rbs__team_start(w);
     /* inc: accelerations and torques for detection, then their velocity
      * increments a h, alpha h -- untouched when the increment is shared;
      * detection's kicks in the records' room (filled only after it) */
@@ -580,8 +765,10 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     rbs__chunker_start(&e.ch, w->chunk, w->chunk_cap, w->chunk_color);
     st = rbs__detect_swept(w, dt, margin, e.acc, rec, emit_contact, &e);
     rbs__chunker_finish(&e.ch, w->chunk_order, color_start);
-    if (st != RBS_OK)
+    if (st != RBS_OK) {
+        rbs__team_stop(w);
         return st;
+    }
     if (adapt) {
         n = tolerated_substeps(w, e.q / w->def.soft_tolerance);
         h = dt / n;
@@ -591,6 +778,28 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
             lane_warm(c, l, e.friction, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
         }
     }
+    if (shared) {
+        shared_increment(e.shared_a, h, shared_inc);
+        shared_increment(e.shared_a, h_full, free_inc);
+    }
+    f.w = w;
+    f.rec = rec;
+    f.inc = inc;
+    f.touched = touched;
+    f.shared = shared;
+    f.ib_frame = shared ? shared_inc : NULL;
+    f.ib_free = shared ? free_inc : NULL;
+    f.h = h;
+    f.h_full = h_full;
+    f.full = full;
+    f.rows.rec = rec;
+    f.rows.chunk = w->chunk;
+    f.rows.order = w->chunk_order;
+    f.rows.friction = e.friction;
+    f.rows.slop = w->def.slop;
+    f.rows.guard = RBS__GUARD_DEPTH;
+    rows_for_h(&f.rows, h);
+    memset(f.report, 0, sizeof f.report);
 
     /* A body that no contact of the frame touches moves alone: all its
      * sub-steps are taken after the loop, body by body (the same operations
@@ -598,121 +807,40 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * every record per sub-step -- at a million bodies those sweeps were
      * most of a falling lattice's cost -- and always all soft_substeps of
      * them, of h_full (def.soft_tolerance concerns contacts). */
-    for (i = 0; i < w->slots; ++i) {
-        record_start(w, &rec[RBS__REC * i], i);
-        if (!shared)
-            increments_for_h(w, inc, i, rec[RBS__REC * i + RBS__REC_II], touched, h, h_full);
-    }
-    if (shared) {
-        shared_increment(e.shared_a, h, shared_inc);
-        shared_increment(e.shared_a, h_full, free_inc);
-    }
-    rows.rec = rec;
-    rows.chunk = w->chunk;
-    rows.order = w->chunk_order;
-    rows.chunks = e.ch.used;
-    rows.friction = e.friction;
-    rows.slop = w->def.slop;
-    rows.guard = RBS__GUARD_DEPTH;
-    rows.touching = 0;
-    rows.deepest = 0.0;
-    rows.restituted = 0;
-    rows_for_h(&rows, h);
-
+    rbs__team_run(w, stage_records, &f, w->slots, threads);
     for (s = 0; s < n; ++s) {
-        for (k = 0; k < w->sphere_count; ++k) {
-            uint32_t b = w->spheres[k];
-            double *r = &rec[RBS__REC * b];
-            const double *ib = shared ? shared_inc : &inc[6 * b];
-            if (touched[b] == 0.0 || r[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
-                continue;
-            v3_store(r + RBS__REC_V, v3_add(v3_load(r + RBS__REC_V), v3_load(ib)));
-            v3_store(r + RBS__REC_W, v3_add(v3_load(r + RBS__REC_W), v3_load(ib + 3)));
-        }
-        w->soft_kernels->warm(&rows);
-        w->soft_kernels->pass(&rows, RBS__SOFT_SOLVE);
-        for (k = 0; k < w->sphere_count; ++k) {
-            double *r = &rec[RBS__REC * w->spheres[k]];
-            if (touched[w->spheres[k]] == 0.0 || r[RBS__REC_IM] == 0.0)
-                continue;
-            v3_store(r + RBS__REC_D, v3_mad(v3_load(r + RBS__REC_D), v3_load(r + RBS__REC_V), h));
-            v3_store(r + RBS__REC_ROT, v3_mad(v3_load(r + RBS__REC_ROT), v3_load(r + RBS__REC_W), h));
-        }
+        rbs__team_run(w, stage_velocities, &f, w->sphere_count, threads);
+        rows_pass(&f, -1, color_start);
+        rows_pass(&f, RBS__SOFT_SOLVE, color_start);
+        rbs__team_run(w, stage_positions, &f, w->sphere_count, threads);
         /* (the last relax also measures the report: positions are final) */
-        w->soft_kernels->pass(&rows, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX);
+        rows_pass(&f, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX, color_start);
     }
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t b = w->spheres[k];
-        double *r = &rec[RBS__REC * b];
-        const double *ib = shared ? free_inc : &inc[6 * b];
-        v3 v, om, d, th, dv, dw;
-        if (touched[b] != 0.0 || r[RBS__REC_IM] == 0.0)
-            continue;
-        v = v3_load(r + RBS__REC_V);
-        om = v3_load(r + RBS__REC_W);
-        d = v3_load(r + RBS__REC_D);
-        th = v3_load(r + RBS__REC_ROT);
-        dv = v3_load(ib);
-        dw = v3_load(ib + 3);
-        for (s = 0; s < full; ++s) {
-            v = v3_add(v, dv);
-            om = v3_add(om, dw);
-            d = v3_mad(d, v, h_full);
-            th = v3_mad(th, om, h_full);
+    rbs__team_run(w, stage_free, &f, w->sphere_count, threads);
+    rows_pass(&f, RBS__SOFT_RESTITUTION, color_start);
+    /* Write the bodies back.  Nothing was saved, so a failed step must
+     * leave the world as it was: every new value is checked first. */
+    for (k = 0; k < RBS_WORKERS_MAX; ++k)
+        f.bad[k] = UINT32_MAX;
+    rbs__team_run(w, stage_check, &f, w->sphere_count, threads);
+    for (k = 0; k < RBS_WORKERS_MAX; ++k)
+        if (f.bad[k] != UINT32_MAX) {
+            rbs__team_stop(w);
+            return rbs__numeric_error(w, f.bad[k]);
         }
-        v3_store(r + RBS__REC_V, v);
-        v3_store(r + RBS__REC_W, om);
-        v3_store(r + RBS__REC_D, d);
-        v3_store(r + RBS__REC_ROT, th);
-    }
-    w->soft_kernels->pass(&rows, RBS__SOFT_RESTITUTION);
-
-    /* Write the bodies back: x += displacement, one turn by the frame's
-     * rotation.  Nothing was saved, so a failed step must leave the world as
-     * it was: first every new value is made and checked finite (a finite
-     * rotation too large to square gives a NaN turn), the new orientation
-     * kept in the record (the rotation and the spare double after it, free
-     * now; in the radius' place, free too, whether it turned), then all of
-     * it is written. */
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t b = w->spheres[k], d;
-        double *r = &rec[RBS__REC * b];
-        v3 th = v3_load(r + RBS__REC_ROT);
-        int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
-        quat qt;
-        if (r[RBS__REC_IM] == 0.0)
-            continue;
-        for (d = 0; d < 3; ++d)
-            ok &= isfinite(r[RBS__REC_V + d]) && isfinite(r[RBS__REC_W + d]) &&
-                  isfinite(w->pos[3 * b + d] + r[RBS__REC_D + d]);
-        if (turns) {
-            qt = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
-            ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
-            q_store(r + RBS__REC_ROT, qt);
-        }
-        if (!ok)
-            return rbs__numeric_error(w, b);
-        r[RBS__REC_R] = turns;
-    }
-    for (k = 0; k < w->sphere_count; ++k) {
-        uint32_t b = w->spheres[k];
-        const double *r = &rec[RBS__REC * b];
-        if (r[RBS__REC_IM] == 0.0)
-            continue;
-        memcpy(&w->vel[3 * b], r + RBS__REC_V, 3 * sizeof(double));
-        memcpy(&w->avel[3 * b], r + RBS__REC_W, 3 * sizeof(double));
-        v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + RBS__REC_D)));
-        if (r[RBS__REC_R] != 0.0)
-            memcpy(&w->orient[4 * b], r + RBS__REC_ROT, 4 * sizeof(double));
-    }
+    rbs__team_run(w, stage_write, &f, w->sphere_count, threads);
+    rbs__team_stop(w);
 
     /* Report: contacts touching at the end and the deepest overlap (the
      * last relax measured them), those holding, and the impacts. */
     info->substeps = n;
-    info->colliding = rows.restituted;
-    info->contacts = rows.touching;
-    info->max_overlap = rows.deepest;
-    for (i = 0; i < rows.chunks; ++i) {
+    for (k = 0; k < RBS_WORKERS_MAX; ++k) {
+        info->colliding += f.report[k].restituted;
+        info->contacts += f.report[k].touching;
+        if (f.report[k].deepest > info->max_overlap)
+            info->max_overlap = f.report[k].deepest;
+    }
+    for (i = 0; i < e.ch.used; ++i) {
         const rbs__chunk *c = &w->chunk[i];
         for (k = 0; k < c->count; ++k)
             info->resting += c->jn[k] > 0.0;

@@ -295,6 +295,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     x->solver_body = carve(base, &at, RBS__SOLVER_STRIDE * B * sizeof(double));
     x->method_scratch = carve(base, &at, (RBS__SCRATCH_STRIDE * B + RBS__SCRATCH_EXTRA) * sizeof(double));
     x->method_state = carve(base, &at, 8 * sizeof(double));
+    x->team_mem = carve(base, &at, rbs__team_size());
     {
         size_t T = 16;
         while (T < 2 * B)
@@ -367,6 +368,7 @@ static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *d
      * frictionless (zeros), the world's restitution */
     w->pair[d.max_pairs].e = -1.0;
     w->soft_kernels = rbs__soft_kernels_best();
+    rbs_workers_init(&w->workers);
     rebuild_pair_table(w);
     w->plan_dirty = 1;
     /* the adaptive method's GSL workspaces: the one allocation outside the
@@ -1323,6 +1325,47 @@ rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double toleranc
     if (tolerance > 0.0)
         w->def.tolerance = tolerance;
     return RBS_OK;
+}
+
+void rbs_workers_init_sized(rbs_workers *workers, size_t size)
+{
+    rbs_workers d;
+    if (workers == NULL || size < sizeof(uint32_t))
+        return;
+    memset(&d, 0, sizeof d);
+    d.struct_size = (uint32_t)sizeof d;
+    d.count = 1;
+    memcpy(workers, &d, size < sizeof d ? size : sizeof d);
+    workers->struct_size = (uint32_t)(size < sizeof d ? size : sizeof d);
+}
+
+rbs_status rbs_world_set_workers(rbs_world *w, const rbs_workers *workers)
+{
+    rbs_workers d;
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return RBS_E_INVALID;
+    rbs_workers_init(&d);
+    if (workers != NULL && !def_read(&d, sizeof d, workers))
+        FAIL(w, RBS_E_INVALID, "rbs_workers: struct_size %u is not one of this library's (use rbs_workers_init)",
+             (unsigned)workers->struct_size);
+    if (d.count < 1 || d.count > RBS_WORKERS_MAX)
+        FAIL(w, RBS_E_INVALID, "workers.count must be 1 to %d, got %u", RBS_WORKERS_MAX, (unsigned)d.count);
+    if (d.count > 1 && (d.start == NULL || d.finish == NULL))
+        FAIL(w, RBS_E_INVALID, "workers.count is %u but workers.%s is NULL", (unsigned)d.count,
+             d.start == NULL ? "start" : "finish");
+#if !defined(__GNUC__)
+    if (d.count > 1)
+        FAIL(w, RBS_E_UNSUPPORTED, "this build of the library has no atomics: it steps on one thread");
+#endif
+    w->workers = d;
+    return RBS_OK;
+}
+
+uint32_t rbs_world_workers(const rbs_world *w)
+{
+    if (w == NULL || w->magic != WORLD_MAGIC)
+        return 0;
+    return w->workers.count;
 }
 
 rbs_method rbs_world_method_in_use(const rbs_world *w)

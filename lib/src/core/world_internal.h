@@ -224,6 +224,10 @@ struct rbs_world {
                                              (soft_chunks.c; zero between frames) */
     const struct rbs__soft_kernels *soft_kernels; /* the rows' kernels (soft.h):
                                              chosen for the processor at creation */
+    rbs_workers workers;                  /* threads lent by the caller (team.c);
+                                             count 1: none */
+    unsigned char *team_mem;              /* rbs__team_size() bytes: the step's
+                                             threads' synchronisation (team.c) */
 
     /* methods (step_verlet.c, step_rk4.c, step_adaptive.c, step_soft.c) */
     double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot, and
@@ -233,6 +237,7 @@ struct rbs_world {
 };
 
 /* Layout and creation (world.c). */
+size_t rbs__team_size(void); /* bytes of team_mem (team.c) */
 size_t rbs__world_layout(rbs_world *w, const rbs_world_def *def, unsigned char *base);
 int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 #if defined(__GNUC__)

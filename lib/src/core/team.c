@@ -1,0 +1,199 @@
+/*
+ * team.c - a step's stages on the threads the caller lends the world (see
+ * team.h for what a stage may be and why results do not depend on the
+ * threads).
+ *
+ * Design (after Box2D v3's solver stages): the step calls the pool's start
+ * once, which runs worker() on the lent threads for the whole step; each
+ * stage is published in one 64-bit ticket -- the stage's number, its share
+ * count and a bit for each share claimed -- so a thread claims a share with
+ * one atomic compare-and-exchange that also checks which stage the share
+ * belongs to (a thread late from the last stage cannot take a share of the
+ * next one for the last one's).  Thread k takes share k first, so each keeps
+ * the same part of every stage -- the same bodies, the same chunks of each
+ * colour -- in its own cache (taken at random, the records' cache lines
+ * moved between the cores at every colour and the rows ran three times
+ * slower); a share nobody has claimed when a thread is done with its own
+ * is taken by that thread.  The stage's function and items sit in one of two slots,
+ * by the stage number's parity: the step writes the slot before it
+ * publishes the ticket (release) and rewrites it two stages later, after
+ * every share of the stage between has been done, so a thread that holds an
+ * unfinished share always reads its own stage's slot.  Finished shares are
+ * counted (release); the step's thread takes shares too, then waits
+ * (acquire) until the count is full.  Everything a share writes is so seen
+ * by every later stage, on any thread.  Atomics are GCC's and Clang's
+ * __atomic built-ins; other compilers step on one thread
+ * (rbs_world_set_workers refuses a pool there).
+ */
+#include "core/team.h"
+
+#define QUIT 0xFFFFu /* a ticket's share count that tells the workers to return */
+#define RBS__TEAM_SHARES 16 /* the most shares of a stage: a ticket's claimed bits */
+
+#if defined(__GNUC__)
+#define TEAM_ATOMICS 1
+#include <sched.h>
+#if defined(__x86_64__) || defined(__i386__)
+#define TEAM_PAUSE() __builtin_ia32_pause()
+#else
+#define TEAM_PAUSE() ((void)0)
+#endif
+#endif
+
+/* Pauses a waiting thread spins before it yields the processor at every
+ * round (on a machine whose threads share a processor, a spinning wait
+ * would hold back the thread it waits for). */
+#define SPINS_BEFORE_YIELD 2048
+
+typedef struct stage {
+    rbs__stage_fn fn;
+    void *ctx;
+    uint32_t n, shares;
+} stage;
+
+struct rbs__team {
+    uint64_t ticket;    /* stage << 32 | shares << 16 | next share (atomic) */
+    unsigned char pad0[56];
+    uint32_t done;      /* shares of this stage done (atomic) */
+    unsigned char pad1[60];
+    stage slot[2];      /* by the stage's parity */
+    uint64_t stage_no;  /* the step's thread's own: the stage published last */
+    int running;        /* the workers were started for this step */
+};
+
+size_t rbs__team_size(void) { return sizeof(rbs__team) + 64; }
+
+static rbs__team *team_of(const rbs_world *w)
+{
+    uintptr_t p = (uintptr_t)w->team_mem;
+    return (rbs__team *)(void *)(w->team_mem + (64u - p % 64u) % 64u);
+}
+
+uint32_t rbs__team_threads(const rbs_world *w)
+{
+#if defined(TEAM_ATOMICS)
+    return w->workers.count > 1 ? w->workers.count : 1u;
+#else
+    (void)w;
+    return 1u;
+#endif
+}
+
+static void run_share(const stage *st, uint32_t k)
+{
+    uint32_t begin = (uint32_t)((uint64_t)k * st->n / st->shares);
+    uint32_t end = (uint32_t)((uint64_t)(k + 1) * st->n / st->shares);
+    st->fn(st->ctx, k, begin, end);
+}
+
+#if defined(TEAM_ATOMICS)
+/* Claim and do shares of the stage on the ticket until none is left, share
+ * `mine` first (a thread keeps the same part of every stage, and so the
+ * same bodies in its cache); the stage number, or UINT64_MAX when the
+ * ticket says to return. */
+static uint64_t take_shares(rbs__team *t, uint32_t mine)
+{
+    uint64_t tk = __atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE);
+    for (;;) {
+        uint32_t shares = (uint32_t)(tk >> 16) & 0xFFFFu, claimed = (uint32_t)tk & 0xFFFFu, k;
+        if (shares == QUIT)
+            return UINT64_MAX;
+        if (claimed == (1u << shares) - 1u)
+            return tk >> 32;
+        k = mine < shares && !(claimed >> mine & 1u) ? mine : 0;
+        while (claimed >> k & 1u)
+            k++;
+        /* (a failed exchange reloads tk: another thread claimed, or the
+         * stage changed) */
+        if (__atomic_compare_exchange_n(&t->ticket, &tk, tk | (uint64_t)1 << k, 0, __ATOMIC_ACQ_REL,
+                                        __ATOMIC_ACQUIRE)) {
+            run_share(&t->slot[(tk >> 32) & 1u], k);
+            __atomic_fetch_add(&t->done, 1, __ATOMIC_RELEASE);
+            tk = __atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE);
+        }
+    }
+}
+
+/* A lent thread, for the whole step: the shares of each stage as it comes. */
+static void worker(void *task, uint32_t k)
+{
+    rbs__team *t = (rbs__team *)task;
+    for (;;) {
+        uint64_t s = take_shares(t, k);
+        if (s == UINT64_MAX)
+            return;
+        uint32_t spins = 0;
+        while ((__atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE) >> 32) == s)
+            if (++spins < SPINS_BEFORE_YIELD)
+                TEAM_PAUSE();
+            else
+                sched_yield();
+    }
+}
+#endif
+
+void rbs__team_start(rbs_world *w)
+{
+    rbs__team *t = team_of(w);
+    t->running = 0;
+#if defined(TEAM_ATOMICS)
+    if (rbs__team_threads(w) > 1) {
+        t->stage_no++;
+        t->done = 0;
+        /* no share yet: the workers wait for the first stage */
+        __atomic_store_n(&t->ticket, t->stage_no << 32, __ATOMIC_RELEASE);
+        t->running = 1;
+        w->workers.start(w->workers.user, worker, t, w->workers.count - 1);
+    }
+#endif
+}
+
+void rbs__team_stop(rbs_world *w)
+{
+    rbs__team *t = team_of(w);
+    if (!t->running)
+        return;
+#if defined(TEAM_ATOMICS)
+    t->stage_no++;
+    __atomic_store_n(&t->ticket, t->stage_no << 32 | (uint64_t)QUIT << 16, __ATOMIC_RELEASE);
+    w->workers.finish(w->workers.user);
+#endif
+    t->running = 0;
+}
+
+void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32_t shares)
+{
+    rbs__team *t = team_of(w);
+    stage *st;
+    if (n == 0)
+        return;
+    if (shares > n)
+        shares = n;
+    if (shares > RBS__TEAM_SHARES)
+        shares = RBS__TEAM_SHARES;
+    if (!t->running || shares <= 1) {
+        fn(ctx, 0, 0, n);
+        return;
+    }
+#if defined(TEAM_ATOMICS)
+    t->stage_no++;
+    st = &t->slot[t->stage_no & 1u];
+    st->fn = fn;
+    st->ctx = ctx;
+    st->n = n;
+    st->shares = shares;
+    __atomic_store_n(&t->done, 0, __ATOMIC_RELAXED);
+    __atomic_store_n(&t->ticket, t->stage_no << 32 | (uint64_t)shares << 16, __ATOMIC_RELEASE);
+    (void)take_shares(t, 0);
+    {
+        uint32_t spins = 0;
+        while (__atomic_load_n(&t->done, __ATOMIC_ACQUIRE) != shares)
+            if (++spins < SPINS_BEFORE_YIELD)
+                TEAM_PAUSE();
+            else
+                sched_yield();
+    }
+#else
+    (void)st;
+#endif
+}

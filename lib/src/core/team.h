@@ -1,0 +1,37 @@
+/*
+ * team.h - a step's stages on the threads the caller lends the world
+ * (internal; team.c).
+ *
+ * A stage is a function over items [0, n) whose items are independent:
+ * any split of them among threads, in any order, gives the same result
+ * (bodies each on their own; the chunks of one colour, which share no
+ * body).  team_run splits a stage into shares, which the step's own thread
+ * and the lent workers claim one at a time until none is left, and returns
+ * when every share is done, so the stages of a frame follow one another as
+ * they would on one thread: results do not depend on how many threads
+ * there are, nor on which took what.  The step's thread never waits for a
+ * worker to arrive -- it takes every share nobody has claimed -- so a pool
+ * that starts its threads late, or not at all, only slows the step.
+ */
+#ifndef RBS_CORE_TEAM_H
+#define RBS_CORE_TEAM_H
+
+#include "core/world_internal.h"
+
+/* A stage's work: items [begin, end) of share `share` (0 .. shares - 1). */
+typedef void (*rbs__stage_fn)(void *ctx, uint32_t share, uint32_t begin, uint32_t end);
+
+/* The synchronisation of one step's threads, in the world (team.c). */
+typedef struct rbs__team rbs__team;
+
+/* Start the lent workers for one step (nothing with one thread). */
+void rbs__team_start(rbs_world *w);
+/* Stop them: they return, and the pool's finish waits for them. */
+void rbs__team_stop(rbs_world *w);
+/* Run fn over items [0, n) in up to `shares` shares (at most the threads,
+ * at least 1), on every thread of the step; returns when all are done. */
+void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32_t shares);
+/* The threads a step may use (1 without a pool). */
+uint32_t rbs__team_threads(const rbs_world *w);
+
+#endif
