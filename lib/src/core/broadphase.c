@@ -336,20 +336,28 @@ static int list_build(rbs_world *w, const double *C, uint32_t n, double fixed, d
         P[2 * at + 1] = b;
     }
     memcpy(w->vl_pos, C, 3 * (size_t)n * sizeof(double));
+    /* each first item's pairs: its bucket, start[i] .. start[i + 1] - 1 */
+    memcpy(w->vl_start, start, ((size_t)n + 1) * sizeof *start);
     w->vl_items = n;
     w->vl_valid = 1;
     return 1;
 }
 
-void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
-                           rbs__pair_fn fn, void *ctx)
+int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed)
 {
     const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
     double size = 0.0, rsum = 0.0, rmax = 0.0, guard, mean, base, grown = 0.0;
     int reuse = w->vl_valid && w->vl_items == n, fits = 1;
     uint32_t i, k;
-    if (n < 2)
-        return;
+    if (n < 2) {
+        /* no pair: an empty list */
+        w->vl_count = 0;
+        w->vl_start[0] = 0;
+        if (n == 1)
+            w->vl_start[1] = 0;
+        w->vl_valid = 0;
+        return 1;
+    }
     for (i = 0; i < n; ++i) {
         rsum += w->radius[w->spheres[i]];
         rmax = R[i] > rmax ? R[i] : rmax;
@@ -363,20 +371,30 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
                dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
         fits = R[i] + sqrt(dx * dx + dy * dy + dz * dz) + guard <= w->vl_reach[i]; /* (false for a NaN) */
     }
-    if (!(reuse && fits && isfinite(guard))) {
-        /* grown by skins, so that it lasts; if that holds more pairs than
-         * the list has room for, by the base skin alone; else just what this
-         * pass needs */
-        mean = rsum / n;
-        base = 0.5 * LIST_SKIN * mean + guard;
-        if (!list_build(w, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) &&
-            !(grown > base && list_build(w, C, n, fixed, base, 0.0, 0.0, &grown)) &&
-            !list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown)) {
-            /* more candidate pairs than the list holds: the grid itself (its
-             * own order; a function of this pass's centres only) */
-            grid_pairs(w, C, R, n, query, fn, ctx);
-            return;
-        }
+    if (reuse && fits && isfinite(guard))
+        return 1;
+    /* grown by skins, so that it lasts; if that holds more pairs than the
+     * list has room for, by the base skin alone; else just what this pass
+     * needs; else none */
+    mean = rsum / n;
+    base = 0.5 * LIST_SKIN * mean + guard;
+    return list_build(w, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) ||
+           (grown > base && list_build(w, C, n, fixed, base, 0.0, 0.0, &grown)) ||
+           list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown);
+}
+
+void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
+                           rbs__pair_fn fn, void *ctx)
+{
+    const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
+    uint32_t k;
+    if (n < 2)
+        return;
+    if (!rbs__broadphase_list(w, centers, n, fixed)) {
+        /* more candidate pairs than the list holds: the grid itself (its
+         * own order; a function of this pass's centres only) */
+        grid_pairs(w, C, R, n, query, fn, ctx);
+        return;
     }
     for (k = 0; k < w->vl_count; ++k) {
         uint32_t a = w->vl_pair[2 * k], b = w->vl_pair[2 * k + 1];

@@ -76,11 +76,9 @@ static int com_off(const rbs_world *w, uint32_t i)
  * lever: it never moves). */
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap)
 {
-    uint32_t n = w->def.max_materials + 1;
-    int32_t row = w->pair_table[w->material[c->a] * n + w->material[c->b]];
-    /* No row for this pair: the default row, frictionless with the world's
-     * restitution (documented in rbsim.h; scenes reject this case). */
-    c->row = row >= 0 ? (uint32_t)row : w->def.max_pairs;
+    /* (no row for this pair: the default row, frictionless with the world's
+     * restitution; documented in rbsim.h, scenes reject this case) */
+    c->row = rbs__pair_row(w, c->a, c->b);
     c->lb = w->type[c->b] == RBS_BODY_PLANE ? 0.0 : dist - w->radius[c->a];
     c->gap = gap;
     /* (the plan's gather: every sphere centred, no body off) */
@@ -167,13 +165,6 @@ static double creep_bound(const rbs_world *w, double dt)
     return isfinite(most) ? most : 0.0;
 }
 
-/* Sphere a's reach for the broad phase: its radius and slop plus m, how
- * far it may move (one expression, so that detect_pair's second pass
- * repeats the first pass's test bit for bit). */
-static inline double sphere_reach(const rbs_world *w, uint32_t a, double m)
-{
-    return w->radius[a] * (1.0 + w->def.slop) + m;
-}
 
 /* Detection state passed through the broad phase. */
 typedef struct detect_ctx {
@@ -255,8 +246,8 @@ static int contact_done(rbs_world *w, detect_ctx *ctx, rbs__contact *c, double s
  * (|d| >= n* . d).  *lb is b's lever at that moment: r_b at the touch,
  * else to a's surface point (as rbs__contact_set's).  Returns 0 (nothing
  * written) for a pair that is not closing. */
-static int impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double ra, double rb, double dt,
-                         v3 *n, double *gap, double *lb)
+int rbs__impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double ra, double rb, double dt, v3 *n,
+                       double *gap, double *lb)
 {
     v3 u = v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), at;
     double rsum = ra + rb, uu = v3_dot(u, u), du = v3_dot(d, u), dd = v3_dot(d, d) - rsum * rsum;
@@ -284,15 +275,58 @@ static int impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, doubl
  * by (1 + e) m_b / (m_a + m_b) u <= 2 m_b / (m_a + m_b) u (the impact law,
  * frictionless), and b's by 2 m_a / (m_a + m_b) u; each is added to its
  * body's sum in kick (m/s). */
-static void kick_add(const rbs_world *w, double *kick, uint32_t a, uint32_t b, v3 d, double dist)
+double rbs__kick_speed(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist)
 {
     double du = v3_dot(d, v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])));
-    double ia = w->inv_mass[a], ib = w->inv_mass[b], u;
+    double ia = w->inv_mass[a], ib = w->inv_mass[b];
     if (!(du < 0.0) || !(ia + ib > 0.0))
-        return; /* (most pairs: not closing) */
-    u = -du / (dist * (ia + ib));
-    kick[a] += 2.0 * ia * u;
-    kick[b] += 2.0 * ib * u;
+        return 0.0; /* (most pairs: not closing) */
+    return -du / (dist * (ia + ib));
+}
+
+static void kick_add(const rbs_world *w, double *kick, uint32_t a, uint32_t b, v3 d, double dist)
+{
+    double u = rbs__kick_speed(w, a, b, d, dist);
+    if (u == 0.0)
+        return;
+    kick[a] += 2.0 * w->inv_mass[a] * u;
+    kick[b] += 2.0 * w->inv_mass[b] * u;
+}
+
+void rbs__pair_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t b, v3 d, double dist, double dt,
+                       int swept)
+{
+    double ra = w->radius[a], rb = w->radius[b];
+    c->a = a;
+    c->b = b;
+    /* Coincident centres have no normal: pick +z (documented). */
+    c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+    rbs__contact_set(w, c, dist, dist - ra - rb);
+    /* Swept (the soft step): a closing pair that is apart takes the normal
+     * of the moment its straight paths touch within the frame (or, if they
+     * do not, come closest in it), with the separation along it and the
+     * levers of that moment, so that an oblique impact pushes along the
+     * line of centres at impact and a pair that passes is not stopped short
+     * (exact for straight paths: two spheres under one uniform gravity
+     * have no relative acceleration).  The frame-start normal, as Catto's
+     * speculative contacts take it, turned a 30-degree hit at 2 m/s by 0.1
+     * degree, and stopped glancing pairs before they touched (a third of
+     * the speed wrong at dt = 10 ms).  The prediction stops at the frame's
+     * end: beyond it the frame's other impulses make it a guess (the whole
+     * path's closest approach let a falling heap of 27 balls overlap by
+     * 1.1 % of a radius instead of 0.15 %).  Spheres with the centre of
+     * mass off the centre keep the frame-start normal (their centres do
+     * not move straight); the flags keep the true gap. */
+    if (swept && (c->flags & RBS__APART) && !(c->flags & RBS__OFF))
+        (void)rbs__impact_normal(w, a, b, d, ra, rb, dt, &c->n, &c->gap, &c->lb);
+}
+
+void rbs__plane_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t p, double gap)
+{
+    c->a = a;
+    c->b = p;
+    c->n = v3_load(&w->normal[3 * p]);
+    rbs__contact_set(w, c, 0.0, gap);
 }
 
 static void detect_pair(void *vctx, uint32_t i, uint32_t j)
@@ -310,7 +344,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
          * of its contacts (the broad phase's own test, the same bits) */
         const double *C = ctx->centres;
         double ex = C[3 * i] - C[3 * j], ey = C[3 * i + 1] - C[3 * j + 1], ez = C[3 * i + 2] - C[3 * j + 2];
-        double sr = sphere_reach(w, a, ctx->first[a]) + sphere_reach(w, b, ctx->first[b]);
+        double sr = rbs__sphere_reach(w, a, ctx->first[a]) + rbs__sphere_reach(w, b, ctx->first[b]);
         if (ex * ex + ey * ey + ez * ez <= sr * sr)
             return;
     }
@@ -328,28 +362,7 @@ static void detect_pair(void *vctx, uint32_t i, uint32_t j)
     c = contact_new(w, ctx, &tmp);
     if (c == NULL)
         return;
-    c->a = a;
-    c->b = b;
-    /* Coincident centres have no normal: pick +z (documented). */
-    c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
-    rbs__contact_set(w, c, dist, gap);
-    /* Swept (the soft step): a closing pair that is apart takes the normal
-     * of the moment its straight paths touch within the frame (or, if they
-     * do not, come closest in it), with the separation along it and the
-     * levers of that moment, so that an oblique impact pushes along the
-     * line of centres at impact and a pair that passes is not stopped short
-     * (exact for straight paths: two spheres under one uniform gravity
-     * have no relative acceleration).  The frame-start normal, as Catto's
-     * speculative contacts take it, turned a 30-degree hit at 2 m/s by 0.1
-     * degree, and stopped glancing pairs before they touched (a third of
-     * the speed wrong at dt = 10 ms).  The prediction stops at the frame's
-     * end: beyond it the frame's other impulses make it a guess (the whole
-     * path's closest approach let a falling heap of 27 balls overlap by
-     * 1.1 % of a radius instead of 0.15 %).  Spheres with the centre of
-     * mass off the centre keep the frame-start normal (their centres do
-     * not move straight); the flags keep the true gap. */
-    if (ctx->swept && (c->flags & RBS__APART) && !(c->flags & RBS__OFF))
-        (void)impact_normal(w, a, b, d, ra, rb, ctx->dt, &c->n, &c->gap, &c->lb);
+    rbs__pair_contact(w, c, a, b, d, dist, ctx->dt, ctx->swept);
     if (ctx->first != NULL)
         c->flags |= RBS__GUARD;
     if (contact_done(w, ctx, c, slop))
@@ -379,10 +392,7 @@ static rbs_status plane_contacts(rbs_world *w, detect_ctx *ctx, uint32_t a, doub
         c = contact_new(w, ctx, &tmp);
         if (c == NULL)
             return ctx->status;
-        c->a = a;
-        c->b = b;
-        c->n = n;
-        rbs__contact_set(w, c, 0.0, gap);
+        rbs__plane_contact(w, c, a, b, gap);
         if (skip >= 0.0)
             c->flags |= RBS__GUARD;
         if (contact_done(w, ctx, c, slop))
@@ -418,7 +428,7 @@ static void detect_kicked(rbs_world *w, detect_ctx *ctx, const double *margin, d
         kick[a] = margin[a] + (take ? grow : 0.0); /* (from here the grown margin) */
         w->bp_query[i] = (uint8_t)take;
         kicked += (uint32_t)take;
-        w->bp_reach[i] = sphere_reach(w, a, kick[a]);
+        w->bp_reach[i] = rbs__sphere_reach(w, a, kick[a]);
     }
     if (kicked == 0)
         return;
@@ -468,7 +478,7 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
         const double *centres = sphere_centres(w);
         for (i = 0; i < w->sphere_count; ++i) {
             uint32_t a = w->spheres[i];
-            w->bp_reach[i] = sphere_reach(w, a, margin != NULL ? margin[a] : half);
+            w->bp_reach[i] = rbs__sphere_reach(w, a, margin != NULL ? margin[a] : half);
             if (kick != NULL)
                 kick[a] = 0.0;
         }
@@ -477,6 +487,28 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
         if (ctx.kick != NULL && ctx.status == RBS_OK)
             detect_kicked(w, &ctx, margin, kick, centres);
     }
+    if (w->contact_count > w->contacts_high)
+        w->contacts_high = w->contact_count;
+    return ctx.status;
+}
+
+rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, const double *acc, double *kick,
+                              rbs__contact_sink sink, void *sink_ctx)
+{
+    detect_ctx ctx;
+    ctx.w = w;
+    ctx.dt = dt;
+    ctx.reach = 0.0;
+    ctx.swept = 1;
+    ctx.acc = acc;
+    ctx.kick = NULL;
+    ctx.first = NULL;
+    ctx.centres = NULL;
+    ctx.sink = sink;
+    ctx.sink_ctx = sink_ctx;
+    ctx.status = RBS_OK;
+    if (w->plan.sphere_pairs)
+        detect_kicked(w, &ctx, margin, kick, sphere_centres(w));
     if (w->contact_count > w->contacts_high)
         w->contacts_high = w->contact_count;
     return ctx.status;

@@ -46,12 +46,8 @@ typedef struct rbs__chunk {
     uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
     uint32_t count;             /* lanes in use: the first count */
     uint32_t flags;             /* RBS__CH_* bits, 4 a field (bit l: lane l) */
-    uint32_t color;             /* its colour (soft_chunks.c); RBS__COLORS:
-                                   serial */
-    uint32_t pad[5];
+    uint32_t pad[6];
 } rbs__chunk;
-
-#define RBS__COLORS 64 /* colours a frame may take (soft_chunks.c) */
 
 #define RBS__CH_TOUCHED 0u  /* took a normal impulse this frame */
 #define RBS__CH_BOUNCE 4u   /* restitution takes it (approached faster than
@@ -68,7 +64,6 @@ enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_
 typedef struct rbs__soft_rows {
     double *rec;           /* records, RBS__REC doubles a slot */
     rbs__chunk *chunk;     /* the chunks */
-    const uint32_t *order; /* the order the passes take them in */
     int friction;          /* some pair has friction */
     double inv_h;          /* 1 / h, h the sub-step */
     double bias_rate, mass_scale, impulse_scale; /* the soft row's coefficients */
@@ -87,7 +82,7 @@ typedef struct rbs__soft_report {
 } rbs__soft_report;
 
 /* The row kernels: one per backend of core/wide.h, the same bits.  Each
- * takes the chunks order[begin .. end - 1] (stage < 0: the warm start,
+ * takes the chunks chunk[begin .. end - 1] in order (stage < 0: the warm start,
  * which applies every lane's accumulated impulses again) and adds what it
  * reports to *report. */
 typedef struct rbs__soft_kernels {

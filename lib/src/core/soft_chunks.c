@@ -1,23 +1,21 @@
 /*
- * soft_chunks.c - packing a frame's contacts into chunks of four lanes
+ * soft_chunks.c - packing one group's contacts into chunks of four lanes
  * whose bodies differ (the soft step's gathered layout; soft.h).
  *
- * Each contact takes a colour, the lowest that no other contact of either
- * of its bodies has taken this frame (a greedy colouring of the contact
- * graph, one 64-bit mask of colours a body; a plane does not move and takes
- * none), and goes into its colour's open chunk: contacts of one colour
- * share no moving body, so any four of them can be a chunk, and all the
- * chunks of one colour can be taken in any order -- one after the other or
- * side by side -- with the same result.  Contacts come in detection's order
- * (each sphere's planes, then the pairs in the order of the candidate list,
- * neighbours in space close together), and a colour's chunks keep it.  A
- * contact whose bodies have taken all RBS__COLORS colours between them (a
- * body touching more than 64 others, or a pair of them) goes into a serial
- * chunk, whose lanes the passes take one after the other, after the
- * colours.  Planes and pairs are not mixed in a chunk (a plane's rows read
- * one body only): the open chunks are left when the kind changes, which it
- * does at most three times a frame, so a frame needs at most
- * RBS__CHUNKS(contacts) chunks.  The order is a function of the contacts
+ * A group's contacts come in detection's order (neighbours in space close
+ * together) and its chunks are taken in the order they were opened, by one
+ * thread.  Up to RBS__OPEN_CHUNKS chunks of each kind (pairs of spheres;
+ * spheres against planes, whose rows read one body) are open at a time; a
+ * contact goes into the first open chunk of its kind that holds neither of
+ * its bodies, or opens a new one, and a chunk is closed when its four lanes
+ * are full.  Which open chunks hold a body is a pair of bytes of bits per
+ * body (member), so a placement costs a few instructions, and the chunks
+ * keep detection's order nearly as it was: a pass sweeps the records nearly
+ * in order, and Gauss-Seidel carries an impulse along as it would contact
+ * by contact.  A contact that fits no open chunk and finds none free (a
+ * body in contact with more than RBS__OPEN_CHUNKS others in a row: a large
+ * sphere under many small ones) goes into a serial chunk, whose lanes are
+ * taken one after the other.  The order is a function of the contacts
  * alone: results are deterministic.
  */
 #include <string.h>
@@ -25,10 +23,10 @@
 #include "core/soft_chunks.h"
 
 /* The lowest bit set in bits (> 0). */
-static int lowest_bit(uint64_t bits)
+static int lowest_bit(unsigned bits)
 {
 #if defined(__GNUC__)
-    return __builtin_ctzll(bits);
+    return __builtin_ctz(bits);
 #else
     int k = 0;
     while (!(bits >> k & 1u))
@@ -37,90 +35,100 @@ static int lowest_bit(uint64_t bits)
 #endif
 }
 
-static rbs__chunk *chunk_new(rbs__chunker *ch, unsigned flags, uint32_t color)
+/* A new chunk, its lanes unused.  Only the impulses are cleared of the
+ * last frame's values (an unused lane's other fields are left: its rows
+ * read a record of zeros, and its results go nowhere; the warm start skips
+ * a chunk whose impulses are all zero). */
+static rbs__chunk *chunk_new(rbs__chunker *ch, unsigned flags)
 {
     rbs__chunk *c;
     if (ch->used >= ch->cap)
         return NULL;
-    c = &ch->chunk[ch->used];
-    memset(c, 0, sizeof *c);
+    c = &ch->chunk[ch->used++];
+    memset(c->jn, 0, sizeof c->jn);
+    memset(c->jx, 0, sizeof c->jx);
+    memset(c->jy, 0, sizeof c->jy);
+    memset(c->jz, 0, sizeof c->jz);
+    c->count = 0;
     c->flags = flags;
-    c->color = color;
-    ch->open[color] = ch->used++;
     return c;
 }
 
-static void leave_open(rbs__chunker *ch)
+/* Close open chunk k of kind: its bodies are free of it. */
+static void close_open(rbs__chunker *ch, int kind, int k)
 {
-    int k;
-    for (k = 0; k <= RBS__COLORS; ++k)
-        ch->open[k] = UINT32_MAX;
+    const rbs__chunk *c = &ch->chunk[ch->open[kind][k]];
+    const uint16_t keep = (uint16_t)~(1u << (8 * kind + k));
+    uint32_t l;
+    for (l = 0; l < c->count; ++l) {
+        ch->member[c->a[l]] &= keep;
+        if (!kind)
+            ch->member[c->b[l]] &= keep;
+    }
+    ch->open_mask[kind] &= ~(1u << k);
 }
 
-void rbs__chunker_start(rbs__chunker *ch, rbs__chunk *chunk, uint32_t cap, uint64_t *color)
+void rbs__chunker_start(rbs__chunker *ch, rbs__chunk *chunk, uint32_t cap, uint16_t *member)
 {
     ch->chunk = chunk;
     ch->cap = cap;
     ch->used = 0;
-    ch->color = color;
-    ch->plane = 1;
-    leave_open(ch);
+    ch->member = member;
+    ch->serial = UINT32_MAX;
+    ch->open_mask[0] = ch->open_mask[1] = 0;
+}
+
+void rbs__chunker_finish(rbs__chunker *ch)
+{
+    int kind, k;
+    for (kind = 0; kind < 2; ++kind)
+        for (k = 0; k < RBS__OPEN_CHUNKS; ++k)
+            if (ch->open_mask[kind] >> k & 1u)
+                close_open(ch, kind, k);
+    ch->serial = UINT32_MAX;
 }
 
 rbs__chunk *rbs__chunker_place(rbs__chunker *ch, uint32_t a, uint32_t b, int plane, uint32_t *lane)
 {
-    uint64_t taken;
-    uint32_t k;
+    const int kind = plane != 0;
+    const unsigned all = (1u << RBS__OPEN_CHUNKS) - 1u;
+    unsigned busy = (unsigned)(ch->member[a] >> (8 * kind)) | (kind ? 0u : ch->member[b]), fits;
     rbs__chunk *c;
-    if (plane != ch->plane) {
-        leave_open(ch);
-        ch->plane = plane;
-    }
-    taken = ch->color[a] | (plane ? 0u : ch->color[b]);
-    k = taken == ~(uint64_t)0 ? RBS__COLORS : (uint32_t)lowest_bit(~taken);
-    if (ch->open[k] != UINT32_MAX && ch->chunk[ch->open[k]].count < RBS__LANES) {
-        c = &ch->chunk[ch->open[k]];
-    } else {
-        unsigned flags = k == RBS__COLORS ? 1u << RBS__CH_SERIAL : plane ? 15u << RBS__CH_PLANE : 0u;
-        c = chunk_new(ch, flags, k);
+    int k;
+    fits = ch->open_mask[kind] & ~busy & all;
+    if (fits != 0) {
+        k = lowest_bit(fits);
+        c = &ch->chunk[ch->open[kind][k]];
+    } else if (ch->open_mask[kind] != all) {
+        k = lowest_bit(~ch->open_mask[kind] & all);
+        c = chunk_new(ch, kind ? 15u << RBS__CH_PLANE : 0u);
         if (c == NULL)
             return NULL;
+        ch->open[kind][k] = (uint32_t)(c - ch->chunk);
+        ch->open_mask[kind] |= 1u << k;
+    } else {
+        /* no open chunk can take it and none is free: the serial chunk */
+        if (ch->serial == UINT32_MAX || ch->chunk[ch->serial].count == RBS__LANES) {
+            c = chunk_new(ch, 1u << RBS__CH_SERIAL);
+            if (c == NULL)
+                return NULL;
+            ch->serial = (uint32_t)(c - ch->chunk);
+        }
+        c = &ch->chunk[ch->serial];
+        *lane = c->count++;
+        c->a[*lane] = a;
+        c->b[*lane] = b;
+        if (kind)
+            c->flags |= 1u << (RBS__CH_PLANE + *lane);
+        return c;
     }
     *lane = c->count++;
     c->a[*lane] = a;
     c->b[*lane] = b;
-    if (k == RBS__COLORS) {
-        if (plane)
-            c->flags |= 1u << (RBS__CH_PLANE + *lane);
-        return c;
-    }
-    ch->color[a] |= (uint64_t)1 << k;
-    if (!plane)
-        ch->color[b] |= (uint64_t)1 << k;
+    ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
+    if (!kind)
+        ch->member[b] |= (uint16_t)(1u << k);
+    if (c->count == RBS__LANES)
+        close_open(ch, kind, k);
     return c;
-}
-
-void rbs__chunker_finish(rbs__chunker *ch, uint32_t *order, uint32_t *start)
-{
-    uint32_t i, k;
-    for (k = 0; k <= RBS__COLORS + 1; ++k)
-        start[k] = 0;
-    for (i = 0; i < ch->used; ++i) {
-        const rbs__chunk *c = &ch->chunk[i];
-        uint32_t l;
-        start[c->color + 1]++;
-        for (l = 0; l < c->count; ++l) {
-            ch->color[c->a[l]] = 0;
-            ch->color[c->b[l]] = 0;
-        }
-    }
-    for (k = 0; k <= RBS__COLORS; ++k)
-        start[k + 1] += start[k];
-    /* (start[k] now the next place of colour k; moved back below) */
-    for (i = 0; i < ch->used; ++i)
-        order[start[ch->chunk[i].color]++] = i;
-    for (k = RBS__COLORS + 1; k > 0; --k)
-        start[k] = start[k - 1];
-    start[0] = 0;
-    leave_open(ch);
 }

@@ -311,14 +311,14 @@ static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__s
     }
 }
 
-/* One pass over the chunks order[begin .. end - 1] in stage (stage < 0:
- * the warm start). */
+/* One pass over the chunks [begin, end) in stage (stage < 0: the warm
+ * start). */
 static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end,
                                   rbs__soft_report *report)
 {
     uint32_t i;
     for (i = begin; i < end; ++i) {
-        rbs__chunk *c = &k->chunk[k->order[i]];
+        rbs__chunk *c = &k->chunk[i];
         unsigned f = c->flags, used = (1u << c->count) - 1u, active = used;
         int plane = (f >> RBS__CH_PLANE & 1u) != 0;
         if (f >> RBS__CH_SERIAL & 1u) {

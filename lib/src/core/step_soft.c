@@ -67,7 +67,7 @@
 #include <string.h>
 
 #include "core/rows.h"
-#include "core/soft_chunks.h"
+#include "core/soft_detect.h"
 #include "core/team.h"
 
 #define SOFT_HERTZ 0.25 /* contact frequency, as a fraction of the sub-step rate */
@@ -321,11 +321,12 @@ static uint32_t tolerated_substeps(const rbs_world *w, double q)
 
 /* The velocity increments of slot i (without a shared increment) for
  * sub-steps of h, from the accelerations in inc -- those of a body of no
- * contact, or a plane's (0), for the full sub-steps h_full; ii its 1/I. */
-static inline void increments_for_h(const rbs_world *w, double *inc, uint32_t i, double ii, const double *touched,
-                                    double h, double h_full)
+ * contact (touched 0), or a plane's (0), for the full sub-steps h_full; ii
+ * its 1/I. */
+static inline void increments_for_h(const rbs_world *w, double *inc, uint32_t i, double ii, int touched, double h,
+                                    double h_full)
 {
-    const double hi = w->type[i] == RBS_BODY_SPHERE && touched[i] != 0.0 ? h : h_full;
+    const double hi = w->type[i] == RBS_BODY_SPHERE && touched ? h : h_full;
     v3_store(&inc[6 * i], v3_scale(v3_load(&inc[6 * i]), hi));
     v3_store(&inc[6 * i + 3], v3_scale(v3_load(&inc[6 * i + 3]), ii * hi));
 }
@@ -368,162 +369,6 @@ static void record_start(const rbs_world *w, double *r, uint32_t i)
     memset(r + RBS__REC_ROT, 0, 4 * sizeof(double));
 }
 
-/* The gathered layout's prepare, contact by contact as detection finds them
- * (rbs__detect_swept's sink): each goes into a chunk lane with what its
- * rows read -- its effective masses (levers along n: 1/(1/m_a + 1/m_b)
- * along n, 1/(1/m_a + 1/m_b + r_a^2/I_a + l_b^2/I_b) across it), its
- * pair's friction, its approach speed at the frame's start (restitution's
- * target e v0, and whether it bounces: faster than its resting threshold)
- * and the last frame's impulses for the warm start. */
-typedef struct soft_emit {
-    rbs_world *w;
-    rbs__chunker ch;
-    double *touched;      /* per slot: 1 once in a contact */
-    const double *acc;    /* per slot, 6 doubles: the accelerations, or NULL:
-                             shared_a for every moving sphere */
-    v3 shared_a;
-    double thr_shared;    /* acc NULL: the resting threshold of two moving
-                             spheres (the same for every normal) */
-    double dt;
-    double h;             /* the sub-step, or 0 until it is known (adapt) */
-    double q;             /* adapt: the deepest reachable overlap, of the slop */
-    int friction;
-    uint32_t at;          /* where the last warm-table search ended */
-    uint64_t key;         /* the last contact's key */
-    uint32_t *map;        /* per contact in detection's order: chunk * 4 + lane */
-    uint32_t count;
-} soft_emit;
-
-/* A contact's resting threshold (rbs__resting_threshold of its bodies'
- * accelerations). */
-static double emit_threshold(const soft_emit *e, uint32_t a, uint32_t b, v3 n)
-{
-    const rbs_world *w = e->w;
-    int ma = rbs__body_moves(w, a), mb = rbs__body_moves(w, b);
-    v3 z = v3_make(0, 0, 0);
-    if (e->acc != NULL)
-        return rbs__resting_threshold(v3_load(&e->acc[6 * a]), v3_load(&e->acc[6 * b]), n, e->dt);
-    if (ma && mb)
-        return e->thr_shared;
-    return rbs__resting_threshold(ma ? e->shared_a : z, mb ? e->shared_a : z, n, e->dt);
-}
-
-/* The warm-start entry of key k, or NULL: the table is in key order, and so
- * are detection's contacts but for the guards, so the search steps forward
- * from the last one's entry (and searches the table otherwise). */
-static const rbs__warm *emit_warm(soft_emit *e, uint64_t k)
-{
-    const rbs__warm *t = e->w->warm;
-    const uint32_t used = e->w->warm_used;
-    if (k < e->key)
-        return rbs__warm_find(e->w, k, &e->at);
-    e->key = k;
-    while (e->at < used && t[e->at].key < k)
-        e->at++;
-    return e->at < used && t[e->at].key == k ? &t[e->at] : NULL;
-}
-
-/* A chunk lane's warm start from the last frame's forces fn (normal) and ft
- * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
- * dropped outside the static cone (as warm_for_h). */
-static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double fn, v3 ft, double h)
-{
-    k->jn[l] = fn * h;
-    if (friction) {
-        v3 jt = v3_scale(ft, h);
-        if (v3_len(jt) > k->mus[l] * k->jn[l])
-            jt = v3_make(0, 0, 0);
-        k->jx[l] = jt.x;
-        k->jy[l] = jt.y;
-        k->jz[l] = jt.z;
-    }
-}
-
-static rbs_status emit_contact(void *ctx, const rbs__contact *c)
-{
-    soft_emit *e = (soft_emit *)ctx;
-    rbs_world *w = e->w;
-    const uint32_t a = c->a, b = c->b;
-    const int plane = w->type[b] == RBS_BODY_PLANE;
-    const rbs__pair *p = rbs__contact_pair(w, c);
-    const double ima = w->inv_mass[a], imb = w->inv_mass[b];
-    const double iia = ima != 0.0 ? w->iso_inv_inertia[a] : 0.0;
-    const double iib = !plane && imb != 0.0 ? w->iso_inv_inertia[b] : 0.0;
-    const double la = -w->radius[a], kt = ima + imb + la * la * iia + c->lb * c->lb * iib;
-    const rbs__warm *m;
-    double bias, rest;
-    v3 u, rv;
-    uint32_t l;
-    rbs__chunk *k = rbs__chunker_place(&e->ch, a, b, plane, &l);
-    if (k == NULL)
-        return (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY, "the soft step's contact chunks are full");
-    e->map[e->count++] = (uint32_t)(k - e->ch.chunk) * 4u + l;
-    e->touched[a] = e->touched[b] = 1.0;
-    k->nx[l] = c->n.x;
-    k->ny[l] = c->n.y;
-    k->nz[l] = c->n.z;
-    k->lb[l] = c->lb;
-    k->gap[l] = c->gap;
-    k->mn[l] = 1.0 / (ima + imb);
-    k->mt[l] = kt > 0.0 ? 1.0 / kt : 0.0;
-    k->mus[l] = p->mu_s;
-    k->muk[l] = p->mu_k;
-    /* the approach at the frame's start (levers along n), restitution's
-     * target, and whether it bounces */
-    u = v3_sub(v3_scale(v3_load(&w->avel[3 * a]), la), v3_scale(v3_load(&w->avel[3 * b]), c->lb));
-    rv = v3_add(v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), v3_cross(u, c->n));
-    bias = v3_dot(rv, c->n);
-    rest = rbs__contact_e(w, c);
-    k->eb[l] = rest * bias;
-    if (rest > 0.0 && bias < -emit_threshold(e, a, b, c->n))
-        k->flags |= 1u << (RBS__CH_BOUNCE + l);
-    if (c->flags & RBS__GUARD)
-        k->flags |= 1u << (RBS__CH_GUARD + l);
-    if (e->h == 0.0) {
-        /* adapt: how deep it can go within the frame, of its slop */
-        double close = -bias * e->dt;
-        double d = ((close > 0.0 ? close : 0.0) - c->gap) * w->def.slop / rbs__contact_slop(w, c);
-        if (!(d <= e->q))
-            e->q = d; /* (a NaN stays, and keeps every sub-step) */
-    }
-    m = emit_warm(e, rbs__warm_key_of(plane, a, b));
-    if (m != NULL) {
-        v3 ft = e->friction ? v3_mad(m->t, c->n, -v3_dot(m->t, c->n)) : v3_make(0, 0, 0);
-        if (e->h == 0.0) {
-            /* (adapt: the forces, until h is known) */
-            k->jn[l] = m->n;
-            k->jx[l] = ft.x;
-            k->jy[l] = ft.y;
-            k->jz[l] = ft.z;
-        } else {
-            lane_warm(k, l, e->friction, m->n, ft, e->h);
-        }
-    }
-    return RBS_OK;
-}
-
-/* The impulse rates of the frame's lanes into the warm-start table, in
- * detection's order (key order, but for the guards). */
-static void warm_store_lanes(rbs_world *w, const rbs__chunk *chunk, const uint32_t *map, uint32_t count, double h)
-{
-    uint32_t i, n = 0;
-    int sorted = 1;
-    for (i = 0; i < count; ++i) {
-        const rbs__chunk *k = &chunk[map[i] / 4u];
-        const uint32_t l = map[i] % 4u;
-        rbs__warm *e = &w->warm[n];
-        if (k->jn[l] == 0.0)
-            continue;
-        e->key = rbs__warm_key_of((int)(k->flags >> (RBS__CH_PLANE + l) & 1u), k->a[l], k->b[l]);
-        if (n > 0 && !(w->warm[n - 1].key < e->key))
-            sorted = 0;
-        e->n = k->jn[l] / h;
-        e->t = v3_scale(v3_make(k->jx[l], k->jy[l], k->jz[l]), 1.0 / h);
-        n++;
-    }
-    rbs__warm_finish(w, n, sorted);
-}
-
 /* The soft step's coefficients for sub-steps of h into the rows. */
 static void rows_for_h(rbs__soft_rows *rows, double h)
 {
@@ -537,33 +382,46 @@ static void rows_for_h(rbs__soft_rows *rows, double h)
 }
 
 /* A frame of the gathered layout: what its stages (team.h) read and write.
- * The per-body stages take the spheres spheres[begin .. end - 1]; the rows'
- * the chunks of one colour. */
+ * The per-body stages take the spheres of slabs [begin, end); the rows' the
+ * groups [begin, end) of one level (soft_detect.h). */
 typedef struct soft_frame {
     rbs_world *w;
-    double *rec, *inc, *touched;
+    const rbs__soft_groups *g;
+    double *rec, *inc;
+    const uint8_t *touched;
     const double *ib_frame, *ib_free; /* the shared increments (shared), else NULL */
     int shared;
     double h, h_full;
     uint32_t full;
     rbs__soft_rows rows;
     int stage;                        /* the rows' stage of this pass */
-    uint32_t first;                   /* the colour's first chunk in the order */
+    uint32_t first;                   /* the level's first group */
     uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
     rbs__soft_report report[RBS_WORKERS_MAX];
 } soft_frame;
+
+/* The slot of the frame's record r (soft_detect.c: the records are the
+ * spheres slab by slab). */
+static inline uint32_t slot_of(const soft_frame *f, uint32_t r)
+{
+    return f->w->spheres[f->w->soft_order[r]];
+}
+
+/* The records of slabs [begin, end). */
+#define SLAB_RECORDS(f, begin, end, r) r = (f)->g->slab_first[begin]; r < (f)->g->slab_first[end]; ++r
 
 /* Records at the frame's start (and, without a shared increment, each
  * body's velocity increments for its sub-steps). */
 static void stage_records(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
-    uint32_t i;
+    uint32_t r;
     (void)share;
-    for (i = begin; i < end; ++i) {
-        record_start(f->w, &f->rec[RBS__REC * i], i);
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        const uint32_t b = slot_of(f, r);
+        record_start(f->w, &f->rec[RBS__REC * r], b);
         if (!f->shared)
-            increments_for_h(f->w, f->inc, i, f->rec[RBS__REC * i + RBS__REC_II], f->touched, f->h, f->h_full);
+            increments_for_h(f->w, f->inc, b, f->rec[RBS__REC * r + RBS__REC_II], f->touched[r], f->h, f->h_full);
     }
 }
 
@@ -571,17 +429,16 @@ static void stage_records(void *ctx, uint32_t share, uint32_t begin, uint32_t en
 static void stage_velocities(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
-    const rbs_world *w = f->w;
-    uint32_t k;
+    uint32_t r;
     (void)share;
-    for (k = begin; k < end; ++k) {
-        uint32_t b = w->spheres[k];
-        double *r = &f->rec[RBS__REC * b];
-        const double *ib = f->shared ? f->ib_frame : &f->inc[6 * b];
-        if (f->touched[b] == 0.0 || r[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        double *q = &f->rec[RBS__REC * r];
+        const double *ib;
+        if (!f->touched[r] || q[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
             continue;
-        v3_store(r + RBS__REC_V, v3_add(v3_load(r + RBS__REC_V), v3_load(ib)));
-        v3_store(r + RBS__REC_W, v3_add(v3_load(r + RBS__REC_W), v3_load(ib + 3)));
+        ib = f->shared ? f->ib_frame : &f->inc[6 * slot_of(f, r)];
+        v3_store(q + RBS__REC_V, v3_add(v3_load(q + RBS__REC_V), v3_load(ib)));
+        v3_store(q + RBS__REC_W, v3_add(v3_load(q + RBS__REC_W), v3_load(ib + 3)));
     }
 }
 
@@ -589,15 +446,14 @@ static void stage_velocities(void *ctx, uint32_t share, uint32_t begin, uint32_t
 static void stage_positions(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
-    const rbs_world *w = f->w;
-    uint32_t k;
+    uint32_t r;
     (void)share;
-    for (k = begin; k < end; ++k) {
-        double *r = &f->rec[RBS__REC * w->spheres[k]];
-        if (f->touched[w->spheres[k]] == 0.0 || r[RBS__REC_IM] == 0.0)
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        double *q = &f->rec[RBS__REC * r];
+        if (!f->touched[r] || q[RBS__REC_IM] == 0.0)
             continue;
-        v3_store(r + RBS__REC_D, v3_mad(v3_load(r + RBS__REC_D), v3_load(r + RBS__REC_V), f->h));
-        v3_store(r + RBS__REC_ROT, v3_mad(v3_load(r + RBS__REC_ROT), v3_load(r + RBS__REC_W), f->h));
+        v3_store(q + RBS__REC_D, v3_mad(v3_load(q + RBS__REC_D), v3_load(q + RBS__REC_V), f->h));
+        v3_store(q + RBS__REC_ROT, v3_mad(v3_load(q + RBS__REC_ROT), v3_load(q + RBS__REC_W), f->h));
     }
 }
 
@@ -605,20 +461,19 @@ static void stage_positions(void *ctx, uint32_t share, uint32_t begin, uint32_t 
 static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
-    const rbs_world *w = f->w;
-    uint32_t k, s;
+    uint32_t r, s;
     (void)share;
-    for (k = begin; k < end; ++k) {
-        uint32_t b = w->spheres[k];
-        double *r = &f->rec[RBS__REC * b];
-        const double *ib = f->shared ? f->ib_free : &f->inc[6 * b];
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        double *q = &f->rec[RBS__REC * r];
+        const double *ib;
         v3 v, om, d, th, dv, dw;
-        if (f->touched[b] != 0.0 || r[RBS__REC_IM] == 0.0)
+        if (f->touched[r] || q[RBS__REC_IM] == 0.0)
             continue;
-        v = v3_load(r + RBS__REC_V);
-        om = v3_load(r + RBS__REC_W);
-        d = v3_load(r + RBS__REC_D);
-        th = v3_load(r + RBS__REC_ROT);
+        ib = f->shared ? f->ib_free : &f->inc[6 * slot_of(f, r)];
+        v = v3_load(q + RBS__REC_V);
+        om = v3_load(q + RBS__REC_W);
+        d = v3_load(q + RBS__REC_D);
+        th = v3_load(q + RBS__REC_ROT);
         dv = v3_load(ib);
         dw = v3_load(ib + 3);
         for (s = 0; s < f->full; ++s) {
@@ -627,10 +482,10 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             d = v3_mad(d, v, f->h_full);
             th = v3_mad(th, om, f->h_full);
         }
-        v3_store(r + RBS__REC_V, v);
-        v3_store(r + RBS__REC_W, om);
-        v3_store(r + RBS__REC_D, d);
-        v3_store(r + RBS__REC_ROT, th);
+        v3_store(q + RBS__REC_V, v);
+        v3_store(q + RBS__REC_W, om);
+        v3_store(q + RBS__REC_D, d);
+        v3_store(q + RBS__REC_ROT, th);
     }
 }
 
@@ -638,34 +493,35 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
  * finite rotation too large to square gives a NaN turn), the new
  * orientation kept in the record (the rotation and the spare double after
  * it, free now; in the radius' place, free too, whether it turned); the
- * share's first sphere that is not, in bad[share]. */
+ * share's first sphere (in record order) that is not, in bad[share]. */
 static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
     const rbs_world *w = f->w;
-    uint32_t k;
+    uint32_t r;
     f->bad[share] = UINT32_MAX;
-    for (k = begin; k < end; ++k) {
-        uint32_t b = w->spheres[k], d;
-        double *r = &f->rec[RBS__REC * b];
-        v3 th = v3_load(r + RBS__REC_ROT);
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        const uint32_t b = slot_of(f, r);
+        double *q = &f->rec[RBS__REC * r];
+        v3 th = v3_load(q + RBS__REC_ROT);
         int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
+        uint32_t d;
         quat qt;
-        if (r[RBS__REC_IM] == 0.0)
+        if (q[RBS__REC_IM] == 0.0)
             continue;
         for (d = 0; d < 3; ++d)
-            ok &= isfinite(r[RBS__REC_V + d]) && isfinite(r[RBS__REC_W + d]) &&
-                  isfinite(w->pos[3 * b + d] + r[RBS__REC_D + d]);
+            ok &= isfinite(q[RBS__REC_V + d]) && isfinite(q[RBS__REC_W + d]) &&
+                  isfinite(w->pos[3 * b + d] + q[RBS__REC_D + d]);
         if (turns) {
             qt = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
             ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
-            q_store(r + RBS__REC_ROT, qt);
+            q_store(q + RBS__REC_ROT, qt);
         }
         if (!ok) {
             f->bad[share] = b;
             return;
         }
-        r[RBS__REC_R] = turns;
+        q[RBS__REC_R] = turns;
     }
 }
 
@@ -675,45 +531,43 @@ static void stage_write(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
     rbs_world *w = f->w;
-    uint32_t k;
+    uint32_t r;
     (void)share;
-    for (k = begin; k < end; ++k) {
-        uint32_t b = w->spheres[k];
-        const double *r = &f->rec[RBS__REC * b];
-        if (r[RBS__REC_IM] == 0.0)
+    for (SLAB_RECORDS(f, begin, end, r)) {
+        const uint32_t b = slot_of(f, r);
+        const double *q = &f->rec[RBS__REC * r];
+        if (q[RBS__REC_IM] == 0.0)
             continue;
-        memcpy(&w->vel[3 * b], r + RBS__REC_V, 3 * sizeof(double));
-        memcpy(&w->avel[3 * b], r + RBS__REC_W, 3 * sizeof(double));
-        v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(r + RBS__REC_D)));
-        if (r[RBS__REC_R] != 0.0)
-            memcpy(&w->orient[4 * b], r + RBS__REC_ROT, 4 * sizeof(double));
+        memcpy(&w->vel[3 * b], q + RBS__REC_V, 3 * sizeof(double));
+        memcpy(&w->avel[3 * b], q + RBS__REC_W, 3 * sizeof(double));
+        v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(q + RBS__REC_D)));
+        if (q[RBS__REC_R] != 0.0)
+            memcpy(&w->orient[4 * b], q + RBS__REC_ROT, 4 * sizeof(double));
     }
 }
 
-/* One colour's chunks in the frame's current rows stage. */
+/* Groups [first + begin, first + end) in the frame's current rows stage. */
 static void stage_rows(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
-    f->w->soft_kernels->pass(&f->rows, f->stage, f->first + begin, f->first + end, &f->report[share]);
+    uint32_t k;
+    for (k = f->first + begin; k < f->first + end; ++k)
+        f->w->soft_kernels->pass(&f->rows, f->stage, f->g->first[k], f->g->first[k] + f->g->used[k],
+                                 &f->report[share]);
 }
 
-/* Chunks a colour needs to be split among threads: below, the time to
- * hand it out is more than its work (about a microsecond a thread). */
-#define SPLIT_CHUNKS 16
-
-/* One pass of the rows (stage; < 0 the warm start) over every chunk, a
- * colour at a time: a large colour in two shares a thread (one that starts
- * late takes fewer), a small one -- and the serial chunks, last -- on the
- * step's thread alone. */
-static void rows_pass(soft_frame *f, int stage, const uint32_t *color_start)
+/* One pass of the rows (stage; < 0 the warm start) over every chunk: the
+ * groups level by level from the leaves up, a level's groups side by side,
+ * then the guards' group. */
+static void rows_pass(soft_frame *f, int stage)
 {
-    const uint32_t threads = rbs__team_threads(f->w);
-    uint32_t k;
+    const rbs__soft_groups *g = f->g;
+    uint32_t l;
     f->stage = stage;
-    for (k = 0; k <= RBS__COLORS; ++k) {
-        uint32_t n = color_start[k + 1] - color_start[k];
-        f->first = color_start[k];
-        rbs__team_run(f->w, stage_rows, f, n, k < RBS__COLORS && n >= SPLIT_CHUNKS ? threads : 1);
+    for (l = 0; l <= g->levels; ++l) {
+        uint32_t n = g->level_first[l + 1] - g->level_first[l];
+        f->first = g->level_first[l];
+        rbs__team_run(f->w, stage_rows, f, n, n);
     }
 }
 
@@ -721,68 +575,58 @@ static void rows_pass(soft_frame *f, int stage, const uint32_t *color_start)
  * the row kernels (soft.h), its stages on the world's threads (team.h). */
 static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
 {
-    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies, threads = rbs__team_threads(w);
+    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies;
     const double dt = w->def.dt, h_full = dt / full;
     /* adapt: def.soft_tolerance may take fewer sub-steps; the frame's n and
      * h are known once detection has measured every contact's reachable
-     * overlap (emit.q), and the warm starts wait for them */
+     * overlap (g.q), and the warm starts wait for them */
     const int adapt = w->def.soft_tolerance > 0.0 && full > 1;
     /* per slot: the records (64-byte aligned), the velocity increments
-     * a h, alpha h, the margins, and touched */
+     * a h, alpha h, the margins, and touched (a byte a slot) */
     double *rec = (double *)(void *)((unsigned char *)w->method_scratch +
                                      (64u - (uintptr_t)w->method_scratch % 64u) % 64u);
-    double *inc = rec + (size_t)RBS__REC * B, *margin = inc + (size_t)6 * B, *touched = margin + B;
+    double *inc = rec + (size_t)RBS__REC * B, *margin = inc + (size_t)6 * B;
+    uint8_t *touched = (uint8_t *)(void *)(margin + B);
     double shared_inc[6], free_inc[6], h = h_full;
-    uint32_t n = full, i, k, s, color_start[RBS__COLORS + 2];
+    uint32_t n = full, k, s;
+    rbs__soft_groups g;
+    rbs__soft_in in;
     soft_frame f;
-    soft_emit e;
     rbs_status st;
     /* one increment for every body (shared_inc for the frame's sub-steps,
      * free_inc for the full ones of bodies in no contact), or a table */
-    const int shared = uniform_acceleration(w, &e.shared_a);
+    const int shared = uniform_acceleration(w, &in.shared_a);
 
-    /* The lent threads start now, so that they are awake when detection
-     * is over (they wait for the first stage meanwhile). */
+    /* The lent threads start now: detection splits among them too. */
     rbs__team_start(w);
     /* inc: accelerations and torques for detection, then their velocity
      * increments a h, alpha h -- untouched when the increment is shared;
-     * detection's kicks in the records' room (filled only after it) */
+     * detection's scratch in the records' room (filled only after it) */
     margins(w, dt, shared ? NULL : inc, margin);
-    for (k = 0; k < w->sphere_count; ++k)
-        touched[w->spheres[k]] = 0.0;
-    e.w = w;
-    e.touched = touched;
-    e.acc = shared ? NULL : inc;
-    e.dt = dt;
-    e.h = adapt ? 0.0 : h_full;
-    e.q = 0.0;
-    e.friction = w->plan.friction;
-    e.at = 0;
-    e.key = 0;
-    e.thr_shared = rbs__resting_threshold(e.shared_a, e.shared_a, v3_make(0, 0, 1), dt);
-    e.map = w->shock_order;
-    e.count = 0;
-    rbs__chunker_start(&e.ch, w->chunk, w->chunk_cap, w->chunk_color);
-    st = rbs__detect_swept(w, dt, margin, e.acc, rec, emit_contact, &e);
-    rbs__chunker_finish(&e.ch, w->chunk_order, color_start);
+    memset(touched, 0, w->sphere_count);
+    in.margin = margin;
+    in.acc = shared ? NULL : inc;
+    in.dt = dt;
+    in.h = adapt ? 0.0 : h_full;
+    in.friction = w->plan.friction;
+    in.touched = touched;
+    in.scratch = rec;
+    st = rbs__soft_detect(w, &in, &g);
     if (st != RBS_OK) {
         rbs__team_stop(w);
         return st;
     }
     if (adapt) {
-        n = tolerated_substeps(w, e.q / w->def.soft_tolerance);
+        n = tolerated_substeps(w, g.q / w->def.soft_tolerance);
         h = dt / n;
-        for (i = 0; i < e.count; ++i) {
-            rbs__chunk *c = &w->chunk[e.map[i] / 4u];
-            const uint32_t l = e.map[i] % 4u;
-            lane_warm(c, l, e.friction, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
-        }
+        rbs__soft_warm_h(w, &g, in.friction, h);
     }
     if (shared) {
-        shared_increment(e.shared_a, h, shared_inc);
-        shared_increment(e.shared_a, h_full, free_inc);
+        shared_increment(in.shared_a, h, shared_inc);
+        shared_increment(in.shared_a, h_full, free_inc);
     }
     f.w = w;
+    f.g = &g;
     f.rec = rec;
     f.inc = inc;
     f.touched = touched;
@@ -794,8 +638,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     f.full = full;
     f.rows.rec = rec;
     f.rows.chunk = w->chunk;
-    f.rows.order = w->chunk_order;
-    f.rows.friction = e.friction;
+    f.rows.friction = in.friction;
     f.rows.slop = w->def.slop;
     f.rows.guard = RBS__GUARD_DEPTH;
     rows_for_h(&f.rows, h);
@@ -807,32 +650,34 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * every record per sub-step -- at a million bodies those sweeps were
      * most of a falling lattice's cost -- and always all soft_substeps of
      * them, of h_full (def.soft_tolerance concerns contacts). */
-    rbs__team_run(w, stage_records, &f, w->slots, threads);
+    rbs__team_run(w, stage_records, &f, g.slabs, g.slabs);
     for (s = 0; s < n; ++s) {
-        rbs__team_run(w, stage_velocities, &f, w->sphere_count, threads);
-        rows_pass(&f, -1, color_start);
-        rows_pass(&f, RBS__SOFT_SOLVE, color_start);
-        rbs__team_run(w, stage_positions, &f, w->sphere_count, threads);
+        rbs__team_run(w, stage_velocities, &f, g.slabs, g.slabs);
+        rows_pass(&f, -1);
+        rows_pass(&f, RBS__SOFT_SOLVE);
+        rbs__team_run(w, stage_positions, &f, g.slabs, g.slabs);
         /* (the last relax also measures the report: positions are final) */
-        rows_pass(&f, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX, color_start);
+        rows_pass(&f, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX);
     }
-    rbs__team_run(w, stage_free, &f, w->sphere_count, threads);
-    rows_pass(&f, RBS__SOFT_RESTITUTION, color_start);
+    rbs__team_run(w, stage_free, &f, g.slabs, g.slabs);
+    rows_pass(&f, RBS__SOFT_RESTITUTION);
     /* Write the bodies back.  Nothing was saved, so a failed step must
-     * leave the world as it was: every new value is checked first. */
+     * leave the world as it was: every new value is checked first (the
+     * first bad sphere in slab order is named, whatever the threads). */
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         f.bad[k] = UINT32_MAX;
-    rbs__team_run(w, stage_check, &f, w->sphere_count, threads);
+    rbs__team_run(w, stage_check, &f, g.slabs, g.slabs);
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         if (f.bad[k] != UINT32_MAX) {
             rbs__team_stop(w);
             return rbs__numeric_error(w, f.bad[k]);
         }
-    rbs__team_run(w, stage_write, &f, w->sphere_count, threads);
-    rbs__team_stop(w);
+    rbs__team_run(w, stage_write, &f, g.slabs, g.slabs);
 
     /* Report: contacts touching at the end and the deepest overlap (the
-     * last relax measured them), those holding, and the impacts. */
+     * last relax measured them), those holding, and the impacts.  (The lent
+     * threads stop last: a pool whose threads spin between steps then keeps
+     * them awake from one step to the next.) */
     info->substeps = n;
     for (k = 0; k < RBS_WORKERS_MAX; ++k) {
         info->colliding += f.report[k].restituted;
@@ -840,12 +685,9 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
         if (f.report[k].deepest > info->max_overlap)
             info->max_overlap = f.report[k].deepest;
     }
-    for (i = 0; i < e.ch.used; ++i) {
-        const rbs__chunk *c = &w->chunk[i];
-        for (k = 0; k < c->count; ++k)
-            info->resting += c->jn[k] > 0.0;
-    }
-    warm_store_lanes(w, w->chunk, e.map, e.count, h);
+    info->resting = rbs__soft_resting(w, &g);
+    rbs__soft_warm_store(w, &g, h);
+    rbs__team_stop(w);
     return RBS_OK;
 }
 

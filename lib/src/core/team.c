@@ -33,17 +33,17 @@
 #if defined(__GNUC__)
 #define TEAM_ATOMICS 1
 #include <sched.h>
-#if defined(__x86_64__) || defined(__i386__)
-#define TEAM_PAUSE() __builtin_ia32_pause()
-#else
-#define TEAM_PAUSE() ((void)0)
-#endif
 #endif
 
-/* Pauses a waiting thread spins before it yields the processor at every
- * round (on a machine whose threads share a processor, a spinning wait
- * would hold back the thread it waits for). */
-#define SPINS_BEFORE_YIELD 2048
+/* Rounds a waiting thread spins (a plain load of the word it waits on)
+ * before it yields the processor at every round: a wait is a few
+ * microseconds, and on a machine whose threads share a processor a
+ * spinning wait would hold back the thread it waits for.  No PAUSE in the
+ * spin: in a virtual machine a run of them makes the hypervisor take the
+ * processor away (pause-loop exiting), and on this 2-core machine spins
+ * with it made the stages' rows two to three times slower in one run of
+ * two, intermittently; without it, never (10 runs in 10). */
+#define SPINS_BEFORE_YIELD 1024
 
 typedef struct stage {
     rbs__stage_fn fn;
@@ -124,9 +124,7 @@ static void worker(void *task, uint32_t k)
             return;
         uint32_t spins = 0;
         while ((__atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE) >> 32) == s)
-            if (++spins < SPINS_BEFORE_YIELD)
-                TEAM_PAUSE();
-            else
+            if (++spins >= SPINS_BEFORE_YIELD)
                 sched_yield();
     }
 }
@@ -188,9 +186,7 @@ void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32
     {
         uint32_t spins = 0;
         while (__atomic_load_n(&t->done, __ATOMIC_ACQUIRE) != shares)
-            if (++spins < SPINS_BEFORE_YIELD)
-                TEAM_PAUSE();
-            else
+            if (++spins >= SPINS_BEFORE_YIELD)
                 sched_yield();
     }
 #else

@@ -9,7 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "core/soft_chunks.h"
+#include "core/soft_detect.h"
 
 #define WORLD_MAGIC 0x72627377u /* "rbsw" */
 #define ALIGN 16u
@@ -277,14 +277,18 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         /* the contacts, or in the soft step's gathered layout its chunks
          * (soft.h, 64-byte aligned at use): a step takes one or the other,
          * and neither outlives it */
-        size_t K = RBS__CHUNKS(C), chunks = K * sizeof(rbs__chunk) + 64, contacts = C * sizeof(rbs__contact);
+        size_t K = RBS__SOFT_CHUNKS(C, (uint32_t)B), chunks = K * sizeof(rbs__chunk) + 64;
+        size_t contacts = C * sizeof(rbs__contact);
         unsigned char *p = carve(base, &at, chunks > contacts ? chunks : contacts);
         x->contact = (rbs__contact *)(void *)p;
         x->chunk_cap = (uint32_t)K;
         if (p != NULL)
             x->chunk = (rbs__chunk *)(void *)(p + (64u - (uintptr_t)p % 64u) % 64u);
-        x->chunk_order = carve(base, &at, K * sizeof(uint32_t));
-        x->chunk_color = carve(base, &at, B * sizeof(uint64_t));
+        x->chunk_member = carve(base, &at, (RBS__LEVELS_MAX + 1) * B * sizeof(uint16_t));
+        x->soft_slab = carve(base, &at, B);
+        x->soft_order = carve(base, &at, B * sizeof(uint32_t));
+        x->soft_rank = carve(base, &at, B * sizeof(uint32_t));
+        x->soft_aside = carve(base, &at, C * sizeof(uint32_t));
     }
     x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));
     {
@@ -314,6 +318,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->vl_reach = carve(base, &at, B * sizeof(double));
         x->vl_cap = (uint32_t)C;
         x->vl_pair = carve(base, &at, 2 * C * sizeof(uint32_t));
+        x->vl_start = carve(base, &at, (B + 1) * sizeof(uint32_t));
     }
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));

@@ -202,6 +202,8 @@ struct rbs_world {
     double *vl_pos;                       /* 3 per item: centres at its build */
     double *vl_reach;                     /* per item: list reach (reach at its build + skin) */
     uint32_t *vl_pair;                    /* 2 per pair, vl_cap pairs, sorted */
+    uint32_t *vl_start;                   /* per item + 1: where its pairs (as the
+                                             first item) start in vl_pair */
     uint32_t vl_cap;                      /* max_contacts */
     uint32_t vl_count;                    /* pairs on the list */
     uint32_t vl_items;                    /* items it was built for */
@@ -216,12 +218,16 @@ struct rbs_world {
                                              its per-level counts (solver.c) */
 
     /* the soft step's gathered layout (soft.h) */
-    struct rbs__chunk *chunk;             /* RBS__CHUNKS(max_contacts) chunks of four
-                                             contacts (64-byte aligned) */
+    struct rbs__chunk *chunk;             /* chunk_cap chunks of four contacts
+                                             (64-byte aligned; soft_detect.h) */
     uint32_t chunk_cap;
-    uint32_t *chunk_order;                /* chunk_cap: the order the passes take them */
-    uint64_t *chunk_color;                /* per slot: the colours of its contacts
-                                             (soft_chunks.c; zero between frames) */
+    uint16_t *chunk_member;               /* per slot, RBS__LEVELS_MAX + 1 runs: the
+                                             open chunks holding it (soft_chunks.c;
+                                             zero between frames) */
+    uint8_t *soft_slab;                   /* per item: its slab this frame (soft_detect.c) */
+    uint32_t *soft_order;                 /* the items slab by slab: the frame's records */
+    uint32_t *soft_rank;                  /* per item: its record (place in soft_order) */
+    uint32_t *soft_aside;                 /* max_contacts: candidate pairs across slabs */
     const struct rbs__soft_kernels *soft_kernels; /* the rows' kernels (soft.h):
                                              chosen for the processor at creation */
     rbs_workers workers;                  /* threads lent by the caller (team.c);
@@ -303,6 +309,12 @@ static inline v3 rbs__inertia_times(const rbs_world *w, uint32_t i, quat q, v3 o
 typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
 void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
                            rbs__pair_fn fn, void *ctx);
+/* The candidate list ready for a pass as rbs__broadphase_pairs would take it
+ * (kept, or built again); 1 when it holds every candidate pair -- item i's
+ * are vl_pair[2 k], k from vl_start[i] to vl_start[i + 1] - 1, pairs (i, j)
+ * with j > i in order, to be tested with the pass's reaches -- and 0 when
+ * there are too many for it (rbs__broadphase_pairs then walks the grid). */
+int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
@@ -324,6 +336,45 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative);
 typedef rbs_status (*rbs__contact_sink)(void *ctx, const rbs__contact *c);
 rbs_status rbs__detect_swept(rbs_world *w, double dt, const double *margin, const double *acc, double *kick,
                              rbs__contact_sink sink, void *sink_ctx);
+/* Sphere a's reach for the broad phase: its radius and slop plus m, how
+ * far it may move (one expression, so that every pass that repeats the
+ * test takes it bit for bit). */
+static inline double rbs__sphere_reach(const rbs_world *w, uint32_t a, double m)
+{
+    return w->radius[a] * (1.0 + w->def.slop) + m;
+}
+/* The contact of spheres a and b (d = p_a - p_b, dist = |d|) into c: bodies,
+ * normal, material row, levers, gap and flags; swept: a closing pair that is
+ * apart takes the normal of its touch on the straight paths of the frame
+ * (contact.c).  Its thresholds and effective masses are not set. */
+void rbs__pair_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t b, v3 d, double dist, double dt,
+                       int swept);
+/* The normal of the touch of spheres a and b apart at the frame's start (d
+ * = p_a - p_b, radii ra and rb) on their straight paths within dt, or of
+ * their closest approach in it, into *n, with the separation along it and
+ * b's lever then; 0 (nothing written) for a pair that is not closing
+ * (contact.c). */
+int rbs__impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double ra, double rb, double dt, v3 *n,
+                       double *gap, double *lb);
+/* The material-pair row of bodies a and b (the default row when none). */
+static inline uint32_t rbs__pair_row(const rbs_world *w, uint32_t a, uint32_t b)
+{
+    int32_t row = w->pair_table[w->material[a] * (w->def.max_materials + 1) + w->material[b]];
+    return row >= 0 ? (uint32_t)row : w->def.max_pairs;
+}
+/* The contact of sphere a with plane p, gap apart, into c (as above). */
+void rbs__plane_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t p, double gap);
+/* A pair of spheres' kick speed u, m/s per kg (0 when they are not
+ * closing; d = p_a - p_b, dist = |d|): the normal closing speed over
+ * 1/m_a + 1/m_b, so that one impact changes a's velocity by at most
+ * 2 u / m_a and b's by 2 u / m_b (contact.c, detect_kicked). */
+double rbs__kick_speed(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist);
+/* The swept detection's second pass alone (rbs__detect_swept's guards),
+ * for a caller that made the first pass itself: kick[slot] holds the sum of
+ * each sphere's kicks (and becomes its grown margin); the guards go to the
+ * sink, counted on from w->contact_count. */
+rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, const double *acc, double *kick,
+                              rbs__contact_sink sink, void *sink_ctx);
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);

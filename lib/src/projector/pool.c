@@ -17,13 +17,8 @@
 
 #include "rbsim/reel.h"
 
-#define SPIN_ROUNDS 4000
-
-#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define POOL_PAUSE() __builtin_ia32_pause()
-#else
-#define POOL_PAUSE() ((void)0)
-#endif
+#define SPIN_ROUNDS 100000 /* a plain load a round: tens of microseconds
+                              (no PAUSE: see core/team.c) */
 
 struct rbs_pool {
     pthread_mutex_t mutex;
@@ -62,7 +57,7 @@ static void *pool_thread(void *arg)
         int spins;
         /* a while spinning, then asleep */
         for (spins = 0; spins < SPIN_ROUNDS && generation_now(p) == seen; ++spins)
-            POOL_PAUSE();
+            continue;
         pthread_mutex_lock(&p->mutex);
         while (!p->quit && p->generation == seen)
             pthread_cond_wait(&p->wake, &p->mutex);

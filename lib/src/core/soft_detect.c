@@ -1,0 +1,695 @@
+/*
+ * soft_detect.c - the soft step's detection in the gathered layout: the
+ * frame's contacts, found and packed into chunks by groups of bodies that
+ * the world's threads take side by side (soft.h, team.h).
+ *
+ * Slabs.  The spheres are cut into S slabs along the longest side of the
+ * box of their centres, of nearly equal counts (by a histogram of 256 bins),
+ * S a power of two: one slab for every RBS__SLAB_SPHERES spheres, at most
+ * rbs__slabs_max(max_bodies) -- fixed by the world, never by the threads,
+ * so that results do not depend on them.
+ *
+ * Groups (nested dissection: George, "Nested dissection of a regular finite
+ * element mesh", SIAM J. Numer. Anal. 10, 1973).  The slabs are the leaves
+ * of a binary tree; a contact belongs to the lowest node whose slabs hold
+ * both its bodies -- the leaf of its slab, for a plane or a pair within one
+ * slab, else the node where the two slabs' paths meet.  The nodes of one
+ * level share no body, so their contacts can be taken side by side, a node
+ * on one thread in its own order, and the levels one after the other, from
+ * the leaves up: the same Gauss-Seidel order whatever the threads.  A pile
+ * of N spheres cut across its long side has only the spheres near each cut
+ * in the nodes above the leaves (about 4 % of the 1,000 pile's contacts),
+ * and a thread that takes the same leaves every pass keeps their bodies in
+ * its cache (with contacts dealt out by colour instead, every record moved
+ * between the cores at every colour, and the rows ran 1.3 to 3 times slower).
+ *
+ * Detection in two passes over the slabs, side by side.  The first counts
+ * each group's contacts (the candidate pairs within the sweeps' reach, the
+ * planes within the slop and margin), and puts the pairs that span slabs
+ * aside, slab by slab, for their group; the counts give each group its own
+ * run of chunks.  The second makes each group's contacts into its chunks:
+ * a leaf's from its slab's spheres and pairs, a node's from the pairs put
+ * aside in its slabs, in the order of the slabs and the candidate list.  A
+ * chunk lane is prepared as the contact is found (soft.h; step_soft.c's
+ * rows read nothing else), and the kicks of closing pairs are summed per
+ * level (a level's groups share no body), then per sphere, for the guards,
+ * which a serial pass adds to the guards' group (contact.c,
+ * rbs__detect_guards).  A frame whose contacts overflow max_contacts, or
+ * whose candidate pairs overflow the list, is detected by the general
+ * pass, serially, into one group (the capacity rules of rbs__detect_swept).
+ */
+#include <string.h>
+
+#include "core/soft_detect.h"
+#include "core/team.h"
+
+#define HIST_BINS 256
+
+/* The group of a contact between slabs sa and sb (equal for a plane). */
+static inline uint32_t group_of(const rbs__soft_groups *g, uint32_t sa, uint32_t sb)
+{
+    uint32_t l = 0;
+    while (sa != sb) {
+        sa >>= 1;
+        sb >>= 1;
+        l++;
+    }
+    return g->level_first[l] + sa;
+}
+
+/* The level of group k. */
+static inline uint32_t level_of(const rbs__soft_groups *g, uint32_t k)
+{
+    uint32_t l = 0;
+    while (l + 1 < g->levels + 1 && g->level_first[l + 1] <= k)
+        l++;
+    return l;
+}
+
+/* One group's emitter: the chunker of its run and what it finds. */
+typedef struct emitter {
+    rbs__chunker ch;
+    uint32_t at[2];      /* where the last warm-table search of pairs [0] and
+                            planes [1] ended */
+    uint32_t count;      /* contacts */
+    double q;            /* h 0: the deepest reachable overlap, of the slop */
+    double *kick;        /* per slot, its level's kick sums (NULL: none) */
+    rbs_status status;
+    unsigned char pad[64];
+} emitter;
+
+/* The detection of one frame: what the passes share. */
+typedef struct detect {
+    rbs_world *w;
+    const rbs__soft_in *in;
+    rbs__soft_groups *g;
+    const double *centres;  /* the spheres' centres, 3 doubles an item */
+    int pairs;              /* pairs of spheres are detected (the plan's) */
+    double thr_shared;      /* in->acc NULL: two moving spheres' resting threshold */
+    uint32_t slab_pairs[RBS__SLABS_MAX + 1]; /* slab s's candidate pairs start
+                                                (for its pairs put aside) */
+    uint32_t aside[RBS__SLABS_MAX];          /* pairs slab s put aside */
+    uint32_t count[RBS__SLABS_MAX][RBS__GROUPS_MAX]; /* contacts slab s found of group k */
+    emitter em[RBS__GROUPS_MAX];
+} detect;
+
+/* ------------------------------------------------------------------------- */
+/* Lanes                                                                     */
+/* ------------------------------------------------------------------------- */
+
+/* A contact's resting threshold (rbs__resting_threshold of its bodies'
+ * accelerations). */
+static double threshold(const detect *d, uint32_t a, uint32_t b, v3 n)
+{
+    const rbs_world *w = d->w;
+    const rbs__soft_in *in = d->in;
+    int ma, mb;
+    v3 z = v3_make(0, 0, 0);
+    if (in->acc != NULL)
+        return rbs__resting_threshold(v3_load(&in->acc[6 * a]), v3_load(&in->acc[6 * b]), n, in->dt);
+    ma = rbs__body_moves(w, a);
+    mb = rbs__body_moves(w, b);
+    if (ma && mb)
+        return d->thr_shared;
+    return rbs__resting_threshold(ma ? in->shared_a : z, mb ? in->shared_a : z, n, in->dt);
+}
+
+/* A lane's warm start from the last frame's forces fn (normal) and ft
+ * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
+ * dropped outside the static cone. */
+static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double fn, v3 ft, double h)
+{
+    k->jn[l] = fn * h;
+    if (friction) {
+        v3 jt = v3_scale(ft, h);
+        if (v3_len(jt) > k->mus[l] * k->jn[l])
+            jt = v3_make(0, 0, 0);
+        k->jx[l] = jt.x;
+        k->jy[l] = jt.y;
+        k->jz[l] = jt.z;
+    }
+}
+
+static void mark(uint8_t *touched, uint32_t i)
+{
+#if defined(__GNUC__)
+    /* (groups on other threads mark the same bodies: the same value) */
+    __atomic_store_n(&touched[i], (uint8_t)1, __ATOMIC_RELAXED);
+#else
+    touched[i] = 1;
+#endif
+}
+
+/* The warm-start entry of key k (plane: of a plane contact), searched from
+ * where the last search of its kind ended: a group's contacts of each kind
+ * come in key order (its spheres in slot order, each sphere's planes and
+ * partners in order), but for a node's slabs and the guards. */
+static const rbs__warm *warm_of(const rbs_world *w, emitter *em, uint64_t k, int plane)
+{
+    const rbs__warm *t = w->warm;
+    uint32_t *at = &em->at[plane != 0];
+    if (*at < w->warm_used && t[*at].key <= k && (*at == 0 || t[*at - 1].key < k)) {
+        /* forward, a step or two */
+        while (*at < w->warm_used && t[*at].key < k)
+            ++*at;
+        return *at < w->warm_used && t[*at].key == k ? &t[*at] : NULL;
+    }
+    return rbs__warm_find(w, k, at);
+}
+
+/* A contact into a lane of the emitter's group: sphere a and body b (plane:
+ * a plane) -- slots, and the records ra, rb of the frame (soft_rank; a
+ * plane has none) -- of material-pair row `row`, the unit normal n from b to a, the
+ * gap along it and b's lever, and whether it is a guard -- with what its
+ * rows read: its effective masses (levers along n: 1/(1/m_a + 1/m_b) along
+ * n, 1/(1/m_a + 1/m_b + r_a^2/I_a + l_b^2/I_b) across it), its pair's
+ * friction, its approach speed at the frame's start (restitution's target
+ * e v0, and whether it bounces: faster than its resting threshold) and the
+ * last frame's impulses for the warm start. */
+static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, uint32_t a, uint32_t b, int plane,
+                      uint32_t row, v3 n, double gap, double lb, int guard)
+{
+    rbs_world *w = d->w;
+    const rbs__soft_in *in = d->in;
+    const rbs__pair *p = &w->pair[row];
+    const double ima = w->inv_mass[a], imb = w->inv_mass[b];
+    const double iia = ima != 0.0 ? w->iso_inv_inertia[a] : 0.0;
+    const double iib = !plane && imb != 0.0 ? w->iso_inv_inertia[b] : 0.0;
+    const double la = -w->radius[a], kt = ima + imb + la * la * iia + lb * lb * iib;
+    const double rest = p->e >= 0.0 ? p->e : w->def.restitution;
+    const rbs__warm *m;
+    double bias;
+    v3 u, rv;
+    uint32_t l;
+    rbs__chunk *k = rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
+    if (k == NULL) {
+        if (em->status == RBS_OK)
+            em->status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
+                                                          "the soft step's contact chunks are full");
+        return;
+    }
+    em->count++;
+    mark(d->in->touched, ra);
+    if (!plane)
+        mark(d->in->touched, rb);
+    k->nx[l] = n.x;
+    k->ny[l] = n.y;
+    k->nz[l] = n.z;
+    k->lb[l] = lb;
+    k->gap[l] = gap;
+    k->mn[l] = 1.0 / (ima + imb);
+    k->mt[l] = kt > 0.0 ? 1.0 / kt : 0.0;
+    k->mus[l] = p->mu_s;
+    k->muk[l] = p->mu_k;
+    /* the approach at the frame's start (levers along n) */
+    u = v3_sub(v3_scale(v3_load(&w->avel[3 * a]), la), v3_scale(v3_load(&w->avel[3 * b]), lb));
+    rv = v3_add(v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), v3_cross(u, n));
+    bias = v3_dot(rv, n);
+    k->eb[l] = rest * bias;
+    if (rest > 0.0 && bias < 0.0 && bias < -threshold(d, a, b, n))
+        k->flags |= 1u << (RBS__CH_BOUNCE + l);
+    if (guard)
+        k->flags |= 1u << (RBS__CH_GUARD + l);
+    if (in->h == 0.0) {
+        /* def.soft_tolerance: how deep it can go within the frame, of its slop */
+        double close = -bias * in->dt, rb = plane ? -la : w->radius[b];
+        double q = ((close > 0.0 ? close : 0.0) - gap) / ((-la < rb ? -la : rb));
+        if (!(q <= em->q))
+            em->q = q; /* (a NaN stays, and keeps every sub-step) */
+    }
+    m = warm_of(w, em, rbs__warm_key_of(plane, a, b), plane);
+    if (m != NULL) {
+        v3 ft = in->friction ? v3_mad(m->t, n, -v3_dot(m->t, n)) : v3_make(0, 0, 0);
+        if (in->h == 0.0) {
+            /* (the forces, until h is known) */
+            k->jn[l] = m->n;
+            k->jx[l] = ft.x;
+            k->jy[l] = ft.y;
+            k->jz[l] = ft.z;
+        } else {
+            lane_warm(k, l, in->friction, m->n, ft, in->h);
+        }
+    }
+}
+
+/* A contact made by the general detection (the guards, the serial path)
+ * into a lane of emitter em. */
+static void lane_of_contact(const detect *d, emitter *em, const rbs__contact *c)
+{
+    const rbs_world *w = d->w;
+    const int plane = w->type[c->b] == RBS_BODY_PLANE;
+    lane_fill(d, em, w->soft_rank[w->item[c->a]], plane ? 0u : w->soft_rank[w->item[c->b]], c->a, c->b, plane, c->row,
+              c->n, c->gap, c->lb, (c->flags & RBS__GUARD) != 0);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Slabs                                                                     */
+/* ------------------------------------------------------------------------- */
+
+/* Cut the items into g->slabs slabs of nearly equal counts along the
+ * longest side of their centres' box: soft_slab per item, soft_order the
+ * items slab by slab (in their order within each) -- the order of the
+ * frame's records, so that a slab's are together in memory -- and
+ * soft_rank each item's place in it.  One slab when the box has no length
+ * (or is not finite). */
+static void cut_slabs(rbs_world *w, const double *C, rbs__soft_groups *g)
+{
+    const uint32_t n = w->sphere_count, S = g->slabs;
+    uint32_t hist[HIST_BINS], bin_slab[HIST_BINS], start[RBS__SLABS_MAX + 1];
+    double lo[3], hi[3], scale;
+    uint32_t i, k, axis = 0, below = 0;
+    uint8_t *slab = w->soft_slab;
+    for (k = 0; k < 3; ++k) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (i = 0; i < n; ++i)
+        for (k = 0; k < 3; ++k) {
+            double x = C[3 * i + k];
+            lo[k] = x < lo[k] ? x : lo[k];
+            hi[k] = x > hi[k] ? x : hi[k];
+        }
+    for (k = 1; k < 3; ++k)
+        if (hi[k] - lo[k] > hi[axis] - lo[axis])
+            axis = k;
+    scale = HIST_BINS / (hi[axis] - lo[axis]);
+    if (S == 1 || !(scale > 0.0) || !isfinite(scale)) {
+        g->slabs = 1;
+        for (i = 0; i < n; ++i) {
+            slab[i] = 0;
+            w->soft_order[i] = w->soft_rank[i] = i;
+        }
+        g->slab_first[0] = 0;
+        g->slab_first[1] = n;
+        return;
+    }
+    /* each bin to the slab of its middle item: slabs of nearly equal counts */
+    memset(hist, 0, sizeof hist);
+    for (i = 0; i < n; ++i) {
+        double t = (C[3 * i + axis] - lo[axis]) * scale;
+        uint32_t b = t >= 1.0 ? (t < HIST_BINS ? (uint32_t)t : HIST_BINS - 1u) : 0u; /* (a NaN: bin 0) */
+        slab[i] = (uint8_t)b; /* (the bin, until the slabs are known) */
+        hist[b]++;
+    }
+    for (k = 0; k < HIST_BINS; ++k) {
+        uint64_t mid = 2u * (uint64_t)below + hist[k];
+        bin_slab[k] = (uint32_t)(mid * S / (2u * (uint64_t)n));
+        below += hist[k];
+    }
+    memset(start, 0, sizeof start);
+    for (i = 0; i < n; ++i) {
+        slab[i] = (uint8_t)bin_slab[slab[i]];
+        start[slab[i] + 1]++;
+    }
+    for (k = 0; k < S; ++k)
+        start[k + 1] += start[k];
+    memcpy(g->slab_first, start, (S + 1) * sizeof *start);
+    for (i = 0; i < n; ++i) {
+        w->soft_rank[i] = start[slab[i]]++;
+        w->soft_order[w->soft_rank[i]] = i;
+    }
+}
+
+/* ------------------------------------------------------------------------- */
+/* The two passes                                                            */
+/* ------------------------------------------------------------------------- */
+
+/* Whether a candidate pair of items i, j is a contact of the frame (the
+ * broad phase's test with the sweeps' reaches; a pair of fixed spheres is
+ * none). */
+static inline int pair_is_contact(const detect *d, uint32_t i, uint32_t j)
+{
+    const rbs_world *w = d->w;
+    const double *C = d->centres, *R = w->bp_reach;
+    double ex = C[3 * i] - C[3 * j], ey = C[3 * i + 1] - C[3 * j + 1], ez = C[3 * i + 2] - C[3 * j + 2];
+    double sr = R[i] + R[j];
+    return ex * ex + ey * ey + ez * ez <= sr * sr && !(w->fixed[w->spheres[i]] && w->fixed[w->spheres[j]]);
+}
+
+/* The gap of sphere a to plane p, and whether it is a contact (within the
+ * slop and the sphere's margin). */
+static inline int plane_is_contact(const detect *d, uint32_t a, uint32_t p, double *gap)
+{
+    const rbs_world *w = d->w;
+    double ra = w->radius[a];
+    *gap = v3_dot(v3_sub(v3_load(&w->pos[3 * a]), v3_load(&w->pos[3 * p])), v3_load(&w->normal[3 * p])) - ra;
+    return *gap <= w->def.slop * ra + d->in->margin[a];
+}
+
+/* The first pass over slab s's items: each group's count, and the pairs
+ * that span slabs put aside in the slab's run of soft_aside. */
+static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    detect *d = (detect *)ctx;
+    rbs_world *w = d->w;
+    const rbs__soft_groups *g = d->g;
+    const uint8_t *slab = w->soft_slab;
+    uint32_t s, x, k, q;
+    (void)share;
+    for (s = begin; s < end; ++s) {
+        uint32_t *count = d->count[s], *aside = &w->soft_aside[d->slab_pairs[s]], put = 0;
+        const uint32_t leaf = g->level_first[0] + s;
+        memset(count, 0, sizeof d->count[s]);
+        for (x = g->slab_first[s]; x < g->slab_first[s + 1]; ++x) {
+            const uint32_t i = w->soft_order[x], a = w->spheres[i];
+            double gap;
+            if (!w->fixed[a])
+                for (q = 0; q < w->plane_count; ++q)
+                    count[leaf] += (uint32_t)plane_is_contact(d, a, w->planes[q], &gap);
+            for (k = d->pairs ? w->vl_start[i] : 0; k < (d->pairs ? w->vl_start[i + 1] : 0); ++k) {
+                const uint32_t j = w->vl_pair[2 * k + 1];
+                if (!pair_is_contact(d, i, j))
+                    continue;
+                if (slab[j] == s) {
+                    count[leaf]++;
+                } else {
+                    count[group_of(g, s, slab[j])]++;
+                    aside[put++] = k;
+                }
+            }
+        }
+        d->aside[s] = put;
+    }
+}
+
+/* The contact of candidate pair k (items i < j) into emitter em, its kicks
+ * into its level's sums (as contact.c's detect_pair and rbs__pair_contact
+ * make it). */
+static void emit_pair(const detect *d, emitter *em, uint32_t k)
+{
+    const rbs_world *w = d->w;
+    const uint32_t i = w->vl_pair[2 * k], j = w->vl_pair[2 * k + 1], a = w->spheres[i], b = w->spheres[j];
+    const uint32_t ra = w->soft_rank[i], rb = w->soft_rank[j];
+    const v3 dv = v3_sub(v3_load(&w->pos[3 * a]), v3_load(&w->pos[3 * b]));
+    const double dist = v3_len(dv), r_a = w->radius[a], r_b = w->radius[b];
+    double gap = dist - r_a - r_b, lb = dist - r_a;
+    /* Coincident centres have no normal: pick +z (documented). */
+    v3 n = dist > 0.0 ? v3_scale(dv, 1.0 / dist) : v3_make(0, 0, 1);
+    if (dist > 0.0) {
+        double u = rbs__kick_speed(w, a, b, dv, dist);
+        if (u != 0.0) {
+            em->kick[ra] += 2.0 * w->inv_mass[a] * u;
+            em->kick[rb] += 2.0 * w->inv_mass[b] * u;
+        }
+    }
+    /* apart: the normal of the touch on the straight paths (contact.c) */
+    if (gap > w->def.slop * (r_a < r_b ? r_a : r_b))
+        (void)rbs__impact_normal(w, a, b, dv, r_a, r_b, d->in->dt, &n, &gap, &lb);
+    lane_fill(d, em, ra, rb, a, b, 0, rbs__pair_row(w, a, b), n, gap, lb, 0);
+}
+
+/* The second pass: group k's contacts into its run of chunks. */
+static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    detect *d = (detect *)ctx;
+    rbs_world *w = d->w;
+    rbs__soft_groups *g = d->g;
+    const uint8_t *slab = w->soft_slab;
+    uint32_t gk;
+    (void)share;
+    for (gk = begin; gk < end; ++gk) {
+        emitter *em = &d->em[gk];
+        const uint32_t l = level_of(g, gk), node = gk - g->level_first[l];
+        uint32_t s, x, k, q;
+        rbs__chunker_start(&em->ch, &w->chunk[g->first[gk]], RBS__GROUP_CHUNKS(g->used[gk]),
+                           &w->chunk_member[(size_t)l * w->def.max_bodies]);
+        em->at[0] = em->at[1] = 0;
+        em->count = 0;
+        em->q = 0.0;
+        em->kick = d->in->scratch + (size_t)l * w->def.max_bodies;
+        em->status = RBS_OK;
+        if (l == 0) {
+            /* a leaf: its slab's planes and pairs, sphere by sphere */
+            s = node;
+            for (x = g->slab_first[s]; x < g->slab_first[s + 1] && em->status == RBS_OK; ++x) {
+                const uint32_t i = w->soft_order[x], a = w->spheres[i];
+                double gap;
+                if (!w->fixed[a])
+                    for (q = 0; q < w->plane_count; ++q) {
+                        const uint32_t pl = w->planes[q];
+                        if (plane_is_contact(d, a, pl, &gap))
+                            lane_fill(d, em, x, 0u, a, pl, 1, rbs__pair_row(w, a, pl), v3_load(&w->normal[3 * pl]),
+                                      gap, 0.0, 0);
+                    }
+                for (k = d->pairs ? w->vl_start[i] : 0; k < (d->pairs ? w->vl_start[i + 1] : 0); ++k) {
+                    const uint32_t j = w->vl_pair[2 * k + 1];
+                    if (slab[j] == s && pair_is_contact(d, i, j))
+                        emit_pair(d, em, k);
+                }
+            }
+        } else {
+            /* a node: the pairs its slabs put aside that are its own */
+            for (s = node << l; s < (node + 1) << l && s < g->slabs; ++s)
+                for (x = 0; x < d->aside[s]; ++x) {
+                    k = w->soft_aside[d->slab_pairs[s] + x];
+                    if (group_of(g, s, slab[w->vl_pair[2 * k + 1]]) == gk)
+                        emit_pair(d, em, k);
+                }
+        }
+        rbs__chunker_finish(&em->ch);
+        g->used[gk] = em->ch.used;
+    }
+}
+
+/* The guards' sink (rbs__detect_guards): into the guards' group. */
+static rbs_status emit_guard(void *ctx, const rbs__contact *c)
+{
+    detect *d = (detect *)ctx;
+    emitter *em = &d->em[d->g->level_first[d->g->levels]];
+    lane_of_contact(d, em, c);
+    return em->status;
+}
+
+/* The serial detection's sink: into the one group. */
+static rbs_status emit_serial(void *ctx, const rbs__contact *c)
+{
+    detect *d = (detect *)ctx;
+    lane_of_contact(d, &d->em[0], c);
+    return d->em[0].status;
+}
+
+/* A frame whose contacts do not fit the groups' way (more than max_contacts,
+ * or candidate pairs beyond the list): the general detection, serially, into
+ * one group (its kicks and guards included). */
+static rbs_status detect_serially(detect *d)
+{
+    rbs_world *w = d->w;
+    rbs__soft_groups *g = d->g;
+    emitter *em = &d->em[0];
+    rbs_status st;
+    g->slabs = 1;
+    g->levels = 1;
+    g->level_first[0] = 0;
+    g->level_first[1] = 1; /* (the guards' group: empty) */
+    g->level_first[2] = 2;
+    g->first[0] = 0;
+    g->used[0] = 0;
+    g->first[1] = 0;
+    g->used[1] = 0;
+    g->slab_first[0] = 0;
+    g->slab_first[1] = w->sphere_count;
+    cut_slabs(w, d->centres, g);
+    rbs__chunker_start(&em->ch, w->chunk, w->chunk_cap, w->chunk_member);
+    em->at[0] = em->at[1] = 0;
+    em->count = 0;
+    em->q = 0.0;
+    em->status = RBS_OK;
+    st = rbs__detect_swept(w, d->in->dt, d->in->margin, d->in->acc, d->in->scratch, emit_serial, d);
+    rbs__chunker_finish(&em->ch);
+    g->used[0] = em->ch.used;
+    g->first[1] = em->ch.used;
+    g->contacts = em->count;
+    g->q = em->q;
+    return st;
+}
+
+/* ------------------------------------------------------------------------- */
+/* The frame                                                                 */
+/* ------------------------------------------------------------------------- */
+
+rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_groups *g)
+{
+    const uint32_t n = w->sphere_count, B = w->def.max_bodies, threads = rbs__team_threads(w);
+    uint32_t S = rbs__slabs_max(B), i, k, s, total, groups, guard;
+    detect d;
+    double *kick_sum;
+    int kicked = 0;
+    rbs_status st = RBS_OK;
+
+    d.w = w;
+    d.in = in;
+    d.g = g;
+    d.thr_shared = rbs__resting_threshold(in->shared_a, in->shared_a, v3_make(0, 0, 1), in->dt);
+    w->contact_count = 0;
+    /* the spheres' centres (in place when they hold consecutive slots) and
+     * reaches, and the candidate list */
+    if (w->plan.consecutive && n > 0) {
+        d.centres = &w->pos[3 * w->spheres[0]];
+    } else {
+        for (i = 0; i < n; ++i)
+            memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
+        d.centres = w->bp_center;
+    }
+    for (i = 0; i < n; ++i)
+        w->bp_reach[i] = rbs__sphere_reach(w, w->spheres[i], in->margin[w->spheres[i]]);
+    while (S > 1 && S * RBS__SLAB_SPHERES > n)
+        S /= 2;
+    g->slabs = S;
+    d.pairs = w->plan.sphere_pairs;
+    if (d.pairs && !rbs__broadphase_list(w, d.centres, n, w->def.slop))
+        return detect_serially(&d);
+
+    /* slabs, the tree's levels and its groups, the guards' group last */
+    cut_slabs(w, d.centres, g);
+    S = g->slabs;
+    g->levels = rbs__slab_levels(S);
+    for (k = 0, groups = 0; k < g->levels; ++k) {
+        g->level_first[k] = groups;
+        groups += S >> k;
+    }
+    g->level_first[g->levels] = groups;
+    guard = groups++;
+    g->level_first[g->levels + 1] = groups;
+    for (s = 0; s < S; ++s) {
+        uint32_t pairs = 0, x;
+        for (x = g->slab_first[s]; d.pairs && x < g->slab_first[s + 1]; ++x)
+            pairs += w->vl_start[w->soft_order[x] + 1] - w->vl_start[w->soft_order[x]];
+        d.slab_pairs[s + 1] = pairs;
+    }
+    d.slab_pairs[0] = 0;
+    for (s = 0; s < S; ++s)
+        d.slab_pairs[s + 1] += d.slab_pairs[s];
+
+    /* first pass: the counts, and each group its run of chunks */
+    rbs__team_run(w, pass_count, &d, S, threads);
+    total = 0;
+    for (k = 0; k < guard; ++k) {
+        uint32_t c = 0;
+        for (s = 0; s < S; ++s)
+            c += d.count[s][k];
+        g->first[k] = k == 0 ? 0 : g->first[k - 1] + RBS__GROUP_CHUNKS(g->used[k - 1]);
+        g->used[k] = c; /* (its contacts, until the second pass) */
+        total += c;
+    }
+    g->first[guard] = g->first[guard - 1] + RBS__GROUP_CHUNKS(g->used[guard - 1]);
+    if (total > w->def.max_contacts || g->first[guard] > w->chunk_cap)
+        return detect_serially(&d);
+    for (k = 0; k < g->levels; ++k)
+        memset(in->scratch + (size_t)k * B, 0, (size_t)n * sizeof(double));
+
+    /* second pass: the contacts into their groups' chunks */
+    rbs__team_run(w, pass_emit, &d, guard, threads);
+    g->q = 0.0;
+    g->contacts = 0;
+    for (k = 0; k < guard; ++k) {
+        if (d.em[k].status != RBS_OK && st == RBS_OK)
+            st = d.em[k].status;
+        if (!(d.em[k].q <= g->q))
+            g->q = d.em[k].q;
+        g->contacts += d.em[k].count;
+    }
+    w->contact_count = g->contacts;
+    if (w->contact_count > w->contacts_high)
+        w->contacts_high = w->contact_count;
+    g->used[guard] = 0;
+    if (st != RBS_OK)
+        return st;
+
+    /* the guards: each sphere's kicks, the levels summed in order, and the
+     * second pass of the swept detection for those kicked far enough */
+    kick_sum = in->scratch + (size_t)g->levels * B;
+    for (k = 0; k < n; ++k) {
+        uint32_t a = w->spheres[k], r = w->soft_rank[k], l;
+        double sum = 0.0;
+        for (l = 0; l < g->levels; ++l)
+            sum += in->scratch[(size_t)l * B + r];
+        kick_sum[a] = sum;
+        kicked |= !w->fixed[a] && sum * in->dt > RBS__GUARD_DEPTH * w->plan.min_radius;
+    }
+    if (kicked) {
+        emitter *em = &d.em[guard];
+        rbs__chunker_start(&em->ch, &w->chunk[g->first[guard]], w->chunk_cap - g->first[guard],
+                           &w->chunk_member[(size_t)g->levels * B]);
+        em->at[0] = em->at[1] = 0;
+        em->count = 0;
+        em->q = 0.0;
+        em->status = RBS_OK;
+        st = rbs__detect_guards(w, in->dt, in->margin, in->acc, kick_sum, emit_guard, &d);
+        rbs__chunker_finish(&em->ch);
+        g->used[guard] = em->ch.used;
+        g->contacts += em->count;
+        if (!(em->q <= g->q))
+            g->q = em->q;
+    }
+    return st;
+}
+
+/* ------------------------------------------------------------------------- */
+/* After detection                                                           */
+/* ------------------------------------------------------------------------- */
+
+void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, double h)
+{
+    uint32_t k, i, l;
+    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
+        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
+            rbs__chunk *c = &w->chunk[i];
+            for (l = 0; l < c->count; ++l)
+                lane_warm(c, l, friction, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
+        }
+}
+
+uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g)
+{
+    uint32_t k, i, l, n = 0;
+    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
+        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i)
+            for (l = 0; l < w->chunk[i].count; ++l)
+                n += w->chunk[i].jn[l] > 0.0;
+    return n;
+}
+
+/* The warm-start table, in key order (planes first, each by (a, b)): a
+ * counting sort of the lanes by their key's upper half (plane or pair, and
+ * a), each bucket's few lanes then in order of b. */
+void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h)
+{
+    const uint32_t B = w->def.max_bodies;
+    uint32_t *start = w->bp_start; /* (2 B + 1 entries: free after detection) */
+    uint32_t k, i, l, b, n = 0;
+    memset(start, 0, (2u * (size_t)B + 1u) * sizeof *start);
+    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
+        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
+            const rbs__chunk *c = &w->chunk[i];
+            for (l = 0; l < c->count; ++l)
+                if (c->jn[l] != 0.0)
+                    start[(c->flags >> (RBS__CH_PLANE + l) & 1u ? 0u : B) + w->spheres[w->soft_order[c->a[l]]] + 1u]++;
+        }
+    for (b = 0; b < 2u * B; ++b)
+        start[b + 1] += start[b];
+    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
+        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
+            const rbs__chunk *c = &w->chunk[i];
+            for (l = 0; l < c->count; ++l) {
+                const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+                uint32_t at;
+                rbs__warm e;
+                if (c->jn[l] == 0.0)
+                    continue;
+                /* (lanes hold records: the slots are the keys') */
+                e.key = rbs__warm_key_of(plane, w->spheres[w->soft_order[c->a[l]]],
+                                         plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
+                e.n = c->jn[l] / h;
+                e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / h);
+                /* into its bucket, in order of b (insertion: a handful) */
+                at = start[(plane ? 0u : B) + (uint32_t)(e.key >> 32 & 0x7FFFFFFFu)]++;
+                while (at > 0 && w->warm[at - 1].key > e.key && (w->warm[at - 1].key >> 32) == (e.key >> 32)) {
+                    w->warm[at] = w->warm[at - 1];
+                    at--;
+                }
+                w->warm[at] = e;
+                n++;
+            }
+        }
+    rbs__warm_finish(w, n, 1);
+}

@@ -1,0 +1,84 @@
+/*
+ * soft_detect.h - the soft step's detection in the gathered layout: slabs,
+ * groups and their chunks (internal; soft_detect.c).
+ */
+#ifndef RBS_CORE_SOFT_DETECT_H
+#define RBS_CORE_SOFT_DETECT_H
+
+#include "core/soft_chunks.h"
+
+#define RBS__SLAB_SPHERES 256 /* spheres a slab at the least */
+#define RBS__SLABS_MAX 16
+#define RBS__LEVELS_MAX 5     /* levels of a tree of RBS__SLABS_MAX slabs */
+#define RBS__GROUPS_MAX (2 * RBS__SLABS_MAX) /* 2 S - 1 groups, and the guards' */
+
+/* The most slabs of a world of max_bodies B: a power of two, one for every
+ * RBS__SLAB_SPHERES bodies, at most RBS__SLABS_MAX (capacity: the chunks
+ * a world reserves depend on it). */
+static inline uint32_t rbs__slabs_max(uint32_t B)
+{
+    uint32_t s = 1;
+    while (2u * s <= RBS__SLABS_MAX && 2u * s * RBS__SLAB_SPHERES <= B)
+        s *= 2u;
+    return s;
+}
+/* Levels of the slab tree of s slabs (log2 s + 1). */
+static inline uint32_t rbs__slab_levels(uint32_t s)
+{
+    uint32_t l = 1;
+    while (s > 1u) {
+        s /= 2u;
+        l++;
+    }
+    return l;
+}
+/* Chunks a frame of at most C contacts takes in a world of max_bodies B:
+ * each of its 2 S groups a part-full chunk for every lane short of four and
+ * its chunkers' part-full ones (RBS__GROUP_CHUNKS). */
+#define RBS__SOFT_CHUNKS(C, B) (((C) + 3u) / 4u + 2u * rbs__slabs_max(B) * (RBS__GROUP_CHUNKS(0) + 1u))
+
+/* What detection reads and fills besides the world. */
+typedef struct rbs__soft_in {
+    const double *margin; /* per slot: how far the body may move in the frame, m */
+    const double *acc;    /* per slot, 6 doubles: acceleration and torque; or
+                             NULL: shared_a for every moving sphere */
+    v3 shared_a;
+    double dt;
+    double h;             /* the sub-step, s; 0 while it is not known
+                             (def.soft_tolerance): the warm starts are then
+                             the last frame's forces, for rbs__soft_warm_h */
+    int friction;
+    uint8_t *touched;     /* per slot, zero on entry: 1 for a body in a contact */
+    double *scratch;      /* per slot, RBS__LEVELS_MAX + 1 doubles (the records'
+                             room, free during detection) */
+} rbs__soft_in;
+
+/* The frame's slabs and groups (soft_detect.c).  Group g's chunks are
+ * w->chunk[first[g] .. first[g] + used[g] - 1], taken in that order; the
+ * groups of one level share no body, and are taken after the levels below
+ * them; the guards' group last.  Slab s's items (indexes into w->spheres)
+ * are w->soft_order[slab_first[s] .. slab_first[s + 1] - 1]. */
+typedef struct rbs__soft_groups {
+    uint32_t slabs, levels;
+    uint32_t level_first[RBS__LEVELS_MAX + 2]; /* level l's groups start at
+                                                  level_first[l]; then the
+                                                  guards' group, then the end */
+    uint32_t first[RBS__GROUPS_MAX], used[RBS__GROUPS_MAX];
+    uint32_t slab_first[RBS__SLABS_MAX + 1];
+    uint32_t contacts;    /* contacts of the frame */
+    double q;             /* h 0: the deepest reachable overlap, of its pair's
+                             slop (a NaN keeps every sub-step) */
+} rbs__soft_groups;
+
+/* The frame's contacts into chunks, on the world's threads (team.h; started
+ * by the caller). */
+rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_groups *g);
+/* The warm starts (stored as forces: in->h was 0) for sub-steps of h. */
+void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, double h);
+/* The frame's impulses into the warm-start table, as rates for the next
+ * frame (h: the sub-step), in key order. */
+void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h);
+/* Lanes holding a normal impulse. */
+uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g);
+
+#endif
