@@ -343,11 +343,39 @@ static int list_build(rbs_world *w, const double *C, uint32_t n, double fixed, d
     return 1;
 }
 
+/* The rounding allowance of both tests (the list's, the pass's): the
+ * distances' rounding at the largest coordinate and reach, with room to
+ * spare. */
+static double round_guard(double size, double rmax)
+{
+    return 64.0 * DBL_EPSILON * (size + rmax);
+}
+
+int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rmax, double slack)
+{
+    const double guard = round_guard(size, rmax);
+    return w->vl_valid && w->vl_items == n && isfinite(guard) && slack >= guard; /* (false for a NaN) */
+}
+
+int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, double fixed, double size, double rmax,
+                          double rsum)
+{
+    const double *C = centers != NULL ? centers : w->bp_center;
+    const double guard = round_guard(size, rmax), mean = rsum / n;
+    const double base = 0.5 * LIST_SKIN * mean + guard;
+    double grown = 0.0;
+    /* grown by skins, so that it lasts; if that holds more pairs than the
+     * list has room for, by the base skin alone; else just what this pass
+     * needs; else none */
+    return list_build(w, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) ||
+           (grown > base && list_build(w, C, n, fixed, base, 0.0, 0.0, &grown)) ||
+           list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown);
+}
+
 int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed)
 {
     const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
-    double size = 0.0, rsum = 0.0, rmax = 0.0, guard, mean, base, grown = 0.0;
-    int reuse = w->vl_valid && w->vl_items == n, fits = 1;
+    double size = 0.0, rsum = 0.0, rmax = 0.0, slack = INFINITY;
     uint32_t i, k;
     if (n < 2) {
         /* no pair: an empty list */
@@ -364,23 +392,14 @@ int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double
         for (k = 0; k < 3; ++k)
             size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
     }
-    /* rounding of the distances behind both tests, with room to spare */
-    guard = 64.0 * DBL_EPSILON * (size + rmax);
-    for (i = 0; reuse && fits && i < n; ++i) {
-        double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
-               dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
-        fits = R[i] + sqrt(dx * dx + dy * dy + dz * dz) + guard <= w->vl_reach[i]; /* (false for a NaN) */
+    for (i = 0; w->vl_valid && w->vl_items == n && i < n; ++i) {
+        double x = rbs__broadphase_slack(w, C, i);
+        if (!(x >= slack))
+            slack = x; /* (a NaN stays) */
     }
-    if (reuse && fits && isfinite(guard))
+    if (rbs__broadphase_keep(w, n, size, rmax, slack))
         return 1;
-    /* grown by skins, so that it lasts; if that holds more pairs than the
-     * list has room for, by the base skin alone; else just what this pass
-     * needs; else none */
-    mean = rsum / n;
-    base = 0.5 * LIST_SKIN * mean + guard;
-    return list_build(w, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) ||
-           (grown > base && list_build(w, C, n, fixed, base, 0.0, 0.0, &grown)) ||
-           list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown);
+    return rbs__broadphase_build(w, C, n, fixed, size, rmax, rsum);
 }
 
 void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,

@@ -89,17 +89,20 @@ typedef struct rbs__soft_kernels {
     void (*pass)(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end, rbs__soft_report *report);
 } rbs__soft_kernels;
 
-/* The AVX kernels (soft_rows_avx.c): built by GCC and Clang for x86. */
+/* The AVX kernels (soft_rows_avx.c, soft_rows_avx512.c): built by GCC and
+ * Clang for x86. */
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
 #define RBS_HAVE_AVX_KERNELS 1
 #endif
 
 extern const rbs__soft_kernels rbs__soft_kernels_plain;
-/* The kernels of this processor (step_soft.c): AVX where the build has them
- * and the processor runs them, else the plain ones. */
-const rbs__soft_kernels *rbs__soft_kernels_best(void);
 #if defined(RBS_HAVE_AVX_KERNELS)
-extern const rbs__soft_kernels rbs__soft_kernels_avx;
+extern const rbs__soft_kernels rbs__soft_kernels_avx;    /* AVX */
+extern const rbs__soft_kernels rbs__soft_kernels_avx512; /* the AVX source for AVX-512VL */
 #endif
+/* The kernels of this processor (step_soft.c): the AVX ones for AVX-512VL,
+ * else for AVX, where the build has them and the processor runs them, else
+ * the plain ones (all the same bits). */
+const rbs__soft_kernels *rbs__soft_kernels_best(void);
 
 #endif

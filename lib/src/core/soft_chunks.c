@@ -22,19 +22,6 @@
 
 #include "core/soft_chunks.h"
 
-/* The lowest bit set in bits (> 0). */
-static int lowest_bit(unsigned bits)
-{
-#if defined(__GNUC__)
-    return __builtin_ctz(bits);
-#else
-    int k = 0;
-    while (!(bits >> k & 1u))
-        k++;
-    return k;
-#endif
-}
-
 /* A new chunk, its lanes unused.  Only the impulses are cleared of the
  * last frame's values (an unused lane's other fields are left: its rows
  * read a record of zeros, and its results go nowhere; the warm start skips
@@ -54,8 +41,7 @@ static rbs__chunk *chunk_new(rbs__chunker *ch, unsigned flags)
     return c;
 }
 
-/* Close open chunk k of kind: its bodies are free of it. */
-static void close_open(rbs__chunker *ch, int kind, int k)
+void rbs__chunker_close(rbs__chunker *ch, int kind, int k)
 {
     const rbs__chunk *c = &ch->chunk[ch->open[kind][k]];
     const uint16_t keep = (uint16_t)~(1u << (8 * kind + k));
@@ -84,51 +70,43 @@ void rbs__chunker_finish(rbs__chunker *ch)
     for (kind = 0; kind < 2; ++kind)
         for (k = 0; k < RBS__OPEN_CHUNKS; ++k)
             if (ch->open_mask[kind] >> k & 1u)
-                close_open(ch, kind, k);
+                rbs__chunker_close(ch, kind, k);
     ch->serial = UINT32_MAX;
 }
 
-rbs__chunk *rbs__chunker_place(rbs__chunker *ch, uint32_t a, uint32_t b, int plane, uint32_t *lane)
+rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind, uint32_t *lane)
 {
-    const int kind = plane != 0;
     const unsigned all = (1u << RBS__OPEN_CHUNKS) - 1u;
-    unsigned busy = (unsigned)(ch->member[a] >> (8 * kind)) | (kind ? 0u : ch->member[b]), fits;
     rbs__chunk *c;
     int k;
-    fits = ch->open_mask[kind] & ~busy & all;
-    if (fits != 0) {
-        k = lowest_bit(fits);
-        c = &ch->chunk[ch->open[kind][k]];
-    } else if (ch->open_mask[kind] != all) {
-        k = lowest_bit(~ch->open_mask[kind] & all);
+    if (ch->open_mask[kind] != all) {
+        /* a free slot: a new chunk there */
+        k = rbs__lowest_bit(~ch->open_mask[kind] & all);
         c = chunk_new(ch, kind ? 15u << RBS__CH_PLANE : 0u);
         if (c == NULL)
             return NULL;
         ch->open[kind][k] = (uint32_t)(c - ch->chunk);
         ch->open_mask[kind] |= 1u << k;
-    } else {
-        /* no open chunk can take it and none is free: the serial chunk */
-        if (ch->serial == UINT32_MAX || ch->chunk[ch->serial].count == RBS__LANES) {
-            c = chunk_new(ch, 1u << RBS__CH_SERIAL);
-            if (c == NULL)
-                return NULL;
-            ch->serial = (uint32_t)(c - ch->chunk);
-        }
-        c = &ch->chunk[ch->serial];
         *lane = c->count++;
         c->a[*lane] = a;
         c->b[*lane] = b;
-        if (kind)
-            c->flags |= 1u << (RBS__CH_PLANE + *lane);
+        ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
+        if (!kind)
+            ch->member[b] |= (uint16_t)(1u << k);
         return c;
     }
+    /* no open chunk can take it and none is free: the serial chunk */
+    if (ch->serial == UINT32_MAX || ch->chunk[ch->serial].count == RBS__LANES) {
+        c = chunk_new(ch, 1u << RBS__CH_SERIAL);
+        if (c == NULL)
+            return NULL;
+        ch->serial = (uint32_t)(c - ch->chunk);
+    }
+    c = &ch->chunk[ch->serial];
     *lane = c->count++;
     c->a[*lane] = a;
     c->b[*lane] = b;
-    ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
-    if (!kind)
-        ch->member[b] |= (uint16_t)(1u << k);
-    if (c->count == RBS__LANES)
-        close_open(ch, kind, k);
+    if (kind)
+        c->flags |= 1u << (RBS__CH_PLANE + *lane);
     return c;
 }

@@ -27,10 +27,50 @@ typedef struct rbs__chunker {
 /* Start packing into chunk[0 .. cap - 1]; member: 2 bytes a slot, zero,
  * used by no other chunker at the same time for the same bodies. */
 void rbs__chunker_start(rbs__chunker *ch, rbs__chunk *chunk, uint32_t cap, uint16_t *member);
+/* rbs__chunker_place when no open chunk of the kind can take the contact:
+ * a new chunk, or the serial one (soft_chunks.c). */
+rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind, uint32_t *lane);
+/* Close open chunk k of kind (its bodies are free of it; soft_chunks.c). */
+void rbs__chunker_close(rbs__chunker *ch, int kind, int k);
+
+/* The lowest bit set in bits (> 0). */
+static inline int rbs__lowest_bit(unsigned bits)
+{
+#if defined(__GNUC__)
+    return __builtin_ctz(bits);
+#else
+    int k = 0;
+    while (!(bits >> k & 1u))
+        k++;
+    return k;
+#endif
+}
+
 /* The chunk and lane (*lane) of a new contact of bodies a and b (plane: b
- * is a plane), with a and b written and every other field zero; NULL when
- * the chunks are full (never within RBS__GROUP_CHUNKS(contacts)). */
-rbs__chunk *rbs__chunker_place(rbs__chunker *ch, uint32_t a, uint32_t b, int plane, uint32_t *lane);
+ * is a plane), with a and b written; NULL when the chunks are full (never
+ * within RBS__GROUP_CHUNKS(contacts)).  Inline: the first open chunk that
+ * can take it, the common case (the rest out of line). */
+static inline rbs__chunk *rbs__chunker_place(rbs__chunker *ch, uint32_t a, uint32_t b, int plane, uint32_t *lane)
+{
+    const int kind = plane != 0;
+    const unsigned busy = (unsigned)(ch->member[a] >> (8 * kind)) | (kind ? 0u : ch->member[b]);
+    const unsigned fits = ch->open_mask[kind] & ~busy & ((1u << RBS__OPEN_CHUNKS) - 1u);
+    rbs__chunk *c;
+    int k;
+    if (fits == 0)
+        return rbs__chunker_open(ch, a, b, kind, lane);
+    k = rbs__lowest_bit(fits);
+    c = &ch->chunk[ch->open[kind][k]];
+    *lane = c->count++;
+    c->a[*lane] = a;
+    c->b[*lane] = b;
+    ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
+    if (!kind)
+        ch->member[b] |= (uint16_t)(1u << k);
+    if (c->count == RBS__LANES)
+        rbs__chunker_close(ch, kind, k);
+    return c;
+}
 /* Close every open chunk (the member bits are all zero again). */
 void rbs__chunker_finish(rbs__chunker *ch);
 

@@ -78,6 +78,15 @@ typedef struct emitter {
     unsigned char pad[64];
 } emitter;
 
+/* What a share of the prepare pass finds. */
+typedef struct prepared {
+    double lo[3], hi[3];  /* the box of its centres */
+    double size;          /* its largest coordinate, in magnitude */
+    double rmax, rsum;    /* its largest reach, the sum of its radii */
+    double slack;         /* its least slack in the candidate list */
+    unsigned char pad[64];
+} prepared;
+
 /* The detection of one frame: what the passes share. */
 typedef struct detect {
     rbs_world *w;
@@ -87,9 +96,11 @@ typedef struct detect {
     int pairs;              /* pairs of spheres are detected (the plan's) */
     double thr_shared;      /* in->acc NULL: two moving spheres' resting threshold */
     uint32_t slab_pairs[RBS__SLABS_MAX + 1]; /* slab s's candidate pairs start
-                                                (for its pairs put aside) */
-    uint32_t aside[RBS__SLABS_MAX];          /* pairs slab s put aside */
+                                                (its run of soft_aside) */
+    uint32_t listed[RBS__SLABS_MAX];         /* contact pairs slab s listed */
     uint32_t count[RBS__SLABS_MAX][RBS__GROUPS_MAX]; /* contacts slab s found of group k */
+    prepared prep[RBS_WORKERS_MAX];          /* the prepare pass's shares */
+    double lo[3], hi[3];                     /* the centres' box */
     emitter em[RBS__GROUPS_MAX];
 } detect;
 
@@ -148,7 +159,7 @@ static const rbs__warm *warm_of(const rbs_world *w, emitter *em, uint64_t k, int
 {
     const rbs__warm *t = w->warm;
     uint32_t *at = &em->at[plane != 0];
-    if (*at < w->warm_used && t[*at].key <= k && (*at == 0 || t[*at - 1].key < k)) {
+    if (*at == 0 || t[*at - 1].key < k) {
         /* forward, a step or two */
         while (*at < w->warm_used && t[*at].key < k)
             ++*at;
@@ -247,28 +258,18 @@ static void lane_of_contact(const detect *d, emitter *em, const rbs__contact *c)
 /* ------------------------------------------------------------------------- */
 
 /* Cut the items into g->slabs slabs of nearly equal counts along the
- * longest side of their centres' box: soft_slab per item, soft_order the
+ * longest side of their centres' box (lo, hi): soft_slab per item, soft_order the
  * items slab by slab (in their order within each) -- the order of the
  * frame's records, so that a slab's are together in memory -- and
  * soft_rank each item's place in it.  One slab when the box has no length
  * (or is not finite). */
-static void cut_slabs(rbs_world *w, const double *C, rbs__soft_groups *g)
+static void cut_slabs(rbs_world *w, const double *C, const double *lo, const double *hi, rbs__soft_groups *g)
 {
     const uint32_t n = w->sphere_count, S = g->slabs;
     uint32_t hist[HIST_BINS], bin_slab[HIST_BINS], start[RBS__SLABS_MAX + 1];
-    double lo[3], hi[3], scale;
+    double scale;
     uint32_t i, k, axis = 0, below = 0;
     uint8_t *slab = w->soft_slab;
-    for (k = 0; k < 3; ++k) {
-        lo[k] = INFINITY;
-        hi[k] = -INFINITY;
-    }
-    for (i = 0; i < n; ++i)
-        for (k = 0; k < 3; ++k) {
-            double x = C[3 * i + k];
-            lo[k] = x < lo[k] ? x : lo[k];
-            hi[k] = x > hi[k] ? x : hi[k];
-        }
     for (k = 1; k < 3; ++k)
         if (hi[k] - lo[k] > hi[axis] - lo[axis])
             axis = k;
@@ -311,6 +312,58 @@ static void cut_slabs(rbs_world *w, const double *C, rbs__soft_groups *g)
 }
 
 /* ------------------------------------------------------------------------- */
+/* Before the passes                                                         */
+/* ------------------------------------------------------------------------- */
+
+/* Items [begin, end): each sphere's accelerations (into the table, when
+ * there is one) and margin -- how far it may move within the frame,
+ * |v| dt + |a| dt^2 (0 for a fixed sphere or one not finite) -- its reach
+ * for the broad phase, and the share's box, sizes and slack. */
+static void pass_prepare(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    detect *d = (detect *)ctx;
+    rbs_world *w = d->w;
+    const rbs__soft_in *in = d->in;
+    prepared *p = &d->prep[share];
+    const int keep = w->vl_valid && w->vl_items == w->sphere_count;
+    uint32_t k, c;
+    for (c = 0; c < 3; ++c) {
+        p->lo[c] = INFINITY;
+        p->hi[c] = -INFINITY;
+    }
+    p->size = p->rmax = p->rsum = 0.0;
+    p->slack = INFINITY;
+    for (k = begin; k < end; ++k) {
+        const uint32_t a = w->spheres[k];
+        v3 acc, tau;
+        double m;
+        rbs__accelerations(w, a, &acc, &tau);
+        if (in->acc != NULL) {
+            v3_store(&in->acc[6 * a], acc);
+            v3_store(&in->acc[6 * a + 3], tau);
+        }
+        m = v3_len(v3_load(&w->vel[3 * a])) * in->dt + v3_len(acc) * in->dt * in->dt;
+        in->margin[a] = w->fixed[a] || !isfinite(m) ? 0.0 : m;
+        if (d->centres == w->bp_center)
+            memcpy(&w->bp_center[3 * k], &w->pos[3 * a], 3 * sizeof(double));
+        w->bp_reach[k] = rbs__sphere_reach(w, a, in->margin[a]);
+        p->rsum += w->radius[a];
+        p->rmax = w->bp_reach[k] > p->rmax ? w->bp_reach[k] : p->rmax;
+        for (c = 0; c < 3; ++c) {
+            const double x = d->centres[3 * k + c];
+            p->lo[c] = x < p->lo[c] ? x : p->lo[c];
+            p->hi[c] = x > p->hi[c] ? x : p->hi[c];
+            p->size = fabs(x) > p->size ? fabs(x) : p->size;
+        }
+        if (keep) {
+            const double x = rbs__broadphase_slack(w, d->centres, k);
+            if (!(x >= p->slack))
+                p->slack = x; /* (a NaN stays) */
+        }
+    }
+}
+
+/* ------------------------------------------------------------------------- */
 /* The two passes                                                            */
 /* ------------------------------------------------------------------------- */
 
@@ -336,8 +389,10 @@ static inline int plane_is_contact(const detect *d, uint32_t a, uint32_t p, doub
     return *gap <= w->def.slop * ra + d->in->margin[a];
 }
 
-/* The first pass over slab s's items: each group's count, and the pairs
- * that span slabs put aside in the slab's run of soft_aside. */
+/* The first pass over slab s's records: each group's count; each sphere's
+ * planes in contact, as bits in soft_planes (0xFF for all: more than 8
+ * planes are tested again); and the candidate pairs that are contacts, in
+ * order, in the slab's run of soft_aside. */
 static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     detect *d = (detect *)ctx;
@@ -347,28 +402,29 @@ static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     uint32_t s, x, k, q;
     (void)share;
     for (s = begin; s < end; ++s) {
-        uint32_t *count = d->count[s], *aside = &w->soft_aside[d->slab_pairs[s]], put = 0;
+        uint32_t *count = d->count[s], *list = &w->soft_aside[d->slab_pairs[s]], put = 0;
         const uint32_t leaf = g->level_first[0] + s;
         memset(count, 0, sizeof d->count[s]);
         for (x = g->slab_first[s]; x < g->slab_first[s + 1]; ++x) {
             const uint32_t i = w->soft_order[x], a = w->spheres[i];
+            unsigned bits = 0;
             double gap;
             if (!w->fixed[a])
                 for (q = 0; q < w->plane_count; ++q)
-                    count[leaf] += (uint32_t)plane_is_contact(d, a, w->planes[q], &gap);
+                    if (plane_is_contact(d, a, w->planes[q], &gap)) {
+                        bits |= q < 8 ? 1u << q : 0xFFu;
+                        count[leaf]++;
+                    }
+            w->soft_planes[x] = (uint8_t)bits;
             for (k = d->pairs ? w->vl_start[i] : 0; k < (d->pairs ? w->vl_start[i + 1] : 0); ++k) {
                 const uint32_t j = w->vl_pair[2 * k + 1];
                 if (!pair_is_contact(d, i, j))
                     continue;
-                if (slab[j] == s) {
-                    count[leaf]++;
-                } else {
-                    count[group_of(g, s, slab[j])]++;
-                    aside[put++] = k;
-                }
+                count[slab[j] == s ? leaf : group_of(g, s, slab[j])]++;
+                list[put++] = k;
             }
         }
-        d->aside[s] = put;
+        d->listed[s] = put;
     }
 }
 
@@ -420,29 +476,31 @@ static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         em->status = RBS_OK;
         if (l == 0) {
             /* a leaf: its slab's planes and pairs, sphere by sphere */
+            const uint32_t *list = &w->soft_aside[d->slab_pairs[node]];
+            uint32_t at = 0;
             s = node;
             for (x = g->slab_first[s]; x < g->slab_first[s + 1] && em->status == RBS_OK; ++x) {
                 const uint32_t i = w->soft_order[x], a = w->spheres[i];
+                const unsigned bits = w->soft_planes[x];
                 double gap;
-                if (!w->fixed[a])
-                    for (q = 0; q < w->plane_count; ++q) {
-                        const uint32_t pl = w->planes[q];
-                        if (plane_is_contact(d, a, pl, &gap))
-                            lane_fill(d, em, x, 0u, a, pl, 1, rbs__pair_row(w, a, pl), v3_load(&w->normal[3 * pl]),
-                                      gap, 0.0, 0);
-                    }
-                for (k = d->pairs ? w->vl_start[i] : 0; k < (d->pairs ? w->vl_start[i + 1] : 0); ++k) {
-                    const uint32_t j = w->vl_pair[2 * k + 1];
-                    if (slab[j] == s && pair_is_contact(d, i, j))
-                        emit_pair(d, em, k);
+                for (q = 0; bits != 0 && q < w->plane_count; ++q) {
+                    const uint32_t pl = w->planes[q];
+                    /* (the first pass's bit says; the test gives the gap) */
+                    if ((q < 8 && !(bits >> q & 1u)) || !plane_is_contact(d, a, pl, &gap))
+                        continue;
+                    lane_fill(d, em, x, 0u, a, pl, 1, rbs__pair_row(w, a, pl), v3_load(&w->normal[3 * pl]), gap,
+                              0.0, 0);
                 }
+                for (; at < d->listed[s] && w->vl_pair[2 * list[at]] == i; ++at)
+                    if (slab[w->vl_pair[2 * list[at] + 1]] == s)
+                        emit_pair(d, em, list[at]);
             }
         } else {
-            /* a node: the pairs its slabs put aside that are its own */
+            /* a node: the pairs its slabs listed that are its own */
             for (s = node << l; s < (node + 1) << l && s < g->slabs; ++s)
-                for (x = 0; x < d->aside[s]; ++x) {
+                for (x = 0; x < d->listed[s]; ++x) {
                     k = w->soft_aside[d->slab_pairs[s] + x];
-                    if (group_of(g, s, slab[w->vl_pair[2 * k + 1]]) == gk)
+                    if (slab[w->vl_pair[2 * k + 1]] != s && group_of(g, s, slab[w->vl_pair[2 * k + 1]]) == gk)
                         emit_pair(d, em, k);
                 }
         }
@@ -488,7 +546,7 @@ static rbs_status detect_serially(detect *d)
     g->used[1] = 0;
     g->slab_first[0] = 0;
     g->slab_first[1] = w->sphere_count;
-    cut_slabs(w, d->centres, g);
+    cut_slabs(w, d->centres, d->lo, d->hi, g);
     rbs__chunker_start(&em->ch, w->chunk, w->chunk_cap, w->chunk_member);
     em->at[0] = em->at[1] = 0;
     em->count = 0;
@@ -521,26 +579,43 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     d.g = g;
     d.thr_shared = rbs__resting_threshold(in->shared_a, in->shared_a, v3_make(0, 0, 1), in->dt);
     w->contact_count = 0;
-    /* the spheres' centres (in place when they hold consecutive slots) and
-     * reaches, and the candidate list */
-    if (w->plan.consecutive && n > 0) {
-        d.centres = &w->pos[3 * w->spheres[0]];
-    } else {
-        for (i = 0; i < n; ++i)
-            memcpy(&w->bp_center[3 * i], &w->pos[3 * w->spheres[i]], 3 * sizeof(double));
-        d.centres = w->bp_center;
+    /* the spheres' centres (in place when they hold consecutive slots),
+     * margins and reaches, their box, and the candidate list */
+    d.centres = w->plan.consecutive && n > 0 ? &w->pos[3 * w->spheres[0]] : w->bp_center;
+    if (in->acc != NULL)
+        for (i = 0; i < w->plane_count; ++i)
+            memset(&in->acc[6 * w->planes[i]], 0, 6 * sizeof(double));
+    rbs__team_run(w, pass_prepare, &d, n, threads);
+    {
+        double size = 0.0, rmax = 0.0, rsum = 0.0, slack = INFINITY;
+        uint32_t c;
+        for (c = 0; c < 3; ++c) {
+            d.lo[c] = INFINITY;
+            d.hi[c] = -INFINITY;
+        }
+        for (k = 0; k < (n < threads ? n : threads); ++k) {
+            const prepared *p = &d.prep[k];
+            for (c = 0; c < 3; ++c) {
+                d.lo[c] = p->lo[c] < d.lo[c] ? p->lo[c] : d.lo[c];
+                d.hi[c] = p->hi[c] > d.hi[c] ? p->hi[c] : d.hi[c];
+            }
+            size = p->size > size ? p->size : size;
+            rmax = p->rmax > rmax ? p->rmax : rmax;
+            rsum += p->rsum;
+            if (!(p->slack >= slack))
+                slack = p->slack;
+        }
+        while (S > 1 && S * RBS__SLAB_SPHERES > n)
+            S /= 2;
+        g->slabs = S;
+        d.pairs = w->plan.sphere_pairs;
+        if (d.pairs && n >= 2 && !rbs__broadphase_keep(w, n, size, rmax, slack) &&
+            !rbs__broadphase_build(w, d.centres, n, w->def.slop, size, rmax, rsum))
+            return detect_serially(&d);
     }
-    for (i = 0; i < n; ++i)
-        w->bp_reach[i] = rbs__sphere_reach(w, w->spheres[i], in->margin[w->spheres[i]]);
-    while (S > 1 && S * RBS__SLAB_SPHERES > n)
-        S /= 2;
-    g->slabs = S;
-    d.pairs = w->plan.sphere_pairs;
-    if (d.pairs && !rbs__broadphase_list(w, d.centres, n, w->def.slop))
-        return detect_serially(&d);
 
     /* slabs, the tree's levels and its groups, the guards' group last */
-    cut_slabs(w, d.centres, g);
+    cut_slabs(w, d.centres, d.lo, d.hi, g);
     S = g->slabs;
     g->levels = rbs__slab_levels(S);
     for (k = 0, groups = 0; k < g->levels; ++k) {

@@ -39,9 +39,11 @@ static inline uint32_t rbs__slab_levels(uint32_t s)
 
 /* What detection reads and fills besides the world. */
 typedef struct rbs__soft_in {
-    const double *margin; /* per slot: how far the body may move in the frame, m */
-    const double *acc;    /* per slot, 6 doubles: acceleration and torque; or
-                             NULL: shared_a for every moving sphere */
+    double *margin;       /* per slot, out: how far the body may move in the
+                             frame, m */
+    double *acc;          /* per slot, 6 doubles, out: acceleration and torque
+                             (zero for a plane); or NULL: shared_a for every
+                             moving sphere */
     v3 shared_a;
     double dt;
     double h;             /* the sub-step, s; 0 while it is not known

@@ -349,6 +349,8 @@ static inline void warm_for_h(rbs__contact *c, const rbs__pair *p, int friction,
 const rbs__soft_kernels *rbs__soft_kernels_best(void)
 {
 #if defined(RBS_HAVE_AVX_KERNELS)
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl"))
+        return &rbs__soft_kernels_avx512;
     if (__builtin_cpu_supports("avx"))
         return &rbs__soft_kernels_avx;
 #endif
@@ -599,10 +601,10 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
 
     /* The lent threads start now: detection splits among them too. */
     rbs__team_start(w);
-    /* inc: accelerations and torques for detection, then their velocity
-     * increments a h, alpha h -- untouched when the increment is shared;
-     * detection's scratch in the records' room (filled only after it) */
-    margins(w, dt, shared ? NULL : inc, margin);
+    /* inc: accelerations and torques, which detection fills, then their
+     * velocity increments a h, alpha h -- untouched when the increment is
+     * shared; detection's scratch in the records' room (filled only after
+     * it) */
     memset(touched, 0, w->sphere_count);
     in.margin = margin;
     in.acc = shared ? NULL : inc;

@@ -36,14 +36,17 @@
 #endif
 
 /* Rounds a waiting thread spins (a plain load of the word it waits on)
- * before it yields the processor at every round: a wait is a few
- * microseconds, and on a machine whose threads share a processor a
- * spinning wait would hold back the thread it waits for.  No PAUSE in the
- * spin: in a virtual machine a run of them makes the hypervisor take the
- * processor away (pause-loop exiting), and on this 2-core machine spins
- * with it made the stages' rows two to three times slower in one run of
- * two, intermittently; without it, never (10 runs in 10). */
-#define SPINS_BEFORE_YIELD 1024
+ * before it yields the processor at every round -- about a millisecond: a
+ * wait for a stage is a few microseconds, so the yield is only for a
+ * machine whose threads share a processor, where a spinning wait would
+ * hold back the thread it waits for.  Measured on this 2-core virtual
+ * machine: yielding after a microsecond let the scheduler put both threads
+ * on one processor for seconds at a time (a pile's frame 1.2x slower on two
+ * threads than on one, in most runs), and a PAUSE in the spin made the
+ * hypervisor take the processor away (pause-loop exiting: the rows two to
+ * three times slower in one run of two); spinning on plain loads, neither
+ * (10 runs in 10 at full speed). */
+#define SPINS_BEFORE_YIELD (1u << 22)
 
 typedef struct stage {
     rbs__stage_fn fn;

@@ -288,6 +288,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         x->soft_slab = carve(base, &at, B);
         x->soft_order = carve(base, &at, B * sizeof(uint32_t));
         x->soft_rank = carve(base, &at, B * sizeof(uint32_t));
+        x->soft_planes = carve(base, &at, B);
         x->soft_aside = carve(base, &at, C * sizeof(uint32_t));
     }
     x->contact_resist = carve(base, &at, C * sizeof(rbs__resist));

@@ -227,7 +227,9 @@ struct rbs_world {
     uint8_t *soft_slab;                   /* per item: its slab this frame (soft_detect.c) */
     uint32_t *soft_order;                 /* the items slab by slab: the frame's records */
     uint32_t *soft_rank;                  /* per item: its record (place in soft_order) */
-    uint32_t *soft_aside;                 /* max_contacts: candidate pairs across slabs */
+    uint32_t *soft_aside;                 /* max_contacts: the candidate pairs in
+                                             contact, slab by slab */
+    uint8_t *soft_planes;                 /* per record: its planes in contact (bits) */
     const struct rbs__soft_kernels *soft_kernels; /* the rows' kernels (soft.h):
                                              chosen for the processor at creation */
     rbs_workers workers;                  /* threads lent by the caller (team.c);
@@ -315,6 +317,21 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
  * with j > i in order, to be tested with the pass's reaches -- and 0 when
  * there are too many for it (rbs__broadphase_pairs then walks the grid). */
 int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed);
+/* rbs__broadphase_list in parts, for a caller that splits its loops: item
+ * i's slack -- how much farther it may move before the list must be built
+ * again, L_i - R_i - |c_i - c_Li| (read only while the list is valid for
+ * these n items) -- and, from the items' largest coordinate (size), reach
+ * (rmax) and least slack, whether the list may be kept; else it is built
+ * again (rsum: the sum of the radii), 1 when it then holds every pair. */
+static inline double rbs__broadphase_slack(const rbs_world *w, const double *C, uint32_t i)
+{
+    double dx = C[3 * i] - w->vl_pos[3 * i], dy = C[3 * i + 1] - w->vl_pos[3 * i + 1],
+           dz = C[3 * i + 2] - w->vl_pos[3 * i + 2];
+    return w->vl_reach[i] - w->bp_reach[i] - sqrt(dx * dx + dy * dy + dz * dz);
+}
+int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rmax, double slack);
+int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, double fixed, double size, double rmax,
+                          double rsum);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
