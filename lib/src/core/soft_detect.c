@@ -194,9 +194,8 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     uint32_t l;
     rbs__chunk *k = rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
     if (k == NULL) {
-        if (em->status == RBS_OK)
-            em->status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
-                                                          "the soft step's contact chunks are full");
+        /* (the message is set by the step's thread, after the pass) */
+        em->status = RBS_E_CAPACITY;
         return;
     }
     em->count++;
@@ -515,7 +514,9 @@ static rbs_status emit_guard(void *ctx, const rbs__contact *c)
     detect *d = (detect *)ctx;
     emitter *em = &d->em[d->g->level_first[d->g->levels]];
     lane_of_contact(d, em, c);
-    return em->status;
+    if (em->status != RBS_OK)
+        return (rbs_status)rbs__world_set_error(d->w, em->status, "the soft step's contact chunks are full");
+    return RBS_OK;
 }
 
 /* The serial detection's sink: into the one group. */
@@ -523,7 +524,9 @@ static rbs_status emit_serial(void *ctx, const rbs__contact *c)
 {
     detect *d = (detect *)ctx;
     lane_of_contact(d, &d->em[0], c);
-    return d->em[0].status;
+    if (d->em[0].status != RBS_OK)
+        return (rbs_status)rbs__world_set_error(d->w, d->em[0].status, "the soft step's contact chunks are full");
+    return RBS_OK;
 }
 
 /* A frame whose contacts do not fit the groups' way (more than max_contacts,
@@ -668,7 +671,8 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
         w->contacts_high = w->contact_count;
     g->used[guard] = 0;
     if (st != RBS_OK)
-        return st;
+        return (rbs_status)rbs__world_set_error(w, st, "the soft step's contact chunks are full (%u contacts)",
+                                                (unsigned)g->contacts);
 
     /* the guards: each sphere's kicks, the levels summed in order, and the
      * second pass of the swept detection for those kicked far enough */

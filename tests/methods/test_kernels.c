@@ -1,0 +1,173 @@
+/*
+ * test_kernels.c - the soft step's gathered layout inside (internal: linked
+ * against the library's objects, with its private headers): the row
+ * kernels of every backend give the same bits, and the paths that piles
+ * seldom take -- serial chunks (a body touching more than the chunker's
+ * open chunks), and the serial detection (contacts beyond max_contacts)
+ * -- give the exact answers.
+ */
+#include "busy_pile.h"
+
+#include "core/soft.h"
+#include "core/world_internal.h"
+
+/* The busy pile stepped with the given kernels: its hash every 10 frames. */
+static void run_kernels(const rbs__soft_kernels *k, uint64_t hashes[24])
+{
+    rbs_world *w = busy_pile(0.002);
+    int i;
+    w->soft_kernels = k;
+    for (i = 0; i < 240; ++i) {
+        step_n(w, 1);
+        if (i % 10 == 9)
+            hashes[i / 10] = rbs_world_hash(w);
+    }
+    rbs_world_destroy(w);
+}
+
+/* The plain kernels (four doubles, lane by lane) and those for AVX and
+ * AVX-512VL, where this processor has them: the same bits every frame. */
+static void kernels_give_the_same_bits(void **state)
+{
+    static uint64_t plain[24], other[24];
+    int i;
+    (void)state;
+    run_kernels(&rbs__soft_kernels_plain, plain);
+#if defined(RBS_HAVE_AVX_KERNELS)
+    if (__builtin_cpu_supports("avx")) {
+        run_kernels(&rbs__soft_kernels_avx, other);
+        for (i = 0; i < 24; ++i)
+            if (plain[i] != other[i])
+                fail_msg("the AVX kernels differ from the plain ones after frame %d", 10 * i + 10);
+    } else {
+        print_message("no AVX on this processor: its kernels not compared\n");
+    }
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
+        run_kernels(&rbs__soft_kernels_avx512, other);
+        for (i = 0; i < 24; ++i)
+            if (plain[i] != other[i])
+                fail_msg("the AVX-512VL kernels differ from the plain ones after frame %d", 10 * i + 10);
+    } else {
+        print_message("no AVX-512VL on this processor: its kernels not compared\n");
+    }
+#else
+    (void)other;
+    (void)i;
+    print_message("no AVX kernels in this build\n");
+#endif
+}
+
+/* A hub: a fixed sphere of radius 1 at the origin and n balls of radius
+ * 0.05 around it (points of a Fibonacci sphere), each closing on it
+ * radially at v and touching it within the first frame -- n contacts on
+ * one body, more than the chunker's open chunks can hold, so most of them
+ * go into serial chunks.  No gravity; restitution e, friction mu. */
+static void hub_bounces(const rbs__soft_kernels *kernels, int n, double v, double e, double mu)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id m;
+    rbs_sphere_def s;
+    rbs_body_id ids[200];
+    const double dt = 0.001, golden = 3.14159265358979323846 * (3.0 - sqrt(5.0));
+    int i;
+    rbs_world_def_init(&d);
+    d.max_bodies = (uint32_t)n + 1;
+    d.dt = dt;
+    d.gravity.z = 0.0;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &w));
+    w->soft_kernels = kernels;
+    m = material(w, "m", mu, mu, e);
+    rbs_sphere_def_init(&s);
+    s.radius = 1.0;
+    s.fixed = 1;
+    s.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    for (i = 0; i < n; ++i) {
+        double z = 1.0 - 2.0 * (i + 0.5) / n, rho = sqrt(1.0 - z * z), ph = golden * i;
+        double ux = rho * cos(ph), uy = rho * sin(ph), at = 1.05 + 0.5 * v * dt; /* (touches mid-frame) */
+        ids[i] = ball(w, 0.05, 0.1, at * ux, at * uy, at * z, -v * ux, -v * uy, -v * z, m);
+    }
+    step_n(w, 3);
+    /* each leaves radially at e v (the impact law with a fixed body), with
+     * no tangential speed; 1e-12 of v: rounding */
+    for (i = 0; i < n; ++i) {
+        rbs_body_state st = state_of(w, ids[i]);
+        double r = sqrt(st.position.x * st.position.x + st.position.y * st.position.y +
+                        st.position.z * st.position.z);
+        double vr = (st.velocity.x * st.position.x + st.velocity.y * st.position.y + st.velocity.z * st.position.z) / r;
+        double v2 = st.velocity.x * st.velocity.x + st.velocity.y * st.velocity.y + st.velocity.z * st.velocity.z;
+        ASSERT_NEAR(vr, e * v, 1e-12 * v);
+        ASSERT_NEAR(sqrt(fabs(v2 - vr * vr)), 0.0, 1e-6 * v);
+    }
+    rbs_world_destroy(w);
+}
+
+static void hub_bounces_through_serial_chunks(void **state)
+{
+    (void)state;
+    hub_bounces(&rbs__soft_kernels_plain, 60, 1.0, 0.5, 0.5);
+    hub_bounces(&rbs__soft_kernels_plain, 120, 2.0, 1.0, 0.0);
+    hub_bounces(rbs__soft_kernels_best(), 60, 1.0, 0.5, 0.5);
+    hub_bounces(rbs__soft_kernels_best(), 120, 2.0, 0.0, 0.3);
+}
+
+/* A grid of 7 x 7 balls on the floor, 1 mm apart, all sliding at 2 m/s
+ * along x: their sweeps (2 mm a frame) make every neighbouring pair a
+ * contact (speculative), 84 of them besides the 49 with the floor, beyond
+ * max_contacts = 60, so detection takes the serial path: the floor's
+ * contacts, then the pairs while room is left (rbs__detect_swept's rule).
+ * The balls keep their spacing -- no pair closes -- so each must slide and
+ * come to roll exactly as a lone ball does (the same bits). */
+static void overflowing_contacts_detect_serially(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL, *lone = NULL;
+    rbs_material_id m, ml;
+    rbs_body_id ids[49], one;
+    int i, j;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.max_bodies = 50;
+    d.max_contacts = 60;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.5, 0.5);
+    floor_plane(w, m);
+    for (i = 0; i < 7; ++i)
+        for (j = 0; j < 7; ++j)
+            ids[7 * i + j] = ball(w, 0.05, 0.1, 0.101 * i, 0.101 * j, 0.05, 2.0, 0, 0, m);
+    d.max_bodies = 2;
+    d.max_contacts = 0;
+    CHECK_OK(rbs_world_create(&d, &lone));
+    ml = material(lone, "m", 0.5, 0.5, 0.5);
+    floor_plane(lone, ml);
+    one = ball(lone, 0.05, 0.1, 0, 0, 0.05, 2.0, 0, 0, ml);
+    for (i = 0; i < 300; ++i) {
+        step_n(w, 1);
+        step_n(lone, 1);
+        if (i == 0)
+            assert_int_equal(w->contact_count, 60); /* (filled to the room: the serial rule) */
+    }
+    for (i = 0; i < 49; ++i) {
+        rbs_body_state s = state_of(w, ids[i]), t = state_of(lone, one);
+        assert_memory_equal(&s.position.z, &t.position.z, sizeof(double));
+        assert_memory_equal(&s.velocity, &t.velocity, sizeof s.velocity);
+        assert_memory_equal(&s.angular_velocity, &t.angular_velocity, sizeof s.angular_velocity);
+    }
+    /* (and it rolls by then: the slide ends at 2 v0 / (7 mu g) = 0.117 s) */
+    ASSERT_NEAR(state_of(lone, one).velocity.x, 5.0 / 7.0 * 2.0, 1e-3);
+    rbs_world_destroy(lone);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(kernels_give_the_same_bits),
+        cmocka_unit_test(hub_bounces_through_serial_chunks),
+        cmocka_unit_test(overflowing_contacts_detect_serially),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,248 @@
+/*
+ * test_threads.c - the soft step on threads lent by the caller
+ * (rbs_world_set_workers, rbs_pool_create): the same bits for any number of
+ * threads and however the pool runs them, and its settings checked.
+ *
+ * The scene is a busy pile: 1,100 spheres of three sizes and two materials
+ * (four material-pair rows: friction, rolling off, restitution 0 to 0.9),
+ * some spinning, one fixed, dropped into a box of five planes -- enough
+ * spheres for four slabs, so that the groups of every level of the soft
+ * step's tree (soft_detect.c) and the guards are used.  The state hash is
+ * compared every 10 frames.
+ */
+#include <pthread.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "common.h"
+#include "rbsim/reel.h"
+
+#include "busy_pile.h"
+
+#define FRAMES 240
+
+/* The hash every 10 frames of the busy pile stepped on `workers`. */
+static void run(const rbs_workers *workers, double dt, uint64_t hashes[FRAMES / 10])
+{
+    rbs_world *w = busy_pile(dt);
+    int k;
+    CHECK_OK(rbs_world_set_workers(w, workers));
+    for (k = 0; k < FRAMES; ++k) {
+        step_n(w, 1);
+        if (k % 10 == 9)
+            hashes[k / 10] = rbs_world_hash(w);
+    }
+    CHECK_OK(rbs_world_set_workers(w, NULL));
+    rbs_world_destroy(w);
+}
+
+static void same_hashes(const uint64_t *a, const uint64_t *b, const char *what)
+{
+    int k;
+    for (k = 0; k < FRAMES / 10; ++k)
+        if (a[k] != b[k])
+            fail_msg("%s: the state differs from one thread's after frame %d", what, 10 * k + 10);
+}
+
+/* rbs_pool_create's pools of 1, 2 and 3 threads (2 to 4 threads with the
+ * stepping one): the same bits as one thread, frame by frame. */
+static void pools_give_the_same_bits(void **state)
+{
+    static uint64_t one[FRAMES / 10], many[FRAMES / 10], other[FRAMES / 10];
+    uint32_t t;
+    (void)state;
+    run(NULL, 0.002, one);
+    for (t = 1; t <= 3; ++t) {
+        rbs_pool *pool = NULL;
+        rbs_workers wk;
+        char what[64];
+        CHECK_OK(rbs_pool_create(t, &pool));
+        rbs_workers_init(&wk);
+        CHECK_OK(rbs_pool_workers(pool, &wk));
+        assert_int_equal(wk.count, t + 1);
+        run(&wk, 0.002, many);
+        snprintf(what, sizeof what, "%u threads", (unsigned)(t + 1));
+        same_hashes(one, many, what);
+        rbs_pool_destroy(pool);
+    }
+    /* (the comparison can fail: a step one ulp longer is another run) */
+    run(NULL, nextafter(0.002, 1.0), other);
+    assert_true(other[FRAMES / 10 - 1] != one[FRAMES / 10 - 1]);
+}
+
+/* A pool of the test's own: every start makes its threads, each of which
+ * waits `delay_us` before it runs its task (or runs none when `idle`). */
+typedef struct test_pool {
+    pthread_t thread[8];
+    uint32_t n;
+    long delay_us;
+    int idle;
+    rbs_task_fn *fn;
+    void *task;
+    uint32_t started, ran; /* starts, and tasks run */
+    pthread_mutex_t mutex;
+} test_pool;
+
+typedef struct test_task {
+    test_pool *p;
+    uint32_t k;
+} test_task;
+
+static test_task tasks[8];
+
+static void *test_thread(void *arg)
+{
+    test_task *t = (test_task *)arg;
+    test_pool *p = t->p;
+    if (p->delay_us > 0) {
+        struct timespec ts;
+        ts.tv_sec = 0;
+        ts.tv_nsec = p->delay_us * 1000L * (long)t->k;
+        nanosleep(&ts, NULL);
+    }
+    p->fn(p->task, t->k);
+    pthread_mutex_lock(&p->mutex);
+    p->ran++;
+    pthread_mutex_unlock(&p->mutex);
+    return NULL;
+}
+
+static void test_start(void *user, rbs_task_fn *fn, void *task, uint32_t n)
+{
+    test_pool *p = (test_pool *)user;
+    uint32_t k;
+    p->started++;
+    p->fn = fn;
+    p->task = task;
+    p->n = p->idle ? 0 : n;
+    for (k = 0; k < p->n; ++k) {
+        tasks[k].p = p;
+        tasks[k].k = k + 1;
+        if (pthread_create(&p->thread[k], NULL, test_thread, &tasks[k]) != 0)
+            fail_msg("pthread_create");
+    }
+}
+
+static void test_finish(void *user)
+{
+    test_pool *p = (test_pool *)user;
+    uint32_t k;
+    for (k = 0; k < p->n; ++k)
+        pthread_join(p->thread[k], NULL);
+}
+
+static void pool_run(test_pool *p, uint32_t count, uint64_t *hashes)
+{
+    rbs_workers wk;
+    rbs_workers_init(&wk);
+    wk.count = count;
+    wk.start = test_start;
+    wk.finish = test_finish;
+    wk.user = p;
+    run(&wk, 0.002, hashes);
+}
+
+/* However a pool runs the tasks -- late (each thread waits a millisecond or
+ * more per frame before it starts), or never -- the same bits: the stepping
+ * thread takes every share no other thread has claimed. */
+static void late_or_idle_pools_give_the_same_bits(void **state)
+{
+    static uint64_t one[FRAMES / 10], many[FRAMES / 10];
+    test_pool p;
+    (void)state;
+    run(NULL, 0.002, one);
+    memset(&p, 0, sizeof p);
+    pthread_mutex_init(&p.mutex, NULL);
+    p.delay_us = 1000;
+    pool_run(&p, 3, many);
+    same_hashes(one, many, "3 threads starting late");
+    assert_true(p.started == FRAMES && p.ran == 2 * FRAMES); /* (every task ran) */
+    p.started = p.ran = 0;
+    p.delay_us = 0;
+    p.idle = 1;
+    pool_run(&p, 4, many);
+    same_hashes(one, many, "a pool that starts nothing");
+    assert_true(p.started == FRAMES && p.ran == 0);
+    pthread_mutex_destroy(&p.mutex);
+}
+
+/* A checkpoint taken on two threads resumes on three with the same bits as
+ * the run that never stopped (on one). */
+static void checkpoint_resumes_on_other_threads(void **state)
+{
+    static unsigned char buf[4 << 20];
+    rbs_world *w = busy_pile(0.002), *c = NULL;
+    rbs_pool *p2 = NULL, *p3 = NULL;
+    rbs_workers wk;
+    size_t n = 0;
+    (void)state;
+    CHECK_OK(rbs_pool_create(1, &p2));
+    CHECK_OK(rbs_pool_create(2, &p3));
+    rbs_workers_init(&wk);
+    CHECK_OK(rbs_pool_workers(p2, &wk));
+    CHECK_OK(rbs_world_set_workers(w, &wk));
+    step_n(w, 120);
+    assert_true(rbs_world_checkpoint_size(w) <= sizeof buf);
+    CHECK_OK(rbs_world_checkpoint_write(w, buf, sizeof buf, &n));
+    CHECK_OK(rbs_world_create_from_checkpoint(buf, n, &c));
+    assert_int_equal(rbs_world_workers(c), 1); /* (a loaded world has none) */
+    CHECK_OK(rbs_pool_workers(p3, &wk));
+    CHECK_OK(rbs_world_set_workers(c, &wk));
+    CHECK_OK(rbs_world_set_workers(w, NULL));
+    step_n(w, 120);
+    step_n(c, 120);
+    assert_true(rbs_world_hash(w) == rbs_world_hash(c));
+    CHECK_OK(rbs_world_set_workers(c, NULL));
+    rbs_world_destroy(c);
+    rbs_world_destroy(w);
+    rbs_pool_destroy(p3);
+    rbs_pool_destroy(p2);
+}
+
+/* Settings out of range are refused, naming what is wrong, and leave the
+ * world's threads as they were. */
+static void bad_workers_are_refused(void **state)
+{
+    rbs_world *w = make_world(8, 0.001, -9.81, 0.5);
+    rbs_workers wk;
+    rbs_pool *pool = (rbs_pool *)&wk;
+    (void)state;
+    rbs_workers_init(&wk);
+    assert_int_equal(wk.count, 1);
+    wk.count = 0;
+    assert_int_equal(rbs_world_set_workers(w, &wk), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "workers.count"));
+    wk.count = RBS_WORKERS_MAX + 1;
+    assert_int_equal(rbs_world_set_workers(w, &wk), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "workers.count"));
+    wk.count = 2;
+    assert_int_equal(rbs_world_set_workers(w, &wk), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "workers.start is NULL"));
+    wk.start = test_start;
+    assert_int_equal(rbs_world_set_workers(w, &wk), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "workers.finish is NULL"));
+    wk.struct_size = 3;
+    assert_int_equal(rbs_world_set_workers(w, &wk), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "struct_size"));
+    assert_int_equal(rbs_world_workers(w), 1);
+    assert_int_equal(rbs_world_set_workers(NULL, &wk), RBS_E_INVALID);
+    assert_int_equal(rbs_world_workers(NULL), 0);
+    assert_int_equal(rbs_pool_create(0, &pool), RBS_E_INVALID);
+    assert_null(pool);
+    assert_int_equal(rbs_pool_create(RBS_WORKERS_MAX, &pool), RBS_E_INVALID);
+    assert_int_equal(rbs_pool_create(1, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_pool_workers(NULL, &wk), RBS_E_INVALID);
+    rbs_pool_destroy(NULL);
+    rbs_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(pools_give_the_same_bits),
+        cmocka_unit_test(late_or_idle_pools_give_the_same_bits),
+        cmocka_unit_test(checkpoint_resumes_on_other_threads),
+        cmocka_unit_test(bad_workers_are_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
