@@ -36,6 +36,8 @@ typedef struct run_options {
     int realtime, quiet, paused;
     double speed;
     uint32_t reel;
+    uint32_t threads;    /* threads that step the world, the simulation
+                            thread's own included (1: no pool) */
     const char *checkpoint; /* --checkpoint FILE or NULL */
     uint64_t checkpoint_every; /* 0: only at the end */
     const char *resume;     /* --resume FILE or NULL */
@@ -103,11 +105,14 @@ static int parse_positive(const char *s, double *out)
     return 0;
 }
 
+#define RUN_STR_(x) #x
+#define RUN_STR(x) RUN_STR_(x)
+
 /* Every option of "rbsim run", flags and those that take a value. */
 static const char *const run_option_names[] = {
     "--steps", "--dt", "--method", "--slop", "--csv", "--json", "--stats",
     "--png", "--every", "--realtime", "--speed", "--paused", "--reel",
-    "--quiet", "--checkpoint", "--checkpoint-every", "--resume", NULL};
+    "--threads", "--quiet", "--checkpoint", "--checkpoint-every", "--resume", NULL};
 
 /* Is a (up to any '=') the name of an option of "rbsim run"? */
 static int is_run_option(const char *a)
@@ -124,10 +129,11 @@ static int is_run_option(const char *a)
  * argument that is itself an option ("--csv --quiet") is a missing value. */
 static int parse_run_args(int argc, char **argv, run_options *o)
 {
-    int i, seen_reel = 0, seen_speed = 0;
+    int i, seen_reel = 0, seen_speed = 0, seen_threads = 0;
     memset(o, 0, sizeof *o);
     o->speed = 1.0;
     o->reel = 64;
+    o->threads = 1;
     for (i = 0; i < argc; i++) {
         const char *a = argv[i], *value = NULL, *eq;
         char name[32];
@@ -171,6 +177,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             strcmp(name, "--json") && strcmp(name, "--stats") &&
             strcmp(name, "--png") && strcmp(name, "--every") &&
             strcmp(name, "--reel") && strcmp(name, "--speed") &&
+            strcmp(name, "--threads") &&
             strcmp(name, "--checkpoint") && strcmp(name, "--checkpoint-every") &&
             strcmp(name, "--resume"))
             return usage_error("unknown option '%s'%s", name, "");
@@ -184,6 +191,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             (strcmp(name, "--png") == 0 && o->png) ||
             (strcmp(name, "--every") == 0 && o->every) ||
             (strcmp(name, "--reel") == 0 && seen_reel) ||
+            (strcmp(name, "--threads") == 0 && seen_threads) ||
             (strcmp(name, "--checkpoint") == 0 && o->checkpoint) ||
             (strcmp(name, "--checkpoint-every") == 0 && o->checkpoint_every) ||
             (strcmp(name, "--resume") == 0 && o->resume) ||
@@ -191,6 +199,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             return usage_error("%s given twice%s", name, "");
         seen_reel |= strcmp(name, "--reel") == 0;
         seen_speed |= strcmp(name, "--speed") == 0;
+        seen_threads |= strcmp(name, "--threads") == 0;
         if (eq)
             value = eq + 1;
         else if (i + 1 < argc && !is_run_option(argv[i + 1]))
@@ -240,6 +249,12 @@ static int parse_run_args(int argc, char **argv, run_options *o)
                 return usage_error("--reel: expected a capacity from 2 to "
                                    "1048576 frames, got '%s'%s", value, "");
             o->reel = (uint32_t)u;
+        } else if (strcmp(name, "--threads") == 0) {
+            if (parse_u64(value, 1, RBS_WORKERS_MAX, &u) != 0)
+                return usage_error("--threads: expected a whole number of "
+                                   "threads from 1 to " RUN_STR(RBS_WORKERS_MAX)
+                                   ", got '%s'%s", value, "");
+            o->threads = (uint32_t)u;
         } else if (strcmp(name, "--checkpoint-every") == 0) {
             if (parse_u64(value, 1, 9007199254740992ULL, &o->checkpoint_every) != 0)
                 return usage_error("--checkpoint-every: expected a whole number "
@@ -1281,6 +1296,7 @@ int rbsf_run_main(int argc, char **argv)
     rbs_world *world = NULL;
     rbs_renderer_registry *registry = NULL;
     rbs_projector *projector = NULL;
+    rbs_pool *pool = NULL;
     rbs_renderer_class demo_class;
     rbsf_demo_results demo_results;
     rbs_renderer_config configs[RBS_RENDERERS_MAX];
@@ -1371,6 +1387,24 @@ int rbsf_run_main(int argc, char **argv)
         rbs_world_destroy(world);
         world = ck;
         start_frame = rbs_world_step_count(world);
+    }
+    /* 1c. --threads N: a pool of N - 1 threads lends the world's steps its
+     * threads (the results are the same bits for any N). */
+    if (o.threads > 1) {
+        rbs_workers workers;
+        rbs_workers_init(&workers);
+        st = rbs_pool_create(o.threads - 1, &pool);
+        if (st == RBS_OK)
+            st = rbs_pool_workers(pool, &workers);
+        if (st == RBS_OK)
+            st = rbs_world_set_workers(world, &workers);
+        if (st != RBS_OK) {
+            fprintf(stderr, "rbsim run: --threads %lu: cannot lend the world "
+                            "threads: %s\n",
+                    (unsigned long)o.threads, rbs_status_string(st));
+            code = RBSF_EXIT_RUN;
+            goto out;
+        }
     }
     /* --steps 0 (frame 0 only) needs no override: 0 steps always fit. */
     target = o.steps_given && o.steps == 0 ? 0 : rbs_scene_steps(scene);
@@ -1660,7 +1694,8 @@ out:
     discard_staged(outs, n_out); /* a rejected run: nothing is left */
     free(ckpt_target);
     rbs_renderer_registry_destroy(registry);
-    rbs_world_destroy(world);
+    rbs_world_destroy(world); /* before the pool it may use */
+    rbs_pool_destroy(pool);
     rbs_scene_free(scene);
     free_outputs(outs, n_out);
     return code;
