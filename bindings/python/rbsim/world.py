@@ -421,6 +421,8 @@ class World:
         gravity_constant: G, m^3 kg^-1 s^-2.
         softening: Plummer softening length, m.
         prune: leave out stages that cannot change the result (default True).
+        threads: threads that step the world, the caller's included, 1 to
+                16 (default 1; see :attr:`World.threads`).
 
     Raises:
         InvalidError: a value out of range (the message names it).
@@ -445,7 +447,8 @@ class World:
                  mutual_gravity: Optional[bool] = None,
                  gravity_constant: Optional[float] = None,
                  softening: Optional[float] = None,
-                 prune: Optional[bool] = None) -> None:
+                 prune: Optional[bool] = None,
+                 threads: Optional[int] = None) -> None:
         self._init_fields()
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
@@ -473,7 +476,11 @@ class World:
             d.mutual_gravity = int(_check.flag(mutual_gravity, "mutual_gravity"))
         if prune is not None:
             d.prune = int(_check.flag(prune, "prune"))
+        n_threads = None if threads is None else _check.integer(
+            threads, "threads", 1, lib.RBS_WORKERS_MAX)
         self._create(d)
+        if n_threads is not None:
+            self.threads = n_threads
 
     # -- creation ---------------------------------------------------------
 
@@ -500,6 +507,7 @@ class World:
     def _init_fields(self) -> None:
         """The fields every way of making a World starts from."""
         self._world: Any = ffi.NULL
+        self._pool: Any = ffi.NULL  # rbs_pool lent to the world, or NULL
         self._lock = threading.Lock()
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
@@ -588,6 +596,10 @@ class World:
         """Destroy the C world; the memory goes when the last view does."""
         if self._world == ffi.NULL:
             return
+        if self._pool != ffi.NULL:
+            lib.rbs_world_set_workers(self._world, ffi.NULL)
+            lib.rbs_pool_destroy(self._pool)
+            self._pool = ffi.NULL
         if not self._lib_owned:
             lib.rbs_world_destroy(self._world)  # our block: nothing is freed
         self._world = ffi.NULL
@@ -603,6 +615,56 @@ class World:
     def __del__(self) -> None:
         if getattr(self, "_world", ffi.NULL) != ffi.NULL:
             self._release_world()
+
+    @property
+    def threads(self) -> int:
+        """Threads that step the world, the stepping thread included (1: the
+        caller's alone, the default).  Setting N > 1 lends the world a pool
+        of N - 1 threads of the library's (rbs_pool_create), replacing any
+        earlier pool; 1 releases it.  The soft method's piles split each
+        step among them; every other step runs on one thread.  The results
+        are the same bits for any N.  A restored or scene-built world starts
+        with 1.
+
+        Raises:
+            InvalidError: N outside 1 .. 16.
+            MemoryError: the threads could not be started.
+        """
+        w = self._acquire()
+        try:
+            return int(lib.rbs_world_workers(w))
+        finally:
+            self._lock.release()
+
+    @threads.setter
+    def threads(self, n: int) -> None:
+        n = _check.integer(n, "threads", 1, lib.RBS_WORKERS_MAX)
+        w = self._acquire()
+        try:
+            pool = ffi.NULL
+            if n > 1:
+                out = ffi.new("rbs_pool **")
+                status = lib.rbs_pool_create(n - 1, out)
+                if status != lib.RBS_OK:
+                    raise _e.error_class(status)("threads: cannot start %d threads" % (n - 1))
+                pool = out[0]
+                workers = ffi.new("rbs_workers *")
+                lib.rbs_workers_init_sized(workers, ffi.sizeof("rbs_workers"))
+                status = lib.rbs_pool_workers(pool, workers)
+                if status == lib.RBS_OK:
+                    status = lib.rbs_world_set_workers(w, workers)
+                if status != lib.RBS_OK:
+                    lib.rbs_pool_destroy(pool)
+                    raise _e.error_class(status)("threads: " + _str(lib.rbs_world_last_error(w)))
+            else:
+                status = lib.rbs_world_set_workers(w, ffi.NULL)
+                if status != lib.RBS_OK:
+                    raise _e.error_class(status)("threads: " + _str(lib.rbs_world_last_error(w)))
+            if self._pool != ffi.NULL:
+                lib.rbs_pool_destroy(self._pool)
+            self._pool = pool
+        finally:
+            self._lock.release()
 
     @property
     def closed(self) -> bool:
