@@ -21,7 +21,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLORS = {"rbsim": "#c0392b", "rbsim_sel": "#e67e22", "rbsim_tol": "#7b241c", "rbsim_soft": "#8e44ad", "ode": "#2c7fb8", "ode_sap": "#7fb8d8", "bullet": "#31a354",
+COLORS = {"rbsim": "#c0392b", "rbsim_mt": "#f1948a", "rbsim_sel": "#e67e22", "rbsim_tol": "#7b241c", "rbsim_soft": "#8e44ad", "ode": "#2c7fb8", "ode_sap": "#7fb8d8", "bullet": "#31a354",
           "mujoco": "#756bb1"}
 
 

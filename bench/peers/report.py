@@ -11,9 +11,9 @@ import sys
 
 import plot
 
-ENGINES = ["rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft", "ode", "ode_sap", "bullet", "mujoco"]
-RBSIM = ("rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft")
-BASE_OF = {"rbsim_sel": "rbsim", "rbsim_tol": "rbsim", "rbsim_soft": "rbsim", "ode_sap": "ode"}  # same program, same baseline memory
+ENGINES = ["rbsim", "rbsim_mt", "rbsim_sel", "rbsim_tol", "rbsim_soft", "ode", "ode_sap", "bullet", "mujoco"]
+RBSIM = ("rbsim", "rbsim_mt", "rbsim_sel", "rbsim_tol", "rbsim_soft")
+BASE_OF = {"rbsim_mt": "rbsim", "rbsim_sel": "rbsim", "rbsim_tol": "rbsim", "rbsim_soft": "rbsim", "ode_sap": "ode"}  # same program, same baseline memory
 R_BALL, H_BALL, E_BALL = 0.1, 1.0, 0.5
 
 
@@ -105,7 +105,8 @@ def peers_tables(rows, meta):
              "*speed-up* = the engine's cost / rbsim's cost in the same repeat (median), "
              "so above 1 means rbsim is faster; one column for rbsim's default method (auto: the "
              "soft step from 64 moving spheres on, so every pile, else Euler with global rollback), "
-             "one for RBS_METHOD_SELECTIVE and one for RBS_METHOD_EULER with "
+             "one for the same on two threads (rbsim_mt: `--threads 2`, a pool of one thread lent to the world; "
+             "the same bits), one for RBS_METHOD_SELECTIVE and one for RBS_METHOD_EULER with "
              "slop 0.005 (rbsim_tol: impacts shallower than 0.5 % of the radius are not rolled back), "
              "and one for RBS_METHOD_SOFT (rbsim_soft: the soft step, 4 sub-steps a frame).  *simulated* = the simulated time "
              "a run covered (less than planned when the run hit its wall-time cap; then costs "
@@ -330,7 +331,8 @@ def scaling_table(rows):
 def targets(rows, meta):
     L = ["### Against the targets of issue 9\n"]
     L.append("For rbsim's default method (**rbsim**, RBS_METHOD_AUTO: the soft step on every pile "
-             "here, Euler on the ball and the billiards), for RBS_METHOD_SELECTIVE (**rbsim_sel**) and for "
+             "here, Euler on the ball and the billiards), for the same on two threads (**rbsim_mt**, the same bits; "
+             "the others step on one thread, as ODE does), for RBS_METHOD_SELECTIVE (**rbsim_sel**) and for "
              "RBS_METHOD_EULER with slop 0.005 (**rbsim_tol**, `simulation.slop` in a scene) and for "
              "RBS_METHOD_SOFT (**rbsim_soft**, `\"method\": \"soft\"` in a scene: the soft step); "
              "ODE is ODE with the issue's dHashSpace (ratios against ode_sap are in the speed "

@@ -41,8 +41,11 @@ import scenes  # noqa: E402
 # finds it instead of being rolled back to the moment of touch.
 # "rbsim_soft" is rbsim with RBS_METHOD_SOFT (the soft step: fixed sub-steps
 # with soft contacts, default soft_substeps = 4), the pile method.
-ENGINES = ["rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft", "ode", "ode_sap", "bullet", "mujoco"]
-RBSIM = ("rbsim", "rbsim_sel", "rbsim_tol", "rbsim_soft")
+# "rbsim_mt" is rbsim's default method stepping on two threads (--threads 2:
+# a pool of one thread lent with rbs_world_set_workers), the same bits as
+# "rbsim"; this machine has two cores.
+ENGINES = ["rbsim", "rbsim_mt", "rbsim_sel", "rbsim_tol", "rbsim_soft", "ode", "ode_sap", "bullet", "mujoco"]
+RBSIM = ("rbsim", "rbsim_mt", "rbsim_sel", "rbsim_tol", "rbsim_soft")
 SCALED = ("rbsim", "rbsim_sel", "rbsim_soft")  # the 10^3 .. 10^6 series
 TOL_SLOP = 0.005
 
@@ -80,15 +83,15 @@ def plan(quick):
         ("ball", 1, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
         ("billiards", 16, 2000, {e: (5, 30) for e in ENGINES if e != "ode_sap"}),
         # the small pile: the baseline of the marginal memory per body (report.py)
-        ("pile", 125, 2000, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
+        ("pile", 125, 2000, {"rbsim": (3, 60), "rbsim_mt": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
                              "ode": (3, 60), "ode_sap": (1, 60), "bullet": (1, 60), "mujoco": (1, 60)}),
-        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_sel": (5, 60), "rbsim_tol": (5, 60), "rbsim_soft": (5, 60),
+        ("pile", 1000, 2000, {"rbsim": (5, 60), "rbsim_mt": (5, 60), "rbsim_sel": (5, 60), "rbsim_tol": (5, 60), "rbsim_soft": (5, 60),
                               "ode": (5, 60),
                               "ode_sap": (3, 60), "bullet": (2, 90), "mujoco": (3, 60)}),
-        ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_sel": (3, 90), "rbsim_tol": (2, 150), "rbsim_soft": (3, 90),
+        ("pile", 8000, 2000, {"rbsim": (3, 90), "rbsim_mt": (3, 90), "rbsim_sel": (3, 90), "rbsim_tol": (2, 150), "rbsim_soft": (3, 90),
                               "ode": (2, 400),
                               "ode_sap": (1, 150), "bullet": (1, 200), "mujoco": (1, 150)}),
-        ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
+        ("pile", 27000, 100, {"rbsim": (3, 60), "rbsim_mt": (3, 60), "rbsim_sel": (3, 60), "rbsim_tol": (3, 60), "rbsim_soft": (3, 60),
                               "ode": (1, 100),
                               "bullet": (1, 60), "mujoco": (1, 60)}),
     ]
@@ -119,6 +122,8 @@ def scaling_plan(quick):
 def driver_cmd(build, engine, scene_path, steps, cap, state_path):
     if engine in ("rbsim", "ode"):
         cmd = [os.path.join(build, "bench", "peers", f"peers_{engine}")]
+    elif engine == "rbsim_mt":
+        cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--threads", "2"]
     elif engine == "rbsim_sel":
         cmd = [os.path.join(build, "bench", "peers", "peers_rbsim"), "--method", "selective"]
     elif engine == "rbsim_tol":
