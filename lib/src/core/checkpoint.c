@@ -7,10 +7,10 @@
  * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
  * precedes it.  Reading checks everything before it builds anything.
  *
- * Format version 7 (little or big endian as written; a reader on the other
+ * Format version 8 (little or big endian as written; a reader on the other
  * byte order rejects it as foreign; see CKPT_VERSION for the earlier ones):
  *   char     magic[8]   "RBSCKPT\0"
- *   uint32   version    7
+ *   uint32   version    8
  *   uint32   endian     0x01020304
  *   uint32   def_size   sizeof(rbs_world_def)
  *   uint32   reserved   0
@@ -37,8 +37,10 @@
  * adds the name index and the time base of rbs_world_set_dt; 5 has
  * rbs_world_def.soft_substeps; 6 has contacts of 120 bytes (restitution
  * from the pair row, a's lever from its radius); 7 has
- * rbs_world_def.soft_tolerance. */
-#define CKPT_VERSION 7u
+ * rbs_world_def.soft_tolerance; 8 has the soft step's gathered layout (its
+ * slabs, records order, chunks sharing the contacts' room, the team's
+ * words). */
+#define CKPT_VERSION 8u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

@@ -184,6 +184,24 @@ typedef struct detect_ctx {
     rbs_status status;
 } detect_ctx;
 
+/* A detection's context: no reach, no kicks, no first pass yet; contacts
+ * to sink (NULL: w->contact). */
+static void ctx_init(detect_ctx *ctx, rbs_world *w, double dt, const double *acc, rbs__contact_sink sink,
+                     void *sink_ctx)
+{
+    ctx->w = w;
+    ctx->dt = dt;
+    ctx->reach = 0.0;
+    ctx->swept = 0;
+    ctx->acc = acc;
+    ctx->kick = NULL;
+    ctx->first = NULL;
+    ctx->centres = NULL;
+    ctx->sink = sink;
+    ctx->sink_ctx = sink_ctx;
+    ctx->status = RBS_OK;
+}
+
 /* The spheres' centres for the broad phase, 3 doubles an item: their
  * positions in place when they hold consecutive slots (plan.consecutive),
  * else copied into bp_center (24 bytes a sphere made resident). */
@@ -452,17 +470,9 @@ static rbs_status detect(rbs_world *w, double dt, double half, const double *mar
     uint32_t i;
     double slop_rel = w->def.slop;
     detect_ctx ctx;
-    ctx.w = w;
-    ctx.dt = dt;
+    ctx_init(&ctx, w, dt, acc, sink, sink_ctx);
     ctx.reach = 2.0 * half;
     ctx.swept = margin != NULL;
-    ctx.acc = acc;
-    ctx.kick = NULL;
-    ctx.first = NULL;
-    ctx.centres = NULL;
-    ctx.sink = sink;
-    ctx.sink_ctx = sink_ctx;
-    ctx.status = RBS_OK;
     w->contact_count = 0;
 
     /* sphere - plane */
@@ -496,17 +506,8 @@ rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, con
                               rbs__contact_sink sink, void *sink_ctx)
 {
     detect_ctx ctx;
-    ctx.w = w;
-    ctx.dt = dt;
-    ctx.reach = 0.0;
+    ctx_init(&ctx, w, dt, acc, sink, sink_ctx);
     ctx.swept = 1;
-    ctx.acc = acc;
-    ctx.kick = NULL;
-    ctx.first = NULL;
-    ctx.centres = NULL;
-    ctx.sink = sink;
-    ctx.sink_ctx = sink_ctx;
-    ctx.status = RBS_OK;
     if (w->plan.sphere_pairs)
         detect_kicked(w, &ctx, margin, kick, sphere_centres(w));
     if (w->contact_count > w->contacts_high)
