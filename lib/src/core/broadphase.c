@@ -372,20 +372,14 @@ int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, doubl
            list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown);
 }
 
-int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed)
+/* The candidate list ready for a pass of n >= 2 items (kept, or built
+ * again); 1 when it holds every candidate pair, 0 when there are too many
+ * for it. */
+static int list_ready(rbs_world *w, const double *C, uint32_t n, double fixed)
 {
-    const double *C = centers != NULL ? centers : w->bp_center, *R = w->bp_reach;
+    const double *R = w->bp_reach;
     double size = 0.0, rsum = 0.0, rmax = 0.0, slack = INFINITY;
     uint32_t i, k;
-    if (n < 2) {
-        /* no pair: an empty list */
-        w->vl_count = 0;
-        w->vl_start[0] = 0;
-        if (n == 1)
-            w->vl_start[1] = 0;
-        w->vl_valid = 0;
-        return 1;
-    }
     for (i = 0; i < n; ++i) {
         rsum += w->radius[w->spheres[i]];
         rmax = R[i] > rmax ? R[i] : rmax;
@@ -409,7 +403,7 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
     uint32_t k;
     if (n < 2)
         return;
-    if (!rbs__broadphase_list(w, centers, n, fixed)) {
+    if (!list_ready(w, C, n, fixed)) {
         /* more candidate pairs than the list holds: the grid itself (its
          * own order; a function of this pass's centres only) */
         grid_pairs(w, C, R, n, query, fn, ctx);

@@ -165,7 +165,6 @@ static double creep_bound(const rbs_world *w, double dt)
     return isfinite(most) ? most : 0.0;
 }
 
-
 /* Detection state passed through the broad phase. */
 typedef struct detect_ctx {
     rbs_world *w;
@@ -314,12 +313,9 @@ static void kick_add(const rbs_world *w, double *kick, uint32_t a, uint32_t b, v
 void rbs__pair_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t b, v3 d, double dist, double dt,
                        int swept)
 {
-    double ra = w->radius[a], rb = w->radius[b];
     c->a = a;
     c->b = b;
-    /* Coincident centres have no normal: pick +z (documented). */
-    c->n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
-    rbs__contact_set(w, c, dist, dist - ra - rb);
+    rbs__contact_set(w, c, dist, dist - w->radius[a] - w->radius[b]); /* (the flags) */
     /* Swept (the soft step): a closing pair that is apart takes the normal
      * of the moment its straight paths touch within the frame (or, if they
      * do not, come closest in it), with the separation along it and the
@@ -335,8 +331,7 @@ void rbs__pair_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t
      * 1.1 % of a radius instead of 0.15 %).  Spheres with the centre of
      * mass off the centre keep the frame-start normal (their centres do
      * not move straight); the flags keep the true gap. */
-    if (swept && (c->flags & RBS__APART) && !(c->flags & RBS__OFF))
-        (void)rbs__impact_normal(w, a, b, d, ra, rb, dt, &c->n, &c->gap, &c->lb);
+    rbs__pair_touch(w, a, b, d, dist, dt, swept && !(c->flags & RBS__OFF), &c->n, &c->gap, &c->lb);
 }
 
 void rbs__plane_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t p, double gap)

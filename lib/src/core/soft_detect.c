@@ -335,14 +335,12 @@ static void pass_prepare(void *ctx, uint32_t share, uint32_t begin, uint32_t end
     for (k = begin; k < end; ++k) {
         const uint32_t a = w->spheres[k];
         v3 acc, tau;
-        double m;
         rbs__accelerations(w, a, &acc, &tau);
         if (in->acc != NULL) {
             v3_store(&in->acc[6 * a], acc);
             v3_store(&in->acc[6 * a + 3], tau);
         }
-        m = v3_len(v3_load(&w->vel[3 * a])) * in->dt + v3_len(acc) * in->dt * in->dt;
-        in->margin[a] = w->fixed[a] || !isfinite(m) ? 0.0 : m;
+        in->margin[a] = rbs__sweep_margin(w, a, acc, in->dt);
         if (d->centres == w->bp_center)
             memcpy(&w->bp_center[3 * k], &w->pos[3 * a], 3 * sizeof(double));
         w->bp_reach[k] = rbs__sphere_reach(w, a, in->margin[a]);
@@ -436,10 +434,9 @@ static void emit_pair(const detect *d, emitter *em, uint32_t k)
     const uint32_t i = w->vl_pair[2 * k], j = w->vl_pair[2 * k + 1], a = w->spheres[i], b = w->spheres[j];
     const uint32_t ra = w->soft_rank[i], rb = w->soft_rank[j];
     const v3 dv = v3_sub(v3_load(&w->pos[3 * a]), v3_load(&w->pos[3 * b]));
-    const double dist = v3_len(dv), r_a = w->radius[a], r_b = w->radius[b];
-    double gap = dist - r_a - r_b, lb = dist - r_a;
-    /* Coincident centres have no normal: pick +z (documented). */
-    v3 n = dist > 0.0 ? v3_scale(dv, 1.0 / dist) : v3_make(0, 0, 1);
+    const double dist = v3_len(dv);
+    double gap, lb;
+    v3 n;
     if (dist > 0.0) {
         double u = rbs__kick_speed(w, a, b, dv, dist);
         if (u != 0.0) {
@@ -447,9 +444,8 @@ static void emit_pair(const detect *d, emitter *em, uint32_t k)
             em->kick[rb] += 2.0 * w->inv_mass[b] * u;
         }
     }
-    /* apart: the normal of the touch on the straight paths (contact.c) */
-    if (gap > w->def.slop * (r_a < r_b ? r_a : r_b))
-        (void)rbs__impact_normal(w, a, b, dv, r_a, r_b, d->in->dt, &n, &gap, &lb);
+    /* (apart: the normal of the touch on the straight paths) */
+    rbs__pair_touch(w, a, b, dv, dist, d->in->dt, 1, &n, &gap, &lb);
     lane_fill(d, em, ra, rb, a, b, 0, rbs__pair_row(w, a, b), n, gap, lb, 0);
 }
 

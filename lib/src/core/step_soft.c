@@ -262,7 +262,6 @@ static void margins(rbs_world *w, double dt, double *acc, double *margin)
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         v3 a, tau;
-        double m;
         rbs__accelerations(w, i, &a, &tau);
         if (w->plan.mutual && !w->fixed[i])
             a = v3_add(a, v3_load(&w->acc[3 * i]));
@@ -270,8 +269,7 @@ static void margins(rbs_world *w, double dt, double *acc, double *margin)
             v3_store(&acc[6 * i], a);
             v3_store(&acc[6 * i + 3], tau);
         }
-        m = v3_len(v3_load(&w->vel[3 * i])) * dt + v3_len(a) * dt * dt;
-        margin[i] = w->fixed[i] || !isfinite(m) ? 0.0 : m;
+        margin[i] = rbs__sweep_margin(w, i, a, dt);
     }
 }
 
@@ -703,8 +701,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     const double dt = w->def.dt, h = dt / n;
     const uint32_t B = w->def.max_bodies;
     double *inc = w->method_scratch; /* per slot: the accelerations (6), then the margins */
-    double omega, a1, a2;
     uint32_t i, at = 0, s;
+    rbs__soft_rows k;
     soft_pass sp;
     rbs_status st;
 
@@ -742,13 +740,11 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         if (m != NULL)
             warm_for_h(c, p, sp.friction, m->n, v3_mad(m->t, c->n, -v3_dot(m->t, c->n)), h);
     }
-    omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
-    a1 = 2.0 * SOFT_ZETA + h * omega;
-    a2 = h * omega * a1;
-    sp.inv_h = 1.0 / h;
-    sp.bias_rate = omega / a1;
-    sp.mass_scale = a2 / (1.0 + a2);
-    sp.impulse_scale = 1.0 / (1.0 + a2);
+    rows_for_h(&k, h);
+    sp.inv_h = k.inv_h;
+    sp.bias_rate = k.bias_rate;
+    sp.mass_scale = k.mass_scale;
+    sp.impulse_scale = k.impulse_scale;
 
     for (s = 0; s < n; ++s) {
         rbs__integrate_velocities(w, h);

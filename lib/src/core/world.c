@@ -41,6 +41,16 @@ static int def_read(void *dst, size_t dst_size, const void *src)
     return 1;
 }
 
+/* Give a caller the defaults d (of d_size bytes) for a struct of its
+ * header's dst_size: the bytes it knows about, with struct_size the number
+ * given. */
+static void def_give(void *dst, size_t dst_size, const void *d, size_t d_size)
+{
+    const uint32_t n = (uint32_t)(dst_size < d_size ? dst_size : d_size);
+    memcpy(dst, d, n);
+    memcpy(dst, &n, sizeof n);
+}
+
 void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
 {
     rbs_world_def d;
@@ -68,8 +78,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.max_substeps = 4096;
     d.soft_substeps = 4;
     d.soft_tolerance = 0.0;
-    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
-    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+    def_give(def, def_size, &d, sizeof d);
 }
 
 void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size)
@@ -85,8 +94,7 @@ void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size)
     d.orientation.w = 1.0;
     d.color = 0xd03030u;
     d.texture = RBS_TEXTURE_STRIPES;
-    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
-    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+    def_give(def, def_size, &d, sizeof d);
 }
 
 void rbs_plane_def_init_sized(rbs_plane_def *def, size_t def_size)
@@ -99,8 +107,7 @@ void rbs_plane_def_init_sized(rbs_plane_def *def, size_t def_size)
     d.normal.z = 1.0;
     d.color = 0x808080u;
     d.texture = RBS_TEXTURE_CHECKER;
-    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
-    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+    def_give(def, def_size, &d, sizeof d);
 }
 
 void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size)
@@ -113,8 +120,7 @@ void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size)
     d.static_friction = 0.5;
     d.kinetic_friction = 0.3;
     d.restitution = -1.0;
-    memcpy(def, &d, def_size < sizeof d ? def_size : sizeof d);
-    def->struct_size = (uint32_t)(def_size < sizeof d ? def_size : sizeof d);
+    def_give(def, def_size, &d, sizeof d);
 }
 
 /* Read and check a world def; fills *out with defaults for fields the
@@ -1341,8 +1347,7 @@ void rbs_workers_init_sized(rbs_workers *workers, size_t size)
     memset(&d, 0, sizeof d);
     d.struct_size = (uint32_t)sizeof d;
     d.count = 1;
-    memcpy(workers, &d, size < sizeof d ? size : sizeof d);
-    workers->struct_size = (uint32_t)(size < sizeof d ? size : sizeof d);
+    def_give(workers, size, &d, sizeof d);
 }
 
 rbs_status rbs_world_set_workers(rbs_world *w, const rbs_workers *workers)

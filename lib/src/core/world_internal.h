@@ -311,13 +311,10 @@ static inline v3 rbs__inertia_times(const rbs_world *w, uint32_t i, quat q, v3 o
 typedef void (*rbs__pair_fn)(void *ctx, uint32_t i, uint32_t j);
 void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
                            rbs__pair_fn fn, void *ctx);
-/* The candidate list ready for a pass as rbs__broadphase_pairs would take it
- * (kept, or built again); 1 when it holds every candidate pair -- item i's
- * are vl_pair[2 k], k from vl_start[i] to vl_start[i + 1] - 1, pairs (i, j)
- * with j > i in order, to be tested with the pass's reaches -- and 0 when
- * there are too many for it (rbs__broadphase_pairs then walks the grid). */
-int rbs__broadphase_list(rbs_world *w, const double *centers, uint32_t n, double fixed);
-/* rbs__broadphase_list in parts, for a caller that splits its loops: item
+/* The candidate list's upkeep in parts, for a caller that splits its loops
+ * (rbs__broadphase_pairs does it in one; item i's candidates are vl_pair[2
+ * k], k from vl_start[i] to vl_start[i + 1] - 1, pairs (i, j) with j > i in
+ * order, to be tested with the pass's reaches): item
  * i's slack -- how much farther it may move before the list must be built
  * again, L_i - R_i - |c_i - c_Li| (read only while the list is valid for
  * these n items) -- and, from the items' largest coordinate (size), reach
@@ -360,6 +357,14 @@ static inline double rbs__sphere_reach(const rbs_world *w, uint32_t a, double m)
 {
     return w->radius[a] * (1.0 + w->def.slop) + m;
 }
+/* How far moving sphere a may travel within a frame of dt under the
+ * acceleration acc, |v| dt + |a| dt^2, m (0 for a fixed one, or when that
+ * is not finite): the soft step's sweep margin (both layouts). */
+static inline double rbs__sweep_margin(const rbs_world *w, uint32_t a, v3 acc, double dt)
+{
+    const double m = v3_len(v3_load(&w->vel[3 * a])) * dt + v3_len(acc) * dt * dt;
+    return w->fixed[a] || !isfinite(m) ? 0.0 : m;
+}
 /* The contact of spheres a and b (d = p_a - p_b, dist = |d|) into c: bodies,
  * normal, material row, levers, gap and flags; swept: a closing pair that is
  * apart takes the normal of its touch on the straight paths of the frame
@@ -373,6 +378,21 @@ void rbs__pair_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_t
  * (contact.c). */
 int rbs__impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double ra, double rb, double dt, v3 *n,
                        double *gap, double *lb);
+/* Where spheres a and b touch (d = p_a - p_b, dist = |d|): the unit normal
+ * from b to a (+z for coincident centres, documented), the gap along it and
+ * b's lever; swept and apart by more than the slop: those of the touch on
+ * their straight paths within dt (rbs__impact_normal).  Both detections'
+ * one expression of it (rbs__pair_contact, the soft step's emit_pair). */
+static inline void rbs__pair_touch(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist, double dt,
+                                   int swept, v3 *n, double *gap, double *lb)
+{
+    const double ra = w->radius[a], rb = w->radius[b];
+    *n = dist > 0.0 ? v3_scale(d, 1.0 / dist) : v3_make(0, 0, 1);
+    *gap = dist - ra - rb;
+    *lb = dist - ra;
+    if (swept && *gap > w->def.slop * (ra < rb ? ra : rb))
+        (void)rbs__impact_normal(w, a, b, d, ra, rb, dt, n, gap, lb);
+}
 /* The material-pair row of bodies a and b (the default row when none). */
 static inline uint32_t rbs__pair_row(const rbs_world *w, uint32_t a, uint32_t b)
 {
