@@ -25,34 +25,36 @@ static void run_kernels(const rbs__soft_kernels *k, uint64_t hashes[24])
     rbs_world_destroy(w);
 }
 
+#if defined(RBS_HAVE_AVX_KERNELS)
+/* Kernels k (named) against the plain ones' hashes, frame by frame. */
+static void compare_with_plain(const char *name, const rbs__soft_kernels *k, const uint64_t *plain)
+{
+    static uint64_t other[24];
+    int i;
+    run_kernels(k, other);
+    for (i = 0; i < 24; ++i)
+        if (plain[i] != other[i])
+            fail_msg("the %s kernels differ from the plain ones after frame %d", name, 10 * i + 10);
+}
+#endif
+
 /* The plain kernels (four doubles, lane by lane) and those for AVX and
  * AVX-512VL, where this processor has them: the same bits every frame. */
 static void kernels_give_the_same_bits(void **state)
 {
-    static uint64_t plain[24], other[24];
-    int i;
+    static uint64_t plain[24];
     (void)state;
     run_kernels(&rbs__soft_kernels_plain, plain);
 #if defined(RBS_HAVE_AVX_KERNELS)
-    if (__builtin_cpu_supports("avx")) {
-        run_kernels(&rbs__soft_kernels_avx, other);
-        for (i = 0; i < 24; ++i)
-            if (plain[i] != other[i])
-                fail_msg("the AVX kernels differ from the plain ones after frame %d", 10 * i + 10);
-    } else {
+    if (__builtin_cpu_supports("avx"))
+        compare_with_plain("AVX", &rbs__soft_kernels_avx, plain);
+    else
         print_message("no AVX on this processor: its kernels not compared\n");
-    }
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) {
-        run_kernels(&rbs__soft_kernels_avx512, other);
-        for (i = 0; i < 24; ++i)
-            if (plain[i] != other[i])
-                fail_msg("the AVX-512VL kernels differ from the plain ones after frame %d", 10 * i + 10);
-    } else {
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl"))
+        compare_with_plain("AVX-512VL", &rbs__soft_kernels_avx512, plain);
+    else
         print_message("no AVX-512VL on this processor: its kernels not compared\n");
-    }
 #else
-    (void)other;
-    (void)i;
     print_message("no AVX kernels in this build\n");
 #endif
 }

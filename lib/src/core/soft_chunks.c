@@ -87,12 +87,7 @@ rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind
             return NULL;
         ch->open[kind][k] = (uint32_t)(c - ch->chunk);
         ch->open_mask[kind] |= 1u << k;
-        *lane = c->count++;
-        c->a[*lane] = a;
-        c->b[*lane] = b;
-        ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
-        if (!kind)
-            ch->member[b] |= (uint16_t)(1u << k);
+        rbs__chunker_put(ch, c, kind, k, a, b, lane);
         return c;
     }
     /* no open chunk can take it and none is free: the serial chunk */

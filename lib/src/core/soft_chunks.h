@@ -46,6 +46,19 @@ static inline int rbs__lowest_bit(unsigned bits)
 #endif
 }
 
+/* Bodies a and b (kind 1: b is a plane) into the next lane of open chunk k
+ * of their kind, c (*lane: which), and the chunk marked on them. */
+static inline void rbs__chunker_put(rbs__chunker *ch, rbs__chunk *c, int kind, int k, uint32_t a, uint32_t b,
+                                    uint32_t *lane)
+{
+    *lane = c->count++;
+    c->a[*lane] = a;
+    c->b[*lane] = b;
+    ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
+    if (!kind)
+        ch->member[b] |= (uint16_t)(1u << k);
+}
+
 /* The chunk and lane (*lane) of a new contact of bodies a and b (plane: b
  * is a plane), with a and b written; NULL when the chunks are full (never
  * within RBS__GROUP_CHUNKS(contacts)).  Inline: the first open chunk that
@@ -61,12 +74,7 @@ static inline rbs__chunk *rbs__chunker_place(rbs__chunker *ch, uint32_t a, uint3
         return rbs__chunker_open(ch, a, b, kind, lane);
     k = rbs__lowest_bit(fits);
     c = &ch->chunk[ch->open[kind][k]];
-    *lane = c->count++;
-    c->a[*lane] = a;
-    c->b[*lane] = b;
-    ch->member[a] |= (uint16_t)(1u << (8 * kind + k));
-    if (!kind)
-        ch->member[b] |= (uint16_t)(1u << k);
+    rbs__chunker_put(ch, c, kind, k, a, b, lane);
     if (c->count == RBS__LANES)
         rbs__chunker_close(ch, kind, k);
     return c;

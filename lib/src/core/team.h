@@ -4,8 +4,8 @@
  *
  * A stage is a function over items [0, n) whose items are independent:
  * any split of them among threads, in any order, gives the same result
- * (bodies each on their own; the chunks of one colour, which share no
- * body).  team_run splits a stage into shares, which the step's own thread
+ * (bodies each on their own; the contact groups of one level, which share
+ * no body).  team_run splits a stage into shares, which the step's own thread
  * and the lent workers claim one at a time until none is left, and returns
  * when every share is done, so the stages of a frame follow one another as
  * they would on one thread: results do not depend on how many threads
@@ -28,8 +28,10 @@ typedef struct rbs__team rbs__team;
 void rbs__team_start(rbs_world *w);
 /* Stop them: they return, and the pool's finish waits for them. */
 void rbs__team_stop(rbs_world *w);
-/* Run fn over items [0, n) in up to `shares` shares (at most the threads,
- * at least 1), on every thread of the step; returns when all are done. */
+/* Run fn over items [0, n) in `shares` shares (at most n and 16, at least
+ * 1; share k: items [k n / shares, (k + 1) n / shares)), on every thread of
+ * the step, thread t of T taking the t-th T-th of the shares first; returns
+ * when all are done. */
 void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32_t shares);
 /* The threads a step may use (1 without a pool). */
 uint32_t rbs__team_threads(const rbs_world *w);
