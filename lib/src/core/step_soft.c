@@ -398,6 +398,7 @@ typedef struct soft_frame {
     uint32_t sub;                     /* the sub-step under way */
     rbs__soft_rows rows;
     int stage;                        /* the rows' stage of this pass */
+    rbs__stage_fn before;             /* the per-body stage taken with the leaves (rows_pass) */
     uint32_t first;                   /* the level's first group */
     uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
     rbs__soft_report report[RBS_WORKERS_MAX];
@@ -576,20 +577,29 @@ static void stage_write(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     }
 }
 
-/* Groups [first + begin, first + end) in the frame's current rows stage. */
+/* Groups [first + begin, first + end) in the frame's current rows stage.
+ * On the leaves' level, group k is slab k, and its contacts touch no body
+ * of another slab: the slab's bodies take the per-body stage that comes
+ * before the pass (f->before, if any) just before the slab's rows, in the
+ * same share -- the same operations on each body in the same order as a
+ * stage of their own, without one more handover between the threads. */
 static void stage_rows(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
     uint32_t k;
-    for (k = f->first + begin; k < f->first + end; ++k)
+    for (k = f->first + begin; k < f->first + end; ++k) {
+        if (f->before != NULL)
+            f->before(ctx, share, k, k + 1);
         f->w->soft_kernels->pass(&f->rows, f->stage, f->g->first[k], f->g->first[k] + f->g->used[k],
                                  &f->report[share]);
+    }
 }
 
 /* One pass of the rows (stage; < 0 the warm start) over every chunk: the
  * groups level by level from the leaves up, a level's groups side by side,
- * then the guards' group. */
-static void rows_pass(soft_frame *f, int stage)
+ * then the guards' group; before (NULL: none): the per-body stage over
+ * slabs that must come first, taken slab by slab with the leaves. */
+static void rows_pass(soft_frame *f, int stage, rbs__stage_fn before)
 {
     const rbs__soft_groups *g = f->g;
     uint32_t l;
@@ -597,8 +607,17 @@ static void rows_pass(soft_frame *f, int stage)
     for (l = 0; l <= g->levels; ++l) {
         uint32_t n = g->level_first[l + 1] - g->level_first[l];
         f->first = g->level_first[l];
+        f->before = l == 0 ? before : NULL;
         rbs__team_run(f->w, stage_rows, f, n, n);
     }
+}
+
+/* The records, then the first sub-step's velocities (before its warm
+ * start). */
+static void stage_start(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    stage_records(ctx, share, begin, end);
+    stage_velocities(ctx, share, begin, end);
 }
 
 /* A frame in the gathered layout (the plan's gather): records, chunks and
@@ -680,19 +699,15 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * every record per sub-step -- at a million bodies those sweeps were
      * most of a falling lattice's cost -- and always all soft_substeps of
      * them, of h_full (def.soft_tolerance concerns contacts). */
-    rbs__team_run(w, stage_records, &f, g.slabs, g.slabs);
+    f.sub = 0;
+    rows_pass(&f, -1, stage_start);
     for (s = 0; s < n; ++s) {
         f.sub = s;
-        rbs__team_run(w, stage_velocities, &f, g.slabs, g.slabs);
-        if (s == 0)
-            rows_pass(&f, -1);
-        rows_pass(&f, RBS__SOFT_SOLVE);
-        rbs__team_run(w, stage_positions, &f, g.slabs, g.slabs);
+        rows_pass(&f, RBS__SOFT_SOLVE, s == 0 ? NULL : stage_velocities);
         /* (the last relax also measures the report: positions are final) */
-        rows_pass(&f, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX);
+        rows_pass(&f, s == n - 1 ? RBS__SOFT_RELAX_REPORT : RBS__SOFT_RELAX, stage_positions);
     }
-    rbs__team_run(w, stage_free, &f, g.slabs, g.slabs);
-    rows_pass(&f, RBS__SOFT_RESTITUTION);
+    rows_pass(&f, RBS__SOFT_RESTITUTION, stage_free);
     /* Write the bodies back.  Nothing was saved, so a failed step must
      * leave the world as it was: every new value is checked first (the
      * first bad sphere in slot order is named, whatever the threads). */
