@@ -160,6 +160,7 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         rbs__save_state(w, w->step_save);
     w->spin_left = (uint64_t)w->def.max_substeps * 256u;
     w->overlap_unmeasured = 0;
+    w->step_checked = 0;
     switch (w->plan.method) {
     case RBS_METHOD_EULER:
         st = rbs__step_euler(w, info);
@@ -201,8 +202,7 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         info->max_overlap = pen;
     }
     w->overlap_unmeasured = 0;
-    /* (the soft step's gathered layout checks every value it writes) */
-    if (st == RBS_OK && !(w->plan.method == RBS_METHOD_SOFT && w->plan.gather) && (bad = first_bad(w)) != UINT32_MAX)
+    if (st == RBS_OK && !w->step_checked && (bad = first_bad(w)) != UINT32_MAX)
         st = rbs__numeric_error(w, bad);
     if (st != RBS_OK) {
         /* (a step that saved nothing wrote nothing either) */

@@ -720,6 +720,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
             return rbs__numeric_error(w, f.bad[k]);
         }
     rbs__team_run(w, stage_write, &f, w->sphere_count, g.slabs);
+    w->step_checked = 1;
 
     /* Report: contacts touching at the end and the deepest overlap (the
      * last relax measured them), those holding, and the impacts.  (The lent

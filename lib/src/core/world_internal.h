@@ -140,6 +140,10 @@ struct rbs_world {
     int step_saved; /* step_save holds the state at this step's start (a failed
                        step restores it); the soft step's gathered layout
                        needs no save and leaves it 0 */
+    int step_checked; /* the method found every value it wrote this step
+                         finite (the soft step's gathered layout, which
+                         checks before it writes), so rbs_world_step skips
+                         its own scan */
     uint64_t spin_left; /* rotation sub-steps this step may still take (rbs__spin_substeps) */
 
     /* per body (capacity def.max_bodies) */

@@ -138,25 +138,16 @@ rbs_status rbs_pool_create(uint32_t threads, rbs_pool **out)
     p = (rbs_pool *)calloc(1, sizeof *p);
     if (p == NULL)
         return RBS_E_MEMORY;
+    /* each step of the setup undone, in reverse, by the one below it */
     p->thread = (pthread_t *)calloc(threads, sizeof *p->thread);
-    if (p->thread == NULL || pthread_mutex_init(&p->mutex, NULL) != 0) {
-        free(p->thread);
-        free(p);
-        return RBS_E_MEMORY;
-    }
-    if (pthread_cond_init(&p->wake, NULL) != 0) {
-        pthread_mutex_destroy(&p->mutex);
-        free(p->thread);
-        free(p);
-        return RBS_E_MEMORY;
-    }
-    if (pthread_cond_init(&p->idle, NULL) != 0) {
-        pthread_cond_destroy(&p->wake);
-        pthread_mutex_destroy(&p->mutex);
-        free(p->thread);
-        free(p);
-        return RBS_E_MEMORY;
-    }
+    if (p->thread == NULL)
+        goto no_thread;
+    if (pthread_mutex_init(&p->mutex, NULL) != 0)
+        goto no_mutex;
+    if (pthread_cond_init(&p->wake, NULL) != 0)
+        goto no_wake;
+    if (pthread_cond_init(&p->idle, NULL) != 0)
+        goto no_idle;
     for (i = 0; i < threads; ++i) {
         if (pthread_create(&p->thread[i], NULL, pool_thread, p) != 0) {
             p->threads = i; /* (destroy joins those started) */
@@ -167,6 +158,16 @@ rbs_status rbs_pool_create(uint32_t threads, rbs_pool **out)
     }
     *out = p;
     return RBS_OK;
+
+no_idle:
+    pthread_cond_destroy(&p->wake);
+no_wake:
+    pthread_mutex_destroy(&p->mutex);
+no_mutex:
+    free(p->thread);
+no_thread:
+    free(p);
+    return RBS_E_MEMORY;
 }
 
 rbs_status rbs_pool_workers(rbs_pool *p, rbs_workers *out)
