@@ -5,7 +5,8 @@
  * once.  Each hash must equal the one computed alone on the main thread, and
  * ThreadSanitizer must report no race (the library keeps no global mutable
  * state; scene parsing switches the locale per thread).  Then a pile of 600
- * spheres (two slabs: soft_detect.c) stepped by the soft step on pools of
+ * spheres (two slabs: soft_detect.c; a wall added between them, so that
+ * detection copies their centres in its shares) stepped by the soft step on pools of
  * one and two more threads (rbs_pool_create), which must give the hash of
  * the caller's thread alone, with no race among the step's threads.
  *
@@ -79,6 +80,21 @@ static void *work(void *arg)
     return NULL;
 }
 
+/* Plane i of the pile's box: the floor (0), then four walls. */
+static int add_wall(rbs_world *w, int i)
+{
+    rbs_plane_def p;
+    rbs_plane_def_init(&p);
+    if (i > 0) {
+        p.normal.x = i == 1 ? 1 : i == 2 ? -1 : 0;
+        p.normal.y = i == 3 ? 1 : i == 4 ? -1 : 0;
+        p.normal.z = 0;
+        p.point.x = -0.6 * p.normal.x;
+        p.point.y = -0.6 * p.normal.y;
+    }
+    return rbs_world_add_plane(w, &p, NULL) == RBS_OK;
+}
+
 /* The pile's hash after 40 frames on `threads` threads (1: the caller's
  * only); 0 on failure. */
 static uint64_t pile_hash(uint32_t threads)
@@ -95,20 +111,14 @@ static uint64_t pile_hash(uint32_t threads)
     d.dt = 0.002;
     if (rbs_world_create(&d, &w) != RBS_OK)
         return 0;
-    for (i = 0; i < 5; ++i) {
-        rbs_plane_def p;
-        rbs_plane_def_init(&p);
-        if (i > 0) {
-            p.normal.x = i == 1 ? 1 : i == 2 ? -1 : 0;
-            p.normal.y = i == 3 ? 1 : i == 4 ? -1 : 0;
-            p.normal.z = 0;
-            p.point.x = -0.6 * p.normal.x;
-            p.point.y = -0.6 * p.normal.y;
-        }
-        ok &= rbs_world_add_plane(w, &p, NULL) == RBS_OK;
-    }
+    for (i = 0; i < 4; ++i)
+        ok &= add_wall(w, i);
     for (i = 0; i < 600; ++i) {
         rbs_sphere_def s;
+        /* the last wall between the spheres: their slots are then not
+         * consecutive, and detection copies their centres in its shares */
+        if (i == 300)
+            ok &= add_wall(w, 4);
         rbs_sphere_def_init(&s);
         seed = seed * 6364136223846793005ull + 1442695040888963407ull;
         s.radius = 0.05;

@@ -385,8 +385,10 @@ static void pass_prepare(void *ctx, uint32_t share, uint32_t begin, uint32_t end
             p->lo[c] = x < p->lo[c] ? x : p->lo[c];
             p->hi[c] = x > p->hi[c] ? x : p->hi[c];
             p->size = fabs(x) > p->size ? fabs(x) : p->size;
+            /* (from the world's positions: another share may be copying
+             * the last sphere's centre right now) */
             if (k > 0)
-                p->jumps[c] += fabs(x - d->centres[3 * (k - 1) + c]) > w->radius[a];
+                p->jumps[c] += fabs(w->pos[3 * a + c] - w->pos[3 * w->spheres[k - 1] + c]) > w->radius[a];
         }
         if (keep) {
             const double x = rbs__broadphase_slack(w, d->centres, k);
