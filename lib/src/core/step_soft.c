@@ -564,7 +564,7 @@ static void stage_rows(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     uint32_t k;
     for (k = f->first + begin; k < f->first + end; ++k) {
         if (f->before != NULL)
-            f->before(ctx, share, k, k + 1);
+            f->before(ctx, share, k - f->g->level_first[0], k - f->g->level_first[0] + 1); /* (slab k) */
         f->w->soft_kernels->pass(&f->rows, f->stage, f->g->first[k], f->g->first[k] + f->g->used[k],
                                  &f->report[share]);
     }
