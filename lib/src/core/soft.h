@@ -36,18 +36,21 @@ typedef struct rbs__chunk {
     double nx[4], ny[4], nz[4]; /* unit normal, from b towards a */
     double lb[4];               /* b's lever along n, m (0 for a plane) */
     double gap[4];              /* separation at the frame's start, m */
-    double mn[4];               /* normal effective mass 1 / (n . K n), kg */
-    double mt[4];               /* tangent effective mass 1 / (t . K t), kg */
     double jn[4];               /* accumulated normal impulse, N s */
     double jx[4], jy[4], jz[4]; /* accumulated friction impulse, N s */
-    double mus[4], muk[4];      /* the pair's static and kinetic friction */
     double eb[4];               /* e times the approach speed at the frame's
                                    start (restitution's target), m/s */
     uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
+    uint32_t row[4];            /* material-pair rows (w->pair: the friction);
+                                   unused lanes: a valid row */
     uint32_t count;             /* lanes in use: the first count */
     uint32_t flags;             /* RBS__CH_* bits, 4 a field (bit l: lane l) */
-    uint32_t pad[6];
+    uint32_t pad[2];
 } rbs__chunk;
+/* The effective masses are not stored: the rows make them from the lanes'
+ * records as detection would (soft_rows.h, lane_masses), the same bits, and
+ * a chunk is 384 bytes, six cache lines, instead of 512. */
+typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
 
 #define RBS__CH_TOUCHED 0u  /* took a normal impulse this frame */
 #define RBS__CH_BOUNCE 4u   /* restitution takes it (approached faster than
@@ -64,6 +67,7 @@ enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_
 typedef struct rbs__soft_rows {
     double *rec;           /* records, RBS__REC doubles a slot */
     rbs__chunk *chunk;     /* the chunks */
+    const rbs__pair *pair; /* the material-pair rows (w->pair) */
     int friction;          /* some pair has friction */
     double inv_h;          /* 1 / h, h the sub-step */
     double bias_rate, mass_scale, impulse_scale; /* the soft row's coefficients */

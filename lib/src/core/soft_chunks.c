@@ -22,10 +22,10 @@
 
 #include "core/soft_chunks.h"
 
-/* A new chunk, its lanes unused.  Only the impulses are cleared of the
- * last frame's values (an unused lane's other fields are left: its rows
- * read a record of zeros, and its results go nowhere; the warm start skips
- * a chunk whose impulses are all zero). */
+/* A new chunk, its lanes unused.  Only the impulses and the pair rows are
+ * cleared of the last frame's values (an unused lane's other fields are
+ * left: its rows read a record of zeros, and its results go nowhere; the
+ * warm start skips a chunk whose impulses are all zero). */
 static rbs__chunk *chunk_new(rbs__chunker *ch, unsigned flags)
 {
     rbs__chunk *c;
@@ -36,6 +36,7 @@ static rbs__chunk *chunk_new(rbs__chunker *ch, unsigned flags)
     memset(c->jx, 0, sizeof c->jx);
     memset(c->jy, 0, sizeof c->jy);
     memset(c->jz, 0, sizeof c->jz);
+    memset(c->row, 0, sizeof c->row); /* (the bytes may be another method's) */
     c->count = 0;
     c->flags = flags;
     return c;

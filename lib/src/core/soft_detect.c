@@ -132,12 +132,12 @@ static double threshold(const detect *d, uint32_t a, uint32_t b, v3 n)
 /* A lane's warm start from the last frame's forces fn (normal) and ft
  * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
  * dropped outside the static cone. */
-static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double fn, v3 ft, double h)
+static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double mus, double fn, v3 ft, double h)
 {
     k->jn[l] = fn * h;
     if (friction) {
         v3 jt = v3_scale(ft, h);
-        if (v3_len(jt) > k->mus[l] * k->jn[l])
+        if (v3_len(jt) > mus * k->jn[l])
             jt = v3_make(0, 0, 0);
         k->jx[l] = jt.x;
         k->jy[l] = jt.y;
@@ -182,9 +182,8 @@ static const rbs__warm *warm_of(const rbs_world *w, emitter *em, uint64_t k, int
  * a plane) -- slots, and the records ra, rb of the frame (soft_rank; a
  * plane has none) -- of material-pair row `row`, the unit normal n from b to a, the
  * gap along it and b's lever, and whether it is a guard -- with what its
- * rows read: its effective masses (levers along n: 1/(1/m_a + 1/m_b) along
- * n, 1/(1/m_a + 1/m_b + r_a^2/I_a + l_b^2/I_b) across it), its pair's
- * friction, its approach speed at the frame's start (restitution's target
+ * rows read: its pair's row (the rows make the effective masses from the
+ * records), its approach speed at the frame's start (restitution's target
  * e v0, and whether it bounces: faster than its resting threshold) and the
  * last frame's impulses for the warm start. */
 static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, uint32_t a, uint32_t b, int plane,
@@ -193,10 +192,7 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     rbs_world *w = d->w;
     const rbs__soft_in *in = d->in;
     const rbs__pair *p = &w->pair[row];
-    const double ima = w->inv_mass[a], imb = w->inv_mass[b];
-    const double iia = ima != 0.0 ? w->iso_inv_inertia[a] : 0.0;
-    const double iib = !plane && imb != 0.0 ? w->iso_inv_inertia[b] : 0.0;
-    const double la = -w->radius[a], kt = ima + imb + la * la * iia + lb * lb * iib;
+    const double la = -w->radius[a];
     const double rest = p->e >= 0.0 ? p->e : w->def.restitution;
     const rbs__warm *m;
     double bias;
@@ -217,10 +213,7 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     k->nz[l] = n.z;
     k->lb[l] = lb;
     k->gap[l] = gap;
-    k->mn[l] = 1.0 / (ima + imb);
-    k->mt[l] = kt > 0.0 ? 1.0 / kt : 0.0;
-    k->mus[l] = p->mu_s;
-    k->muk[l] = p->mu_k;
+    k->row[l] = row;
     /* the approach at the frame's start (levers along n) */
     u = v3_sub(v3_scale(v3_load(&w->avel[3 * a]), la), v3_scale(v3_load(&w->avel[3 * b]), lb));
     rv = v3_add(v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])), v3_cross(u, n));
@@ -247,7 +240,7 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
             k->jy[l] = ft.y;
             k->jz[l] = ft.z;
         } else {
-            lane_warm(k, l, in->friction, m->n, ft, in->h);
+            lane_warm(k, l, in->friction, p->mu_s, m->n, ft, in->h);
         }
     }
 }
@@ -751,7 +744,7 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
             rbs__chunk *c = &w->chunk[i];
             for (l = 0; l < c->count; ++l)
-                lane_warm(c, l, friction, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
+                lane_warm(c, l, friction, w->pair[c->row[l]].mu_s, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
         }
 }
 

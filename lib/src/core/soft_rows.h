@@ -92,6 +92,12 @@ static ROW_INLINE void apply(rbs__wd *xa, rbs__wd *xb, double **ra, double **rb,
     wd_scatter(rb, 2, xb);
 }
 
+/* 1 / x where x > 0, else 0 (an unused lane's records are zeros). */
+static ROW_INLINE rbs__wd inverse_or_zero(rbs__wd x)
+{
+    return wd_sel(wm_gt(x, wd_zero()), wd_div(wd_set(1.0), x), wd_zero());
+}
+
 /* Apply every lane's accumulated impulses again (the warm start of a
  * sub-step): j = n jn + jt. */
 static ROW_INLINE void warm_chunk(const rbs__soft_rows *k, rbs__chunk *c, int plane)
@@ -122,7 +128,7 @@ static ROW_INLINE void warm_chunk(const rbs__soft_rows *k, rbs__chunk *c, int pl
 static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int stage, int plane, unsigned active,
                                  rbs__soft_report *report)
 {
-    rbs__wd xa[12], xb[12], nx, ny, nz, la, ux, uy, uz, rvx, rvy, rvz, vn, mn, jn0, jn1, dj, t, dn, jx, jy, jz;
+    rbs__wd xa[12], xb[12], nx, ny, nz, la, lb, ux, uy, uz, rvx, rvy, rvz, vn, im, mn, jn0, jn1, dj, t, dn, jx, jy, jz;
     rbs__wd jtx, jty, jtz;
     rbs__wm act;
     double *ra[RBS__LANES], *rb[RBS__LANES], za[RBS__REC], zb[RBS__REC];
@@ -136,6 +142,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     ny = wd_load(c->ny);
     nz = wd_load(c->nz);
     la = wd_neg(xa[BR]);
+    lb = plane ? wd_zero() : wd_load(c->lb);
 
     /* rv = v_a - v_b + (la w_a - lb w_b) x n, and its normal part */
     if (plane) {
@@ -146,7 +153,6 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
         rvy = xa[BV + 1];
         rvz = xa[BV + 2];
     } else {
-        rbs__wd lb = wd_load(c->lb);
         ux = wd_sub(wd_mul(la, xa[BW]), wd_mul(lb, xb[BW]));
         uy = wd_sub(wd_mul(la, xa[BW + 1]), wd_mul(lb, xb[BW + 1]));
         uz = wd_sub(wd_mul(la, xa[BW + 2]), wd_mul(lb, xb[BW + 2]));
@@ -158,7 +164,10 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     rvy = wd_add(rvy, wd_sub(wd_mul(uz, nx), wd_mul(ux, nz)));
     rvz = wd_add(rvz, wd_sub(wd_mul(ux, ny), wd_mul(uy, nx)));
     vn = wd_dot3(rvx, rvy, rvz, nx, ny, nz);
-    mn = wd_load(c->mn);
+    /* the normal effective mass 1 / (1/m_a + 1/m_b) (the levers lie along n),
+     * from the records (1/m: 0 for a fixed sphere; a plane has none) */
+    im = plane ? xa[BIM] : wd_add(xa[BIM], xb[BIM]);
+    mn = inverse_or_zero(im);
     jn0 = wd_load(c->jn);
 
     if (stage == RBS__SOFT_RESTITUTION) {
@@ -226,10 +235,18 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     jtz = wd_load(c->jz);
     if (k->friction) {
         /* the stick impulse, kept in the cone of the new jn */
-        rbs__wd mus = wd_load(c->mus), muk = wd_load(c->muk), vtx, vty, vtz, cx, cy, cz, l2, lim;
+        const rbs__pair *p0 = &k->pair[c->row[0]], *p1 = &k->pair[c->row[1]], *p2 = &k->pair[c->row[2]],
+                        *p3 = &k->pair[c->row[3]];
+        rbs__wd mus = wd_make(p0->mu_s, p1->mu_s, p2->mu_s, p3->mu_s);
+        rbs__wd muk = wd_make(p0->mu_k, p1->mu_k, p2->mu_k, p3->mu_k), vtx, vty, vtz, cx, cy, cz, l2, lim, kt, mt;
         rbs__wm on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
                             wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
-        rbs__wd mt = wd_neg(wd_load(c->mt));
+        /* the tangent effective mass 1 / (1/m_a + 1/m_b + r_a^2/I_a +
+         * l_b^2/I_b), summed in this order (1/I: 0 for a fixed sphere) */
+        kt = wd_add(im, wd_mul(wd_mul(la, la), xa[BII]));
+        if (!plane)
+            kt = wd_add(kt, wd_mul(wd_mul(lb, lb), xb[BII]));
+        mt = wd_neg(inverse_or_zero(kt));
         rbs__wm stick;
         if (stage == RBS__SOFT_RESTITUTION)
             on = wm_and(on, act);
@@ -258,7 +275,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
         wd_store(c->jz, wd_sel(on, cz, jtz));
     }
     c->flags = flags;
-    apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, wd_load(c->lb), plane);
+    apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, lb, plane);
 }
 
 /* The lanes of a serial chunk one after the other, each alone in a chunk
@@ -278,14 +295,11 @@ static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__s
         one.nz[0] = c->nz[l];
         one.lb[0] = c->lb[l];
         one.gap[0] = c->gap[l];
-        one.mn[0] = c->mn[l];
-        one.mt[0] = c->mt[l];
         one.jn[0] = c->jn[l];
         one.jx[0] = c->jx[l];
         one.jy[0] = c->jy[l];
         one.jz[0] = c->jz[l];
-        one.mus[0] = c->mus[l];
-        one.muk[0] = c->muk[l];
+        one.row[0] = c->row[l];
         one.eb[0] = c->eb[l];
         one.count = 1;
         one.flags = ((f >> RBS__CH_TOUCHED >> l & 1u) << RBS__CH_TOUCHED) |

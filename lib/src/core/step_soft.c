@@ -662,6 +662,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     f.full = full;
     f.rows.rec = rec;
     f.rows.chunk = w->chunk;
+    f.rows.pair = w->pair;
     f.rows.friction = in.friction;
     f.rows.slop = w->def.slop;
     f.rows.guard = RBS__GUARD_DEPTH;

@@ -33,6 +33,8 @@ typedef __m256d rbs__wm; /* four lane masks */
 static inline rbs__wd wd_load(const double *p) { return _mm256_loadu_pd(p); }
 static inline void wd_store(double *p, rbs__wd a) { _mm256_storeu_pd(p, a); }
 static inline rbs__wd wd_set(double x) { return _mm256_set1_pd(x); }
+/* lanes 0..3 = a, b, c, d */
+static inline rbs__wd wd_make(double a, double b, double c, double d) { return _mm256_setr_pd(a, b, c, d); }
 static inline rbs__wd wd_zero(void) { return _mm256_setzero_pd(); }
 static inline rbs__wd wd_add(rbs__wd a, rbs__wd b) { return _mm256_add_pd(a, b); }
 static inline rbs__wd wd_sub(rbs__wd a, rbs__wd b) { return _mm256_sub_pd(a, b); }
@@ -141,6 +143,15 @@ static inline rbs__wd wd_set(double x)
     rbs__wd r;
     int l;
     RBS__WIDE_EACH(l) r.v[l] = x;
+    return r;
+}
+static inline rbs__wd wd_make(double a, double b, double c, double d)
+{
+    rbs__wd r;
+    r.v[0] = a;
+    r.v[1] = b;
+    r.v[2] = c;
+    r.v[3] = d;
     return r;
 }
 static inline rbs__wd wd_zero(void) { return wd_set(0.0); }
