@@ -33,6 +33,12 @@
 /* Four contacts side by side (one lane each).  Unused lanes (beyond count)
  * hold zeros. */
 typedef struct rbs__chunk {
+    uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
+    uint32_t row[4];            /* material-pair rows (w->pair: the friction);
+                                   unused lanes: a valid row */
+    uint32_t count;             /* lanes in use: the first count */
+    uint32_t flags;             /* RBS__CH_* bits, 4 a field (bit l: lane l) */
+    uint32_t pad[2];
     double nx[4], ny[4], nz[4]; /* unit normal, from b towards a */
     double lb[4];               /* b's lever along n, m (0 for a plane) */
     double gap[4];              /* separation at the frame's start, m */
@@ -40,12 +46,6 @@ typedef struct rbs__chunk {
     double jx[4], jy[4], jz[4]; /* accumulated friction impulse, N s */
     double eb[4];               /* e times the approach speed at the frame's
                                    start (restitution's target), m/s */
-    uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
-    uint32_t row[4];            /* material-pair rows (w->pair: the friction);
-                                   unused lanes: a valid row */
-    uint32_t count;             /* lanes in use: the first count */
-    uint32_t flags;             /* RBS__CH_* bits, 4 a field (bit l: lane l) */
-    uint32_t pad[2];
 } rbs__chunk;
 /* The effective masses are not stored: the rows make them from the lanes'
  * records as detection would (soft_rows.h, lane_masses), the same bits, and

@@ -642,9 +642,16 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
             S /= 2;
         g->slabs = S;
         d.pairs = w->plan.sphere_pairs;
-        if (d.pairs && n >= 2 && !rbs__broadphase_keep(w, n, size, rmax, slack) &&
-            !rbs__broadphase_build(w, d.centres, n, w->def.slop, size, rmax, rsum))
-            return detect_serially(&d);
+        if (d.pairs && n >= 2 && !rbs__broadphase_keep(w, n, size, rmax, slack)) {
+            /* the grid's working arrays in the chunks' room: the last
+             * frame's chunks are stored (the warm start) and this frame's
+             * come after the list (pages the chunks touch anyway, not the
+             * world's own grid arrays: 40 bytes a sphere less resident) */
+            rbs__grid_mem m;
+            const int room = rbs__grid_mem_in(w, w->chunk, (size_t)w->chunk_cap * sizeof(rbs__chunk), n, &m);
+            if (!rbs__broadphase_build(w, room ? &m : NULL, d.centres, n, w->def.slop, size, rmax, rsum))
+                return detect_serially(&d);
+        }
     }
 
     /* slabs, the tree's levels and its groups, the guards' group last */
@@ -761,10 +768,10 @@ uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g)
 /* The warm-start table, in key order (planes first, each by (a, b)): a
  * counting sort of the lanes by their key's upper half (plane or pair, and
  * a), each bucket's few lanes then in order of b. */
-void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h)
+void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
 {
     const uint32_t B = w->def.max_bodies;
-    uint32_t *start = w->bp_start; /* (2 B + 1 entries: free after detection) */
+    uint32_t *start = scratch; /* 2 B + 1 bucket starts */
     uint32_t k, i, l, b, n = 0;
     memset(start, 0, (2u * (size_t)B + 1u) * sizeof *start);
     for (k = 0; k < g->level_first[g->levels + 1]; ++k)

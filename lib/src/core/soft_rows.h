@@ -235,11 +235,19 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     jtz = wd_load(c->jz);
     if (k->friction) {
         /* the stick impulse, kept in the cone of the new jn */
-        const rbs__pair *p0 = &k->pair[c->row[0]], *p1 = &k->pair[c->row[1]], *p2 = &k->pair[c->row[2]],
-                        *p3 = &k->pair[c->row[3]];
-        rbs__wd mus = wd_make(p0->mu_s, p1->mu_s, p2->mu_s, p3->mu_s);
-        rbs__wd muk = wd_make(p0->mu_k, p1->mu_k, p2->mu_k, p3->mu_k), vtx, vty, vtz, cx, cy, cz, l2, lim, kt, mt;
-        rbs__wm on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
+        rbs__wd mus, muk, vtx, vty, vtz, cx, cy, cz, l2, lim, kt, mt;
+        rbs__wm on;
+        if (c->row[0] == c->row[1] && c->row[0] == c->row[2] && c->row[0] == c->row[3]) {
+            /* (one pair: a scene of one material, most chunks of a few) */
+            mus = wd_set(k->pair[c->row[0]].mu_s);
+            muk = wd_set(k->pair[c->row[0]].mu_k);
+        } else {
+            const rbs__pair *p0 = &k->pair[c->row[0]], *p1 = &k->pair[c->row[1]], *p2 = &k->pair[c->row[2]],
+                            *p3 = &k->pair[c->row[3]];
+            mus = wd_make(p0->mu_s, p1->mu_s, p2->mu_s, p3->mu_s);
+            muk = wd_make(p0->mu_k, p1->mu_k, p2->mu_k, p3->mu_k);
+        }
+        on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
                             wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
         /* the tangent effective mass 1 / (1/m_a + 1/m_b + r_a^2/I_a +
          * l_b^2/I_b), summed in this order (1/I: 0 for a fixed sphere) */
