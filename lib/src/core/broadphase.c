@@ -69,8 +69,8 @@ static inline void visit_if_close(const double *C, const double *R, uint32_t i,
 
 /* The grid pass: fn for every pair of items whose centres C are closer
  * than the sum of their reaches R. */
-static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t n, const uint8_t *query,
-                       rbs__pair_fn fn, void *ctx)
+static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n,
+                       const uint8_t *query, rbs__pair_fn fn, void *ctx)
 {
     uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
@@ -87,7 +87,7 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
     cell = 0.0;
     for (i = 0; i < n; ++i) {
         if (R[i] > 4.0 * mean)
-            w->bp_big[big++] = i;
+            g->big[big++] = i;
         else if (R[i] > cell)
             cell = R[i];
     }
@@ -99,12 +99,12 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
     /* cells of the grid items, and the box of cells they fill */
     for (i = 0; i < n; ++i) {
         if (R[i] > 4.0 * mean) {
-            w->bp_key[i] = UINT32_MAX;
+            g->key[i] = UINT32_MAX;
             continue;
         }
-        w->bp_key[i] = 0;
+        g->key[i] = 0;
         for (d = 0; d < 3; ++d) {
-            int32_t c = w->bp_cell[3 * i + d] = cell_of(C[3 * i + d], inv);
+            int32_t c = g->cell[3 * i + d] = cell_of(C[3 * i + d], inv);
             lo[d] = c < lo[d] ? c : lo[d];
             hi[d] = c > hi[d] ? c : hi[d];
         }
@@ -126,20 +126,20 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
     }
 
     /* counting sort of the grid items by cell key */
-    memset(w->bp_start, 0, (size_t)(mask + 2) * sizeof(uint32_t));
-    memset(w->bp_fill, 0, (size_t)(mask + 1) * sizeof(uint32_t));
+    memset(g->start, 0, (size_t)(mask + 2) * sizeof(uint32_t));
+    memset(g->fill, 0, (size_t)(mask + 1) * sizeof(uint32_t));
     for (i = 0; i < n; ++i) {
-        if (w->bp_key[i] == UINT32_MAX)
+        if (g->key[i] == UINT32_MAX)
             continue;
-        w->bp_key[i] = cell_key(w->bp_cell[3 * i], w->bp_cell[3 * i + 1], w->bp_cell[3 * i + 2], mask,
+        g->key[i] = cell_key(g->cell[3 * i], g->cell[3 * i + 1], g->cell[3 * i + 2], mask,
                                 dense, lo, nx, ny);
-        w->bp_start[w->bp_key[i] + 1]++;
+        g->start[g->key[i] + 1]++;
     }
     for (i = 0; i <= mask; ++i)
-        w->bp_start[i + 1] += w->bp_start[i];
+        g->start[i + 1] += g->start[i];
     for (i = 0; i < n; ++i)
-        if (w->bp_key[i] != UINT32_MAX)
-            w->bp_item[w->bp_fill[w->bp_key[i]]++ + w->bp_start[w->bp_key[i]]] = i;
+        if (g->key[i] != UINT32_MAX)
+            g->item[g->fill[g->key[i]]++ + g->start[g->key[i]]] = i;
 
     /* The common case -- every pair, a dense table -- walks the 14 cells of
      * the half stencil (those at or after (0, 0, 0), in the order the
@@ -166,20 +166,20 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
             }
         for (i = 0; i < n; ++i) {
             int32_t cx, cy, cz;
-            uint32_t key = w->bp_key[i];
+            uint32_t key = g->key[i];
             if (key == UINT32_MAX)
                 continue;
-            cx = w->bp_cell[3 * i];
-            cy = w->bp_cell[3 * i + 1];
-            cz = w->bp_cell[3 * i + 2];
+            cx = g->cell[3 * i];
+            cy = g->cell[3 * i + 1];
+            cz = g->cell[3 * i + 2];
             for (m = 0; m < 14; ++m) {
                 uint32_t h, k;
                 if (cx + ofs[m][0] > hi[0] || cy + ofs[m][1] < lo[1] || cy + ofs[m][1] > hi[1] ||
                     cz + ofs[m][2] < lo[2] || cz + ofs[m][2] > hi[2])
                     continue; /* outside the box: no items there (dx >= 0) */
                 h = (uint32_t)((int64_t)key + off[m]);
-                for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
-                    uint32_t o = w->bp_item[k];
+                for (k = g->start[h]; k < g->start[h + 1]; ++k) {
+                    uint32_t o = g->item[k];
                     if (o == i || (o < i && m == 0))
                         continue;
                     visit_if_close(C, R, i, o, fn, ctx);
@@ -193,11 +193,11 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
         for (i = 0; i < n; ++i) {
             int32_t cx, cy, cz;
             int dx, dy, dz;
-            if (w->bp_key[i] == UINT32_MAX || (query && !query[i]))
+            if (g->key[i] == UINT32_MAX || (query && !query[i]))
                 continue;
-            cx = w->bp_cell[3 * i];
-            cy = w->bp_cell[3 * i + 1];
-            cz = w->bp_cell[3 * i + 2];
+            cx = g->cell[3 * i];
+            cy = g->cell[3 * i + 1];
+            cz = g->cell[3 * i + 2];
             for (dx = -1; dx <= 1; ++dx)
                 for (dy = -1; dy <= 1; ++dy)
                     for (dz = -1; dz <= 1; ++dz) {
@@ -211,16 +211,16 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
                                       cy + dy > hi[1] || cz + dz < lo[2] || cz + dz > hi[2]))
                             continue; /* outside the box: no items there */
                         h = cell_key(cx + dx, cy + dy, cz + dz, mask, dense, lo, nx, ny);
-                        for (k = w->bp_start[h]; k < w->bp_start[h + 1]; ++k) {
-                            uint32_t o = w->bp_item[k];
+                        for (k = g->start[h]; k < g->start[h + 1]; ++k) {
+                            uint32_t o = g->item[k];
                             /* each pair once: with a query, from the lower item
                              * when both are queried, else from the queried one;
                              * without, in a shared cell from the lower item */
                             if (o == i || (o < i && (query ? query[o] : (dx == 0 && dy == 0 && dz == 0))))
                                 continue;
                             /* (a dense slot holds one cell only: no check) */
-                            if (!dense && (w->bp_cell[3 * o] != cx + dx || w->bp_cell[3 * o + 1] != cy + dy ||
-                                           w->bp_cell[3 * o + 2] != cz + dz))
+                            if (!dense && (g->cell[3 * o] != cx + dx || g->cell[3 * o + 1] != cy + dy ||
+                                           g->cell[3 * o + 2] != cz + dz))
                                 continue;
                             visit_if_close(C, R, i, o, fn, ctx);
                         }
@@ -229,9 +229,9 @@ static void grid_pairs(rbs_world *w, const double *C, const double *R, uint32_t 
     }
     /* big items against everything */
     for (j = 0; j < big; ++j) {
-        uint32_t b = w->bp_big[j];
+        uint32_t b = g->big[j];
         for (i = 0; i < n; ++i) {
-            if (i == b || (w->bp_key[i] == UINT32_MAX && i < b))
+            if (i == b || (g->key[i] == UINT32_MAX && i < b))
                 continue; /* big-big pairs once */
             if (query && !query[i] && !query[b])
                 continue;
@@ -286,12 +286,12 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
  * grown by base (m) and ahead times the item's motion (at most most, m);
  * 0 (and no list) if it does not fit.  *grown: the largest skin beyond the
  * base, m. */
-static int list_build(rbs_world *w, const double *C, uint32_t n, double fixed, double base, double ahead,
-                      double most, double *grown)
+static int list_build(rbs_world *w, const rbs__grid_mem *m, const double *C, uint32_t n, double fixed, double base,
+                      double ahead, double most, double *grown)
 {
-    /* bp_start and bp_fill (2 n entries and more each) are free once the
-     * grid pass is over */
-    uint32_t *start = w->bp_start, *next = w->bp_fill, *P = w->vl_pair, i, k;
+    /* the grid's start and fill (2 n entries and more each) are free once
+     * the grid pass is over */
+    uint32_t *start = m->start, *next = m->fill, *P = w->vl_pair, i, k;
     w->vl_valid = 0;
     w->vl_count = 0;
     for (i = 0; i < n; ++i) {
@@ -300,7 +300,7 @@ static int list_build(rbs_world *w, const double *C, uint32_t n, double fixed, d
         w->vl_reach[i] = w->bp_reach[i] + (base + skin);
         *grown = skin > *grown ? skin : *grown;
     }
-    grid_pairs(w, C, w->vl_reach, n, NULL, list_collect, w);
+    grid_pairs(w, m, C, w->vl_reach, n, NULL, list_collect, w);
     if (w->vl_count > w->vl_cap)
         return 0;
     /* sorted in place by the first item (American flag sort: McIlroy,
@@ -357,9 +357,37 @@ int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rma
     return w->vl_valid && w->vl_items == n && isfinite(guard) && slack >= guard; /* (false for a NaN) */
 }
 
-int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, double fixed, double size, double rmax,
-                          double rsum)
+rbs__grid_mem rbs__grid_mem_of(const rbs_world *w)
 {
+    rbs__grid_mem m;
+    m.key = w->bp_key;
+    m.item = w->bp_item;
+    m.big = w->bp_big;
+    m.start = w->bp_start;
+    m.fill = w->bp_fill;
+    m.cell = w->bp_cell;
+    return m;
+}
+
+int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs__grid_mem *out)
+{
+    const size_t T = w->bp_table_size, words = 6 * (size_t)n + 2 * T + 1;
+    uint32_t *u = (uint32_t *)p;
+    if (p == NULL || (uintptr_t)p % sizeof(uint32_t) != 0 || bytes / sizeof(uint32_t) < words)
+        return 0;
+    out->start = u;
+    out->fill = u + T + 1;
+    out->key = out->fill + T;
+    out->item = out->key + n;
+    out->big = out->item + n;
+    out->cell = (int32_t *)(void *)(out->big + n);
+    return 1;
+}
+
+int rbs__broadphase_build(rbs_world *w, const rbs__grid_mem *mem, const double *centers, uint32_t n, double fixed,
+                          double size, double rmax, double rsum)
+{
+    const rbs__grid_mem own = rbs__grid_mem_of(w), *m = mem != NULL ? mem : &own;
     const double *C = centers != NULL ? centers : w->bp_center;
     const double guard = round_guard(size, rmax), mean = rsum / n;
     const double base = 0.5 * LIST_SKIN * mean + guard;
@@ -367,9 +395,9 @@ int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, doubl
     /* grown by skins, so that it lasts; if that holds more pairs than the
      * list has room for, by the base skin alone; else just what this pass
      * needs; else none */
-    return list_build(w, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) ||
-           (grown > base && list_build(w, C, n, fixed, base, 0.0, 0.0, &grown)) ||
-           list_build(w, C, n, fixed, guard, 0.0, 0.0, &grown);
+    return list_build(w, m, C, n, fixed, base, LIST_AHEAD, LIST_SKIN_MAX * mean, &grown) ||
+           (grown > base && list_build(w, m, C, n, fixed, base, 0.0, 0.0, &grown)) ||
+           list_build(w, m, C, n, fixed, guard, 0.0, 0.0, &grown);
 }
 
 /* The candidate list ready for a pass of n >= 2 items (kept, or built
@@ -393,7 +421,7 @@ static int list_ready(rbs_world *w, const double *C, uint32_t n, double fixed)
     }
     if (rbs__broadphase_keep(w, n, size, rmax, slack))
         return 1;
-    return rbs__broadphase_build(w, C, n, fixed, size, rmax, rsum);
+    return rbs__broadphase_build(w, NULL, C, n, fixed, size, rmax, rsum);
 }
 
 void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, const uint8_t *query, double fixed,
@@ -406,7 +434,8 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
     if (!list_ready(w, C, n, fixed)) {
         /* more candidate pairs than the list holds: the grid itself (its
          * own order; a function of this pass's centres only) */
-        grid_pairs(w, C, R, n, query, fn, ctx);
+        const rbs__grid_mem m = rbs__grid_mem_of(w);
+        grid_pairs(w, &m, C, R, n, query, fn, ctx);
         return;
     }
     for (k = 0; k < w->vl_count; ++k) {

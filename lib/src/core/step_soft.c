@@ -708,7 +708,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
             info->max_overlap = f.report[k].deepest;
     }
     info->resting = rbs__soft_resting(w, &g);
-    rbs__soft_warm_store(w, &g, h);
+    rbs__soft_warm_store(w, &g, h, (uint32_t *)(void *)rec); /* (RBS__REC B doubles, written back) */
     rbs__team_stop(w);
     return RBS_OK;
 }

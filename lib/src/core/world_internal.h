@@ -331,8 +331,19 @@ static inline double rbs__broadphase_slack(const rbs_world *w, const double *C, 
     return w->vl_reach[i] - w->bp_reach[i] - sqrt(dx * dx + dy * dy + dz * dz);
 }
 int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rmax, double slack);
-int rbs__broadphase_build(rbs_world *w, const double *centers, uint32_t n, double fixed, double size, double rmax,
-                          double rsum);
+/* The grid's working arrays (bp_key, bp_item, bp_big, bp_cell, bp_start,
+ * bp_fill), which nothing reads once a grid pass is over. */
+typedef struct rbs__grid_mem {
+    uint32_t *key, *item, *big, *start, *fill;
+    int32_t *cell;
+} rbs__grid_mem;
+/* The world's own grid arrays. */
+rbs__grid_mem rbs__grid_mem_of(const rbs_world *w);
+/* Grid arrays for n items carved from bytes at p (4-byte aligned), which
+ * the caller does not need during the pass: 1, or 0 when they do not fit. */
+int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs__grid_mem *out);
+int rbs__broadphase_build(rbs_world *w, const rbs__grid_mem *mem, const double *centers, uint32_t n, double fixed,
+                          double size, double rmax, double rsum);
 
 /* Contacts (contact.c). */
 /* Contacts at the start of a step.  speculative: also pairs apart by more
