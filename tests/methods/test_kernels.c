@@ -4,8 +4,13 @@
  * kernels of every backend give the same bits, and the paths that piles
  * seldom take -- serial chunks (a body touching more than the chunker's
  * open chunks), and the serial detection (contacts beyond max_contacts)
- * -- give the exact answers.
+ * -- give the exact answers; the candidate list's grid gives the same list
+ * in any memory, and a soft pile leaves the world's own grid arrays
+ * untouched.
  */
+#include <stdlib.h>
+#include <string.h>
+
 #include "busy_pile.h"
 
 #include "core/soft.h"
@@ -164,12 +169,108 @@ static void overflowing_contacts_detect_serially(void **state)
     rbs_world_destroy(w);
 }
 
+/* Whether the n bytes at p are all zero. */
+static int all_zero(const void *p, size_t n)
+{
+    const unsigned char *b = (const unsigned char *)p;
+    size_t i;
+    for (i = 0; i < n; ++i)
+        if (b[i] != 0)
+            return 0;
+    return 1;
+}
+
+/* The candidate list built with the grid's arrays in a buffer of the
+ * caller's (rbs__grid_mem_in) is the world's-arrays list, pair for pair;
+ * a buffer a word too small is refused. */
+static void grid_in_any_memory_gives_the_same_list(void **state)
+{
+    enum { N = 400 };
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs__grid_mem m;
+    uint64_t seed = 99;
+    double *C = malloc(3 * N * sizeof(double)), rsum = 0.0, rmax = 0.0, size = 0.0;
+    uint32_t *pairs = NULL, *starts = malloc((N + 1) * sizeof(uint32_t)), count, *buf;
+    size_t words;
+    int i, k;
+    (void)state;
+    assert_non_null(C);
+    assert_non_null(starts);
+    rbs_world_def_init(&d);
+    d.max_bodies = N;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &w));
+    for (i = 0; i < N; ++i) {
+        /* radii 0.02-0.06 m in a 1 m cube: a few pairs each, and one
+         * sphere big enough (> 4x the mean reach) for the grid's big list */
+        double r = i == 7 ? 0.5 : 0.02 + 0.04 * rnd(&seed);
+        (void)ball(w, r, 0.1, rnd(&seed), rnd(&seed), rnd(&seed), 0, 0, 0, (rbs_material_id){0, 0});
+    }
+    for (i = 0; i < N; ++i) {
+        const uint32_t a = w->spheres[i];
+        for (k = 0; k < 3; ++k) {
+            C[3 * i + k] = w->pos[3 * a + k];
+            size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
+        }
+        w->bp_reach[i] = 1.25 * w->radius[a];
+        rsum += w->radius[a];
+        rmax = w->bp_reach[i] > rmax ? w->bp_reach[i] : rmax;
+    }
+    assert_true(rbs__broadphase_build(w, NULL, C, N, 0.25, size, rmax, rsum));
+    count = w->vl_count;
+    assert_true(count > N / 2); /* (pairs enough to compare) */
+    pairs = malloc(2 * (size_t)count * sizeof(uint32_t));
+    assert_non_null(pairs);
+    memcpy(pairs, w->vl_pair, 2 * (size_t)count * sizeof(uint32_t));
+    memcpy(starts, w->vl_start, (N + 1) * sizeof(uint32_t));
+
+    words = 6 * (size_t)N + 2 * (size_t)w->bp_table_size + 1;
+    buf = malloc(words * sizeof(uint32_t));
+    assert_non_null(buf);
+    assert_false(rbs__grid_mem_in(w, buf, (words - 1) * sizeof(uint32_t), N, &m));
+    assert_true(rbs__grid_mem_in(w, buf, words * sizeof(uint32_t), N, &m));
+    memset(buf, 0xA5, words * sizeof(uint32_t)); /* (no zeros to lean on) */
+    memset(w->vl_pair, 0, 2 * (size_t)count * sizeof(uint32_t));
+    w->vl_valid = 0;
+    assert_true(rbs__broadphase_build(w, &m, C, N, 0.25, size, rmax, rsum));
+    assert_int_equal(w->vl_count, count);
+    assert_memory_equal(w->vl_pair, pairs, 2 * (size_t)count * sizeof(uint32_t));
+    assert_memory_equal(w->vl_start, starts, (N + 1) * sizeof(uint32_t));
+    free(buf);
+    free(pairs);
+    free(starts);
+    free(C);
+    rbs_world_destroy(w);
+}
+
+/* A soft pile's candidate list is built in the chunks' room and its warm
+ * store sorts in the records' room: the world's own grid arrays stay as
+ * made (zero), so their pages are never made resident. */
+static void soft_pile_leaves_the_grid_arrays_untouched(void **state)
+{
+    rbs_world *w = busy_pile(0.002);
+    const size_t B = w->def.max_bodies, T = w->bp_table_size;
+    (void)state;
+    step_n(w, 60);
+    assert_true(w->plan.gather);
+    assert_true(w->vl_valid);
+    assert_true(all_zero(w->bp_key, B * sizeof(uint32_t)));
+    assert_true(all_zero(w->bp_item, B * sizeof(uint32_t)));
+    assert_true(all_zero(w->bp_cell, 3 * B * sizeof(int32_t)));
+    assert_true(all_zero(w->bp_start, (T + 1) * sizeof(uint32_t)));
+    assert_true(all_zero(w->bp_fill, T * sizeof(uint32_t)));
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(kernels_give_the_same_bits),
         cmocka_unit_test(hub_bounces_through_serial_chunks),
         cmocka_unit_test(overflowing_contacts_detect_serially),
+        cmocka_unit_test(grid_in_any_memory_gives_the_same_list),
+        cmocka_unit_test(soft_pile_leaves_the_grid_arrays_untouched),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
