@@ -131,8 +131,7 @@ static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double 
     for (i = 0; i < n; ++i) {
         if (g->key[i] == UINT32_MAX)
             continue;
-        g->key[i] = cell_key(g->cell[3 * i], g->cell[3 * i + 1], g->cell[3 * i + 2], mask,
-                                dense, lo, nx, ny);
+        g->key[i] = cell_key(g->cell[3 * i], g->cell[3 * i + 1], g->cell[3 * i + 2], mask, dense, lo, nx, ny);
         g->start[g->key[i] + 1]++;
     }
     for (i = 0; i <= mask; ++i)
