@@ -356,7 +356,8 @@ int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rma
     return w->vl_valid && w->vl_items == n && isfinite(guard) && slack >= guard; /* (false for a NaN) */
 }
 
-rbs__grid_mem rbs__grid_mem_of(const rbs_world *w)
+/* The world's own grid arrays. */
+static rbs__grid_mem grid_mem_of(const rbs_world *w)
 {
     rbs__grid_mem m;
     m.key = w->bp_key;
@@ -386,7 +387,7 @@ int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs_
 int rbs__broadphase_build(rbs_world *w, const rbs__grid_mem *mem, const double *centers, uint32_t n, double fixed,
                           double size, double rmax, double rsum)
 {
-    const rbs__grid_mem own = rbs__grid_mem_of(w), *m = mem != NULL ? mem : &own;
+    const rbs__grid_mem own = grid_mem_of(w), *m = mem != NULL ? mem : &own;
     const double *C = centers != NULL ? centers : w->bp_center;
     const double guard = round_guard(size, rmax), mean = rsum / n;
     const double base = 0.5 * LIST_SKIN * mean + guard;
@@ -433,7 +434,7 @@ void rbs__broadphase_pairs(rbs_world *w, const double *centers, uint32_t n, cons
     if (!list_ready(w, C, n, fixed)) {
         /* more candidate pairs than the list holds: the grid itself (its
          * own order; a function of this pass's centres only) */
-        const rbs__grid_mem m = rbs__grid_mem_of(w);
+        const rbs__grid_mem m = grid_mem_of(w);
         grid_pairs(w, &m, C, R, n, query, fn, ctx);
         return;
     }

@@ -31,7 +31,8 @@
 #define RBS__REC_ROT 12      /* rotation since the frame's start, rad */
 
 /* Four contacts side by side (one lane each).  Unused lanes (beyond count)
- * hold zeros. */
+ * hold zero impulses and row 0; their other fields are left from earlier
+ * frames (soft_chunks.c: their rows read a record of zeros). */
 typedef struct rbs__chunk {
     uint32_t a[4], b[4];        /* body slots (records; unused lanes: 0) */
     uint32_t row[4];            /* material-pair rows (w->pair: the friction);
@@ -48,8 +49,9 @@ typedef struct rbs__chunk {
                                    start (restitution's target), m/s */
 } rbs__chunk;
 /* The effective masses are not stored: the rows make them from the lanes'
- * records as detection would (soft_rows.h, lane_masses), the same bits, and
- * a chunk is 384 bytes, six cache lines, instead of 512. */
+ * records (soft_rows.h, row_chunk), and the friction comes from the pair's
+ * row, so a chunk is 384 bytes, six cache lines; the header comes first,
+ * because the rows read it first. */
 typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
 
 #define RBS__CH_TOUCHED 0u  /* took a normal impulse this frame */

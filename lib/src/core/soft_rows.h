@@ -248,7 +248,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
             muk = wd_make(p0->mu_k, p1->mu_k, p2->mu_k, p3->mu_k);
         }
         on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
-                            wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
+                    wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
         /* the tangent effective mass 1 / (1/m_a + 1/m_b + r_a^2/I_a +
          * l_b^2/I_b), summed in this order (1/I: 0 for a fixed sphere) */
         kt = wd_add(im, wd_mul(wd_mul(la, la), xa[BII]));

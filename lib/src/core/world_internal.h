@@ -337,8 +337,6 @@ typedef struct rbs__grid_mem {
     uint32_t *key, *item, *big, *start, *fill;
     int32_t *cell;
 } rbs__grid_mem;
-/* The world's own grid arrays. */
-rbs__grid_mem rbs__grid_mem_of(const rbs_world *w);
 /* Grid arrays for n items carved from bytes at p (4-byte aligned), which
  * the caller does not need during the pass: 1, or 0 when they do not fit. */
 int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs__grid_mem *out);
