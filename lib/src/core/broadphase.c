@@ -67,19 +67,40 @@ static inline void visit_if_close(const double *C, const double *R, uint32_t i,
         fn(ctx, i < o ? i : o, i < o ? o : i);
 }
 
-/* The grid pass: fn for every pair of items whose centres C are closer
- * than the sum of their reaches R. */
-static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n,
-                       const uint8_t *query, rbs__pair_fn fn, void *ctx)
+/* The half stencil's runs of cells for a list (grid_list): with the table
+ * dense and x fastest, the cells (x, y + ey, z + ez) and (x + 1, y + ey,
+ * z + ez) are neighbours in it, so their items are one run of g->item.
+ * The half stencil's 14 cells are 9 runs: 5 of two cells (ex 0 and 1:
+ * (ey, ez) = (0, 0), (0, 1), (1, -1), (1, 0), (1, 1)) and 4 of one (ex 1:
+ * (0, -1), (-1, -1), (-1, 0), (-1, 1)). */
+static const int32_t list_runs[9][3] = {{0, 0, 0},  {0, 0, 1},  {0, 1, -1}, {0, 1, 0},  {0, 1, 1},
+                                        {1, 0, -1}, {1, -1, -1}, {1, -1, 0}, {1, -1, 1}};
+
+/* The grid's cells for the items and its table (the counting sort of the
+ * grid items by cell), for grid_pairs and grid_list. */
+typedef struct grid_box {
+    int32_t lo[3], hi[3];
+    uint64_t nx, ny;
+    uint32_t mask, big;
+    int dense;
+} grid_box;
+
+/* The grid's cells and table for items with centres C and reaches R: the
+ * big items listed, each grid item's cell and key, and the items sorted by
+ * key (counting sort: the items of a cell in item order). */
+static void grid_fill(const rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n,
+                      grid_box *b)
 {
-    uint32_t i, j, big = 0, mask = w->bp_table_size - 1;
+    uint32_t i, big = 0, mask = w->bp_table_size - 1;
     double mean = 0.0, cell, inv;
-    int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+    int32_t *lo = b->lo, *hi = b->hi;
     uint64_t nx = 0, ny = 0;
     int any = 0, dense, d;
 
-    if (n < 2)
-        return;
+    for (d = 0; d < 3; ++d) {
+        lo[d] = INT32_MAX;
+        hi[d] = INT32_MIN;
+    }
     /* typical reach: the mean; items beyond 4x the mean are "big" */
     for (i = 0; i < n; ++i)
         mean += R[i];
@@ -139,6 +160,47 @@ static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double 
     for (i = 0; i < n; ++i)
         if (g->key[i] != UINT32_MAX)
             g->item[g->fill[g->key[i]]++ + g->start[g->key[i]]] = i;
+
+    b->nx = nx;
+    b->ny = ny;
+    b->mask = mask;
+    b->big = big;
+    b->dense = dense;
+}
+
+/* Big items against everything (grid_fill listed them). */
+static void grid_big(const rbs__grid_mem *g, uint32_t big, const double *C, const double *R, uint32_t n,
+                     const uint8_t *query, rbs__pair_fn fn, void *ctx)
+{
+    uint32_t i, j;
+    for (j = 0; j < big; ++j) {
+        uint32_t b = g->big[j];
+        for (i = 0; i < n; ++i) {
+            if (i == b || (g->key[i] == UINT32_MAX && i < b))
+                continue; /* big-big pairs once */
+            if (query && !query[i] && !query[b])
+                continue;
+            visit_if_close(C, R, i, b, fn, ctx);
+        }
+    }
+}
+
+/* The grid's visits once grid_fill has made box: fn for every pair of
+ * items whose centres C are closer than the sum of their reaches R. */
+static void grid_visit(const rbs_world *w, const rbs__grid_mem *g, const grid_box *box, const double *C,
+                       const double *R, uint32_t n, const uint8_t *query, rbs__pair_fn fn, void *ctx)
+{
+    const int32_t *lo = box->lo, *hi = box->hi;
+    uint32_t i, big, mask;
+    uint64_t nx, ny;
+    int dense;
+
+    (void)w;
+    big = box->big;
+    mask = box->mask;
+    nx = box->nx;
+    ny = box->ny;
+    dense = box->dense;
 
     /* The common case -- every pair, a dense table -- walks the 14 cells of
      * the half stencil (those at or after (0, 0, 0), in the order the
@@ -226,17 +288,90 @@ static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double 
                     }
         }
     }
-    /* big items against everything */
-    for (j = 0; j < big; ++j) {
-        uint32_t b = g->big[j];
-        for (i = 0; i < n; ++i) {
-            if (i == b || (g->key[i] == UINT32_MAX && i < b))
-                continue; /* big-big pairs once */
-            if (query && !query[i] && !query[b])
-                continue;
-            visit_if_close(C, R, i, b, fn, ctx);
+    grid_big(g, big, C, R, n, query, fn, ctx);
+}
+
+/* The grid pass: fn for every pair of items whose centres C are closer
+ * than the sum of their reaches R. */
+static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n,
+                       const uint8_t *query, rbs__pair_fn fn, void *ctx)
+{
+    grid_box box;
+    if (n < 2)
+        return;
+    grid_fill(w, g, C, R, n, &box);
+    grid_visit(w, g, &box, C, R, n, query, fn, ctx);
+}
+
+static void list_collect(void *vctx, uint32_t i, uint32_t j)
+{
+    rbs_world *w = (rbs_world *)vctx;
+    if (w->vl_count < w->vl_cap) {
+        w->vl_pair[2 * w->vl_count] = i;
+        w->vl_pair[2 * w->vl_count + 1] = j;
+    }
+    w->vl_count++;
+}
+
+/* The pairs of a list (list_build, which sorts them after): every pair of
+ * items whose centres C are closer than the sum of their reaches R, as
+ * (lower, higher) into w->vl_pair, counted in w->vl_count (beyond vl_cap:
+ * counted, not written) -- the pairs grid_pairs visits, in another order.
+ * A dense table takes the half stencil as the 9 runs of list_runs, each
+ * run's items tested without a branch; else grid_visit's. */
+static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n)
+{
+    grid_box box;
+    const int32_t *lo = box.lo, *hi = box.hi;
+    const uint32_t cap = w->vl_cap, *start = g->start, *item = g->item;
+    uint32_t *P = w->vl_pair, count, i, sink[2];
+    int64_t off[9];
+    int m;
+
+    if (n < 2)
+        return;
+    grid_fill(w, g, C, R, n, &box);
+    if (!box.dense) {
+        grid_visit(w, g, &box, C, R, n, NULL, list_collect, w);
+        return;
+    }
+    for (m = 0; m < 9; ++m)
+        off[m] = (int64_t)list_runs[m][0] +
+                 (int64_t)box.nx * ((int64_t)list_runs[m][1] + (int64_t)box.ny * list_runs[m][2]);
+    count = w->vl_count;
+    for (i = 0; i < n; ++i) {
+        const uint32_t key = g->key[i];
+        const double xi = C[3 * i], yi = C[3 * i + 1], zi = C[3 * i + 2], ri = R[i];
+        int32_t cx, cy, cz;
+        int right;
+        if (key == UINT32_MAX)
+            continue;
+        cx = g->cell[3 * i];
+        cy = g->cell[3 * i + 1];
+        cz = g->cell[3 * i + 2];
+        right = cx < hi[0]; /* cell x + 1 is in the box */
+        for (m = 0; m < 9; ++m) {
+            const int32_t ex = list_runs[m][0], ey = list_runs[m][1], ez = list_runs[m][2];
+            uint32_t h, k, own_end, end;
+            if (cy + ey < lo[1] || cy + ey > hi[1] || cz + ez < lo[2] || cz + ez > hi[2] || (ex == 1 && !right))
+                continue; /* outside the box: no items there */
+            h = (uint32_t)((int64_t)key + off[m]);
+            /* m 0: the item's own cell (partners after it), then x + 1's */
+            own_end = m == 0 ? start[h + 1] : start[h];
+            end = start[h + 1 + (ex == 0 && right)];
+            for (k = start[h]; k < end; ++k) {
+                const uint32_t o = item[k];
+                const double dx = xi - C[3 * o], dy = yi - C[3 * o + 1], dz = zi - C[3 * o + 2], sr = ri + R[o];
+                const uint32_t hit = (uint32_t)(dx * dx + dy * dy + dz * dz <= sr * sr) & (uint32_t)(k >= own_end || o > i);
+                uint32_t *to = count < cap ? &P[2 * count] : sink;
+                to[0] = i < o ? i : o;
+                to[1] = i < o ? o : i;
+                count += hit;
+            }
         }
     }
+    w->vl_count = count;
+    grid_big(g, box.big, C, R, n, NULL, list_collect, w);
 }
 
 
@@ -271,16 +406,6 @@ static void grid_pairs(const rbs_world *w, const rbs__grid_mem *g, const double 
 #define LIST_AHEAD 4.0    /* frames of an item's own motion its skin holds */
 #define LIST_SKIN_MAX 0.5 /* the most skin of an item, of the mean radius */
 
-static void list_collect(void *vctx, uint32_t i, uint32_t j)
-{
-    rbs_world *w = (rbs_world *)vctx;
-    if (w->vl_count < w->vl_cap) {
-        w->vl_pair[2 * w->vl_count] = i;
-        w->vl_pair[2 * w->vl_count + 1] = j;
-    }
-    w->vl_count++;
-}
-
 /* Build the list from the centres C and the reaches in w->bp_reach, each
  * grown by base (m) and ahead times the item's motion (at most most, m);
  * 0 (and no list) if it does not fit.  *grown: the largest skin beyond the
@@ -299,7 +424,7 @@ static int list_build(rbs_world *w, const rbs__grid_mem *m, const double *C, uin
         w->vl_reach[i] = w->bp_reach[i] + (base + skin);
         *grown = skin > *grown ? skin : *grown;
     }
-    grid_pairs(w, m, C, w->vl_reach, n, NULL, list_collect, w);
+    grid_list(w, m, C, w->vl_reach, n);
     if (w->vl_count > w->vl_cap)
         return 0;
     /* sorted in place by the first item (American flag sort: McIlroy,
