@@ -6,8 +6,10 @@
  * open chunks), and the serial detection (contacts beyond max_contacts)
  * -- give the exact answers; the candidate list's grid gives the same list
  * in any memory, and a soft pile leaves the world's own grid arrays
- * untouched.
+ * untouched; the warm-start table holds each contact that took an impulse
+ * once.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -263,6 +265,51 @@ static void soft_pile_leaves_the_grid_arrays_untouched(void **state)
     rbs_world_destroy(w);
 }
 
+/* The warm-start table a soft frame stores: one entry for each lane that
+ * took a normal impulse (as many as the step reports resting), in strictly
+ * increasing key order -- so no contact twice and none lost -- each a pair
+ * of spheres or a sphere and a plane that touch within a radius.  (The
+ * store used to sort each bucket into the slots before it without knowing
+ * where the bucket began: an entry left there from the last frame with the
+ * same sphere took the place, and in this pile the table held a contact
+ * twice and lost another at frame 63.) */
+static void warm_table_holds_each_contact_once(void **state)
+{
+    rbs_world *w = busy_pile(0.002);
+    int frame;
+    (void)state;
+    for (frame = 0; frame < 150; ++frame) {
+        rbs_step_info info;
+        uint32_t i;
+        CHECK_OK(rbs_world_step(w, &info));
+        if (w->warm_used != info.resting)
+            fail_msg("frame %d: %u warm entries for %u resting contacts", frame, (unsigned)w->warm_used,
+                     (unsigned)info.resting);
+        for (i = 0; i < w->warm_used; ++i) {
+            const uint64_t key = w->warm[i].key;
+            const uint32_t a = (uint32_t)(key >> 32 & 0x7FFFFFFFu), b = (uint32_t)key;
+            double gap;
+            if (i > 0 && !(w->warm[i - 1].key < key))
+                fail_msg("frame %d: warm entries %u and %u out of order or the same (%llx, %llx)", frame,
+                         (unsigned)i - 1, (unsigned)i, (unsigned long long)w->warm[i - 1].key,
+                         (unsigned long long)key);
+            if (key >> 63) {
+                double dx = w->pos[3 * a] - w->pos[3 * b], dy = w->pos[3 * a + 1] - w->pos[3 * b + 1],
+                       dz = w->pos[3 * a + 2] - w->pos[3 * b + 2];
+                gap = sqrt(dx * dx + dy * dy + dz * dz) - w->radius[a] - w->radius[b];
+            } else {
+                gap = (w->pos[3 * a] - w->pos[3 * b]) * w->normal[3 * b] +
+                      (w->pos[3 * a + 1] - w->pos[3 * b + 1]) * w->normal[3 * b + 1] +
+                      (w->pos[3 * a + 2] - w->pos[3 * b + 2]) * w->normal[3 * b + 2] - w->radius[a];
+            }
+            if (!(w->warm[i].n > 0.0) || !(gap < w->radius[a]))
+                fail_msg("frame %d: warm entry %u (%llx): force %g N, gap %g m", frame, (unsigned)i,
+                         (unsigned long long)key, w->warm[i].n, gap);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -271,6 +318,7 @@ int main(void)
         cmocka_unit_test(overflowing_contacts_detect_serially),
         cmocka_unit_test(grid_in_any_memory_gives_the_same_list),
         cmocka_unit_test(soft_pile_leaves_the_grid_arrays_untouched),
+        cmocka_unit_test(warm_table_holds_each_contact_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

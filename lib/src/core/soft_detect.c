@@ -767,11 +767,12 @@ uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g)
 
 /* The warm-start table, in key order (planes first, each by (a, b)): a
  * counting sort of the lanes by their key's upper half (plane or pair, and
- * a), each bucket's few lanes then in order of b. */
+ * a), each bucket's few lanes then in order of b (insertion, within the
+ * bucket: its start kept after the starts, in scratch's second half). */
 void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
 {
     const uint32_t B = w->def.max_bodies;
-    uint32_t *start = scratch; /* 2 B + 1 bucket starts */
+    uint32_t *start = scratch; /* 2 B + 1 bucket starts, where each fills next; then where each began */
     uint32_t k, i, l, b, n = 0;
     memset(start, 0, (2u * (size_t)B + 1u) * sizeof *start);
     for (k = 0; k < g->level_first[g->levels + 1]; ++k)
@@ -783,12 +784,13 @@ void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uin
         }
     for (b = 0; b < 2u * B; ++b)
         start[b + 1] += start[b];
+    memcpy(start + 2u * B + 1u, start, (2u * (size_t)B + 1u) * sizeof *start);
     for (k = 0; k < g->level_first[g->levels + 1]; ++k)
         for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
             const rbs__chunk *c = &w->chunk[i];
             for (l = 0; l < c->count; ++l) {
                 const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
-                uint32_t at;
+                uint32_t at, bucket;
                 rbs__warm e;
                 if (c->jn[l] == 0.0)
                     continue;
@@ -798,8 +800,9 @@ void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uin
                 e.n = c->jn[l] / h;
                 e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / h);
                 /* into its bucket, in order of b (insertion: a handful) */
-                at = start[(plane ? 0u : B) + (uint32_t)(e.key >> 32 & 0x7FFFFFFFu)]++;
-                while (at > 0 && w->warm[at - 1].key > e.key && (w->warm[at - 1].key >> 32) == (e.key >> 32)) {
+                bucket = (plane ? 0u : B) + (uint32_t)(e.key >> 32 & 0x7FFFFFFFu);
+                at = start[bucket]++;
+                while (at > start[2u * B + 1u + bucket] && w->warm[at - 1].key > e.key) {
                     w->warm[at] = w->warm[at - 1];
                     at--;
                 }
