@@ -755,60 +755,133 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         }
 }
 
-uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g)
+/* The warm store's stages (rbs__soft_warm_store). */
+typedef struct warm_store {
+    rbs_world *w;
+    const rbs__soft_groups *g;
+    uint32_t *start;                    /* 2 B + 1 bucket starts */
+    uint32_t run[RBS__GROUPS_MAX + 1];  /* the groups' chunks counted through:
+                                           group k's are run[k] .. run[k + 1] - 1 */
+    double h;
+    uint32_t resting[RBS__TEAM_SHARES]; /* each share's lanes holding a
+                                           normal impulse */
+} warm_store;
+
+/* One more in *p, from any thread (the counts, not their order, are read). */
+static inline uint32_t count_one(uint32_t *p)
 {
-    uint32_t k, i, l, n = 0;
-    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
-        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i)
-            for (l = 0; l < w->chunk[i].count; ++l)
-                n += w->chunk[i].jn[l] > 0.0;
-    return n;
+#if defined(__GNUC__)
+    return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED);
+#else
+    return (*p)++;
+#endif
+}
+
+/* The chunk of the frame's v-th (groups counted through, in order). */
+static const rbs__chunk *warm_chunk(const warm_store *ws, uint32_t v, uint32_t *k)
+{
+    while (v >= ws->run[*k + 1])
+        ++*k;
+    return &ws->w->chunk[ws->g->first[*k] + (v - ws->run[*k])];
+}
+
+/* A lane's bucket: planes first, each by the sphere's slot. */
+static inline uint32_t warm_bucket(const rbs_world *w, const rbs__chunk *c, uint32_t l)
+{
+    return (c->flags >> (RBS__CH_PLANE + l) & 1u ? 0u : w->def.max_bodies) + w->spheres[w->soft_order[c->a[l]]];
+}
+
+/* Chunks [begin, end): each bucket's lanes counted (into the start of the
+ * next), and the lanes holding a normal impulse. */
+static void warm_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    warm_store *ws = (warm_store *)ctx;
+    const rbs_world *w = ws->w;
+    uint32_t v, l, k = 0, resting = 0;
+    for (v = begin; v < end; ++v) {
+        const rbs__chunk *c = warm_chunk(ws, v, &k);
+        for (l = 0; l < c->count; ++l) {
+            resting += c->jn[l] > 0.0;
+            if (c->jn[l] != 0.0)
+                (void)count_one(&ws->start[warm_bucket(w, c, l) + 1u]);
+        }
+    }
+    ws->resting[share] = resting;
+}
+
+/* Chunks [begin, end): each lane holding an impulse into its bucket, as
+ * rates (the bucket's lanes in any order until warm_sort). */
+static void warm_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    warm_store *ws = (warm_store *)ctx;
+    rbs_world *w = ws->w;
+    uint32_t v, l, k = 0;
+    (void)share;
+    for (v = begin; v < end; ++v) {
+        const rbs__chunk *c = warm_chunk(ws, v, &k);
+        for (l = 0; l < c->count; ++l) {
+            const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+            rbs__warm e;
+            if (c->jn[l] == 0.0)
+                continue;
+            /* (lanes hold records: the slots are the keys') */
+            e.key = rbs__warm_key_of(plane, w->spheres[w->soft_order[c->a[l]]],
+                                     plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
+            e.n = c->jn[l] / ws->h;
+            e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / ws->h);
+            w->warm[count_one(&ws->start[warm_bucket(w, c, l)])] = e;
+        }
+    }
+}
+
+/* Buckets [begin, end) in key order (insertion: a handful each; the keys
+ * are distinct -- a pair or a sphere and plane is one contact of the
+ * frame -- so the order does not depend on how warm_place met them). */
+static void warm_sort(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    warm_store *ws = (warm_store *)ctx;
+    rbs__warm *t = ws->w->warm;
+    uint32_t b;
+    (void)share;
+    for (b = begin; b < end; ++b) {
+        const uint32_t lo = b == 0 ? 0u : ws->start[b - 1], hi = ws->start[b];
+        uint32_t i, at;
+        for (i = lo + 1; i < hi; ++i) {
+            rbs__warm e = t[i];
+            for (at = i; at > lo && t[at - 1].key > e.key; --at)
+                t[at] = t[at - 1];
+            t[at] = e;
+        }
+    }
 }
 
 /* The warm-start table, in key order (planes first, each by (a, b)): a
  * counting sort of the lanes by their key's upper half (plane or pair, and
- * a), each bucket's few lanes then in order of b (insertion, within the
- * bucket: its start kept after the starts, in scratch's second half). */
-void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
+ * a) -- counted and placed on the world's threads, chunk by chunk -- each
+ * bucket's few lanes then in order of b. */
+uint32_t rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
 {
-    const uint32_t B = w->def.max_bodies;
-    uint32_t *start = scratch; /* 2 B + 1 bucket starts, where each fills next; then where each began */
-    uint32_t k, i, l, b, n = 0;
-    memset(start, 0, (2u * (size_t)B + 1u) * sizeof *start);
-    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
-        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
-            const rbs__chunk *c = &w->chunk[i];
-            for (l = 0; l < c->count; ++l)
-                if (c->jn[l] != 0.0)
-                    start[(c->flags >> (RBS__CH_PLANE + l) & 1u ? 0u : B) + w->spheres[w->soft_order[c->a[l]]] + 1u]++;
-        }
+    const uint32_t B = w->def.max_bodies, groups = g->level_first[g->levels + 1];
+    const uint32_t shares = g->slabs < RBS__TEAM_SHARES ? g->slabs : RBS__TEAM_SHARES;
+    warm_store ws;
+    uint32_t k, b, resting = 0;
+    ws.w = w;
+    ws.g = g;
+    ws.start = scratch;
+    ws.h = h;
+    ws.run[0] = 0;
+    for (k = 0; k < groups; ++k)
+        ws.run[k + 1] = ws.run[k] + g->used[k];
+    memset(ws.resting, 0, sizeof ws.resting);
+    memset(ws.start, 0, (2u * (size_t)B + 1u) * sizeof *ws.start);
+    rbs__team_run(w, warm_count, &ws, ws.run[groups], shares);
     for (b = 0; b < 2u * B; ++b)
-        start[b + 1] += start[b];
-    memcpy(start + 2u * B + 1u, start, (2u * (size_t)B + 1u) * sizeof *start);
-    for (k = 0; k < g->level_first[g->levels + 1]; ++k)
-        for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
-            const rbs__chunk *c = &w->chunk[i];
-            for (l = 0; l < c->count; ++l) {
-                const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
-                uint32_t at, bucket;
-                rbs__warm e;
-                if (c->jn[l] == 0.0)
-                    continue;
-                /* (lanes hold records: the slots are the keys') */
-                e.key = rbs__warm_key_of(plane, w->spheres[w->soft_order[c->a[l]]],
-                                         plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
-                e.n = c->jn[l] / h;
-                e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / h);
-                /* into its bucket, in order of b (insertion: a handful) */
-                bucket = (plane ? 0u : B) + (uint32_t)(e.key >> 32 & 0x7FFFFFFFu);
-                at = start[bucket]++;
-                while (at > start[2u * B + 1u + bucket] && w->warm[at - 1].key > e.key) {
-                    w->warm[at] = w->warm[at - 1];
-                    at--;
-                }
-                w->warm[at] = e;
-                n++;
-            }
-        }
-    rbs__warm_finish(w, n, 1);
+        ws.start[b + 1] += ws.start[b];
+    rbs__team_run(w, warm_place, &ws, ws.run[groups], shares);
+    /* (start[b] is now the end of bucket b) */
+    rbs__team_run(w, warm_sort, &ws, 2u * B, shares);
+    for (k = 0; k < RBS__TEAM_SHARES; ++k)
+        resting += ws.resting[k];
+    rbs__warm_finish(w, ws.start[2u * B - 1u], 1);
+    return resting;
 }

@@ -78,10 +78,9 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
 /* The warm starts (stored as forces: in->h was 0) for sub-steps of h. */
 void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, double h);
 /* The frame's impulses into the warm-start table, as rates for the next
- * frame (h: the sub-step), in key order; scratch: 4 max_bodies + 2 words
- * the caller does not need (the frame's records, once written back). */
-void rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch);
-/* Lanes holding a normal impulse. */
-uint32_t rbs__soft_resting(const rbs_world *w, const rbs__soft_groups *g);
+ * frame (h: the sub-step), in key order, on the world's threads; scratch:
+ * 2 max_bodies + 1 words the caller does not need (the frame's records,
+ * once written back).  Returns the lanes holding a normal impulse. */
+uint32_t rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch);
 
 #endif

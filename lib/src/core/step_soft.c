@@ -739,8 +739,8 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
         if (f.report[k].deepest > info->max_overlap)
             info->max_overlap = f.report[k].deepest;
     }
-    info->resting = rbs__soft_resting(w, &g);
-    rbs__soft_warm_store(w, &g, h, (uint32_t *)(void *)rec); /* (RBS__REC B doubles, written back) */
+    /* (in the records' room: RBS__REC B doubles, written back) */
+    info->resting = rbs__soft_warm_store(w, &g, h, (uint32_t *)(void *)rec);
     rbs__team_stop(w);
     return RBS_OK;
 }

@@ -29,7 +29,6 @@
 #include "core/team.h"
 
 #define QUIT 0xFFFFu /* a ticket's share count that tells the workers to return */
-#define RBS__TEAM_SHARES 16 /* the most shares of a stage: a ticket's claimed bits */
 
 #if defined(__GNUC__)
 #define TEAM_ATOMICS 1

@@ -18,6 +18,8 @@
 
 #include "core/world_internal.h"
 
+#define RBS__TEAM_SHARES 16 /* the most shares of a stage: a ticket's claimed bits */
+
 /* A stage's work: items [begin, end) of share `share` (0 .. shares - 1). */
 typedef void (*rbs__stage_fn)(void *ctx, uint32_t share, uint32_t begin, uint32_t end);
 
