@@ -16,6 +16,8 @@
 #include "busy_pile.h"
 
 #include "core/soft.h"
+#include "core/team.h"
+#include "rbsim/reel.h"
 #include "core/world_internal.h"
 
 /* The busy pile stepped with the given kernels: its hash every 10 frames. */
@@ -265,6 +267,101 @@ static void soft_pile_leaves_the_grid_arrays_untouched(void **state)
     rbs_world_destroy(w);
 }
 
+/* The candidate list built on the world's threads (a buffer with room for
+ * pairs: each share's pairs into its own run, counted by first item, moved
+ * to their places, each item's partners sorted) against the one built on
+ * the world's own grid arrays: the same list, pair for pair, on 1 to 4
+ * threads; with too little room for a share's pairs (built the serial way
+ * in the buffer), and with a list too small for the pairs (refused alike). */
+static void list_on_threads_is_the_same_list(void **state)
+{
+    enum { N = 3000 };
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs__grid_mem m;
+    uint64_t seed = 7;
+    double *C = malloc(3 * N * sizeof(double)), rsum = 0.0, rmax = 0.0, size = 0.0;
+    uint32_t *pairs, *starts = malloc((N + 1) * sizeof(uint32_t)), count, cap, *buf, t;
+    size_t words, room;
+    int i, k, round;
+    (void)state;
+    assert_non_null(C);
+    assert_non_null(starts);
+    rbs_world_def_init(&d);
+    d.max_bodies = N;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &w));
+    for (i = 0; i < N; ++i) {
+        /* radii 0.02-0.04 m in a 1.2 m cube, no big one: a few pairs each */
+        double r = 0.02 + 0.02 * rnd(&seed);
+        (void)ball(w, r, 0.1, 1.2 * rnd(&seed), 1.2 * rnd(&seed), 1.2 * rnd(&seed), 0, 0, 0,
+                   (rbs_material_id){0, 0});
+    }
+    for (i = 0; i < N; ++i) {
+        const uint32_t a = w->spheres[i];
+        for (k = 0; k < 3; ++k) {
+            C[3 * i + k] = w->pos[3 * a + k];
+            size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
+        }
+        w->bp_reach[i] = 1.25 * w->radius[a];
+        rsum += w->radius[a];
+        rmax = w->bp_reach[i] > rmax ? w->bp_reach[i] : rmax;
+    }
+    assert_true(rbs__broadphase_build(w, NULL, C, N, 0.25, size, rmax, rsum));
+    count = w->vl_count;
+    assert_true(count > N); /* (pairs enough to compare) */
+    pairs = malloc(2 * (size_t)count * sizeof(uint32_t));
+    assert_non_null(pairs);
+    memcpy(pairs, w->vl_pair, 2 * (size_t)count * sizeof(uint32_t));
+    memcpy(starts, w->vl_start, (N + 1) * sizeof(uint32_t));
+
+    words = 6 * (size_t)N + 2 * (size_t)w->bp_table_size + 1;
+    room = 4 * (size_t)count; /* pairs: ample for 8 shares */
+    buf = malloc((words + 2 * room) * sizeof(uint32_t));
+    assert_non_null(buf);
+    for (round = 0; round < 6; ++round) {
+        /* rounds 0-3: 1 to 4 threads; 4: room for 2 pairs; 5: 2 threads */
+        rbs_pool *pool = NULL;
+        rbs_workers wk;
+        t = round < 4 ? (uint32_t)round + 1 : round == 4 ? 1 : 2;
+        assert_true(rbs__grid_mem_in(w, buf, (words + 2 * (round == 4 ? 2 : room)) * sizeof(uint32_t), N, &m));
+        assert_non_null(m.pairs);
+        memset(buf, 0xA5, (words + 2 * room) * sizeof(uint32_t)); /* (no zeros to lean on) */
+        memset(w->vl_pair, 0, 2 * (size_t)count * sizeof(uint32_t));
+        w->vl_valid = 0;
+        if (t > 1) {
+            CHECK_OK(rbs_pool_create(t - 1, &pool));
+            CHECK_OK(rbs_pool_workers(pool, &wk));
+            CHECK_OK(rbs_world_set_workers(w, &wk));
+            rbs__team_start(w);
+        }
+        assert_true(rbs__broadphase_build(w, &m, C, N, 0.25, size, rmax, rsum));
+        if (t > 1) {
+            rbs__team_stop(w);
+            CHECK_OK(rbs_world_set_workers(w, NULL));
+            rbs_pool_destroy(pool);
+        }
+        if (w->vl_count != count || memcmp(w->vl_pair, pairs, 2 * (size_t)count * sizeof(uint32_t)) != 0 ||
+            memcmp(w->vl_start, starts, (N + 1) * sizeof(uint32_t)) != 0)
+            fail_msg("round %d (%u threads): not the list of the world's own arrays", round, (unsigned)t);
+    }
+    /* a list with room for half the pairs: no list at all either way (the
+     * skins cannot shrink: the reaches are the pass's own) */
+    cap = w->vl_cap;
+    w->vl_cap = count / 2;
+    assert_false(rbs__broadphase_build(w, NULL, C, N, 10.0, size, rmax, rsum));
+    assert_false(w->vl_valid);
+    assert_true(rbs__grid_mem_in(w, buf, (words + 2 * room) * sizeof(uint32_t), N, &m));
+    assert_false(rbs__broadphase_build(w, &m, C, N, 10.0, size, rmax, rsum));
+    assert_false(w->vl_valid);
+    w->vl_cap = cap;
+    free(buf);
+    free(pairs);
+    free(starts);
+    free(C);
+    rbs_world_destroy(w);
+}
+
 /* The warm-start table a soft frame stores: one entry for each lane that
  * took a normal impulse (as many as the step reports resting), in strictly
  * increasing key order -- so no contact twice and none lost -- each a pair
@@ -317,6 +414,7 @@ int main(void)
         cmocka_unit_test(hub_bounces_through_serial_chunks),
         cmocka_unit_test(overflowing_contacts_detect_serially),
         cmocka_unit_test(grid_in_any_memory_gives_the_same_list),
+        cmocka_unit_test(list_on_threads_is_the_same_list),
         cmocka_unit_test(soft_pile_leaves_the_grid_arrays_untouched),
         cmocka_unit_test(warm_table_holds_each_contact_once),
     };

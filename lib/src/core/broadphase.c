@@ -23,7 +23,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "core/world_internal.h"
+#include "core/team.h"
 
 /* Cell coordinate of x: floor(x / cell), clamped so that huge positions
  * never overflow the integer conversion (far-away items share edge cells:
@@ -313,33 +313,28 @@ static void list_collect(void *vctx, uint32_t i, uint32_t j)
     w->vl_count++;
 }
 
-/* The pairs of a list (list_build, which sorts them after): every pair of
- * items whose centres C are closer than the sum of their reaches R, as
- * (lower, higher) into w->vl_pair, counted in w->vl_count (beyond vl_cap:
- * counted, not written) -- the pairs grid_pairs visits, in another order.
- * A dense table takes the half stencil as the 9 runs of list_runs, each
- * run's items tested without a branch; else grid_visit's. */
-static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n)
-{
+/* The list pass's grid (list_items): the table dense, its box and the
+ * offsets of list_runs in it. */
+typedef struct list_grid {
+    const rbs__grid_mem *g;
+    const double *C, *R;
     grid_box box;
-    const int32_t *lo = box.lo, *hi = box.hi;
-    const uint32_t cap = w->vl_cap, *start = g->start, *item = g->item;
-    uint32_t *P = w->vl_pair, count, i, sink[2];
     int64_t off[9];
-    int m;
+} list_grid;
 
-    if (n < 2)
-        return;
-    grid_fill(w, g, C, R, n, &box);
-    if (!box.dense) {
-        grid_visit(w, g, &box, C, R, n, NULL, list_collect, w);
-        return;
-    }
-    for (m = 0; m < 9; ++m)
-        off[m] = (int64_t)list_runs[m][0] +
-                 (int64_t)box.nx * ((int64_t)list_runs[m][1] + (int64_t)box.ny * list_runs[m][2]);
-    count = w->vl_count;
-    for (i = 0; i < n; ++i) {
+/* The pairs of items [begin, end) with the items of the half stencil's
+ * cells (the 9 runs of list_runs, each run's items tested without a
+ * branch), as (lower, higher) into out[0 .. cap - 1]; returns how many
+ * there are (beyond cap: counted, not written). */
+static uint32_t list_items(const list_grid *lg, uint32_t begin, uint32_t end, uint32_t *out, uint32_t cap)
+{
+    const rbs__grid_mem *g = lg->g;
+    const double *C = lg->C, *R = lg->R;
+    const int32_t *lo = lg->box.lo, *hi = lg->box.hi;
+    const uint32_t *start = g->start, *item = g->item;
+    uint32_t count = 0, i, sink[2];
+    int m;
+    for (i = begin; i < end; ++i) {
         const uint32_t key = g->key[i];
         const double xi = C[3 * i], yi = C[3 * i + 1], zi = C[3 * i + 2], ri = R[i];
         int32_t cx, cy, cz;
@@ -352,28 +347,175 @@ static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, con
         right = cx < hi[0]; /* cell x + 1 is in the box */
         for (m = 0; m < 9; ++m) {
             const int32_t ex = list_runs[m][0], ey = list_runs[m][1], ez = list_runs[m][2];
-            uint32_t h, k, own_end, end;
+            uint32_t h, k, own_end, run_end;
             if (cy + ey < lo[1] || cy + ey > hi[1] || cz + ez < lo[2] || cz + ez > hi[2] || (ex == 1 && !right))
                 continue; /* outside the box: no items there */
-            h = (uint32_t)((int64_t)key + off[m]);
+            h = (uint32_t)((int64_t)key + lg->off[m]);
             /* m 0: the item's own cell (partners after it), then x + 1's */
             own_end = m == 0 ? start[h + 1] : start[h];
-            end = start[h + 1 + (ex == 0 && right)];
-            for (k = start[h]; k < end; ++k) {
+            run_end = start[h + 1 + (ex == 0 && right)];
+            for (k = start[h]; k < run_end; ++k) {
                 const uint32_t o = item[k];
                 const double dx = xi - C[3 * o], dy = yi - C[3 * o + 1], dz = zi - C[3 * o + 2], sr = ri + R[o];
-                const uint32_t hit = (uint32_t)(dx * dx + dy * dy + dz * dz <= sr * sr) & (uint32_t)(k >= own_end || o > i);
-                uint32_t *to = count < cap ? &P[2 * count] : sink;
+                const uint32_t hit =
+                    (uint32_t)(dx * dx + dy * dy + dz * dz <= sr * sr) & (uint32_t)(k >= own_end || o > i);
+                uint32_t *to = count < cap ? &out[2 * count] : sink;
                 to[0] = i < o ? i : o;
                 to[1] = i < o ? o : i;
                 count += hit;
             }
         }
     }
-    w->vl_count = count;
-    grid_big(g, box.big, C, R, n, NULL, list_collect, w);
+    return count;
 }
 
+/* The grid for a list pass (grid_fill) and, when its table is dense, the
+ * offsets of list_runs in it: 1 when the list can take list_items, 0 when
+ * it takes grid_visit's walk. */
+static int list_grid_make(const rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n,
+                          list_grid *lg)
+{
+    int m;
+    lg->g = g;
+    lg->C = C;
+    lg->R = R;
+    grid_fill(w, g, C, R, n, &lg->box);
+    for (m = 0; m < 9; ++m)
+        lg->off[m] = (int64_t)list_runs[m][0] +
+                     (int64_t)lg->box.nx * ((int64_t)list_runs[m][1] + (int64_t)lg->box.ny * list_runs[m][2]);
+    return lg->box.dense;
+}
+
+/* The pairs of a list (list_build, which sorts them after): every pair of
+ * items whose centres C are closer than the sum of their reaches R, as
+ * (lower, higher) into w->vl_pair, counted in w->vl_count (beyond vl_cap:
+ * counted, not written) -- the pairs grid_pairs visits, in another order:
+ * list_items on a dense table, else grid_visit's walk. */
+static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n)
+{
+    list_grid lg;
+    if (n < 2)
+        return;
+    if (!list_grid_make(w, g, C, R, n, &lg)) {
+        grid_visit(w, g, &lg.box, C, R, n, NULL, list_collect, w);
+        return;
+    }
+    w->vl_count += list_items(&lg, 0, n, w->vl_pair + 2 * (size_t)w->vl_count,
+                              w->vl_count < w->vl_cap ? w->vl_cap - w->vl_count : 0);
+    grid_big(g, lg.box.big, C, R, n, NULL, list_collect, w);
+}
+
+/* The list's stages on the world's threads (list_shared): each share's
+ * pairs into its own run of the buffer and counted by first item, then
+ * moved to their places, then each item's partners sorted. */
+typedef struct list_team {
+    rbs_world *w;
+    list_grid lg;
+    uint32_t n, shares;
+    uint32_t *buf;                     /* shares runs of room pairs */
+    uint32_t room;
+    uint32_t found[RBS__TEAM_SHARES];  /* each share's pairs (beyond room:
+                                          counted, not written) */
+    uint32_t *next;                    /* per item, where its next pair goes */
+} list_team;
+
+/* One more in *p, from any thread (only the count is read). */
+static inline uint32_t add_one(uint32_t *p)
+{
+#if defined(__GNUC__)
+    return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED);
+#else
+    return (*p)++;
+#endif
+}
+
+static void list_stage_find(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    list_team *t = (list_team *)ctx;
+    uint32_t *run = t->buf + 2 * (size_t)share * t->room, k, found;
+    found = list_items(&t->lg, begin, end, run, t->room);
+    t->found[share] = found;
+    for (k = 0; k < found && k < t->room; ++k)
+        (void)add_one(&t->w->vl_start[run[2 * k] + 1]);
+}
+
+static void list_stage_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    list_team *t = (list_team *)ctx;
+    uint32_t *P = t->w->vl_pair, s;
+    (void)share;
+    for (s = begin; s < end; ++s) {
+        const uint32_t *run = t->buf + 2 * (size_t)s * t->room;
+        uint32_t k;
+        for (k = 0; k < t->found[s]; ++k) {
+            const uint32_t at = add_one(&t->next[run[2 * k]]);
+            P[2 * at] = run[2 * k];
+            P[2 * at + 1] = run[2 * k + 1];
+        }
+    }
+}
+
+static void list_stage_sort(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    list_team *t = (list_team *)ctx;
+    rbs_world *w = t->w;
+    uint32_t *P = w->vl_pair, i, k;
+    (void)share;
+    for (i = begin; i < end; ++i)
+        for (k = w->vl_start[i] + 1; k < w->vl_start[i + 1]; ++k) {
+            const uint32_t b = P[2 * k + 1];
+            uint32_t at = k;
+            while (at > w->vl_start[i] && P[2 * (at - 1) + 1] > b) {
+                P[2 * at + 1] = P[2 * (at - 1) + 1];
+                at--;
+            }
+            P[2 * at + 1] = b;
+        }
+    memcpy(&w->vl_pos[3 * (size_t)begin], &t->lg.C[3 * (size_t)begin], 3 * (size_t)(end - begin) * sizeof(double));
+}
+
+/* The list's pairs, in order, on the world's threads (team.h), through the
+ * buffer m->pairs: 1 when done (w->vl_count, beyond vl_cap when they did not
+ * fit); 0 when this way cannot take them (a hashed table, big items, a
+ * share's pairs beyond its run of the buffer), and nothing is written. */
+static int list_shared(rbs_world *w, const rbs__grid_mem *m, const double *C, uint32_t n)
+{
+    list_team t;
+    uint32_t i, k, total = 0, threads = rbs__team_threads(w);
+    t.w = w;
+    t.n = n;
+    t.shares = threads > 1 ? 2 * threads : 1;
+    if (t.shares > RBS__TEAM_SHARES)
+        t.shares = RBS__TEAM_SHARES;
+    if (t.shares > n)
+        t.shares = n;
+    if (!list_grid_make(w, m, C, w->vl_reach, n, &t.lg) || t.lg.box.big > 0)
+        return 0;
+    t.buf = m->pairs;
+    t.room = (uint32_t)(m->pair_room / t.shares < UINT32_MAX ? m->pair_room / t.shares : UINT32_MAX);
+    memset(t.found, 0, sizeof t.found);
+    memset(w->vl_start, 0, ((size_t)n + 1) * sizeof *w->vl_start);
+    rbs__team_run(w, list_stage_find, &t, n, t.shares);
+    for (k = 0; k < t.shares; ++k) {
+        if (t.found[k] > t.room)
+            return 0;
+        total += t.found[k];
+    }
+    w->vl_count = total;
+    if (total > w->vl_cap)
+        return 1;
+    /* each item's first place; the grid's fill (T >= n entries) is free */
+    t.next = m->fill;
+    for (i = 0; i < n; ++i) {
+        w->vl_start[i + 1] += w->vl_start[i];
+        t.next[i] = w->vl_start[i];
+    }
+    rbs__team_run(w, list_stage_place, &t, t.shares, t.shares);
+    rbs__team_run(w, list_stage_sort, &t, n, t.shares);
+    w->vl_items = n;
+    w->vl_valid = 1;
+    return 1;
+}
 
 /* The candidate-pair list (a Verlet list: Verlet, Phys. Rev. 159, 98, 1967),
  * with a skin of its own for each item.  Built from the grid with each
@@ -401,7 +543,13 @@ static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, con
  * a rebuild every frame; with its own, it forces one per LIST_AHEAD frames
  * or so, and the slow majority keeps the small base.  A list so grown that
  * it holds more pairs than there is room for is built with the base skin
- * alone, and failing that with no skin (a list for this pass only). */
+ * alone, and failing that with no skin (a list for this pass only).
+ *
+ * Given room for pairs beside the grid (the soft step's, in the chunks'
+ * room), the list is built on the world's threads (list_shared): a dense
+ * table's pairs found share by share, counted by first item, moved to
+ * their places and each item's partners sorted -- the same sorted list,
+ * whatever the threads, as the serial way's American flag sort. */
 #define LIST_SKIN 0.1     /* the base margin of a pair, of the mean radius */
 #define LIST_AHEAD 4.0    /* frames of an item's own motion its skin holds */
 #define LIST_SKIN_MAX 0.5 /* the most skin of an item, of the mean radius */
@@ -424,6 +572,9 @@ static int list_build(rbs_world *w, const rbs__grid_mem *m, const double *C, uin
         w->vl_reach[i] = w->bp_reach[i] + (base + skin);
         *grown = skin > *grown ? skin : *grown;
     }
+    if (m->pairs != NULL && list_shared(w, m, C, n))
+        return w->vl_valid;
+    w->vl_count = 0;
     grid_list(w, m, C, w->vl_reach, n);
     if (w->vl_count > w->vl_cap)
         return 0;
@@ -491,6 +642,8 @@ static rbs__grid_mem grid_mem_of(const rbs_world *w)
     m.start = w->bp_start;
     m.fill = w->bp_fill;
     m.cell = w->bp_cell;
+    m.pairs = NULL;
+    m.pair_room = 0;
     return m;
 }
 
@@ -506,6 +659,8 @@ int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs_
     out->item = out->key + n;
     out->big = out->item + n;
     out->cell = (int32_t *)(void *)(out->big + n);
+    out->pairs = (uint32_t *)(void *)(out->cell + 3 * (size_t)n);
+    out->pair_room = (bytes / sizeof(uint32_t) - words) / 2;
     return 1;
 }
 

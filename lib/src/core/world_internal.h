@@ -332,13 +332,18 @@ static inline double rbs__broadphase_slack(const rbs_world *w, const double *C, 
 }
 int rbs__broadphase_keep(const rbs_world *w, uint32_t n, double size, double rmax, double slack);
 /* The grid's working arrays (bp_key, bp_item, bp_big, bp_cell, bp_start,
- * bp_fill), which nothing reads once a grid pass is over. */
+ * bp_fill), which nothing reads once a grid pass is over; and room for
+ * pairs (pair_room of them; NULL: none, as the world's own arrays), which
+ * lets the candidate list be built on the world's threads. */
 typedef struct rbs__grid_mem {
     uint32_t *key, *item, *big, *start, *fill;
     int32_t *cell;
+    uint32_t *pairs;
+    size_t pair_room;
 } rbs__grid_mem;
 /* Grid arrays for n items carved from bytes at p (4-byte aligned), which
- * the caller does not need during the pass: 1, or 0 when they do not fit. */
+ * the caller does not need during the pass, the rest as room for pairs: 1,
+ * or 0 when they do not fit. */
 int rbs__grid_mem_in(const rbs_world *w, void *p, size_t bytes, uint32_t n, rbs__grid_mem *out);
 int rbs__broadphase_build(rbs_world *w, const rbs__grid_mem *mem, const double *centers, uint32_t n, double fixed,
                           double size, double rmax, double rsum);
