@@ -419,16 +419,6 @@ typedef struct list_team {
     uint32_t *next;                    /* per item, where its next pair goes */
 } list_team;
 
-/* One more in *p, from any thread (only the count is read). */
-static inline uint32_t add_one(uint32_t *p)
-{
-#if defined(__GNUC__)
-    return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED);
-#else
-    return (*p)++;
-#endif
-}
-
 static void list_stage_find(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     list_team *t = (list_team *)ctx;
@@ -436,7 +426,7 @@ static void list_stage_find(void *ctx, uint32_t share, uint32_t begin, uint32_t 
     found = list_items(&t->lg, begin, end, run, t->room);
     t->found[share] = found;
     for (k = 0; k < found && k < t->room; ++k)
-        (void)add_one(&t->w->vl_start[run[2 * k] + 1]);
+        (void)rbs__team_add(&t->w->vl_start[run[2 * k] + 1], t->shares > 1);
 }
 
 static void list_stage_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
@@ -448,7 +438,7 @@ static void list_stage_place(void *ctx, uint32_t share, uint32_t begin, uint32_t
         const uint32_t *run = t->buf + 2 * (size_t)s * t->room;
         uint32_t k;
         for (k = 0; k < t->found[s]; ++k) {
-            const uint32_t at = add_one(&t->next[run[2 * k]]);
+            const uint32_t at = rbs__team_add(&t->next[run[2 * k]], t->shares > 1);
             P[2 * at] = run[2 * k];
             P[2 * at + 1] = run[2 * k + 1];
         }

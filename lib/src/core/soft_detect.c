@@ -763,19 +763,10 @@ typedef struct warm_store {
     uint32_t run[RBS__GROUPS_MAX + 1];  /* the groups' chunks counted through:
                                            group k's are run[k] .. run[k + 1] - 1 */
     double h;
+    int shared;                         /* on several threads (rbs__team_add) */
     uint32_t resting[RBS__TEAM_SHARES]; /* each share's lanes holding a
                                            normal impulse */
 } warm_store;
-
-/* One more in *p, from any thread (the counts, not their order, are read). */
-static inline uint32_t count_one(uint32_t *p)
-{
-#if defined(__GNUC__)
-    return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED);
-#else
-    return (*p)++;
-#endif
-}
 
 /* The chunk of the frame's v-th (groups counted through, in order). */
 static const rbs__chunk *warm_chunk(const warm_store *ws, uint32_t v, uint32_t *k)
@@ -803,7 +794,7 @@ static void warm_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         for (l = 0; l < c->count; ++l) {
             resting += c->jn[l] > 0.0;
             if (c->jn[l] != 0.0)
-                (void)count_one(&ws->start[warm_bucket(w, c, l) + 1u]);
+                (void)rbs__team_add(&ws->start[warm_bucket(w, c, l) + 1u], ws->shared);
         }
     }
     ws->resting[share] = resting;
@@ -829,7 +820,7 @@ static void warm_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
                                      plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
             e.n = c->jn[l] / ws->h;
             e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / ws->h);
-            w->warm[count_one(&ws->start[warm_bucket(w, c, l)])] = e;
+            w->warm[rbs__team_add(&ws->start[warm_bucket(w, c, l)], ws->shared)] = e;
         }
     }
 }
@@ -869,6 +860,7 @@ uint32_t rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h,
     ws.g = g;
     ws.start = scratch;
     ws.h = h;
+    ws.shared = rbs__team_threads(w) > 1;
     ws.run[0] = 0;
     for (k = 0; k < groups; ++k)
         ws.run[k + 1] = ws.run[k] + g->used[k];

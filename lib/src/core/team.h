@@ -38,4 +38,18 @@ void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32
 /* The threads a step may use (1 without a pool). */
 uint32_t rbs__team_threads(const rbs_world *w);
 
+/* *p + 1 into *p, returning *p before: atomic (relaxed: the count, not
+ * the order of the additions, is read after the stage) when the stage may
+ * run on several threads (shared), a plain addition otherwise. */
+static inline uint32_t rbs__team_add(uint32_t *p, int shared)
+{
+#if defined(__GNUC__)
+    if (shared)
+        return __atomic_fetch_add(p, 1u, __ATOMIC_RELAXED);
+#else
+    (void)shared;
+#endif
+    return (*p)++;
+}
+
 #endif
