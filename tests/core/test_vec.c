@@ -1,6 +1,7 @@
 /*
- * test_vec.c - the core's own sine and cosine for small angles, and that a
- * step of spinning spheres never calls libm's.
+ * test_vec.c - the core's own sine and cosine for small angles, its turns
+ * by a rotation vector, and that a step of spinning spheres never calls
+ * libm's.
  *
  * rbs__sincos (lib/src/core/vec.h) sums the Taylor series of sin and cos
  * for |x| <= 1/8 and calls libm beyond.  Its answers are compared with
@@ -114,6 +115,41 @@ static void rotations_turn_by_the_angle(void **state)
     }
 }
 
+/* q_from_turn (the soft step's write-back): for half angles up to 1/8 its
+ * components within 2 ulps of cos x and th sin x / (2 x) in extended
+ * precision (the series: about an ulp, and one more rounding in the
+ * product with th), about axes along and across the coordinates; beyond,
+ * q_from_rotation's bit for bit. */
+static void turns_within_two_ulps(void **state)
+{
+    const double axes[3][3] = {{1.0, 0.0, 0.0}, {0.6, -0.8, 0.0}, {1.0 / 3.0, 2.0 / 3.0, -2.0 / 3.0}};
+    const int n = 20000;
+    double worst = 0.0;
+    int i, k;
+    (void)state;
+    for (k = 0; k < 3; ++k)
+        for (i = -n; i <= n; ++i) {
+            const double a = 0.25 * i / n; /* the angle: x = |a| / 2 up to 1/8 */
+            const v3 th = v3_make(a * axes[k][0], a * axes[k][1], a * axes[k][2]);
+            const quat q = q_from_turn(th);
+            const long double x = 0.5L * sqrtl((long double)th.x * th.x + (long double)th.y * th.y +
+                                               (long double)th.z * th.z);
+            const long double so = x > 0.0L ? sinl(x) / (2.0L * x) : 0.5L;
+            worst = fmax(worst, ulps(q.w, cosl(x)));
+            worst = fmax(worst, ulps(q.x, th.x * so));
+            worst = fmax(worst, ulps(q.y, th.y * so));
+            worst = fmax(worst, ulps(q.z, th.z * so));
+        }
+    print_message("worst error of a turn: %.3f ulp\n", worst);
+    assert_true(worst <= 2.0);
+    for (i = 0; i < 4; ++i) {
+        const double a = (double[]){0.2500001, -0.3, 1.0, 3.0}[i];
+        const v3 th = v3_make(a * axes[2][0], a * axes[2][1], a * axes[2][2]);
+        const quat q = q_from_turn(th), r = q_from_rotation(th, 1.0);
+        assert_true(q.w == r.w && q.x == r.x && q.y == r.y && q.z == r.z);
+    }
+}
+
 /* A heap of spheres, each spinning at up to 40 rad/s, on a floor with
  * friction: stepped by the pile's method and by euler, no call of libm's
  * sine or cosine, and every sphere has turned. */
@@ -166,6 +202,7 @@ int main(void)
         cmocka_unit_test(small_angles_within_an_ulp),
         cmocka_unit_test(larger_angles_are_libms),
         cmocka_unit_test(rotations_turn_by_the_angle),
+        cmocka_unit_test(turns_within_two_ulps),
         cmocka_unit_test(spinning_piles_never_call_libm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -517,6 +517,21 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     }
 }
 
+/* q turned by the rotation vector th (rad; q_from_turn), normalised by
+ * one division: the result differs from q_normalize's four divisions in the
+ * last bit or so -- an orientation, which a centred isotropic sphere's
+ * motion never reads. */
+static quat turned(v3 th, quat q)
+{
+    quat r = q_mul(q_from_turn(th), q);
+    const double inv = 1.0 / sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+    r.w *= inv;
+    r.x *= inv;
+    r.y *= inv;
+    r.z *= inv;
+    return r;
+}
+
 /* The write-back's first half: every new value made and checked finite (a
  * finite rotation too large to square gives a NaN turn), the new
  * orientation kept in the record (the rotation and the spare double after
@@ -544,7 +559,7 @@ static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             ok &= isfinite(q[RBS__REC_V + d]) && isfinite(q[RBS__REC_W + d]) &&
                   isfinite(w->pos[3 * b + d] + q[RBS__REC_D + d]);
         if (turns) {
-            qt = q_normalize(q_mul(q_from_rotation(th, 1.0), q_load(&w->orient[4 * b])));
+            qt = turned(th, q_load(&w->orient[4 * b]));
             ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
             q_store(q + RBS__REC_ROT, qt);
         }

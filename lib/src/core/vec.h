@@ -107,6 +107,27 @@ static inline quat q_from_rotation(v3 w, double h)
     return r;
 }
 
+/* The rotation by the rotation vector th (angle |th| rad about th), as a
+ * unit quaternion (cos x, sin x th / |th|) with x = |th| / 2: for x at most
+ * 1/8 (every turn of a frame in a pile) cos x and sin x / (2 x) from their
+ * Taylor series in x^2 (remainders below x^12 / 12! and x^10 / 11!, a
+ * fraction of an ulp, as rbs__sincos), without |th| and its square root;
+ * beyond, q_from_rotation. */
+static inline quat q_from_turn(v3 th)
+{
+    const double x2 = 0.25 * v3_dot(th, th);
+    quat t;
+    double so;
+    if (!(x2 <= 1.0 / 64.0))
+        return q_from_rotation(th, 1.0);
+    so = 0.5 * (1.0 + x2 * (-1.0 / 6.0 + x2 * (1.0 / 120.0 + x2 * (-1.0 / 5040.0 + x2 * (1.0 / 362880.0)))));
+    t.w = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24.0 + x2 * (-1.0 / 720.0 + x2 * (1.0 / 40320.0 + x2 * (-1.0 / 3628800.0)))));
+    t.x = th.x * so;
+    t.y = th.y * so;
+    t.z = th.z * so;
+    return t;
+}
+
 /* Symmetric 3x3 as a full row-major matrix. */
 static inline v3 m3_mul(const double *m, v3 v)
 {
