@@ -472,6 +472,8 @@ static int list_shared(rbs_world *w, const rbs__grid_mem *m, const double *C, ui
 {
     list_team t;
     uint32_t i, k, total = 0, threads = rbs__team_threads(w);
+    if (n < 2)
+        return 0;
     t.w = w;
     t.n = n;
     t.shares = threads > 1 ? 2 * threads : 1;
