@@ -184,68 +184,94 @@ static int all_zero(const void *p, size_t n)
     return 1;
 }
 
+/* A crowd of n spheres for the candidate list's tests and the list built
+ * from the world's own arrays, kept to compare with: radii r0 to r0 + dr
+ * in a cube of side L (sphere 7 of radius 0.5 m when big: past 4x the mean
+ * reach, for the grid's big list), reaches 1.25 radii. */
+typedef struct crowd {
+    rbs_world *w;
+    uint32_t n, count;
+    double *C, size, rmax, rsum;
+    uint32_t *pairs, *starts;
+} crowd;
+
+static crowd crowd_make(uint32_t n, uint64_t seed, double r0, double dr, double L, int big)
+{
+    rbs_world_def d;
+    crowd c;
+    uint32_t i, k;
+    memset(&c, 0, sizeof c);
+    c.n = n;
+    c.C = malloc(3 * (size_t)n * sizeof(double));
+    c.starts = malloc(((size_t)n + 1) * sizeof(uint32_t));
+    assert_non_null(c.C);
+    assert_non_null(c.starts);
+    rbs_world_def_init(&d);
+    d.max_bodies = n;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &c.w));
+    for (i = 0; i < n; ++i) {
+        double r = big && i == 7 ? 0.5 : r0 + dr * rnd(&seed);
+        (void)ball(c.w, r, 0.1, L * rnd(&seed), L * rnd(&seed), L * rnd(&seed), 0, 0, 0, (rbs_material_id){0, 0});
+    }
+    for (i = 0; i < n; ++i) {
+        const uint32_t a = c.w->spheres[i];
+        for (k = 0; k < 3; ++k) {
+            c.C[3 * i + k] = c.w->pos[3 * a + k];
+            c.size = fabs(c.C[3 * i + k]) > c.size ? fabs(c.C[3 * i + k]) : c.size;
+        }
+        c.w->bp_reach[i] = 1.25 * c.w->radius[a];
+        c.rsum += c.w->radius[a];
+        c.rmax = c.w->bp_reach[i] > c.rmax ? c.w->bp_reach[i] : c.rmax;
+    }
+    assert_true(rbs__broadphase_build(c.w, NULL, c.C, n, 0.25, c.size, c.rmax, c.rsum));
+    c.count = c.w->vl_count;
+    assert_true(c.count > n / 2); /* (pairs enough to compare) */
+    c.pairs = malloc(2 * (size_t)c.count * sizeof(uint32_t));
+    assert_non_null(c.pairs);
+    memcpy(c.pairs, c.w->vl_pair, 2 * (size_t)c.count * sizeof(uint32_t));
+    memcpy(c.starts, c.w->vl_start, ((size_t)n + 1) * sizeof(uint32_t));
+    return c;
+}
+
+/* The list built again in m (the list cleared first): the kept one, pair
+ * for pair. */
+static int crowd_same_list(crowd *c, const rbs__grid_mem *m)
+{
+    memset(c->w->vl_pair, 0, 2 * (size_t)c->count * sizeof(uint32_t));
+    c->w->vl_valid = 0;
+    return rbs__broadphase_build(c->w, m, c->C, c->n, 0.25, c->size, c->rmax, c->rsum) &&
+           c->w->vl_count == c->count &&
+           memcmp(c->w->vl_pair, c->pairs, 2 * (size_t)c->count * sizeof(uint32_t)) == 0 &&
+           memcmp(c->w->vl_start, c->starts, ((size_t)c->n + 1) * sizeof(uint32_t)) == 0;
+}
+
+static void crowd_free(crowd *c)
+{
+    free(c->pairs);
+    free(c->starts);
+    free(c->C);
+    rbs_world_destroy(c->w);
+}
+
 /* The candidate list built with the grid's arrays in a buffer of the
  * caller's (rbs__grid_mem_in) is the world's-arrays list, pair for pair;
  * a buffer a word too small is refused. */
 static void grid_in_any_memory_gives_the_same_list(void **state)
 {
-    enum { N = 400 };
-    rbs_world_def d;
-    rbs_world *w = NULL;
+    /* radii 0.02-0.06 m in a 1 m cube: a few pairs each, and a big one */
+    crowd c = crowd_make(400, 99, 0.02, 0.04, 1.0, 1);
     rbs__grid_mem m;
-    uint64_t seed = 99;
-    double *C = malloc(3 * N * sizeof(double)), rsum = 0.0, rmax = 0.0, size = 0.0;
-    uint32_t *pairs = NULL, *starts = malloc((N + 1) * sizeof(uint32_t)), count, *buf;
-    size_t words;
-    int i, k;
+    const size_t words = 6 * (size_t)c.n + 2 * (size_t)c.w->bp_table_size + 1;
+    uint32_t *buf = malloc(words * sizeof(uint32_t));
     (void)state;
-    assert_non_null(C);
-    assert_non_null(starts);
-    rbs_world_def_init(&d);
-    d.max_bodies = N;
-    d.method = RBS_METHOD_SOFT;
-    CHECK_OK(rbs_world_create(&d, &w));
-    for (i = 0; i < N; ++i) {
-        /* radii 0.02-0.06 m in a 1 m cube: a few pairs each, and one
-         * sphere big enough (> 4x the mean reach) for the grid's big list */
-        double r = i == 7 ? 0.5 : 0.02 + 0.04 * rnd(&seed);
-        (void)ball(w, r, 0.1, rnd(&seed), rnd(&seed), rnd(&seed), 0, 0, 0, (rbs_material_id){0, 0});
-    }
-    for (i = 0; i < N; ++i) {
-        const uint32_t a = w->spheres[i];
-        for (k = 0; k < 3; ++k) {
-            C[3 * i + k] = w->pos[3 * a + k];
-            size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
-        }
-        w->bp_reach[i] = 1.25 * w->radius[a];
-        rsum += w->radius[a];
-        rmax = w->bp_reach[i] > rmax ? w->bp_reach[i] : rmax;
-    }
-    assert_true(rbs__broadphase_build(w, NULL, C, N, 0.25, size, rmax, rsum));
-    count = w->vl_count;
-    assert_true(count > N / 2); /* (pairs enough to compare) */
-    pairs = malloc(2 * (size_t)count * sizeof(uint32_t));
-    assert_non_null(pairs);
-    memcpy(pairs, w->vl_pair, 2 * (size_t)count * sizeof(uint32_t));
-    memcpy(starts, w->vl_start, (N + 1) * sizeof(uint32_t));
-
-    words = 6 * (size_t)N + 2 * (size_t)w->bp_table_size + 1;
-    buf = malloc(words * sizeof(uint32_t));
     assert_non_null(buf);
-    assert_false(rbs__grid_mem_in(w, buf, (words - 1) * sizeof(uint32_t), N, &m));
-    assert_true(rbs__grid_mem_in(w, buf, words * sizeof(uint32_t), N, &m));
+    assert_false(rbs__grid_mem_in(c.w, buf, (words - 1) * sizeof(uint32_t), c.n, &m));
+    assert_true(rbs__grid_mem_in(c.w, buf, words * sizeof(uint32_t), c.n, &m));
     memset(buf, 0xA5, words * sizeof(uint32_t)); /* (no zeros to lean on) */
-    memset(w->vl_pair, 0, 2 * (size_t)count * sizeof(uint32_t));
-    w->vl_valid = 0;
-    assert_true(rbs__broadphase_build(w, &m, C, N, 0.25, size, rmax, rsum));
-    assert_int_equal(w->vl_count, count);
-    assert_memory_equal(w->vl_pair, pairs, 2 * (size_t)count * sizeof(uint32_t));
-    assert_memory_equal(w->vl_start, starts, (N + 1) * sizeof(uint32_t));
+    assert_true(crowd_same_list(&c, &m));
     free(buf);
-    free(pairs);
-    free(starts);
-    free(C);
-    rbs_world_destroy(w);
+    crowd_free(&c);
 }
 
 /* A soft pile's candidate list is built in the chunks' room and its warm
@@ -275,91 +301,52 @@ static void soft_pile_leaves_the_grid_arrays_untouched(void **state)
  * in the buffer), and with a list too small for the pairs (refused alike). */
 static void list_on_threads_is_the_same_list(void **state)
 {
-    enum { N = 3000 };
-    rbs_world_def d;
-    rbs_world *w = NULL;
+    /* radii 0.02-0.04 m in a 1.2 m cube, no big one: a few pairs each */
+    crowd c = crowd_make(3000, 7, 0.02, 0.02, 1.2, 0);
     rbs__grid_mem m;
-    uint64_t seed = 7;
-    double *C = malloc(3 * N * sizeof(double)), rsum = 0.0, rmax = 0.0, size = 0.0;
-    uint32_t *pairs, *starts = malloc((N + 1) * sizeof(uint32_t)), count, cap, *buf, t;
-    size_t words, room;
-    int i, k, round;
+    const size_t words = 6 * (size_t)c.n + 2 * (size_t)c.w->bp_table_size + 1;
+    const size_t room = 4 * (size_t)c.count; /* pairs: ample for 8 shares */
+    uint32_t *buf = malloc((words + 2 * room) * sizeof(uint32_t)), cap, t;
+    int round;
     (void)state;
-    assert_non_null(C);
-    assert_non_null(starts);
-    rbs_world_def_init(&d);
-    d.max_bodies = N;
-    d.method = RBS_METHOD_SOFT;
-    CHECK_OK(rbs_world_create(&d, &w));
-    for (i = 0; i < N; ++i) {
-        /* radii 0.02-0.04 m in a 1.2 m cube, no big one: a few pairs each */
-        double r = 0.02 + 0.02 * rnd(&seed);
-        (void)ball(w, r, 0.1, 1.2 * rnd(&seed), 1.2 * rnd(&seed), 1.2 * rnd(&seed), 0, 0, 0,
-                   (rbs_material_id){0, 0});
-    }
-    for (i = 0; i < N; ++i) {
-        const uint32_t a = w->spheres[i];
-        for (k = 0; k < 3; ++k) {
-            C[3 * i + k] = w->pos[3 * a + k];
-            size = fabs(C[3 * i + k]) > size ? fabs(C[3 * i + k]) : size;
-        }
-        w->bp_reach[i] = 1.25 * w->radius[a];
-        rsum += w->radius[a];
-        rmax = w->bp_reach[i] > rmax ? w->bp_reach[i] : rmax;
-    }
-    assert_true(rbs__broadphase_build(w, NULL, C, N, 0.25, size, rmax, rsum));
-    count = w->vl_count;
-    assert_true(count > N); /* (pairs enough to compare) */
-    pairs = malloc(2 * (size_t)count * sizeof(uint32_t));
-    assert_non_null(pairs);
-    memcpy(pairs, w->vl_pair, 2 * (size_t)count * sizeof(uint32_t));
-    memcpy(starts, w->vl_start, (N + 1) * sizeof(uint32_t));
-
-    words = 6 * (size_t)N + 2 * (size_t)w->bp_table_size + 1;
-    room = 4 * (size_t)count; /* pairs: ample for 8 shares */
-    buf = malloc((words + 2 * room) * sizeof(uint32_t));
     assert_non_null(buf);
+    assert_true(c.count > c.n);
     for (round = 0; round < 6; ++round) {
         /* rounds 0-3: 1 to 4 threads; 4: room for 2 pairs; 5: 2 threads */
         rbs_pool *pool = NULL;
         rbs_workers wk;
+        int same;
         t = round < 4 ? (uint32_t)round + 1 : round == 4 ? 1 : 2;
-        assert_true(rbs__grid_mem_in(w, buf, (words + 2 * (round == 4 ? 2 : room)) * sizeof(uint32_t), N, &m));
+        assert_true(rbs__grid_mem_in(c.w, buf, (words + 2 * (round == 4 ? 2 : room)) * sizeof(uint32_t), c.n, &m));
         assert_non_null(m.pairs);
         memset(buf, 0xA5, (words + 2 * room) * sizeof(uint32_t)); /* (no zeros to lean on) */
-        memset(w->vl_pair, 0, 2 * (size_t)count * sizeof(uint32_t));
-        w->vl_valid = 0;
         if (t > 1) {
             CHECK_OK(rbs_pool_create(t - 1, &pool));
             CHECK_OK(rbs_pool_workers(pool, &wk));
-            CHECK_OK(rbs_world_set_workers(w, &wk));
-            rbs__team_start(w);
+            CHECK_OK(rbs_world_set_workers(c.w, &wk));
+            rbs__team_start(c.w);
         }
-        assert_true(rbs__broadphase_build(w, &m, C, N, 0.25, size, rmax, rsum));
+        same = crowd_same_list(&c, &m);
         if (t > 1) {
-            rbs__team_stop(w);
-            CHECK_OK(rbs_world_set_workers(w, NULL));
+            rbs__team_stop(c.w);
+            CHECK_OK(rbs_world_set_workers(c.w, NULL));
             rbs_pool_destroy(pool);
         }
-        if (w->vl_count != count || memcmp(w->vl_pair, pairs, 2 * (size_t)count * sizeof(uint32_t)) != 0 ||
-            memcmp(w->vl_start, starts, (N + 1) * sizeof(uint32_t)) != 0)
+        if (!same)
             fail_msg("round %d (%u threads): not the list of the world's own arrays", round, (unsigned)t);
     }
     /* a list with room for half the pairs: no list at all either way (the
      * skins cannot shrink: the reaches are the pass's own) */
-    cap = w->vl_cap;
-    w->vl_cap = count / 2;
-    assert_false(rbs__broadphase_build(w, NULL, C, N, 10.0, size, rmax, rsum));
-    assert_false(w->vl_valid);
-    assert_true(rbs__grid_mem_in(w, buf, (words + 2 * room) * sizeof(uint32_t), N, &m));
-    assert_false(rbs__broadphase_build(w, &m, C, N, 10.0, size, rmax, rsum));
-    assert_false(w->vl_valid);
-    w->vl_cap = cap;
+    cap = c.w->vl_cap;
+    c.w->vl_cap = c.count / 2;
+    assert_false(rbs__broadphase_build(c.w, NULL, c.C, c.n, 10.0, c.size, c.rmax, c.rsum));
+    assert_false(c.w->vl_valid);
+    assert_true(rbs__grid_mem_in(c.w, buf, (words + 2 * room) * sizeof(uint32_t), c.n, &m));
+    assert_false(rbs__broadphase_build(c.w, &m, c.C, c.n, 10.0, c.size, c.rmax, c.rsum));
+    assert_false(c.w->vl_valid);
+    c.w->vl_cap = cap;
     free(buf);
-    free(pairs);
-    free(starts);
-    free(C);
-    rbs_world_destroy(w);
+    crowd_free(&c);
 }
 
 /* The warm-start table a soft frame stores: one entry for each lane that
