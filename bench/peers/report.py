@@ -291,6 +291,21 @@ def machine_limit(rows, meta):
     return L
 
 
+def scaling_runs(rows, scene, eng):
+    """The runs of each N of a scaling series, in order of N."""
+    by_n = {}
+    for r in sel(rows, scene, engine=eng):
+        by_n.setdefault(int(r["n"]), []).append(r)
+    return [by_n[n] for n in sorted(by_n)]
+
+
+def median_run(rs):
+    """The median run by cost (of an even count, the lower; runs without a
+    cost -- skipped, failed -- only when no run has one)."""
+    costed = sorted((r for r in rs if f(r["ns_per_body_step"])), key=lambda r: f(r["ns_per_body_step"]))
+    return costed[(len(costed) - 1) // 2] if costed else rs[0]
+
+
 def scaling_table(rows):
     L = []
     if not any(r["scene"] in ("lattice", "stack") for r in rows):
@@ -301,17 +316,22 @@ def scaling_table(rows):
              "step's one-off work) of a falling lattice (10 layers, spacing 0.12 m, no contacts "
              "yet) and of a settled stack (10 layers of touching spheres on the floor, walls "
              "touching: every sphere in resting contact), with rbsim's default method (auto: soft "
-             "at these sizes), with RBS_METHOD_SOFT and with RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  One run each; a run that "
+             "at these sizes), with RBS_METHOD_SOFT and with RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  "
+             "Three runs each (run.py's SCALING_REPS), one after another: each line is the median run "
+             "by cost, with the range of the runs' costs; a run that "
              "hits its wall-time cap (status capped: fewer steps than planned) stops the larger sizes "
              "of that scene and method.\n")
-    L.append("| rbsim | scene | N | status | steps | wall (s) | setup (s) | ns/body-step | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
-    L.append("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    L.append("| rbsim | scene | N | runs | status | steps | wall (s) | setup (s) | ns/body-step | range | vs N = 1000 | peak MB | bytes/body | substeps | rollbacks | contacts |")
+    L.append("|---|---|---:|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|")
     for eng in RBSIM:
         for scene in ("lattice", "stack"):
             first = None
-            for r in sorted(sel(rows, scene, engine=eng), key=lambda r: int(r["n"])):
+            for rs in scaling_runs(rows, scene, eng):
+                r = median_run(rs)
                 n = int(r["n"])
                 c = f(r["ns_per_body_step"])
+                costs = [f(x["ns_per_body_step"]) for x in rs if f(x["ns_per_body_step"])]
+                spread = f"{fmt(min(costs))}-{fmt(max(costs))}" if len(costs) > 1 else "–"
                 if first is None and c:
                     first = c
                 try:
@@ -319,8 +339,8 @@ def scaling_table(rows):
                 except ValueError:
                     x = {}
                 pk = f(r["maxrss_kb"])
-                L.append(f"| {eng} | {scene} | {n} | {r['status']} | {r['steps'] or '–'} | {fmt(f(r['wall']))} | "
-                         f"{fmt(f(r['setup_wall']))} | {fmt(c)} | {fmt(c / first if c and first else None)} | "
+                L.append(f"| {eng} | {scene} | {n} | {len(rs)} | {r['status']} | {r['steps'] or '–'} | {fmt(f(r['wall']))} | "
+                         f"{fmt(f(r['setup_wall']))} | {fmt(c)} | {spread} | {fmt(c / first if c and first else None)} | "
                          f"{fmt(pk / 1024 if pk else None)} | {fmt(pk * 1024 / n if pk else None, 4)} | "
                          f"{x.get('substeps', '–')} | {x.get('rollbacks', '–')} | {x.get('contacts_max', '–')} |")
     L.append("")
@@ -351,7 +371,8 @@ def targets(rows, meta):
             L.append(f"- {eng}: at least 10× ODE's speed at N = {n}: measured {fmt(r)}× — {verdict}{note}.")
         sc = []
         for scene in ("lattice", "stack"):
-            pts = [(int(r["n"]), f(r["ns_per_body_step"]), r["status"]) for r in sel(rows, scene, engine=eng)]
+            pts = [(int(r["n"]), f(r["ns_per_body_step"]), r["status"])
+                   for r in (median_run(rs) for rs in scaling_runs(rows, scene, eng))]
             pts = sorted(p for p in pts if p[1])
             if pts:
                 ok_pts = [p for p in pts if p[2] == "ok"]
