@@ -386,23 +386,38 @@ static int list_grid_make(const rbs_world *w, const rbs__grid_mem *g, const doub
     return lg->box.dense;
 }
 
-/* The pairs of a list (list_build, which sorts them after): every pair of
- * items whose centres C are closer than the sum of their reaches R, as
- * (lower, higher) into w->vl_pair, counted in w->vl_count (beyond vl_cap:
- * counted, not written) -- the pairs grid_pairs visits, in another order:
- * list_items on a dense table, else grid_visit's walk. */
-static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, const double *R, uint32_t n)
+/* The pairs of a list (list_build, which sorts them after) from the grid
+ * lg made: every pair of items whose centres are closer than the sum of
+ * their reaches, as (lower, higher) into w->vl_pair, counted in
+ * w->vl_count (beyond vl_cap: counted, not written) -- the pairs grid_pairs
+ * visits, in another order: list_items on a dense table, else grid_visit's
+ * walk. */
+static void grid_list(rbs_world *w, const list_grid *lg, uint32_t n)
 {
-    list_grid lg;
-    if (n < 2)
-        return;
-    if (!list_grid_make(w, g, C, R, n, &lg)) {
-        grid_visit(w, g, &lg.box, C, R, n, NULL, list_collect, w);
+    if (!lg->box.dense) {
+        grid_visit(w, lg->g, &lg->box, lg->C, lg->R, n, NULL, list_collect, w);
         return;
     }
-    w->vl_count += list_items(&lg, 0, n, w->vl_pair + 2 * (size_t)w->vl_count,
+    w->vl_count += list_items(lg, 0, n, w->vl_pair + 2 * (size_t)w->vl_count,
                               w->vl_count < w->vl_cap ? w->vl_cap - w->vl_count : 0);
-    grid_big(g, lg.box.big, C, R, n, NULL, list_collect, w);
+    grid_big(lg->g, lg->box.big, lg->C, lg->R, n, NULL, list_collect, w);
+}
+
+/* Items [begin, end) of a list whose pairs are in place by first item
+ * (w->vl_start): each item's few partners in order (insertion). */
+static void list_sort_items(rbs_world *w, uint32_t begin, uint32_t end)
+{
+    uint32_t *P = w->vl_pair, i, k;
+    for (i = begin; i < end; ++i)
+        for (k = w->vl_start[i] + 1; k < w->vl_start[i + 1]; ++k) {
+            const uint32_t b = P[2 * k + 1];
+            uint32_t at = k;
+            while (at > w->vl_start[i] && P[2 * (at - 1) + 1] > b) {
+                P[2 * at + 1] = P[2 * (at - 1) + 1];
+                at--;
+            }
+            P[2 * at + 1] = b;
+        }
 }
 
 /* The list's stages on the world's threads (list_shared): each share's
@@ -410,7 +425,7 @@ static void grid_list(rbs_world *w, const rbs__grid_mem *g, const double *C, con
  * moved to their places, then each item's partners sorted. */
 typedef struct list_team {
     rbs_world *w;
-    list_grid lg;
+    const list_grid *lg;
     uint32_t n, shares;
     uint32_t *buf;                     /* shares runs of room pairs */
     uint32_t room;
@@ -423,7 +438,7 @@ static void list_stage_find(void *ctx, uint32_t share, uint32_t begin, uint32_t 
 {
     list_team *t = (list_team *)ctx;
     uint32_t *run = t->buf + 2 * (size_t)share * t->room, k, found;
-    found = list_items(&t->lg, begin, end, run, t->room);
+    found = list_items(t->lg, begin, end, run, t->room);
     t->found[share] = found;
     for (k = 0; k < found && k < t->room; ++k)
         (void)rbs__team_add(&t->w->vl_start[run[2 * k] + 1], t->shares > 1);
@@ -448,41 +463,28 @@ static void list_stage_place(void *ctx, uint32_t share, uint32_t begin, uint32_t
 static void list_stage_sort(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     list_team *t = (list_team *)ctx;
-    rbs_world *w = t->w;
-    uint32_t *P = w->vl_pair, i, k;
     (void)share;
-    for (i = begin; i < end; ++i)
-        for (k = w->vl_start[i] + 1; k < w->vl_start[i + 1]; ++k) {
-            const uint32_t b = P[2 * k + 1];
-            uint32_t at = k;
-            while (at > w->vl_start[i] && P[2 * (at - 1) + 1] > b) {
-                P[2 * at + 1] = P[2 * (at - 1) + 1];
-                at--;
-            }
-            P[2 * at + 1] = b;
-        }
-    memcpy(&w->vl_pos[3 * (size_t)begin], &t->lg.C[3 * (size_t)begin], 3 * (size_t)(end - begin) * sizeof(double));
+    list_sort_items(t->w, begin, end);
+    memcpy(&t->w->vl_pos[3 * (size_t)begin], &t->lg->C[3 * (size_t)begin], 3 * (size_t)(end - begin) * sizeof(double));
 }
 
-/* The list's pairs, in order, on the world's threads (team.h), through the
- * buffer m->pairs: 1 when done (w->vl_count, beyond vl_cap when they did not
- * fit); 0 when this way cannot take them (a hashed table, big items, a
- * share's pairs beyond its run of the buffer), and nothing is written. */
-static int list_shared(rbs_world *w, const rbs__grid_mem *m, const double *C, uint32_t n)
+/* The list's pairs, in order, on the world's threads (team.h), from the
+ * grid lg made (dense, no big items), through the buffer m->pairs: 1 when
+ * done (w->vl_count, beyond vl_cap when they did not fit); 0 when a
+ * share's pairs went beyond its run of the buffer, and nothing is written
+ * but w->vl_start. */
+static int list_shared(rbs_world *w, const rbs__grid_mem *m, const list_grid *lg, uint32_t n)
 {
     list_team t;
     uint32_t i, k, total = 0, threads = rbs__team_threads(w);
-    if (n < 2)
-        return 0;
     t.w = w;
+    t.lg = lg;
     t.n = n;
     t.shares = threads > 1 ? 2 * threads : 1;
     if (t.shares > RBS__TEAM_SHARES)
         t.shares = RBS__TEAM_SHARES;
     if (t.shares > n)
         t.shares = n;
-    if (!list_grid_make(w, m, C, w->vl_reach, n, &t.lg) || t.lg.box.big > 0)
-        return 0;
     t.buf = m->pairs;
     t.room = (uint32_t)(m->pair_room / t.shares < UINT32_MAX ? m->pair_room / t.shares : UINT32_MAX);
     memset(t.found, 0, sizeof t.found);
@@ -564,10 +566,14 @@ static int list_build(rbs_world *w, const rbs__grid_mem *m, const double *C, uin
         w->vl_reach[i] = w->bp_reach[i] + (base + skin);
         *grown = skin > *grown ? skin : *grown;
     }
-    if (m->pairs != NULL && list_shared(w, m, C, n))
-        return w->vl_valid;
-    w->vl_count = 0;
-    grid_list(w, m, C, w->vl_reach, n);
+    if (n >= 2) {
+        list_grid lg;
+        const int dense = list_grid_make(w, m, C, w->vl_reach, n, &lg);
+        if (m->pairs != NULL && dense && lg.box.big == 0 && list_shared(w, m, &lg, n))
+            return w->vl_valid;
+        w->vl_count = 0;
+        grid_list(w, &lg, n);
+    }
     if (w->vl_count > w->vl_cap)
         return 0;
     /* sorted in place by the first item (American flag sort: McIlroy,
@@ -594,17 +600,10 @@ static int list_build(rbs_world *w, const rbs__grid_mem *m, const double *C, uin
                 P[2 * at + 1] = t1;
             }
         }
-    for (k = 1; k < w->vl_count; ++k) {
-        uint32_t a = P[2 * k], b = P[2 * k + 1], at = k;
-        while (at > 0 && P[2 * (at - 1)] == a && P[2 * (at - 1) + 1] > b) {
-            P[2 * at + 1] = P[2 * (at - 1) + 1];
-            at--;
-        }
-        P[2 * at + 1] = b;
-    }
-    memcpy(w->vl_pos, C, 3 * (size_t)n * sizeof(double));
     /* each first item's pairs: its bucket, start[i] .. start[i + 1] - 1 */
     memcpy(w->vl_start, start, ((size_t)n + 1) * sizeof *start);
+    list_sort_items(w, 0, n);
+    memcpy(w->vl_pos, C, 3 * (size_t)n * sizeof(double));
     w->vl_items = n;
     w->vl_valid = 1;
     return 1;
