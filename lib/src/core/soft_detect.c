@@ -812,15 +812,16 @@ static void warm_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         const rbs__chunk *c = warm_chunk(ws, v, &k);
         for (l = 0; l < c->count; ++l) {
             const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+            uint32_t a;
             rbs__warm e;
             if (c->jn[l] == 0.0)
                 continue;
             /* (lanes hold records: the slots are the keys') */
-            e.key = rbs__warm_key_of(plane, w->spheres[w->soft_order[c->a[l]]],
-                                     plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
+            a = w->spheres[w->soft_order[c->a[l]]];
+            e.key = rbs__warm_key_of(plane, a, plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
             e.n = c->jn[l] / ws->h;
             e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / ws->h);
-            w->warm[rbs__team_add(&ws->start[warm_bucket(w, c, l)], ws->shared)] = e;
+            w->warm[rbs__team_add(&ws->start[(plane ? 0u : w->def.max_bodies) + a], ws->shared)] = e;
         }
     }
 }
