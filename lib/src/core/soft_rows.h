@@ -353,9 +353,12 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
         int plane = (f >> RBS__CH_PLANE & 1u) != 0;
 #if defined(__GNUC__)
         if (i + RBS__AHEAD < end) {
+            /* (restitution reads the header of most chunks and nothing
+             * more: the header's line alone) */
             const char *p = (const char *)(const void *)&k->chunk[i + RBS__AHEAD];
+            const size_t bytes = stage == RBS__SOFT_RESTITUTION ? 64u : sizeof(rbs__chunk);
             size_t at;
-            for (at = 0; at < sizeof(rbs__chunk); at += 64)
+            for (at = 0; at < bytes; at += 64)
                 __builtin_prefetch(p + at, 1, 3); /* (for writing, kept in every cache) */
         }
 #endif
