@@ -438,10 +438,15 @@ static void stage_records(void *ctx, uint32_t share, uint32_t begin, uint32_t en
  * sub-step's v_s + a h + J_s is v_s + (v_s - v_(s-1)) -- the accumulated
  * impulses applied again without a pass over the contacts -- and likewise
  * for w.  (The same in exact arithmetic, rounded differently.)  Each body's
- * velocities before the sub-step are kept in its slot's entry of the
- * increments table, whose increments are read only at the first sub-step
- * (a free body's, in stage_free, are not touched): 48 bytes a body in a
- * contact that a pile under gravity alone would not touch otherwise. */
+ * velocities before the sub-step are kept in the increments table, whose
+ * increments are read only at the first sub-step (a free body's, in
+ * stage_free, are not touched): 48 bytes a body in a contact that a pile
+ * under gravity alone would not touch otherwise.  When the increment is
+ * shared the table holds none, and the entry is the record's (rank r), so
+ * that a slab's entries are together as its records are and a thread
+ * writes its own cache lines; in slot order (a table of increments) the
+ * slabs' bodies interleave, and the two threads wrote into the same lines
+ * three times a frame. */
 static void stage_velocities(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
@@ -452,7 +457,7 @@ static void stage_velocities(void *ctx, uint32_t share, uint32_t begin, uint32_t
         v3 v, om, dv, dw;
         if (!f->touched[r] || q[RBS__REC_IM] == 0.0) /* (the flag first: a free body's record is not read) */
             continue;
-        p = &f->inc[6 * slot_of(f, r)];
+        p = &f->inc[6 * (f->shared ? r : slot_of(f, r))];
         v = v3_load(q + RBS__REC_V);
         om = v3_load(q + RBS__REC_W);
         if (f->sub == 0) {
