@@ -755,89 +755,74 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         }
 }
 
-/* The warm store's stages (rbs__soft_warm_store). */
-typedef struct warm_store {
-    rbs_world *w;
-    const rbs__soft_groups *g;
-    uint32_t *start;                    /* 2 B + 1 bucket starts */
-    uint32_t run[RBS__GROUPS_MAX + 1];  /* the groups' chunks counted through:
-                                           group k's are run[k] .. run[k + 1] - 1 */
-    double h;
-    int shared;                         /* on several threads (rbs__team_add) */
-    uint32_t resting[RBS__TEAM_SHARES]; /* each share's lanes holding a
-                                           normal impulse */
-} warm_store;
-
-/* The chunk of the frame's v-th (groups counted through, in order). */
-static const rbs__chunk *warm_chunk(const warm_store *ws, uint32_t v, uint32_t *k)
-{
-    while (v >= ws->run[*k + 1])
-        ++*k;
-    return &ws->w->chunk[ws->g->first[*k] + (v - ws->run[*k])];
-}
-
 /* A lane's bucket: planes first, each by the sphere's slot. */
 static inline uint32_t warm_bucket(const rbs_world *w, const rbs__chunk *c, uint32_t l)
 {
     return (c->flags >> (RBS__CH_PLANE + l) & 1u ? 0u : w->def.max_bodies) + w->spheres[w->soft_order[c->a[l]]];
 }
 
-/* Chunks [begin, end): each bucket's lanes counted (into the start of the
- * next), and the lanes holding a normal impulse. */
-static void warm_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+/* The frame's chunks of group k: [first, end). */
+static void store_group(const rbs__soft_store *st, uint32_t k, const rbs__chunk **first, const rbs__chunk **end)
 {
-    warm_store *ws = (warm_store *)ctx;
-    const rbs_world *w = ws->w;
-    uint32_t v, l, k = 0, resting = 0;
-    for (v = begin; v < end; ++v) {
-        const rbs__chunk *c = warm_chunk(ws, v, &k);
-        for (l = 0; l < c->count; ++l) {
-            resting += c->jn[l] > 0.0;
-            if (c->jn[l] != 0.0)
-                (void)rbs__team_add(&ws->start[warm_bucket(w, c, l) + 1u], ws->shared);
-        }
-    }
-    ws->resting[share] = resting;
+    *first = &st->w->chunk[st->g->first[k]];
+    *end = *first + st->g->used[k];
 }
 
-/* Chunks [begin, end): each lane holding an impulse into its bucket, as
- * rates (the bucket's lanes in any order until warm_sort). */
-static void warm_place(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+/* The warm store's first half: each bucket's lanes holding an impulse
+ * counted (into the start of the next), and the lanes holding a normal
+ * impulse.  The warm-start table is the same whichever thread stores it. */
+void rbs__soft_store_count(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
 {
-    warm_store *ws = (warm_store *)ctx;
-    rbs_world *w = ws->w;
-    uint32_t v, l, k = 0;
-    (void)share;
-    for (v = begin; v < end; ++v) {
-        const rbs__chunk *c = warm_chunk(ws, v, &k);
-        for (l = 0; l < c->count; ++l) {
-            const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
-            uint32_t a;
-            rbs__warm e;
-            if (c->jn[l] == 0.0)
-                continue;
-            /* (lanes hold records: the slots are the keys') */
-            a = w->spheres[w->soft_order[c->a[l]]];
-            e.key = rbs__warm_key_of(plane, a, plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
-            e.n = c->jn[l] / ws->h;
-            e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / ws->h);
-            w->warm[rbs__team_add(&ws->start[(plane ? 0u : w->def.max_bodies) + a], ws->shared)] = e;
-        }
-    }
+    const uint32_t groups = g->level_first[g->levels + 1];
+    const rbs__chunk *c, *end;
+    uint32_t k, l;
+    st->w = w;
+    st->g = g;
+    st->start = scratch;
+    st->h = h;
+    st->resting = 0;
+    memset(st->start, 0, (2u * (size_t)w->def.max_bodies + 1u) * sizeof *st->start);
+    for (k = 0; k < groups; ++k)
+        for (store_group(st, k, &c, &end); c < end; ++c)
+            for (l = 0; l < c->count; ++l) {
+                st->resting += c->jn[l] > 0.0;
+                if (c->jn[l] != 0.0)
+                    st->start[warm_bucket(w, c, l) + 1u]++;
+            }
 }
 
-/* Buckets [begin, end) in key order (insertion: a handful each; the keys
- * are distinct -- a pair or a sphere and plane is one contact of the
- * frame -- so the order does not depend on how warm_place met them). */
-static void warm_sort(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+/* The second half: the table, in key order (planes first, each by (a, b)):
+ * a counting sort of the lanes by their key's upper half (plane or pair,
+ * and a), each bucket's few lanes then in order of b (insertion: a handful
+ * each; the keys are distinct -- a pair or a sphere and plane is one
+ * contact of the frame).  Rates: the impulses over h. */
+uint32_t rbs__soft_store_place(rbs__soft_store *st)
 {
-    warm_store *ws = (warm_store *)ctx;
-    rbs__warm *t = ws->w->warm;
-    uint32_t b;
-    (void)share;
-    for (b = begin; b < end; ++b) {
-        const uint32_t lo = b == 0 ? 0u : ws->start[b - 1], hi = ws->start[b];
-        uint32_t i, at;
+    rbs_world *w = st->w;
+    rbs__warm *t = w->warm;
+    const uint32_t B = w->def.max_bodies, groups = st->g->level_first[st->g->levels + 1];
+    const rbs__chunk *c, *end;
+    uint32_t k, l, b, i, at;
+    for (b = 0; b < 2u * B; ++b)
+        st->start[b + 1] += st->start[b];
+    for (k = 0; k < groups; ++k)
+        for (store_group(st, k, &c, &end); c < end; ++c)
+            for (l = 0; l < c->count; ++l) {
+                const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+                uint32_t a;
+                rbs__warm e;
+                if (c->jn[l] == 0.0)
+                    continue;
+                /* (lanes hold records: the slots are the keys') */
+                a = w->spheres[w->soft_order[c->a[l]]];
+                e.key = rbs__warm_key_of(plane, a, plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
+                e.n = c->jn[l] / st->h;
+                e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / st->h);
+                t[st->start[(plane ? 0u : B) + a]++] = e;
+            }
+    /* (start[b] is now the end of bucket b) */
+    for (b = 0; b < 2u * B; ++b) {
+        const uint32_t lo = b == 0 ? 0u : st->start[b - 1], hi = st->start[b];
         for (i = lo + 1; i < hi; ++i) {
             rbs__warm e = t[i];
             for (at = i; at > lo && t[at - 1].key > e.key; --at)
@@ -845,36 +830,6 @@ static void warm_sort(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             t[at] = e;
         }
     }
-}
-
-/* The warm-start table, in key order (planes first, each by (a, b)): a
- * counting sort of the lanes by their key's upper half (plane or pair, and
- * a) -- counted and placed on the world's threads, chunk by chunk -- each
- * bucket's few lanes then in order of b. */
-uint32_t rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
-{
-    const uint32_t B = w->def.max_bodies, groups = g->level_first[g->levels + 1];
-    const uint32_t shares = g->slabs < RBS__TEAM_SHARES ? g->slabs : RBS__TEAM_SHARES;
-    warm_store ws;
-    uint32_t k, b, resting = 0;
-    ws.w = w;
-    ws.g = g;
-    ws.start = scratch;
-    ws.h = h;
-    ws.shared = rbs__team_threads(w) > 1;
-    ws.run[0] = 0;
-    for (k = 0; k < groups; ++k)
-        ws.run[k + 1] = ws.run[k] + g->used[k];
-    memset(ws.resting, 0, sizeof ws.resting);
-    memset(ws.start, 0, (2u * (size_t)B + 1u) * sizeof *ws.start);
-    rbs__team_run(w, warm_count, &ws, ws.run[groups], shares);
-    for (b = 0; b < 2u * B; ++b)
-        ws.start[b + 1] += ws.start[b];
-    rbs__team_run(w, warm_place, &ws, ws.run[groups], shares);
-    /* (start[b] is now the end of bucket b) */
-    rbs__team_run(w, warm_sort, &ws, 2u * B, shares);
-    for (k = 0; k < RBS__TEAM_SHARES; ++k)
-        resting += ws.resting[k];
-    rbs__warm_finish(w, ws.start[2u * B - 1u], 1);
-    return resting;
+    rbs__warm_finish(w, st->start[2u * B - 1u], 1);
+    return st->resting;
 }

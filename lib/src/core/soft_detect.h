@@ -77,10 +77,22 @@ typedef struct rbs__soft_groups {
 rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_groups *g);
 /* The warm starts (stored as forces: in->h was 0) for sub-steps of h. */
 void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, double h);
-/* The frame's impulses into the warm-start table, as rates for the next
- * frame (h: the sub-step), in key order, on the world's threads; scratch:
- * 2 max_bodies + 1 words the caller does not need (the frame's records,
- * once written back).  Returns the lanes holding a normal impulse. */
-uint32_t rbs__soft_warm_store(rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch);
+/* The warm store: the frame's impulses into the warm-start table, as
+ * rates for the next frame (h: the sub-step), in key order -- in two halves,
+ * each on the calling thread alone, so that each can be one item of a
+ * stage beside others.  rbs__soft_store_count counts the lanes into scratch
+ * (2 max_bodies + 1 words the caller leaves alone until the second half
+ * returns) and changes nothing else of the world: it may run before the
+ * step knows it will succeed.  rbs__soft_store_place writes the table and
+ * returns the lanes holding a normal impulse. */
+typedef struct rbs__soft_store {
+    rbs_world *w;
+    const rbs__soft_groups *g;
+    uint32_t *start;   /* the scratch: 2 max_bodies + 1 bucket starts */
+    double h;
+    uint32_t resting;  /* lanes holding a normal impulse */
+} rbs__soft_store;
+void rbs__soft_store_count(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch);
+uint32_t rbs__soft_store_place(rbs__soft_store *st);
 
 #endif

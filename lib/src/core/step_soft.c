@@ -401,6 +401,8 @@ typedef struct soft_frame {
     rbs__stage_fn before;             /* the per-body stage taken with the leaves (rows_pass) */
     uint32_t first;                   /* the level's first group */
     uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
+    uint32_t runs;                    /* the write-back's runs of spheres (stage_finish) */
+    rbs__soft_store store;            /* the warm store (stage_check_count, stage_finish) */
     rbs__soft_report report[RBS_WORKERS_MAX];
 } soft_frame;
 
@@ -545,12 +547,11 @@ static quat turned(v3 th, quat q)
  * the spheres [begin, end) in slot order, not slab by slab: each thread
  * then writes its own run of the world's arrays (by slab, two threads
  * wrote into the same cache lines and the write-back took 9x as long). */
-static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+static void check_run(soft_frame *f, uint32_t run, uint32_t begin, uint32_t end)
 {
-    soft_frame *f = (soft_frame *)ctx;
     const rbs_world *w = f->w;
     uint32_t i;
-    f->bad[share] = UINT32_MAX;
+    f->bad[run] = UINT32_MAX;
     for (i = begin; i < end; ++i) {
         const uint32_t b = w->spheres[i];
         double *q = &f->rec[RBS__REC * w->soft_rank[i]];
@@ -569,7 +570,7 @@ static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             q_store(q + RBS__REC_ROT, qt);
         }
         if (!ok) {
-            f->bad[share] = b;
+            f->bad[run] = b;
             return;
         }
         q[RBS__REC_R] = turns;
@@ -579,12 +580,10 @@ static void stage_check(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 /* The write-back's second half, once every value is known good: x +=
  * displacement, the velocities, the turned orientations (spheres [begin,
  * end) in slot order, as stage_check). */
-static void stage_write(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+static void write_run(soft_frame *f, uint32_t begin, uint32_t end)
 {
-    soft_frame *f = (soft_frame *)ctx;
     rbs_world *w = f->w;
     uint32_t i;
-    (void)share;
     for (i = begin; i < end; ++i) {
         const uint32_t b = w->spheres[i];
         const double *q = &f->rec[RBS__REC * w->soft_rank[i]];
@@ -595,6 +594,51 @@ static void stage_write(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         v3_store(&w->pos[3 * b], v3_add(v3_load(&w->pos[3 * b]), v3_load(q + RBS__REC_D)));
         if (q[RBS__REC_R] != 0.0)
             memcpy(&w->orient[4 * b], q + RBS__REC_ROT, 4 * sizeof(double));
+    }
+}
+
+/* The write-back's two stages, items [begin, end) of 1 + f->runs: item
+ * k > 0 the check (stage_check_count) or the write (stage_finish) of the
+ * k-th of f->runs runs of the spheres in slot order; item 0 a half of the
+ * warm store (rbs__soft_store_count, rbs__soft_store_place), on one thread
+ * alone, its scratch in the increments table, which nothing reads after the
+ * rows.  The store touches other memory -- the chunks and the warm-start
+ * table, not the records and the world's arrays -- so one thread stores the
+ * impulses while the others check and write the bodies, in two handovers
+ * instead of five; and the store's first half counts without changing the
+ * world, so it may go beside the check.  (Split among the threads by
+ * chunks, the store's stages took on two threads what they take on one:
+ * their atomic counts and their writes into the table's buckets, whose
+ * spheres interleave between the slabs, moved cache lines between the
+ * threads.) */
+static uint32_t run_begin(const soft_frame *f, uint32_t k)
+{
+    return (uint32_t)((uint64_t)k * f->w->sphere_count / f->runs);
+}
+
+static void stage_check_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    uint32_t k;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        if (k == 0)
+            rbs__soft_store_count(&f->store, f->w, f->g, f->h, (uint32_t *)(void *)f->inc);
+        else
+            check_run(f, k - 1u, run_begin(f, k - 1u), run_begin(f, k));
+    }
+}
+
+static void stage_finish(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+{
+    soft_frame *f = (soft_frame *)ctx;
+    uint32_t k;
+    (void)share;
+    for (k = begin; k < end; ++k) {
+        if (k == 0)
+            rbs__soft_store_place(&f->store);
+        else
+            write_run(f, run_begin(f, k - 1u), run_begin(f, k));
     }
 }
 
@@ -739,13 +783,15 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * first bad sphere in slot order is named, whatever the threads). */
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         f.bad[k] = UINT32_MAX;
-    rbs__team_run(w, stage_check, &f, w->sphere_count, g.slabs);
+    /* (15 runs beside the store: a thread done with its own takes another's) */
+    f.runs = RBS__TEAM_SHARES - 1u;
+    rbs__team_run(w, stage_check_count, &f, f.runs + 1u, f.runs + 1u);
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         if (f.bad[k] != UINT32_MAX) {
             rbs__team_stop(w);
             return rbs__numeric_error(w, f.bad[k]);
         }
-    rbs__team_run(w, stage_write, &f, w->sphere_count, g.slabs);
+    rbs__team_run(w, stage_finish, &f, f.runs + 1u, f.runs + 1u);
     w->step_checked = 1;
 
     /* Report: contacts touching at the end and the deepest overlap (the
@@ -759,8 +805,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
         if (f.report[k].deepest > info->max_overlap)
             info->max_overlap = f.report[k].deepest;
     }
-    /* (in the records' room: RBS__REC B doubles, written back) */
-    info->resting = rbs__soft_warm_store(w, &g, h, (uint32_t *)(void *)rec);
+    info->resting = f.store.resting;
     rbs__team_stop(w);
     return RBS_OK;
 }
