@@ -5,11 +5,17 @@
  * start(fn, task, n) hands tasks k = 1 .. n (at most the pool's threads) to
  * the threads and returns; finish waits until they have all returned.  A
  * generation number tells the threads a new batch is there: a thread that
- * finished one spins on it for a while (about SPIN_ROUNDS pauses, tens of
- * microseconds -- a pile's steps follow each other closely, and a sleeping
- * thread takes that long again to wake) before it sleeps on the condition
- * variable.  Every wait is in a loop on its predicate under the mutex;
- * destroy sets quit and broadcasts.
+ * finished one spins on it for a while (about SPIN_ROUNDS plain loads, tens
+ * of microseconds -- a pile's steps follow each other closely, and a
+ * sleeping thread takes that long again to wake) before it sleeps on the
+ * condition variable.  finish likewise spins on the count of tasks still
+ * running before it sleeps: asleep at every step's end and woken by the
+ * last task's broadcast, it took 4-15 us a step on this project's virtual
+ * machine (the 1,000-sphere pile's steps take about 280 us on two threads),
+ * spinning under 1 us.  Every
+ * wait is in a loop on its predicate under the mutex; the count changes
+ * under it too (atomically, for finish's spin); destroy sets quit and
+ * broadcasts.
  */
 #include <pthread.h>
 #include <stdlib.h>
@@ -48,6 +54,21 @@ static uint64_t generation_now(rbs_pool *p)
 #endif
 }
 
+/* The count of tasks still running (read without the mutex by finish's
+ * spin; written under it). */
+static uint32_t running_now(rbs_pool *p)
+{
+#if defined(__GNUC__)
+    return __atomic_load_n(&p->running, __ATOMIC_ACQUIRE);
+#else
+    uint32_t r;
+    pthread_mutex_lock(&p->mutex);
+    r = p->running;
+    pthread_mutex_unlock(&p->mutex);
+    return r;
+#endif
+}
+
 static void *pool_thread(void *arg)
 {
     rbs_pool *p = (rbs_pool *)arg;
@@ -75,7 +96,11 @@ static void *pool_thread(void *arg)
         pthread_mutex_unlock(&p->mutex);
         p->fn(p->task, k);
         pthread_mutex_lock(&p->mutex);
+#if defined(__GNUC__)
+        if (__atomic_sub_fetch(&p->running, 1u, __ATOMIC_RELEASE) == 0)
+#else
         if (--p->running == 0)
+#endif
             pthread_cond_broadcast(&p->idle);
         pthread_mutex_unlock(&p->mutex);
     }
@@ -89,19 +114,26 @@ static void pool_start(void *user, rbs_task_fn *fn, void *task, uint32_t n)
     p->task = task;
     p->next = 1;
     p->last = n < p->threads ? n : p->threads;
-    p->running = p->last;
 #if defined(__GNUC__)
+    __atomic_store_n(&p->running, p->last, __ATOMIC_RELAXED);
     __atomic_store_n(&p->generation, p->generation + 1, __ATOMIC_RELEASE);
 #else
+    p->running = p->last;
     p->generation++;
 #endif
-    pthread_cond_broadcast(&p->wake);
     pthread_mutex_unlock(&p->mutex);
+    /* (after the unlock: a spinning thread that sees the generation takes
+     * the mutex at once) */
+    pthread_cond_broadcast(&p->wake);
 }
 
 static void pool_finish(void *user)
 {
     rbs_pool *p = (rbs_pool *)user;
+    int spins;
+    /* a while spinning, then asleep */
+    for (spins = 0; spins < SPIN_ROUNDS && running_now(p) > 0; ++spins)
+        continue;
     pthread_mutex_lock(&p->mutex);
     while (p->running > 0)
         pthread_cond_wait(&p->idle, &p->mutex);
