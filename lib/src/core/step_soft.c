@@ -401,8 +401,9 @@ typedef struct soft_frame {
     rbs__stage_fn before;             /* the per-body stage taken with the leaves (rows_pass) */
     uint32_t first;                   /* the level's first group */
     uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
-    uint32_t runs;                    /* the write-back's runs of spheres (stage_finish) */
-    rbs__soft_store store;            /* the warm store (stage_check_count, stage_finish) */
+    uint32_t runs;                    /* the write-back's runs of spheres (stage_write_back) */
+    int writing;                      /* its stage: 0 check and count, 1 write and place */
+    rbs__soft_store store;            /* the warm store (stage_write_back) */
     rbs__soft_report report[RBS_WORKERS_MAX];
 } soft_frame;
 
@@ -597,9 +598,15 @@ static void write_run(soft_frame *f, uint32_t begin, uint32_t end)
     }
 }
 
-/* The write-back's two stages, items [begin, end) of 1 + f->runs: item
- * k > 0 the check (stage_check_count) or the write (stage_finish) of the
- * k-th of f->runs runs of the spheres in slot order; item 0 a half of the
+/* The first sphere (in slot order) of the write-back's run k. */
+static uint32_t run_begin(const soft_frame *f, uint32_t k)
+{
+    return (uint32_t)((uint64_t)k * f->w->sphere_count / f->runs);
+}
+
+/* The write-back's two stages (f->writing 0, then 1), items [begin, end)
+ * of 1 + f->runs: item k > 0 the check, then the write, of the k-th of
+ * f->runs runs of the spheres in slot order; item 0 a half of the
  * warm store (rbs__soft_store_count, rbs__soft_store_place), on one thread
  * alone, its scratch in the increments table, which nothing reads after the
  * rows.  The store touches other memory -- the chunks and the warm-start
@@ -611,32 +618,18 @@ static void write_run(soft_frame *f, uint32_t begin, uint32_t end)
  * their atomic counts and their writes into the table's buckets, whose
  * spheres interleave between the slabs, moved cache lines between the
  * threads.) */
-static uint32_t run_begin(const soft_frame *f, uint32_t k)
-{
-    return (uint32_t)((uint64_t)k * f->w->sphere_count / f->runs);
-}
-
-static void stage_check_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
+static void stage_write_back(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
     uint32_t k;
     (void)share;
     for (k = begin; k < end; ++k) {
-        if (k == 0)
+        if (k == 0 && !f->writing)
             rbs__soft_store_count(&f->store, f->w, f->g, f->h, (uint32_t *)(void *)f->inc);
-        else
-            check_run(f, k - 1u, run_begin(f, k - 1u), run_begin(f, k));
-    }
-}
-
-static void stage_finish(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
-{
-    soft_frame *f = (soft_frame *)ctx;
-    uint32_t k;
-    (void)share;
-    for (k = begin; k < end; ++k) {
-        if (k == 0)
+        else if (k == 0)
             rbs__soft_store_place(&f->store);
+        else if (!f->writing)
+            check_run(f, k - 1u, run_begin(f, k - 1u), run_begin(f, k));
         else
             write_run(f, run_begin(f, k - 1u), run_begin(f, k));
     }
@@ -785,13 +778,15 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
         f.bad[k] = UINT32_MAX;
     /* (15 runs beside the store: a thread done with its own takes another's) */
     f.runs = RBS__TEAM_SHARES - 1u;
-    rbs__team_run(w, stage_check_count, &f, f.runs + 1u, f.runs + 1u);
+    f.writing = 0;
+    rbs__team_run(w, stage_write_back, &f, f.runs + 1u, f.runs + 1u);
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         if (f.bad[k] != UINT32_MAX) {
             rbs__team_stop(w);
             return rbs__numeric_error(w, f.bad[k]);
         }
-    rbs__team_run(w, stage_finish, &f, f.runs + 1u, f.runs + 1u);
+    f.writing = 1;
+    rbs__team_run(w, stage_write_back, &f, f.runs + 1u, f.runs + 1u);
     w->step_checked = 1;
 
     /* Report: contacts touching at the end and the deepest overlap (the

@@ -54,21 +54,6 @@ static uint64_t generation_now(rbs_pool *p)
 #endif
 }
 
-/* The count of tasks still running (read without the mutex by finish's
- * spin; written under it). */
-static uint32_t running_now(rbs_pool *p)
-{
-#if defined(__GNUC__)
-    return __atomic_load_n(&p->running, __ATOMIC_ACQUIRE);
-#else
-    uint32_t r;
-    pthread_mutex_lock(&p->mutex);
-    r = p->running;
-    pthread_mutex_unlock(&p->mutex);
-    return r;
-#endif
-}
-
 static void *pool_thread(void *arg)
 {
     rbs_pool *p = (rbs_pool *)arg;
@@ -130,10 +115,13 @@ static void pool_start(void *user, rbs_task_fn *fn, void *task, uint32_t n)
 static void pool_finish(void *user)
 {
     rbs_pool *p = (rbs_pool *)user;
+#if defined(__GNUC__)
+    /* a while spinning (the count is written under the mutex, read here
+     * without it), then asleep */
     int spins;
-    /* a while spinning, then asleep */
-    for (spins = 0; spins < SPIN_ROUNDS && running_now(p) > 0; ++spins)
+    for (spins = 0; spins < SPIN_ROUNDS && __atomic_load_n(&p->running, __ATOMIC_ACQUIRE) > 0; ++spins)
         continue;
+#endif
     pthread_mutex_lock(&p->mutex);
     while (p->running > 0)
         pthread_cond_wait(&p->idle, &p->mutex);
