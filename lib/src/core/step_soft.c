@@ -544,7 +544,7 @@ static quat turned(v3 th, quat q)
  * finite rotation too large to square gives a NaN turn), the new
  * orientation kept in the record (the rotation and the spare double after
  * it, free now; in the radius' place, free too, whether it turned); the
- * share's first sphere that is not, in bad[share].  The write-back takes
+ * run's first sphere that is not, in bad[run].  The write-back takes
  * the spheres [begin, end) in slot order, not slab by slab: each thread
  * then writes its own run of the world's arrays (by slab, two threads
  * wrote into the same cache lines and the write-back took 9x as long). */
@@ -580,7 +580,7 @@ static void check_run(soft_frame *f, uint32_t run, uint32_t begin, uint32_t end)
 
 /* The write-back's second half, once every value is known good: x +=
  * displacement, the velocities, the turned orientations (spheres [begin,
- * end) in slot order, as stage_check). */
+ * end) in slot order, as check_run). */
 static void write_run(soft_frame *f, uint32_t begin, uint32_t end)
 {
     rbs_world *w = f->w;

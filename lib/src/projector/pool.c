@@ -12,10 +12,9 @@
  * running before it sleeps: asleep at every step's end and woken by the
  * last task's broadcast, it took 4-15 us a step on this project's virtual
  * machine (the 1,000-sphere pile's steps take about 280 us on two threads),
- * spinning under 1 us.  Every
- * wait is in a loop on its predicate under the mutex; the count changes
- * under it too (atomically, for finish's spin); destroy sets quit and
- * broadcasts.
+ * spinning under 1 us.  Every wait is in a loop on its predicate under the
+ * mutex; the count changes under it too (atomically, for finish's spin);
+ * destroy sets quit and broadcasts.
  */
 #include <pthread.h>
 #include <stdlib.h>
