@@ -755,10 +755,22 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         }
 }
 
-/* A lane's bucket: planes first, each by the sphere's slot. */
-static inline uint32_t warm_bucket(const rbs_world *w, const rbs__chunk *c, uint32_t l)
+/* Lane l of chunk c: whether b is a plane, and a's slot (lanes hold
+ * records: the slots are the keys'). */
+static inline int lane_plane(const rbs__chunk *c, uint32_t l)
 {
-    return (c->flags >> (RBS__CH_PLANE + l) & 1u ? 0u : w->def.max_bodies) + w->spheres[w->soft_order[c->a[l]]];
+    return (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+}
+
+static inline uint32_t lane_slot_a(const rbs_world *w, const rbs__chunk *c, uint32_t l)
+{
+    return w->spheres[w->soft_order[c->a[l]]];
+}
+
+/* The bucket of a key's upper half: planes first, each by the sphere's slot a. */
+static inline uint32_t warm_bucket(const rbs_world *w, int plane, uint32_t a)
+{
+    return (plane ? 0u : w->def.max_bodies) + a;
 }
 
 /* The frame's chunks of group k: [first, end). */
@@ -787,7 +799,7 @@ void rbs__soft_store_count(rbs__soft_store *st, rbs_world *w, const rbs__soft_gr
             for (l = 0; l < c->count; ++l) {
                 st->resting += c->jn[l] > 0.0;
                 if (c->jn[l] != 0.0)
-                    st->start[warm_bucket(w, c, l) + 1u]++;
+                    st->start[warm_bucket(w, lane_plane(c, l), lane_slot_a(w, c, l)) + 1u]++;
             }
 }
 
@@ -808,17 +820,16 @@ uint32_t rbs__soft_store_place(rbs__soft_store *st)
     for (k = 0; k < groups; ++k)
         for (store_group(st, k, &c, &end); c < end; ++c)
             for (l = 0; l < c->count; ++l) {
-                const int plane = (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
+                const int plane = lane_plane(c, l);
                 uint32_t a;
                 rbs__warm e;
                 if (c->jn[l] == 0.0)
                     continue;
-                /* (lanes hold records: the slots are the keys') */
-                a = w->spheres[w->soft_order[c->a[l]]];
+                a = lane_slot_a(w, c, l);
                 e.key = rbs__warm_key_of(plane, a, plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
                 e.n = c->jn[l] / st->h;
                 e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / st->h);
-                t[st->start[(plane ? 0u : B) + a]++] = e;
+                t[st->start[warm_bucket(w, plane, a)]++] = e;
             }
     /* (start[b] is now the end of bucket b) */
     for (b = 0; b < 2u * B; ++b) {
