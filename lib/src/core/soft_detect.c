@@ -22,14 +22,22 @@
  * and a thread that takes the same leaves every pass keeps their bodies in
  * its cache (with contacts dealt out by colour instead, every record moved
  * between the cores at every colour, and the rows ran 1.3 to 3 times slower).
+ * The top node, which one thread took alone while the others waited, is two
+ * groups: its contacts whose two items are both below the middle of the
+ * centres' box along its longer side across the cut, and those both above
+ * it; the few with one item on each side go to a level of their own, the
+ * tie, above the top (about one contact a frame in the 1,000 pile).
  *
  * Detection in two passes over the slabs, side by side.  The first counts
  * each group's contacts (the candidate pairs within the sweeps' reach, the
  * planes within the slop and margin), and puts the pairs that span slabs
- * aside, slab by slab, for their group; the counts give each group its own
- * run of chunks.  The second makes each group's contacts into its chunks:
- * a leaf's from its slab's spheres and pairs, a node's from the pairs put
- * aside in its slabs, in the order of the slabs and the candidate list.  A
+ * aside, slab by slab (from the end of the slab's run, backwards), for
+ * their group; the counts give each group its own run of chunks.  The second
+ * makes each group's contacts into its chunks: a leaf's from its slab's
+ * spheres and pairs, a node's from the pairs put aside in its slabs, in the
+ * order of the slabs and the candidate list -- the groups in the tree's
+ * order (leaf, node, leaf, ...), so that each thread's even share of them
+ * is a run of slabs with the nodes among them.  A
  * chunk lane is prepared as the contact is found (soft.h; step_soft.c's
  * rows read nothing else), and the kicks of closing pairs are summed per
  * level (a level's groups share no body), then per sphere, for the guards,
@@ -44,18 +52,6 @@
 #include "core/team.h"
 
 #define HIST_BINS 256
-
-/* The group of a contact between slabs sa and sb (equal for a plane). */
-static inline uint32_t group_of(const rbs__soft_groups *g, uint32_t sa, uint32_t sb)
-{
-    uint32_t l = 0;
-    while (sa != sb) {
-        sa >>= 1;
-        sb >>= 1;
-        l++;
-    }
-    return g->level_first[l] + sa;
-}
 
 /* The level of group k. */
 static inline uint32_t level_of(const rbs__soft_groups *g, uint32_t k)
@@ -74,6 +70,7 @@ typedef struct emitter {
     uint32_t count;      /* contacts */
     double q;            /* h 0: the deepest reachable overlap, of the slop */
     double *kick;        /* per slot, its level's kick sums (NULL: none) */
+    double kick_max;     /* the largest of them this group made (a NaN: unknown) */
     rbs_status status;
     unsigned char pad[64];
 } emitter;
@@ -100,13 +97,45 @@ typedef struct detect {
     double thr_shared;      /* in->acc NULL: two moving spheres' resting threshold */
     uint32_t slab_pairs[RBS__SLABS_MAX + 1]; /* slab s's candidate pairs start
                                                 (its run of soft_aside) */
-    uint32_t listed[RBS__SLABS_MAX];         /* contact pairs slab s listed */
+    uint32_t listed[RBS__SLABS_MAX];         /* contact pairs within slab s it listed
+                                                (from its run's start) */
+    uint32_t crossed[RBS__SLABS_MAX];        /* and those to other slabs (from
+                                                its run's end, backwards) */
     uint32_t count[RBS__SLABS_MAX][RBS__GROUPS_MAX]; /* contacts slab s found of group k */
     prepared prep[RBS_WORKERS_MAX];          /* the prepare pass's shares */
     double lo[3], hi[3];                     /* the centres' box */
+    uint32_t tree;                           /* the slab tree's levels (g->levels
+                                                is one more with a tie level) */
+    uint32_t side_axis;                      /* the top node's split: along it, */
+    double side_mid;                         /* below this or not */
+    uint32_t emit_group[RBS__GROUPS_MAX];    /* the emission's items: groups */
     uint32_t jumps[3];                       /* the shares' jumps, summed */
     emitter em[RBS__GROUPS_MAX];
 } detect;
+
+/* The group of a contact between items i and j of slabs sa and sb (a plane:
+ * j = i, sb = sa): the lowest node of the slab tree holding both slabs --
+ * but the top node's contacts (more than one slab) go to one of two groups,
+ * by the side of the top's split (side_axis, side_mid) both items are on,
+ * or, on both sides, to the tie level's group: the two share no body, so
+ * the top's contacts too are taken side by side, all but the few across
+ * both cuts. */
+static inline uint32_t group_of(const detect *d, uint32_t sa, uint32_t sb, uint32_t i, uint32_t j)
+{
+    const rbs__soft_groups *g = d->g;
+    uint32_t l = 0;
+    int si, sj;
+    while (sa != sb) {
+        sa >>= 1;
+        sb >>= 1;
+        l++;
+    }
+    if (l + 1 < d->tree || g->slabs == 1)
+        return g->level_first[l] + sa;
+    si = d->centres[3 * i + d->side_axis] >= d->side_mid;
+    sj = d->centres[3 * j + d->side_axis] >= d->side_mid;
+    return si == sj ? g->level_first[l] + (uint32_t)si : g->level_first[l + 1];
+}
 
 /* ------------------------------------------------------------------------- */
 /* Lanes                                                                     */
@@ -290,8 +319,8 @@ static uint32_t slab_axis(const double *lo, const double *hi, const uint32_t *ju
  * frame's records, so that a slab's are together in memory -- and
  * soft_rank each item's place in it.  One slab when the box has no length
  * (or is not finite). */
-static void cut_slabs(rbs_world *w, const double *C, const double *lo, const double *hi, const uint32_t *jumps,
-                      rbs__soft_groups *g)
+static uint32_t cut_slabs(rbs_world *w, const double *C, const double *lo, const double *hi, const uint32_t *jumps,
+                          rbs__soft_groups *g)
 {
     const uint32_t n = w->sphere_count, S = g->slabs;
     uint32_t hist[HIST_BINS], bin_slab[HIST_BINS], start[RBS__SLABS_MAX + 1];
@@ -307,33 +336,54 @@ static void cut_slabs(rbs_world *w, const double *C, const double *lo, const dou
         }
         g->slab_first[0] = 0;
         g->slab_first[1] = n;
-        return;
+        return axis;
     }
-    /* each bin to the slab of its middle item: slabs of nearly equal counts */
+    /* each bin to the slab of its middle item: slabs of nearly equal counts
+     * (the bins and slabs counted a run at a time: consecutive slots are
+     * mostly in one bin and one slab, and a count kept in a register does
+     * not wait on its own last store) */
     memset(hist, 0, sizeof hist);
-    for (i = 0; i < n; ++i) {
-        double t = (C[3 * i + axis] - lo[axis]) * scale;
-        uint32_t b = t >= 1.0 ? (t < HIST_BINS ? (uint32_t)t : HIST_BINS - 1u) : 0u; /* (a NaN: bin 0) */
-        slab[i] = (uint8_t)b; /* (the bin, until the slabs are known) */
-        hist[b]++;
+    {
+        uint32_t cur = 0, run = 0;
+        for (i = 0; i < n; ++i) {
+            double t = (C[3 * i + axis] - lo[axis]) * scale;
+            uint32_t b = t >= 1.0 ? (t < HIST_BINS ? (uint32_t)t : HIST_BINS - 1u) : 0u; /* (a NaN: bin 0) */
+            slab[i] = (uint8_t)b; /* (the bin, until the slabs are known) */
+            if (b != cur) {
+                hist[cur] += run;
+                cur = b;
+                run = 0;
+            }
+            run++;
+        }
+        hist[cur] += run;
     }
+    memset(start, 0, sizeof start);
     for (k = 0; k < HIST_BINS; ++k) {
         uint64_t mid = 2u * (uint64_t)below + hist[k];
         bin_slab[k] = (uint32_t)(mid * S / (2u * (uint64_t)n));
         below += hist[k];
-    }
-    memset(start, 0, sizeof start);
-    for (i = 0; i < n; ++i) {
-        slab[i] = (uint8_t)bin_slab[slab[i]];
-        start[slab[i] + 1]++;
+        start[bin_slab[k] + 1] += hist[k];
     }
     for (k = 0; k < S; ++k)
         start[k + 1] += start[k];
     memcpy(g->slab_first, start, (S + 1) * sizeof *start);
-    for (i = 0; i < n; ++i) {
-        w->soft_rank[i] = start[slab[i]]++;
-        w->soft_order[w->soft_rank[i]] = i;
+    /* each sphere's rank: the slabs in order, each in slot order */
+    {
+        uint32_t cur = bin_slab[slab[0]], next = start[cur];
+        for (i = 0; i < n; ++i) {
+            const uint32_t sl = bin_slab[slab[i]];
+            slab[i] = (uint8_t)sl;
+            if (sl != cur) {
+                start[cur] = next;
+                cur = sl;
+                next = start[sl];
+            }
+            w->soft_rank[i] = next;
+            w->soft_order[next++] = i;
+        }
     }
+    return axis;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -419,8 +469,10 @@ static inline int plane_is_contact(const detect *d, uint32_t a, uint32_t p, doub
 
 /* The first pass over slab s's records: each group's count; each sphere's
  * planes in contact, as bits in soft_planes (0xFF for all: more than 8
- * planes are tested again); and the candidate pairs that are contacts, in
- * order, in the slab's run of soft_aside. */
+ * planes are tested again); and the candidate pairs that are contacts in
+ * the slab's run of soft_aside: those within the slab in order from its
+ * start (listed), those to other slabs from its end backwards (crossed) --
+ * a node's emission then reads only the few that can be its own. */
 static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     detect *d = (detect *)ctx;
@@ -430,7 +482,8 @@ static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     uint32_t s, x, k, q;
     (void)share;
     for (s = begin; s < end; ++s) {
-        uint32_t *count = d->count[s], *list = &w->soft_aside[d->slab_pairs[s]], put = 0;
+        uint32_t *count = d->count[s], *list = &w->soft_aside[d->slab_pairs[s]], put = 0, cross = 0;
+        uint32_t *back = &w->soft_aside[d->slab_pairs[s + 1]];
         const uint32_t leaf = g->level_first[0] + s;
         memset(count, 0, sizeof d->count[s]);
         for (x = g->slab_first[s]; x < g->slab_first[s + 1]; ++x) {
@@ -448,11 +501,18 @@ static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
                 const uint32_t j = w->vl_pair[2 * k + 1];
                 if (!pair_is_contact(d, i, j))
                     continue;
-                count[slab[j] == s ? leaf : group_of(g, s, slab[j])]++;
-                list[put++] = k;
+                if (slab[j] == s) {
+                    count[leaf]++;
+                    list[put++] = k;
+                } else {
+                    count[group_of(d, s, slab[j], i, j)]++;
+                    *--back = k;
+                    cross++;
+                }
             }
         }
         d->listed[s] = put;
+        d->crossed[s] = cross;
     }
 }
 
@@ -471,8 +531,12 @@ static void emit_pair(const detect *d, emitter *em, uint32_t k)
     if (dist > 0.0) {
         double u = rbs__kick_speed(w, a, b, dv, dist);
         if (u != 0.0) {
-            em->kick[ra] += 2.0 * w->inv_mass[a] * u;
-            em->kick[rb] += 2.0 * w->inv_mass[b] * u;
+            const double ka = em->kick[ra] += 2.0 * w->inv_mass[a] * u;
+            const double kb = em->kick[rb] += 2.0 * w->inv_mass[b] * u;
+            if (!(ka <= em->kick_max))
+                em->kick_max = ka;
+            if (!(kb <= em->kick_max))
+                em->kick_max = kb;
         }
     }
     /* (apart: the normal of the touch on the straight paths) */
@@ -480,18 +544,22 @@ static void emit_pair(const detect *d, emitter *em, uint32_t k)
     lane_fill(d, em, ra, rb, a, b, 0, rbs__pair_row(w, a, b), n, gap, lb, 0);
 }
 
-/* The second pass: group k's contacts into its run of chunks. */
+/* The second pass: items [begin, end) of emit_group, each a group's
+ * contacts into its run of chunks. */
 static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     detect *d = (detect *)ctx;
     rbs_world *w = d->w;
     rbs__soft_groups *g = d->g;
     const uint8_t *slab = w->soft_slab;
-    uint32_t gk;
+    uint32_t item;
     (void)share;
-    for (gk = begin; gk < end; ++gk) {
+    for (item = begin; item < end; ++item) {
+        const uint32_t gk = d->emit_group[item];
         emitter *em = &d->em[gk];
         const uint32_t l = level_of(g, gk), node = gk - g->level_first[l];
+        /* (a node's slabs; the top's two groups and the tie's: all) */
+        const uint32_t s_lo = l + 1 >= d->tree ? 0u : node << l, s_hi = l + 1 >= d->tree ? g->slabs : (node + 1) << l;
         uint32_t s, x, k, q;
         rbs__chunker_start(&em->ch, &w->chunk[g->first[gk]], RBS__GROUP_CHUNKS(g->used[gk]),
                            &w->chunk_member[(size_t)l * w->def.max_bodies]);
@@ -499,6 +567,7 @@ static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         em->count = 0;
         em->q = 0.0;
         em->kick = d->in->scratch + (size_t)l * w->def.max_bodies;
+        em->kick_max = 0.0;
         em->status = RBS_OK;
         if (l == 0) {
             /* a leaf: its slab's planes and pairs, sphere by sphere */
@@ -518,17 +587,18 @@ static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
                               0.0, 0);
                 }
                 for (; at < d->listed[s] && w->vl_pair[2 * list[at]] == i; ++at)
-                    if (slab[w->vl_pair[2 * list[at] + 1]] == s)
-                        emit_pair(d, em, list[at]);
+                    emit_pair(d, em, list[at]);
             }
         } else {
             /* a node: the pairs its slabs listed that are its own */
-            for (s = node << l; s < (node + 1) << l && s < g->slabs; ++s)
-                for (x = 0; x < d->listed[s]; ++x) {
-                    k = w->soft_aside[d->slab_pairs[s] + x];
-                    if (slab[w->vl_pair[2 * k + 1]] != s && group_of(g, s, slab[w->vl_pair[2 * k + 1]]) == gk)
+            for (s = s_lo; s < s_hi && s < g->slabs; ++s) {
+                const uint32_t *back = &w->soft_aside[d->slab_pairs[s + 1]];
+                for (x = 1; x <= d->crossed[s]; ++x) {
+                    const uint32_t j = w->vl_pair[2 * (k = back[-(ptrdiff_t)x]) + 1];
+                    if (group_of(d, s, slab[j], w->vl_pair[2 * k], j) == gk)
                         emit_pair(d, em, k);
                 }
+            }
         }
         rbs__chunker_finish(&em->ch);
         g->used[gk] = em->ch.used;
@@ -601,6 +671,7 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     uint32_t S = rbs__slabs_max(B), i, k, s, total, groups, guard;
     detect d;
     double *kick_sum;
+    uint32_t n_kick = n;
     int kicked = 0;
     rbs_status st = RBS_OK;
 
@@ -655,16 +726,48 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     }
 
     /* slabs, the tree's levels and its groups, the guards' group last */
-    cut_slabs(w, d.centres, d.lo, d.hi, d.jumps, g);
-    S = g->slabs;
-    g->levels = rbs__slab_levels(S);
-    for (k = 0, groups = 0; k < g->levels; ++k) {
-        g->level_first[k] = groups;
-        groups += S >> k;
+    {
+        const uint32_t axis = cut_slabs(w, d.centres, d.lo, d.hi, d.jumps, g);
+        const uint32_t u = (axis + 1u) % 3u, v = (axis + 2u) % 3u;
+        d.side_axis = d.hi[v] - d.lo[v] > d.hi[u] - d.lo[u] ? v : u;
+        d.side_mid = 0.5 * (d.lo[d.side_axis] + d.hi[d.side_axis]);
     }
+    S = g->slabs;
+    d.tree = rbs__slab_levels(S);
+    /* the tree's levels, the top's as two groups and a tie level above it
+     * (with more than one slab) */
+    g->levels = d.tree + (S > 1);
+    for (k = 0, groups = 0; k < d.tree; ++k) {
+        g->level_first[k] = groups;
+        groups += S > 1 && k + 1 == d.tree ? 2u : S >> k;
+    }
+    if (S > 1)
+        g->level_first[k++] = groups++;
     g->level_first[g->levels] = groups;
     guard = groups++;
     g->level_first[g->levels + 1] = groups;
+    /* the emission's order: the tree in order (leaf 0, the node between
+     * leaves 0 and 1, leaf 1, ...; the top as its first group, the tie's,
+     * its second), so that the threads' even shares of it are each about
+     * a run of slabs with the nodes among them */
+    for (s = 0, k = 0; s < S; ++s) {
+        uint32_t l = 0, a = s, b = s + 1;
+        d.emit_group[k++] = g->level_first[0] + s;
+        if (s + 1 == S)
+            break;
+        while (a != b) {
+            a >>= 1;
+            b >>= 1;
+            l++;
+        }
+        if (l + 1 < d.tree) {
+            d.emit_group[k++] = g->level_first[l] + a;
+        } else {
+            d.emit_group[k++] = g->level_first[l];
+            d.emit_group[k++] = g->level_first[l + 1];
+            d.emit_group[k++] = g->level_first[l] + 1u;
+        }
+    }
     for (s = 0; s < S; ++s) {
         uint32_t pairs = 0, x;
         for (x = g->slab_first[s]; d.pairs && x < g->slab_first[s + 1]; ++x)
@@ -713,8 +816,24 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
 
     /* the guards: each sphere's kicks, the levels summed in order, and the
      * second pass of the swept detection for those kicked far enough */
+    /* (skipped when no sphere can be kicked far enough: a sphere's sum,
+     * over the levels in order, is at most the sum of each level's largest,
+     * non-negative terms added in the same order -- rounding is monotonic) */
     kick_sum = in->scratch + (size_t)g->levels * B;
-    for (k = 0; k < n; ++k) {
+    {
+        double bound = 0.0;
+        uint32_t l;
+        for (l = 0; l < g->levels; ++l) {
+            double most = 0.0;
+            for (k = g->level_first[l]; k < g->level_first[l + 1]; ++k)
+                if (!(d.em[k].kick_max <= most))
+                    most = d.em[k].kick_max;
+            bound += most;
+        }
+        if (bound * in->dt <= RBS__GUARD_DEPTH * w->plan.min_radius)
+            n_kick = 0;
+    }
+    for (k = 0; k < n_kick; ++k) {
         uint32_t a = w->spheres[k], r = w->soft_rank[k], l;
         double sum = 0.0;
         for (l = 0; l < g->levels; ++l)

@@ -9,8 +9,11 @@
 
 #define RBS__SLAB_SPHERES 256 /* spheres a slab at the least */
 #define RBS__SLABS_MAX 16
-#define RBS__LEVELS_MAX 5     /* levels of a tree of RBS__SLABS_MAX slabs */
-#define RBS__GROUPS_MAX (2 * RBS__SLABS_MAX) /* 2 S - 1 groups, and the guards' */
+#define RBS__LEVELS_MAX 6     /* levels of a tree of RBS__SLABS_MAX slabs, and
+                                 the tie level (soft_detect.c) */
+#define RBS__GROUPS_MAX (2 * RBS__SLABS_MAX + 2) /* 2 S - 1 groups, the top's
+                                                    second, the tie's and the
+                                                    guards' */
 
 /* The most slabs of a world of max_bodies B: a power of two, one for every
  * RBS__SLAB_SPHERES bodies, at most RBS__SLABS_MAX (capacity: the chunks
@@ -33,9 +36,9 @@ static inline uint32_t rbs__slab_levels(uint32_t s)
     return l;
 }
 /* Chunks a frame of at most C contacts takes in a world of max_bodies B:
- * each of its 2 S groups a part-full chunk for every lane short of four and
- * its chunkers' part-full ones (RBS__GROUP_CHUNKS). */
-#define RBS__SOFT_CHUNKS(C, B) (((C) + 3u) / 4u + 2u * rbs__slabs_max(B) * (RBS__GROUP_CHUNKS(0) + 1u))
+ * each of its 2 S + 2 groups a part-full chunk for every lane short of four
+ * and its chunkers' part-full ones (RBS__GROUP_CHUNKS). */
+#define RBS__SOFT_CHUNKS(C, B) (((C) + 3u) / 4u + (2u * rbs__slabs_max(B) + 2u) * (RBS__GROUP_CHUNKS(0) + 1u))
 
 /* What detection reads and fills besides the world. */
 typedef struct rbs__soft_in {
