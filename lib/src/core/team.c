@@ -19,10 +19,15 @@
  * by the stage number's parity: the step writes the slot before it
  * publishes the ticket (release) and rewrites it two stages later, after
  * every share of the stage between has been done, so a thread that holds an
- * unfinished share always reads its own stage's slot.  Finished shares are
- * counted (release); the step's thread takes shares too, then waits
- * (acquire) until the count is full.  Everything a share writes is so seen
- * by every later stage, on any thread.  Atomics are GCC's and Clang's
+ * unfinished share always reads its own stage's slot.  The step's thread
+ * publishes a stage with its own first share claimed, takes shares too and
+ * counts them itself; the workers count theirs in one counter for the whole
+ * step (release), and the step's thread waits (acquire) until it has grown
+ * by the shares it did not take -- the ticket's and the counter's cache
+ * lines then cross between the cores once each a stage (0.992x of the time
+ * of a reset counter and a claimed first share on the 1,000 pile, 2
+ * threads, 20 pairs).  Everything a share writes is so seen by every later
+ * stage, on any thread.  Atomics are GCC's and Clang's
  * __atomic built-ins; other compilers step on one thread
  * (rbs_world_set_workers refuses a pool there).
  */
@@ -57,10 +62,12 @@ typedef struct stage {
 struct rbs__team {
     uint64_t ticket;    /* stage << 32 | shares << 16 | next share (atomic) */
     unsigned char pad0[56];
-    uint32_t done;      /* shares of this stage done (atomic) */
+    uint32_t done;      /* shares the workers have done, all stages of the
+                           step (atomic; the step's thread counts its own) */
     unsigned char pad1[60];
     stage slot[2];      /* by the stage's parity */
     uint64_t stage_no;  /* the step's thread's own: the stage published last */
+    uint32_t done_seen; /* and done at the end of the last stage */
     uint32_t threads;   /* the step's threads, its own included (set at start) */
     int running;        /* the workers were started for this step */
 };
@@ -112,9 +119,10 @@ static uint32_t next_share(uint32_t claimed, uint32_t shares, uint32_t mine, uin
 }
 
 /* Claim and do shares of the stage on the ticket until none is left, the
- * thread's own run first (next_share); the stage number, or UINT64_MAX
- * when the ticket says to return. */
-static uint64_t take_shares(rbs__team *t, uint32_t mine, uint32_t threads)
+ * thread's own run first (next_share), counting them into *did (NULL: into
+ * done, a worker's); the stage number, or UINT64_MAX when the ticket says
+ * to return. */
+static uint64_t take_shares(rbs__team *t, uint32_t mine, uint32_t threads, uint32_t *did)
 {
     uint64_t tk = __atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE);
     for (;;) {
@@ -129,7 +137,10 @@ static uint64_t take_shares(rbs__team *t, uint32_t mine, uint32_t threads)
         if (__atomic_compare_exchange_n(&t->ticket, &tk, tk | (uint64_t)1 << k, 0, __ATOMIC_ACQ_REL,
                                         __ATOMIC_ACQUIRE)) {
             run_share(&t->slot[(tk >> 32) & 1u], k);
-            __atomic_fetch_add(&t->done, 1, __ATOMIC_RELEASE);
+            if (did != NULL)
+                ++*did;
+            else
+                __atomic_fetch_add(&t->done, 1, __ATOMIC_RELEASE);
             tk = __atomic_load_n(&t->ticket, __ATOMIC_ACQUIRE);
         }
     }
@@ -140,7 +151,7 @@ static void worker(void *task, uint32_t k)
 {
     rbs__team *t = (rbs__team *)task;
     for (;;) {
-        uint64_t s = take_shares(t, k, t->threads);
+        uint64_t s = take_shares(t, k, t->threads, NULL);
         if (s == UINT64_MAX)
             return;
         uint32_t spins = 0;
@@ -159,6 +170,7 @@ void rbs__team_start(rbs_world *w)
     if (rbs__team_threads(w) > 1) {
         t->stage_no++;
         t->done = 0;
+        t->done_seen = 0;
         t->threads = w->workers.count;
         /* no share yet: the workers wait for the first stage */
         __atomic_store_n(&t->ticket, t->stage_no << 32, __ATOMIC_RELEASE);
@@ -202,14 +214,19 @@ void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32
     st->ctx = ctx;
     st->n = n;
     st->shares = shares;
-    __atomic_store_n(&t->done, 0, __ATOMIC_RELAXED);
-    __atomic_store_n(&t->ticket, t->stage_no << 32 | (uint64_t)shares << 16, __ATOMIC_RELEASE);
-    (void)take_shares(t, 0, t->threads);
     {
-        uint32_t spins = 0;
-        while (__atomic_load_n(&t->done, __ATOMIC_ACQUIRE) != shares)
+        /* The step's thread publishes the stage with its first share (0:
+         * next_share's) already claimed and counts its shares itself, so
+         * that the ticket's and the count's cache lines go to the workers
+         * and come back once each a stage, not at every claim. */
+        uint32_t mine = 1, spins = 0;
+        __atomic_store_n(&t->ticket, t->stage_no << 32 | (uint64_t)shares << 16 | 1u, __ATOMIC_RELEASE);
+        run_share(st, 0);
+        (void)take_shares(t, 0, t->threads, &mine);
+        while (__atomic_load_n(&t->done, __ATOMIC_ACQUIRE) - t->done_seen != shares - mine)
             if (++spins >= SPINS_BEFORE_YIELD)
                 sched_yield();
+        t->done_seen += shares - mine;
     }
 #else
     (void)st;
