@@ -322,6 +322,7 @@ static void list_on_threads_is_the_same_list(void **state)
         memset(buf, 0xA5, (words + 2 * room) * sizeof(uint32_t)); /* (no zeros to lean on) */
         if (t > 1) {
             CHECK_OK(rbs_pool_create(t - 1, &pool));
+            rbs_workers_init(&wk);
             CHECK_OK(rbs_pool_workers(pool, &wk));
             CHECK_OK(rbs_world_set_workers(c.w, &wk));
             rbs__team_start(c.w);
