@@ -525,57 +525,66 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     }
 }
 
-/* q turned by the rotation vector th (rad; q_from_turn), normalised by
- * one division: the result differs from q_normalize's four divisions in the
- * last bit or so -- an orientation, which a centred isotropic sphere's
- * motion never reads. */
+/* q turned by the rotation vector th (rad; q_from_turn), not yet normalised
+ * (normalised: by one division, check_run's second loop -- the result
+ * differs from q_normalize's four divisions in the last bit or so -- an
+ * orientation, which a centred isotropic sphere's motion never reads). */
 static quat turned(v3 th, quat q)
 {
-    quat r = q_mul(q_from_turn(th), q);
-    const double inv = 1.0 / sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-    r.w *= inv;
-    r.x *= inv;
-    r.y *= inv;
-    r.z *= inv;
-    return r;
+    return q_mul(q_from_turn(th), q);
 }
 
 /* The write-back's first half: every new value made and checked finite (a
  * finite rotation too large to square gives a NaN turn), the new
  * orientation kept in the record (the rotation and the spare double after
  * it, free now; in the radius' place, free too, whether it turned); the
- * run's first sphere that is not, in bad[run].  The write-back takes
+ * run's first sphere in slot order that is not, in bad[run].  The write-back takes
  * the spheres [begin, end) in slot order, not slab by slab: each thread
  * then writes its own run of the world's arrays (by slab, two threads
- * wrote into the same cache lines and the write-back took 9x as long). */
+ * wrote into the same cache lines and the write-back took 9x as long).
+ * The turned orientations are normalised in a second loop of their own:
+ * its square roots and divisions, one chain a sphere, then overlap from
+ * sphere to sphere (in the first loop's long body they held it up). */
 static void check_run(soft_frame *f, uint32_t run, uint32_t begin, uint32_t end)
 {
     const rbs_world *w = f->w;
-    uint32_t i;
-    f->bad[run] = UINT32_MAX;
+    uint32_t i, bad = UINT32_MAX;
     for (i = begin; i < end; ++i) {
         const uint32_t b = w->spheres[i];
         double *q = &f->rec[RBS__REC * w->soft_rank[i]];
         v3 th = v3_load(q + RBS__REC_ROT);
         int ok = 1, turns = th.x != 0.0 || th.y != 0.0 || th.z != 0.0;
         uint32_t d;
-        quat qt;
         if (q[RBS__REC_IM] == 0.0)
             continue;
         for (d = 0; d < 3; ++d)
             ok &= isfinite(q[RBS__REC_V + d]) && isfinite(q[RBS__REC_W + d]) &&
                   isfinite(w->pos[3 * b + d] + q[RBS__REC_D + d]);
-        if (turns) {
-            qt = turned(th, q_load(&w->orient[4 * b]));
-            ok &= isfinite(qt.w) && isfinite(qt.x) && isfinite(qt.y) && isfinite(qt.z);
-            q_store(q + RBS__REC_ROT, qt);
-        }
-        if (!ok) {
-            f->bad[run] = b;
-            return;
-        }
+        if (turns)
+            q_store(q + RBS__REC_ROT, turned(th, q_load(&w->orient[4 * b])));
+        if (!ok && bad == UINT32_MAX)
+            bad = b;
         q[RBS__REC_R] = turns;
     }
+    for (i = begin; i < end; ++i) {
+        double *q = &f->rec[RBS__REC * w->soft_rank[i]];
+        quat r;
+        double inv;
+        if (q[RBS__REC_IM] == 0.0 || q[RBS__REC_R] == 0.0)
+            continue;
+        r = q_load(q + RBS__REC_ROT);
+        inv = 1.0 / sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
+        r.w *= inv;
+        r.x *= inv;
+        r.y *= inv;
+        r.z *= inv;
+        q_store(q + RBS__REC_ROT, r);
+        if (!(isfinite(r.w) && isfinite(r.x) && isfinite(r.y) && isfinite(r.z)) && w->spheres[i] < bad) {
+            bad = w->spheres[i];
+            break; /* (a later one is later in slot order) */
+        }
+    }
+    f->bad[run] = bad;
 }
 
 /* The write-back's second half, once every value is known good: x +=
