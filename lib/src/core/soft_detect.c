@@ -377,9 +377,9 @@ static void pass_ranks(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
  * per item, soft_order the items slab by slab (in their order within each)
  * -- the order of the frame's records, so that a slab's are together in
  * memory -- and soft_rank each item's place in it; the axis.  One slab when
- * the box has no length (or is not finite).  (On one thread, the 1,000
- * pile's cut took 2 % of a frame on two threads, reading the centres the
- * other thread had written.) */
+ * the box has no length (or is not finite).  (On the stepping thread
+ * alone, the cut took 2 % of the 1,000 pile's frame on two threads: it
+ * read the centres the other thread had written.) */
 static uint32_t cut_slabs(detect *d)
 {
     rbs_world *w = d->w;

@@ -25,8 +25,8 @@
  * step (release), and the step's thread waits (acquire) until it has grown
  * by the shares it did not take -- the ticket's and the counter's cache
  * lines then cross between the cores once each a stage (0.992x of the time
- * of a reset counter and a claimed first share on the 1,000 pile, 2
- * threads, 20 pairs).  Everything a share writes is so seen by every later
+ * with a counter reset at every stage and every share claimed by
+ * compare-and-exchange, on the 1,000 pile, 2 threads, 20 pairs).  Everything a share writes is so seen by every later
  * stage, on any thread.  Atomics are GCC's and Clang's
  * __atomic built-ins; other compilers step on one thread
  * (rbs_world_set_workers refuses a pool there).
