@@ -120,6 +120,19 @@ typedef struct detect {
     emitter em[RBS__GROUPS_MAX];
 } detect;
 
+/* The level where slabs *sa and sb meet in the slab tree (0: the same
+ * slab), and in *sa the node there. */
+static inline uint32_t tree_meet(uint32_t *sa, uint32_t sb)
+{
+    uint32_t l = 0;
+    while (*sa != sb) {
+        *sa >>= 1;
+        sb >>= 1;
+        l++;
+    }
+    return l;
+}
+
 /* The group of a contact between items i and j of slabs sa and sb (a plane:
  * j = i, sb = sa): the lowest node of the slab tree holding both slabs --
  * but the top node's contacts (more than one slab) go to one of two groups,
@@ -130,13 +143,8 @@ typedef struct detect {
 static inline uint32_t group_of(const detect *d, uint32_t sa, uint32_t sb, uint32_t i, uint32_t j)
 {
     const rbs__soft_groups *g = d->g;
-    uint32_t l = 0;
+    const uint32_t l = tree_meet(&sa, sb);
     int si, sj;
-    while (sa != sb) {
-        sa >>= 1;
-        sb >>= 1;
-        l++;
-    }
     if (l + 1 < d->tree || g->slabs == 1)
         return g->level_first[l] + sa;
     si = d->centres[3 * i + d->side_axis] >= d->side_mid;
@@ -719,7 +727,6 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     uint32_t S = rbs__slabs_max(B), i, k, s, total, groups, guard;
     detect d;
     double *kick_sum;
-    uint32_t n_kick = n;
     int kicked = 0;
     rbs_status st = RBS_OK;
 
@@ -799,15 +806,11 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
      * its second), so that the threads' even shares of it are each about
      * a run of slabs with the nodes among them */
     for (s = 0, k = 0; s < S; ++s) {
-        uint32_t l = 0, a = s, b = s + 1;
+        uint32_t a = s, l;
         d.emit_group[k++] = g->level_first[0] + s;
         if (s + 1 == S)
             break;
-        while (a != b) {
-            a >>= 1;
-            b >>= 1;
-            l++;
-        }
+        l = tree_meet(&a, s + 1);
         if (l + 1 < d.tree) {
             d.emit_group[k++] = g->level_first[l] + a;
         } else {
@@ -868,6 +871,7 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     kick_sum = in->scratch + (size_t)g->levels * B;
     {
         double bound = 0.0;
+        int may = 0;
         uint32_t l;
         for (l = 0; l < g->levels; ++l) {
             double most = 0.0;
@@ -876,16 +880,15 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
                     most = d.em[k].kick_max;
             bound += most;
         }
-        if (bound * in->dt <= RBS__GUARD_DEPTH * w->plan.min_radius)
-            n_kick = 0;
-    }
-    for (k = 0; k < n_kick; ++k) {
-        uint32_t a = w->spheres[k], r = w->soft_rank[k], l;
-        double sum = 0.0;
-        for (l = 0; l < g->levels; ++l)
-            sum += in->scratch[(size_t)l * B + r];
-        kick_sum[a] = sum;
-        kicked |= !w->fixed[a] && sum * in->dt > RBS__GUARD_DEPTH * w->plan.min_radius;
+        may = !(bound * in->dt <= RBS__GUARD_DEPTH * w->plan.min_radius); /* (a NaN: may) */
+        for (k = 0; may && k < n; ++k) {
+            uint32_t a = w->spheres[k], r = w->soft_rank[k];
+            double sum = 0.0;
+            for (l = 0; l < g->levels; ++l)
+                sum += in->scratch[(size_t)l * B + r];
+            kick_sum[a] = sum;
+            kicked |= !w->fixed[a] && sum * in->dt > RBS__GUARD_DEPTH * w->plan.min_radius;
+        }
     }
     if (kicked) {
         emitter *em = &d.em[guard];
