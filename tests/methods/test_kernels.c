@@ -7,7 +7,8 @@
  * -- give the exact answers; the candidate list's grid gives the same list
  * in any memory, and a soft pile leaves the world's own grid arrays
  * untouched; the warm-start table holds each contact that took an impulse
- * once.
+ * once, in buckets its index finds, the same on any threads, and is found
+ * again in key order.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -350,34 +351,45 @@ static void list_on_threads_is_the_same_list(void **state)
     crowd_free(&c);
 }
 
+static int key_less(const void *x, const void *y)
+{
+    const uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return a < b ? -1 : a > b;
+}
+
 /* The warm-start table a soft frame stores: one entry for each lane that
- * took a normal impulse (as many as the step reports resting), in strictly
- * increasing key order -- so no contact twice and none lost -- each a pair
- * of spheres or a sphere and a plane that touch within a radius.  (The
- * store used to sort each bucket into the slots before it without knowing
- * where the bucket began: an entry left there from the last frame with the
- * same sphere took the place, and in this pile the table held a contact
- * twice and lost another at frame 63.) */
+ * took a normal impulse (as many as the step reports resting), no key
+ * twice -- so no contact twice and none lost -- each a pair of spheres or
+ * a sphere and a plane that touch within a radius; each sphere's bucket of
+ * each kind (its planes, its partners) in one run of entries, which
+ * w->warm_at finds, and UINT32_MAX in warm_at for a sphere with none.
+ * (The store used to sort each bucket into the slots before it without
+ * knowing where the bucket began: an entry left there from the last frame
+ * with the same sphere took the place, and in this pile the table held a
+ * contact twice and lost another at frame 63.) */
 static void warm_table_holds_each_contact_once(void **state)
 {
     rbs_world *w = busy_pile(0.002);
+    uint64_t *keys = malloc(w->warm_size * sizeof *keys);
     int frame;
     (void)state;
+    assert_non_null(keys);
     for (frame = 0; frame < 150; ++frame) {
         rbs_step_info info;
-        uint32_t i;
+        uint32_t i, k;
         CHECK_OK(rbs_world_step(w, &info));
+        assert_true(w->warm_ranked && w->warm_indexed);
         if (w->warm_used != info.resting)
             fail_msg("frame %d: %u warm entries for %u resting contacts", frame, (unsigned)w->warm_used,
                      (unsigned)info.resting);
         for (i = 0; i < w->warm_used; ++i) {
             const uint64_t key = w->warm[i].key;
-            const uint32_t a = (uint32_t)(key >> 32 & 0x7FFFFFFFu), b = (uint32_t)key;
+            const uint32_t a = (uint32_t)(key >> 32 & 0x7FFFFFFFu), b = (uint32_t)key, bucket = 2u * a + (uint32_t)(key >> 63);
             double gap;
-            if (i > 0 && !(w->warm[i - 1].key < key))
-                fail_msg("frame %d: warm entries %u and %u out of order or the same (%llx, %llx)", frame,
-                         (unsigned)i - 1, (unsigned)i, (unsigned long long)w->warm[i - 1].key,
-                         (unsigned long long)key);
+            keys[i] = key;
+            if ((i == 0 || w->warm[i - 1].key >> 32 != key >> 32) && w->warm_at[bucket] != i)
+                fail_msg("frame %d: warm entry %u (%llx) begins its bucket, which warm_at puts at %u", frame,
+                         (unsigned)i, (unsigned long long)key, (unsigned)w->warm_at[bucket]);
             if (key >> 63) {
                 double dx = w->pos[3 * a] - w->pos[3 * b], dy = w->pos[3 * a + 1] - w->pos[3 * b + 1],
                        dz = w->pos[3 * a + 2] - w->pos[3 * b + 2];
@@ -391,8 +403,98 @@ static void warm_table_holds_each_contact_once(void **state)
                 fail_msg("frame %d: warm entry %u (%llx): force %g N, gap %g m", frame, (unsigned)i,
                          (unsigned long long)key, w->warm[i].n, gap);
         }
+        /* no key twice */
+        qsort(keys, w->warm_used, sizeof *keys, key_less);
+        for (i = 1; i < w->warm_used; ++i)
+            if (keys[i - 1] == keys[i])
+                fail_msg("frame %d: the warm table holds %llx twice", frame, (unsigned long long)keys[i]);
+        /* each bucket in one run: its first entry (warm_at) and the entries
+         * of the bucket that follow it are all it has */
+        for (k = 0; k < w->sphere_count; ++k)
+            for (i = 0; i < 2u; ++i) {
+                const uint32_t a = w->spheres[k], at = w->warm_at[2u * a + i];
+                const uint64_t upper = (uint64_t)i << 31 | a;
+                uint32_t run = 0, all = 0, j;
+                for (j = at; at != UINT32_MAX && j < w->warm_used && w->warm[j].key >> 32 == upper; ++j)
+                    run++;
+                for (j = 0; j < w->warm_used; ++j)
+                    all += w->warm[j].key >> 32 == upper;
+                if (run != all || (at != UINT32_MAX && all == 0))
+                    fail_msg("frame %d: sphere %u's bucket %u: %u entries, %u of them from warm_at %u", frame,
+                             (unsigned)a, (unsigned)i, (unsigned)all, (unsigned)run, (unsigned)at);
+            }
     }
+    free(keys);
     rbs_world_destroy(w);
+}
+
+/* The table in key order (rbs__warm_sort, before another method searches it
+ * by key), and an index made again from it (as after a checkpoint): every
+ * entry is found by key with the same impulse, and the soft step goes on
+ * with the same bits as a pile whose table stayed in its buckets. */
+static void warm_table_sorted_and_indexed_again(void **state)
+{
+    rbs_world *a = busy_pile(0.002), *b = busy_pile(0.002);
+    rbs__warm *copy;
+    uint32_t i, at = 0, used;
+    (void)state;
+    step_n(a, 60);
+    step_n(b, 60);
+    used = a->warm_used;
+    copy = malloc(used * sizeof *copy);
+    assert_non_null(copy);
+    memcpy(copy, a->warm, used * sizeof *copy);
+    rbs__warm_sort(a);
+    assert_false(a->warm_ranked || a->warm_indexed);
+    assert_int_equal(a->warm_used, used);
+    for (i = 1; i < used; ++i)
+        assert_true(a->warm[i - 1].key < a->warm[i].key);
+    for (i = 0; i < used; ++i) {
+        const rbs__warm *m;
+        at = 0;
+        m = rbs__warm_find(a, copy[i].key, &at);
+        assert_non_null(m);
+        assert_true(m->n == copy[i].n && m->t.x == copy[i].t.x && m->t.y == copy[i].t.y && m->t.z == copy[i].t.z);
+    }
+    step_n(a, 60);
+    step_n(b, 60);
+    assert_true(rbs_world_hash(a) == rbs_world_hash(b));
+    free(copy);
+    rbs_world_destroy(a);
+    rbs_world_destroy(b);
+}
+
+/* The warm-start table and its index are the same whatever the threads
+ * that stored them (a thread stores the buckets of its own slabs): the
+ * busy pile on 1, 2 and 4 threads, after 100 frames. */
+static void warm_table_is_the_same_on_any_threads(void **state)
+{
+    rbs_world *one = busy_pile(0.002);
+    uint32_t t, k;
+    (void)state;
+    step_n(one, 100);
+    for (t = 1; t <= 3; t += 2) {
+        rbs_world *w = busy_pile(0.002);
+        rbs_pool *pool = NULL;
+        rbs_workers wk;
+        CHECK_OK(rbs_pool_create(t, &pool));
+        rbs_workers_init(&wk);
+        CHECK_OK(rbs_pool_workers(pool, &wk));
+        CHECK_OK(rbs_world_set_workers(w, &wk));
+        step_n(w, 100);
+        CHECK_OK(rbs_world_set_workers(w, NULL));
+        assert_int_equal(w->warm_used, one->warm_used);
+        if (memcmp(w->warm, one->warm, one->warm_used * sizeof *one->warm) != 0)
+            fail_msg("%u threads: another warm-start table", (unsigned)t + 1u);
+        for (k = 0; k < one->sphere_count; ++k) {
+            const uint32_t a = one->spheres[k];
+            if (w->warm_at[2u * a] != one->warm_at[2u * a] || w->warm_at[2u * a + 1u] != one->warm_at[2u * a + 1u])
+                fail_msg("%u threads: another index of sphere %u", (unsigned)t + 1u, (unsigned)a);
+        }
+        rbs_world_destroy(w);
+        rbs_pool_destroy(pool);
+    }
+    rbs_world_destroy(one);
 }
 
 int main(void)
@@ -405,6 +507,8 @@ int main(void)
         cmocka_unit_test(list_on_threads_is_the_same_list),
         cmocka_unit_test(soft_pile_leaves_the_grid_arrays_untouched),
         cmocka_unit_test(warm_table_holds_each_contact_once),
+        cmocka_unit_test(warm_table_sorted_and_indexed_again),
+        cmocka_unit_test(warm_table_is_the_same_on_any_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

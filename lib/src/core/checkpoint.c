@@ -223,6 +223,11 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     w->pairs = c.pairs;
     w->contacts_high = c.contacts_high;
     w->warm_used = c.warm_used;
+    /* (the table may be in the soft step's buckets, and its index is not
+     * kept: sorted before a search by key, indexed again before the soft
+     * step's) */
+    w->warm_ranked = 1;
+    w->warm_indexed = 0;
     w->plan_dirty = 1;
     rbs__rebuild_lists(w); /* derived lists */
     *out = w;

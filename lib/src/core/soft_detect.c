@@ -63,11 +63,16 @@ static inline uint32_t level_of(const rbs__soft_groups *g, uint32_t k)
     return l;
 }
 
+void rbs__soft_group_slabs(const rbs__soft_groups *g, uint32_t k, uint32_t *lo, uint32_t *hi)
+{
+    const uint32_t tree = g->levels - (g->slabs > 1u), l = level_of(g, k), node = k - g->level_first[l];
+    *lo = l + 1 < tree ? node << l : 0u;
+    *hi = l + 1 < tree ? (node + 1u) << l : g->slabs;
+}
+
 /* One group's emitter: the chunker of its run and what it finds. */
 typedef struct emitter {
     rbs__chunker ch;
-    uint32_t at[2];      /* where the last warm-table search of pairs [0] and
-                            planes [1] ended */
     uint32_t count;      /* contacts */
     double q;            /* h 0: the deepest reachable overlap, of the slop */
     double *kick;        /* per slot, its level's kick sums (NULL: none) */
@@ -199,27 +204,40 @@ static void mark(uint8_t *touched, uint32_t i)
 #endif
 }
 
-/* The warm-start entry of key k (plane: of a plane contact), searched from
- * where the last search of its kind ended: a group's contacts of each kind
- * come in key order (its spheres in slot order, each sphere's planes and
- * partners in order), but for a node's slabs and the guards.  The next key
- * is usually a step or two ahead; when it is not -- a slab's spheres are
- * not a run of slots, so its keys skip the other slabs' -- the search
- * gallops (rbs__warm_find): stepping through the skipped entries made every
- * slab walk the whole table, a cost of slabs x contacts a frame (at 100,000
- * spheres, a fifth of the frame). */
-static const rbs__warm *warm_of(const rbs_world *w, emitter *em, uint64_t k, int plane)
+/* The warm-start entry of key k (plane: of a plane contact) of sphere a,
+ * or NULL: a scan of a's bucket of its kind (a handful of entries), which
+ * w->warm_at finds -- in whatever order the last store left the table
+ * (rbs__soft_store_place's buckets, or key order), since the table holds
+ * one entry a key and each bucket's entries are together.  (Before, the
+ * table was in key order and searched from where the last search ended,
+ * galloping over the other slabs' keys; the buckets let each thread store
+ * its own slabs' contacts and read them in its own cache.) */
+static const rbs__warm *warm_of(const rbs_world *w, uint64_t k, int plane, uint32_t a)
 {
     const rbs__warm *t = w->warm;
-    uint32_t *at = &em->at[plane != 0], steps;
-    if (*at == 0 || t[*at - 1].key < k) {
-        for (steps = 0; steps < 4 && *at < w->warm_used; ++steps, ++*at)
-            if (t[*at].key >= k)
-                return t[*at].key == k ? &t[*at] : NULL;
-        if (*at >= w->warm_used)
-            return NULL;
-    }
-    return rbs__warm_find(w, k, at);
+    const uint64_t bucket = k >> 32;
+    uint32_t j;
+    for (j = w->warm_at[2u * a + (plane == 0)]; j < w->warm_used && t[j].key >> 32 == bucket; ++j)
+        if (t[j].key == k)
+            return &t[j];
+    return NULL;
+}
+
+/* w->warm_at for a table the soft step did not store (key order: another
+ * method's, or a checkpoint's): each bucket's first entry.  A slot without
+ * one keeps what it held, which is not an entry of its bucket (warm_of
+ * stops at once). */
+static void warm_index(rbs_world *w)
+{
+    const rbs__warm *t = w->warm;
+    uint32_t j;
+    for (j = 0; j < w->warm_used; ++j)
+        if (j == 0 || t[j].key >> 32 != t[j - 1].key >> 32) {
+            const int plane = (t[j].key >> 63) == 0;
+            const uint32_t a = (uint32_t)(t[j].key >> 32) & 0x7FFFFFFFu;
+            w->warm_at[2u * a + (plane == 0)] = j;
+        }
+    w->warm_indexed = 1;
 }
 
 /* A contact into a lane of the emitter's group: sphere a and body b (plane:
@@ -274,7 +292,7 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
         if (!(q <= em->q))
             em->q = q; /* (a NaN stays, and keeps every sub-step) */
     }
-    m = warm_of(w, em, rbs__warm_key_of(plane, a, b), plane);
+    m = warm_of(w, rbs__warm_key_of(plane, a, b), plane, a);
     if (m != NULL) {
         v3 ft = in->friction ? v3_mad(m->t, n, -v3_dot(m->t, n)) : v3_make(0, 0, 0);
         if (in->h == 0.0) {
@@ -614,12 +632,10 @@ static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         const uint32_t gk = d->emit_group[item];
         emitter *em = &d->em[gk];
         const uint32_t l = level_of(g, gk), node = gk - g->level_first[l];
-        /* (a node's slabs; the top's two groups and the tie's: all) */
-        const uint32_t s_lo = l + 1 >= d->tree ? 0u : node << l, s_hi = l + 1 >= d->tree ? g->slabs : (node + 1) << l;
-        uint32_t s, x, k, q;
+        uint32_t s, x, k, q, s_lo, s_hi;
+        rbs__soft_group_slabs(g, gk, &s_lo, &s_hi);
         rbs__chunker_start(&em->ch, &w->chunk[g->first[gk]], RBS__GROUP_CHUNKS(g->used[gk]),
                            &w->chunk_member[(size_t)l * w->def.max_bodies]);
-        em->at[0] = em->at[1] = 0;
         em->count = 0;
         em->q = 0.0;
         em->kick = d->in->scratch + (size_t)l * w->def.max_bodies;
@@ -704,7 +720,6 @@ static rbs_status detect_serially(detect *d)
     g->slab_first[1] = w->sphere_count;
     (void)cut_slabs(d);
     rbs__chunker_start(&em->ch, w->chunk, w->chunk_cap, w->chunk_member);
-    em->at[0] = em->at[1] = 0;
     em->count = 0;
     em->q = 0.0;
     em->status = RBS_OK;
@@ -730,6 +745,8 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
     int kicked = 0;
     rbs_status st = RBS_OK;
 
+    if (!w->warm_indexed)
+        warm_index(w);
     d.w = w;
     d.in = in;
     d.g = g;
@@ -894,7 +911,6 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
         emitter *em = &d.em[guard];
         rbs__chunker_start(&em->ch, &w->chunk[g->first[guard]], w->chunk_cap - g->first[guard],
                            &w->chunk_member[(size_t)g->levels * B]);
-        em->at[0] = em->at[1] = 0;
         em->count = 0;
         em->q = 0.0;
         em->status = RBS_OK;
@@ -923,92 +939,119 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         }
 }
 
-/* Lane l of chunk c: whether b is a plane, and a's slot (lanes hold
- * records: the slots are the keys'). */
+/* Lane l of chunk c: whether b is a plane. */
 static inline int lane_plane(const rbs__chunk *c, uint32_t l)
 {
     return (c->flags >> (RBS__CH_PLANE + l) & 1u) != 0;
 }
 
-static inline uint32_t lane_slot_a(const rbs_world *w, const rbs__chunk *c, uint32_t l)
+/* Share q of the store: its records [*r0, *r1) (their spheres' buckets
+ * are its own), and how each group takes part (take[k]: 0 not at all -- no
+ * slab of the share's; 1 whole -- only the share's slabs; 2 lane by lane,
+ * those whose sphere a is one of its records); the groups. */
+enum { STORE_NONE, STORE_WHOLE, STORE_LANES };
+static uint32_t store_share(const rbs__soft_store *st, uint32_t q, uint32_t *r0, uint32_t *r1, uint8_t *take)
 {
-    return w->spheres[w->soft_order[c->a[l]]];
+    const rbs__soft_groups *g = st->g;
+    const uint32_t S = g->slabs, groups = g->level_first[g->levels + 1];
+    const uint32_t s0 = (uint32_t)((uint64_t)q * S / st->shares), s1 = (uint32_t)((uint64_t)(q + 1u) * S / st->shares);
+    uint32_t k, lo, hi;
+    *r0 = g->slab_first[s0];
+    *r1 = g->slab_first[s1];
+    for (k = 0; k < groups; ++k) {
+        rbs__soft_group_slabs(g, k, &lo, &hi);
+        take[k] = s0 == s1 || hi <= s0 || lo >= s1 ? STORE_NONE : lo >= s0 && hi <= s1 ? STORE_WHOLE : STORE_LANES;
+    }
+    return groups;
 }
 
-/* The bucket of a key's upper half: planes first, each by the sphere's slot a. */
-static inline uint32_t warm_bucket(const rbs_world *w, int plane, uint32_t a)
+/* Whether lane l of chunk c, of a group that takes part as take, is the
+ * share's (records [r0, r1)). */
+static inline int store_lane(const rbs__chunk *c, uint32_t l, uint8_t take, uint32_t r0, uint32_t r1)
 {
-    return (plane ? 0u : w->def.max_bodies) + a;
+    return take == STORE_WHOLE || (c->a[l] >= r0 && c->a[l] < r1);
 }
 
-/* The frame's chunks of group k: [first, end). */
-static void store_group(const rbs__soft_store *st, uint32_t k, const rbs__chunk **first, const rbs__chunk **end)
+void rbs__soft_store_start(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h,
+                           uint32_t *scratch, uint32_t shares)
 {
-    *first = &st->w->chunk[st->g->first[k]];
-    *end = *first + st->g->used[k];
-}
-
-/* The warm store's first half: each bucket's lanes holding an impulse
- * counted (into the start of the next), and the lanes holding a normal
- * impulse.  The warm-start table is the same whichever thread stores it. */
-void rbs__soft_store_count(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch)
-{
-    const uint32_t groups = g->level_first[g->levels + 1];
-    const rbs__chunk *c, *end;
-    uint32_t k, l;
     st->w = w;
     st->g = g;
-    st->start = scratch;
+    st->cursor = scratch;
     st->h = h;
-    st->resting = 0;
-    memset(st->start, 0, (2u * (size_t)w->def.max_bodies + 1u) * sizeof *st->start);
-    for (k = 0; k < groups; ++k)
-        for (store_group(st, k, &c, &end); c < end; ++c)
-            for (l = 0; l < c->count; ++l) {
-                st->resting += c->jn[l] > 0.0;
-                if (c->jn[l] != 0.0)
-                    st->start[warm_bucket(w, lane_plane(c, l), lane_slot_a(w, c, l)) + 1u]++;
-            }
+    st->shares = shares < 1u ? 1u : shares > RBS__STORE_SHARES ? RBS__STORE_SHARES : shares;
 }
 
-/* The second half: the table, in key order (planes first, each by (a, b)):
- * a counting sort of the lanes by their key's upper half (plane or pair,
- * and a), each bucket's few lanes then in order of b (insertion: a handful
- * each; the keys are distinct -- a pair or a sphere and plane is one
- * contact of the frame).  Rates: the impulses over h. */
-uint32_t rbs__soft_store_place(rbs__soft_store *st)
+/* The first half, share q: each of its buckets' entries counted (bucket
+ * 2 r + 1 of record r: its pairs; 2 r: its planes), and its lanes holding
+ * a normal impulse. */
+void rbs__soft_store_count(rbs__soft_store *st, uint32_t q)
+{
+    uint8_t take[RBS__GROUPS_MAX];
+    uint32_t r0, r1, k, l, entries = 0, resting = 0;
+    const uint32_t groups = store_share(st, q, &r0, &r1, take);
+    memset(&st->cursor[2u * r0], 0, 2u * (size_t)(r1 - r0) * sizeof *st->cursor);
+    for (k = 0; k < groups; ++k) {
+        const rbs__chunk *c = &st->w->chunk[st->g->first[k]], *end = c + st->g->used[k];
+        for (; take[k] != STORE_NONE && c < end; ++c)
+            for (l = 0; l < c->count; ++l)
+                if (store_lane(c, l, take[k], r0, r1)) {
+                    resting += c->jn[l] > 0.0;
+                    if (c->jn[l] != 0.0) {
+                        st->cursor[2u * c->a[l] + !lane_plane(c, l)]++;
+                        entries++;
+                    }
+                }
+    }
+    st->entries[q] = entries;
+    st->resting[q] = resting;
+}
+
+/* The second half, share q (every share's count done): its buckets from
+ * the end of the shares' before it, their entries, and warm_at of its
+ * spheres.  Rates: the impulses over h. */
+void rbs__soft_store_place(rbs__soft_store *st, uint32_t q)
 {
     rbs_world *w = st->w;
     rbs__warm *t = w->warm;
-    const uint32_t B = w->def.max_bodies, groups = st->g->level_first[st->g->levels + 1];
-    const rbs__chunk *c, *end;
-    uint32_t k, l, b, i, at;
-    for (b = 0; b < 2u * B; ++b)
-        st->start[b + 1] += st->start[b];
-    for (k = 0; k < groups; ++k)
-        for (store_group(st, k, &c, &end); c < end; ++c)
-            for (l = 0; l < c->count; ++l) {
-                const int plane = lane_plane(c, l);
-                uint32_t a;
-                rbs__warm e;
-                if (c->jn[l] == 0.0)
-                    continue;
-                a = lane_slot_a(w, c, l);
-                e.key = rbs__warm_key_of(plane, a, plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
-                e.n = c->jn[l] / st->h;
-                e.t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / st->h);
-                t[st->start[warm_bucket(w, plane, a)]++] = e;
-            }
-    /* (start[b] is now the end of bucket b) */
-    for (b = 0; b < 2u * B; ++b) {
-        const uint32_t lo = b == 0 ? 0u : st->start[b - 1], hi = st->start[b];
-        for (i = lo + 1; i < hi; ++i) {
-            rbs__warm e = t[i];
-            for (at = i; at > lo && t[at - 1].key > e.key; --at)
-                t[at] = t[at - 1];
-            t[at] = e;
+    uint8_t take[RBS__GROUPS_MAX];
+    uint32_t r0, r1, r, k, l, at = 0;
+    const uint32_t groups = store_share(st, q, &r0, &r1, take);
+    for (k = 0; k < q; ++k)
+        at += st->entries[k];
+    for (r = r0; r < r1; ++r) {
+        const uint32_t a = w->spheres[w->soft_order[r]];
+        for (k = 0; k < 2u; ++k) {
+            const uint32_t n = st->cursor[2u * r + k];
+            w->warm_at[2u * a + k] = n > 0 ? at : UINT32_MAX;
+            st->cursor[2u * r + k] = at;
+            at += n;
         }
     }
-    rbs__warm_finish(w, st->start[2u * B - 1u], 1);
-    return st->resting;
+    for (k = 0; k < groups; ++k) {
+        const rbs__chunk *c = &w->chunk[st->g->first[k]], *end = c + st->g->used[k];
+        for (; take[k] != STORE_NONE && c < end; ++c)
+            for (l = 0; l < c->count; ++l)
+                if (c->jn[l] != 0.0 && store_lane(c, l, take[k], r0, r1)) {
+                    const int plane = lane_plane(c, l);
+                    rbs__warm *e = &t[st->cursor[2u * c->a[l] + !plane]++];
+                    e->key = rbs__warm_key_of(plane, w->spheres[w->soft_order[c->a[l]]],
+                                              plane ? c->b[l] : w->spheres[w->soft_order[c->b[l]]]);
+                    e->n = c->jn[l] / st->h;
+                    e->t = v3_scale(v3_make(c->jx[l], c->jy[l], c->jz[l]), 1.0 / st->h);
+                }
+    }
+}
+
+uint32_t rbs__soft_store_finish(rbs__soft_store *st)
+{
+    uint32_t q, entries = 0, resting = 0;
+    for (q = 0; q < st->shares; ++q) {
+        entries += st->entries[q];
+        resting += st->resting[q];
+    }
+    st->w->warm_used = entries;
+    st->w->warm_ranked = 1;
+    st->w->warm_indexed = 1;
+    return resting;
 }

@@ -80,22 +80,40 @@ typedef struct rbs__soft_groups {
 rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_groups *g);
 /* The warm starts (stored as forces: in->h was 0) for sub-steps of h. */
 void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, double h);
-/* The warm store: the frame's impulses into the warm-start table, as
- * rates for the next frame (h: the sub-step), in key order -- in two halves,
- * each on the calling thread alone, so that each can be one item of a
- * stage beside others.  rbs__soft_store_count counts the lanes into scratch
- * (2 max_bodies + 1 words the caller leaves alone until the second half
- * returns) and changes nothing else of the world: it may run before the
- * step knows it will succeed.  rbs__soft_store_place writes the table and
+/* Group k's slabs: [*lo, *hi) (a node of the tree below the top: its
+ * subtree's; the top's two groups, the tie's and the guards': all). */
+void rbs__soft_group_slabs(const rbs__soft_groups *g, uint32_t k, uint32_t *lo, uint32_t *hi);
+
+/* The warm store: the frame's impulses into the warm-start table, as rates
+ * for the next frame (h: the sub-step), in buckets -- a bucket for each
+ * sphere's contacts with planes and one for those with spheres, the
+ * buckets in the order of the frame's records (slab by slab), each one's
+ * entries in the order of the groups -- with w->warm_at their index by
+ * slot, which the next frame's detection searches (soft_detect.c,
+ * warm_of).  The table is the same whatever the threads.  In shares: share
+ * q of `shares` (at most RBS__STORE_SHARES) stores the contacts of the
+ * spheres of slabs [q S / shares, (q + 1) S / shares) -- those of a thread
+ * whose leaves are these slabs, in its own cache.  rbs__soft_store_count
+ * counts a share's buckets into the scratch (2 words a sphere, left alone
+ * by the caller until the store is finished) and changes nothing of the
+ * world: it may run before the step knows it will succeed; every share's
+ * count, then every share's place, then rbs__soft_store_finish, which
  * returns the lanes holding a normal impulse. */
+#define RBS__STORE_SHARES 8
 typedef struct rbs__soft_store {
     rbs_world *w;
     const rbs__soft_groups *g;
-    uint32_t *start;   /* the scratch: 2 max_bodies + 1 bucket starts */
+    uint32_t *cursor;  /* the scratch: each bucket's count, then where its
+                          next entry goes */
     double h;
-    uint32_t resting;  /* lanes holding a normal impulse */
+    uint32_t shares;
+    uint32_t entries[RBS__STORE_SHARES];  /* each share's */
+    uint32_t resting[RBS__STORE_SHARES];  /* each share's lanes holding a normal impulse */
 } rbs__soft_store;
-void rbs__soft_store_count(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h, uint32_t *scratch);
-uint32_t rbs__soft_store_place(rbs__soft_store *st);
+void rbs__soft_store_start(rbs__soft_store *st, rbs_world *w, const rbs__soft_groups *g, double h,
+                           uint32_t *scratch, uint32_t shares);
+void rbs__soft_store_count(rbs__soft_store *st, uint32_t q);
+void rbs__soft_store_place(rbs__soft_store *st, uint32_t q);
+uint32_t rbs__soft_store_finish(rbs__soft_store *st);
 
 #endif

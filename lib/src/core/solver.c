@@ -130,6 +130,14 @@ void rbs__warm_finish(rbs_world *w, uint32_t n, int sorted)
     if (!sorted)
         rbs__heap_sort(w->warm, n, sizeof *w->warm, warm_greater);
     w->warm_used = n;
+    w->warm_ranked = 0;
+    w->warm_indexed = 0;
+}
+
+void rbs__warm_sort(rbs_world *w)
+{
+    if (w->warm_ranked)
+        rbs__warm_finish(w, w->warm_used, 0);
 }
 
 /* Store this pass's impulse rates: one entry per contact that held (at most
@@ -509,6 +517,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
     int friction = w->plan.friction, any = 0, fast;
     double scale = sqrt(w->def.gravity.x * w->def.gravity.x + w->def.gravity.y * w->def.gravity.y +
                         w->def.gravity.z * w->def.gravity.z) * w->def.dt;
+    rbs__warm_sort(w);
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);

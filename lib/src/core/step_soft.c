@@ -403,6 +403,8 @@ typedef struct soft_frame {
     uint32_t bad[RBS_WORKERS_MAX];    /* write-back check: a non-finite slot, or UINT32_MAX */
     uint32_t runs;                    /* the write-back's runs of spheres (stage_write_back) */
     int writing;                      /* its stage: 0 check and count, 1 write and place */
+    uint8_t item[RBS__TEAM_SHARES];   /* its items: run k (< runs), or the
+                                         store's share k - runs */
     rbs__soft_store store;            /* the warm store (stage_write_back) */
     rbs__soft_report report[RBS_WORKERS_MAX];
 } soft_frame;
@@ -613,34 +615,33 @@ static uint32_t run_begin(const soft_frame *f, uint32_t k)
     return (uint32_t)((uint64_t)k * f->w->sphere_count / f->runs);
 }
 
-/* The write-back's two stages (f->writing 0, then 1), items [begin, end)
- * of 1 + f->runs: item k > 0 the check, then the write, of the k-th of
- * f->runs runs of the spheres in slot order; item 0 a half of the
- * warm store (rbs__soft_store_count, rbs__soft_store_place), on one thread
- * alone, its scratch in the increments table, which nothing reads after the
- * rows.  The store touches other memory -- the chunks and the warm-start
- * table, not the records and the world's arrays -- so one thread stores the
- * impulses while the others check and write the bodies, in two handovers
- * instead of five; and the store's first half counts without changing the
- * world, so it may go beside the check.  (Split among the threads by
- * chunks, the store's stages took on two threads what they take on one:
- * their atomic counts and their writes into the table's buckets, whose
- * spheres interleave between the slabs, moved cache lines between the
- * threads.) */
+/* The write-back's two stages (f->writing 0, then 1) over RBS__TEAM_SHARES
+ * items, a share each: the warm store's shares (f->store.shares of them,
+ * share q the item q RBS__TEAM_SHARES / shares -- the first share of the
+ * thread whose leaves are the store share's slabs, team.h) take its count,
+ * then its place (rbs__soft_store_count, rbs__soft_store_place), and the
+ * other items, the f->runs runs of the spheres in slot order, the check,
+ * then the write.  The store's scratch is the increments table, which
+ * nothing reads after the rows; it touches the chunks and the warm-start
+ * table, not the records and the world's arrays, and its first half
+ * counts without changing the world, so it may go beside the check.  (On
+ * one thread before: the other threads' contacts came from their caches,
+ * and the next frame's detection read them from that thread's.) */
 static void stage_write_back(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
     uint32_t k;
     (void)share;
     for (k = begin; k < end; ++k) {
-        if (k == 0 && !f->writing)
-            rbs__soft_store_count(&f->store, f->w, f->g, f->h, (uint32_t *)(void *)f->inc);
-        else if (k == 0)
-            rbs__soft_store_place(&f->store);
+        const uint32_t x = f->item[k];
+        if (x >= f->runs && !f->writing)
+            rbs__soft_store_count(&f->store, x - f->runs);
+        else if (x >= f->runs)
+            rbs__soft_store_place(&f->store, x - f->runs);
         else if (!f->writing)
-            check_run(f, k - 1u, run_begin(f, k - 1u), run_begin(f, k));
+            check_run(f, x, run_begin(f, x), run_begin(f, x + 1u));
         else
-            write_run(f, run_begin(f, k - 1u), run_begin(f, k));
+            write_run(f, run_begin(f, x), run_begin(f, x + 1u));
     }
 }
 
@@ -785,17 +786,25 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * first bad sphere in slot order is named, whatever the threads). */
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         f.bad[k] = UINT32_MAX;
-    /* (15 runs beside the store: a thread done with its own takes another's) */
-    f.runs = RBS__TEAM_SHARES - 1u;
+    /* (the runs beside the store: a thread done with its own takes another's) */
+    rbs__soft_store_start(&f.store, w, &g, h, (uint32_t *)(void *)inc, rbs__team_threads(w));
+    f.runs = RBS__TEAM_SHARES - f.store.shares;
+    memset(f.item, 0xFF, sizeof f.item);
+    for (k = 0; k < f.store.shares; ++k)
+        f.item[k * RBS__TEAM_SHARES / f.store.shares] = (uint8_t)(f.runs + k);
+    for (k = 0, s = 0; k < RBS__TEAM_SHARES; ++k)
+        if (f.item[k] == 0xFFu)
+            f.item[k] = (uint8_t)s++;
     f.writing = 0;
-    rbs__team_run(w, stage_write_back, &f, f.runs + 1u, f.runs + 1u);
+    rbs__team_run(w, stage_write_back, &f, RBS__TEAM_SHARES, RBS__TEAM_SHARES);
     for (k = 0; k < RBS_WORKERS_MAX; ++k)
         if (f.bad[k] != UINT32_MAX) {
             rbs__team_stop(w);
             return rbs__numeric_error(w, f.bad[k]);
         }
     f.writing = 1;
-    rbs__team_run(w, stage_write_back, &f, f.runs + 1u, f.runs + 1u);
+    rbs__team_run(w, stage_write_back, &f, RBS__TEAM_SHARES, RBS__TEAM_SHARES);
+    info->resting = rbs__soft_store_finish(&f.store);
     w->step_checked = 1;
 
     /* Report: contacts touching at the end and the deepest overlap (the
@@ -809,7 +818,6 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
         if (f.report[k].deepest > info->max_overlap)
             info->max_overlap = f.report[k].deepest;
     }
-    info->resting = f.store.resting;
     rbs__team_stop(w);
     return RBS_OK;
 }
@@ -843,6 +851,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
 
     /* Prepare: the approach speed at the frame's start (for restitution, in
      * c->bias), and the impulses of the last frame for the warm start. */
+    rbs__warm_sort(w);
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);

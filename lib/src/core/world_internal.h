@@ -187,12 +187,22 @@ struct rbs_world {
     /* contacts */
     rbs__contact *contact;
     rbs__resist *contact_resist;          /* one per contact slot (resistance only) */
-    rbs__warm *warm;                      /* warm-start entries, sorted by key */
+    rbs__warm *warm;                      /* warm-start entries: sorted by key, or
+                                             (warm_ranked) the soft step's
+                                             buckets (soft_detect.c) */
+    uint32_t *warm_at;                    /* 2 per slot: the first entry of the
+                                             slot's bucket of planes [0] and of
+                                             pairs [1] (UINT32_MAX: none), valid
+                                             when warm_indexed (soft_detect.c) */
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
                                              (solver.c) */
     uint32_t warm_size;                   /* max_contacts */
     uint32_t warm_used;                   /* entries the last warm pass stored (0: none) */
+    int warm_ranked;                      /* the table is in the soft step's
+                                             buckets, not in key order
+                                             (rbs__warm_sort puts it back) */
+    int warm_indexed;                     /* warm_at holds the table's buckets */
 
     /* broad phase (broadphase.c): per sphere item, and a grid (dense or hashed) */
     double *bp_center;                    /* 3 per item */
@@ -541,6 +551,9 @@ static inline uint64_t rbs__warm_key_of(int plane, uint32_t a, uint32_t b)
     return ((uint64_t)(plane == 0) << 63) | ((uint64_t)a << 32) | (uint64_t)b;
 }
 void rbs__warm_store(rbs_world *w, double h);
+/* The table in key order again, if the soft step left it in its buckets
+ * (before rbs__warm_find; solver.c). */
+void rbs__warm_sort(rbs_world *w);
 /* The table's first n entries are written (sorted: in key order; else they
  * are sorted now). */
 void rbs__warm_finish(rbs_world *w, uint32_t n, int sorted);
