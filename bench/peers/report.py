@@ -20,6 +20,22 @@ R_BALL, H_BALL, E_BALL = 0.1, 1.0, 0.5
 SMALL_PILE = 125  # the pile the marginal memory per body is measured against
 
 
+
+def aslr_note(rows):
+    """What the runs say of address-space randomisation (peers_spawn)."""
+    on = unknown = 0
+    for r in rows:
+        try:
+            a = json.loads(r.get("extra") or "{}").get("aslr")
+        except ValueError:
+            a = None
+        on += a == 1
+        unknown += a is None
+    if on == 0 and unknown == 0:
+        return "it was off in every run."
+    return (f"the system refused it in {on} run(s) (aslr 1 in peers.csv's extra) and {unknown} run(s) "
+            "do not say (a launcher before it), whose peaks are noisier.")
+
 def marginal_per_body(rows, engine, n):
     """(peak at N - peak on the pile of SMALL_PILE) / (N - SMALL_PILE), bytes,
     or None when either was not measured."""
@@ -158,7 +174,11 @@ def peers_tables(rows, meta):
              "also counts the libraries' code pages, and how many of those a run maps varies by about 100 KB "
              "from run to run (the kernel maps file pages around each fault); anon does not, and for rbsim, "
              "which reserves everything when the world is made, it is also the peak.  ODE and the Python "
-             "engines may free memory before the end, so theirs is at most their peak.\n")
+             "engines may free memory before the end, so theirs is at most their peak.  "
+             "peers_spawn runs every engine with address-space randomisation off (personality(2)): "
+             "with it on, where the libraries land changes which of their pages are mapped, and "
+             "the same run's peak varied by about 0.3 MB; "
+             + aslr_note(rows) + "\n")
     L.append("| N | engine | peak (MB) | per body (bytes) | per body / ODE's | marginal (bytes) | marginal / ODE's | anon (MB) | anon per body (bytes) | anon per body / ODE's |")
     L.append("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     base = {e: med([f(r["maxrss_kb"]) for r in sel(rows, "ball", 1, BASE_OF.get(e, e))])

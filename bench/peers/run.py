@@ -147,7 +147,8 @@ def driver_cmd(build, engine, scene_path, steps, cap, state_path):
 
 def run_process(build, cmd, hard_limit, log_path):
     """Run cmd through peers_spawn (stdout and stderr to log_path); returns
-    (exit code or None if killed, peak RSS kB, wall s, output text)."""
+    (exit code or None if killed, peak RSS kB, wall s, output text, 1 if the
+    process ran with address-space randomisation on)."""
     spawn = os.path.join(build, "bench", "peers", "peers_spawn")
     env = dict(os.environ, PYTHONPATH=HERE + os.pathsep + os.environ.get("PYTHONPATH", ""))
     r = subprocess.run([spawn, str(hard_limit), log_path] + cmd, capture_output=True, text=True,
@@ -157,7 +158,7 @@ def run_process(build, cmd, hard_limit, log_path):
     info = json.loads(r.stdout)
     with open(log_path) as fh:
         text = fh.read()
-    return (None if info["killed"] else info["exit"]), info["maxrss_kb"], info["wall"], text
+    return (None if info["killed"] else info["exit"]), info["maxrss_kb"], info["wall"], text, info.get("aslr", 1)
 
 
 def parse_driver(text):
@@ -186,7 +187,7 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
     if os.path.exists(state_path):
         os.remove(state_path)
     hard = cap * 1.5 + 120 + SETUP_ALLOW.get((engine, n), 0)
-    code, rss, elapsed, text = run_process(
+    code, rss, elapsed, text, aslr = run_process(
         build, driver_cmd(build, engine, scene_path, steps, cap, state_path), hard, log_path)
     res, progress = parse_driver(text)
     row = {"scene": scene, "n": n, "engine": engine, "rep": rep, "steps_planned": steps,
@@ -195,6 +196,7 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
         row["status"] = "killed" if code is None else f"failed (exit {code})"
         tail = [l for l in text.splitlines() if not l.startswith("# progress")][-3:]
         row["error"] = " | ".join(tail)[:300]
+        row["extra"] = json.dumps({"aslr": aslr})
         if progress:
             row["steps"], row["wall"] = progress
             row["sim_time"] = progress[0] * scenes.DT
@@ -205,6 +207,7 @@ def one_run(build, work, engine, scene, n, steps, cap, rep):
         extra = {k: v for k, v in res.items()
                  if k not in ("engine", "n", "steps", "sim_time", "wall", "setup_wall", "apex",
                               "error", "version", "dt", "rss_anon_kb")}
+        extra["aslr"] = aslr
         row["extra"] = json.dumps(extra, sort_keys=True)
         row["error"] = res.get("error", "")
         if row["error"]:
