@@ -714,8 +714,13 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * free_inc for the full ones of bodies in no contact), or a table */
     const int shared = uniform_acceleration(w, &in.shared_a);
 
-    /* The lent threads start now: detection splits among them too. */
-    rbs__team_start(w);
+    /* The lent threads start now: detection splits among them too -- but
+     * not for spheres too few for two slabs (soft_detect.c): in one slab
+     * the rows, most of a frame, are one group on one thread, and the
+     * handovers of the rest cost more than they share (the 125-sphere pile
+     * took 1.5x its one-thread time on two).  The same bits either way. */
+    if (w->sphere_count >= 2u * RBS__SLAB_SPHERES)
+        rbs__team_start(w);
     /* inc: accelerations and torques, which detection fills, then their
      * velocity increments a h, alpha h -- untouched when the increment is
      * shared; detection's scratch in the records' room (filled only after

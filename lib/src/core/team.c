@@ -83,7 +83,7 @@ static rbs__team *team_of(const rbs_world *w)
 uint32_t rbs__team_threads(const rbs_world *w)
 {
 #if defined(TEAM_ATOMICS)
-    return w->workers.count > 1 ? w->workers.count : 1u;
+    return team_of(w)->running ? w->workers.count : 1u;
 #else
     (void)w;
     return 1u;
@@ -167,7 +167,7 @@ void rbs__team_start(rbs_world *w)
     rbs__team *t = team_of(w);
     t->running = 0;
 #if defined(TEAM_ATOMICS)
-    if (rbs__team_threads(w) > 1) {
+    if (w->workers.count > 1) {
         t->stage_no++;
         t->done = 0;
         t->done_seen = 0;

@@ -35,7 +35,9 @@ void rbs__team_stop(rbs_world *w);
  * the step, thread t of T taking the t-th T-th of the shares first; returns
  * when all are done. */
 void rbs__team_run(rbs_world *w, rbs__stage_fn fn, void *ctx, uint32_t n, uint32_t shares);
-/* The threads a step may use (1 without a pool). */
+/* The threads the step's stages run on: the lent workers' count while
+ * they are started for it (rbs__team_start), else 1 -- a stage split into
+ * more shares than its threads would only do more work. */
 uint32_t rbs__team_threads(const rbs_world *w);
 
 /* *p + 1 into *p, returning *p before: atomic (relaxed: the count, not
