@@ -82,7 +82,9 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
  * in slot order, each sphere's planes and partners likewise; pairs through
  * rbs__broadphase_pairs), so a pass writes the table in order and reads it
  * in order -- sequentially, at any size -- with no hashing.  (Slots are
- * below 2^24.) */
+ * below 2^24.)  The soft step's gathered layout stores it in buckets
+ * instead (soft_detect.c, rbs__soft_store_place; w->warm_ranked), which
+ * rbs__warm_sort puts back in key order before a pass here searches it. */
 uint64_t rbs__warm_key(const rbs_world *w, const rbs__contact *c)
 {
     return rbs__warm_key_of(w->type[c->b] == RBS_BODY_PLANE, c->a, c->b);
