@@ -8,7 +8,8 @@
  * some spinning, one fixed, dropped into a box of five planes -- enough
  * spheres for four slabs, so that the groups of every level of the soft
  * step's tree (soft_detect.c) and the guards are used.  The state hash is
- * compared every 10 frames.
+ * compared every 10 frames.  A pile too small for two slabs leaves the lent
+ * threads idle.
  */
 #include <pthread.h>
 #include <time.h>
@@ -166,6 +167,61 @@ static void late_or_idle_pools_give_the_same_bits(void **state)
     pthread_mutex_destroy(&p.mutex);
 }
 
+/* A soft pile of n spheres (a lattice of 0.12 m over a floor) on workers
+ * (NULL: none), stepped 50 frames: its hash. */
+static uint64_t small_pile(uint32_t n, const rbs_workers *workers)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_plane_def pl;
+    uint64_t h;
+    uint32_t i;
+    rbs_world_def_init(&d);
+    d.max_bodies = n + 1;
+    d.method = RBS_METHOD_SOFT;
+    CHECK_OK(rbs_world_create(&d, &w));
+    rbs_plane_def_init(&pl);
+    CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+    for (i = 0; i < n; ++i) {
+        rbs_sphere_def sd;
+        rbs_sphere_def_init(&sd);
+        sd.radius = 0.05;
+        sd.position.x = 0.12 * (double)(i % 8) + 0.001 * (double)(i % 7);
+        sd.position.y = 0.12 * (double)(i / 8 % 8);
+        sd.position.z = 0.06 + 0.12 * (double)(i / 64);
+        CHECK_OK(rbs_world_add_sphere(w, &sd, NULL));
+    }
+    CHECK_OK(rbs_world_set_workers(w, workers));
+    step_n(w, 50);
+    h = rbs_world_hash(w);
+    CHECK_OK(rbs_world_set_workers(w, NULL));
+    rbs_world_destroy(w);
+    return h;
+}
+
+/* Fewer than 512 spheres are one slab, whose rows are one group: the step
+ * leaves the lent threads idle -- no start, the same bits -- and from 512
+ * spheres on starts them every frame. */
+static void few_spheres_leave_the_threads_idle(void **state)
+{
+    test_pool p;
+    rbs_workers wk;
+    (void)state;
+    memset(&p, 0, sizeof p);
+    pthread_mutex_init(&p.mutex, NULL);
+    rbs_workers_init(&wk);
+    wk.count = 3;
+    wk.start = test_start;
+    wk.finish = test_finish;
+    wk.user = &p;
+    assert_true(small_pile(511, &wk) == small_pile(511, NULL));
+    assert_int_equal(p.started, 0);
+    assert_true(small_pile(512, &wk) == small_pile(512, NULL));
+    assert_int_equal(p.started, 50);
+    assert_int_equal(p.ran, 2 * 50);
+    pthread_mutex_destroy(&p.mutex);
+}
+
 /* A checkpoint taken on two threads resumes on three with the same bits as
  * the run that never stopped (on one). */
 static void checkpoint_resumes_on_other_threads(void **state)
@@ -291,6 +347,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(pools_give_the_same_bits),
         cmocka_unit_test(late_or_idle_pools_give_the_same_bits),
+        cmocka_unit_test(few_spheres_leave_the_threads_idle),
         cmocka_unit_test(checkpoint_resumes_on_other_threads),
         cmocka_unit_test(failed_step_keeps_the_warm_start),
         cmocka_unit_test(bad_workers_are_refused),
