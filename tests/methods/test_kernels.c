@@ -8,7 +8,7 @@
  * in any memory, and a soft pile leaves the world's own grid arrays
  * untouched; the warm-start table holds each contact that took an impulse
  * once, in buckets its index finds, the same on any threads, and is found
- * again in key order.
+ * again in key order -- by another method's pass too (soft, Euler, soft).
  */
 #include <math.h>
 #include <stdlib.h>
@@ -497,6 +497,53 @@ static void warm_table_is_the_same_on_any_threads(void **state)
     rbs_world_destroy(one);
 }
 
+/* The busy pile on `threads` threads (1: none): 40 soft frames, 5 of
+ * Euler's (whose resting pass searches the soft step's table by key: it
+ * sorts it first; sort_first: the test sorts it before the switch), 40 soft
+ * ones again (which index Euler's key-ordered table); its hash. */
+static uint64_t switching_methods(uint32_t threads, int sort_first)
+{
+    rbs_world *w = busy_pile(0.002);
+    rbs_pool *pool = NULL;
+    rbs_workers wk;
+    uint64_t h;
+    if (threads > 1) {
+        CHECK_OK(rbs_pool_create(threads - 1u, &pool));
+        rbs_workers_init(&wk);
+        CHECK_OK(rbs_pool_workers(pool, &wk));
+        CHECK_OK(rbs_world_set_workers(w, &wk));
+    }
+    step_n(w, 40);
+    assert_true(w->warm_ranked && w->warm_used > 0);
+    if (sort_first)
+        rbs__warm_sort(w);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EULER, 0.0));
+    step_n(w, 5);
+    assert_false(w->warm_ranked || w->warm_indexed);
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_SOFT, 0.0));
+    step_n(w, 40);
+    assert_true(w->warm_ranked && w->warm_indexed);
+    h = rbs_world_hash(w);
+    if (pool != NULL) {
+        CHECK_OK(rbs_world_set_workers(w, NULL));
+        rbs_pool_destroy(pool);
+    }
+    rbs_world_destroy(w);
+    return h;
+}
+
+/* Soft, Euler, soft again: the table changes layout twice, and the run
+ * gives the same bits on one thread and on three, and as when the table is
+ * sorted before the switch (Euler's search by key finds what it would in
+ * key order: a bucketed table searched by key as if sorted would not). */
+static void methods_share_the_warm_table(void **state)
+{
+    const uint64_t one = switching_methods(1, 0);
+    (void)state;
+    assert_true(one == switching_methods(3, 0));
+    assert_true(one == switching_methods(1, 1));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -509,6 +556,7 @@ int main(void)
         cmocka_unit_test(warm_table_holds_each_contact_once),
         cmocka_unit_test(warm_table_sorted_and_indexed_again),
         cmocka_unit_test(warm_table_is_the_same_on_any_threads),
+        cmocka_unit_test(methods_share_the_warm_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
