@@ -497,12 +497,15 @@ static void warm_table_is_the_same_on_any_threads(void **state)
     rbs_world_destroy(one);
 }
 
-/* The busy pile on `threads` threads (1: none): 40 soft frames, 5 of
- * Euler's (whose resting pass searches the soft step's table by key: it
- * sorts it first; sort_first: the test sorts it before the switch), 40 soft
- * ones again (which index Euler's key-ordered table); its hash. */
-static uint64_t switching_methods(uint32_t threads, int sort_first)
+/* The busy pile on `threads` threads (1: none): 40 soft frames, then 5
+ * frames whose pass searches the soft step's table by key (it sorts it
+ * first; sort_first: the test sorts it before the switch) -- Euler's
+ * (rolling 0), or the soft step's general layout, which a pair with rolling
+ * resistance takes (rolling > 0: "*"/"*" gets it, and loses it again) --
+ * then 40 soft frames again (which index the key-ordered table); its hash. */
+static uint64_t switching_methods(uint32_t threads, int sort_first, double rolling)
 {
+    rbs_pair_def pair;
     rbs_world *w = busy_pile(0.002);
     rbs_pool *pool = NULL;
     rbs_workers wk;
@@ -517,10 +520,22 @@ static uint64_t switching_methods(uint32_t threads, int sort_first)
     assert_true(w->warm_ranked && w->warm_used > 0);
     if (sort_first)
         rbs__warm_sort(w);
-    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EULER, 0.0));
+    rbs_pair_def_init(&pair);
+    pair.static_friction = pair.kinetic_friction = 0.5;
+    if (rolling > 0.0) {
+        pair.rolling = rolling;
+        CHECK_OK(rbs_world_set_pair(w, &pair));
+    } else {
+        CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EULER, 0.0));
+    }
     step_n(w, 5);
     assert_false(w->warm_ranked || w->warm_indexed);
-    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_SOFT, 0.0));
+    if (rolling > 0.0) {
+        pair.rolling = 0.0;
+        CHECK_OK(rbs_world_set_pair(w, &pair));
+    } else {
+        CHECK_OK(rbs_world_set_method(w, RBS_METHOD_SOFT, 0.0));
+    }
     step_n(w, 40);
     assert_true(w->warm_ranked && w->warm_indexed);
     h = rbs_world_hash(w);
@@ -532,16 +547,20 @@ static uint64_t switching_methods(uint32_t threads, int sort_first)
     return h;
 }
 
-/* Soft, Euler, soft again: the table changes layout twice, and the run
+/* Soft, then Euler or the soft step's general layout, then soft again: the
+ * table changes layout twice, and the run
  * gives the same bits on one thread and on three, and as when the table is
  * sorted before the switch (Euler's search by key finds what it would in
  * key order: a bucketed table searched by key as if sorted would not). */
 static void methods_share_the_warm_table(void **state)
 {
-    const uint64_t one = switching_methods(1, 0);
+    double rolling;
     (void)state;
-    assert_true(one == switching_methods(3, 0));
-    assert_true(one == switching_methods(1, 1));
+    for (rolling = 0.0; rolling < 0.02; rolling += 0.01) {
+        const uint64_t one = switching_methods(1, 0, rolling);
+        assert_true(one == switching_methods(3, 0, rolling));
+        assert_true(one == switching_methods(1, 1, rolling));
+    }
 }
 
 int main(void)
