@@ -133,15 +133,15 @@ static void damaged_checkpoints_are_rejected(void **state)
     buf[n / 2] ^= 0x10;
     assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_CORRUPT);
     buf[n / 2] ^= 0x10;
-    /* another format version: a later one, and versions 2 to 7, whose
+    /* another format version: a later one, and versions 2 to 8, whose
      * blocks were laid out differently (the arrays are the block verbatim:
      * 2's contacts, 3 without the name index, 4 without soft_substeps, 5's
      * contacts of 136 bytes, 6 without soft_tolerance, 7 without the soft
-     * step's slabs, chunks and team) */
+     * step's slabs, chunks and team, 8 without the warm table's index) */
     {
         unsigned char current = buf[8];
-        assert_int_equal(current, 8);
-        buf[8] = 9;
+        assert_int_equal(current, 9);
+        buf[8] = 10;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = 2;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
@@ -154,6 +154,8 @@ static void damaged_checkpoints_are_rejected(void **state)
         buf[8] = 6;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = 7;
+        assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
+        buf[8] = 8;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = current;
     }

@@ -39,8 +39,9 @@
  * from the pair row, a's lever from its radius); 7 has
  * rbs_world_def.soft_tolerance; 8 has the soft step's gathered layout (its
  * slabs, records order, chunks sharing the contacts' room, the team's
- * words). */
-#define CKPT_VERSION 8u
+ * words); 9 has the warm table's index by slot (warm_at), and the table
+ * may be in the soft step's buckets. */
+#define CKPT_VERSION 9u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {
