@@ -192,8 +192,10 @@ struct rbs_world {
                                              buckets (soft_detect.c) */
     uint32_t *warm_at;                    /* 2 per slot: the first entry of the
                                              slot's bucket of planes [0] and of
-                                             pairs [1] (UINT32_MAX: none), valid
-                                             when warm_indexed (soft_detect.c) */
+                                             pairs [1]; for a slot with none,
+                                             UINT32_MAX or an entry of another
+                                             bucket; valid when warm_indexed
+                                             (soft_detect.c) */
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
                                              (solver.c) */
