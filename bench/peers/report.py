@@ -337,7 +337,8 @@ def scaling_table(rows):
              "yet) and of a settled stack (10 layers of touching spheres on the floor, walls "
              "touching: every sphere in resting contact), with rbsim's default method (auto: soft "
              "at these sizes), with RBS_METHOD_SOFT and with RBS_METHOD_SELECTIVE.  Target: flat cost per body-step.  "
-             "Three runs each (run.py's SCALING_REPS), one after another: each line is the median run "
+             "Seven runs each up to N = 30,000 and three beyond (run.py's scaling_reps; the runs column "
+             "says how many), one after another: each line is the median run "
              "by cost, with the range of the runs' costs; a run that "
              "hits its wall-time cap (status capped: fewer steps than planned) stops the larger sizes "
              "of that scene and method.\n")

@@ -106,8 +106,16 @@ SETUP_ALLOW = {("mujoco", 8000): 60, ("mujoco", 27000): 300}
 # Runs of each scaling configuration: a single run of a few tenths of a
 # second on this shared machine can be 1.5-2x off (the run at 05c09bb: the
 # lattice of 3,000 at 149 ns a body-step, 75 ns in three runs after), so the
-# report takes the median of three.
+# report takes the median of three -- of seven up to 30,000 spheres, whose
+# runs take a few tenths of a second (the run at 054f433: three runs of the
+# 1,000 lattice at 76, 112 and 117 ns, the median 1.5x the 3,000's).
 SCALING_REPS = 3
+SCALING_REPS_SMALL = 7
+
+
+def scaling_reps(n):
+    """Runs of a scaling configuration of n spheres."""
+    return SCALING_REPS_SMALL if n <= 30000 else SCALING_REPS
 
 
 def scaling_steps(n):
@@ -404,7 +412,7 @@ def main(argv):
                                  "status": f"skipped (set-up ~{guess:.0f} s predicted)"})
                     stop.add((engine, kind))
                     continue
-            for rep in range(1, (1 if a.quick else SCALING_REPS) + 1):
+            for rep in range(1, (1 if a.quick else scaling_reps(n)) + 1):
                 if rep > 1 and a.budget - (now() - t_start) < 30:
                     log(f"  skip scaling {engine} {kind} {n} rep {rep}: budget")
                     break
