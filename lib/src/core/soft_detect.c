@@ -739,7 +739,7 @@ static rbs_status detect_serially(detect *d)
 rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_groups *g)
 {
     const uint32_t n = w->sphere_count, B = w->def.max_bodies, threads = rbs__team_threads(w);
-    uint32_t S = rbs__slabs_max(B), i, k, s, total, groups, guard;
+    uint32_t S = rbs__slabs_for(B, n), i, k, s, total, groups, guard;
     detect d;
     double *kick_sum;
     int kicked = 0;
@@ -781,8 +781,6 @@ rbs_status rbs__soft_detect(rbs_world *w, const rbs__soft_in *in, rbs__soft_grou
             if (!(p->slack >= slack))
                 slack = p->slack;
         }
-        while (S > 1 && S * RBS__SLAB_SPHERES > n)
-            S /= 2;
         g->slabs = S;
         d.pairs = w->plan.sphere_pairs;
         if (d.pairs && n >= 2 && !rbs__broadphase_keep(w, n, size, rmax, slack)) {

@@ -25,6 +25,15 @@ static inline uint32_t rbs__slabs_max(uint32_t B)
         s *= 2u;
     return s;
 }
+/* The slabs of a frame of n spheres in a world of max_bodies B: the most,
+ * halved while a slab would hold fewer than RBS__SLAB_SPHERES. */
+static inline uint32_t rbs__slabs_for(uint32_t B, uint32_t n)
+{
+    uint32_t s = rbs__slabs_max(B);
+    while (s > 1u && s * RBS__SLAB_SPHERES > n)
+        s /= 2u;
+    return s;
+}
 /* Levels of the slab tree of s slabs (log2 s + 1). */
 static inline uint32_t rbs__slab_levels(uint32_t s)
 {

@@ -719,7 +719,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
      * the rows, most of a frame, are one group on one thread, and the
      * handovers of the rest cost more than they share (the 125-sphere pile
      * took 1.5x its one-thread time on two).  The same bits either way. */
-    if (w->sphere_count >= 2u * RBS__SLAB_SPHERES)
+    if (rbs__slabs_for(w->def.max_bodies, w->sphere_count) > 1u)
         rbs__team_start(w);
     /* inc: accelerations and torques, which detection fills, then their
      * velocity increments a h, alpha h -- untouched when the increment is
