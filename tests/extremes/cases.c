@@ -62,14 +62,14 @@ static rbs_world *xworld(xres *r, rbs_method m, uint32_t n, double dt, double gz
 }
 
 /* The soft method's documented model (docs/methods.md, "soft"): sub-steps
- * of h = dt / n (n = soft_substeps, default 4) and contacts that sink, under
+ * of h = dt / n (n = soft_substeps, default 3) and contacts that sink, under
  * a load L (N) on an effective mass m_eff (kg), by L / (m_eff omega^2)
- * beyond the slop, omega = 2 pi 0.25 / h.  soft_sink(dt, L / m_eff): that
+ * beyond the slop, omega = 2 pi (1/3) / h.  soft_sink(dt, L / m_eff): that
  * depth, m, for the default n. */
-#define SOFT_N 4.0
+#define SOFT_N 3.0
 static double soft_sink(double dt, double load_per_meff)
 {
-    double omega = 2.0 * 3.14159265358979323846 * 0.25 * SOFT_N / dt;
+    double omega = 2.0 * 3.14159265358979323846 * SOFT_N / (3.0 * dt);
     return load_per_meff / (omega * omega);
 }
 
@@ -340,7 +340,7 @@ static void fast_balls(rbs_method m, xres *r)
  * solution is z0 - g dt^2 n(n+1)/2); Verlet, RK4 and the event method are
  * exact for constant acceleration, so only rounding remains: n steps of
  * updates of |z| <= z0 + g T^2/2, 4 n EPS |z|.  The soft method is Euler on
- * its sub-steps of dt / 4: g T dt / 8. */
+ * its sub-steps of dt / 3: g T dt / 6. */
 static void free_fall_dt(rbs_method m, xres *r, double dt)
 {
     const long n = 10000;
@@ -821,7 +821,7 @@ static void overlap_start(rbs_method m, xres *r)
  * violation fails the case); the resting ball stays.  Measured: the
  * resting ball's displacement, m.  Bound: the slop 1e-7 m.  Extra: the
  * drifting ball's |x - v T| in units of the subnormal spacing 4.9e-324
- * (must be <= 1000, one rounding per step; soft: 4000, one a sub-step). */
+ * (must be <= 1000, one rounding per step; soft: 3000, one a sub-step). */
 static void denormal(rbs_method m, xres *r)
 {
     const double v = 1e-310, tiny = 4.9406564584124654e-324;

@@ -159,9 +159,10 @@ static void soft_tolerance_is_explained(void **state)
     floor_plane(w, (rbs_material_id){0, 0});
     ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
     t = explain(w);
-    ASSERT_HAS(t, "  4 sub-steps of dt/4;");
+    ASSERT_HAS(t, "  3 sub-steps of dt/3;");
+    ASSERT_HAS(t, "springs of omega = 2 pi/(3h)\n");
     ASSERT_HAS(t, "  soft_tolerance 0.01: a frame takes fewer (halved, down to 1) while no contact can "
-                  "reach an overlap of 0.01 x n/4 of its radius\n");
+                  "reach an overlap of 0.01 x n/3 of its radius\n");
     add_anisotropic(w, NULL, 1.0, (rbs_material_id){0, 0});
     t = explain(w);
     ASSERT_HAS(t, "  soft_tolerance 0.01: not used, every frame takes all sub-steps (this world steps "

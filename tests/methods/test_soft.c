@@ -2,7 +2,7 @@
  * test_soft.c - the soft method (RBS_METHOD_SOFT) against exact answers.
  *
  * The soft step is Euler on sub-steps of h = dt / n with contacts that are
- * springs of frequency omega = 2 pi 0.25 / h and damping ratio 10 beyond the
+ * springs of frequency omega = 2 pi (1/3) / h and damping ratio 10 beyond the
  * slop, rigid Coulomb friction, and a restitution pass at the end of each
  * frame that uses the approach speed of the frame's start (docs/methods.md).
  * So its exact answers are those of mechanics plus that model's own,
@@ -32,16 +32,16 @@ static rbs_world *soft_world(uint32_t n, double dt, double gz, double e, uint32_
 }
 
 /* omega of the soft contacts for dt and n sub-steps, 1/s. */
-static double soft_omega(double dt, uint32_t n) { return 2.0 * PI_ * 0.25 * n / dt; }
+static double soft_omega(double dt, uint32_t n) { return 2.0 * PI_ * n / (3.0 * dt); }
 
-/* The defaults: 4 sub-steps, and validation of the setting's range. */
+/* The defaults: 3 sub-steps, and validation of the setting's range. */
 static void substeps_default_and_range(void **state)
 {
     rbs_world_def d;
     char msg[256];
     (void)state;
     rbs_world_def_init(&d);
-    assert_int_equal(d.soft_substeps, 4);
+    assert_int_equal(d.soft_substeps, 3);
     assert_string_equal(rbs_method_name(RBS_METHOD_SOFT), "soft");
     d.soft_substeps = 0;
     assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);

@@ -73,7 +73,7 @@ def test_settings_round_trip():
     assert s["tolerance"] == 1e-7 and s["slop"] == 1e-5
     assert s["max_halvings"] == 12 and s["max_sweeps"] == 20
     assert s["soft_substeps"] == 9
-    assert rbsim.World().settings["soft_substeps"] == 4  # the library's default
+    assert rbsim.World().settings["soft_substeps"] == 3  # the library's default
     assert s["soft_tolerance"] == 0.015625
     assert rbsim.World().settings["soft_tolerance"] == 0.0  # the library's default
     assert s["mutual_gravity"] is True and s["gravity_constant"] == 1.5

@@ -225,7 +225,7 @@ typedef struct rbs_world_def {
                                    RBS_E_NUMERIC); default 4096, >= 1 */
     uint32_t soft_substeps;   /**< sub-steps per frame of RBS_METHOD_SOFT, each
                                    one solve and one relax pass over the
-                                   contacts; default 4, 1 to 1000.  More
+                                   contacts; default 3, 1 to 1000.  More
                                    make piles stiffer (less overlap) at a
                                    cost in proportion (docs/methods.md) */
     double soft_tolerance;    /**< RBS_METHOD_SOFT: 0 (default) takes

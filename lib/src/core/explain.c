@@ -119,7 +119,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         put(&t, "  %u sub-steps of dt/%u; contacts found once a frame within each body's sweep (and "
                 "guards, acting from half a radius deep, where a kick within the frame can "
                 "reach further); no rollback: overlap beyond the slop is pushed out by springs of "
-                "omega = pi/(2h)\n",
+                "omega = 2 pi/(3h)\n",
             (unsigned)w->def.soft_substeps, (unsigned)w->def.soft_substeps);
         if (w->def.soft_tolerance > 0.0 && p.gather)
             put(&t, "  soft_tolerance %g: a frame takes fewer (halved, down to 1) while no contact can "

@@ -76,7 +76,7 @@ void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size)
     d.softening = 0.0;
     d.prune = 1;
     d.max_substeps = 4096;
-    d.soft_substeps = 4;
+    d.soft_substeps = 3;
     d.soft_tolerance = 0.0;
     def_give(def, def_size, &d, sizeof d);
 }
