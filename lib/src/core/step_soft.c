@@ -25,6 +25,9 @@
  *                                    with friction in the cone of the
  *                                    normal impulse so grown)
  *   store the impulses for the next frame's warm start.
+ * In the gathered layout a body that no contact of the frame touches flies
+ * the frame exactly instead (stage_free); the general layout steps it on
+ * the sub-steps with the others.
  *
  * The separation of a contact during the frame is its gap at detection plus
  * the bodies' displacement along the normal since then (exact for a plane,
@@ -403,7 +406,7 @@ typedef struct soft_frame {
     const uint8_t *touched;
     const double *ib_frame, *ib_free; /* the shared increments (shared), else NULL */
     int shared;
-    double h, h_full;
+    double h, h_full, half_dt;        /* half_dt: dt / 2 (stage_free) */
     uint32_t full;
     uint32_t sub;                     /* the sub-step under way */
     rbs__soft_rows rows;
@@ -505,7 +508,12 @@ static void stage_positions(void *ctx, uint32_t share, uint32_t begin, uint32_t 
     }
 }
 
-/* The spheres no contact touched: all their sub-steps at once, of h_full. */
+/* The spheres no contact touched fly the frame exactly: their velocities
+ * take all soft_substeps increments of h_full (a h_full, alpha h_full: the
+ * frame's constant accelerations), and their displacement and rotation are
+ * the frame's mean velocities times dt -- (v0 + v1) dt / 2 = v0 dt +
+ * a dt^2 / 2, exact for a constant acceleration, where Euler on the
+ * sub-steps lagged by a dt h / 2 a frame (g T h / 2 over a fall of T). */
 static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
 {
     soft_frame *f = (soft_frame *)ctx;
@@ -514,7 +522,7 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
     for (SLAB_RECORDS(f, begin, end, r)) {
         double *q = &f->rec[RBS__REC * r];
         const double *ib;
-        v3 v, om, d, th, dv, dw;
+        v3 v, om, v0, om0, d, th, dv, dw;
         if (f->touched[r] || q[RBS__REC_IM] == 0.0)
             continue;
         ib = f->shared ? f->ib_free : &f->inc[6 * slot_of(f, r)];
@@ -524,12 +532,14 @@ static void stage_free(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
         th = v3_load(q + RBS__REC_ROT);
         dv = v3_load(ib);
         dw = v3_load(ib + 3);
+        v0 = v;
+        om0 = om;
         for (s = 0; s < f->full; ++s) {
             v = v3_add(v, dv);
             om = v3_add(om, dw);
-            d = v3_mad(d, v, f->h_full);
-            th = v3_mad(th, om, f->h_full);
         }
+        d = v3_mad(d, v3_add(v0, v), f->half_dt);
+        th = v3_mad(th, v3_add(om0, om), f->half_dt);
         v3_store(q + RBS__REC_V, v);
         v3_store(q + RBS__REC_W, om);
         v3_store(q + RBS__REC_D, d);
@@ -767,6 +777,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     f.ib_free = shared ? free_inc : NULL;
     f.h = h;
     f.h_full = h_full;
+    f.half_dt = 0.5 * dt;
     f.full = full;
     f.rows.rec = rec;
     f.rows.chunk = w->chunk;
@@ -777,12 +788,12 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     rows_for_h(&f.rows, h);
     memset(f.report, 0, sizeof f.report);
 
-    /* A body that no contact of the frame touches moves alone: all its
-     * sub-steps are taken after the loop, body by body (the same operations
-     * in the same order, so the same bits), instead of in one sweep over
-     * every record per sub-step -- at a million bodies those sweeps were
-     * most of a falling lattice's cost -- and always all soft_substeps of
-     * them, of h_full (def.soft_tolerance concerns contacts). */
+    /* A body that no contact of the frame touches moves alone, after the
+     * loop, body by body (stage_free: its exact flight over the frame),
+     * instead of in one sweep over every record per sub-step -- at a
+     * million bodies those sweeps were most of a falling lattice's cost --
+     * its velocity by all soft_substeps increments of h_full
+     * (def.soft_tolerance concerns contacts). */
     for (s = 0; s < n; ++s) {
         f.sub = s;
         if (s == 0) {
