@@ -124,7 +124,7 @@ def peers_tables(rows, meta):
              "one for the same on two threads (rbsim_mt: `--threads 2`, a pool of one thread lent to the world; "
              "the same bits), one for RBS_METHOD_SELECTIVE and one for RBS_METHOD_EULER with "
              "slop 0.005 (rbsim_tol: impacts shallower than 0.5 % of the radius are not rolled back), "
-             "and one for RBS_METHOD_SOFT (rbsim_soft: the soft step, 4 sub-steps a frame).  *simulated* = the simulated time "
+             "and one for RBS_METHOD_SOFT (rbsim_soft: the soft step, 3 sub-steps a frame).  *simulated* = the simulated time "
              "a run covered (less than planned when the run hit its wall-time cap; then costs "
              "come from different phases of the motion and the ratio is marked †).\n")
     refs = [x for x in RBSIM if x in engines]

@@ -40,7 +40,7 @@ import scenes  # noqa: E402
 # the library's 1e-6, so an impact shallower than that is kept where the step
 # finds it instead of being rolled back to the moment of touch.
 # "rbsim_soft" is rbsim with RBS_METHOD_SOFT (the soft step: fixed sub-steps
-# with soft contacts, default soft_substeps = 4), the pile method.
+# with soft contacts, default soft_substeps = 3), the pile method.
 # "rbsim_mt" is rbsim's default method stepping on two threads (--threads 2:
 # a pool of one thread lent with rbs_world_set_workers), the same bits as
 # "rbsim"; this machine has two cores.

@@ -32,7 +32,7 @@ RADIUS = 0.05
 def run_one(build, scene_path, state_path, tol):
     exe = os.path.join(build, "bench", "peers", "peers_rbsim")
     r = subprocess.run([exe, "--scene", scene_path, "--state-out", state_path, "--method", "soft",
-                        "--soft-tolerance", repr(tol)], capture_output=True, text=True, timeout=3600)
+                        "--soft-tolerance", repr(tol), "--substeps", "4"], capture_output=True, text=True, timeout=3600)
     res = None
     for line in r.stdout.splitlines():
         if line.startswith("RESULT "):

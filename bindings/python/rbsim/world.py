@@ -410,7 +410,7 @@ class World:
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
                 and separation iterations.
         soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
-                (default 4); more make piles stiffer, at a cost in proportion.
+                (default 3); more make piles stiffer, at a cost in proportion.
         soft_tolerance: the "soft" method's overlap budget, a fraction of the
                 smaller radius of a pair, 0 to 1 (default 0: every frame
                 takes soft_substeps); > 0 lets a frame take fewer sub-steps
