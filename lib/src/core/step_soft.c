@@ -82,8 +82,8 @@
  * depend on h omega = 2 pi SOFT_HERTZ alone, and with SOFT_ZETA = 10 the
  * row is near rigid either way (mass scale 0.979 against 0.971); a frame of
  * 3 sub-steps pushes out 26 % of a deep overlap, as 4 did.  On the peers'
- * piles (7 of 1,000 spheres, 3 of 8,000) the deepest overlaps during the
- * run and at its end were those of 4 sub-steps, in 0.88x the time
+ * piles (7 of 1,000 spheres, 3 of 8,000) the overlaps during the run and
+ * at its end were about those of 4 sub-steps, in 0.88x the time
  * (docs/methods.md, "Session 37"). */
 #define SOFT_HERTZ (1.0 / 3.0)
 #define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
