@@ -8,7 +8,8 @@
  * in any memory, and a soft pile leaves the world's own grid arrays
  * untouched; the warm-start table holds each contact that took an impulse
  * once, in buckets its index finds, the same on any threads, and is found
- * again in key order -- by another method's pass too (soft, Euler, soft).
+ * again in key order -- by another method's pass too (soft, Euler, soft);
+ * the warm start keeps a tangent impulse in the static cone.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -20,6 +21,34 @@
 #include "core/team.h"
 #include "rbsim/reel.h"
 #include "core/world_internal.h"
+
+/* The warm start's tangent impulse in the static cone (rbs__warm_tangent):
+ * inside the cone or on its edge it is kept bit for bit (a sliding
+ * contact's stored friction lies on the edge when mu_s = mu_k); outside it
+ * is scaled onto the edge, in its own direction -- exactly where the
+ * numbers are exact (3-4-5), else to a rounding of the length; a cone of
+ * mu_s = 0 leaves nothing, and a zero impulse stays zero. */
+static void warm_tangent_kept_in_the_static_cone(void **state)
+{
+    v3 t;
+    (void)state;
+    t = rbs__warm_tangent(v3_make(0.3, 0.4, 0.0), 1.0);
+    assert_true(t.x == 0.3 && t.y == 0.4 && t.z == 0.0);
+    t = rbs__warm_tangent(v3_make(3.0, 4.0, 0.0), 5.0); /* on the edge */
+    assert_true(t.x == 3.0 && t.y == 4.0 && t.z == 0.0);
+    t = rbs__warm_tangent(v3_make(3.0, 4.0, 0.0), 2.5); /* outside: to 2.5 */
+    assert_true(t.x == 1.5 && t.y == 2.0 && t.z == 0.0);
+    t = rbs__warm_tangent(v3_make(0.0, -4.0, 3.0), 1.25);
+    assert_true(t.x == 0.0 && t.y == -1.0 && t.z == 0.75);
+    t = rbs__warm_tangent(v3_make(1.0, 2.0, 2.0), 1.0); /* length 3 to 1 */
+    assert_true(fabs(t.x - 1.0 / 3.0) <= 1e-16 && fabs(t.y - 2.0 / 3.0) <= 1e-16 &&
+                fabs(t.z - 2.0 / 3.0) <= 1e-16);
+    assert_true(fabs(sqrt(v3_dot(t, t)) - 1.0) <= 4e-16);
+    t = rbs__warm_tangent(v3_make(3.0, 4.0, 0.0), 0.0); /* mu_s = 0 */
+    assert_true(t.x == 0.0 && t.y == 0.0 && t.z == 0.0);
+    t = rbs__warm_tangent(v3_make(0.0, 0.0, 0.0), 0.0);
+    assert_true(t.x == 0.0 && t.y == 0.0 && t.z == 0.0);
+}
 
 /* The busy pile stepped with the given kernels: its hash every 10 frames. */
 static void run_kernels(const rbs__soft_kernels *k, uint64_t hashes[24])
@@ -566,6 +595,7 @@ static void methods_share_the_warm_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(warm_tangent_kept_in_the_static_cone),
         cmocka_unit_test(kernels_give_the_same_bits),
         cmocka_unit_test(hub_bounces_through_serial_chunks),
         cmocka_unit_test(overflowing_contacts_detect_serially),

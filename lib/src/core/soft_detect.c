@@ -180,14 +180,12 @@ static double threshold(const detect *d, uint32_t a, uint32_t b, v3 n)
 
 /* A lane's warm start from the last frame's forces fn (normal) and ft
  * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
- * dropped outside the static cone. */
+ * kept in the static cone (rbs__warm_tangent). */
 static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double mus, double fn, v3 ft, double h)
 {
     k->jn[l] = fn * h;
     if (friction) {
-        v3 jt = v3_scale(ft, h);
-        if (v3_len(jt) > mus * k->jn[l])
-            jt = v3_make(0, 0, 0);
+        const v3 jt = rbs__warm_tangent(v3_scale(ft, h), mus * k->jn[l]);
         k->jx[l] = jt.x;
         k->jy[l] = jt.y;
         k->jz[l] = jt.z;

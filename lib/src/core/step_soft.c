@@ -346,15 +346,12 @@ static inline void increments_for_h(const rbs_world *w, double *inc, uint32_t i,
 
 /* A contact's warm start for sub-steps of h from the last frame's forces:
  * fn along n, ft its tangent force (in today's tangent plane; only with
- * friction), dropped if outside the static cone. */
+ * friction), kept in the static cone (rbs__warm_tangent). */
 static inline void warm_for_h(rbs__contact *c, const rbs__pair *p, int friction, double fn, v3 ft, double h)
 {
     c->jn = fn * h;
-    if (friction) {
-        c->jt = v3_scale(ft, h);
-        if (v3_len(c->jt) > p->mu_s * c->jn)
-            c->jt = v3_make(0, 0, 0);
-    }
+    if (friction)
+        c->jt = rbs__warm_tangent(v3_scale(ft, h), p->mu_s * c->jn);
 }
 
 /* The row kernels of this processor: AVX where the build has them and the
