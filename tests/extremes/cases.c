@@ -341,8 +341,7 @@ static void fast_balls(rbs_method m, xres *r)
  * exact for constant acceleration, so only rounding remains: n steps of
  * updates of |z| <= z0 + g T^2/2, 4 n EPS |z|.  The soft method flies a
  * body that no contact touches exactly too (the gathered layout of every
- * sphere scene), with its velocity summed over the sub-steps: 4 n EPS |z|
- * a sub-step. */
+ * sphere scene): 4 n EPS |z| a sub-step bounds its rounding too. */
 static void free_fall_dt(rbs_method m, xres *r, double dt)
 {
     const long n = 10000;
