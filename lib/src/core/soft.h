@@ -111,16 +111,4 @@ extern const rbs__soft_kernels rbs__soft_kernels_avx512; /* the AVX source for A
  * the plain ones (all the same bits). */
 const rbs__soft_kernels *rbs__soft_kernels_best(void);
 
-/* A warm start's tangent impulse jt kept in the static cone of its normal
- * impulse, lim = mu_s jn >= 0: as it is inside the cone or on its edge,
- * else scaled back onto the edge (same direction, length lim).  (Before
- * session 37 it was dropped outside the cone; with mu_s = mu_k a sliding
- * contact's stored friction lies on the edge, and rounding kept or dropped
- * it.)  Both layouts' warm starts (soft_detect.c, step_soft.c). */
-static inline v3 rbs__warm_tangent(v3 jt, double lim)
-{
-    const double l2 = v3_dot(jt, jt);
-    return l2 > lim * lim ? v3_scale(jt, lim / sqrt(l2)) : jt;
-}
-
 #endif

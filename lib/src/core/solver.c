@@ -544,9 +544,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                 if (friction) {
                     double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
                     v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
-                    c->jt = l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0);
-                    if (v3_len(c->jt) > p->mu_s * c->jn)
-                        c->jt = v3_make(0, 0, 0);
+                    c->jt = rbs__warm_tangent(l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0), p->mu_s * c->jn);
                 }
                 rbs__apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
                 any = 1;

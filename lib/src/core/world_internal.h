@@ -560,6 +560,19 @@ void rbs__warm_sort(rbs_world *w);
  * are sorted now). */
 void rbs__warm_finish(rbs_world *w, uint32_t n, int sorted);
 const rbs__warm *rbs__warm_find(const rbs_world *w, uint64_t k, uint32_t *at);
+/* A warm start's tangent impulse jt kept in the static cone of its normal
+ * impulse, lim = mu_s jn >= 0: as it is inside the cone or on its edge,
+ * else scaled back onto the edge (same direction, length lim).  (Before
+ * sessions 37 (soft) and 38 (euler, selective) it was dropped outside the
+ * cone; with mu_s = mu_k a sliding contact's stored friction lies on the
+ * edge, and rounding kept or dropped it.)  Every warm start: the resting
+ * pass (solver.c) and both of the soft step's layouts (soft_detect.c,
+ * step_soft.c). */
+static inline v3 rbs__warm_tangent(v3 jt, double lim)
+{
+    const double l2 = v3_dot(jt, jt);
+    return l2 > lim * lim ? v3_scale(jt, lim / sqrt(l2)) : jt;
+}
 
 /* In-place heap sort of n elements of size bytes into ascending order of
  * greater (greater(x, y): x goes after y), with no allocation (sort.c). */
