@@ -367,6 +367,79 @@ static void checkpoint_of_extreme_state(void **state)
     rbs_world_destroy(b);
 }
 
+/* Far from the origin, where coordinates round by more than a contact's
+ * slop (half their spacing: 1e10 m rounds in steps of 1.9e-6 m, against
+ * 1e-6 of a 0.1 m radius = 1e-7 m), a contact's gap is rounding: the
+ * methods that decide by the slop (rollback: euler, verlet, rk4, adaptive;
+ * events: event) refuse the step with RBS_E_NUMERIC, naming both bodies and
+ * the distance, and leave the world as it was -- where before they rolled
+ * back without end, froze a ball above the floor or let it fall through
+ * (the probe of session 38) -- while soft and selective, whose contacts do
+ * not hang on the slop, hold the ball within their own tolerance.  At 1e8 m
+ * (steps of 1.5e-8 m) every method holds it.  A ball resting on the floor
+ * and one dropped onto it from 5 cm, 300 steps of 1 ms. */
+static void far_contacts_refused_where_coordinates_are_coarse(void **state)
+{
+    static const double offs[] = {1e8, 1e10, 1e12};
+    size_t o;
+    int m;
+    (void)state;
+    for (o = 0; o < sizeof offs / sizeof offs[0]; ++o) {
+        const double off = offs[o];
+        for (m = 0; m < RBS_METHOD_COUNT; ++m) {
+            const int holds = off < 1e9 || m == RBS_METHOD_SOFT || m == RBS_METHOD_SELECTIVE ||
+                              m == RBS_METHOD_AUTO; /* (auto takes euler here: checked below) */
+            rbs_world *w = new_world((rbs_method)m, -9.81, 0);
+            rbs_plane_def p;
+            rbs_body_id rest;
+            rbs_body_state bs;
+            char what[64];
+            int k, failed = 0;
+            if (!w)
+                continue;
+            snprintf(what, sizeof what, "%s at %g m", rbs_method_name((rbs_method)m), off);
+            rbs_plane_def_init(&p);
+            p.point = V(off, -off, off);
+            p.normal = V(0, 0, 1);
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            rest = add_ball(w, 0.1, 1.0, V(off, -off, off + 0.1), V(0, 0, 0), V(0, 0, 0));
+            (void)add_ball(w, 0.1, 1.0, V(off + 1.0, -off, off + 0.15), V(0, 0, 0), V(0, 0, 0));
+            for (k = 0; k < 300 && !failed; ++k) {
+                uint64_t h = rbs_world_hash(w), c = rbs_world_step_count(w);
+                rbs_status st = rbs_world_step(w, NULL);
+                if (st == RBS_OK)
+                    continue;
+                failed = 1;
+                if (st != RBS_E_NUMERIC)
+                    fail_msg("%s: step %d returned %s (%s)", what, k + 1, rbs_status_name(st), rbs_world_last_error(w));
+                if (strstr(rbs_world_last_error(w), "from the origin") == NULL ||
+                    strstr(rbs_world_last_error(w), "touches") == NULL)
+                    fail_msg("%s: the error does not name the contact and the distance: \"%s\"", what,
+                             rbs_world_last_error(w));
+                if (rbs_world_hash(w) != h || rbs_world_step_count(w) != c)
+                    fail_msg("%s: the failed step changed the world", what);
+            }
+            if (m == RBS_METHOD_AUTO) {
+                /* two spheres: auto is euler, which refuses beyond 1e9 m */
+                if (failed != (off > 1e9))
+                    fail_msg("%s: %s", what, failed ? rbs_world_last_error(w) : "no error where euler refuses");
+            } else if (holds && failed) {
+                fail_msg("%s: %s", what, rbs_world_last_error(w));
+            } else if (!holds && !failed) {
+                fail_msg("%s: 300 steps without an error", what);
+            }
+            if (!failed) {
+                /* the resting ball held: its drop at most the soft step's sink
+                 * g / omega^2 = 0.25 um (1 um) plus 4 roundings */
+                CHECK_OK(rbs_body_get_state(w, rest, &bs));
+                if (!(fabs(bs.position.z - (off + 0.1)) <= 1e-6 + 4.0 * off * 2.3e-16))
+                    fail_msg("%s: the resting ball moved to %.17g (from %.17g)", what, bs.position.z, off + 0.1);
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -375,6 +448,7 @@ int main(void)
         cmocka_unit_test(checkpoint_of_extreme_state),
         cmocka_unit_test(separation_overflow),
         cmocka_unit_test(diagnostics_never_nan),
+        cmocka_unit_test(far_contacts_refused_where_coordinates_are_coarse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -563,7 +563,20 @@ typedef struct overlap_ctx {
     const double *save;
     int grew;
     double worst, first;
+    rbs__coarse coarse;     /* the first grown contact too coarse for its slop */
 } overlap_ctx;
+
+/* A grown contact of bodies a and b whose coordinates (magnitudes up to at)
+ * round by more than its slop: the first one kept. */
+static void note_coarse(overlap_ctx *ctx, uint32_t a, uint32_t b, double at, double slop)
+{
+    if (ctx->coarse.a == UINT32_MAX && rbs__coarse_at(at, slop)) {
+        ctx->coarse.a = a;
+        ctx->coarse.b = b;
+        ctx->coarse.at = at;
+        ctx->coarse.slop = slop;
+    }
+}
 
 static void overlap_pair(void *vctx, uint32_t i, uint32_t j)
 {
@@ -580,13 +593,18 @@ static void overlap_pair(void *vctx, uint32_t i, uint32_t j)
     if (end > ctx->worst)
         ctx->worst = end;
     if (path > slop && path > start + slop) {
+        double at = rbs__max_abs(v3_load(&w->pos[3 * a]));
+        at = fmax(at, rbs__max_abs(v3_load(&w->pos[3 * b])));
+        at = fmax(at, rbs__max_abs(v3_load(&ctx->save[S * a])));
+        at = fmax(at, rbs__max_abs(v3_load(&ctx->save[S * b])));
         ctx->grew = 1;
         if (first < ctx->first)
             ctx->first = first;
+        note_coarse(ctx, a, b, at, slop);
     }
 }
 
-int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double *first)
+int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double *first, rbs__coarse *coarse)
 {
     uint32_t i, k;
     const uint32_t S = RBS__SAVE_STRIDE;
@@ -596,6 +614,8 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
     ctx.grew = 0;
     ctx.worst = 0.0;
     ctx.first = 1.0;
+    ctx.coarse.a = ctx.coarse.b = UINT32_MAX;
+    ctx.coarse.at = ctx.coarse.slop = 0.0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         v3 a1 = v3_load(&w->pos[3 * a]), a0 = v3_load(&save[S * a]);
@@ -617,6 +637,7 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
                     ctx.first = -pen0 / (pen1 - pen0);
                 else if (pen0 >= 0.0)
                     ctx.first = 0.0;
+                note_coarse(&ctx, a, b, fmax(fmax(rbs__max_abs(a1), rbs__max_abs(a0)), rbs__max_abs(p)), slop);
             }
         }
     }
@@ -633,6 +654,8 @@ int rbs__overlap_grew(rbs_world *w, const double *save, double *max_pen, double 
     *max_pen = ctx.worst;
     if (first)
         *first = ctx.first;
+    if (coarse)
+        *coarse = ctx.coarse;
     return ctx.grew;
 }
 
@@ -859,11 +882,48 @@ int rbs__separate(rbs_world *w, double *max_pen)
     return ctx.pushed;
 }
 
+int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out)
+{
+    uint32_t i, k;
+    /* the planes, each sphere within its slop and rounding of one */
+    for (i = 0; i < w->sphere_count; ++i) {
+        const uint32_t a = w->spheres[i];
+        const v3 x = v3_load(&w->pos[3 * a]);
+        const double slop = w->def.slop * w->radius[a];
+        for (k = 0; k < w->plane_count && !w->fixed[a]; ++k) {
+            const uint32_t p = w->planes[k];
+            const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * p])));
+            const double gap = v3_dot(v3_sub(x, v3_load(&w->pos[3 * p])), v3_load(&w->normal[3 * p])) - w->radius[a];
+            if (fabs(gap) <= slop + 4.0 * rbs__spacing(at) && rbs__coarse_at(at, slop)) {
+                out->a = a;
+                out->b = p;
+                out->at = at;
+                out->slop = slop;
+                return 1;
+            }
+        }
+    }
+    /* the pairs of the current contacts */
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        const double at = fmax(rbs__max_abs(v3_load(&w->pos[3 * c->a])), rbs__max_abs(v3_load(&w->pos[3 * c->b])));
+        const double slop = rbs__contact_slop(w, c);
+        if (rbs__coarse_at(at, slop)) {
+            out->a = c->a;
+            out->b = c->b;
+            out->at = at;
+            out->slop = slop;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 double rbs__max_overlap_now(rbs_world *w)
 {
     double pen = 0.0;
     rbs__save_state(w, w->sub_save); /* start = end: no motion, only depth */
-    rbs__overlap_grew(w, w->sub_save, &pen, NULL);
+    rbs__overlap_grew(w, w->sub_save, &pen, NULL, NULL);
     return pen;
 }
 

@@ -683,9 +683,14 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
             unpack(a, a->yt);
             t = te;
             info->events++;
-            if (++events > MAX_EVENTS)
+            if (++events > MAX_EVENTS) {
+                /* (far from the origin the events may be rounding alone) */
+                rbs__coarse co;
+                if (rbs__coarse_contact(w, &co))
+                    return rbs__coarse_error(w, co.a, co.b, co.at, co.slop);
                 return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
                     "adaptive: more than %u contact events in one frame", MAX_EVENTS);
+            }
             if (t >= T) {
                 /* the contact is at the frame end: resolve it now */
                 st = detect_segment(w, T);

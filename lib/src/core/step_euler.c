@@ -132,6 +132,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
     const uint64_t total = (uint64_t)1 << K;
     uint64_t done = 0, hu = total; /* progress and sub-step, in units of dt/2^K */
     double pen = 0.0, first = 1.0;
+    rbs__coarse coarse;
     rbs_status st;
 
     while (done < total) {
@@ -151,7 +152,11 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             return st;
         rbs__solve_collisions(w, info);
         advance(w, h, info);
-        if (rbs__overlap_grew(w, save, &pen, &first)) {
+        if (rbs__overlap_grew(w, save, &pen, &first, &coarse)) {
+            /* (an overlap that rounding of the coordinates alone can make
+             * grow -- far from the origin -- would be rolled back forever) */
+            if (coarse.a != UINT32_MAX)
+                return rbs__coarse_error(w, coarse.a, coarse.b, coarse.at, coarse.slop);
             if (hu > 1 && !info->work_limit) {
                 /* Retry with at most half the sub-step (the seed's rule);
                  * when the straight-line time of first touch is earlier,

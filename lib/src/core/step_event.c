@@ -196,6 +196,13 @@ static rbs_status classify(rbs_world *w, double dt)
             v3 n = v3_load(&w->normal[3 * p]);
             double gap = v3_dot(v3_sub(x, v3_load(&w->pos[3 * p])), n) - r;
             double an = v3_dot(a, n), vn = v3_dot(v, n);
+            if (gap <= w->def.slop * r + 4.0 * rbs__spacing(rbs__max_abs(x))) {
+                /* touching, within the rounding of its coordinates: which
+                 * must resolve the slop (far from the origin they do not) */
+                const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * p])));
+                if (rbs__coarse_at(at, w->def.slop * r))
+                    return rbs__coarse_error(w, i, p, at, w->def.slop * r);
+            }
             if (gap > w->def.slop * r || !(an < 0.0) || vn > -an * dt)
                 continue;
             if (plane != UINT32_MAX)
@@ -264,6 +271,11 @@ static rbs_status classify(rbs_world *w, double dt)
                 continue;
             d = v3_sub(x, v3_load(&w->pos[3 * b]));
             dist = v3_len(d);
+            if (dist - r - rb <= w->def.slop * (r < rb ? r : rb) + 4.0 * rbs__spacing(rbs__max_abs(x))) {
+                const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * b])));
+                if (rbs__coarse_at(at, w->def.slop * (r < rb ? r : rb)))
+                    return rbs__coarse_error(w, i, b, at, w->def.slop * (r < rb ? r : rb));
+            }
             if (dist - r - rb > w->def.slop * (r < rb ? r : rb) || dist == 0.0)
                 continue;
             d = v3_scale(d, 1.0 / dist);

@@ -445,7 +445,47 @@ rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, con
 /* Contacts of the current list that touch (gap <= slop). */
 uint32_t rbs__touching(const rbs_world *w);
 double rbs__max_overlap(const rbs_world *w);
-int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first);
+/* A contact whose coordinates are too coarse for its slop (rbs__overlap_grew):
+ * bodies a and b (a = UINT32_MAX: none), the largest coordinate magnitude
+ * among them, m, and the pair's slop, m. */
+typedef struct rbs__coarse {
+    uint32_t a, b;
+    double at, slop;
+} rbs__coarse;
+/* Whether an overlap deeper than the slop appeared since start (the
+ * rollback methods' test); *max_pen the deepest overlap now, *first (may be
+ * NULL) the earliest fraction of the sub-step a grown pair touched; coarse
+ * (may be NULL): the first grown contact whose coordinates round by more
+ * than its slop (rbs__coarse_at), where the growth may be rounding alone. */
+int rbs__overlap_grew(rbs_world *w, const double *start, double *max_pen, double *first, rbs__coarse *coarse);
+/* The spacing of doubles at magnitude x >= 0 (one unit in the last place;
+ * 0 for 0 or a value not finite), m. */
+static inline double rbs__spacing(double x)
+{
+    return x > 0.0 && isfinite(x) ? ldexp(1.0, ilogb(x) - 52) : 0.0;
+}
+/* The largest magnitude of a's coordinates. */
+static inline double rbs__max_abs(v3 a)
+{
+    double m = fabs(a.x);
+    m = fabs(a.y) > m ? fabs(a.y) : m;
+    return fabs(a.z) > m ? fabs(a.z) : m;
+}
+/* Whether coordinates of magnitude up to at round by more than slop (half
+ * their spacing): there a contact's gap is rounding, not geometry, and a
+ * method that decides by the slop (rollback, events) cannot resolve it. */
+static inline int rbs__coarse_at(double at, double slop)
+{
+    return 0.5 * rbs__spacing(at) > slop;
+}
+/* RBS_E_NUMERIC for the contact of bodies a and b (b may be a plane) at
+ * coordinates of magnitude at, too coarse for its slop, in the method
+ * (step.c). */
+rbs_status rbs__coarse_error(rbs_world *w, uint32_t a, uint32_t b, double at, double slop);
+/* The first sphere touching a plane (within its slop and the rounding), or
+ * pair among the world's current contacts, whose coordinates are too
+ * coarse for its slop, into *out (1), or 0 (contact.c; an error's path). */
+int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out);
 /* Push apart overlap deeper than the slop (planes, then pairs); 1 if it
  * pushed anything.  *max_pen (may be NULL): the deepest overlap of the
  * state the pass leaves (what rbs__max_overlap_now would say). */
