@@ -8,7 +8,10 @@
 #include "sdl_renderer.h"
 #endif
 
+#include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -33,8 +36,8 @@ static const char usage_text[] =
     "  --version              print the version\n"
     "\n"
     "exit codes: 0 success, 2 usage error, 3 scene error, 4 run-time error\n"
-    "(capacity, numerical failure, renderer failure), 130/143 interrupted by\n"
-    "SIGINT/SIGTERM.\n";
+    "(capacity, numerical failure, renderer failure, lost standard output),\n"
+    "130/143 interrupted by SIGINT/SIGTERM.\n";
 
 static const char run_text[] =
     "usage: rbsim run [SCENE] [OPTIONS]\n"
@@ -421,20 +424,62 @@ static int convert_main(int argc, char **argv)
 }
 
 /* A closed standard descriptor would be reused by the next open(): an
- * output file would become "standard input".  Put /dev/null there. */
+ * output file would become "standard input".  Put /dev/null at a closed
+ * standard input or error, and at a closed standard output the write end of
+ * a pipe with no reader, so that what the command prints there fails
+ * (EPIPE, with SIGPIPE ignored) and is reported as lost, as on a full disk,
+ * rather than vanishing into /dev/null. */
 static void guard_standard_fds(void)
 {
     int fd;
-    for (fd = 0; fd <= 2; fd++)
-        if (fcntl(fd, F_GETFD) == -1 &&
-            open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY) != fd)
+    for (fd = 0; fd <= 2; fd++) {
+        int p[2];
+        if (fcntl(fd, F_GETFD) != -1)
+            continue;
+        if (fd == 1 && pipe(p) == 0) {
+            /* (fd 0 is open by now: the pipe takes 1 and another) */
+            if (dup2(p[1], 1) != 1)
+                break;
+            if (p[0] != 1)
+                close(p[0]);
+            if (p[1] != 1)
+                close(p[1]);
+            continue;
+        }
+        if (open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY) != fd)
             break;
+    }
 }
+
+/* The command's exit code rc, unless what it printed on the standard output
+ * was lost (a full disk, a closed pipe or descriptor): then a message and
+ * RBSF_EXIT_RUN (a command that failed already keeps its code and message). */
+static int finish_stdout(int rc)
+{
+    int lost;
+    errno = 0;
+    lost = fflush(stdout) != 0 || ferror(stdout);
+    if (fclose(stdout) != 0)
+        lost = 1;
+    if (!lost || rc != RBSF_EXIT_OK)
+        return rc;
+    fprintf(stderr, "rbsim: what it printed on the standard output was lost%s%s\n", errno ? ": " : "",
+            errno ? strerror(errno) : "");
+    return RBSF_EXIT_RUN;
+}
+
+static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
-    const char *cmd;
     guard_standard_fds();
+    signal(SIGPIPE, SIG_IGN); /* a closed pipe is a write error, reported */
+    return finish_stdout(dispatch(argc, argv));
+}
+
+static int dispatch(int argc, char **argv)
+{
+    const char *cmd;
     if (argc < 2) {
         fputs(usage_text, stderr);
         return RBSF_EXIT_USAGE;

@@ -740,6 +740,41 @@ class FaultTests(Base):
         self.assertIn("No space left on device", r.stderr)
         self.assert_whole_frames(self.path("ok.csv"))
 
+    def test_lost_standard_output(self):
+        # What a command prints on its standard output (a check's verdict,
+        # the help, the version, a run's summary) that cannot be written --
+        # a full disk, a closed descriptor -- is an error (exit 4, with a
+        # message), not a success (the probe of session 38 found exit 0).
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        s = self.scene()
+        for args in (["check", s], ["--version"], ["help"], ["help", "run"],
+                     ["run", s, "--csv", "ok.csv"]):
+            with open("/dev/full", "w") as full:
+                r = subprocess.run([RBSIM] + args, stdin=subprocess.DEVNULL,
+                                   stdout=full, stderr=subprocess.PIPE,
+                                   text=True, cwd=self.dir, timeout=120)
+            self.assertEqual(r.returncode, 4, args)
+            self.assertIn("standard output was lost", r.stderr, args)
+            if args[0] == "check":  # (one short line: the last flush fails)
+                self.assertIn("No space left on device", r.stderr, args)
+        # the run's own outputs are complete all the same
+        self.assert_whole_frames(self.path("ok.csv"))
+        # a closed standard output (as `>&-` leaves it)
+        r = subprocess.run([RBSIM, "check", s], stdin=subprocess.DEVNULL,
+                           stderr=subprocess.PIPE, text=True, cwd=self.dir,
+                           timeout=120,
+                           preexec_fn=lambda: os.close(1))
+        self.assertEqual(r.returncode, 4)
+        self.assertIn("standard output was lost", r.stderr)
+        # a failing command keeps its own code and message
+        with open("/dev/full", "w") as full:
+            r = subprocess.run([RBSIM, "check", self.path("nope.json")],
+                               stdout=full, stderr=subprocess.PIPE,
+                               text=True, cwd=self.dir, timeout=120)
+        self.assertEqual(r.returncode, 3)
+        self.assertNotIn("standard output was lost", r.stderr)
+
     def test_file_too_large_mid_run(self):
         # A file size limit makes the CSV fail part way through a frame: the
         # file must end on the last whole frame, the run stop with exit 4.
