@@ -668,7 +668,7 @@ static int png_folder_writes(const char *dir, const char *json,
 /* No two outputs may write one file (standard output included), and none
  * may overwrite the scene or the checkpoint being resumed. */
 static int check_distinct(const output *outs, uint32_t n, const char *scene,
-                          const char *resume)
+                          const char *resume, const char *who)
 {
     uint32_t i, j;
     const output *on_stdout = NULL;
@@ -676,10 +676,10 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
         const char *a = outs[i].config.path;
         if (a != NULL && strcmp(a, "-") == 0) {
             if (on_stdout != NULL) {
-                fprintf(stderr, "rbsim run: the %s and %s outputs both write "
+                fprintf(stderr, "%s: the %s and %s outputs both write "
                                 "to standard output ('-'): at most one "
                                 "output may\n",
-                        on_stdout->config.type, outs[i].config.type);
+                        who, on_stdout->config.type, outs[i].config.type);
                 return outs[i].from_scene && on_stdout->from_scene
                            ? RBSF_EXIT_SCENE
                            : RBSF_EXIT_USAGE;
@@ -690,14 +690,14 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
         if (a == NULL)
             continue;
         if (resume != NULL && same_file(a, resume)) {
-            fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
+            fprintf(stderr, "%s: the %s output '%s' would overwrite the "
                             "--resume checkpoint '%s'\n",
-                    outs[i].config.type, a, resume);
+                    who, outs[i].config.type, a, resume);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
         if (scene != NULL && same_file(a, scene)) {
-            fprintf(stderr, "rbsim run: the %s output '%s' would overwrite the "
-                            "scene\n", outs[i].config.type, a);
+            fprintf(stderr, "%s: the %s output '%s' would overwrite the "
+                            "scene\n", who, outs[i].config.type, a);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
         for (j = 0; j < n; j++) {
@@ -707,10 +707,10 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
                 strcmp(outs[i].config.type, "sdl") == 0 ||
                 !png_folder_writes(b, outs[j].config.json, a, &what))
                 continue;
-            fprintf(stderr, "rbsim run: the %s output '%s' is a file the sdl "
+            fprintf(stderr, "%s: the %s output '%s' is a file the sdl "
                             "output writes in its folder '%s' (%s): give it "
                             "another name\n",
-                    outs[i].config.type, a, b, what);
+                    who, outs[i].config.type, a, b, what);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }
@@ -718,8 +718,8 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
             const char *b = outs[j].config.path;
             if (b == NULL || strcmp(b, "-") == 0 || !same_file(a, b))
                 continue;
-            fprintf(stderr, "rbsim run: the %s and %s outputs both write '%s'\n",
-                    outs[j].config.type, outs[i].config.type, a);
+            fprintf(stderr, "%s: the %s and %s outputs both write '%s'\n",
+                    who, outs[j].config.type, outs[i].config.type, a);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }
@@ -727,6 +727,18 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
     return 0;
 }
 
+
+int rbsf_check_scene_outputs(const rbs_scene *scene, const char *scene_path)
+{
+    output outs[RBS_RENDERERS_MAX];
+    uint32_t n = 0, i;
+    int code = add_scene_outputs(scene, outs, &n);
+    if (code == 0)
+        code = check_distinct(outs, n, scene_path, NULL, "rbsim check");
+    for (i = 0; i < n; i++)
+        free(outs[i].owned_path);
+    return code;
+}
 
 /* ---- staging: a rejected run writes nothing ------------------------------ */
 
@@ -1484,7 +1496,7 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 4. Check every output before any is opened: a rejected run writes
      * nothing.  (The demonstration's folder is made first: it is ours.) */
-    code = check_distinct(outs, n_out, o.scene, o.resume);
+    code = check_distinct(outs, n_out, o.scene, o.resume, "rbsim run");
     if (code != 0)
         goto out;
     if (o.checkpoint) {

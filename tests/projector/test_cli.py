@@ -157,6 +157,33 @@ class CliTests(Base):
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
 
+    def test_check_refuses_what_run_refuses(self):
+        # The scene's own renderer entries: two names for one file, or an
+        # output onto the scene itself, are refused by `check` as by `run`
+        # (exit 3 both; the probe of session 38 found check passing a scene
+        # whose two outputs were "out/same.csv" and "out/../out/same.csv").
+        os.mkdir(self.path("out"))
+        for rs, msg in (
+                ([{"type": "csv", "path": "out/same.csv"},
+                  {"type": "json", "path": "out/../out/same.csv"}],
+                 "both write 'out/../out/same.csv'"),
+                ([{"type": "csv", "path": "./scene.json"}],
+                 "would overwrite the scene")):
+            s = self.scene(renderers=rs)
+            r = self.rbsim("check", s)
+            self.assertEqual(r.returncode, 3, (rs, r.stdout, r.stderr))
+            self.assertIn("rbsim check: ", r.stderr)
+            self.assertIn(msg, r.stderr)
+            r = self.rbsim("run", s)
+            self.assertEqual(r.returncode, 3, (rs, r.stderr))
+            self.assertIn(msg, r.stderr)
+            self.assertEqual(os.listdir(self.path("out")), [])
+        # distinct files pass both
+        s = self.scene(renderers=[{"type": "csv", "path": "out/a.csv"},
+                                  {"type": "json", "path": "out/../out/b.jsonl"}])
+        r = self.rbsim("check", s)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+
     def test_soft_method(self):
         """--method soft runs a scene (frames 0..50, the method reported
         in explain); the scene's simulation.soft_substeps reaches the
