@@ -262,7 +262,8 @@ def test_text_that_is_not_unicode_names_the_argument(tmp_path):
     w = make_world()
     for call in (lambda: w.body("\udcff"), lambda: w.add_material("rub\ud800ber"),
                  lambda: w.add_sphere("\ud800", position=(1, 0, 1)),
-                 lambda: rbsim.parse_json('{"bodies": []}', name="\ud800")):
+                 lambda: rbsim.parse_json('{"bodies": []}', name="\ud800"),
+                 lambda: rbsim.parse_json('{"bodies": [], "x": "\ud800"}')):
         with pytest.raises(rbsim.InvalidError, match="lone surrogate"):
             call()
     with pytest.raises(rbsim.InvalidError, match="path: cannot be encoded"):

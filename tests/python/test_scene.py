@@ -66,8 +66,12 @@ def test_overrides(write_scene):
         rbsim.load(path, method="nope")
     with pytest.raises(rbsim.InvalidError, match="dt"):
         rbsim.load(path, dt=0.0)
+    # steps=0 is frame 0 only, as --steps 0 and "steps": 0 (before session
+    # 38 it was refused); a negative count is not a count
+    w0 = rbsim.load(path, steps=0)
+    assert w0.run().steps == 0 and w0.time == 0.0
     with pytest.raises(rbsim.InvalidError, match="steps"):
-        rbsim.load(path, steps=0)
+        rbsim.load(path, steps=-1)
 
 
 def test_slop_override(write_scene):

@@ -67,7 +67,9 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         if status != lib.RBS_OK:
             _raise_scene(status, scene, name)
     if steps is not None or dt is not None or method is not None:
-        n = 0 if steps is None else _check.u64(steps, "steps", 1)
+        # (steps=0: frame 0 only, as --steps 0 and "steps": 0; the C
+        # override's 0 keeps the scene's, so the world is told below)
+        n = 0 if steps is None else _check.u64(steps, "steps", 0)
         step = 0.0
         if dt is not None:
             step = _check.real(dt, "dt")
@@ -92,7 +94,7 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         if lib.rbs_scene_error_count(scene) > 0:
             _raise_scene(status, scene, name)
         raise error_class(status)("%s: %s" % (name, detail))
-    world._scene_steps = int(lib.rbs_scene_steps(scene))
+    world._scene_steps = 0 if steps == 0 else int(lib.rbs_scene_steps(scene))
     world._scene_pause_on_collision = bool(lib.rbs_scene_pause_on_collision(scene))
     entries = []
     item = ffi.new("rbs_scene_renderer *")
@@ -149,7 +151,13 @@ def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None
     errors).  Same errors as :func:`load`."""
     if not isinstance(text, str):
         raise ArgumentTypeError("text: expected a str, got %s" % type(text).__name__)
-    data = text.encode("utf-8")
+    try:
+        data = text.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        # (a scene's text may hold NUL -- the parser names it -- so not _check.text)
+        raise error_class(lib.RBS_E_INVALID)(
+            "text: not valid Unicode text: a lone surrogate %r at position %d"
+            % (text[exc.start], exc.start)) from None
     label = _check.text(name, "name")
     out = ffi.new("rbs_scene **")
     status = lib.rbs_scene_parse_json(data, len(data), label, out)
