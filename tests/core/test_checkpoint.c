@@ -129,10 +129,20 @@ static void damaged_checkpoints_are_rejected(void **state)
     assert_int_equal(rbs_world_create_from_checkpoint(buf, n - 9, &b), RBS_E_CORRUPT);
     assert_null(b);
     assert_int_equal(rbs_world_create_from_checkpoint(buf, 10, &b), RBS_E_CORRUPT);
+    /* the _v2 form says why (and "" when it succeeds) */
+    assert_int_equal(rbs_world_create_from_checkpoint_v2(buf, n - 9, &b, msg, sizeof msg), RBS_E_CORRUPT);
+    assert_null(b);
+    assert_non_null(strstr(msg, "truncated"));
     /* one flipped bit in a double */
     buf[n / 2] ^= 0x10;
     assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_CORRUPT);
+    assert_int_equal(rbs_world_create_from_checkpoint_v2(buf, n, &b, msg, sizeof msg), RBS_E_CORRUPT);
+    assert_non_null(strstr(msg, "checksum mismatch"));
     buf[n / 2] ^= 0x10;
+    CHECK_OK(rbs_world_create_from_checkpoint_v2(buf, n, &b, msg, sizeof msg));
+    assert_string_equal(msg, "");
+    rbs_world_destroy(b);
+    b = NULL;
     /* another format version: a later one, and versions 2 to 9, whose
      * blocks were laid out differently (the arrays are the block verbatim:
      * 2's contacts, 3 without the name index, 4 without soft_substeps, 5's

@@ -557,9 +557,10 @@ class World:
                                        % _check._describe(data))
         raw = bytes(data)
         out = ffi.new("rbs_world **")
-        status = lib.rbs_world_create_from_checkpoint(raw, len(raw), out)
+        msg = ffi.new("char[]", 512)
+        status = lib.rbs_world_create_from_checkpoint_v2(raw, len(raw), out, msg, 512)
         if status != lib.RBS_OK:
-            raise _e.error_class(status)("checkpoint of %d bytes rejected" % len(raw))
+            raise _e.error_class(status)("checkpoint of %d bytes rejected: %s" % (len(raw), _str(msg)))
         return cls._adopt(out[0])
 
     @classmethod
@@ -571,8 +572,8 @@ class World:
         msg = ffi.new("char[]", 512)
         status = lib.rbs_world_load(raw, out, msg, 512)
         if status != lib.RBS_OK:
-            raise _e.error_class(status)("%s: %s" % (raw.decode("utf-8", "replace"),
-                                                     _str(msg)))
+            # (the library's message names the file: "PATH: REASON")
+            raise _e.error_class(status)(_str(msg) or raw.decode("utf-8", "replace"))
         return cls._adopt(out[0])
 
     @classmethod

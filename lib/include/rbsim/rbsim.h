@@ -609,6 +609,13 @@ RBS_API rbs_status rbs_world_checkpoint_write(const rbs_world *world, void *buf,
  * or foreign buffer is RBS_E_CORRUPT; another format version RBS_E_VERSION. */
 RBS_API rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size,
                                                     rbs_world **out);
+/** rbs_world_create_from_checkpoint, and on failure the reason (truncated
+ * to how many bytes, which version, a checksum mismatch, ...) in message
+ * (message_size bytes, NUL-terminated; "" on success).  message may be
+ * NULL. */
+RBS_API rbs_status rbs_world_create_from_checkpoint_v2(const void *buf, size_t size,
+                                                       rbs_world **out, char *message,
+                                                       size_t message_size);
 
 /** Save a checkpoint to a file atomically: a temporary file beside it,
  * fsync, rename.  A crash mid-write leaves any previous file intact.  A

@@ -244,6 +244,16 @@ rbs_status rbs_world_create_from_checkpoint(const void *buf, size_t size, rbs_wo
     return create_from(buf, size, out, msg, sizeof msg);
 }
 
+rbs_status rbs_world_create_from_checkpoint_v2(const void *buf, size_t size, rbs_world **out, char *message,
+                                               size_t message_size)
+{
+    char msg[256] = "";
+    rbs_status st = create_from(buf, size, out, msg, sizeof msg);
+    if (message != NULL && message_size > 0)
+        snprintf(message, message_size, "%s", st == RBS_OK ? "" : msg[0] ? msg : rbs_status_string(st));
+    return st;
+}
+
 char *rbs__link_target(const char *path)
 {
     char *cur = NULL;
