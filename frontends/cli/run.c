@@ -91,11 +91,14 @@ static int parse_u64(const char *s, uint64_t min, uint64_t max, uint64_t *out)
     return 0;
 }
 
+/* A positive finite decimal number (digits, '.', an exponent: "0.001",
+ * "1e-3"; not strtod's hexadecimal, "inf" or leading blanks, which a scene
+ * file's JSON would not take either). */
 static int parse_positive(const char *s, double *out)
 {
     char *end;
     double v;
-    if (s == NULL || *s == '\0')
+    if (s == NULL || *s == '\0' || s[strspn(s, "0123456789.eE+-")] != '\0')
         return -1;
     errno = 0;
     v = strtod(s, &end);

@@ -123,6 +123,8 @@ class CliTests(Base):
             (["--steps=-3"], "--steps"),
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
+            (["--dt", "0x10"], "--dt: expected a time step"),  # (strtod's hex)
+            (["--slop", " 0.01"], "--slop"),
             (["--method", "leapfrog"], "unknown method 'leapfrog'; expected euler, "
              "selective, event, verlet, rk4, adaptive, soft or auto"),
             (["--slop", "0.1"], "--slop: expected a fraction of the smaller radius in (0, 0.1)"),
