@@ -5,6 +5,7 @@
 #define RBSF_CLI_H
 
 #include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 
 #include "rbsim/reel.h"
@@ -51,21 +52,26 @@ void rbsf_input_stop(rbsf_input *in);
 
 typedef struct rbsf_signals {
     pthread_t thread;
+    sigset_t set;             /* the signals the thread takes */
     pthread_mutex_t lock;
     rbs_projector *projector; /* guarded by lock; NULL until attached */
-    int caught;               /* the first SIGINT/SIGTERM, 0 if none */
+    int caught;               /* guarded; the first SIGINT/TERM/HUP, 0 if none */
+    int stopping;             /* guarded; set by rbsf_signals_stop */
     int started;
 } rbsf_signals;
 
-/** Block SIGINT and SIGTERM in this thread (and the threads it starts) and
- * start a thread that takes them with sigwait.  Call before any other
- * thread starts. */
+/** Block SIGINT, SIGTERM, SIGHUP (unless the caller ignores it, as nohup
+ * does) and SIGUSR1 in this thread (and the threads it starts) and start a
+ * thread that takes them with sigwait.  A SIGUSR1 from outside is ignored.
+ * Call before any other thread starts. */
 int rbsf_signals_start(rbsf_signals *s);
 /** From now on a signal sends "quit" to this projector (at once if one was
  * caught already). */
 void rbsf_signals_attach(rbsf_signals *s, rbs_projector *projector);
-/** The signal caught (SIGINT, SIGTERM) or 0. */
+/** The signal caught (SIGINT, SIGTERM, SIGHUP) or 0. */
 int rbsf_signals_caught(rbsf_signals *s);
+/** "SIGINT", "SIGTERM" or "SIGHUP" (a static string). */
+const char *rbsf_signal_name(int sig);
 /** Stop and join the signal thread. */
 void rbsf_signals_stop(rbsf_signals *s);
 

@@ -36,8 +36,9 @@ static const char usage_text[] =
     "  --version              print the version\n"
     "\n"
     "exit codes: 0 success, 2 usage error, 3 scene error, 4 run-time error\n"
-    "(capacity, numerical failure, renderer failure, lost standard output),\n"
-    "130/143 interrupted by SIGINT/SIGTERM.\n";
+    "(capacity, numerical failure, renderer failure such as a full disk or a\n"
+    "file size limit, lost standard output), 129/130/143 stopped by\n"
+    "SIGHUP/SIGINT/SIGTERM.\n";
 
 static const char run_text[] =
     "usage: rbsim run [SCENE] [OPTIONS]\n"
@@ -78,9 +79,10 @@ static const char run_text[] =
     "  --quiet       no progress bar and no summary\n"
     "  --checkpoint FILE\n"
     "                save the exact world state to FILE (atomically) at the\n"
-    "                end of the run, also when stopped by quit, Ctrl-C or\n"
-    "                SIGTERM (at the last frame made); with --steps N below the\n"
-    "                scene's, the run stops at step N with a checkpoint\n"
+    "                end of the run, also when stopped by quit, Ctrl-C,\n"
+    "                SIGTERM or SIGHUP (at the last frame made); with\n"
+    "                --steps N below the scene's, the run stops at step N\n"
+    "                with a checkpoint\n"
     "  --checkpoint-every N\n"
     "                also save it after every N-th step (frames N, 2N, ...)\n"
     "  --resume FILE continue from a checkpoint at step k: frames k+1 .. the\n"
@@ -162,10 +164,11 @@ int rbsf_help(FILE *out, const char *command)
         fputs(list, out);
         fputs("End of input (a pipe, /dev/null) does not stop the run (a "
               "paused run is resumed:\nnothing could resume it later); "
-              "simulation.pause_on_collision needs a terminal.\nCtrl-C or "
-              "SIGTERM stops the run cleanly (outputs complete up to the last "
-              "frame;\nexit 130 or 143), after saving --checkpoint FILE at that "
-              "frame.\n",
+              "simulation.pause_on_collision needs a terminal.\nCtrl-C, "
+              "SIGTERM or SIGHUP (unless ignored, as by nohup) stops the run "
+              "cleanly\n(outputs complete up to the last frame; exit 130, 143 "
+              "or 129), after saving\n--checkpoint FILE at that frame.  "
+              "SIGUSR1 is ignored.\n",
               out);
         return 0;
     }
@@ -475,6 +478,10 @@ static int dispatch(int argc, char **argv);
 int main(int argc, char **argv)
 {
     guard_standard_fds();
+    /* A file size limit (ulimit -f) fails the write with EFBIG, reported and
+     * cleaned up like any write error (run, convert), instead of a SIGXFSZ
+     * death that leaves temporary files behind. */
+    signal(SIGXFSZ, SIG_IGN);
     signal(SIGPIPE, SIG_IGN); /* a closed pipe is a write error, reported */
     return finish_stdout(dispatch(argc, argv));
 }

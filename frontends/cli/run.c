@@ -2,7 +2,7 @@
  * run.c - "rbsim run": load a scene (or the built-in demonstration), apply
  * the command line, check every output before any is opened, then run the
  * projector with an input thread (commands on stdin) and a signal thread
- * (Ctrl-C, SIGTERM), and print a summary.
+ * (Ctrl-C, SIGTERM, SIGHUP), and print a summary.
  */
 #include "cli.h"
 #include "demo.h"
@@ -1302,6 +1302,34 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
                     outs[i].config.path);
 }
 
+/* Print "rbsim: PREFIXmsg".  The projector's messages name the files the
+ * renderers wrote: for an existing output that is a temporary beside it,
+ * gone once renamed or removed, so each is named by its output instead. */
+static void print_run_error(const char *prefix, const char *msg,
+                            const output *outs, uint32_t n)
+{
+    fprintf(stderr, "rbsim: %s", prefix);
+    while (*msg != '\0') {
+        uint32_t i;
+        size_t len = 0;
+        for (i = 0; i < n && len == 0; i++) {
+            const output *o = &outs[i];
+            if (o->work != NULL && o->target != NULL &&
+                strcmp(o->work, o->target) != 0 &&
+                strncmp(msg, o->work, strlen(o->work)) == 0) {
+                fputs(o->config.path, stderr);
+                len = strlen(o->work);
+            }
+        }
+        if (len == 0) {
+            fputc(*msg, stderr);
+            len = 1;
+        }
+        msg += len;
+    }
+    fputc('\n', stderr);
+}
+
 /* ---- run ---------------------------------------------------------------- */
 
 int rbsf_run_main(int argc, char **argv)
@@ -1608,9 +1636,9 @@ int rbsf_run_main(int argc, char **argv)
     }
     st = rbs_projector_create(world, registry, configs, n_out, &def, &projector);
     if (st != RBS_OK) {
-        fprintf(stderr, "rbsim: %s\n", projector
-                                           ? rbs_projector_last_error(projector)
-                                           : rbs_status_string(st));
+        print_run_error("", projector ? rbs_projector_last_error(projector)
+                                      : rbs_status_string(st),
+                        outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
     }
@@ -1618,7 +1646,7 @@ int rbsf_run_main(int argc, char **argv)
     if (rbs_projector_start(projector) != RBS_OK) {
         /* The run began (frame 0 failed): its outputs stand, as after a
          * failure at any later frame. */
-        fprintf(stderr, "rbsim: %s\n", rbs_projector_last_error(projector));
+        print_run_error("", rbs_projector_last_error(projector), outs, n_out);
         commit_staged(outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
@@ -1672,7 +1700,8 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 7. Report. */
     if (st != RBS_OK && st != RBS_E_CLOSED) {
-        fprintf(stderr, "rbsim: error: %s\n", rbs_projector_last_error(projector));
+        print_run_error("error: ", rbs_projector_last_error(projector), outs,
+                        n_out);
         code = RBSF_EXIT_RUN;
     } else if (code == RBSF_EXIT_RUN) {
         /* the final checkpoint failed (said above) */
@@ -1685,7 +1714,7 @@ int rbsf_run_main(int argc, char **argv)
         if (st == RBS_E_CLOSED)
             fprintf(talk, "stopped at frame %llu by %s\n",
                     (unsigned long long)info.frame,
-                    sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "quit");
+                    sig != 0 ? rbsf_signal_name(sig) : "quit");
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
                 outs, n_out);
         if (o.resume)

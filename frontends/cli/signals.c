@@ -1,49 +1,57 @@
 /*
- * signals.c - Ctrl-C and SIGTERM: no handler runs at all.  The signals are
- * blocked in every thread and taken by one thread with sigwait(), which then
- * asks the projector to quit like a typed "quit" (outputs are finished up to
- * the last frame).  SIGUSR1 from rbsf_signals_stop() ends the thread.
+ * signals.c - SIGINT, SIGTERM and SIGHUP: no handler runs at all.  The
+ * signals are blocked in every thread and taken by one thread with
+ * sigwait(), which then asks the projector to quit like a typed "quit"
+ * (outputs are finished up to the last frame).  No state is global: it all
+ * lives in the caller's rbsf_signals.
+ *
+ * Ending the thread: sigwait() returns only for a signal in its set, so
+ * rbsf_signals_stop() sets s->stopping and then sends SIGUSR1 to the thread.
+ * SIGUSR1 is in the set (blocked everywhere) only for that; one from outside
+ * finds stopping clear and is ignored, so the thread keeps taking INT, TERM
+ * and HUP.  (A self-pipe cannot be waited on together with sigwait();
+ * signalfd could, but is Linux-only.)
+ *
+ * SIGHUP ignored by the caller (nohup) stays ignored: a blocked signal is
+ * queued even when ignored, so it is left out of the set instead.
  */
 #include "cli.h"
 
-#include <signal.h>
 #include <string.h>
-
-static void signal_set(sigset_t *set)
-{
-    sigemptyset(set);
-    sigaddset(set, SIGINT);
-    sigaddset(set, SIGTERM);
-    sigaddset(set, SIGUSR1);
-}
 
 static void *signals_main(void *arg)
 {
     rbsf_signals *s = arg;
-    sigset_t set;
-    signal_set(&set);
     for (;;) {
-        int sig = 0;
-        if (sigwait(&set, &sig) != 0)
+        int sig = 0, stopping;
+        if (sigwait(&s->set, &sig) != 0)
             continue;
-        if (sig == SIGUSR1)
-            break;
         pthread_mutex_lock(&s->lock);
-        if (s->caught == 0)
-            s->caught = sig;
-        if (s->projector != NULL)
-            rbs_projector_command(s->projector, "quit", NULL, 0);
+        stopping = s->stopping;
+        if (sig != SIGUSR1) {
+            if (s->caught == 0)
+                s->caught = sig;
+            if (s->projector != NULL)
+                rbs_projector_command(s->projector, "quit", NULL, 0);
+        }
         pthread_mutex_unlock(&s->lock);
+        if (stopping)
+            break; /* else a SIGUSR1 from outside: keep waiting */
     }
     return NULL;
 }
 
 int rbsf_signals_start(rbsf_signals *s)
 {
-    sigset_t set;
+    struct sigaction hup;
     memset(s, 0, sizeof *s);
-    signal_set(&set);
-    if (pthread_sigmask(SIG_BLOCK, &set, NULL) != 0)
+    sigemptyset(&s->set);
+    sigaddset(&s->set, SIGINT);
+    sigaddset(&s->set, SIGTERM);
+    sigaddset(&s->set, SIGUSR1);
+    if (sigaction(SIGHUP, NULL, &hup) == 0 && hup.sa_handler != SIG_IGN)
+        sigaddset(&s->set, SIGHUP);
+    if (pthread_sigmask(SIG_BLOCK, &s->set, NULL) != 0)
         return -1;
     if (pthread_mutex_init(&s->lock, NULL) != 0)
         return -1;
@@ -73,10 +81,28 @@ int rbsf_signals_caught(rbsf_signals *s)
     return sig;
 }
 
+const char *rbsf_signal_name(int sig)
+{
+    switch (sig) {
+    case SIGINT:
+        return "SIGINT";
+    case SIGTERM:
+        return "SIGTERM";
+    case SIGHUP:
+        return "SIGHUP";
+    default:
+        return "a signal";
+    }
+}
+
 void rbsf_signals_stop(rbsf_signals *s)
 {
     if (!s->started)
         return;
+    /* The flag first: the thread may wake for any signal once it is set. */
+    pthread_mutex_lock(&s->lock);
+    s->stopping = 1;
+    pthread_mutex_unlock(&s->lock);
     pthread_kill(s->thread, SIGUSR1);
     pthread_join(s->thread, NULL);
     pthread_mutex_destroy(&s->lock);

@@ -891,7 +891,9 @@ class FaultTests(Base):
             self.assertIn("both write to standard output", r.stderr)
             self.assertEqual(r.stdout, "")
 
-    def _interrupt(self, sig, code, existing=False):
+    def _interrupt(self, sig, code, existing=False, first=(), preexec=None):
+        """Run a long scene, send each signal of first (the run must go on),
+        then sig: the run stops with exit code, outputs whole."""
         s = self.scene()
         if existing:  # old outputs: the run writes temporaries, then renames
             for name in ("i.csv", "i.jsonl", "i_stats.csv"):
@@ -901,7 +903,8 @@ class FaultTests(Base):
                               "100000", "--csv", "i.csv", "--json", "i.jsonl",
                               "--stats", "i_stats.csv"], cwd=self.dir,
                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
+                             stderr=subprocess.PIPE, text=True,
+                             preexec_fn=preexec)
         try:
             # Wait until frames are being written, then interrupt.
             deadline = time.time() + 30
@@ -912,13 +915,18 @@ class FaultTests(Base):
                        if os.path.exists(self.path(n))):
                     break
                 time.sleep(0.05)
+            for f in first:
+                p.send_signal(f)
+                time.sleep(0.3)  # taken by the signal thread before sig
+                self.assertIsNone(p.poll(), "stopped by %r" % f)
             p.send_signal(sig)
-            out, err = p.communicate(timeout=60)
+            out, err = p.communicate(timeout=30)
         finally:
             if p.poll() is None:
                 p.kill()
         self.assertEqual(p.returncode, code, err)
         self.assertIn("stopped at frame", out)
+        self.assertIn("by " + sig.name, out)
         n = self.assert_whole_frames(self.path("i.csv"))
         self.assertGreater(n, 2)
         self.assertLess(n, 100001)
@@ -938,6 +946,69 @@ class FaultTests(Base):
         self._interrupt(signal.SIGTERM, 143, existing=True)
         self.assertEqual([n for n in os.listdir(self.dir)
                           if n.startswith(".rbsim-")], [])
+
+    def test_outside_sigusr1_keeps_signals_working(self):
+        # SIGUSR1 ends the signal thread only when rbsim asks: one from
+        # outside is ignored and SIGTERM still stops the run.
+        self._interrupt(signal.SIGTERM, 143, first=[signal.SIGUSR1])
+
+    def test_sighup_stops_cleanly(self):
+        # A closed terminal stops the run like SIGTERM: 128 + 1, outputs
+        # whole and renamed onto the old files, no temporary left.
+        def default_hup():  # as from a terminal, even if we run under nohup
+            signal.signal(signal.SIGHUP, signal.SIG_DFL)
+
+        self._interrupt(signal.SIGHUP, 129, existing=True, preexec=default_hup)
+        self.assertEqual([n for n in os.listdir(self.dir)
+                          if n.startswith(".rbsim-")], [])
+
+    def test_sighup_ignored_under_nohup(self):
+        def ignore_hup():
+            signal.signal(signal.SIGHUP, signal.SIG_IGN)
+
+        self._interrupt(signal.SIGTERM, 143, first=[signal.SIGHUP],
+                        preexec=ignore_hup)
+
+    def test_file_size_limit_is_a_write_error(self):
+        # Under ulimit -f with SIGXFSZ at its default (death), replacing an
+        # existing file: exit 4 naming the file (not its temporary), the file
+        # holds whole frames, no temporary is left.
+        limit = 60000
+
+        def limit_size():
+            signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
+            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+        s = self.scene()
+        with open(self.path("big.csv"), "w") as f:
+            f.write("OLD\n")
+        r = subprocess.run([RBSIM, "run", s, "--csv", "big.csv", "--steps",
+                            "5000", "--quiet"], cwd=self.dir,
+                           capture_output=True, text=True, timeout=60,
+                           preexec_fn=limit_size, stdin=subprocess.DEVNULL)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("'big.csv'", r.stderr)
+        self.assertIn("File too large", r.stderr)
+        self.assertNotIn(".rbsim-", r.stderr)
+        self.assertEqual([n for n in os.listdir(self.dir)
+                          if n.startswith(".rbsim-")], [])
+        self.assertLessEqual(os.path.getsize(self.path("big.csv")), limit)
+        self.assertGreater(self.assert_whole_frames(self.path("big.csv")), 10)
+
+        # convert too: a write error, the old file kept, nothing left over.
+        with open(self.path("conv.json"), "w") as f:
+            f.write("OLD\n")
+        before = sorted(os.listdir(self.dir))
+        limit = 200
+        r = subprocess.run([RBSIM, "convert", s, "conv.json"], cwd=self.dir,
+                           capture_output=True, text=True, timeout=60,
+                           preexec_fn=limit_size, stdin=subprocess.DEVNULL)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("conv.json", r.stderr)
+        self.assertIn("File too large", r.stderr)
+        self.assertEqual(sorted(os.listdir(self.dir)), before)
+        with open(self.path("conv.json")) as f:
+            self.assertEqual(f.read(), "OLD\n")
 
     def test_numerical_failure_exit_4(self):
         bodies = SCENE["bodies"] + [
