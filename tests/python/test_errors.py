@@ -7,6 +7,7 @@ arguments (None, wrong types, NaN, infinities, huge and negative integers)
 is thrown at every entry point: each must raise an rbsim.Error.
 """
 
+import itertools
 import math
 
 import numpy as np
@@ -23,7 +24,8 @@ BAD_REALS = ["1.0", NAN, INF, -INF, [1.0], object(), True, 1j, 10 ** 400]
 BAD_VECTORS = [1.0, "abc", [1.0, 2.0], [1.0, 2.0, 3.0, 4.0, 5.0],
                [NAN, 0, 0], [0, INF, 0], [0, 0, None], {"x": 1}, object(),
                np.array([1.0, np.nan, 0.0]), {0: 1.0, 1: 2.0, 2: 3.0},
-               {1.0, 2.0, 3.0}, [10 ** 400, 0, 0]]
+               {1.0, 2.0, 3.0}, [10 ** 400, 0, 0],
+               itertools.count()]  # (endless: refused, not read on until memory runs out)
 BAD_INTS = [-1, 2 ** 40, 1.5, "3", NAN, True]
 
 

@@ -8,6 +8,7 @@ every message names the argument.
 from __future__ import annotations
 
 import collections.abc
+import itertools
 import math
 import numbers
 import os
@@ -75,10 +76,13 @@ def vector(value: Any, what: str, size: int = 3) -> Tuple[float, ...]:
         raise _e.ArgumentTypeError("%s: expected %d numbers in order (a sequence or an "
                                    "array), got %s" % (what, size, _describe(value)))
     try:
-        items = list(value)
+        # (one more than needed at most: an endless iterator is not read on)
+        items = list(itertools.islice(iter(value), size + 1))
     except TypeError:
         raise _e.ArgumentTypeError("%s: expected %d numbers, got %s"
                                    % (what, size, _describe(value))) from None
+    if len(items) > size:
+        raise _e.error_class(-1)("%s: expected %d numbers, got more" % (what, size))
     if len(items) != size:
         raise _e.error_class(-1)("%s: expected %d numbers, got %d"
                                  % (what, size, len(items)))
