@@ -207,6 +207,11 @@ static const bad_case cases[] = {
      {E("\"my ball\"", 1, 0,
         "bodies[0].name: a name must not contain spaces, control characters, '#', '\"', "
         "'=' or ',', got \"my ball\"")}},
+    /* (the value echoed as JSON writes it: its quote and backslash escaped) */
+    {"bad/name_with_quote.json", RBS_E_SCENE,
+     {E("\"\\\"q\\\\\"", 1, 0,
+        "bodies[0].name: a name must not contain spaces, control characters, '#', '\"', "
+        "'=' or ',', got \"\\\"q\\\\\"")}},
     {"bad/duplicate_body_name.json", RBS_E_SCENE,
      {E("\"ball\"", 2, 0,
         "bodies[1].name: duplicate body name \"ball\" (first used by bodies[0])")}},

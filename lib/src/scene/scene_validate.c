@@ -108,11 +108,15 @@ static void got(const vctx *v, const cJSON *item, char *out, size_t n)
     } else if (cJSON_IsNumber(item)) {
         snprintf(out, n, "%.17g", item->valuedouble);
     } else if (cJSON_IsString(item)) {
+        /* (as JSON writes it: a quote or backslash escaped, so that the
+         * value's end is plain -- "\"q", not ""q" -- a control character '?') */
         char clean[48];
         size_t i, k = 0;
         const char *s = item->valuestring;
         for (i = 0; s[i] != '\0' && k < 40; i++) {
             unsigned char c = (unsigned char)s[i];
+            if (c == '"' || c == '\\')
+                clean[k++] = '\\';
             clean[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
         }
         clean[k] = '\0';
