@@ -734,6 +734,64 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 4)
         self.assertIn("No such file or directory", r.stderr)
 
+    def test_scene_through_a_pipe(self):
+        # A scene read through a pipe, /dev/stdin or a FIFO named without
+        # .json is read once: telling its format used to eat its start.
+        s = self.scene()
+        with open(s) as f:
+            text = f.read()
+        r = self.rbsim("run", s, "--csv", "file.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.path("file.csv"), "rb") as f:
+            want = f.read()
+        r = self.rbsim("check", "/dev/stdin", stdin=None, input=text)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("/dev/stdin: ok", r.stdout)
+        r = self.rbsim("run", "/dev/stdin", "--csv", "pipe.csv", "--quiet",
+                       stdin=None, input=text)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        with open(self.path("pipe.csv"), "rb") as f:
+            self.assertEqual(f.read(), want)
+        r = self.rbsim("convert", "/dev/stdin", self.path("back.json"),
+                       stdin=None, input=text)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rbsim("check", "back.json").returncode, 0)
+        # a FIFO named "scene": the writer's data, not a second open that
+        # waits for a writer for ever
+        fifo = self.path("scene")
+        os.mkfifo(fifo)
+        p = subprocess.Popen([RBSIM, "run", fifo, "--csv", "fifo.csv",
+                              "--quiet"], cwd=self.dir, text=True,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        try:
+            with open(fifo, "w") as f:
+                f.write(text)
+            out, err = p.communicate(timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+        self.assertEqual(p.returncode, 0, out + err)
+        with open(self.path("fifo.csv"), "rb") as f:
+            self.assertEqual(f.read(), want)
+        # a config.txt through a pipe: its files are looked for beside
+        # /dev/stdin, and the error says so
+        os.mkdir(self.path("txt"))
+        r = self.rbsim("convert", s, self.path("txt/config.txt"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.path("txt/config.txt")) as f:
+            config = f.read()
+        r = self.rbsim("check", "/dev/stdin", stdin=None, input=config)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("'/dev/stdin' is a pipe or device: the file names in it "
+                      "are looked for beside that path", r.stdout)
+        # a stream without end is refused at the size limit
+        with open("/dev/zero", "rb") as zero:
+            r = self.rbsim("check", "/dev/stdin", stdin=zero, timeout=60)
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("/dev/stdin: cannot read '/dev/stdin': larger than "
+                      "268435456 bytes", r.stdout)
+
     def test_demo(self):
         r = self.rbsim("run", timeout=300)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)

@@ -1,6 +1,9 @@
 """Loading scenes: rbsim.load (JSON and the seed's text format),
 rbsim.parse_json, overrides, and scene errors with their places."""
 
+import os
+import threading
+
 import numpy as np
 import pytest
 
@@ -45,6 +48,28 @@ def test_json_and_text_formats_give_the_same_world():
     a.step(500)
     b.step(500)
     assert np.array_equal(a.positions, b.positions)
+
+
+def test_load_from_a_pipe():
+    # /dev/fd/N of a pipe, no .json name: read once, the format told from
+    # the bytes read (the first read used to be lost to telling it)
+    path = SCENES / "pile.json"
+    data = path.read_bytes()
+    r, w = os.pipe()
+
+    def feed():
+        with os.fdopen(w, "wb") as f:
+            f.write(data)
+
+    t = threading.Thread(target=feed)
+    t.start()
+    try:
+        world = rbsim.load("/dev/fd/%d" % r)
+    finally:
+        t.join()
+        os.close(r)
+    assert world.hash() == rbsim.load(path).hash()
+    assert world.settings == rbsim.load(path).settings
 
 
 def test_every_repository_scene_loads_and_steps():

@@ -44,7 +44,11 @@ typedef enum rbs_scene_format {
 
 /** Load and validate a scene file.  format RBS_SCENE_AUTO: a path ending in
  * ".json" or a file whose first non-blank byte is '{' is JSON, anything else
- * text; a folder stands for its config.txt.
+ * text; a folder stands for its config.txt.  The file is opened and read
+ * once, so a pipe, FIFO or /dev/stdin works: its bytes decide the format.  A
+ * config.txt's files are looked for beside its path (for a pipe such as
+ * /dev/stdin: give them as absolute paths).  A file over 256 MiB is refused
+ * (RBS_E_IO), a regular file from its size, a stream just past the limit.
  * Returns RBS_OK, RBS_E_SCENE (rejected: every error is recorded, see
  * rbs_scene_error_get) or RBS_E_IO (a file could not be read; recorded the
  * same way): in these three cases *out is set and must be freed with

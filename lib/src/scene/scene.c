@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -207,41 +208,73 @@ const char *rbs__suggest(const char *word, const char *const *candidates, size_t
     return NULL;
 }
 
+/* Record "cannot <verb> 'path': <strerror(err)>". */
+static void io_error(rbs_scene *scene, rbs__loc at, const char *verb, const char *path,
+                     int err)
+{
+    char why[128];
+    if (strerror_r(err, why, sizeof why) != 0) {
+        snprintf(why, sizeof why, "error %d", err);
+    }
+    rbs__scene_error(scene, at, "", "cannot %s '%s': %s", verb, path, why);
+}
+
+static void too_large(rbs_scene *scene, rbs__loc at, const char *path)
+{
+    rbs__scene_error(scene, at, "", "cannot read '%s': larger than %lu bytes", path,
+                     (unsigned long)RBS__SCENE_FILE_MAX);
+}
+
 rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,
-                          char **text, size_t *len)
+                          char **text, size_t *len, int *stream)
 {
     FILE *f;
     char *buf = NULL;
-    size_t n = 0, cap = 0;
+    size_t n = 0, cap;
     struct stat st;
-    char why[128];
     *text = NULL;
     *len = 0;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
-        rbs__scene_error(scene, at, "", "cannot read '%s': is a directory", path);
-        return RBS_E_IO;
+    if (stream != NULL) {
+        *stream = 0;
     }
+    /* One open, one pass: a pipe, FIFO or /dev/stdin cannot be read twice. */
     f = fopen(path, "rb");
     if (f == NULL) {
-        int err = errno;
-        if (strerror_r(err, why, sizeof why) != 0) {
-            snprintf(why, sizeof why, "error %d", err);
-        }
-        rbs__scene_error(scene, at, "", "cannot open '%s': %s", path, why);
+        io_error(scene, at, "open", path, errno);
         return RBS_E_IO;
     }
+    if (fstat(fileno(f), &st) != 0) {
+        io_error(scene, at, "read", path, errno);
+        fclose(f);
+        return RBS_E_IO;
+    }
+    if (S_ISDIR(st.st_mode)) {
+        rbs__scene_error(scene, at, "", "cannot read '%s': is a directory", path);
+        fclose(f);
+        return RBS_E_IO;
+    }
+    /* A regular file's size is known: refuse it unread if too large, else
+     * read it in one buffer (+1 so that the end shows without a regrowth).
+     * A stream (or a file of size 0, as in /proc) grows its buffer. */
+    if (S_ISREG(st.st_mode) && (uintmax_t)st.st_size > RBS__SCENE_FILE_MAX) {
+        too_large(scene, at, path);
+        fclose(f);
+        return RBS_E_IO;
+    }
+    if (stream != NULL) {
+        *stream = !S_ISREG(st.st_mode);
+    }
+    cap = S_ISREG(st.st_mode) && st.st_size > 0 ? (size_t)st.st_size + 1 : 65536;
     for (;;) {
         size_t got;
-        if (cap - n < 65536) {
+        if (buf == NULL || n == cap) {
+            /* the first buffer, or full: double, but never past the limit
+             * + 1 byte, the byte that tells a stream over the limit */
             char *bigger;
-            if (cap > RBS__SCENE_FILE_MAX) {
-                rbs__scene_error(scene, at, "", "cannot read '%s': larger than %lu bytes",
-                                 path, (unsigned long)RBS__SCENE_FILE_MAX);
-                free(buf);
-                fclose(f);
-                return RBS_E_IO;
+            if (buf != NULL) {
+                cap = cap > (RBS__SCENE_FILE_MAX + 1) / 2 ? RBS__SCENE_FILE_MAX + 1
+                                                          : cap * 2;
             }
-            cap = cap ? cap * 2 : 65536 * 2;
             bigger = realloc(buf, cap + 1);
             if (bigger == NULL) {
                 rbs__scene_error(scene, at, "", "cannot read '%s': out of memory", path);
@@ -253,16 +286,18 @@ rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,
         }
         got = fread(buf + n, 1, cap - n, f);
         n += got;
-        if (got == 0) {
-            break;
+        if (n > RBS__SCENE_FILE_MAX) {
+            too_large(scene, at, path); /* read no further */
+            free(buf);
+            fclose(f);
+            return RBS_E_IO;
+        }
+        if (n < cap) {
+            break; /* fread stops short only at the end or on an error */
         }
     }
     if (ferror(f)) {
-        int err = errno;
-        if (strerror_r(err, why, sizeof why) != 0) {
-            snprintf(why, sizeof why, "error %d", err);
-        }
-        rbs__scene_error(scene, at, "", "cannot read '%s': %s", path, why);
+        io_error(scene, at, "read", path, errno);
         free(buf);
         fclose(f);
         return RBS_E_IO;
@@ -341,34 +376,32 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
-/* The file's first byte after blanks (and a UTF-8 byte order mark) is '{':
- * a JSON scene, whatever its name.  A text scene's first line is a comment
- * or "key = value". */
-static int starts_like_json(const char *path)
+/* The first byte after blanks (and a UTF-8 byte order mark) is '{': a JSON
+ * scene, whatever its name.  A text scene's first line is a comment or
+ * "key = value". */
+static int starts_like_json(const char *text, size_t len)
 {
-    char buf[512];
-    size_t n, i = 0;
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        return 0; /* the loader reports the file */
-    }
-    n = fread(buf, 1, sizeof buf, f);
-    fclose(f);
-    if (n >= 3 && memcmp(buf, "\xEF\xBB\xBF", 3) == 0) {
+    size_t i = 0;
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) {
         i = 3;
     }
-    while (i < n && (buf[i] == ' ' || buf[i] == '\t' || buf[i] == '\r' || buf[i] == '\n')) {
+    while (i < len &&
+           (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n')) {
         i++;
     }
-    return i < n && buf[i] == '{';
+    return i < len && text[i] == '{';
 }
 
 static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scene **out)
 {
     rbs_scene *scene;
     struct stat st;
-    char *dirpath = NULL;
-    rbs_status status = RBS_OK;
+    char *dirpath = NULL, *text = NULL;
+    size_t len = 0;
+    int stream = 0;
+    int32_t file;
+    rbs__loc at = {0, 0, 0};
+    rbs_status status;
     if (out == NULL) {
         return RBS_E_INVALID;
     }
@@ -395,29 +428,28 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
         path = dirpath;
         format = RBS_SCENE_TEXT;
     }
-    if (format == RBS_SCENE_AUTO) {
-        format = ends_with(path, ".json") || ends_with(path, ".JSON") ||
-                         starts_like_json(path)
-                     ? RBS_SCENE_JSON
-                     : RBS_SCENE_TEXT;
+    /* The file is read once, then its format told from the bytes read: a
+     * pipe or FIFO cannot be opened and read a second time. */
+    file = rbs__scene_add_file(scene, path); /* file 0 in either format */
+    if (file != 0) {
+        free(dirpath);
+        rbs_scene_free(scene);
+        return RBS_E_MEMORY;
     }
-    if (format == RBS_SCENE_JSON) {
-        int32_t file = rbs__scene_add_file(scene, path);
-        char *text = NULL;
-        size_t len = 0;
-        rbs__loc at = {file, 0, 0};
-        if (file < 0) {
-            free(dirpath);
-            rbs_scene_free(scene);
-            return RBS_E_MEMORY;
+    status = rbs__read_file(scene, path, at, &text, &len, &stream);
+    if (status == RBS_OK) {
+        if (format == RBS_SCENE_AUTO) {
+            format = ends_with(path, ".json") || ends_with(path, ".JSON") ||
+                             starts_like_json(text, len)
+                         ? RBS_SCENE_JSON
+                         : RBS_SCENE_TEXT;
         }
-        status = rbs__read_file(scene, path, at, &text, &len);
-        if (status == RBS_OK) {
+        if (format == RBS_SCENE_JSON) {
             scene_parse_json_into(scene, text, len, file);
+            free(text);
+        } else {
+            status = rbs__text_load(scene, path, text, len, stream); /* owns text */
         }
-        free(text);
-    } else {
-        status = rbs__text_load(scene, path);
     }
     free(dirpath);
     rbs__scene_sort_errors(scene);

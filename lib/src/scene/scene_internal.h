@@ -204,7 +204,11 @@ void rbs__c_locale_push(rbs__locale *l);
 void rbs__c_locale_pop(rbs__locale *l);
 
 /* scene_text.c: config.txt + materials.txt + objects.txt -> tree + positions */
-rbs_status rbs__text_load(rbs_scene *scene, const char *path);
+/** Load a text scene whose config (file 0, already registered as path) was
+ * read into text (len bytes, NUL-terminated; freed here).  stream: the
+ * config came from a pipe, FIFO or device rather than a regular file. */
+rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t len,
+                          int stream);
 
 /* scene_validate.c: tree -> description */
 /** Validate a tree; fill the scene's description; record every error. */
@@ -225,9 +229,12 @@ rbs_status rbs__scene_save_text(const rbs_scene *scene, const char *path, char *
                                 size_t message_size);
 
 /* scene.c: reading files */
-/** Read a whole file into a new buffer (NUL-terminated).  Records an error
- * naming the file on failure. */
+/** Read a whole file into a new buffer (NUL-terminated), opening it once:
+ * a pipe, FIFO or /dev/stdin works too.  A regular file over
+ * RBS__SCENE_FILE_MAX is refused from its size, unread; a stream as soon as
+ * it passes the limit.  Records an error naming the file on failure.
+ * stream (may be NULL) is set when the file is not a regular file. */
 rbs_status rbs__read_file(rbs_scene *scene, const char *path, rbs__loc at,
-                          char **text, size_t *len);
+                          char **text, size_t *len, int *stream);
 
 #endif /* RBS_SCENE_INTERNAL_H */

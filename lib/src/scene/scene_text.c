@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h> /* access */
 
 typedef struct tctx {
     rbs_scene *scene;
@@ -25,6 +26,7 @@ typedef struct tctx {
     rbs__src *srcs; /* indexed by file */
     int32_t file;   /* file being read */
     int failed;     /* out of memory */
+    int stream;     /* config.txt came from a pipe, FIFO or device */
 } tctx;
 
 typedef struct ttok {
@@ -752,6 +754,7 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
     int32_t file;
     size_t len;
     rbs_status st;
+    int relative;
     int32_t saved_file = t->file;
     if (!cJSON_IsString(name_item) || name_item->valuestring[0] == '\0') {
         rbs__scene_error(t->scene, tloc(t, line_off), "",
@@ -760,6 +763,7 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
         cJSON_Delete((cJSON *)name_item);
         return RBS_E_SCENE;
     }
+    relative = name_item->valuestring[0] != '/';
     path = beside(config, name_item->valuestring);
     cJSON_Delete((cJSON *)name_item);
     if (path == NULL) {
@@ -775,7 +779,17 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
         }
         return RBS_E_SCENE;
     }
-    st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len);
+    st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len, NULL);
+    if (st == RBS_E_IO && t->stream && relative && access(path, F_OK) != 0) {
+        /* A config given through a pipe works when its relative names lie
+         * beside the pipe's own path (a FIFO in the scene's folder); through
+         * /dev/stdin or /dev/fd/N they cannot, so say why. */
+        rbs__scene_error(t->scene, tloc(t, line_off), "",
+                         "'%s' is a pipe or device: the file names in it are looked "
+                         "for beside that path; name the files by absolute paths, or "
+                         "load the config.txt file itself",
+                         config);
+    }
     free(path);
     if (st != RBS_OK) {
         return st;
@@ -800,7 +814,8 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
     return RBS_OK;
 }
 
-rbs_status rbs__text_load(rbs_scene *scene, const char *path)
+rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t len,
+                          int stream)
 {
     rbs__src srcs[RBS__SCENE_FILES_MAX];
     char *texts[RBS__SCENE_FILES_MAX] = {NULL, NULL, NULL, NULL};
@@ -808,10 +823,10 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path)
     tctx t;
     cJSON *root = NULL, *sim, *mats, *bodies, *rends;
     cJSON *mat_name = NULL, *obj_name = NULL;
-    size_t mat_off = 0, obj_off = 0, pos = 0, b, e, len;
+    size_t mat_off = 0, obj_off = 0, pos = 0, b, e;
     rbs__loc none = {0, 0, 0};
     rbs_status st = RBS_OK, st2;
-    int32_t file, k;
+    int32_t k;
     int config_unreadable;
     memset(srcs, 0, sizeof srcs);
     memset(&map, 0, sizeof map);
@@ -819,14 +834,8 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path)
     t.scene = scene;
     t.map = &map;
     t.srcs = srcs;
-    file = rbs__scene_add_file(scene, path);
-    if (file != 0) {
-        return RBS_E_MEMORY;
-    }
-    st = rbs__read_file(scene, path, none, &texts[0], &len);
-    if (st != RBS_OK) {
-        return st;
-    }
+    t.stream = stream;
+    texts[0] = text;
     root = cJSON_CreateObject();
     sim = cJSON_CreateObject();
     mats = cJSON_CreateArray();

@@ -1,0 +1,319 @@
+/*
+ * test_scene_stream.c - scenes read through a pipe, a FIFO or /dev/fd/N:
+ * the loader opens the file once, so nothing is lost to telling the format,
+ * and the size limit holds for streams (stopped just past it) and for
+ * regular files (refused from their size, unread).
+ *
+ * A writer thread feeds each pipe or FIFO while the test loads it.  SIGPIPE
+ * is ignored so that a writer whose reader has gone gets EPIPE instead.
+ */
+#include "scene_test.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <sys/stat.h>
+
+#include "rbsim/rbsim.h"
+
+#define LIMIT ((size_t)256 * 1024 * 1024) /* RBS__SCENE_FILE_MAX */
+
+typedef struct writer {
+    int fd;              /* written to, then closed; -1: open fifo first */
+    const char *fifo;    /* a FIFO to open for writing, or NULL */
+    const char *data;    /* bytes to write; NULL: zero bytes without end */
+    size_t len;
+    size_t written;      /* out: bytes the reader took */
+} writer;
+
+static void *write_all(void *arg)
+{
+    static const char zeros[65536] = {0};
+    writer *w = arg;
+    if (w->fifo != NULL) {
+        w->fd = open(w->fifo, O_WRONLY); /* waits for the reader */
+        if (w->fd < 0) {
+            return NULL;
+        }
+    }
+    for (;;) {
+        const char *p = w->data != NULL ? w->data + w->written : zeros;
+        size_t want = w->data != NULL ? w->len - w->written : sizeof zeros;
+        ssize_t got;
+        if (want == 0) {
+            break;
+        }
+        got = write(w->fd, p, want);
+        if (got < 0 && errno == EINTR) {
+            continue;
+        }
+        if (got <= 0) {
+            break; /* EPIPE: the reader stopped */
+        }
+        w->written += (size_t)got;
+    }
+    close(w->fd);
+    return NULL;
+}
+
+/* Load a scene and save it as JSON text (every field it holds), and hash
+ * the world it builds; the caller frees *json. */
+static void load_fingerprint(const char *path, const char *tmp, char **json,
+                             uint64_t *hash)
+{
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    char out[4200];
+    size_t len;
+    rbs_status st = rbs_scene_load(path, RBS_SCENE_AUTO, &scene);
+    if (st != RBS_OK) {
+        print_errors(scene);
+    }
+    assert_int_equal(st, RBS_OK);
+    assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+    *hash = rbs_world_hash(world);
+    snprintf(out, sizeof out, "%s/saved.json", tmp);
+    assert_int_equal(rbs_scene_save(scene, out, RBS_SCENE_JSON), RBS_OK);
+    *json = read_all(out, &len);
+    assert_non_null(*json);
+    unlink(out);
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+}
+
+static char *make_tmpdir(void)
+{
+    char tmpl[] = "/tmp/rbs_stream_XXXXXX";
+    char *dir = mkdtemp(tmpl);
+    assert_non_null(dir);
+    dir = strdup(dir);
+    assert_non_null(dir);
+    return dir;
+}
+
+/* A JSON scene through an anonymous pipe (/dev/fd/N, no .json name) is the
+ * same scene as from its file. */
+static void test_json_from_pipe(void **state)
+{
+    const char *file = "../../scenes/pile.json"; /* 49 KB: several reads */
+    writer w;
+    pthread_t th;
+    int fds[2];
+    char path[64], *tmp = make_tmpdir(), *want, *got;
+    uint64_t want_hash, got_hash;
+    (void)state;
+    memset(&w, 0, sizeof w);
+    w.data = read_all(file, &w.len);
+    assert_non_null(w.data);
+    load_fingerprint(file, tmp, &want, &want_hash);
+
+    assert_int_equal(pipe(fds), 0);
+    w.fd = fds[1];
+    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    load_fingerprint(path, tmp, &got, &got_hash);
+    close(fds[0]);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_int_equal(w.written, w.len);
+    assert_string_equal(got, want);
+    assert_true(got_hash == want_hash);
+
+    free(want);
+    free(got);
+    free((char *)w.data);
+    rmdir(tmp);
+    free(tmp);
+}
+
+/* A named FIFO without a .json name: read once, not opened again (which
+ * waited for a second writer for ever). */
+static void test_json_from_fifo(void **state)
+{
+    const char *file = "../../scenes/collisions.json";
+    writer w;
+    pthread_t th;
+    char fifo[64], *tmp = make_tmpdir(), *want, *got;
+    uint64_t want_hash, got_hash;
+    (void)state;
+    memset(&w, 0, sizeof w);
+    w.data = read_all(file, &w.len);
+    assert_non_null(w.data);
+    load_fingerprint(file, tmp, &want, &want_hash);
+
+    snprintf(fifo, sizeof fifo, "%s/scene", tmp);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    w.fifo = fifo;
+    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
+    load_fingerprint(fifo, tmp, &got, &got_hash);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_int_equal(w.written, w.len);
+    assert_string_equal(got, want);
+    assert_true(got_hash == want_hash);
+
+    free(want);
+    free(got);
+    free((char *)w.data);
+    unlink(fifo);
+    rmdir(tmp);
+    free(tmp);
+}
+
+/* Copy a file; 0 on success. */
+static int copy_file(const char *from, const char *to)
+{
+    size_t len;
+    char *data = read_all(from, &len);
+    FILE *f;
+    int ok;
+    if (data == NULL) {
+        return -1;
+    }
+    f = fopen(to, "wb");
+    ok = f != NULL && fwrite(data, 1, len, f) == len;
+    ok = f != NULL && fclose(f) == 0 && ok;
+    free(data);
+    return ok ? 0 : -1;
+}
+
+/* A text config through a FIFO in the scene's folder finds materials.txt
+ * and objects.txt beside it; through /dev/fd/N it cannot, and says why. */
+static void test_text_from_pipe(void **state)
+{
+    const char *folder = "../../scenes/pile";
+    writer w;
+    pthread_t th;
+    int fds[2];
+    char fifo[64], path[4200], *tmp = make_tmpdir(), *want, *got;
+    uint64_t want_hash, got_hash;
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    memset(&w, 0, sizeof w);
+    snprintf(path, sizeof path, "%s/config.txt", folder);
+    w.data = read_all(path, &w.len);
+    assert_non_null(w.data);
+    load_fingerprint(folder, tmp, &want, &want_hash);
+
+    snprintf(path, sizeof path, "%s/materials.txt", tmp);
+    assert_int_equal(copy_file("../../scenes/pile/materials.txt", path), 0);
+    snprintf(path, sizeof path, "%s/objects.txt", tmp);
+    assert_int_equal(copy_file("../../scenes/pile/objects.txt", path), 0);
+    snprintf(fifo, sizeof fifo, "%s/config", tmp);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    w.fifo = fifo;
+    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
+    load_fingerprint(fifo, tmp, &got, &got_hash);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_string_equal(got, want);
+    assert_true(got_hash == want_hash);
+
+    /* /dev/fd/N: the names resolve in /dev/fd, and the error says why */
+    w.fifo = NULL;
+    w.written = 0;
+    assert_int_equal(pipe(fds), 0);
+    w.fd = fds[1];
+    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
+    close(fds[0]);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.message,
+                        "cannot open '/dev/fd/materials.txt': No such file or directory");
+    assert_int_equal(e.line, 12); /* "materials = materials.txt" */
+    assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
+    snprintf(path, sizeof path,
+             "'/dev/fd/%d' is a pipe or device: the file names in it are looked for "
+             "beside that path; name the files by absolute paths, or load the "
+             "config.txt file itself",
+             fds[0]);
+    assert_string_equal(e.message, path);
+    assert_int_equal(e.line, 12);
+    rbs_scene_free(scene);
+
+    free(want);
+    free(got);
+    free((char *)w.data);
+    unlink(fifo);
+    snprintf(path, sizeof path, "%s/materials.txt", tmp);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/objects.txt", tmp);
+    unlink(path);
+    rmdir(tmp);
+    free(tmp);
+}
+
+/* A stream without end is stopped just past the limit (the writer gets
+ * EPIPE once the reader has gone), with the same message as a file. */
+static void test_stream_over_limit(void **state)
+{
+    writer w;
+    pthread_t th;
+    int fds[2];
+    char path[64], text[256];
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    (void)state;
+    memset(&w, 0, sizeof w);
+    assert_int_equal(pipe(fds), 0);
+    w.fd = fds[1];
+    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
+    close(fds[0]);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    snprintf(text, sizeof text, "%s: cannot read '%s': larger than 268435456 bytes", path,
+             path);
+    assert_string_equal(e.text, text);
+    rbs_scene_free(scene);
+    /* the limit + 1 byte, plus what the pipe (64 KiB) and stdio's buffer
+     * held when the reader stopped: 1 MiB is ample */
+    fprintf(stderr, "written %zu bytes for a limit of %zu\n", w.written, LIMIT);
+    assert_true(w.written > LIMIT);
+    assert_true(w.written <= LIMIT + 1024 * 1024);
+}
+
+/* A regular file over the limit is refused from its size: a sparse file of
+ * the limit + 1 byte, and the same message as a stream. */
+static void test_file_over_limit(void **state)
+{
+    char *tmp = make_tmpdir(), path[4200], text[8600];
+    rbs_scene *scene = NULL;
+    rbs_scene_error e;
+    int fd;
+    (void)state;
+    snprintf(path, sizeof path, "%s/big.json", tmp);
+    fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    assert_true(fd >= 0);
+    assert_int_equal(ftruncate(fd, (off_t)LIMIT + 1), 0);
+    close(fd);
+    assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    snprintf(text, sizeof text, "%s: cannot read '%s': larger than 268435456 bytes", path,
+             path);
+    assert_string_equal(e.text, text);
+    rbs_scene_free(scene);
+    unlink(path);
+    rmdir(tmp);
+    free(tmp);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_json_from_pipe),    cmocka_unit_test(test_json_from_fifo),
+        cmocka_unit_test(test_text_from_pipe),    cmocka_unit_test(test_stream_over_limit),
+        cmocka_unit_test(test_file_over_limit),
+    };
+    struct sigaction ign;
+    memset(&ign, 0, sizeof ign);
+    ign.sa_handler = SIG_IGN;
+    if (sigaction(SIGPIPE, &ign, NULL) != 0 || enter_test_dir() != 0) {
+        return 1;
+    }
+    return cmocka_run_group_tests_name("scene_stream", tests, NULL, NULL);
+}
