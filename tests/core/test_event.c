@@ -140,6 +140,57 @@ static void incline_is_exact(void **state)
     }
 }
 
+/* A sphere of inertia k m r^2 launched up an incline at v0 (theta = 20
+ * degrees, mu_s = 0.5 >= k/(1+k) tan(theta): it can roll) slides up, its
+ * slip u = v - r w falling at g (sin + mu_k cos) + mu_k g cos / k, until it
+ * rolls at t_r; then it rolls with a = -g sin / (1 + k).  With k = 1e9 it
+ * comes to rest as it starts to roll, and its speeds are then as small as
+ * its slip's rounding: before session 38 it was taken as sliding on a
+ * direction of rounding, and slid back down (s = 0.064 m for 0.735).  Also
+ * k = 1e4 and the solid sphere's 0.4.  Tolerance 1e-9: a few events each
+ * polished to ulps. */
+static void large_inertia_stops_rolling_up_an_incline(void **state)
+{
+    const double th = 20.0 * 3.14159265358979323846 / 180.0, r = 0.1, v0 = 3.0, mus = 0.5, muk = 0.3;
+    const double ks[3] = {0.4, 1e4, 1e9};
+    int i;
+    (void)state;
+    for (i = 0; i < 3; ++i) {
+        const double k = ks[i], T = 2.0;
+        const double a_v = -G * (sin(th) + muk * cos(th)), a_rw = muk * G * cos(th) / k;
+        const double tr = v0 / (a_rw - a_v), vr = v0 + a_v * tr, sr = v0 * tr + 0.5 * a_v * tr * tr;
+        const double a_roll = -G * sin(th) / (1.0 + k), tt = T - tr;
+        rbs_world *w = event_world(4, -G, 0.0);
+        rbs_material_id m = material(w, "m", mus, muk, -1.0);
+        rbs_plane_def p;
+        rbs_sphere_def s;
+        rbs_body_id b;
+        rbs_body_state st;
+        rbs_plane_def_init(&p);
+        p.normal.x = -sin(th);
+        p.normal.z = cos(th);
+        p.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        rbs_sphere_def_init(&s);
+        s.radius = r;
+        s.mass = 1.0;
+        s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+        s.inertia.x = s.inertia.y = s.inertia.z = k * r * r;
+        s.position.x = -r * sin(th);
+        s.position.z = r * cos(th);
+        s.velocity.x = v0 * cos(th);
+        s.velocity.z = v0 * sin(th);
+        s.material = m;
+        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+        step_n(w, 2000);
+        CHECK_OK(rbs_body_get_state(w, b, &st));
+        ASSERT_NEAR((st.position.x + r * sin(th)) * cos(th) + (st.position.z - r * cos(th)) * sin(th),
+                    sr + vr * tt + 0.5 * a_roll * tt * tt, 1e-9);
+        ASSERT_NEAR(st.velocity.x * cos(th) + st.velocity.z * sin(th), vr + a_roll * tt, 1e-9);
+        rbs_world_destroy(w);
+    }
+}
+
 /* Newton's cradle in time order: only the last ball moves, exactly. */
 static void cradle_is_exact(void **state)
 {
@@ -287,6 +338,7 @@ int main(void)
         cmocka_unit_test(zeno_limit_ends_in_rest),
         cmocka_unit_test(backspin_slide_to_roll_is_exact),
         cmocka_unit_test(incline_is_exact),
+        cmocka_unit_test(large_inertia_stops_rolling_up_an_incline),
         cmocka_unit_test(cradle_is_exact),
         cmocka_unit_test(quartic_contact_time),
         cmocka_unit_test(stack_is_unsupported_with_reason),

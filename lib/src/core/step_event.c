@@ -227,7 +227,15 @@ static rbs_status classify(rbs_world *w, double dt)
             v3_store(&w->vel[3 * i], v);
             pair_friction(w, i, plane, &mu_s, &mu_k);
             u = v3_sub(v, v3_scale(v3_cross(om, n), r)); /* contact point velocity */
-            if (v3_len(u) <= 1e-12 * (v3_len(v) + r * v3_len(om)) + 1e-300) {
+            /* Rolling: the slip within rounding of the speeds -- and of
+             * what the slip can change in a frame (the drive and the
+             * kinetic friction): at a slip's stop that finds the sphere
+             * nearly still (a large inertia stops it as it rolls), the speeds
+             * are as small as the slip's rounding, and by them alone it was
+             * taken as sliding, on a direction of rounding (a probe of
+             * session 38: I = 1e9 m r^2 up an incline slid back down). */
+            const double du = v3_len(v3_sub(gt, v3_scale(tn, r / I))) + mu_k * N * kk;
+            if (v3_len(u) <= 1e-12 * (v3_len(v) + r * v3_len(om) + du * dt) + 1e-300) {
                 /* rolls if the friction that keeps it rolling is available */
                 f = v3_scale(v3_sub(v3_scale(tn, r / I), gt), 1.0 / kk);
                 if (v3_len(f) <= mu_s * N) {
