@@ -48,6 +48,15 @@ def bits(x):
     return struct.pack("<d", x)
 
 
+def file_size_limit(limit, on_sigxfsz):
+    """A preexec_fn: a file size limit of `limit` bytes (ulimit -f), with
+    SIGXFSZ at on_sigxfsz (rbsim ignores it itself; SIG_DFL is its death)."""
+    def apply():
+        signal.signal(signal.SIGXFSZ, on_sigxfsz)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return apply
+
+
 class Base(unittest.TestCase):
     def setUp(self):
         self._tmp = tempfile.TemporaryDirectory(prefix="rbsim-cli-")
@@ -866,11 +875,7 @@ class FaultTests(Base):
         # A file size limit makes the CSV fail part way through a frame: the
         # file must end on the last whole frame, the run stop with exit 4.
         limit = 60000
-
-        def limit_size():
-            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
-            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
-
+        limit_size = file_size_limit(limit, signal.SIG_IGN)
         s = self.scene()
         r = subprocess.run([RBSIM, "run", s, "--csv", "big.csv", "--steps",
                             "5000"], cwd=self.dir, capture_output=True,
@@ -1032,11 +1037,7 @@ class FaultTests(Base):
         # existing file: exit 4 naming the file (not its temporary), the file
         # holds whole frames, no temporary is left.
         limit = 60000
-
-        def limit_size():
-            signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
-            resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
-
+        limit_size = file_size_limit(limit, signal.SIG_DFL)
         s = self.scene()
         with open(self.path("big.csv"), "w") as f:
             f.write("OLD\n")
@@ -1057,10 +1058,10 @@ class FaultTests(Base):
         with open(self.path("conv.json"), "w") as f:
             f.write("OLD\n")
         before = sorted(os.listdir(self.dir))
-        limit = 200
         r = subprocess.run([RBSIM, "convert", s, "conv.json"], cwd=self.dir,
                            capture_output=True, text=True, timeout=60,
-                           preexec_fn=limit_size, stdin=subprocess.DEVNULL)
+                           preexec_fn=file_size_limit(200, signal.SIG_DFL),
+                           stdin=subprocess.DEVNULL)
         self.assertEqual(r.returncode, 4, r.stderr)
         self.assertIn("conv.json", r.stderr)
         self.assertIn("File too large", r.stderr)

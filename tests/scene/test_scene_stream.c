@@ -92,28 +92,51 @@ static char *make_tmpdir(void)
     return dir;
 }
 
-/* A JSON scene through an anonymous pipe (/dev/fd/N, no .json name) is the
- * same scene as from its file. */
-static void test_json_from_pipe(void **state)
+/* Load *scene from the read end of a pipe as /dev/fd/N (its name into
+ * path, n bytes) while a thread writes w into it; the load's status. */
+static rbs_status load_from_pipe(writer *w, char *path, size_t n, rbs_scene **scene)
 {
-    const char *file = "../../scenes/pile.json"; /* 49 KB: several reads */
-    writer w;
     pthread_t th;
     int fds[2];
+    rbs_status st;
+    assert_int_equal(pipe(fds), 0);
+    w->fd = fds[1];
+    assert_int_equal(pthread_create(&th, NULL, write_all, w), 0);
+    snprintf(path, n, "/dev/fd/%d", fds[0]);
+    st = rbs_scene_load(path, RBS_SCENE_AUTO, scene);
+    close(fds[0]);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    return st;
+}
+
+/* JSON scene `file` read through a stream -- an anonymous pipe as
+ * /dev/fd/N (fifo 0) or a named FIFO "scene" (fifo 1), neither with a .json
+ * name -- is the same scene, and builds the same world, as from the file. */
+static void json_through_stream(const char *file, int fifo)
+{
+    writer w;
+    pthread_t th;
+    int fds[2] = {-1, -1};
     char path[64], *tmp = make_tmpdir(), *want, *got;
     uint64_t want_hash, got_hash;
-    (void)state;
     memset(&w, 0, sizeof w);
     w.data = read_all(file, &w.len);
     assert_non_null(w.data);
     load_fingerprint(file, tmp, &want, &want_hash);
 
-    assert_int_equal(pipe(fds), 0);
-    w.fd = fds[1];
+    if (fifo) {
+        snprintf(path, sizeof path, "%s/scene", tmp);
+        assert_int_equal(mkfifo(path, 0600), 0);
+        w.fifo = path;
+    } else {
+        assert_int_equal(pipe(fds), 0);
+        w.fd = fds[1];
+        snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    }
     assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
-    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
     load_fingerprint(path, tmp, &got, &got_hash);
-    close(fds[0]);
+    if (!fifo)
+        close(fds[0]);
     assert_int_equal(pthread_join(th, NULL), 0);
     assert_int_equal(w.written, w.len);
     assert_string_equal(got, want);
@@ -122,41 +145,25 @@ static void test_json_from_pipe(void **state)
     free(want);
     free(got);
     free((char *)w.data);
+    if (fifo)
+        unlink(path);
     rmdir(tmp);
     free(tmp);
 }
 
-/* A named FIFO without a .json name: read once, not opened again (which
- * waited for a second writer for ever). */
+/* Through an anonymous pipe: 49 KB, several reads. */
+static void test_json_from_pipe(void **state)
+{
+    (void)state;
+    json_through_stream("../../scenes/pile.json", 0);
+}
+
+/* Through a named FIFO without a .json name: read once, not opened again
+ * (which waited for a second writer for ever). */
 static void test_json_from_fifo(void **state)
 {
-    const char *file = "../../scenes/collisions.json";
-    writer w;
-    pthread_t th;
-    char fifo[64], *tmp = make_tmpdir(), *want, *got;
-    uint64_t want_hash, got_hash;
     (void)state;
-    memset(&w, 0, sizeof w);
-    w.data = read_all(file, &w.len);
-    assert_non_null(w.data);
-    load_fingerprint(file, tmp, &want, &want_hash);
-
-    snprintf(fifo, sizeof fifo, "%s/scene", tmp);
-    assert_int_equal(mkfifo(fifo, 0600), 0);
-    w.fifo = fifo;
-    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
-    load_fingerprint(fifo, tmp, &got, &got_hash);
-    assert_int_equal(pthread_join(th, NULL), 0);
-    assert_int_equal(w.written, w.len);
-    assert_string_equal(got, want);
-    assert_true(got_hash == want_hash);
-
-    free(want);
-    free(got);
-    free((char *)w.data);
-    unlink(fifo);
-    rmdir(tmp);
-    free(tmp);
+    json_through_stream("../../scenes/collisions.json", 1);
 }
 
 /* Copy a file; 0 on success. */
@@ -183,8 +190,7 @@ static void test_text_from_pipe(void **state)
     const char *folder = "../../scenes/pile";
     writer w;
     pthread_t th;
-    int fds[2];
-    char fifo[64], path[4200], *tmp = make_tmpdir(), *want, *got;
+    char fifo[64], dev[64], path[4200], *tmp = make_tmpdir(), *want, *got;
     uint64_t want_hash, got_hash;
     rbs_scene *scene = NULL;
     rbs_scene_error e;
@@ -211,23 +217,17 @@ static void test_text_from_pipe(void **state)
     /* /dev/fd/N: the names resolve in /dev/fd, and the error says why */
     w.fifo = NULL;
     w.written = 0;
-    assert_int_equal(pipe(fds), 0);
-    w.fd = fds[1];
-    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
-    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
-    assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
-    close(fds[0]);
-    assert_int_equal(pthread_join(th, NULL), 0);
+    assert_int_equal(load_from_pipe(&w, dev, sizeof dev, &scene), RBS_E_IO);
     assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
     assert_string_equal(e.message,
                         "cannot open '/dev/fd/materials.txt': No such file or directory");
     assert_int_equal(e.line, 12); /* "materials = materials.txt" */
     assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
     snprintf(path, sizeof path,
-             "'/dev/fd/%d' is a pipe or device: the file names in it are looked for "
+             "'%s' is a pipe or device: the file names in it are looked for "
              "beside that path; name the files by absolute paths, or load the "
              "config.txt file itself",
-             fds[0]);
+             dev);
     assert_string_equal(e.message, path);
     assert_int_equal(e.line, 12);
     rbs_scene_free(scene);
@@ -244,31 +244,29 @@ static void test_text_from_pipe(void **state)
     free(tmp);
 }
 
+/* The load of path refused with the one size-limit message; frees scene. */
+static void assert_too_large(rbs_scene *scene, const char *path)
+{
+    rbs_scene_error e;
+    char text[8600];
+    assert_int_equal(rbs_scene_error_count(scene), 1);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    snprintf(text, sizeof text, "%s: cannot read '%s': larger than 268435456 bytes", path, path);
+    assert_string_equal(e.text, text);
+    rbs_scene_free(scene);
+}
+
 /* A stream without end is stopped just past the limit (the writer gets
  * EPIPE once the reader has gone), with the same message as a file. */
 static void test_stream_over_limit(void **state)
 {
     writer w;
-    pthread_t th;
-    int fds[2];
-    char path[64], text[256];
+    char path[64];
     rbs_scene *scene = NULL;
-    rbs_scene_error e;
     (void)state;
     memset(&w, 0, sizeof w);
-    assert_int_equal(pipe(fds), 0);
-    w.fd = fds[1];
-    assert_int_equal(pthread_create(&th, NULL, write_all, &w), 0);
-    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
-    assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
-    close(fds[0]);
-    assert_int_equal(pthread_join(th, NULL), 0);
-    assert_int_equal(rbs_scene_error_count(scene), 1);
-    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
-    snprintf(text, sizeof text, "%s: cannot read '%s': larger than 268435456 bytes", path,
-             path);
-    assert_string_equal(e.text, text);
-    rbs_scene_free(scene);
+    assert_int_equal(load_from_pipe(&w, path, sizeof path, &scene), RBS_E_IO);
+    assert_too_large(scene, path);
     /* the limit + 1 byte, plus what the pipe (64 KiB) and stdio's buffer
      * held when the reader stopped: 1 MiB is ample */
     fprintf(stderr, "written %zu bytes for a limit of %zu\n", w.written, LIMIT);
@@ -280,9 +278,8 @@ static void test_stream_over_limit(void **state)
  * the limit + 1 byte, and the same message as a stream. */
 static void test_file_over_limit(void **state)
 {
-    char *tmp = make_tmpdir(), path[4200], text[8600];
+    char *tmp = make_tmpdir(), path[4200];
     rbs_scene *scene = NULL;
-    rbs_scene_error e;
     int fd;
     (void)state;
     snprintf(path, sizeof path, "%s/big.json", tmp);
@@ -291,12 +288,7 @@ static void test_file_over_limit(void **state)
     assert_int_equal(ftruncate(fd, (off_t)LIMIT + 1), 0);
     close(fd);
     assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_E_IO);
-    assert_int_equal(rbs_scene_error_count(scene), 1);
-    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
-    snprintf(text, sizeof text, "%s: cannot read '%s': larger than 268435456 bytes", path,
-             path);
-    assert_string_equal(e.text, text);
-    rbs_scene_free(scene);
+    assert_too_large(scene, path);
     unlink(path);
     rmdir(tmp);
     free(tmp);
