@@ -14,9 +14,35 @@
 #define LINE_MAX_BYTES 1024
 #define REPLY_BYTES 4096
 
-static void answer(rbsf_input *in, const char *line)
+static void say(rbsf_input *in, const char *text)
+{
+    pthread_mutex_lock(in->reply_lock);
+    fputs(text, in->reply);
+    fflush(in->reply);
+    pthread_mutex_unlock(in->reply_lock);
+}
+
+/* Answer the command line of n bytes (its newline gone).  A control
+ * character -- a NUL, an escape sequence -- refuses it whole, naming the
+ * byte: a NUL would cut the command short, and a reply that echoes an
+ * escape sequence would drive the terminal.  A trailing CR (a line ended
+ * by CR LF) and tabs are taken as they would be typed. */
+static void answer(rbsf_input *in, char *line, size_t n)
 {
     char reply[REPLY_BYTES];
+    size_t i;
+    if (n > 0 && line[n - 1] == '\r')
+        line[--n] = '\0';
+    for (i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)line[i];
+        if ((c < 0x20 && c != '\t') || c == 0x7f) {
+            snprintf(reply, sizeof reply,
+                     "a command must not hold control characters (byte 0x%02x at %lu): ignored\n", c,
+                     (unsigned long)i + 1);
+            say(in, reply);
+            return;
+        }
+    }
     rbsf_command_run(in->projector, line, reply, sizeof reply);
     if (reply[0] == '\0')
         return;
@@ -82,19 +108,21 @@ static void *input_main(void *arg)
                 continue;
             buf[i] = '\0';
             if (!overlong)
-                answer(in, buf + start);
+                answer(in, buf + start, i - start);
             overlong = 0;
             start = i + 1;
         }
         memmove(buf, buf + start, len - start);
         len -= start;
         if (len == sizeof buf - 1) {
-            /* A line too long for the buffer: drop it whole. */
-            pthread_mutex_lock(in->reply_lock);
-            fprintf(in->reply, "line too long (at most %d bytes): ignored\n",
-                    LINE_MAX_BYTES - 2);
-            fflush(in->reply);
-            pthread_mutex_unlock(in->reply_lock);
+            /* A line too long for the buffer: drop it whole, and say so
+             * once (the rest of it comes in more such reads). */
+            if (!overlong) {
+                char text[96];
+                snprintf(text, sizeof text, "line too long (at most %d bytes): ignored\n",
+                         LINE_MAX_BYTES - 2);
+                say(in, text);
+            }
             len = 0;
             overlong = 1;
         }

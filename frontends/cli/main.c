@@ -69,7 +69,7 @@ static const char run_text[] =
     "                scene's \"every\"; a resumed run keeps the same numbers)\n"
     "  --realtime    show frame k at k dt of wall time (default: as fast as\n"
     "                possible)\n"
-    "  --speed X     real-time factor for --realtime (default 1)\n"
+    "  --speed X     real-time factor for --realtime (default 1; only with it)\n"
     "  --paused      start paused (then \"resume\" or \"step N\")\n"
     "  --reel N      frames the reel holds between the threads (default 64)\n"
     "  --threads N   threads that step the world, the simulation thread\n"

@@ -285,6 +285,10 @@ static int parse_run_args(int argc, char **argv, run_options *o)
     if ((o->checkpoint || o->resume) && o->scene == NULL)
         return usage_error("--checkpoint and --resume need a SCENE (not the "
                            "demonstration)%s%s", "", "");
+    if (seen_speed && !o->realtime)
+        return usage_error("--speed sets the pace of --realtime, and a run "
+                           "without it goes as fast as it can: give "
+                           "--realtime too%s%s", "", "");
     return 0;
 }
 

@@ -149,6 +149,7 @@ class CliTests(Base):
             (["--threads", "two"], "--threads: expected"),
             (["--threads", "2", "--threads=3"], "--threads given twice"),
             (["--speed", "0"], "--speed"),
+            (["--speed", "2"], "--speed sets the pace of --realtime"),
             (["--frobnicate"], "unknown option '--frobnicate'"),
             (["--csv"], "--csv needs a value"),
             (["--csv", "out.csv", "--csv", "x.csv"], "--csv given twice"),
@@ -647,6 +648,33 @@ class CliTests(Base):
         self.assertIn("stopped at frame", out)
         n = self.assert_whole_frames(self.path("q.csv"))
         self.assertLess(n, 100001)  # quit, not the end
+
+    def test_odd_command_lines(self):
+        # A 10 kB line is refused once (not once per 1 kB read); a line with
+        # a NUL or an escape sequence is refused naming the byte (a NUL cut
+        # it short -- "status\\0junk" ran status -- and the unknown-command
+        # reply echoed escapes raw, driving the terminal); CR LF ends a
+        # line as LF does.  (The probe of session 38.)
+        s = self.scene()
+        p = subprocess.Popen([RBSIM, "run", s, "--paused", "--steps", "1000",
+                              "--csv", "o.csv"], cwd=self.dir,
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE)
+        try:
+            out, err = p.communicate(
+                b"x" * 10000 + b"\nstatus\x00junk\n\x1b]0;title\x07\n"
+                b"status\r\nquit\n", timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        out = out.decode("utf-8", "replace")
+        self.assertEqual(p.returncode, 0, err)
+        self.assertEqual(out.count("line too long"), 1, out)
+        self.assertIn("control characters (byte 0x00 at 7): ignored", out)
+        self.assertIn("control characters (byte 0x1b at 1): ignored", out)
+        self.assertNotIn("\x1b", out)
+        self.assertEqual(out.count("frame 0 of 1000"), 1, out)  # the one status
+        self.assertIn("stopped at frame", out)
 
     def test_paused_start_and_step(self):
         s = self.scene()
