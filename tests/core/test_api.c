@@ -215,6 +215,23 @@ static void create_in_caller_memory(void **state)
     CHECK_OK(rbs_world_create_in(mem, need, &d, &w));
     ball(w, 0.1, 1, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
     step_n(w, 10);
+    {
+        /* _zeroed into zero bytes (not written over): the same world, bit
+         * for bit; and its checks are create_in's */
+        const uint64_t h = rbs_world_hash(w);
+        void *zero = calloc(1, need + 16);
+        void *at = (void *)((char *)zero + (16u - (uintptr_t)zero % 16u) % 16u);
+        rbs_world *z;
+        assert_non_null(zero);
+        assert_int_equal(rbs_world_create_in_zeroed(at, need - 1, &d, &z), RBS_E_MEMORY);
+        assert_int_equal(rbs_world_create_in_zeroed((char *)at + 8, need, &d, &z), RBS_E_INVALID);
+        CHECK_OK(rbs_world_create_in_zeroed(at, need, &d, &z));
+        ball(z, 0.1, 1, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+        step_n(z, 10);
+        assert_true(rbs_world_hash(z) == h);
+        rbs_world_destroy(z);
+        free(zero);
+    }
     rbs_world_destroy(w);
     free(mem);
     /* memory grows with capacity */

@@ -2,8 +2,9 @@
 
 Design notes
 ------------
-* The world's memory is one block owned by Python (``rbs_world_create_in``
-  into a buffer made by cffi).  The state arrays (:attr:`World.positions`,
+* The world's memory is one block owned by Python
+  (``rbs_world_create_in_zeroed`` into numpy's zeros, which calloc makes:
+  pages become resident as the world first writes them, as in C).  The state arrays (:attr:`World.positions`,
   ...) are numpy views into that block: no copy is made, a step changes what
   they show, and because every view keeps the block alive, a view can never
   dangle (after :meth:`World.close` it just stops changing).
@@ -489,16 +490,22 @@ class World:
         size = lib.rbs_world_memory_size(d)
         if size == 0:
             raise _e.error_class(lib.RBS_E_INVALID)(_def_problem(d))
-        self._mem = ffi.new("char[]", size + _ALIGN)
+        # numpy's zeros come from calloc: pages the world never writes (the
+        # capacity a run does not reach) stay address space, not memory, as
+        # with rbs_world_create -- where ffi.new's zero fill, and
+        # rbs_world_create_in's, made all of it resident (2,165 bytes a body
+        # at 1e5 bodies against C's few hundred: a probe of session 38).
+        zeros = np.zeros(size + _ALIGN, dtype=np.uint8)
+        self._mem = ffi.from_buffer("char[]", zeros)
         address = int(ffi.cast("uintptr_t", self._mem))
         self._offset = (-address) % _ALIGN
         self._base = address + self._offset
         self._size = size
-        # Read-only bytes of the block: every state view is a slice of it.
-        self._block = np.frombuffer(memoryview(ffi.buffer(self._mem)).toreadonly(),
-                                    dtype=np.uint8)
+        # Read-only bytes of the block: every state view is a slice of it
+        # (through a read-only memoryview of zeros, which keeps it alive).
+        self._block = np.frombuffer(memoryview(zeros).toreadonly(), dtype=np.uint8)
         out = ffi.new("rbs_world **")
-        status = lib.rbs_world_create_in(self._mem + self._offset, size, d, out)
+        status = lib.rbs_world_create_in_zeroed(self._mem + self._offset, size, d, out)
         if status != lib.RBS_OK:
             raise _e.error_class(status)(_def_problem(d, status))
         self._world = out[0]

@@ -336,6 +336,15 @@ RBS_API size_t rbs_world_memory_size(const rbs_world_def *def);
 RBS_API rbs_status rbs_world_create_in(void *buffer, size_t bytes,
                                        const rbs_world_def *def,
                                        rbs_world **out);
+/** rbs_world_create_in for a buffer whose first rbs_world_memory_size()
+ * bytes are all zero already (calloc, a fresh anonymous mapping, numpy's
+ * zeros): they are not written over, so, as with rbs_world_create, the
+ * operating system backs the pages as the world first writes them and
+ * capacity a run never reaches costs address space, not memory.  A buffer
+ * that is not all zero gives a world of garbage: the caller's promise. */
+RBS_API rbs_status rbs_world_create_in_zeroed(void *buffer, size_t bytes,
+                                              const rbs_world_def *def,
+                                              rbs_world **out);
 
 /** Allocate exactly once (calloc of rbs_world_memory_size() bytes; the
  * adaptive method's GSL workspaces besides, as for rbs_world_create_in) and

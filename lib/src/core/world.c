@@ -400,6 +400,12 @@ rbs_status rbs_world_create_in(void *buffer, size_t bytes, const rbs_world_def *
     return world_build(buffer, bytes, def, out, 0);
 }
 
+rbs_status rbs_world_create_in_zeroed(void *buffer, size_t bytes, const rbs_world_def *def,
+                                      rbs_world **out)
+{
+    return world_build(buffer, bytes, def, out, 1);
+}
+
 rbs_status rbs_world_create(const rbs_world_def *def, rbs_world **out)
 {
     size_t need;
