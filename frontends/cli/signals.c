@@ -12,8 +12,11 @@
  * and HUP.  (A self-pipe cannot be waited on together with sigwait();
  * signalfd could, but is Linux-only.)
  *
- * SIGHUP ignored by the caller (nohup) stays ignored: a blocked signal is
- * queued even when ignored, so it is left out of the set instead.
+ * SIGHUP or SIGINT ignored by the caller stays ignored (nohup ignores HUP;
+ * a shell ignores INT for a job it starts in the background, so that
+ * Ctrl-C at the terminal leaves it alone): a blocked signal is queued even
+ * when ignored, so it is left out of the set instead.  SIGTERM is always
+ * taken: it is how a run is asked to stop.
  */
 #include "cli.h"
 
@@ -43,14 +46,17 @@ static void *signals_main(void *arg)
 
 int rbsf_signals_start(rbsf_signals *s)
 {
-    struct sigaction hup;
+    static const int unless_ignored[2] = {SIGHUP, SIGINT};
+    int k;
     memset(s, 0, sizeof *s);
     sigemptyset(&s->set);
-    sigaddset(&s->set, SIGINT);
     sigaddset(&s->set, SIGTERM);
     sigaddset(&s->set, SIGUSR1);
-    if (sigaction(SIGHUP, NULL, &hup) == 0 && hup.sa_handler != SIG_IGN)
-        sigaddset(&s->set, SIGHUP);
+    for (k = 0; k < 2; ++k) {
+        struct sigaction was;
+        if (sigaction(unless_ignored[k], NULL, &was) == 0 && was.sa_handler != SIG_IGN)
+            sigaddset(&s->set, unless_ignored[k]);
+    }
     if (pthread_sigmask(SIG_BLOCK, &s->set, NULL) != 0)
         return -1;
     if (pthread_mutex_init(&s->lock, NULL) != 0)

@@ -1060,6 +1060,16 @@ class FaultTests(Base):
         self._interrupt(signal.SIGTERM, 143, first=[signal.SIGHUP],
                         preexec=ignore_hup)
 
+    def test_sigint_ignored_in_a_background_job(self):
+        # A shell starts a background job with SIGINT ignored (Ctrl-C at the
+        # terminal must leave it alone): the run keeps it ignored, and stops
+        # on SIGTERM as always.
+        def ignore_int():
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+        self._interrupt(signal.SIGTERM, 143, first=[signal.SIGINT],
+                        preexec=ignore_int)
+
     def test_file_size_limit_is_a_write_error(self):
         # Under ulimit -f with SIGXFSZ at its default (death), replacing an
         # existing file: exit 4 naming the file (not its temporary), the file
