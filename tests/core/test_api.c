@@ -534,6 +534,89 @@ static void most_specific_pair_wins(void **state)
     rbs_world_destroy(w);
 }
 
+/* The "*"/"*" row covers every pair no other row does, two named materials
+ * included (before session 38 it matched only pairs with a body of no
+ * material: rubber on ice took the frictionless default row and the world's
+ * restitution, silently).  With rows "*"/"*" (e = 0.9, mu = 0.2) and
+ * rubber/rubber (e = 0.1): rubber on ice and rubber on rubber-plane, each
+ * dropped at 1 m/s with 0.5 m/s sideways in no gravity -- the rebound is e
+ * times 1 m/s, and the sideways speed after the impact is that of Coulomb
+ * friction's impulse mu (1 + e) m v_n taken until rolling sets in: for a
+ * solid sphere rolling at 5/7 of 0.5 m/s (0.357) when mu (1 + e) = 0.38 is
+ * enough, 0.5 with no friction. */
+static void star_star_row_covers_named_materials(void **state)
+{
+    const double want_e[2] = {0.9, 0.1}, want_vx[2] = {5.0 / 7.0 * 0.5, 5.0 / 7.0 * 0.5};
+    int k;
+    (void)state;
+    for (k = 0; k < 2; ++k) {
+        rbs_world *w = make_world(4, 1e-3, 0.0, 0.5);
+        rbs_material_id rubber, ice;
+        rbs_pair_def p;
+        rbs_plane_def pl;
+        rbs_sphere_def s;
+        rbs_body_id b;
+        CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EVENT, 0.0));
+        CHECK_OK(rbs_world_add_material(w, "rubber", &rubber));
+        CHECK_OK(rbs_world_add_material(w, "ice", &ice));
+        rbs_pair_def_init(&p);
+        p.static_friction = p.kinetic_friction = 0.2;
+        p.restitution = 0.9;
+        CHECK_OK(rbs_world_set_pair(w, &p)); /* "*" / "*" */
+        p.a = p.b = rubber;
+        p.static_friction = p.kinetic_friction = 0.5;
+        p.restitution = 0.1;
+        CHECK_OK(rbs_world_set_pair(w, &p));
+        rbs_plane_def_init(&pl);
+        pl.material = k == 0 ? ice : rubber;
+        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+        rbs_sphere_def_init(&s);
+        s.radius = 0.1;
+        s.position.z = 0.2;
+        s.velocity.x = 0.5;
+        s.velocity.z = -1.0;
+        s.material = rubber;
+        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+        step_n(w, 300);
+        ASSERT_NEAR(state_of(w, b).velocity.z, want_e[k], 1e-12);
+        ASSERT_NEAR(state_of(w, b).velocity.x, want_vx[k], 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
+/* Two one-wildcard rows that both match (rubber with "*", e = 0.3, set
+ * first; "*" with ice, e = 0.8): the one set first wins, as rbsim.h and
+ * scenes/FORMAT.md say; setting them the other way round gives the other. */
+static void first_of_two_wildcard_rows_wins(void **state)
+{
+    int order;
+    (void)state;
+    for (order = 0; order < 2; ++order) {
+        rbs_world *w = make_world(4, 1e-3, 0.0, 0.5);
+        rbs_material_id rubber, ice;
+        rbs_pair_def p[2];
+        rbs_plane_def pl;
+        rbs_body_id b;
+        CHECK_OK(rbs_world_add_material(w, "rubber", &rubber));
+        CHECK_OK(rbs_world_add_material(w, "ice", &ice));
+        rbs_pair_def_init(&p[0]);
+        p[0].a = rubber;
+        p[0].restitution = 0.3;
+        rbs_pair_def_init(&p[1]);
+        p[1].b = ice;
+        p[1].restitution = 0.8;
+        CHECK_OK(rbs_world_set_pair(w, &p[order]));
+        CHECK_OK(rbs_world_set_pair(w, &p[1 - order]));
+        rbs_plane_def_init(&pl);
+        pl.material = ice;
+        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+        b = ball(w, 0.1, 1, 0, 0, 0.2, 0, 0, -1, rubber);
+        step_n(w, 200);
+        ASSERT_NEAR(state_of(w, b).velocity.z, order == 0 ? 0.3 : 0.8, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
 static void state_view_is_zero_copy(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -677,6 +760,8 @@ int main(void)
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
         cmocka_unit_test(pair_rules),
         cmocka_unit_test(most_specific_pair_wins),
+        cmocka_unit_test(star_star_row_covers_named_materials),
+        cmocka_unit_test(first_of_two_wildcard_rows_wins),
         cmocka_unit_test(state_view_is_zero_copy),
         cmocka_unit_test(null_arguments_never_crash),
         cmocka_unit_test(overflow_in_step_keeps_last_good_state),

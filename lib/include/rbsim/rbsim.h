@@ -296,7 +296,8 @@ RBS_API void rbs_plane_def_init_sized(rbs_plane_def *def, size_t def_size);
 
 /** Contact properties of an unordered pair of materials.  A null material id
  * stands for "*" (any).  The most specific row wins: exact pair, then one
- * wildcard, then "*"/"*". */
+ * wildcard, then "*"/"*" (any pair no other row covers); of two one-wildcard
+ * rows that both match, the one set first. */
 typedef struct rbs_pair_def {
     uint32_t struct_size;
     rbs_material_id a, b;

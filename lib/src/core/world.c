@@ -635,6 +635,9 @@ static void rebuild_pair_table(rbs_world *w)
                     score = r->b != 0;
                 else if (r->b == 0 && (r->a == a || r->a == b))
                     score = r->a != 0;
+                else if (r->a == 0 && r->b == 0)
+                    score = 0; /* "*" with "*": any pair (it matched only pairs
+                                  with a body of no material before session 38) */
                 /* a row naming a real material matches only that material */
                 if (score >= 0 && r->a != 0 && r->b != 0 &&
                     !((r->a == a && r->b == b) || (r->a == b && r->b == a)))
