@@ -234,6 +234,7 @@ static rbs_status create_from(const void *buf, size_t size, rbs_world **out, cha
     w->warm_indexed = 0;
     w->plan_dirty = 1;
     rbs__rebuild_lists(w); /* derived lists */
+    rbs__rebuild_pair_table(w);
     *out = w;
     return RBS_OK;
 }

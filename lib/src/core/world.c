@@ -344,7 +344,6 @@ size_t rbs_world_memory_size(const rbs_world_def *def)
     return rbs__world_layout(NULL, &d, NULL);
 }
 
-static void rebuild_pair_table(rbs_world *w);
 
 /* Build a world in buffer; zeroed: the buffer is known to be all zero
  * bytes already (calloc), so it is not written over. */
@@ -382,7 +381,7 @@ static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *d
     w->pair[d.max_pairs].e = -1.0;
     w->soft_kernels = rbs__soft_kernels_best();
     rbs_workers_init(&w->workers);
-    rebuild_pair_table(w);
+    rbs__rebuild_pair_table(w);
     w->plan_dirty = 1;
     /* the adaptive method's GSL workspaces: the one allocation outside the
      * block (docs/methods.md) */
@@ -541,7 +540,7 @@ rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_i
              (unsigned)w->def.max_materials);
     strcpy(w->material_name[w->materials], name);
     w->materials++;
-    rebuild_pair_table(w);
+    rbs__rebuild_pair_table(w);
     if (out) {
         out->index = w->materials - 1;
         out->generation = 1;
@@ -620,7 +619,7 @@ static int64_t material_code(const rbs_world *w, rbs_material_id m)
 
 /* Best row for every ordered pair of material codes: exact pair, then one
  * wildcard, then both.  Rebuilt when materials or pairs change. */
-static void rebuild_pair_table(rbs_world *w)
+void rbs__rebuild_pair_table(rbs_world *w)
 {
     uint32_t n = w->def.max_materials + 1, a, b, p;
     for (a = 0; a < n; ++a) {
@@ -700,7 +699,7 @@ rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
     w->pair[p].e = d.restitution;
     w->pair[p].rolling = d.rolling;
     w->pair[p].spinning = d.spinning;
-    rebuild_pair_table(w);
+    rbs__rebuild_pair_table(w);
     return RBS_OK;
 }
 

@@ -270,6 +270,12 @@ int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
     ;
 void rbs__world_plan(rbs_world *w);
 void rbs__rebuild_lists(rbs_world *w); /* spheres, planes, item */
+/* The best row for every pair of material codes (world.c): exact pair, then
+ * one wildcard (the first set of two), then "*" with "*".  Derived data,
+ * rebuilt when materials or rows change and when a checkpoint is read (a
+ * file written before session 38 holds a table whose "*"/"*" row missed
+ * pairs of two named materials). */
+void rbs__rebuild_pair_table(rbs_world *w);
 void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
 
 /* Body helpers (world.c; the inline ones here). */
