@@ -131,7 +131,9 @@ static const char convert_text[] =
     "beside it) when OUT ends in .txt.  Every file is written to a temporary\n"
     "and renamed into place only when all are complete: a failed convert\n"
     "leaves what was there and names the file that failed and why.  A folder,\n"
-    "device or FIFO is never replaced; a symbolic link's target is written.\n"
+    "device or FIFO is never replaced, nor a file IN was read from (IN itself,\n"
+    "its materials.txt ...) or one with no write permission; a symbolic\n"
+    "link's target is written.\n"
     "Exit 0, 2 (usage), 3 (IN is not a valid scene) or 4 (OUT could not be\n"
     "written).\n";
 

@@ -750,6 +750,40 @@ class CliTests(Base):
         self.assertEqual(outs[0], outs[1])
         self.assertEqual(outs[0], outs[2])
 
+    def test_convert_never_writes_over_its_input(self):
+        # Onto the scene itself, or onto a file a text scene reads (its
+        # materials.txt), convert refuses and leaves the input whole (it
+        # wrote over it, comments gone, or wrote a config into the material
+        # table); a read-only file is not replaced either.  (A probe of
+        # session 38.)
+        s = self.scene()
+        with open(s) as f:
+            before = f.read()
+        r = self.rbsim("convert", s, s)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("a file this scene was read from", r.stderr)
+        with open(s) as f:
+            self.assertEqual(f.read(), before)
+        txt = self.path("t/config.txt")
+        self.assertEqual(self.rbsim("convert", s, txt).returncode, 0)
+        with open(self.path("t/materials.txt")) as f:
+            table = f.read()
+        r = self.rbsim("convert", txt, self.path("t/materials.txt"))
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("a file this scene was read from", r.stderr)
+        with open(self.path("t/materials.txt")) as f:
+            self.assertEqual(f.read(), table)
+        ro = self.path("ro.json")
+        with open(ro, "w") as f:
+            f.write("OLD\n")
+        os.chmod(ro, 0o444)
+        r = self.rbsim("convert", s, ro)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("read-only", r.stderr)
+        with open(ro) as f:
+            self.assertEqual(f.read(), "OLD\n")
+        self.assertEqual(sorted(n for n in os.listdir(self.dir) if ".tmp" in n), [])
+
     def test_convert_writes_everything_or_nothing(self):
         # objects.txt cannot be written (a folder is in its place): the old
         # config.txt stays, no materials.txt or temporary appears, and the

@@ -137,7 +137,9 @@ RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
  * bit-identical world.  Every file is written to a temporary beside it and
  * renamed into place only when all are complete, so a failed save leaves
  * what was there; a path that names a folder, device or FIFO is refused,
- * one that names a symbolic link writes the link's target.  RBS_E_SCENE for
+ * and so is a file the scene was read from (its own file, a text scene's
+ * materials.txt) and a file with no write permission; one that names a
+ * symbolic link writes the link's target.  RBS_E_SCENE for
  * a scene with errors, RBS_E_IO if a file cannot be written,
  * RBS_E_UNSUPPORTED if a renderer entry has a key the text format cannot
  * spell (containing '.', '[', '=', blanks ...).  Reads the scene only: safe

@@ -41,8 +41,24 @@ static rbs_status report(save_report *r, rbs_status st, const char *path, const 
     return st;
 }
 
-/* Open o's temporary for path; a missing parent folder (one level) is made. */
-static rbs_status stage_open(staged *o, const char *path, save_report *r)
+/* Whether the file at `file` (stat'ed) is one scene s was read from. */
+static int read_from(const rbs_scene *s, const struct stat *file)
+{
+    int32_t i;
+    for (i = 0; i < s->file_count; i++) {
+        struct stat sb;
+        if (s->files[i] != NULL && stat(s->files[i], &sb) == 0 && sb.st_dev == file->st_dev &&
+            sb.st_ino == file->st_ino)
+            return 1;
+    }
+    return 0;
+}
+
+/* Open o's temporary for path; a missing parent folder (one level) is made.
+ * An existing target is refused if it is a file scene s was read from (a
+ * convert onto its own input, or a text config onto its materials.txt) or
+ * has no write permission at all (mode 444: not replaced behind its back). */
+static rbs_status stage_open(staged *o, const rbs_scene *s, const char *path, save_report *r)
 {
     struct stat sb, file;
     size_t n;
@@ -55,6 +71,10 @@ static rbs_status stage_open(staged *o, const char *path, save_report *r)
                                : report(r, RBS_E_IO, path, "a loop of symbolic links");
     }
     if (stat(o->path, &file) == 0) {
+        if (S_ISREG(file.st_mode) && read_from(s, &file))
+            return report(r, RBS_E_IO, o->path, "it is a file this scene was read from; write elsewhere");
+        if (S_ISREG(file.st_mode) && !(file.st_mode & 0222))
+            return report(r, RBS_E_IO, o->path, "it is read-only (no write permission): not replaced");
         if (!S_ISREG(file.st_mode)) {
             return report(r, RBS_E_IO, o->path,
                           S_ISDIR(file.st_mode) ? "is a folder"
@@ -363,7 +383,7 @@ rbs_status rbs__scene_save_json(const rbs_scene *s, const char *path, char *mess
     staged o;
     FILE *f;
     uint32_t i;
-    rbs_status st = stage_open(&o, path, &r);
+    rbs_status st = stage_open(&o, s, path, &r);
     if (st != RBS_OK) {
         return stage_finish(&o, 1, st, &r);
     }
@@ -644,8 +664,8 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *mess
     obase = strrchr(opath, '/') != NULL ? strrchr(opath, '/') + 1 : opath;
     /* all three files staged before any is written: none replaces what is
      * there unless every one can be */
-    if ((st = stage_open(&o[0], path, &r)) != RBS_OK || (st = stage_open(&o[1], mpath, &r)) != RBS_OK ||
-        (st = stage_open(&o[2], opath, &r)) != RBS_OK) {
+    if ((st = stage_open(&o[0], s, path, &r)) != RBS_OK || (st = stage_open(&o[1], s, mpath, &r)) != RBS_OK ||
+        (st = stage_open(&o[2], s, opath, &r)) != RBS_OK) {
         free(mpath);
         free(opath);
         return stage_finish(o, 3, st, &r);
