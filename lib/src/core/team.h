@@ -26,6 +26,11 @@ typedef void (*rbs__stage_fn)(void *ctx, uint32_t share, uint32_t begin, uint32_
 /* The synchronisation of one step's threads, in the world (team.c). */
 typedef struct rbs__team rbs__team;
 
+/* Fit the waits to the processors this process may run on, for the
+ * world's workers as set now (rbs_world_set_workers): more threads than
+ * processors and a waiter yields almost at once; else it spins about a
+ * millisecond first.  Timing only: results do not depend on it. */
+void rbs__team_fit(rbs_world *w);
 /* Start the lent workers for one step (nothing with one thread). */
 void rbs__team_start(rbs_world *w);
 /* Stop them: they return, and the pool's finish waits for them. */

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/soft_detect.h"
+#include "core/team.h"
 
 #define WORLD_MAGIC 0x72627377u /* "rbsw" */
 #define ALIGN 16u
@@ -1378,6 +1379,7 @@ rbs_status rbs_world_set_workers(rbs_world *w, const rbs_workers *workers)
         FAIL(w, RBS_E_UNSUPPORTED, "this build of the library has no atomics: it steps on one thread");
 #endif
     w->workers = d;
+    rbs__team_fit(w);
     return RBS_OK;
 }
 
