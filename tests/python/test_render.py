@@ -224,3 +224,17 @@ def test_repr_never_raises_during_a_run():
     reprs = []
     w.run(3, renderers=[lambda f: reprs.append(repr(w))])
     assert reprs and all("busy" in r for r in reprs)
+
+
+def test_speed_needs_realtime():
+    """speed= sets the pace of realtime=True; without it a run goes as fast
+    as it can, so a speed other than 1 is refused, as the command line's
+    --speed without --realtime is (before session 38 it was taken and did
+    nothing)."""
+    w = rbsim.World()
+    w.add_sphere("b", position=(0.0, 0.0, 1.0))
+    with pytest.raises(rbsim.InvalidError, match="realtime"):
+        w.run(5, speed=2.0)
+    assert w.step_count == 0
+    assert w.run(5, speed=1.0).steps == 5          # the default: no pace asked for
+    assert w.run(5, speed=50.0, realtime=True).steps == 5

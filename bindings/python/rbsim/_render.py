@@ -434,8 +434,15 @@ def start_world(world: World, steps: Optional[int] = None,
     if pause_on_collision is None:
         pause_on_collision = world._scene_pause_on_collision
     cap = None if reel_capacity is None else _check.u32(reel_capacity, "reel_capacity", 2)
-    return Run(world, n, list(renderers), _check.flag(realtime, "realtime"),
-               _check.real(speed, "speed"), _check.flag(start_paused, "start_paused"),
+    realtime = _check.flag(realtime, "realtime")
+    speed = _check.real(speed, "speed")
+    if speed != 1.0 and not realtime:
+        # (as the command line's --speed without --realtime)
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "speed: %r sets the pace of realtime=True, and a run without it goes "
+            "as fast as it can: pass realtime=True too" % speed)
+    return Run(world, n, list(renderers), realtime,
+               speed, _check.flag(start_paused, "start_paused"),
                _check.flag(pause_on_collision, "pause_on_collision"), cap,
                _check.flag(endless, "endless"))
 
