@@ -882,39 +882,37 @@ int rbs__separate(rbs_world *w, double *max_pen)
     return ctx.pushed;
 }
 
+int rbs__coarse_touch(const rbs_world *w, uint32_t a, uint32_t b, double gap, double slop, rbs__coarse *out)
+{
+    const double at = fmax(rbs__max_abs(v3_load(&w->pos[3 * a])), rbs__max_abs(v3_load(&w->pos[3 * b])));
+    if (!(gap <= slop + 4.0 * rbs__spacing(at)) || !rbs__coarse_at(at, slop))
+        return 0;
+    out->a = a;
+    out->b = b;
+    out->at = at;
+    out->slop = slop;
+    return 1;
+}
+
 int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out)
 {
     uint32_t i, k;
-    /* the planes, each sphere within its slop and rounding of one */
     for (i = 0; i < w->sphere_count; ++i) {
         const uint32_t a = w->spheres[i];
         const v3 x = v3_load(&w->pos[3 * a]);
-        const double slop = w->def.slop * w->radius[a];
-        for (k = 0; k < w->plane_count && !w->fixed[a]; ++k) {
+        if (w->fixed[a])
+            continue;
+        for (k = 0; k < w->plane_count; ++k) {
             const uint32_t p = w->planes[k];
-            const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * p])));
             const double gap = v3_dot(v3_sub(x, v3_load(&w->pos[3 * p])), v3_load(&w->normal[3 * p])) - w->radius[a];
-            if (fabs(gap) <= slop + 4.0 * rbs__spacing(at) && rbs__coarse_at(at, slop)) {
-                out->a = a;
-                out->b = p;
-                out->at = at;
-                out->slop = slop;
+            if (rbs__coarse_touch(w, a, p, gap, w->def.slop * w->radius[a], out))
                 return 1;
-            }
         }
     }
-    /* the pairs of the current contacts */
     for (i = 0; i < w->contact_count; ++i) {
         const rbs__contact *c = &w->contact[i];
-        const double at = fmax(rbs__max_abs(v3_load(&w->pos[3 * c->a])), rbs__max_abs(v3_load(&w->pos[3 * c->b])));
-        const double slop = rbs__contact_slop(w, c);
-        if (rbs__coarse_at(at, slop)) {
-            out->a = c->a;
-            out->b = c->b;
-            out->at = at;
-            out->slop = slop;
+        if (rbs__coarse_touch(w, c->a, c->b, c->gap, rbs__contact_slop(w, c), out))
             return 1;
-        }
     }
     return 0;
 }

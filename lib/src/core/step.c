@@ -140,14 +140,14 @@ rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad)
         (unsigned long long)w->step_count + 1, (unsigned)bad, w->name[bad]);
 }
 
-rbs_status rbs__coarse_error(rbs_world *w, uint32_t a, uint32_t b, double at, double slop)
+rbs_status rbs__coarse_error(rbs_world *w, const rbs__coarse *c)
 {
     return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
         "step %llu: %s: body %u (\"%s\") touches %u (\"%s\") %.3g m from the origin, where coordinates "
         "round in steps of %.3g m, over twice its slop (%.3g m); move the scene nearer the origin, take a "
         "larger slop, or use soft or selective",
-        (unsigned long long)w->step_count + 1, rbs_method_name(w->plan.method), (unsigned)a, w->name[a],
-        (unsigned)b, w->name[b], at, rbs__spacing(at), slop);
+        (unsigned long long)w->step_count + 1, rbs_method_name(w->plan.method), (unsigned)c->a, w->name[c->a],
+        (unsigned)c->b, w->name[c->b], c->at, rbs__spacing(c->at), c->slop);
 }
 
 rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)

@@ -687,7 +687,7 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
                 /* (far from the origin the events may be rounding alone) */
                 rbs__coarse co;
                 if (rbs__coarse_contact(w, &co))
-                    return rbs__coarse_error(w, co.a, co.b, co.at, co.slop);
+                    return rbs__coarse_error(w, &co);
                 return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
                     "adaptive: more than %u contact events in one frame", MAX_EVENTS);
             }

@@ -156,7 +156,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             /* (an overlap that rounding of the coordinates alone can make
              * grow -- far from the origin -- would be rolled back forever) */
             if (coarse.a != UINT32_MAX)
-                return rbs__coarse_error(w, coarse.a, coarse.b, coarse.at, coarse.slop);
+                return rbs__coarse_error(w, &coarse);
             if (hu > 1 && !info->work_limit) {
                 /* Retry with at most half the sub-step (the seed's rule);
                  * when the straight-line time of first touch is earlier,

@@ -179,6 +179,7 @@ static void pair_friction(const rbs_world *w, uint32_t i, uint32_t p, double *mu
  * w->ev_alpha).  Returns an error for configurations out of scope. */
 static rbs_status classify(rbs_world *w, double dt)
 {
+    rbs__coarse coarse;
     uint32_t k, q, j;
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k], plane = UINT32_MAX;
@@ -196,13 +197,10 @@ static rbs_status classify(rbs_world *w, double dt)
             v3 n = v3_load(&w->normal[3 * p]);
             double gap = v3_dot(v3_sub(x, v3_load(&w->pos[3 * p])), n) - r;
             double an = v3_dot(a, n), vn = v3_dot(v, n);
-            if (gap <= w->def.slop * r + 4.0 * rbs__spacing(rbs__max_abs(x))) {
-                /* touching, within the rounding of its coordinates: which
-                 * must resolve the slop (far from the origin they do not) */
-                const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * p])));
-                if (rbs__coarse_at(at, w->def.slop * r))
-                    return rbs__coarse_error(w, i, p, at, w->def.slop * r);
-            }
+            /* (touching where its coordinates cannot resolve the slop:
+             * far from the origin) */
+            if (rbs__coarse_touch(w, i, p, gap, w->def.slop * r, &coarse))
+                return rbs__coarse_error(w, &coarse);
             if (gap > w->def.slop * r || !(an < 0.0) || vn > -an * dt)
                 continue;
             if (plane != UINT32_MAX)
@@ -279,11 +277,8 @@ static rbs_status classify(rbs_world *w, double dt)
                 continue;
             d = v3_sub(x, v3_load(&w->pos[3 * b]));
             dist = v3_len(d);
-            if (dist - r - rb <= w->def.slop * (r < rb ? r : rb) + 4.0 * rbs__spacing(rbs__max_abs(x))) {
-                const double at = fmax(rbs__max_abs(x), rbs__max_abs(v3_load(&w->pos[3 * b])));
-                if (rbs__coarse_at(at, w->def.slop * (r < rb ? r : rb)))
-                    return rbs__coarse_error(w, i, b, at, w->def.slop * (r < rb ? r : rb));
-            }
+            if (rbs__coarse_touch(w, i, b, dist - r - rb, w->def.slop * (r < rb ? r : rb), &coarse))
+                return rbs__coarse_error(w, &coarse);
             if (dist - r - rb > w->def.slop * (r < rb ? r : rb) || dist == 0.0)
                 continue;
             d = v3_scale(d, 1.0 / dist);

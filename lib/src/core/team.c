@@ -36,11 +36,11 @@
 #endif
 #include "core/team.h"
 
+#include <sched.h>
 #include <unistd.h> /* sysconf */
 
 #define QUIT 0xFFFFu /* a ticket's share count that tells the workers to return */
 
-#include <sched.h>
 #if defined(__GNUC__)
 #define TEAM_ATOMICS 1
 #endif

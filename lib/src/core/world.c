@@ -345,7 +345,6 @@ size_t rbs_world_memory_size(const rbs_world_def *def)
     return rbs__world_layout(NULL, &d, NULL);
 }
 
-
 /* Build a world in buffer; zeroed: the buffer is known to be all zero
  * bytes already (calloc), so it is not written over. */
 static rbs_status world_build(void *buffer, size_t bytes, const rbs_world_def *def, rbs_world **out,

@@ -484,13 +484,14 @@ static inline int rbs__coarse_at(double at, double slop)
 {
     return 0.5 * rbs__spacing(at) > slop;
 }
-/* RBS_E_NUMERIC for the contact of bodies a and b (b may be a plane) at
- * coordinates of magnitude at, too coarse for its slop, in the method
- * (step.c). */
-rbs_status rbs__coarse_error(rbs_world *w, uint32_t a, uint32_t b, double at, double slop);
-/* The first sphere touching a plane (within its slop and the rounding), or
- * pair among the world's current contacts, whose coordinates are too
- * coarse for its slop, into *out (1), or 0 (contact.c; an error's path). */
+/* RBS_E_NUMERIC for a contact too coarse for its slop, c (step.c). */
+rbs_status rbs__coarse_error(rbs_world *w, const rbs__coarse *c);
+/* Whether bodies a and b (b may be a plane), apart by gap, touch within
+ * slop and the rounding of their coordinates while those round by more
+ * than the slop: then into *out, 1 (contact.c). */
+int rbs__coarse_touch(const rbs_world *w, uint32_t a, uint32_t b, double gap, double slop, rbs__coarse *out);
+/* The first sphere touching a plane, or pair among the world's current
+ * contacts, so (rbs__coarse_touch), into *out: 1, else 0 (an error's path). */
 int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out);
 /* Push apart overlap deeper than the slop (planes, then pairs); 1 if it
  * pushed anything.  *max_pen (may be NULL): the deepest overlap of the
