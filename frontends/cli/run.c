@@ -1375,7 +1375,6 @@ int rbsf_run_main(int argc, char **argv)
         fprintf(stderr, "rbsim: cannot start the signal thread\n");
         return RBSF_EXIT_RUN;
     }
-    signal(SIGPIPE, SIG_IGN); /* a closed pipe is a write error, reported */
 
     /* 1. The scene and the command line's overrides. */
     if (load_scene(o.scene, &scene) != 0) {
