@@ -635,6 +635,33 @@ static void test_renderers(void **state)
     rbs_scene_free(scene);
 }
 
+/* A renderer entry's numbers come back as the same doubles, in their
+ * shortest exact form: 179.99999999999997 (the double below 180) is not
+ * 180, which cJSON's own printing (%.15g when that reads back within a
+ * relative DBL_EPSILON) made of it, and which the camera's check refuses. */
+static void test_renderer_numbers_exact(void **state)
+{
+    static const char text[] =
+        "{\"simulation\": {\"steps\": 1},\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 1, \"mass\": 1,"
+        " \"position\": [0, 0, 0]}],\n"
+        " \"renderers\": [\n"
+        "  {\"type\": \"plotter\", \"a\": 179.99999999999997, \"b\": [0.1, 1e300, -0.0, 3000000000,"
+        " 2.2250738585072014e-308, 4.9406564584124654e-324], \"c\": {\"d\": 1.0000000000000002}},\n"
+        "  {\"type\": \"sdl\", \"window\": false, \"camera\": {\"fov\": 179.99999999999997}}\n"
+        " ]}\n";
+    rbs_scene *scene = NULL;
+    rbs_scene_renderer r;
+    (void)state;
+    assert_int_equal(rbs_scene_parse_json(text, sizeof text - 1, "r.json", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
+    assert_string_equal(r.json, "{\"type\":\"plotter\",\"a\":179.99999999999997,\"b\":[0.1,1e+300,-0,3000000000,"
+                                "2.2250738585072014e-308,5e-324],\"c\":{\"d\":1.0000000000000002}}");
+    assert_int_equal(rbs_scene_renderer_get(scene, 1, &r), RBS_OK);
+    assert_string_equal(r.json, "{\"type\":\"sdl\",\"window\":false,\"camera\":{\"fov\":179.99999999999997}}");
+    rbs_scene_free(scene);
+}
+
 /* Materials: "*" rows cover missing pairs; a body without material matches
  * only "*" rows; a sphere resting on a plane (gap 0) is not an overlap. */
 static void test_material_rules(void **state)
@@ -805,7 +832,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields),
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
-        cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers),
+        cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers), cmocka_unit_test(test_renderer_numbers_exact),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
         cmocka_unit_test(test_overlap_far_apart),
     };

@@ -1945,6 +1945,56 @@ static void check_camera(vctx *v, const cJSON *cam)
     }
 }
 
+/* Each finite number of the tree made a raw item in its shortest form that
+ * reads back as the same double (cJSON prints %.15g when that reads back
+ * within a relative DBL_EPSILON, which made a camera's fov of
+ * 179.99999999999997 the 180 its check refuses).  0 when out of memory. */
+static int numbers_exact(cJSON *item)
+{
+    for (; item != NULL; item = item->next) {
+        if (cJSON_IsNumber(item) && isfinite(item->valuedouble)) {
+            char b[40];
+            double x = item->valuedouble;
+            char *raw;
+            int prec;
+            if (x == floor(x) && fabs(x) < 1e17) {
+                /* a whole number as one (3000000000, not 3e+09; -0 kept) */
+                snprintf(b, sizeof b, "%.0f", x);
+            } else {
+                for (prec = 1; prec < 17; prec++) {
+                    snprintf(b, sizeof b, "%.*g", prec, x);
+                    if (strtod(b, NULL) == x)
+                        break;
+                }
+                if (prec == 17)
+                    snprintf(b, sizeof b, "%.17g", x);
+            }
+            /* (cJSON's allocator: cJSON_Delete frees it) */
+            raw = (char *)cJSON_malloc(strlen(b) + 1);
+            if (raw == NULL)
+                return 0;
+            memcpy(raw, b, strlen(b) + 1);
+            item->type = cJSON_Raw;
+            item->valuestring = raw;
+        } else if (item->child != NULL && !numbers_exact(item->child)) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The renderer entry r as compact JSON text, its numbers exact (cJSON_free
+ * it); NULL when out of memory. */
+static char *print_exact(const cJSON *r)
+{
+    cJSON *copy = cJSON_Duplicate(r, 1);
+    char *text = NULL;
+    if (copy != NULL && numbers_exact(copy->child))
+        text = cJSON_PrintUnformatted(copy);
+    cJSON_Delete(copy);
+    return text;
+}
+
 static void check_renderer(vctx *v, const cJSON *r, size_t index)
 {
     rbs_scene *s = v->scene;
@@ -2082,7 +2132,7 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
         ok = 0;
     }
     if (ok) {
-        char *text = cJSON_PrintUnformatted(r);
+        char *text = print_exact(r);
         rbs__scene_renderer *out = &s->renderers[s->renderer_count];
         if (text == NULL) {
             err(v, loc_value(v, r), "out of memory");
