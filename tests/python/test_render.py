@@ -151,6 +151,45 @@ def test_stop_run_ends_cleanly():
     assert info.frame >= 25 and w.step_count >= info.frame
 
 
+def test_stop_run_others_get_every_frame_made():
+    # The world ends at the last frame made, which may be after the frame
+    # that raised StopRun; a second renderer gets every frame up to it.
+    w = make_world()
+    rec = []
+
+    class Stopper:
+        def draw(self, frame):
+            if frame.number == 5:
+                raise rbsim.StopRun
+
+    info = w.run(1000, renderers=[Stopper(), lambda f: rec.append(f.number)],
+                 reel_capacity=8)
+    assert info.quit and info.state == "done"
+    assert rec == list(range(info.frame + 1))
+    assert 5 <= info.frame <= 5 + 8 + 1
+    assert w.step_count == info.frame
+
+
+def test_stop_run_from_finish_or_close_changes_nothing():
+    class Late:
+        def __init__(self):
+            self.frames = 0
+
+        def draw(self, frame):
+            self.frames += 1
+
+        def finish(self):
+            raise rbsim.StopRun
+
+        def close(self):
+            raise rbsim.StopRun
+
+    late = Late()
+    w = make_world()
+    info = w.run(10, renderers=[late])
+    assert late.frames == 11 and not info.quit and w.step_count == 10
+
+
 def test_steps_zero_gives_frame_zero_only():
     frames = []
     make_world().run(0, renderers=[frames.append])

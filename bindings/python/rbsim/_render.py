@@ -13,8 +13,12 @@ Each renderer of a run is registered in a fresh registry as its own type
 the C callbacks below (``@ffi.def_extern``) run on the projector's renderer
 thread and take the GIL, which the main thread released while it waits in C.
 A renderer may end the run early and cleanly by raising :class:`StopRun`
-(the projector's "quit": every output is finished; that renderer gets no
-further frames).
+from draw() (the projector's "quit": every output is finished; that renderer
+gets no further frames).  The simulation runs ahead of the renderers by up
+to the reel's frames, so the world ends at the last frame made (RunInfo's
+``frame``), which the other renderers still get, not at the frame that
+raised StopRun.  StopRun from finish() or close(), when no frame is left,
+changes nothing: the run ends as it would have.
 The frame slot is reused by the reel, so a :class:`Frame` holds copies.  An
 exception raised by a renderer is kept, the callback returns
 RBS_E_RENDERER, the projector stops the run, and :meth:`Run.wait` raises the
@@ -98,7 +102,10 @@ class RunInfo:
 
 
 class StopRun(Exception):
-    """Raise from a renderer's draw() to end the run cleanly ("quit")."""
+    """Raise from a renderer's draw() to end the run cleanly ("quit").  The
+    world ends at the last frame the simulation made (up to the reel's
+    capacity after the frame that raised it), which the other renderers
+    still draw.  From finish() or close() it changes nothing."""
 
 
 class _Adapter:
@@ -204,6 +211,8 @@ def rbs_py_renderer_finish(instance: Any, err: Any, errlen: int) -> int:
         return lib.RBS_OK
     try:
         adapter.finish()
+    except StopRun:
+        pass  # (no frame is left to stop: the run ends as it would have)
     except BaseException as exc:  # noqa: B902
         return _fail(adapter, exc, err, errlen)
     return lib.RBS_OK
@@ -216,6 +225,8 @@ def rbs_py_renderer_destroy(instance: Any) -> None:
         return
     try:
         adapter.close()
+    except StopRun:
+        pass  # (as in finish)
     except BaseException as exc:  # noqa: B902
         if adapter.run._error is None:
             adapter.run._error = exc

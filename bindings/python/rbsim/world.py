@@ -1058,7 +1058,10 @@ class World:
             speed: real-time factor (> 0).
             reel_capacity: frames in the reel (>= 2).
             endless: ignore steps and run until a renderer raises
-                :class:`StopRun`.
+                :class:`StopRun` (or "quit").  The world then ends at the
+                last frame made (``RunInfo.frame``), which the simulation,
+                running ahead of the renderers, may have made after the
+                frame that raised it; every other renderer gets it.
 
         Returns:
             a :class:`RunInfo`.  An exception raised by a renderer stops the
