@@ -36,6 +36,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include <SDL.h>
 #include <SDL_image.h>
@@ -102,6 +103,71 @@ static rbs_status say(char *err, size_t errlen, rbs_status st, const char *what)
 {
     if (err != NULL && errlen > 0) snprintf(err, errlen, "%s", what);
     return st;
+}
+
+/* Whether mkdir -p of path can work, found before anything is made: each
+ * folder on the way that exists is a folder, and the first that does not
+ * is in a folder this process may write (path is restored).  0, or -1 with
+ * the reason in err. */
+static int folder_can_be(char *path, char *err, size_t errlen)
+{
+    size_t i, n = strlen(path);
+    char msg[600];
+    for (i = 1; i <= n; i++) {
+        if (path[i] == '/' || path[i] == '\0') {
+            char c = path[i];
+            struct stat sb;
+            int e;
+            path[i] = '\0';
+            if (stat(path, &sb) == 0) {
+                if (!S_ISDIR(sb.st_mode)) {
+                    snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder", path);
+                    path[i] = c;
+                    say(err, errlen, RBS_E_IO, msg);
+                    return -1;
+                }
+                path[i] = c;
+                continue;
+            }
+            e = errno;
+            if (e == ENOENT) {
+                /* the first missing folder: its parent must take it */
+                char *slash = strrchr(path, '/');
+                int ok;
+                if (slash == NULL) {
+                    ok = access(".", W_OK | X_OK) == 0;
+                } else if (slash == path) {
+                    ok = access("/", W_OK | X_OK) == 0;
+                } else {
+                    *slash = '\0';
+                    ok = access(path, W_OK | X_OK) == 0;
+                    *slash = '/';
+                }
+                e = errno;
+                if (ok) {
+                    path[i] = c;
+                    return 0; /* the rest is made below it */
+                }
+            }
+            {
+                char why[128];
+                if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
+                snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
+            }
+            path[i] = c;
+            say(err, errlen, RBS_E_IO, msg);
+            return -1;
+        }
+    }
+    if (access(path, W_OK | X_OK) != 0) {
+        char why[128];
+        int e = errno;
+        if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
+        snprintf(msg, sizeof msg, "path: cannot write in folder \"%s\": %s", path, why);
+        say(err, errlen, RBS_E_IO, msg);
+        return -1;
+    }
+    return 0;
 }
 
 /* mkdir -p. */
@@ -187,15 +253,8 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     if (r->dir == NULL || r->file == NULL)
         return say(err, errlen, RBS_E_MEMORY, "out of memory");
     strcpy(r->dir, path);
-    {
-        /* A folder's name taken by a file is found before anything is made. */
-        struct stat sb;
-        if (stat(path, &sb) == 0 && !S_ISDIR(sb.st_mode)) {
-            char m[600];
-            snprintf(m, sizeof m, "path: \"%s\" exists and is not a folder", path);
-            return say(err, errlen, RBS_E_IO, m);
-        }
-    }
+    if (folder_can_be(r->dir, err, errlen) != 0)
+        return RBS_E_IO;
 
     /* Window: decided here, opened at the first draw (on its own thread). */
     if (r->cfg.window == RBSF__WINDOW_ON && !has_display())

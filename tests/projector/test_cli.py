@@ -547,6 +547,32 @@ class CliTests(Base):
                              ["contact_sheet.png", "frame_000000.png",
                               "frame_000003.png"])
 
+    def test_png_folder_that_cannot_be_made_is_a_usage_error(self):
+        # As --csv into a file's name: exit 2 before the run, nothing
+        # written, the message names the file in the way; a scene's sdl
+        # entry: exit 3 at its place.
+        s = self.scene()
+        probe = self.rbsim("run", s, "--steps", "1", "--png", "probe",
+                           "--quiet")
+        if "without SDL" in probe.stderr:
+            self.skipTest("built without SDL")
+        with open(self.path("afile"), "w") as f:
+            f.write("x")
+        for folder in ("afile", "afile/sub", "afile/sub/deeper"):
+            r = self.rbsim("run", s, "--steps", "3", "--png", folder,
+                           "--csv", "kept.csv")
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn('"afile" exists and is not a folder', r.stderr)
+            self.assertFalse(os.path.exists(self.path("kept.csv")))
+        with open(self.path("afile")) as f:
+            self.assertEqual(f.read(), "x")
+        bad = self.scene("badpng.json", renderers=[
+            {"type": "sdl", "path": "afile/png", "window": False}])
+        r = self.rbsim("run", bad, "--steps", "3")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("renderers[0] (sdl)", r.stderr)
+        self.assertIn('"afile" exists and is not a folder', r.stderr)
+
     def test_no_output_among_the_png_folder_files(self):
         # A file the sdl renderer writes in its folder (frame_NNNNNN.png,
         # contact_sheet.png, viewK/frame_NNNNNN.png) cannot be another
