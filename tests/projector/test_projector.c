@@ -62,6 +62,7 @@ typedef struct rec_opts {
     int draw_code; /* what draw returns at fail_draw_at (0: RBS_E_IO) */
     int quit_at;          /* send "quit" through control at this frame, -1 */
     int live;
+    int draw_ms;          /* each draw takes this long (a slow renderer) */
     int *created, *destroyed; /* counters shared by the test */
 } rec_opts;
 
@@ -147,6 +148,10 @@ static rbs_status rec_draw(void *instance, const rbs_frame *f, char *err,
         r->count++;
     }
     r->lasts += f->last != 0;
+    if (r->opts.draw_ms > 0) {
+        struct timespec nap = {0, (long)r->opts.draw_ms * 1000000L};
+        nanosleep(&nap, NULL);
+    }
     memcpy(r->final, f->bodies, f->body_count * sizeof *f->bodies);
     r->final_count = f->body_count;
     if (r->opts.quit_at >= 0 && f->number == (uint64_t)r->opts.quit_at)
@@ -1103,6 +1108,49 @@ static void quit_ends_at_the_last_frame(void **state)
     fx_done(&fx);
 }
 
+/* "status" names the frame shown, and the frame the counters run to when
+ * the simulation is ahead of it (a slow renderer, a reel of 8). */
+static void status_says_how_far_the_simulation_is(void **state)
+{
+    fixture fx;
+    rbs_run_info info;
+    char reply[512];
+    int tries;
+    struct timespec nap = {0, 5000000};
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    fx.ctx.opts.draw_ms = 50;
+    fx.def.steps = 40;
+    fx.def.reel_capacity = 8;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
+    for (tries = 0; tries < 400; tries++) {
+        CHECK_OK(rbs_projector_status(fx.p, &info));
+        if (info.captured >= 8)
+            break;
+        nanosleep(&nap, NULL);
+    }
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    /* (the status taken after the reply: the simulation may have gone on) */
+    assert_non_null(strstr(reply, "made ahead of the frame shown"));
+    {
+        unsigned long long shown = 0, made = 0;
+        const char *at = strstr(reply, "counts to frame ");
+        assert_int_equal(sscanf(reply, "frame %llu of 40", &shown), 1);
+        assert_non_null(at);
+        assert_int_equal(sscanf(at, "counts to frame %llu", &made), 1);
+        assert_true(made > shown);
+        assert_true(made <= info.captured - 1);
+        assert_true(shown <= info.frame);
+    }
+    CHECK_OK(rbs_projector_wait(fx.p));
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
+    assert_non_null(strstr(reply, "frame 40 of 40"));
+    assert_null(strstr(reply, "ahead"));
+    fx_done(&fx);
+}
+
 /* A world that has stepped k times (as a checkpoint restores it) projects
  * frames numbered from k; with skip_first_frame frame k is not drawn.  The
  * frames are bit for bit those of a run from frame 0, and "every K" keeps
@@ -1197,6 +1245,7 @@ int main(void)
         cmocka_unit_test(after_step_sees_every_frame),
         cmocka_unit_test(after_step_failure_stops_the_run),
         cmocka_unit_test(quit_ends_at_the_last_frame),
+        cmocka_unit_test(status_says_how_far_the_simulation_is),
         cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
         cmocka_unit_test(realtime_paces_frames),

@@ -83,6 +83,7 @@ struct rbs_projector {
     rbs_status result;    /* first error, or RBS_OK */
     char error[ERROR_MAX];
     uint64_t captured, drawn, frame_drawn, substeps, rollbacks, collisions;
+    uint64_t frame_made; /* number of the last frame captured */
     double time_drawn, energy_initial, energy_last;
     double t_start, t_end;
     /* one renderer command in flight */
@@ -449,6 +450,7 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
         p->energy_initial = slot->stats.total;
     p->energy_last = slot->stats.total;
     p->captured++;
+    p->frame_made = slot->number;
     p->substeps += info->substeps;
     p->rollbacks += info->rollbacks;
     p->collisions += info->colliding;
@@ -1123,10 +1125,20 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         return RBS_OK;
     }
     if (strcmp(word, "status") == 0) {
-        rbs_projector_status(p, &info);
+        /* the frame shown, and how far the simulation has gone when it is
+         * ahead (the counters are the simulation's, to its last frame) */
+        char ahead[96] = "";
+        uint64_t made;
+        pthread_mutex_lock(&p->mu);
+        status_locked(p, &info);
+        made = p->frame_made;
+        pthread_mutex_unlock(&p->mu);
+        if (info.captured > 0 && made > info.frame)
+            snprintf(ahead, sizeof ahead, " (counts to frame %llu, made ahead of the frame shown)",
+                     (unsigned long long)made);
         reply_to(reply, reply_size,
                  "frame %llu of %llu, t = %.6g s, %s%s, speed %g, "
-                 "%llu collisions, %llu sub-steps, %llu rollbacks",
+                 "%llu collisions, %llu sub-steps, %llu rollbacks%s",
                  (unsigned long long)info.frame, (unsigned long long)info.steps,
                  info.time,
                  info.state == RBS_RUN_READY   ? "not started"
@@ -1136,7 +1148,7 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
                  info.quit && info.state != RBS_RUN_DONE ? " (quitting)" : "",
                  info.speed, (unsigned long long)info.collisions,
                  (unsigned long long)info.substeps,
-                 (unsigned long long)info.rollbacks);
+                 (unsigned long long)info.rollbacks, ahead);
         return RBS_OK;
     }
     return renderer_command(p, line, reply, reply_size);
