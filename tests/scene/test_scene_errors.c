@@ -662,6 +662,70 @@ static void test_renderer_numbers_exact(void **state)
     rbs_scene_free(scene);
 }
 
+/* Names beyond ASCII: letters of any script are names; Unicode's spaces,
+ * C1 controls and the invisible formatting characters (zero-width ones,
+ * the bidirectional overrides and isolates that reorder a terminal's line)
+ * are refused as ASCII's blanks and controls are, the code point named and
+ * the echo showing '?' in its place, in a body's name and a material's. */
+static void test_names_beyond_ascii(void **state)
+{
+    static const struct {
+        const char *name; /* UTF-8 */
+        const char *why;  /* NULL: a name */
+    } cases[] = {
+        {"kugel_\xc3\xa4", NULL},
+        {"\xe7\x90\x83", NULL},
+        {"\xce\xb2\xce\xb1\xce\xbb\xce\xbb", NULL},
+        {"ball\xe2\x80\xae", "got \"ball?\" with U+202E (an invisible formatting character) at byte 5"},
+        {"b\xe2\x81\xa6x", "got \"b?x\" with U+2066 (an invisible formatting character) at byte 2"},
+        {"ba\xc2\xa0ll", "got \"ba?ll\" with U+00A0 (a space) at byte 3"},
+        {"ba\xe2\x80\x8bll", "got \"ba?ll\" with U+200B (an invisible formatting character) at byte 3"},
+        {"ball\xc2\x85", "got \"ball?\" with U+0085 (a control character) at byte 5"},
+        {"a\xe2\x80\xa8z", "got \"a?z\" with U+2028 (a line or paragraph separator) at byte 2"},
+        {"\xef\xbb\xbf" "ball", "got \"?ball\" with U+FEFF (an invisible formatting character) at byte 1"},
+        {"\xe3\x80\x80", "got \"?\" with U+3000 (a space) at byte 1"},
+    };
+    size_t i;
+    int where;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        for (where = 0; where < 2; where++) {
+            char text[512], want[256];
+            rbs_scene *scene = NULL;
+            rbs_scene_error e;
+            rbs_status st;
+            if (where == 0)
+                snprintf(text, sizeof text,
+                         "{\"simulation\": {\"steps\": 1}, \"bodies\": [{\"name\": \"%s\", \"type\": \"sphere\","
+                         " \"radius\": 1, \"mass\": 1, \"position\": [0, 0, 0]}]}",
+                         cases[i].name);
+            else
+                snprintf(text, sizeof text,
+                         "{\"simulation\": {\"steps\": 1}, \"materials\": [{\"pair\": [\"%s\", \"*\"],"
+                         " \"static\": 1, \"kinetic\": 0.5}], \"bodies\": [{\"name\": \"b\", \"type\": \"sphere\","
+                         " \"radius\": 1, \"mass\": 1, \"position\": [0, 0, 0], \"material\": \"%s\"}]}",
+                         cases[i].name, cases[i].name);
+            st = rbs_scene_parse_json(text, strlen(text), "n.json", &scene);
+            if (cases[i].why == NULL) {
+                if (st != RBS_OK && rbs_scene_error_get(scene, 0, &e) == RBS_OK)
+                    fail_msg("case %lu/%d: %s", (unsigned long)i, where, e.text);
+                assert_int_equal(st, RBS_OK);
+            } else {
+                assert_int_equal(st, RBS_E_SCENE);
+                assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+                snprintf(want, sizeof want,
+                         "a name must not contain spaces, control characters or invisible formatting "
+                         "characters, %s",
+                         cases[i].why);
+                if (strcmp(e.message, want) != 0)
+                    fail_msg("case %lu/%d: '%s', not '%s'", (unsigned long)i, where, e.message, want);
+                assert_string_equal(e.path, where == 0 ? "bodies[0].name" : "materials[0].pair[0]");
+            }
+            rbs_scene_free(scene);
+        }
+    }
+}
+
 /* Materials: "*" rows cover missing pairs; a body without material matches
  * only "*" rows; a sphere resting on a plane (gap 0) is not an overlap. */
 static void test_material_rules(void **state)
@@ -833,6 +897,7 @@ int main(void)
         cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields),
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers), cmocka_unit_test(test_renderer_numbers_exact),
+        cmocka_unit_test(test_names_beyond_ascii),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
         cmocka_unit_test(test_overlap_far_apart),
     };
