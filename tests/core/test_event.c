@@ -80,6 +80,41 @@ static void zeno_limit_ends_in_rest(void **state)
     rbs_world_destroy(w);
 }
 
+/* A bounce that leaves slower than the resting threshold g dt flies: only
+ * approaches below it are plastic.  h = 0.815 m, e = 0.1, dt = 0.05 s: the
+ * impact at 4.0 m/s (above g dt = 0.49 m/s) leaves at 0.40 m/s (below it)
+ * and rises 8.1 mm; its return at 0.40 m/s is below the threshold and ends
+ * in rest.  (Taken as rest at the impact, the departure was cancelled and
+ * the ball lay dead from t = 0.45 s.)  Rounding-level tolerance, as above. */
+static void slow_departure_flies(void **state)
+{
+    const double h = 0.815, e = 0.1, r = 0.1, dt = 0.05;
+    const double t1 = sqrt(2.0 * h / G), v1 = e * sqrt(2.0 * G * h), t2 = t1 + 2.0 * v1 / G;
+    rbs_world *w = make_world(4, dt, -G, e);
+    rbs_body_id b;
+    int k, flew = 0;
+    (void)state;
+    CHECK_OK(rbs_world_set_method(w, RBS_METHOD_EVENT, 0.0));
+    assert_true(v1 < G * dt && v1 * (1.0 / e) > G * dt);
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 1; k <= 20; ++k) {
+        double t, z;
+        step_n(w, 1);
+        t = rbs_world_time(w);
+        z = state_of(w, b).position.z - r;
+        if (t < t2) {
+            ASSERT_NEAR(z, bounce_height(h, e, t), 1e-12);
+            flew += t > t1;
+        } else {
+            ASSERT_NEAR(z, 0.0, 1e-12);
+            assert_true(state_of(w, b).velocity.z == 0.0);
+        }
+    }
+    assert_int_equal(flew, 1); /* the frame at 0.45 s, 8.14 mm up */
+    rbs_world_destroy(w);
+}
+
 /* Sliding with backspin: a solid ball launched at v0 with spin w0 (about
  * +y; rolling forward is w = v / r) rolls from t = 2 (v0 - r w0) / (7 mu g)
  * at v = (5 v0 + 2 r w0) / 7.  Before that x = v0 t - mu g t^2 / 2. */
@@ -336,6 +371,7 @@ int main(void)
         cmocka_unit_test(events_per_step_are_bounded),
         cmocka_unit_test(bouncing_ball_is_exact),
         cmocka_unit_test(zeno_limit_ends_in_rest),
+        cmocka_unit_test(slow_departure_flies),
         cmocka_unit_test(backspin_slide_to_roll_is_exact),
         cmocka_unit_test(incline_is_exact),
         cmocka_unit_test(large_inertia_stops_rolling_up_an_incline),

@@ -190,8 +190,12 @@ static rbs_status classify(rbs_world *w, double dt)
         rbs__accelerations(w, i, &a, &tau);
         x = v3_load(&w->pos[3 * i]);
         v = v3_load(&w->vel[3 * i]);
-        /* planes it rests on: touching, not leaving faster than one frame of
-         * the forces builds, and pressed by them */
+        /* planes it rests on: touching, pressed by the forces, and not
+         * leaving (up to rounding: 1e-9 of the speed one frame of them
+         * builds, the resting threshold).  A departure slower than that
+         * threshold is a bounce's, which flies: only approaches below it
+         * are plastic (resolve_contacts); taken as rest, it made a 4 m/s
+         * impact with e = 0.1 at dt = 0.05 s dead (a probe of session 39) */
         for (q = 0; q < w->plane_count; ++q) {
             uint32_t p = w->planes[q];
             v3 n = v3_load(&w->normal[3 * p]);
@@ -201,7 +205,7 @@ static rbs_status classify(rbs_world *w, double dt)
              * far from the origin) */
             if (rbs__coarse_touch(w, i, p, gap, w->def.slop * r, &coarse))
                 return rbs__coarse_error(w, &coarse);
-            if (gap > w->def.slop * r || !(an < 0.0) || vn > -an * dt)
+            if (gap > w->def.slop * r || !(an < 0.0) || vn > -an * dt * 1e-9)
                 continue;
             if (plane != UINT32_MAX)
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
