@@ -109,6 +109,59 @@ static void stack_sinks_by_its_loads(void **state)
     rbs_world_destroy(w);
 }
 
+/* The push limit never stops a load being held.  1 % of the smaller radius
+ * a sub-step is below the push that holds a resting load once g dt^2 >
+ * about 4.2 r (3 sub-steps): a ball of r = 1 mm at dt = 0.03 s sank through
+ * the floor at a steady 0.3 mm a frame.  Now it rests at the static
+ * deflection g / omega^2 = 0.224 mm (22 % of its radius, the model's own
+ * answer at so coarse a step), and a stack of 5 such balls of r = 5 mm
+ * sinks by its loads (as stack_sinks_by_its_loads), each to 1e-6 of
+ * itself after 20 s (about 30 time constants), and then stays within
+ * 1e-12 m. */
+static void coarse_steps_still_hold_loads(void **state)
+{
+    enum { N = 5 };
+    const double dt = 0.03, om = soft_omega(dt, 3);
+    (void)state;
+    {
+        const double r = 1e-3, sink = 1e-6 * r + G / (om * om);
+        rbs_world *w = soft_world(4, dt, -G, 0.5, 3);
+        rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+        rbs_body_id b;
+        double z1;
+        floor_plane(w, m);
+        b = ball(w, r, 1e-3, 0, 0, r, 0, 0, 0, m);
+        step_n(w, 700);
+        z1 = state_of(w, b).position.z;
+        ASSERT_NEAR(r - z1, sink, 1e-6 * sink);
+        step_n(w, 300);
+        ASSERT_NEAR(state_of(w, b).position.z, z1, 1e-12);
+        rbs_world_destroy(w);
+    }
+    {
+        const double r = 5e-3;
+        rbs_world *w = soft_world(N + 1, dt, -G, 0.3, 3);
+        rbs_material_id m = material(w, "m", 0.5, 0.4, -1.0);
+        rbs_body_id b[N];
+        double loads = N, drop, z1;
+        int k;
+        floor_plane(w, m);
+        for (k = 0; k < N; ++k)
+            b[k] = ball(w, r, 1e-3, 0, 0, r + 2.0 * r * k, 0, 0, 0, m);
+        for (k = 1; k < N; ++k)
+            loads += 2.0 * (N - k);
+        drop = N * 1e-6 * r + loads * G / (om * om);
+        step_n(w, 700);
+        z1 = state_of(w, b[N - 1]).position.z;
+        ASSERT_NEAR(r + 2.0 * r * (N - 1) - z1, drop, 1e-6 * drop);
+        step_n(w, 300);
+        ASSERT_NEAR(state_of(w, b[N - 1]).position.z, z1, 1e-12);
+        for (k = 0; k < N; ++k)
+            ASSERT_NEAR(state_of(w, b[k]).position.x, 0.0, 1e-12);
+        rbs_world_destroy(w);
+    }
+}
+
 /* Two free spheres meeting head on, no gravity, masses m1, m2 and
  * restitution e: the 1-D impact law gives
  *   v1' = (m1 v1 + m2 v2 - e m2 (v1 - v2)) / (m1 + m2),
@@ -1112,6 +1165,7 @@ int main(void)
         cmocka_unit_test(substeps_default_and_range),
         cmocka_unit_test(resting_ball_sinks_to_the_static_deflection),
         cmocka_unit_test(stack_sinks_by_its_loads),
+        cmocka_unit_test(coarse_steps_still_hold_loads),
         cmocka_unit_test(flight_is_exact_gathered_and_lags_g_t_h_over_2_general),
         cmocka_unit_test(head_on_impacts_follow_the_impact_law),
         cmocka_unit_test(oblique_sphere_impacts_follow_the_impact_law),

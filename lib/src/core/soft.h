@@ -76,6 +76,9 @@ typedef struct rbs__soft_rows {
     double slop;           /* def.slop, of the smaller radius */
     double push;           /* SOFT_PUSH / h: the push speed limit per metre of
                               the smaller radius, 1/s */
+    double hold;           /* 2 impulse_scale / mass_scale: twice the push
+                              speed that holds a contact's load, per m/s of
+                              jn / m_eff; the limit is never below it */
     double guard;          /* RBS__GUARD_DEPTH */
 } rbs__soft_rows;
 

@@ -203,7 +203,14 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
             apart = wd_sel(wait, zero, apart);
         }
         if (stage == RBS__SOFT_SOLVE) {
-            rbs__wd over = wd_add(s, slop), most = wd_neg(wd_mul(wd_set(k->push), rmin)), push;
+            rbs__wd over = wd_add(s, slop), most = wd_neg(wd_mul(wd_set(k->push), rmin)), push, hold;
+            /* the limit, never below twice the push that holds the lane's
+             * load (a steady row gives dj = 0 at vn = 0 when push = -jn
+             * (1/m_eff) / a, a = mass_scale / impulse_scale): 1 % of the
+             * radius a sub-step alone let a ball of r = 1 mm at dt = 0.03 s
+             * (g dt^2 > 4.2 r at 3 sub-steps) sink through the floor */
+            hold = wd_neg(wd_mul(wd_mul(jn0, im), wd_set(k->hold)));
+            most = wd_sel(wm_lt(hold, most), hold, most);
             over = wd_sel(wm_lt(over, zero), over, zero);
             push = wd_mul(wd_set(k->bias_rate), over);
             push = wd_sel(wm_lt(push, most), most, push);

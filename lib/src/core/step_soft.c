@@ -94,6 +94,7 @@ typedef struct soft_pass {
     rbs_world *w;
     double inv_h;
     double bias_rate, mass_scale, impulse_scale;
+    double hold;          /* rbs__soft_rows' */
     int friction;
     uint32_t restituted;  /* contacts the restitution pass changed */
     int last;             /* the frame's last sub-step */
@@ -171,6 +172,14 @@ static inline double normal_change(const soft_pass *sp, const rbs__contact *c, i
         return -vn * c->thr;
     over = s + slop < 0.0 ? s + slop : 0.0;
     push = sp->bias_rate * over;
+    if (push < -most) {
+        /* the limit is never below twice the push that holds the contact's
+         * load (jn / m_eff over a): capped below it, a resting load sank
+         * without end (soft_rows.h) */
+        const double hold = sp->hold * c->jn * c->kn;
+        if (hold > most)
+            most = hold;
+    }
     return -sp->mass_scale * (vn + (push < -most ? -most : push)) * c->thr - sp->impulse_scale * c->jn;
 }
 
@@ -391,6 +400,7 @@ static void rows_for_h(rbs__soft_rows *rows, double h)
     rows->mass_scale = a2 / (1.0 + a2);
     rows->impulse_scale = 1.0 / (1.0 + a2);
     rows->push = SOFT_PUSH * rows->inv_h;
+    rows->hold = 2.0 * rows->impulse_scale / rows->mass_scale;
 }
 
 /* A frame of the gathered layout: what its stages (team.h) read and write.
@@ -895,6 +905,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.bias_rate = k.bias_rate;
     sp.mass_scale = k.mass_scale;
     sp.impulse_scale = k.impulse_scale;
+    sp.hold = k.hold;
 
     for (s = 0; s < n; ++s) {
         rbs__integrate_velocities(w, h);
