@@ -802,7 +802,30 @@ static void test_slop(void **state)
     assert_int_equal(rbs_scene_parse_json(text, strlen(text), "sweeps", &scene), RBS_OK);
     assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
     assert_int_equal(d.max_sweeps, 5);
+    assert_int_equal(d.max_contacts, 4 * 2 + 16); /* (the default: 4 x bodies + 16) */
     rbs_scene_free(scene);
+    /* simulation.max_contacts: from 1 to the world's 2^26; the world gets it */
+    snprintf(text, sizeof text, fmt, ", \"max_contacts\": 67108864", "0.5");
+    assert_int_equal(rbs_scene_parse_json(text, strlen(text), "contacts", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_world_def(scene, &d), RBS_OK);
+    assert_int_equal(d.max_contacts, 67108864);
+    rbs_scene_free(scene);
+    {
+        static const char *const bad[] = {"0", "2.5", "67108865", "-1", "\"many\""};
+        size_t i;
+        for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+            char extra[64], want[160];
+            snprintf(extra, sizeof extra, ", \"max_contacts\": %s", bad[i]);
+            snprintf(text, sizeof text, fmt, extra, "0.5");
+            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "contacts", &scene), RBS_E_SCENE);
+            assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+            snprintf(want, sizeof want, "simulation.max_contacts: must be an integer from 1 to 67108864 (2^26), got %s",
+                     bad[i]);
+            if (strstr(e.text, want) == NULL)
+                fail_msg("'%s' does not hold '%s'", e.text, want);
+            rbs_scene_free(scene);
+        }
+    }
     /* simulation.soft_substeps and soft_tolerance likewise, at both ends of
      * their ranges and between, and the world takes them */
     {

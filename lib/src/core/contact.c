@@ -221,7 +221,10 @@ static rbs__contact *contact_new(rbs_world *w, detect_ctx *ctx, rbs__contact *tm
     if (w->contact_count >= w->def.max_contacts) {
         if (ctx->status == RBS_OK)
             ctx->status = (rbs_status)rbs__world_set_error(w, RBS_E_CAPACITY,
-                "more than max_contacts = %u contacts in one step", (unsigned)w->def.max_contacts);
+                "more than max_contacts = %u contacts in one step (raise it: rbs_world_def.max_contacts, "
+                "a scene's simulation.max_contacts, default 4 x bodies + 16; or shorten dt, as pairs "
+                "within the bodies' reach over a step are contacts)",
+                (unsigned)w->def.max_contacts);
         return NULL;
     }
     if (ctx->sink != NULL) {

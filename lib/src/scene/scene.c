@@ -511,7 +511,9 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->max_bodies = n;
     out->max_materials = scene->material_count > 0 ? scene->material_count : 1;
     out->max_pairs = scene->pair_count > 0 ? scene->pair_count : 1;
-    out->max_contacts = n > (UINT32_MAX - 16) / 4 ? UINT32_MAX : 4 * n + 16;
+    out->max_contacts = scene->max_contacts > 0           ? scene->max_contacts
+                        : n > (UINT32_MAX - 16) / 4 ? UINT32_MAX
+                                                    : 4 * n + 16;
     out->dt = scene->dt;
     out->gravity = scene->gravity;
     out->gravity_mode = scene->gravity_mode;

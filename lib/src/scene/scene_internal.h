@@ -37,6 +37,8 @@
 #define RBS__SCENE_SLOP_MAX 0.1
 #define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
 #define RBS__SCENE_SWEEPS_MAX 100000
+/* The world's largest max_contacts (rbs_world_def_validate). */
+#define RBS__SCENE_CONTACTS_MAX 67108864u /* 2^26 */
 /* The world's smallest tolerance (world.c: double precision). */
 #define RBS__SCENE_TOLERANCE_MIN 1e-15
 /** Largest size of each of a movable sphere's energies at the start, J: four
@@ -136,6 +138,8 @@ struct rbs_scene {
     double tolerance;
     double slop; /* allowed overlap and contact margin, of the smaller radius */
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
+    uint32_t max_contacts; /* contacts a step may hold; 0: 4 x bodies + 16
+                              (rbs_world_def.max_contacts) */
     uint32_t soft_substeps; /* sub-steps per frame of the soft method
                                (rbs_world_def.soft_substeps) */
     double soft_tolerance; /* the soft method's overlap budget, a fraction

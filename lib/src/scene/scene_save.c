@@ -304,6 +304,11 @@ static void put_simulation(FILE *f, const key_style *k, const key_style *g, cons
     put_num(f, s->slop);
     put_key(f, k, "max_sweeps", KEY_NEXT);
     fprintf(f, "%u", (unsigned)s->max_sweeps);
+    if (s->max_contacts > 0) {
+        /* (only when given: the default follows the bodies) */
+        put_key(f, k, "max_contacts", KEY_NEXT);
+        fprintf(f, "%u", (unsigned)s->max_contacts);
+    }
     put_key(f, k, "soft_substeps", KEY_NEXT);
     fprintf(f, "%u", (unsigned)s->soft_substeps);
     put_key(f, k, "soft_tolerance", KEY_NEXT);

@@ -571,7 +571,7 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 
 static const char *const sim_keys[] = {
     "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
-    "max_sweeps", "soft_substeps", "soft_tolerance", "restitution",
+    "max_sweeps", "max_contacts", "soft_substeps", "soft_tolerance", "restitution",
     "pause_on_collision", "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
@@ -672,6 +672,14 @@ static void check_simulation(vctx *v, const cJSON *sim)
         saved = push_key(v, "max_sweeps");
         if (get_integer(v, c, 1, RBS__SCENE_SWEEPS_MAX, "an integer from 1 to 100000", &n) == 0) {
             s->max_sweeps = (uint32_t)n;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "max_contacts")) != NULL) {
+        uint64_t n;
+        saved = push_key(v, "max_contacts");
+        if (get_integer(v, c, 1, RBS__SCENE_CONTACTS_MAX, "an integer from 1 to 67108864 (2^26)", &n) == 0) {
+            s->max_contacts = (uint32_t)n;
         }
         pop(v, saved);
     }
