@@ -23,6 +23,12 @@ size_t rbsf_format_double(char *buf, size_t size, double x)
         return (size_t)snprintf(buf, size, "nan");
     if (isinf(x))
         return (size_t)snprintf(buf, size, x > 0 ? "inf" : "-inf");
+    if (x == floor(x) && fabs(x) < 1e15) {
+        /* a whole number as one: 10, not the shorter 1e+01 (a frame's time,
+         * a count); exact below 2^53, and -0 keeps its sign */
+        n = snprintf(buf, size, "%.0f", x);
+        return n < 0 || (size_t)n >= size ? 0 : (size_t)n;
+    }
     /* The shortest precision that reads back as the same double (17
      * significant digits always do, for IEEE binary64).  Reading back is
      * monotonic in the precision -- the nearest (p+1)-digit decimal is no

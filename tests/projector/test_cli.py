@@ -419,6 +419,23 @@ class CliTests(Base):
                     shorter = "%.*g" % (len(digits) - 1, x)
                     self.assertNotEqual(float(shorter), x, a)
 
+    def test_whole_numbers_are_written_as_whole_numbers(self):
+        # A frame's time of 10 s is "10", not the shorter "1e+01"; -0 keeps
+        # its sign; whole numbers from 2^53 on keep the shortest form.
+        s = self.scene(simulation=dict(SCENE["simulation"], dt=0.5, steps=40))
+        r = self.rbsim("run", s, "--csv", "w.csv", "--json", "w.jsonl",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        times = sorted({row[1] for row in self.read_csv(self.path("w.csv"))},
+                       key=float)
+        self.assertEqual(times[:4], ["0", "0.5", "1", "1.5"])
+        self.assertEqual(times[-1], "20")
+        self.assertIn("10", times)
+        self.assertFalse([t for t in times if "e" in t], times)
+        with open(self.path("w.jsonl")) as f:
+            last = json.loads(f.read().splitlines()[-1])
+        self.assertEqual(last["t"], 20)
+
     def test_csv_names_are_never_formulas(self):
         # A name a spreadsheet would evaluate (leading = + - @, tab, CR) is
         # written with an apostrophe in front, and so is a name beginning
