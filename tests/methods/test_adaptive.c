@@ -117,6 +117,67 @@ static void events_are_located(void **state)
     rbs_world_destroy(w);
 }
 
+/* A bounce that leaves slower than the resting threshold g dt flies as an
+ * ODE and its return is an event: h = 0.815 m, e = 0.1, dt = 0.05 s, the
+ * impact at 4.0 m/s leaves at 0.40 m/s (below g dt = 0.49 m/s) and rises
+ * 8.1 mm; the frame inside that flight matches the closed form within the
+ * events' location (1e-3 of the slop, 1e-10 m) and the tolerance, 1e-9 m
+ * and 1e-8 m/s; the return, slower than the threshold, ends in rest.
+ * (Taken as rest, the rk4 sub-steps finishing the frame stopped it 8.5 mm
+ * up with no speed.)  Then the frame's resting thresholds hold in the
+ * sub-steps that finish a frame: dropped from 1 m at dt = 0.5 s (impact
+ * at 4.43 m/s, below g dt = 4.9 m/s) the ball stops on the floor, as rk4
+ * stops it, where the finishing sub-steps' shorter thresholds made it
+ * bounce. */
+static void slow_departures_fly_and_thresholds_are_the_frames(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_body_id b;
+    const double g = 9.81, r = 0.1, h = 0.815, e = 0.1;
+    const double t1 = sqrt(2.0 * h / g), v1 = e * sqrt(2.0 * g * h);
+    int k;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.dt = 0.05;
+    d.restitution = e;
+    d.method = RBS_METHOD_ADAPTIVE;
+    d.tolerance = 1e-10;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, h + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 1; k <= 12; ++k) {
+        double t, s;
+        rbs_body_state st;
+        step_n(w, 1);
+        t = rbs_world_time(w);
+        st = state_of(w, b);
+        if (t < t1) {
+            ASSERT_NEAR(st.position.z - r, h - 0.5 * g * t * t, 1e-9);
+        } else if ((s = t - t1) < 2.0 * v1 / g) {
+            ASSERT_NEAR(st.position.z - r, v1 * s - 0.5 * g * s * s, 1e-9); /* 8.137 mm at 0.45 s */
+            ASSERT_NEAR(st.velocity.z, v1 - g * s, 1e-8);
+            assert_true(st.position.z - r > 8e-3);
+        } else {
+            ASSERT_NEAR(st.position.z, r, 1e-7);
+            assert_true(st.velocity.z == 0.0);
+        }
+    }
+    rbs_world_destroy(w);
+
+    d.dt = 0.5;
+    d.restitution = 0.8;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    b = ball(w, r, 1.0, 0, 0, 1.0 + r, 0, 0, 0, (rbs_material_id){0, 0});
+    for (k = 1; k <= 4; ++k) {
+        step_n(w, 1);
+        ASSERT_NEAR(state_of(w, b).position.z, r, 1e-7);
+        assert_true(state_of(w, b).velocity.z == 0.0);
+    }
+    rbs_world_destroy(w);
+}
+
 /* Two spheres approaching head-on at 20 m/s each, frames of 0.1 s (they
  * would pass through each other within one frame): the impact is an event;
  * e = 1 and equal masses exchange velocities exactly (1e-12). */
@@ -338,6 +399,7 @@ int main(void)
         cmocka_unit_test(figure_eight_closes),
         cmocka_unit_test(energy_drift_bounded_by_tolerance),
         cmocka_unit_test(events_are_located),
+        cmocka_unit_test(slow_departures_fly_and_thresholds_are_the_frames),
         cmocka_unit_test(sphere_event_inside_a_frame),
         cmocka_unit_test(ceiling_graze_inside_a_step),
         cmocka_unit_test(tolerance_can_change),

@@ -564,28 +564,32 @@ static rbs_status detect_segment(rbs_world *w, double T)
     return RBS_OK;
 }
 
-/* Does a contact (after the collision pass) stay closed: approach or part
- * slower than the speed one frame of forces builds? */
+/* Does a contact (after the collision pass) stay closed: not parting (up
+ * to rounding: 1e-9 of its resting threshold, the speed one frame of the
+ * forces builds)?  An approach the collision pass left is slower than the
+ * threshold, a plastic one's is rounding.  A bounce that leaves slower
+ * than the threshold flies on as an ODE, its return an event: taken as
+ * rest, the rk4 sub-steps that finish the frame met its return inside one
+ * sub-step and stopped it in the air (a probe of session 39: e = 0.1,
+ * dt = 0.05 s, the ball held still 8.5 mm up at 0.45 s). */
 static int resting_contact(const rbs_world *w)
 {
     uint32_t k;
     for (k = 0; k < w->contact_count; ++k) {
         const rbs__contact *c = &w->contact[k];
-        if (rbs__normal_velocity(w, c) <= c->thr)
+        if (rbs__normal_velocity(w, c) <= 1e-9 * c->thr)
             return 1;
     }
     return 0;
 }
 
-/* The rest of the frame, [t, dt], with RK4 rollback sub-steps. */
+/* The rest of the frame, [t, dt], with RK4 rollback sub-steps, at the
+ * frame's resting thresholds (with the rest's own, shorter ones, an
+ * approach this frame's collision pass left as resting was an impact
+ * there: a ball dropped at dt = 0.5 s bounced where rk4 stops it). */
 static rbs_status finish_with_rk4(rbs_world *w, rbs_step_info *info, double remaining)
 {
-    double dt = w->def.dt;
-    rbs_status st;
-    w->def.dt = remaining;
-    st = rbs__step_rollback(w, info, rbs__rk4_advance, 0, 0); /* mid-frame */
-    w->def.dt = dt;
-    return st;
+    return rbs__step_rollback(w, info, rbs__rk4_advance, 0, 0, remaining); /* mid-frame */
 }
 
 rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)

@@ -121,11 +121,11 @@ static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, euler_advance, 1, 1);
+    return rbs__step_rollback(w, info, euler_advance, 1, 1, w->def.dt);
 }
 
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
-                              int speculative, int at_step_start)
+                              int speculative, int at_step_start, double span)
 {
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
@@ -139,7 +139,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
         double h, *save = w->sub_save;
         if (hu > total - done)
             hu = total - done;
-        h = dt * ((double)hu / (double)total);
+        h = span * ((double)hu / (double)total);
         /* until a sub-step is accepted the world is at the frame's start,
          * which rbs_world_step has just saved: no copy (and, for a frame of
          * one sub-step, sub_save is never touched) */
