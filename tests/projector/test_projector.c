@@ -55,6 +55,14 @@ static rbs_world *make_world(void)
     return w;
 }
 
+/* Monotonic seconds. */
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 /* ---- a recording renderer ----------------------------------------------- */
 
 typedef struct rec_opts {
@@ -885,6 +893,33 @@ static void realtime_paces_frames(void **state)
     fx_done(&fx);
 }
 
+/* A frame due beyond any clock (speed 1e-300: 1e297 s a frame) waits
+ * answering commands: "status" replies and "quit" ends the run at once.
+ * (The deadline overflowed into the past, the renderer thread spun with
+ * the lock held, and nothing got through, not even quit.) */
+static void realtime_wait_beyond_any_clock_still_quits(void **state)
+{
+    fixture fx;
+    char reply[512];
+    double t0;
+    struct timespec nap = {0, 50000000};
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    fx.def.steps = 100000; /* (more than the reel holds: quit cuts it short) */
+    fx.def.realtime = 1;
+    fx.def.speed = 1e-300;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
+    nanosleep(&nap, NULL);
+    t0 = now_s();
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
+    assert_non_null(strstr(reply, "running"));
+    CHECK_OK(rbs_projector_command(fx.p, "quit", reply, sizeof reply));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_E_CLOSED);
+    assert_true(now_s() - t0 < 5.0);
+    fx_done(&fx);
+}
+
 /* Live views only: the latest-only reel; frames increase strictly; while
  * paused the live view gets repeats flagged paused. */
 static void live_view_gets_repeats_while_paused(void **state)
@@ -1249,6 +1284,7 @@ int main(void)
         cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
         cmocka_unit_test(realtime_paces_frames),
+        cmocka_unit_test(realtime_wait_beyond_any_clock_still_quits),
         cmocka_unit_test(live_view_gets_repeats_while_paused),
         cmocka_unit_test(realtime_pause_holds_the_display),
     };

@@ -52,6 +52,12 @@ struct timespec rbs__deadline_after(double seconds)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
+    if (seconds > 1e9)
+        seconds = 1e9; /* (31 years: beyond it (long) overflowed, and the
+                          deadline, in the past, made a waiter spin with the
+                          lock held -- a real-time frame at speed 1e-300 --
+                          so that nothing, not even quit, got through; every
+                          waiter looks again when it wakes) */
     if (seconds > 0) {
         double whole = (double)(long)seconds;
         long ns = (long)((seconds - whole) * 1e9);
