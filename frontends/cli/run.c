@@ -331,6 +331,22 @@ static int load_scene(const char *path, rbs_scene **out)
 
 /* ---- outputs ------------------------------------------------------------ */
 
+/* Whether a file output's path names the file this process's standard
+ * output is (/dev/stdout, /dev/fd/1, or the very file stdout is redirected
+ * to): such an output is written as "-", to the stream itself.  Staged as
+ * a file it was replaced by rename (what stdout held before, and what came
+ * after, lost), failed on a pipe, and escaped the one-output-on-stdout
+ * rule. */
+static int is_stdout(const char *type, const char *path)
+{
+    struct stat a, b;
+    if (path == NULL || strcmp(path, "-") == 0 ||
+        (strcmp(type, "csv") && strcmp(type, "json") && strcmp(type, "stats")))
+        return 0;
+    return stat(path, &a) == 0 && fstat(STDOUT_FILENO, &b) == 0 && a.st_dev == b.st_dev &&
+           a.st_ino == b.st_ino;
+}
+
 /* A renderer entry made on the command line, as the JSON a scene would
  * hold. */
 static char *entry_json(const char *type, const char *path, uint32_t every,
@@ -368,6 +384,8 @@ static int add_output(output *outs, uint32_t *n, const char *type,
     memset(o, 0, sizeof *o);
     o->config.struct_size = sizeof o->config;
     o->config.type = type;
+    if (is_stdout(type, path))
+        path = "-";
     o->owned_path = path ? malloc(strlen(path) + 1) : NULL;
     if (path && o->owned_path)
         strcpy(o->owned_path, path);
@@ -413,9 +431,10 @@ static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
         root = cJSON_Parse(r.json);
         item = cJSON_GetObjectItemCaseSensitive(root, "path");
         if (cJSON_IsString(item)) {
-            o->owned_path = malloc(strlen(item->valuestring) + 1);
+            const char *path = is_stdout(r.type, item->valuestring) ? "-" : item->valuestring;
+            o->owned_path = malloc(strlen(path) + 1);
             if (o->owned_path)
-                strcpy(o->owned_path, item->valuestring);
+                strcpy(o->owned_path, path);
             o->config.path = o->owned_path;
         }
         item = cJSON_GetObjectItemCaseSensitive(root, "every");
@@ -521,23 +540,37 @@ typedef struct file_key {
     dev_t dev;
     ino_t ino;
     const char *name; /* NULL for an existing file */
+    char name_buf[256]; /* the name when it comes through a link */
 } file_key;
 
 static int key_of(const char *path, file_key *k)
 {
     struct stat sb;
     char dir[4096];
+    char *target;
+    int ok;
     if (stat(path, &sb) == 0) {
         k->dev = sb.st_dev;
         k->ino = sb.st_ino;
         k->name = NULL;
         return 1;
     }
-    if (folder_of(path, dir, sizeof dir, &k->name) != 0 || stat(dir, &sb) != 0)
+    /* a new file: where its links lead (a link to a file not yet made
+     * names that file, which another output may make too) */
+    target = resolve_links(path);
+    if (target == NULL)
         return 0;
-    k->dev = sb.st_dev;
-    k->ino = sb.st_ino;
-    return 1;
+    ok = folder_of(target, dir, sizeof dir, &k->name) == 0 && stat(dir, &sb) == 0;
+    if (ok) {
+        k->dev = sb.st_dev;
+        k->ino = sb.st_ino;
+        /* (kept: target is freed below) */
+        strncpy(k->name_buf, k->name, sizeof k->name_buf - 1);
+        k->name_buf[sizeof k->name_buf - 1] = '\0';
+        k->name = k->name_buf;
+    }
+    free(target);
+    return ok;
 }
 
 /* Two names for one file (the same text, or an existing file reached twice,

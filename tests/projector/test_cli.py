@@ -419,6 +419,46 @@ class CliTests(Base):
                     shorter = "%.*g" % (len(digits) - 1, x)
                     self.assertNotEqual(float(shorter), x, a)
 
+    def test_stdout_by_its_file_name_is_stdout(self):
+        # /dev/stdout (or the file stdout is redirected to) is written as
+        # "-": into the stream as it is, appended after what it held, and
+        # one output at most.
+        s = self.scene()
+        r = self.rbsim("run", s, "--quiet", "--steps", "2", "--csv",
+                       "/dev/stdout", "--json", "-")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("both write to standard output", r.stderr)
+        out = self.path("o.txt")
+        with open(out, "w") as f:
+            f.write("PRIOR\n")
+        with open(out, "a") as f:
+            r = subprocess.run([RBSIM, "run", s, "--quiet", "--steps", "1",
+                                "--csv", "/dev/stdout"], stdout=f,
+                               stderr=subprocess.PIPE, text=True,
+                               cwd=self.dir, timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            lines = f.read().splitlines()
+        self.assertEqual(lines[0], "PRIOR")
+        self.assertEqual(",".join(lines[1:2]), CSV_HEADER)
+        self.assertEqual(len(lines), 2 + 2 * len(SCENE["bodies"]))
+        # into a pipe (capture_output): the CSV comes through
+        r = self.rbsim("run", s, "--quiet", "--steps", "1", "--csv",
+                       "/dev/stdout")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout.splitlines()[0], CSV_HEADER)
+
+    def test_two_outputs_through_a_link_to_a_new_file(self):
+        # link.csv -> o11.csv, which does not exist yet: one file, refused
+        # before anything is written (it was written twice, one lost).
+        s = self.scene("l.json", renderers=[{"type": "csv", "path": "o11.csv"}])
+        os.symlink("o11.csv", self.path("link.csv"))
+        r = self.rbsim("run", s, "--steps", "1", "--json", "link.csv",
+                       "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("both write 'link.csv'", r.stderr)
+        self.assertFalse(os.path.exists(self.path("o11.csv")))
+
     def test_whole_numbers_are_written_as_whole_numbers(self):
         # A frame's time of 10 s is "10", not the shorter "1e+01"; -0 keeps
         # its sign; whole numbers from 2^53 on keep the shortest form.
