@@ -13,6 +13,7 @@
 
 #include <cjson/cJSON.h>
 #include <errno.h>
+#include <float.h>
 #include <fcntl.h>
 #include <math.h>
 #include <signal.h>
@@ -102,10 +103,29 @@ static int parse_positive(const char *s, double *out)
         return -1;
     errno = 0;
     v = strtod(s, &end);
-    if (errno != 0 || *end != '\0' || !isfinite(v) || !(v > 0))
+    /* (ERANGE with a subnormal result is a number the scene's JSON takes
+     * too, 5e-324; with 0 or infinity it is not one) */
+    if ((errno != 0 && !(errno == ERANGE && v > 0 && v < DBL_MIN)) || *end != '\0' || !isfinite(v) ||
+        !(v > 0))
         return -1;
     *out = v;
     return 0;
+}
+
+/* What a decimal number that parse_positive refused is beyond: "" or a
+ * note for a value past double precision's range either way. */
+static const char *range_note(const char *s)
+{
+    double v;
+    if (s == NULL || *s == '\0' || s[strspn(s, "0123456789.eE+-")] != '\0')
+        return "";
+    errno = 0;
+    v = strtod(s, NULL);
+    if (errno == ERANGE && v == 0.0)
+        return " (below the smallest double, about 4.9e-324: it reads as 0)";
+    if (errno == ERANGE && isinf(v))
+        return " (beyond the largest double, about 1.8e308)";
+    return "";
 }
 
 #define RUN_STR_(x) #x
@@ -224,15 +244,15 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         } else if (strcmp(name, "--dt") == 0) {
             if (parse_positive(value, &o->dt) != 0)
                 return usage_error("--dt: expected a time step in seconds, > 0, "
-                                   "got '%s'%s", value, "");
+                                   "got '%s'%s", value, range_note(value));
         } else if (strcmp(name, "--slop") == 0) {
             if (parse_positive(value, &o->slop) != 0 || !(o->slop < 0.1))
                 return usage_error("--slop: expected a fraction of the smaller "
-                                   "radius in (0, 0.1), got '%s'%s", value, "");
+                                   "radius in (0, 0.1), got '%s'%s", value, range_note(value));
         } else if (strcmp(name, "--speed") == 0) {
             if (parse_positive(value, &o->speed) != 0 || o->speed > 1e6)
                 return usage_error("--speed: expected a factor > 0 and <= 1e6, "
-                                   "got '%s'%s", value, "");
+                                   "got '%s'%s", value, range_note(value));
         } else if (strcmp(name, "--method") == 0) {
             rbs_method m;
             char list[256];

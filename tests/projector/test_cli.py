@@ -133,6 +133,8 @@ class CliTests(Base):
             (["--dt", "-1"], "--dt"),
             (["--dt", "nan"], "--dt"),
             (["--dt", "0x10"], "--dt: expected a time step"),  # (strtod's hex)
+            (["--dt", "1e-400"], "got '1e-400' (below the smallest double"),
+            (["--dt", "1e400"], "got '1e400' (beyond the largest double"),
             (["--slop", " 0.01"], "--slop"),
             (["--method", "leapfrog"], "unknown method 'leapfrog'; expected euler, "
              "selective, event, verlet, rk4, adaptive, soft or auto"),
@@ -168,6 +170,15 @@ class CliTests(Base):
             self.assertEqual(r.returncode, 2, (extra, r.stderr))
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
+
+    def test_subnormal_dt_and_slop_are_numbers(self):
+        # 5e-324 and 1e-310 are doubles > 0, as a scene's JSON takes them
+        # (strtod's ERANGE for a subnormal result refused them).
+        s = self.scene()
+        for extra in (["--dt", "5e-324"], ["--dt", "1e-310"],
+                      ["--slop", "1e-310"]):
+            r = self.rbsim("run", s, "--steps", "2", "--quiet", *extra)
+            self.assertEqual(r.returncode, 0, (extra, r.stderr))
 
     def test_check_refuses_what_run_refuses(self):
         # The scene's own renderer entries: two names for one file, or an
