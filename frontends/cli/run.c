@@ -14,6 +14,7 @@
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <float.h>
+#include <stdarg.h>
 #include <fcntl.h>
 #include <math.h>
 #include <signal.h>
@@ -1048,6 +1049,22 @@ static const char *material_label(const rbs_world *w, rbs_material_id m)
     return name;
 }
 
+/* A message into buf (n bytes), cut to fit. */
+static void say_into(char *buf, size_t n, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, n, fmt, ap);
+    va_end(ap);
+}
+
+/* x in its shortest exact form, in buf (40 bytes), for a message. */
+static const char *short_num(char *buf, double x)
+{
+    rbsf_format_double(buf, 40, x);
+    return buf;
+}
+
 /* The same materials (by index and name) and the same pair rows (in order,
  * every coefficient bit for bit)?  0 if so; otherwise the difference. */
 static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
@@ -1093,17 +1110,19 @@ static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
             !(pa.kinetic_friction == pb.kinetic_friction) ||
             !(pa.restitution == pb.restitution) || !(pa.rolling == pb.rolling) ||
             !(pa.spinning == pb.spinning)) {
-            snprintf(why, n, "material pair '%s' / '%s': the scene has "
-                             "mu_s %.17g mu_k %.17g e %.17g rolling %.17g "
-                             "spinning %.17g, the checkpoint has '%s' / '%s' "
-                             "mu_s %.17g mu_k %.17g e %.17g rolling %.17g "
-                             "spinning %.17g",
+            char x[10][40];
+            say_into(why, n, "material pair '%s' / '%s': the scene has "
+                             "mu_s %s mu_k %s e %s rolling %s "
+                             "spinning %s, the checkpoint has '%s' / '%s' "
+                             "mu_s %s mu_k %s e %s rolling %s "
+                             "spinning %s",
                      material_label(a, pa.a), material_label(a, pa.b),
-                     pa.static_friction, pa.kinetic_friction, pa.restitution,
-                     pa.rolling, pa.spinning, material_label(b, pb.a),
-                     material_label(b, pb.b), pb.static_friction,
-                     pb.kinetic_friction, pb.restitution, pb.rolling,
-                     pb.spinning);
+                     short_num(x[0], pa.static_friction), short_num(x[1], pa.kinetic_friction),
+                     short_num(x[2], pa.restitution), short_num(x[3], pa.rolling),
+                     short_num(x[4], pa.spinning), material_label(b, pb.a),
+                     material_label(b, pb.b), short_num(x[5], pb.static_friction),
+                     short_num(x[6], pb.kinetic_friction), short_num(x[7], pb.restitution),
+                     short_num(x[8], pb.rolling), short_num(x[9], pb.spinning));
             return -1;
         }
     }
@@ -1245,8 +1264,9 @@ static int checkpoint_matches(const rbs_world *scene_world,
     DIFF_U(max_contacts, "capacity max_contacts")
 #undef DIFF_U
     if (a.dt != b.dt) {
-        snprintf(why, n, "time step: the scene has %.17g s, the checkpoint "
-                         "%.17g s", a.dt, b.dt);
+        char x[2][40];
+        snprintf(why, n, "time step: the scene has %s s, the checkpoint "
+                         "%s s", short_num(x[0], a.dt), short_num(x[1], b.dt));
         return -1;
     }
     if (a.method != b.method) {
@@ -1255,17 +1275,30 @@ static int checkpoint_matches(const rbs_world *scene_world,
         return -1;
     }
     if (a.gravity.x != b.gravity.x || a.gravity.y != b.gravity.y ||
-        a.gravity.z != b.gravity.z || a.gravity_mode != b.gravity_mode) {
-        snprintf(why, n, "gravity differs (the scene has %g %g %g, the "
-                         "checkpoint %g %g %g)",
-                 a.gravity.x, a.gravity.y, a.gravity.z, b.gravity.x,
-                 b.gravity.y, b.gravity.z);
+        a.gravity.z != b.gravity.z) {
+        char g[6][40];
+        rbsf_format_double(g[0], sizeof g[0], a.gravity.x);
+        rbsf_format_double(g[1], sizeof g[1], a.gravity.y);
+        rbsf_format_double(g[2], sizeof g[2], a.gravity.z);
+        rbsf_format_double(g[3], sizeof g[3], b.gravity.x);
+        rbsf_format_double(g[4], sizeof g[4], b.gravity.y);
+        rbsf_format_double(g[5], sizeof g[5], b.gravity.z);
+        snprintf(why, n, "gravity differs (the scene has %s %s %s, the "
+                         "checkpoint %s %s %s)",
+                 g[0], g[1], g[2], g[3], g[4], g[5]);
+        return -1;
+    }
+    if (a.gravity_mode != b.gravity_mode) {
+        snprintf(why, n, "gravity_mode: the scene has %s, the checkpoint %s",
+                 a.gravity_mode == RBS_GRAVITY_FORCE ? "force" : "acceleration",
+                 b.gravity_mode == RBS_GRAVITY_FORCE ? "force" : "acceleration");
         return -1;
     }
 #define DIFF_D(field, what)                                                    \
     if (!(a.field == b.field)) {                                               \
-        snprintf(why, n, "%s: the scene has %.17g, the checkpoint %.17g",     \
-                 what, (double)a.field, (double)b.field);                      \
+        char x_[2][40];                                                        \
+        snprintf(why, n, "%s: the scene has %s, the checkpoint %s", what,      \
+                 short_num(x_[0], (double)a.field), short_num(x_[1], (double)b.field)); \
         return -1;                                                             \
     }
     DIFF_D(restitution, "restitution")

@@ -301,14 +301,18 @@ class FaultTests(CkptBase):
         mats[0]["kinetic"] = 0.25
         cases = [
             (self.scene("kin.json", materials=mats),
-             ["material pair '*' / '*'", "mu_k 0.29999999999999999",
+             ["material pair '*' / '*'", "mu_k 0.3 ",
               "mu_k 0.25"]),
             (self.scene("two.json", materials=SCENE["materials"] + [
                 {"pair": ["rubber", "*"], "static": 0.5, "kinetic": 0.3}]),
              ["capacity max_pairs: the scene has 2, the checkpoint 1"]),
             (self.scene("e.json", simulation=dict(SCENE["simulation"],
                                                   restitution=0.9)),
-             ["restitution: the scene has 0.90000000000000002"]),
+             ["restitution: the scene has 0.9, the checkpoint 0.5"]),
+            (self.scene("gm.json", simulation=dict(SCENE["simulation"],
+                                                   gravity_mode="force")),
+             ["gravity_mode: the scene has force, the checkpoint "
+              "acceleration"]),
         ]
         for scene, words in cases:
             r = self.rbsim("run", scene, "--resume", "ck.bin", "--csv",
