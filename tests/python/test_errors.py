@@ -86,16 +86,83 @@ def test_soft_substeps_out_of_range_names_it():
 
 
 def test_soft_tolerance_out_of_range_names_it():
-    """soft_tolerance is 0 to 1: -0.1 and 2 are refused by the library with
-    its own words (the field, the range and the value)."""
+    """soft_tolerance is 0 to 1: -0.1 and 2 are refused with the field, the
+    range and the value."""
     for bad in (-0.1, 2.0):
         with pytest.raises(rbsim.InvalidError,
-                           match=r"soft_tolerance must be in \[0, 1\] \(a fraction of the "
-                                 r"radius\), got %g" % bad) as info:
+                           match=r"soft_tolerance: must be in \[0, 1\] \(a fraction of the "
+                                 r"radius\), got %r$" % bad) as info:
             rbsim.World(soft_tolerance=bad)
         assert info.value.status == lib.RBS_E_INVALID
     for good in (0.0, 1.0):
         assert rbsim.World(soft_tolerance=good).settings["soft_tolerance"] == good
+
+
+def _message(fn, *args, **kw):
+    with pytest.raises(rbsim.InvalidError) as info:
+        fn(*args, **kw)
+    assert info.value.status == lib.RBS_E_INVALID
+    return str(info.value)
+
+
+def test_ranges_echo_the_value_exactly():
+    """A real out of its range is echoed as given (the shortest text that
+    reads back as the same double), never rounded: restitution=1.0000001
+    read "got 1" (the library's %g), in World(...), the setters,
+    set_material, add_sphere and run's speed.  The ends of each range are
+    taken (by the library too)."""
+    pre = "invalid argument: "
+    for key, bad, text in (
+            ("restitution", 1.0000001, "must be in [0, 1], got 1.0000001"),
+            ("restitution", -1e-300, "must be in [0, 1], got -1e-300"),
+            ("restitution", 2, "must be in [0, 1], got 2"),
+            ("dt", -1e-300, "must be > 0, got -1e-300"),
+            ("dt", -0.0, "must be > 0, got -0.0"),
+            ("tolerance", 9.999999999999999e-16,
+             "must be >= 1e-15 (what double precision can reach), got 9.999999999999999e-16"),
+            ("slop", 0.1000000001,
+             "must be in (0, 0.1) (a fraction of the smaller radius), got 0.1000000001"),
+            ("slop", 0.0, "must be in (0, 0.1) (a fraction of the smaller radius), got 0.0"),
+            ("soft_tolerance", 1.0000000000000002,
+             "must be in [0, 1] (a fraction of the radius), got 1.0000000000000002")):
+        assert _message(rbsim.World, **{key: bad}) == pre + key + ": " + text
+    for key, good in (("restitution", 0.0), ("restitution", 1.0), ("dt", 5e-324),
+                      ("tolerance", 1e-15), ("slop", 5e-324),
+                      ("slop", 0.09999999999999999), ("soft_tolerance", 0.0),
+                      ("soft_tolerance", 1.0)):
+        assert rbsim.World(**{key: good}).settings[key] == good
+    w = make_world()
+    assert _message(setattr, w, "dt", -1e-300) == pre + "dt: must be > 0, got -1e-300"
+    assert _message(setattr, w, "tolerance", 9.999999999999999e-16) == (
+        pre + "tolerance: must be >= 1e-15 (what double precision can reach), "
+        "got 9.999999999999999e-16")
+    w.dt, w.tolerance = 5e-324, 1e-15
+    assert (w.dt, w.tolerance) == (5e-324, 1e-15)
+    for kw, text in (
+            (dict(restitution=1.0000001),
+             "restitution: must be in [0, 1] (None keeps the world's), got 1.0000001"),
+            (dict(static=-1e-300), "static: must be >= 0, got -1e-300"),
+            (dict(kinetic=-1e-300), "kinetic: must be >= 0, got -1e-300"),
+            (dict(rolling=-0.1234567891), "rolling: must be >= 0, got -0.1234567891"),
+            (dict(spinning=-1e-300), "spinning: must be >= 0, got -1e-300"),
+            (dict(static=0.2999999999999999),
+             "static: must be >= kinetic (0.3, the default), got 0.2999999999999999"),
+            (dict(kinetic=0.5000000000000001),
+             "kinetic: must be <= static (0.5, the default), got 0.5000000000000001"),
+            (dict(static=0.25, kinetic=0.2500000000000001),
+             "kinetic: must be <= static (0.25), got 0.2500000000000001")):
+        assert _message(w.set_material, "*", "*", **kw) == pre + text
+    w.set_material("*", "*", static=0.3, kinetic=0.3, restitution=1.0, rolling=0.0)
+    w.set_material("*", "*", kinetic=0.5)
+    for kw, text in (
+            (dict(radius=-1e-300), "radius: must be > 0, got -1e-300"),
+            (dict(mass=-1.23456789), "mass: must be > 0, got -1.23456789"),
+            (dict(density=-1e-300), "density: must be >= 0 (0: from mass), got -1e-300")):
+        assert _message(w.add_sphere, position=(5, 5, 5), **kw) == pre + text
+    assert w.add_sphere(position=(5, 5, 5), radius=0.5, mass=-1.0,
+                        density=1.0).mass > 0  # (mass is not used with a density)
+    assert _message(w.run, 1, realtime=True, speed=-1e-300) == (
+        pre + "speed: must be > 0, got -1e-300")
 
 
 def test_capacity_stale_notfound_closed():

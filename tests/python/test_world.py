@@ -142,8 +142,8 @@ def test_auto_method_follows_the_bodies():
 
 def test_soft_tolerance():
     """soft_tolerance reaches the world and reads back exactly, at both ends
-    of its range and between; out of range, the library refuses it in its
-    own words; a "soft" world with it steps like the others."""
+    of its range and between; out of range, it is refused with the range
+    and the value; a "soft" world with it steps like the others."""
     from rbsim._native import ffi, lib
     d = ffi.new("rbs_world_def *")
     lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
@@ -151,7 +151,7 @@ def test_soft_tolerance():
     for good in (0.0, 0.015625, 1.0, 1):
         assert rbsim.World(soft_tolerance=good).settings["soft_tolerance"] == good
     with pytest.raises(rbsim.InvalidError,
-                       match=r"soft_tolerance must be in \[0, 1\] \(a fraction of the "
+                       match=r"soft_tolerance: must be in \[0, 1\] \(a fraction of the "
                              r"radius\), got 2$") as info:
         rbsim.World(soft_tolerance=2)
     assert info.value.status == lib.RBS_E_INVALID

@@ -72,9 +72,7 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         n = 0 if steps is None else _check.u64(steps, "steps", 0)
         step = 0.0
         if dt is not None:
-            step = _check.real(dt, "dt")
-            if not step > 0:
-                raise error_class(lib.RBS_E_INVALID)("dt: must be > 0, got %r" % step)
+            step = _check.real_in(dt, "dt", 0.0, open_low=True)
         raw = None if method is None else _check.text(method, "method")
         status = lib.rbs_scene_override(scene, n, step, raw if raw is not None else ffi.NULL)
         if status != lib.RBS_OK:

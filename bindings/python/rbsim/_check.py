@@ -35,6 +35,40 @@ def real(value: Any, what: str) -> float:
     return x
 
 
+def real_in(value: Any, what: str, low: Optional[float] = None,
+            high: Optional[float] = None, *, open_low: bool = False,
+            open_high: bool = False, note: str = "") -> float:
+    """real(), then in the range: low/high None for no bound, open_* to
+    leave the bound out.  The message gives the range and echoes the value
+    exactly (repr: the shortest text that reads back as the same double)."""
+    x = real(value, what)
+    if ((low is not None and not (x > low if open_low else x >= low)) or
+            (high is not None and not (x < high if open_high else x <= high))):
+        if low is not None and high is not None:
+            bounds = "in %s%s, %s%s" % ("(" if open_low else "[", _bound(low),
+                                        _bound(high), ")" if open_high else "]")
+        elif low is not None:
+            bounds = "%s %s" % (">" if open_low else ">=", _bound(low))
+        else:
+            bounds = "%s %s" % ("<" if open_high else "<=", _bound(high))
+        raise _e.error_class(-1)("%s: must be %s%s, got %s"
+                                 % (what, bounds, note, number(value, x)))
+    return x
+
+
+def number(value: Any, x: float) -> str:
+    """The exact text of a number given as value and taken as x: an
+    integer's digits, else the repr of the double."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        return str(int(value))
+    return repr(x)
+
+
+def _bound(b: float) -> str:
+    # 0 and 1 as such, 1e-15 and 0.1 in their shortest form
+    return str(int(b)) if float(b).is_integer() and abs(b) < 1e15 else repr(float(b))
+
+
 def integer(value: Any, what: str, low: int = 0, high: int = _U32 - 1) -> int:
     """An int in [low, high] (not bool, not float)."""
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):

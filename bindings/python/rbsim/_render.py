@@ -446,7 +446,7 @@ def start_world(world: World, steps: Optional[int] = None,
         pause_on_collision = world._scene_pause_on_collision
     cap = None if reel_capacity is None else _check.u32(reel_capacity, "reel_capacity", 2)
     realtime = _check.flag(realtime, "realtime")
-    speed = _check.real(speed, "speed")
+    speed = _check.real_in(speed, "speed", 0.0, open_low=True)
     if speed != 1.0 and not realtime:
         # (as the command line's --speed without --realtime)
         raise _e.error_class(lib.RBS_E_INVALID)(

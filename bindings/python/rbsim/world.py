@@ -398,15 +398,16 @@ class World:
         max_materials: named materials (default 16).
         max_pairs: material-pair rows (default 64).
         max_contacts: contacts per step (default 4*max_bodies+16).
-        dt: step, s (default 0.001).
+        dt: step, s, > 0 (default 0.001).
         gravity: m/s^2, or N in "force" mode (default (0, 0, -9.81)).
         gravity_mode: "acceleration" (default) or "force".
         restitution: fallback coefficient of restitution in [0, 1].
         method: one of :data:`METHODS` (default "auto": "soft" from
                 64 moving spheres on without mutual gravity, else "euler";
                 see :attr:`World.method_in_use`).
-        tolerance: the adaptive method's error tolerance (> 0).
-        slop: allowed overlap relative to the smaller radius of a pair.
+        tolerance: the adaptive method's error tolerance (>= 1e-15).
+        slop: allowed overlap relative to the smaller radius of a pair,
+                in (0, 0.1).
         max_halvings: rollback floor dt / 2**max_halvings.
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
                 and separation iterations.
@@ -426,7 +427,8 @@ class World:
                 16 (default 1; see :attr:`World.threads`).
 
     Raises:
-        InvalidError: a value out of range (the message names it).
+        InvalidError: a value out of range (the message names it, gives
+                its range and echoes the value exactly).
         ArgumentTypeError, NumericError: a wrong type, NaN or infinity.
     """
 
@@ -461,8 +463,10 @@ class World:
                 setattr(d, key, _check.u32(value, key))
         for key, value in (("dt", dt), ("restitution", restitution),
                            ("tolerance", tolerance), ("slop", slop),
-                           ("soft_tolerance", soft_tolerance),
-                           ("gravity_constant", gravity_constant),
+                           ("soft_tolerance", soft_tolerance)):
+            if value is not None:
+                setattr(d, key, _check.real_in(value, key, **_REAL_RANGES[key]))
+        for key, value in (("gravity_constant", gravity_constant),
                            ("softening", softening)):
             if value is not None:
                 setattr(d, key, _check.real(value, key))
@@ -854,12 +858,26 @@ class World:
                                   ("rolling", "rolling", rolling),
                                   ("spinning", "spinning", spinning)):
             if value is not None:
-                x = _check.real(value, key)
-                if key == "restitution" and not 0.0 <= x <= 1.0:
+                if key == "restitution":
                     # (C's negative "the world's" is None here, not a number)
-                    raise _e.error_class(lib.RBS_E_INVALID)(
-                        "restitution: must be in [0, 1] (None keeps the world's), got %r" % x)
+                    x = _check.real_in(value, key, 0.0, 1.0, note=" (None keeps the world's)")
+                else:
+                    x = _check.real_in(value, key, 0.0)
                 setattr(d, field, x)
+        if d.kinetic_friction > d.static_friction:
+            # (the one not given is the default, 0.5 static, 0.3 kinetic)
+            if static is None:
+                raise _e.error_class(lib.RBS_E_INVALID)(
+                    "kinetic: must be <= static (%r, the default), got %s"
+                    % (d.static_friction, _check.number(kinetic, d.kinetic_friction)))
+            if kinetic is None:
+                raise _e.error_class(lib.RBS_E_INVALID)(
+                    "static: must be >= kinetic (%r, the default), got %s"
+                    % (d.kinetic_friction, _check.number(static, d.static_friction)))
+            raise _e.error_class(lib.RBS_E_INVALID)(
+                "kinetic: must be <= static (%s), got %s"
+                % (_check.number(static, d.static_friction),
+                   _check.number(kinetic, d.kinetic_friction)))
         self._call(lib.rbs_world_set_pair, d)
 
     # -- bodies -------------------------------------------------------------
@@ -908,9 +926,16 @@ class World:
             raw = _check.text(name, "name")
             keep.append(ffi.new("char[]", raw))
             d.name = keep[-1]
-        for key, value in (("radius", radius), ("mass", mass), ("density", density)):
-            if value is not None:
-                setattr(d, key, _check.real(value, key))
+        # (the library's ranges, checked here to echo the value exactly)
+        if radius is not None:
+            d.radius = _check.real_in(radius, "radius", 0.0, open_low=True)
+        if density is not None:
+            d.density = _check.real_in(density, "density", 0.0, note=" (0: from mass)")
+        if mass is not None:
+            x = _check.real(mass, "mass")
+            if d.density == 0.0:  # (else mass is not used)
+                x = _check.real_in(mass, "mass", 0.0, open_low=True)
+            d.mass = x
         for key, value in (("position", position), ("velocity", velocity),
                            ("angular_velocity", angular_velocity),
                            ("center_of_mass", center_of_mass),
@@ -1111,7 +1136,7 @@ class World:
 
     @dt.setter
     def dt(self, value: float) -> None:
-        self._call(lib.rbs_world_set_dt, _check.real(value, "dt"))
+        self._call(lib.rbs_world_set_dt, _check.real_in(value, "dt", **_REAL_RANGES["dt"]))
 
     @property
     def method(self) -> str:
@@ -1130,15 +1155,13 @@ class World:
 
     @property
     def tolerance(self) -> float:
-        """The adaptive method's error tolerance (settable, > 0)."""
+        """The adaptive method's error tolerance (settable, >= 1e-15)."""
         return float(self._def().tolerance)
 
     @tolerance.setter
     def tolerance(self, value: float) -> None:
-        tol = _check.real(value, "tolerance")
-        if not tol > 0:
-            # 0 would mean "keep the current" to the library: refuse it here.
-            raise _e.error_class(lib.RBS_E_INVALID)("tolerance: must be > 0, got %r" % tol)
+        # (0 would mean "keep the current" to the library: refused here)
+        tol = _check.real_in(value, "tolerance", **_REAL_RANGES["tolerance"])
         self._call(lib.rbs_world_set_method, self._def().method, tol)
 
     @property
@@ -1294,6 +1317,19 @@ class World:
                 len(self.all_bodies()), self.time, self.method)
         except _e.BusyError:
             return "World(<busy: in use by another thread or a run>)"
+
+
+#: World(...)'s real ranges, as rbs_world_def_validate (world.c) has them;
+#: checked here so that the message echoes the value exactly (the
+#: library's %g rounds it: 1.0000001 read "got 1")
+_REAL_RANGES: Dict[str, Dict[str, Any]] = {
+    "dt": dict(low=0.0, open_low=True),
+    "restitution": dict(low=0.0, high=1.0),
+    "tolerance": dict(low=1e-15, note=" (what double precision can reach)"),
+    "slop": dict(low=0.0, high=0.1, open_low=True, open_high=True,
+                 note=" (a fraction of the smaller radius)"),
+    "soft_tolerance": dict(low=0.0, high=1.0, note=" (a fraction of the radius)"),
+}
 
 
 def _method_value(name: Any) -> int:
