@@ -74,11 +74,11 @@ def test_invalid_from_c_names_the_field():
 
 
 def test_soft_substeps_out_of_range_names_it():
-    """soft_substeps is 1 to 1000: 0 and 1001 are refused by the library
-    with its own words (the field, the range and the value)."""
+    """soft_substeps is 1 to 1000: 0 and 1001 are refused with the field,
+    the range and the value."""
     for bad in (0, 1001):
         with pytest.raises(rbsim.InvalidError,
-                           match=r"soft_substeps must be in \[1, 1000\], got %d" % bad) as info:
+                           match=r"soft_substeps: must be in \[1, 1000\], got %d" % bad) as info:
             rbsim.World(soft_substeps=bad)
         assert info.value.status == lib.RBS_E_INVALID
     for good in (1, 1000):
@@ -163,6 +163,41 @@ def test_ranges_echo_the_value_exactly():
                         density=1.0).mass > 0  # (mass is not used with a density)
     assert _message(w.run, 1, realtime=True, speed=-1e-300) == (
         pre + "speed: must be > 0, got -1e-300")
+
+
+def _library_takes(**fields):
+    """Whether rbs_world_def_validate takes a default def with fields set."""
+    d = ffi.new("rbs_world_def *")
+    lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
+    for key, value in fields.items():
+        setattr(d, key, value)
+    return lib.rbs_world_def_validate(d, ffi.NULL, 0) == lib.RBS_OK
+
+
+def test_each_world_argument_out_of_range_is_named():
+    """World(max_sweeps=0) and World(max_halvings=1000) said "max_halvings
+    must be <= 60 and max_sweeps in [1, 100000]", and gravity_constant or
+    softening "gravity_constant and softening must be ...": now the message
+    names the one argument, its range and the value.  The ends are the
+    library's (it takes them and refuses one beyond)."""
+    pre = "invalid argument: "
+    for key, low, high in (("max_halvings", 0, 60), ("max_sweeps", 1, 100000),
+                           ("soft_substeps", 1, 1000)):
+        for bad in (low - 1, high + 1, 1000, 2 ** 40):
+            if low <= bad <= high:
+                continue
+            assert _message(rbsim.World, **{key: bad}) == (
+                pre + "%s: must be in [%d, %d], got %d" % (key, low, high, bad))
+        for good in (low, high):
+            assert rbsim.World(**{key: good}).settings[key] == good
+        assert _library_takes(**{key: low}) and _library_takes(**{key: high})
+        assert not _library_takes(**{key: high + 1})
+        assert low == 0 or not _library_takes(**{key: low - 1})
+    for key in ("gravity_constant", "softening"):
+        assert _message(rbsim.World, **{key: -1e-300}) == (
+            pre + "%s: must be >= 0, got -1e-300" % key)
+        assert rbsim.World(**{key: 0.0}).settings[key] == 0.0
+        assert not _library_takes(**{key: -5e-324})
 
 
 def test_capacity_stale_notfound_closed():

@@ -408,9 +408,9 @@ class World:
         tolerance: the adaptive method's error tolerance (>= 1e-15).
         slop: allowed overlap relative to the smaller radius of a pair,
                 in (0, 0.1).
-        max_halvings: rollback floor dt / 2**max_halvings.
+        max_halvings: rollback floor dt / 2**max_halvings, 0 to 60.
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
-                and separation iterations.
+                and separation iterations, 1 to 100000.
         soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
                 (default 3); more make piles stiffer, at a cost in proportion.
         soft_tolerance: the "soft" method's overlap budget, a fraction of the
@@ -420,8 +420,8 @@ class World:
                 reachable overlap stays under
                 soft_tolerance * n / soft_substeps of that radius.
         mutual_gravity: Newtonian attraction between bodies.
-        gravity_constant: G, m^3 kg^-1 s^-2.
-        softening: Plummer softening length, m.
+        gravity_constant: G, m^3 kg^-1 s^-2, >= 0.
+        softening: Plummer softening length, m, >= 0.
         prune: leave out stages that cannot change the result (default True).
         threads: threads that step the world, the caller's included, 1 to
                 16 (default 1; see :attr:`World.threads`).
@@ -456,11 +456,13 @@ class World:
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
-                           ("max_pairs", max_pairs), ("max_contacts", max_contacts),
-                           ("max_halvings", max_halvings), ("max_sweeps", max_sweeps),
-                           ("soft_substeps", soft_substeps)):
+                           ("max_pairs", max_pairs), ("max_contacts", max_contacts)):
             if value is not None:
                 setattr(d, key, _check.u32(value, key))
+        for key, value in (("max_halvings", max_halvings), ("max_sweeps", max_sweeps),
+                           ("soft_substeps", soft_substeps)):
+            if value is not None:
+                setattr(d, key, _check.integer(value, key, *_INT_RANGES[key]))
         for key, value in (("dt", dt), ("restitution", restitution),
                            ("tolerance", tolerance), ("slop", slop),
                            ("soft_tolerance", soft_tolerance)):
@@ -469,7 +471,7 @@ class World:
         for key, value in (("gravity_constant", gravity_constant),
                            ("softening", softening)):
             if value is not None:
-                setattr(d, key, _check.real(value, key))
+                setattr(d, key, _check.real_in(value, key, 0.0))
         if gravity is not None:
             _set_vec3(d.gravity, _check.vector(gravity, "gravity"))
         if gravity_mode is not None:
@@ -1318,6 +1320,15 @@ class World:
         except _e.BusyError:
             return "World(<busy: in use by another thread or a run>)"
 
+
+#: World(...)'s integer ranges, as rbs_world_def_validate (world.c) has
+#: them; checked here so that the message names the argument (the library's
+#: one message for max_halvings and max_sweeps named both)
+_INT_RANGES: Dict[str, Tuple[int, int]] = {
+    "max_halvings": (0, 60),
+    "max_sweeps": (1, 100000),
+    "soft_substeps": (1, 1000),  # (RBS__SOFT_SUBSTEPS_MAX)
+}
 
 #: World(...)'s real ranges, as rbs_world_def_validate (world.c) has them;
 #: checked here so that the message echoes the value exactly (the
