@@ -200,6 +200,41 @@ def test_each_world_argument_out_of_range_is_named():
         assert not _library_takes(**{key: -5e-324})
 
 
+def test_capacities_give_their_real_range():
+    """max_bodies=-1 said "must be in [0, 4294967295]" (a C field's range)
+    and max_bodies=0 "must be in [1, 16777216]": each capacity now gives
+    the library's range, which takes each end and refuses one beyond
+    (max_materials and max_pairs over theirs had one message for both).
+    max_bodies from 16777213 without max_contacts said "max_contacts must
+    be <= 67108864, got 67108868", a value not given: now it says that is
+    the default and to give max_contacts."""
+    pre = "invalid argument: "
+    d = ffi.new("rbs_world_def *")
+    lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
+    assert d.max_contacts == 0  # (the default: 4 x max_bodies + 16)
+    for key, low, high in (("max_bodies", 1, 16777216), ("max_materials", 0, 4096),
+                           ("max_pairs", 0, 65536), ("max_contacts", 0, 67108864)):
+        for bad in (-1, low - 1, high + 1, 2 ** 32, 2 ** 64):
+            if low <= bad <= high:
+                continue
+            assert _message(rbsim.World, **{key: bad}) == (
+                pre + "%s: must be in [%d, %d], got %d" % (key, low, high, bad))
+        assert _library_takes(**{key: high, "max_contacts": 64})
+        assert _library_takes(**{key: low, "max_contacts": 64} if key != "max_contacts"
+                              else {key: low})
+        assert not _library_takes(**{key: high + 1})
+        assert low == 0 or not _library_takes(**{key: low - 1})
+        if key in ("max_materials", "max_pairs"):  # (2^24 bodies are 33 GB)
+            assert rbsim.World(**{key: high}).settings[key] == high
+        assert rbsim.World(**{key: low, "max_bodies": 1}).settings[key] == (
+            low if key != "max_contacts" else 4 * 1 + 16)
+    for n in (16777213, 16777216):
+        assert _message(rbsim.World, max_bodies=n) == (
+            pre + "max_contacts: its default, 4 x max_bodies + 16, is %d for "
+            "max_bodies=%d, over 67108864: give max_contacts" % (4 * n + 16, n))
+    assert _library_takes(max_bodies=16777212)
+
+
 def test_capacity_stale_notfound_closed():
     w = rbsim.World(max_bodies=1)
     w.add_sphere("a")

@@ -394,10 +394,11 @@ class World:
     rbsim.h, ``rbs_world_def``).  Capacities are fixed for the world's life.
 
     Args:
-        max_bodies: spheres + planes (default 64).
-        max_materials: named materials (default 16).
-        max_pairs: material-pair rows (default 64).
-        max_contacts: contacts per step (default 4*max_bodies+16).
+        max_bodies: spheres + planes, 1 to 2**24 (default 64).
+        max_materials: named materials, 0 to 4096 (default 16).
+        max_pairs: material-pair rows, 0 to 65536 (default 64).
+        max_contacts: contacts per step, 0 to 2**26 (default and 0:
+                4*max_bodies+16).
         dt: step, s, > 0 (default 0.001).
         gravity: m/s^2, or N in "force" mode (default (0, 0, -9.81)).
         gravity_mode: "acceleration" (default) or "force".
@@ -456,9 +457,18 @@ class World:
         d = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(d, ffi.sizeof("rbs_world_def"))
         for key, value in (("max_bodies", max_bodies), ("max_materials", max_materials),
-                           ("max_pairs", max_pairs), ("max_contacts", max_contacts)):
+                           ("max_pairs", max_pairs)):
             if value is not None:
-                setattr(d, key, _check.u32(value, key))
+                setattr(d, key, _check.integer(value, key, *_INT_RANGES[key]))
+        if max_contacts is not None:
+            d.max_contacts = _check.integer(max_contacts, "max_contacts",
+                                            *_INT_RANGES["max_contacts"])
+        if d.max_contacts == 0 and 4 * d.max_bodies + 16 > _INT_RANGES["max_contacts"][1]:
+            # (the library's message gave the default as if it were asked for)
+            raise _e.error_class(lib.RBS_E_INVALID)(
+                "max_contacts: its default, 4 x max_bodies + 16, is %d for max_bodies=%d, "
+                "over %d: give max_contacts" % (4 * d.max_bodies + 16, d.max_bodies,
+                                                _INT_RANGES["max_contacts"][1]))
         for key, value in (("max_halvings", max_halvings), ("max_sweeps", max_sweeps),
                            ("soft_substeps", soft_substeps)):
             if value is not None:
@@ -1323,8 +1333,13 @@ class World:
 
 #: World(...)'s integer ranges, as rbs_world_def_validate (world.c) has
 #: them; checked here so that the message names the argument (the library's
-#: one message for max_halvings and max_sweeps named both)
+#: one message for max_halvings and max_sweeps named both) and gives the
+#: real range (not a C field's: max_bodies=-1 read "[0, 4294967295]")
 _INT_RANGES: Dict[str, Tuple[int, int]] = {
+    "max_bodies": (1, 1 << 24),
+    "max_materials": (0, 1 << 12),
+    "max_pairs": (0, 1 << 16),
+    "max_contacts": (0, 1 << 26),  # (0: 4 x max_bodies + 16)
     "max_halvings": (0, 60),
     "max_sweeps": (1, 100000),
     "soft_substeps": (1, 1000),  # (RBS__SOFT_SUBSTEPS_MAX)
