@@ -87,6 +87,24 @@ def test_every_keeps_every_kth_and_the_last():
     assert [f.number for f in c.frames] == [0, 50]
 
 
+def test_every_out_of_range_is_refused_up_front():
+    """every is 1 to 2147483647 (RBS_EVERY_MAX): every=0 said "[1,
+    4294967295]" while 2**31 failed later with "python0 renderer: every
+    must be from 1 to 2147483647 (0 means 1)", an internal name and another
+    range; both ends are taken."""
+    w = make_world()
+    for bad in (0, -1, 2 ** 31, 2 ** 32 - 1, 2 ** 32, 2 ** 64):
+        with pytest.raises(rbsim.InvalidError) as info:
+            w.run(3, renderers=[Recorder(), Recorder(every=bad)])
+        assert str(info.value) == ("invalid argument: renderers[1].every: must be in "
+                                   "[1, 2147483647], got %d" % bad)
+    assert w.step_count == 0
+    a, b = Recorder(every=1), Recorder(every=2 ** 31 - 1)
+    w.run(3, renderers=[a, b])
+    assert [f.number for f in a.frames] == [0, 1, 2, 3]
+    assert [f.number for f in b.frames] == [0, 3]
+
+
 def test_a_plain_callable_and_four_renderers():
     w = make_world()
     seen = [[] for _ in range(4)]

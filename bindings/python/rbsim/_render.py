@@ -4,7 +4,7 @@ Design notes
 ------------
 A Python renderer is a callable ``f(frame)`` or an object with ``draw(frame)``
 and optionally ``finish()`` (after the last frame), ``close()`` (always, at
-the end), ``every`` (keep every K-th frame and the last; default 1) and
+the end), ``every`` (keep every K-th frame and the last, 1 to 2147483647; default 1) and
 ``live`` (True: a live view that may miss frames; default False, a recorder
 that sees every frame in order).
 
@@ -126,7 +126,10 @@ class _Adapter:
         self.finish = getattr(obj, "finish", None)
         self.close = getattr(obj, "close", None)
         every = getattr(obj, "every", 1)
-        self.every = _check.u32(every, "renderers[%d].every" % index, 1)
+        # (the projector's range, RBS_EVERY_MAX, checked here: its message
+        # named the internal type python<i> and the C field's range)
+        self.every = _check.integer(every, "renderers[%d].every" % index, 1,
+                                    lib.RBS_EVERY_MAX)
         self.live = _check.flag(getattr(obj, "live", False),
                                 "renderers[%d].live" % index)
         self.names: dict = {}
