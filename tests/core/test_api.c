@@ -178,6 +178,42 @@ static void messages_name_the_real_cause(void **state)
     rbs_world_destroy(w);
 }
 
+/* A value out of range is echoed exactly, in its shortest form, never
+ * rounded by %g (restitution 1.0000001 was 'got 1'). */
+static void bad_values_are_echoed_exactly(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_sphere_def s;
+    rbs_pair_def p;
+    rbs_body_id id;
+    char msg[256];
+    (void)state;
+    rbs_world_def_init(&d);
+    d.restitution = 1.0000001;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "got 1.0000001"));
+    rbs_world_def_init(&d);
+    d.slop = 0.1000000000000001;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "got 0.1000000000000001"));
+    rbs_world_def_init(&d);
+    d.max_pairs = 2;
+    CHECK_OK(rbs_world_create(&d, &w));
+    assert_int_equal(rbs_world_set_dt(w, -1e-7), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "got -1e-07"));
+    rbs_sphere_def_init(&s);
+    s.radius = -0.30000000000000004;
+    assert_int_equal(rbs_world_add_sphere(w, &s, &id), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "got -0.30000000000000004"));
+    rbs_pair_def_init(&p);
+    p.static_friction = 0.5;
+    p.kinetic_friction = 0.50000000000000011;
+    assert_int_equal(rbs_world_set_pair(w, &p), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "kinetic friction 0.5000000000000001 exceeds static 0.5"));
+    rbs_world_destroy(w);
+}
+
 static void uninitialised_def_is_rejected(void **state)
 {
     rbs_world_def d;
@@ -745,6 +781,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(version_matches_header),
         cmocka_unit_test(status_strings),
+        cmocka_unit_test(bad_values_are_echoed_exactly),
         cmocka_unit_test(method_names_round_trip),
         cmocka_unit_test(old_shorter_defs_get_defaults),
         cmocka_unit_test(uninitialised_def_is_rejected),

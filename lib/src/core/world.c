@@ -130,6 +130,7 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
                                   char *msg, size_t len)
 {
     rbs_world_def d;
+    char nb[32]; /* (a number for a message) */
     if (def == NULL) {
         snprintf(msg, len, "def is NULL");
         return RBS_E_INVALID;
@@ -155,7 +156,7 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (!(d.dt > 0.0) || !isfinite(d.dt)) {
-        snprintf(msg, len, "dt must be finite and > 0, got %g", d.dt);
+        snprintf(msg, len, "dt must be finite and > 0, got %s", rbs__shortest(nb, d.dt));
         return RBS_E_INVALID;
     }
     if (!isfinite(d.gravity.x) || !isfinite(d.gravity.y) || !isfinite(d.gravity.z)) {
@@ -167,7 +168,7 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (!(d.restitution >= 0.0 && d.restitution <= 1.0)) {
-        snprintf(msg, len, "restitution must be in [0, 1], got %g", d.restitution);
+        snprintf(msg, len, "restitution must be in [0, 1], got %s", rbs__shortest(nb, d.restitution));
         return RBS_E_INVALID;
     }
     if ((int)d.method < 0 || (int)d.method >= RBS_METHOD_COUNT) {
@@ -175,11 +176,11 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (!(d.tolerance >= 1e-15) || !isfinite(d.tolerance)) {
-        snprintf(msg, len, "tolerance must be finite and >= 1e-15 (double precision), got %g", d.tolerance);
+        snprintf(msg, len, "tolerance must be finite and >= 1e-15 (double precision), got %s", rbs__shortest(nb, d.tolerance));
         return RBS_E_INVALID;
     }
     if (!(d.slop > 0.0 && d.slop < 0.1)) {
-        snprintf(msg, len, "slop must be in (0, 0.1), got %g", d.slop);
+        snprintf(msg, len, "slop must be in (0, 0.1), got %s", rbs__shortest(nb, d.slop));
         return RBS_E_INVALID;
     }
     if (d.max_substeps < 1) {
@@ -192,7 +193,7 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (!(d.soft_tolerance >= 0.0 && d.soft_tolerance <= 1.0)) {
-        snprintf(msg, len, "soft_tolerance must be in [0, 1] (a fraction of the radius), got %g", d.soft_tolerance);
+        snprintf(msg, len, "soft_tolerance must be in [0, 1] (a fraction of the radius), got %s", rbs__shortest(nb, d.soft_tolerance));
         return RBS_E_INVALID;
     }
     if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {
@@ -655,6 +656,7 @@ void rbs__rebuild_pair_table(rbs_world *w)
 rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
 {
     rbs_pair_def d;
+    char nb[32], nb2[32]; /* (numbers for a message) */
     int64_t a, b;
     uint32_t p;
     if (w == NULL || w->magic != WORLD_MAGIC)
@@ -671,14 +673,14 @@ rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
         FAIL(w, RBS_E_STALE_ID, "pair: unknown material id");
     if (!(d.static_friction >= 0.0) || !isfinite(d.static_friction) ||
         !(d.kinetic_friction >= 0.0) || !isfinite(d.kinetic_friction))
-        FAIL(w, RBS_E_INVALID, "pair: friction must be finite and >= 0 (static %g, kinetic %g)",
-             d.static_friction, d.kinetic_friction);
+        FAIL(w, RBS_E_INVALID, "pair: friction must be finite and >= 0 (static %s, kinetic %s)",
+             rbs__shortest(nb, d.static_friction), rbs__shortest(nb2, d.kinetic_friction));
     if (d.kinetic_friction > d.static_friction)
-        FAIL(w, RBS_E_INVALID, "pair: kinetic friction %g exceeds static %g", d.kinetic_friction,
-             d.static_friction);
+        FAIL(w, RBS_E_INVALID, "pair: kinetic friction %s exceeds static %s", rbs__shortest(nb, d.kinetic_friction),
+             rbs__shortest(nb2, d.static_friction));
     if (!(d.restitution <= 1.0) || !isfinite(d.restitution))
-        FAIL(w, RBS_E_INVALID, "pair: restitution must be in [0, 1] (or negative for the world's), got %g",
-             d.restitution);
+        FAIL(w, RBS_E_INVALID, "pair: restitution must be in [0, 1] (or negative for the world's), got %s",
+             rbs__shortest(nb, d.restitution));
     if (!(d.rolling >= 0.0) || !isfinite(d.rolling) || !(d.spinning >= 0.0) || !isfinite(d.spinning))
         FAIL(w, RBS_E_INVALID, "pair: rolling and spinning resistance must be finite and >= 0");
     for (p = 0; p < w->pairs; ++p) {
@@ -924,6 +926,7 @@ static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
+    char nb[32]; /* (a number for a message) */
     double mass, I[9], inv[9], c2;
     v3 c, p, v, av, f, t;
     quat q;
@@ -943,16 +946,16 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     if ((st = check_name(w, "sphere", d.name)) != RBS_OK)
         return st;
     if (!(d.radius > 0.0) || !isfinite(d.radius))
-        FAIL(w, RBS_E_INVALID, "sphere radius must be finite and > 0, got %g", d.radius);
+        FAIL(w, RBS_E_INVALID, "sphere radius must be finite and > 0, got %s", rbs__shortest(nb, d.radius));
     if (d.density != 0.0) {
         if (!(d.density > 0.0) || !isfinite(d.density))
-            FAIL(w, RBS_E_INVALID, "sphere density must be finite and > 0, got %g", d.density);
+            FAIL(w, RBS_E_INVALID, "sphere density must be finite and > 0, got %s", rbs__shortest(nb, d.density));
         mass = d.density * (4.0 / 3.0) * RBS__PI * d.radius * d.radius * d.radius;
     } else {
         mass = d.mass;
     }
     if (!(mass > 0.0) || !isfinite(mass))
-        FAIL(w, RBS_E_INVALID, "sphere mass must be finite and > 0, got %g", mass);
+        FAIL(w, RBS_E_INVALID, "sphere mass must be finite and > 0, got %s", rbs__shortest(nb, mass));
     p = v3_make(d.position.x, d.position.y, d.position.z);
     v = v3_make(d.velocity.x, d.velocity.y, d.velocity.z);
     av = v3_make(d.angular_velocity.x, d.angular_velocity.y, d.angular_velocity.z);
@@ -1318,10 +1321,11 @@ uint64_t rbs_world_step_count(const rbs_world *w)
 
 rbs_status rbs_world_set_dt(rbs_world *w, double dt)
 {
+    char nb[32]; /* (a number for a message) */
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     if (!(dt > 0.0) || !isfinite(dt))
-        FAIL(w, RBS_E_INVALID, "dt must be finite and > 0, got %g", dt);
+        FAIL(w, RBS_E_INVALID, "dt must be finite and > 0, got %s", rbs__shortest(nb, dt));
     if (dt != w->def.dt) {
         /* the time so far stays: the new step counts from here */
         w->time_base = rbs_world_time(w);
@@ -1333,12 +1337,13 @@ rbs_status rbs_world_set_dt(rbs_world *w, double dt)
 
 rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double tolerance)
 {
+    char nb[32]; /* (a number for a message) */
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     if ((int)method < 0 || (int)method >= RBS_METHOD_COUNT)
         FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
     if (isnan(tolerance) || (tolerance > 0.0 && !(isfinite(tolerance) && tolerance >= 1e-15)))
-        FAIL(w, RBS_E_INVALID, "tolerance must be finite and >= 1e-15 (double precision), got %g", tolerance);
+        FAIL(w, RBS_E_INVALID, "tolerance must be finite and >= 1e-15 (double precision), got %s", rbs__shortest(nb, tolerance));
     if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
         FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;

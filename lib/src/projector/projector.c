@@ -305,8 +305,9 @@ rbs_status rbs_projector_create(rbs_world *world,
         return RBS_E_INVALID;
     }
     if (!(p->def.speed > 0) || !isfinite(p->def.speed)) {
-        set_error(p, RBS_E_INVALID, "speed must be > 0 and finite, got %g",
-                  p->def.speed);
+        char nb[32];
+        set_error(p, RBS_E_INVALID, "speed must be > 0 and finite, got %s",
+                  rbs__shortest(nb, p->def.speed));
         return RBS_E_INVALID;
     }
     if (p->def.policy != RBS_REEL_LOSSLESS &&
