@@ -186,6 +186,24 @@ static void got(const vctx *v, const cJSON *item, char *out, size_t n)
     }
 }
 
+/* An array as written, "[a, b, c]", each element by got(): a number's text
+ * as written, so that 2.0000000001 is not shown as the 2 of %g. */
+static void got_list(const vctx *v, const cJSON *arr, char *out, size_t n)
+{
+    const cJSON *e;
+    size_t at;
+    snprintf(out, n, "[");
+    at = strlen(out);
+    cJSON_ArrayForEach(e, arr)
+    {
+        char g[64];
+        got(v, e, g, sizeof g);
+        snprintf(out + at, n - at, "%s%s", e == arr->child ? "" : ", ", g);
+        at = strlen(out);
+    }
+    snprintf(out + at, n - at, "]");
+}
+
 /* ---- typed values ------------------------------------------------------- */
 
 /* A finite number; reports wrong types, overflow (cJSON turns 1e999 into inf)
@@ -844,11 +862,11 @@ static void check_materials(vctx *v, const cJSON *mats)
             if (get_ranged(v, c, R_NONNEG, &p.kinetic_friction) != 0) {
                 bad = 1;
             } else if (static_ok && p.kinetic_friction > p.static_friction) {
-                char g[64];
+                char g[64], st[64];
                 got(v, c, g, sizeof g);
-                err(v, loc_value(v, c),
-                    "must not exceed the static friction (%g), got %s",
-                    p.static_friction, g);
+                got(v, member(row, "static"), st, sizeof st);
+                err(v, loc_value(v, c), "must not exceed the static friction (%s), got %s",
+                    st, g);
                 bad = 1;
             }
             pop(v, inner);
@@ -1174,10 +1192,12 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
                 }
                 if (!bad && (a[0] > a[1] + a[2] || a[1] > a[0] + a[2] ||
                              a[2] > a[0] + a[1])) {
+                    char g[256];
+                    got_list(v, c, g, sizeof g);
                     err(v, loc_value(v, c),
                         "principal moments must satisfy the triangle inequality "
-                        "(each <= the sum of the other two), got [%g, %g, %g]",
-                        a[0], a[1], a[2]);
+                        "(each <= the sum of the other two), got %s",
+                        g);
                     bad = 1;
                 }
                 if (!bad) {
@@ -1782,8 +1802,9 @@ static int get_cam_vec3(vctx *v, const cJSON *item, rbs_vec3 *out)
     }
     if (!(fabs(out->x) <= kCamCoordMax && fabs(out->y) <= kCamCoordMax &&
           fabs(out->z) <= kCamCoordMax)) {
-        err(v, loc_value(v, item), "coordinates must be within +-1e100 m, got [%g, %g, %g]",
-            out->x, out->y, out->z);
+        char g[256];
+        got_list(v, item, g, sizeof g);
+        err(v, loc_value(v, item), "coordinates must be within +-1e100 m, got %s", g);
         return -1;
     }
     return 0;
@@ -1885,12 +1906,18 @@ static void check_camera(vctx *v, const cJSON *cam)
                 target.x, target.y, target.z);
             pop(v, saved);
         } else if (!(lu > 0) || !(lx > 1e-9 * ld * lu)) {
+            char g[256];
             c = member(cam, "up") != NULL ? member(cam, "up") : cam;
+            if (c != cam) {
+                got_list(v, c, g, sizeof g);
+            } else {
+                snprintf(g, sizeof g, "[%.17g, %.17g, %.17g]", up.x, up.y, up.z);
+            }
             saved = push_key(v, "up");
             err(v, loc_value(v, c),
                 "must be nonzero and not parallel to the view direction (target - "
-                "position = [%g, %g, %g]), got [%g, %g, %g]",
-                d.x, d.y, d.z, up.x, up.y, up.z);
+                "position = [%g, %g, %g]), got %s",
+                d.x, d.y, d.z, g);
             pop(v, saved);
         }
     }
