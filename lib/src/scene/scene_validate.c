@@ -977,7 +977,34 @@ static int get_color(vctx *v, const cJSON *item, uint32_t *out)
 /* A length this close to 1 is left alone when normalising (8 ulp). */
 #define UNIT_TOL (8.0 * 2.220446049250313e-16)
 
-static int vec_len_zero(rbs_vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+/* The length of a[0..n-1], to normalise it by: the square root of the sum of
+ * squares, or, where that overflows or underflows (a normal [0, 0, 1e308] or
+ * [1e-200, 1e-200, 0], finite and nonzero all the same), the length of a
+ * scaled by its largest component, and a[] scaled with it (as
+ * rbs_world_add_plane and add_sphere do; ordinary input rounds as before).
+ * 0 for a zero vector. */
+static double scaled_len(double *a, int n)
+{
+    double sum = 0.0, big = 0.0, len;
+    int k;
+    for (k = 0; k < n; k++) {
+        sum += a[k] * a[k];
+        big = fmax(big, fabs(a[k]));
+    }
+    len = sqrt(sum);
+    if (!(big > 0.0)) {
+        return 0.0;
+    }
+    if (!(len > 1e-150) || !isfinite(len)) {
+        sum = 0.0;
+        for (k = 0; k < n; k++) {
+            a[k] /= big;
+            sum += a[k] * a[k];
+        }
+        len = sqrt(sum);
+    }
+    return len;
+}
 
 /* The world's own test of a sphere's inertia (rbs_world_add_sphere, world.c),
  * repeated so that the error names the key: the inertia about the centre of
@@ -1229,16 +1256,16 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
         double q[4];
         saved = push_key(v, "orientation");
         if (get_numbers(v, c, q, 4, "a quaternion [w, x, y, z]") == 0) {
-            double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+            double n = scaled_len(q, 4);
             if (fabs(n - 1.0) <= UNIT_TOL) {
                 n = 1.0; /* already unit: keep the bits, so saving and loading
                             again changes nothing */
             }
-            if (!(n > 0) || !isfinite(n)) {
-                err(v, loc_value(v, c),
-                    "must be a nonzero quaternion [w, x, y, z] of finite length, got "
-                    "[%g, %g, %g, %g]",
-                    q[0], q[1], q[2], q[3]);
+            if (!(n > 0)) {
+                char g[256];
+                got_list(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be a nonzero quaternion [w, x, y, z], got %s",
+                    g);
             } else {
                 b->orientation.w = q[0] / n;
                 b->orientation.x = q[1] / n;
@@ -1312,18 +1339,19 @@ static void check_plane(vctx *v, const cJSON *obj, rbs__scene_body *b)
         rbs_vec3 n;
         saved = push_key(v, "normal");
         if (get_vec3(v, c, &n) == 0) {
-            double len = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+            double a[3] = {n.x, n.y, n.z};
+            double len = scaled_len(a, 3);
             if (fabs(len - 1.0) <= UNIT_TOL) {
                 len = 1.0; /* already unit: keep the bits (see orientation) */
             }
-            if (vec_len_zero(n) || !(len > 0) || !isfinite(len)) {
-                err(v, loc_value(v, c), "must be a nonzero vector of finite length, "
-                                        "got [%g, %g, %g]",
-                    n.x, n.y, n.z);
+            if (!(len > 0)) {
+                char g[256];
+                got_list(v, c, g, sizeof g);
+                err(v, loc_value(v, c), "must be a nonzero vector, got %s", g);
             } else {
-                b->normal.x = n.x / len;
-                b->normal.y = n.y / len;
-                b->normal.z = n.z / len;
+                b->normal.x = a[0] / len;
+                b->normal.y = a[1] / len;
+                b->normal.z = a[2] / len;
             }
         }
         pop(v, saved);
