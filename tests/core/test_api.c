@@ -488,6 +488,44 @@ static void bad_bodies_are_rejected_with_reasons(void **state)
     rbs_world_destroy(w);
 }
 
+/* A fixed sphere never moves, so a velocity or angular velocity given with
+ * it is an error, as rbs_body_set_velocity says for one added (it was
+ * stored as zero, silently); zero vectors, -0 too, are fine. */
+static void fixed_sphere_refuses_a_velocity(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_sphere_def s;
+    rbs_body_id id;
+    (void)state;
+    rbs_sphere_def_init(&s);
+    s.fixed = 1;
+    s.velocity.x = 1.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere velocity must be zero for a fixed sphere (it never moves), got "
+                        "(1, 0, 0) m/s");
+    rbs_sphere_def_init(&s);
+    s.fixed = 1;
+    s.angular_velocity.x = 5.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere angular_velocity must be zero for a fixed sphere (it never moves), "
+                        "got (5, 0, 0) rad/s");
+    rbs_sphere_def_init(&s);
+    s.fixed = 1;
+    s.velocity.z = -0.0;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    assert_true(state_of(w, id).velocity.z == 0.0);
+    /* the same sphere movable takes them */
+    rbs_sphere_def_init(&s);
+    s.position.x = 1.0;
+    s.velocity.x = 1.0;
+    s.angular_velocity.x = 5.0;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+    assert_true(state_of(w, id).velocity.x == 1.0 && state_of(w, id).angular_velocity.x == 5.0);
+    rbs_world_destroy(w);
+}
+
 static void pair_rules(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -795,6 +833,7 @@ int main(void)
         cmocka_unit_test(names_are_indexed),
         cmocka_unit_test(reused_slot_starts_clean),
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
+        cmocka_unit_test(fixed_sphere_refuses_a_velocity),
         cmocka_unit_test(pair_rules),
         cmocka_unit_test(most_specific_pair_wins),
         cmocka_unit_test(star_star_row_covers_named_materials),

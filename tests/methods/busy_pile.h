@@ -73,6 +73,11 @@ static inline rbs_world *busy_pile(double dt)
             s.angular_velocity.z = 20.0 * (rnd(&seed) - 0.5);
         s.material = i % 4 == 0 ? mb : ma;
         s.fixed = i == 40; /* one, in the bottom layer */
+        if (s.fixed) {
+            /* (still drawn, so the draws after it are as before) */
+            memset(&s.velocity, 0, sizeof s.velocity);
+            memset(&s.angular_velocity, 0, sizeof s.angular_velocity);
+        }
         CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
     }
     return w;

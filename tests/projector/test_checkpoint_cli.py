@@ -420,6 +420,8 @@ class FaultTests(CkptBase):
         for i, key, value, words in cases:
             bodies = json.loads(json.dumps(SCENE["bodies"]))
             bodies[i][key] = value
+            if key == "fixed":
+                bodies[i]["velocity"] = [0, 0, 0]  # (a fixed sphere's must be)
             e = self.scene("e.json", bodies=bodies)
             r = self.rbsim("run", e, "--resume", "ck.bin", "--csv", "r.csv")
             self.assertEqual(r.returncode, 3, (key, r.stderr))

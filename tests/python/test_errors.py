@@ -73,6 +73,23 @@ def test_invalid_from_c_names_the_field():
         rbsim.World(max_bodies=0)
 
 
+def test_fixed_sphere_with_a_velocity_is_invalid():
+    """A fixed sphere never moves: a velocity or angular velocity given with
+    it is an InvalidError from the library (it was dropped, silently), as
+    setting one on it afterwards is; zero vectors are fine."""
+    w = rbsim.World(max_bodies=4)
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"sphere velocity must be zero for a fixed sphere"):
+        w.add_sphere("a", fixed=True, velocity=(1, 0, 0))
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"sphere angular_velocity must be zero for a fixed sphere"):
+        w.add_sphere("a", fixed=True, angular_velocity=(5, 0, 0))
+    a = w.add_sphere("a", fixed=True, velocity=(0, 0, 0), angular_velocity=(0, 0, 0))
+    assert a.fixed and a.velocity.tolist() == [0.0, 0.0, 0.0]
+    with pytest.raises(rbsim.InvalidError, match="does not move"):
+        a.velocity = (1, 0, 0)
+
+
 def test_soft_substeps_out_of_range_names_it():
     """soft_substeps is 1 to 1000: 0 and 1001 are refused with the field,
     the range and the value."""

@@ -925,10 +925,12 @@ class World:
             force, torque: constant applied force (N) and torque (N m).
             material: a Material or its name (None: no material).
             color: 0xRRGGBB.  texture: "none", "stripes" or "checker".
-            fixed: never moves (infinite mass).
+            fixed: never moves (infinite mass); velocity and
+                angular_velocity must then be zero.
 
         Raises:
-            InvalidError: a value out of range (message from the library).
+            InvalidError: a value out of range, or a velocity for a fixed
+                sphere (message from the library).
             CapacityError: max_bodies reached (the world is unchanged).
         """
         d = ffi.new("rbs_sphere_def *")

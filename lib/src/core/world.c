@@ -965,6 +965,14 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     if (!v3_finite(p) || !v3_finite(v) || !v3_finite(av) || !v3_finite(c) || !v3_finite(f) ||
         !v3_finite(t))
         FAIL(w, RBS_E_NUMERIC, "sphere: position, velocities, centre of mass, force and torque must be finite");
+    /* a fixed sphere never moves: a velocity would be dropped silently (as
+     * rbs_body_set_velocity refuses it) */
+    if (d.fixed && (v.x != 0.0 || v.y != 0.0 || v.z != 0.0))
+        FAIL(w, RBS_E_INVALID, "sphere velocity must be zero for a fixed sphere (it never moves), got "
+             "(%.17g, %.17g, %.17g) m/s", v.x, v.y, v.z);
+    if (d.fixed && (av.x != 0.0 || av.y != 0.0 || av.z != 0.0))
+        FAIL(w, RBS_E_INVALID, "sphere angular_velocity must be zero for a fixed sphere (it never "
+             "moves), got (%.17g, %.17g, %.17g) rad/s", av.x, av.y, av.z);
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
     if (!isfinite(q.w) || !isfinite(q.x) || !isfinite(q.y) || !isfinite(q.z))
         FAIL(w, RBS_E_NUMERIC, "sphere orientation must be finite");

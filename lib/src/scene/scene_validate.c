@@ -977,6 +977,8 @@ static int get_color(vctx *v, const cJSON *item, uint32_t *out)
 /* A length this close to 1 is left alone when normalising (8 ulp). */
 #define UNIT_TOL (8.0 * 2.220446049250313e-16)
 
+static int vec_len_zero(rbs_vec3 a) { return a.x == 0 && a.y == 0 && a.z == 0; }
+
 /* The length of a[0..n-1], to normalise it by: the square root of the sum of
  * squares, or, where that overflows or underflows (a normal [0, 0, 1e308] or
  * [1e-200, 1e-200, 0], finite and nonzero all the same), the length of a
@@ -1312,6 +1314,24 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
         saved = push_key(v, "fixed");
         (void)get_bool(v, c, &b->fixed);
         pop(v, saved);
+    }
+    if (b->fixed) {
+        /* a fixed sphere never moves: a velocity would be dropped silently
+         * (rbs_world_add_sphere refuses it too) */
+        static const char *const moving[2] = {"velocity", "angular_velocity"};
+        const rbs_vec3 *at[2] = {&b->velocity, &b->angular_velocity};
+        int k;
+        for (k = 0; k < 2; k++) {
+            if ((c = member(obj, moving[k])) != NULL && !vec_len_zero(*at[k])) {
+                char g[256];
+                got_list(v, c, g, sizeof g);
+                saved = push_key(v, moving[k]);
+                err(v, loc_value(v, c),
+                    "a fixed sphere does not move: must be [0, 0, 0] or left out, got %s",
+                    g);
+                pop(v, saved);
+            }
+        }
     }
     if (v->scene->error_count == before) {
         check_sphere_limits(v, obj, b);
