@@ -526,6 +526,60 @@ static void fixed_sphere_refuses_a_velocity(void **state)
     rbs_world_destroy(w);
 }
 
+/* The limits of a sphere that FORMAT.md says the world checks when it is
+ * built, as the scene does (one rule, rbs__sphere_energy): a movable
+ * sphere's 1 / mass finite, and each energy at the start at most 1e300 J
+ * (mass 1e308 at 1 m under g was taken, and energy() then failed); a fixed
+ * sphere has neither limit. */
+static void sphere_energy_at_the_start_is_bounded(void **state)
+{
+    rbs_world *w = make_world(8, 1e-3, -9.81, 0.5);
+    rbs_sphere_def s;
+    rbs_energy e;
+    (void)state;
+    rbs_sphere_def_init(&s);
+    s.mass = 1e308;
+    s.position.z = 1.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere potential energy in gravity (position, mass) at the start is inf J, "
+                        "beyond 1e300 J (the world's energy would overflow)");
+    rbs_sphere_def_init(&s);
+    s.velocity.x = 1.5e150; /* m v^2 / 2 = 1.125e300 */
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "kinetic energy m v^2 / 2 (velocity) at the start is 1.125e+300 J"));
+    rbs_sphere_def_init(&s);
+    s.angular_velocity.z = 1e153; /* trace 3 * 0.004 kg m^2: 6e303 J */
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "rotational energy (angular_velocity)"));
+    rbs_sphere_def_init(&s);
+    s.force.x = 1e200;
+    s.position.x = 1e101;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "potential energy of its force (force)"));
+    rbs_sphere_def_init(&s);
+    s.mass = 1e-310;
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = s.inertia.y = s.inertia.z = 1.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "1 / mass overflows"));
+    /* fixed: both taken; under the limit: taken, and energy() is a number */
+    s.fixed = 1;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    rbs_sphere_def_init(&s);
+    s.mass = 1e308;
+    s.position.z = 1.0;
+    s.fixed = 1;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    rbs_sphere_def_init(&s);
+    s.position.x = 5.0;
+    s.velocity.x = 1e150; /* 5e299 J */
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    CHECK_OK(rbs_world_energy(w, &e));
+    assert_true(e.kinetic == 0.5 * 1e150 * 1e150);
+    rbs_world_destroy(w);
+}
+
 static void pair_rules(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -834,6 +888,7 @@ int main(void)
         cmocka_unit_test(reused_slot_starts_clean),
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
         cmocka_unit_test(fixed_sphere_refuses_a_velocity),
+        cmocka_unit_test(sphere_energy_at_the_start_is_bounded),
         cmocka_unit_test(pair_rules),
         cmocka_unit_test(most_specific_pair_wins),
         cmocka_unit_test(star_star_row_covers_named_materials),

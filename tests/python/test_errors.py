@@ -90,6 +90,20 @@ def test_fixed_sphere_with_a_velocity_is_invalid():
         a.velocity = (1, 0, 0)
 
 
+def test_sphere_energy_at_the_start_is_bounded():
+    """The library refuses a movable sphere whose energy at the start is
+    beyond 1e300 J, as a scene's check does (mass 1e308 at 1 m was taken,
+    and energy() then raised NumericError); a fixed one is taken."""
+    w = rbsim.World(max_bodies=4)
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"potential energy in gravity \(position, mass\) at the start "
+                             r"is inf J, beyond 1e300 J"):
+        w.add_sphere("a", radius=0.1, mass=1e308, position=(0, 0, 1))
+    w.add_sphere("a", radius=0.1, mass=1e308, position=(0, 0, 1), fixed=True)
+    w.add_sphere("b", radius=0.1, mass=1.0, position=(0, 0, 2))
+    assert math.isfinite(w.energy().total)
+
+
 def test_soft_substeps_out_of_range_names_it():
     """soft_substeps is 1 to 1000: 0 and 1001 are refused with the field,
     the range and the value."""

@@ -929,8 +929,9 @@ class World:
                 angular_velocity must then be zero.
 
         Raises:
-            InvalidError: a value out of range, or a velocity for a fixed
-                sphere (message from the library).
+            InvalidError: a value out of range, a velocity for a fixed
+                sphere, or an energy at the start beyond 1e300 J
+                (message from the library).
             CapacityError: max_bodies reached (the world is unchanged).
         """
         d = ffi.new("rbs_sphere_def *")

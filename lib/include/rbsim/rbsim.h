@@ -401,7 +401,13 @@ RBS_API rbs_status rbs_world_pair_at(const rbs_world *world, uint32_t index,
                                      rbs_pair_def *out);
 
 /** Add a sphere.  Invalid values give RBS_E_INVALID with the reason in
- * rbs_world_last_error(); RBS_E_CAPACITY leaves the world unchanged. */
+ * rbs_world_last_error(), among them the limits a scene's sphere has
+ * (scenes/FORMAT.md, "Limits of a sphere"): moments of inertia and their
+ * inverses finite and nonzero, and for a movable sphere 1 / mass finite and
+ * each energy at the start (kinetic, rotational, potential in gravity and
+ * of its force) at most 1e300 J, so that rbs_world_energy() sums stay
+ * finite (the setters take any finite value).  RBS_E_CAPACITY leaves the
+ * world unchanged. */
 RBS_API rbs_status rbs_world_add_sphere(rbs_world *world,
                                         const rbs_sphere_def *def,
                                         rbs_body_id *out);

@@ -923,6 +923,24 @@ static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
     return RBS_OK;
 }
 
+int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
+                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f, double e[4])
+{
+    quat qq = {q.w, q.x, q.y, q.z};
+    v3 vv = v3_make(v.x, v.y, v.z), ww = v3_make(w.x, w.y, w.z), gg = v3_make(g.x, g.y, g.z);
+    v3 x = v3_add(v3_make(p.x, p.y, p.z), q_rotate(qq, v3_make(c.x, c.y, c.z)));
+    double gx = v3_dot(gg, x);
+    int k;
+    e[0] = 0.5 * mass * v3_dot(vv, vv);
+    e[1] = 0.5 * trace * v3_dot(ww, ww);
+    e[2] = fabs(g_is_force ? gx : mass * gx);
+    e[3] = fabs(v3_dot(v3_make(f.x, f.y, f.z), x));
+    for (k = 0; k < 4; ++k)
+        if (!(e[k] <= RBS__ENERGY_MAX))
+            return k;
+    return -1;
+}
+
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
@@ -1040,6 +1058,25 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         FAIL(w, RBS_E_INVALID,
              "sphere: centre of mass offset %g is too far from the centre for this inertia "
              "(inertia about the COM would not be positive definite)", sqrt(c2));
+    if (!d.fixed) {
+        /* a movable sphere's 1 / mass, and its energies (so that the world's
+         * sums stay finite: FORMAT.md, "Limits of a sphere", the scene's
+         * rule too) */
+        static const char *const what[4] = {
+            "kinetic energy m v^2 / 2 (velocity)", "rotational energy (angular_velocity)",
+            "potential energy in gravity (position, mass)", "potential energy of its force (force)"};
+        double e[4];
+        rbs_vec3 g = w->def.gravity;
+        rbs_quat qp = {q.w, q.x, q.y, q.z};
+        if (!isfinite(1.0 / mass))
+            FAIL(w, RBS_E_INVALID, "sphere mass %g kg is too small for double precision (1 / mass "
+                 "overflows); a fixed sphere may have it", mass);
+        k = rbs__sphere_energy(mass, I[0] + I[4] + I[8], d.velocity, d.angular_velocity, d.position, qp,
+                               d.center_of_mass, g, w->def.gravity_mode == RBS_GRAVITY_FORCE, d.force, e);
+        if (k >= 0)
+            FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g J, beyond 1e300 J (the world's energy "
+                 "would overflow)", what[k], e[k]);
+    }
     st = take_slot(w, "sphere", RBS_BODY_SPHERE, d.material, d.texture, d.color, d.name, &s);
     if (st != RBS_OK)
         return st;

@@ -639,6 +639,21 @@ char *rbs__link_target(const char *path);
  * text (scene_json.c, scene_text.c) are checked with it. */
 size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
 
+/* Largest size of each of a movable sphere's energies at the start, J: four
+ * terms for each of 2^24 bodies then sum to less than DBL_MAX. */
+#define RBS__ENERGY_MAX 1e300
+
+/* A movable sphere's energies at the start into e[4], J: e[0] kinetic
+ * m |v|^2 / 2, e[1] rotational (a bound: |w|^2 trace / 2, trace that of the
+ * inertia about the centre of mass), e[2] potential in gravity g (m g.x, or
+ * g.x when g is a force) and e[3] potential of its force f (f.x), x the
+ * centre of mass in the world, p + q c q* (q a unit quaternion, c the
+ * offset in the body frame).  Returns the index of the first whose size is
+ * beyond RBS__ENERGY_MAX (a NaN is), or -1.  The one rule of
+ * rbs_world_add_sphere and the scene's check (which names the key). */
+int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
+                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f, double e[4]);
+
 /* Forces: body i's linear acceleration (gravity, and its applied force over
  * its mass) and its applied torque; zero for a body that does not move.
  * Inline: detection takes it for both bodies of every contact. */

@@ -41,9 +41,6 @@
 #define RBS__SCENE_CONTACTS_MAX 67108864u /* 2^26 */
 /* The world's smallest tolerance (world.c: double precision). */
 #define RBS__SCENE_TOLERANCE_MIN 1e-15
-/** Largest size of each of a movable sphere's energies at the start, J: four
- * terms for each of 2^24 bodies then sum to less than DBL_MAX. */
-#define RBS__SCENE_ENERGY_MAX 1e300
 
 /** A place in a scene file. */
 typedef struct rbs__loc {

@@ -1036,8 +1036,8 @@ static int sphere_inertia(const rbs__scene_body *b, double mass, double *trace)
             I[3 * i + j] -= mass * ((i == j ? c2 : 0.0) - c[i] * c[j]);
         }
     }
-    sc = (I[0] + I[4] + I[8]) / 3.0;
-    *trace = 3.0 * sc;
+    *trace = I[0] + I[4] + I[8]; /* (as rbs_world_add_sphere sums it) */
+    sc = *trace / 3.0;
     if (!(sc > 0.0) || !isfinite(sc)) {
         return c2 > 0.0 && isfinite(sc) ? 2 : 1;
     }
@@ -1059,51 +1059,28 @@ static int sphere_inertia(const rbs__scene_body *b, double mass, double *trace)
     return 0;
 }
 
-/* A movable sphere's energies at the start, each at most
- * RBS__SCENE_ENERGY_MAX in size so that the world's energy sums (at most
- * 4 terms for each of 2^24 bodies) cannot overflow: kinetic, rotational (a
- * bound: |w|^2 trace / 2), and potential in gravity and in its force. */
+/* A movable sphere's energies at the start, each at most RBS__ENERGY_MAX
+ * in size: the world's own rule (rbs__sphere_energy, world.c), checked here
+ * so that the error names the key. */
 static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body *b,
                                 double mass, double trace)
 {
     const rbs_scene *s = v->scene;
-    const rbs_quat q = b->orientation;
-    const rbs_vec3 c = b->center_of_mass, p = b->position, g = s->gravity;
-    rbs_vec3 x, t;
-    double e[4], gx;
+    double e[4];
     static const char *const keys[4] = {"velocity", "angular_velocity", "position", "force"};
     static const char *const what[4] = {
         "the kinetic energy m v^2 / 2", "the rotational energy",
         "the potential energy in gravity", "the potential energy of its force"};
-    int k;
-    /* the centre of mass in the world: p + q c q* */
-    t.x = 2.0 * (q.y * c.z - q.z * c.y);
-    t.y = 2.0 * (q.z * c.x - q.x * c.z);
-    t.z = 2.0 * (q.x * c.y - q.y * c.x);
-    x.x = p.x + c.x + q.w * t.x + (q.y * t.z - q.z * t.y);
-    x.y = p.y + c.y + q.w * t.y + (q.z * t.x - q.x * t.z);
-    x.z = p.z + c.z + q.w * t.z + (q.x * t.y - q.y * t.x);
-    gx = g.x * x.x + g.y * x.y + g.z * x.z;
-    e[0] = 0.5 * mass *
-           (b->velocity.x * b->velocity.x + b->velocity.y * b->velocity.y +
-            b->velocity.z * b->velocity.z);
-    e[1] = 0.5 * trace *
-           (b->angular_velocity.x * b->angular_velocity.x +
-            b->angular_velocity.y * b->angular_velocity.y +
-            b->angular_velocity.z * b->angular_velocity.z);
-    e[2] = fabs(s->gravity_mode == RBS_GRAVITY_ACCELERATION ? mass * gx : gx);
-    e[3] = fabs(b->force.x * x.x + b->force.y * x.y + b->force.z * x.z);
-    for (k = 0; k < 4; k++) {
-        if (!(e[k] <= RBS__SCENE_ENERGY_MAX)) {
-            const cJSON *at = member(obj, keys[k]) != NULL ? member(obj, keys[k]) : obj;
-            size_t saved = push_key(v, keys[k]);
-            err(v, loc_value(v, at),
-                "%s at the start is %g J, beyond 1e300 J (the world's energy would "
-                "overflow)",
-                what[k], e[k]);
-            pop(v, saved);
-            return;
-        }
+    int k = rbs__sphere_energy(mass, trace, b->velocity, b->angular_velocity, b->position,
+                               b->orientation, b->center_of_mass, s->gravity,
+                               s->gravity_mode == RBS_GRAVITY_FORCE, b->force, e);
+    if (k >= 0) {
+        const cJSON *at = member(obj, keys[k]) != NULL ? member(obj, keys[k]) : obj;
+        size_t saved = push_key(v, keys[k]);
+        err(v, loc_value(v, at),
+            "%s at the start is %g J, beyond 1e300 J (the world's energy would overflow)",
+            what[k], e[k]);
+        pop(v, saved);
     }
 }
 
