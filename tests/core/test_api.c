@@ -580,6 +580,31 @@ static void sphere_energy_at_the_start_is_bounded(void **state)
     rbs_world_destroy(w);
 }
 
+/* Mutual gravity needs G > 0, as a scene's mutual_gravity.G: G = 0 was
+ * taken (an attraction of nothing); off, G = 0 is fine. */
+static void mutual_gravity_needs_a_positive_g(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    char msg[256];
+    (void)state;
+    rbs_world_def_init(&d);
+    d.mutual_gravity = 1;
+    d.gravity_constant = 0.0;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_string_equal(msg, "gravity_constant must be > 0 with mutual_gravity on, got 0");
+    assert_int_equal(rbs_world_create(&d, &w), RBS_E_INVALID);
+    assert_null(w);
+    d.gravity_constant = -1.0;
+    assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+    assert_non_null(strstr(msg, "gravity_constant"));
+    d.gravity_constant = 5e-324;
+    CHECK_OK(rbs_world_def_validate(&d, msg, sizeof msg));
+    d.mutual_gravity = 0;
+    d.gravity_constant = 0.0;
+    CHECK_OK(rbs_world_def_validate(&d, msg, sizeof msg));
+}
+
 static void pair_rules(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -889,6 +914,7 @@ int main(void)
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
         cmocka_unit_test(fixed_sphere_refuses_a_velocity),
         cmocka_unit_test(sphere_energy_at_the_start_is_bounded),
+        cmocka_unit_test(mutual_gravity_needs_a_positive_g),
         cmocka_unit_test(pair_rules),
         cmocka_unit_test(most_specific_pair_wins),
         cmocka_unit_test(star_star_row_covers_named_materials),

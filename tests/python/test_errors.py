@@ -104,6 +104,15 @@ def test_sphere_energy_at_the_start_is_bounded():
     assert math.isfinite(w.energy().total)
 
 
+def test_mutual_gravity_needs_a_positive_g():
+    """With mutual gravity on, G must be > 0, as a scene's mutual_gravity.G
+    (G = 0 was taken); off, G = 0 is fine."""
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"gravity_constant must be > 0 with mutual_gravity on, got 0"):
+        rbsim.World(mutual_gravity=True, gravity_constant=0)
+    assert rbsim.World(mutual_gravity=False, gravity_constant=0).settings["gravity_constant"] == 0
+
+
 def test_soft_substeps_out_of_range_names_it():
     """soft_substeps is 1 to 1000: 0 and 1001 are refused with the field,
     the range and the value."""

@@ -421,7 +421,7 @@ class World:
                 reachable overlap stays under
                 soft_tolerance * n / soft_substeps of that radius.
         mutual_gravity: Newtonian attraction between bodies.
-        gravity_constant: G, m^3 kg^-1 s^-2, >= 0.
+        gravity_constant: G, m^3 kg^-1 s^-2, >= 0; > 0 with mutual_gravity on.
         softening: Plummer softening length, m, >= 0.
         prune: leave out stages that cannot change the result (default True).
         threads: threads that step the world, the caller's included, 1 to

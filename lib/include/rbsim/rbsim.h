@@ -211,7 +211,8 @@ typedef struct rbs_world_def {
                                    fix-up rounds and separation iterations;
                                    default 20 */
     int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
-    double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11 */
+    double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11;
+                                   finite, > 0 with mutual_gravity on */
     double softening;         /**< Plummer softening length, m; default 0 */
     int32_t prune;            /**< nonzero (default): leave out stages that cannot
                                    change the result; 0 runs every stage */

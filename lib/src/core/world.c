@@ -205,6 +205,12 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "gravity_constant and softening must be finite and >= 0");
         return RBS_E_INVALID;
     }
+    if (d.mutual_gravity && !(d.gravity_constant > 0.0)) {
+        /* (G = 0 would attract nothing, yet cost the pair sums and keep
+         * auto from the soft step; a scene's mutual_gravity.G is > 0 too) */
+        snprintf(msg, len, "gravity_constant must be > 0 with mutual_gravity on, got %g", d.gravity_constant);
+        return RBS_E_INVALID;
+    }
     if (out)
         *out = d;
     return RBS_OK;
