@@ -339,6 +339,22 @@ static const bad_case cases[] = {
       EIN("bad/text_mistakes/objects.txt", "cube", 1, 0,
           "unknown body type \"cube\"; a body starts with \"sphere NAME\" or \"plane "
           "NAME\"")}},
+    /* a config key with the JSON's prefix is said to be one (it was
+     * "simulation.simulation.steps: unknown key"); a '#' word that is no
+     * colour after "color" is said to be a malformed colour (it was "missing
+     * value after "color""), while a '#' and a blank still begin a comment */
+    {"bad/text_prefix_and_colour/config.txt", RBS_E_SCENE,
+     {E("# the", 1, 0,
+        "simulation: missing required key \"steps\" (the number of steps to run, an integer "
+        ">= 0)"),
+      E("simulation.steps", 1, 0,
+        "simulation.steps: config.txt's keys have no \"simulation.\" prefix: write \"steps = "
+        "...\""),
+      EIN("bad/text_prefix_and_colour/objects.txt", "#d0303 ", 1, 0,
+          "bodies[0].color: must be \"#rrggbb\" or three numbers in [0, 1], got \"#d0303\": not "
+          "'#' and 6 hex digits, so it was read as a comment"),
+      EIN("bad/text_prefix_and_colour/objects.txt", "color # a", 1, 0,
+          "missing value after \"color\"")}},
     {"bad/text_no_block/config.txt", RBS_E_SCENE,
      {EIN("bad/text_no_block/objects.txt", "radius", 1, 0,
           "expected \"sphere NAME\" or \"plane NAME\" to start a body, got \"radius\"")}},

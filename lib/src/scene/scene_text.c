@@ -80,6 +80,17 @@ static int is_color_at(const char *s, size_t i, size_t end)
     return i + 7 == end || is_blank(s[i + 7]) || s[i + 7] == ',';
 }
 
+/* After a key at s[i] (blanks skipped), a word that starts with '#' but is
+ * no colour (so the tokenizer took it for a comment): "#d0303", "#red".  A
+ * '#' followed by a blank or the line's end is a comment ("color # none"). */
+static int bad_color_at(const char *s, size_t i, size_t end)
+{
+    while (i < end && is_blank(s[i])) {
+        i++;
+    }
+    return i + 1 < end && s[i] == '#' && !is_blank(s[i + 1]) && !is_color_at(s, i, end);
+}
+
 /* Split [begin, end) into tokens; separators: blanks (and commas if commas).
  * Stops at a comment.  Returns the count, or -1 after reporting an error. */
 static int tokenize(tctx *t, size_t begin, size_t end, int commas, ttok *toks,
@@ -721,6 +732,34 @@ static void load_objects(tctx *t, cJSON *bodies)
         }
         memcpy(key, s + toks[0].off, toks[0].len);
         key[toks[0].len] = '\0';
+        if (n == 1 && strcmp(key, "color") == 0 && bad_color_at(s, toks[0].off + toks[0].len, e)) {
+            /* "color #d0303": a '#' word that is no colour began a comment */
+            size_t at = toks[0].off + toks[0].len, w, k;
+            char word[40], path[40];
+            while (is_blank(s[at])) {
+                at++;
+            }
+            /* the word as the validator echoes a string: quoted, '"' and '\\'
+             * escaped, a control character or one beyond ASCII (a colour
+             * has none) as '?' */
+            for (w = at, k = 0; w < e && !is_blank(s[w]) && s[w] != ',' && k < 20; w++) {
+                unsigned char c = (unsigned char)s[w];
+                if (c >= 0x80 && c < 0xC0) {
+                    continue; /* (the rest of a character beyond ASCII) */
+                }
+                if (c == '"' || c == '\\') {
+                    word[k++] = '\\';
+                }
+                word[k++] = c < 0x20 || c >= 0x7f ? '?' : (char)c;
+            }
+            word[k] = '\0';
+            snprintf(path, sizeof path, "bodies[%d].color", cJSON_GetArraySize(bodies) - 1);
+            rbs__scene_error(t->scene, tloc(t, at), path,
+                             "must be \"#rrggbb\" or three numbers in [0, 1], got \"%s\"%s: not "
+                             "'#' and 6 hex digits, so it was read as a comment",
+                             word, w < e && !is_blank(s[w]) && s[w] != ',' ? "..." : "");
+            continue;
+        }
         if (n == 1) {
             rbs__scene_error(t->scene, tloc(t, toks[0].off), "",
                              "missing value after \"%s\"", key);
@@ -989,6 +1028,19 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
                 mat_off = toks[0].off;
             } else {
                 obj_off = toks[0].off;
+            }
+        } else if (strncmp(key, "simulation", 10) == 0 && (key[10] == '\0' || key[10] == '.')) {
+            /* (in the tree it would be simulation.simulation...: a repeated
+             * prefix in the error, not the mistake) */
+            if (key[10] == '.' && key[11] != '\0') {
+                rbs__scene_error(scene, tloc(&t, key_off), key,
+                                 "config.txt's keys have no \"simulation.\" prefix: write "
+                                 "\"%s = ...\"",
+                                 key + 11);
+            } else {
+                rbs__scene_error(scene, tloc(&t, key_off), key,
+                                 "config.txt has no section \"simulation\": its keys are the "
+                                 "simulation's, one a line (\"steps = 100\", \"dt = 0.001\")");
             }
         } else {
             add(sim, key, toks_value(&t, toks, n, key_off));
