@@ -579,6 +579,55 @@ static void rolling_resistance_decelerates(void **state)
     rbs_world_destroy(w);
 }
 
+/* A ball on a 20 degree slope whose rolling resistance stops it turning
+ * (mu_r = 10 tan) is held by static friction when mu_s >= tan: at rest
+ * (|v| < 1e-12 m/s after 2 s, at most the spring's sink off its start),
+ * for mu_s 1.05 tan (mu_k 0.5 tan) and 10 tan (mu_k the same); below,
+ * mu_s 0.9 tan, it slides without turning at g (sin - mu_k cos), to first
+ * order in h (g h = 3.3e-3 m/s at 3 sub-steps of 1 ms over 2 s: 1e-2 m/s).
+ * The friction and rolling rows taken one each a pass let it slide away
+ * at 3 m/s in the first case and creep at 2.4e-4 m/s in the second. */
+static void rolling_resistance_holds_a_ball_on_a_slope(void **state)
+{
+    const double th = 20.0 * PI_ / 180.0, t = tan(th), r = 0.1, T = 2.0;
+    static const double mus[3] = {1.05, 10.0, 0.9}, muk[3] = {0.5, 10.0, 0.5};
+    int i;
+    (void)state;
+    for (i = 0; i < 3; ++i) {
+        rbs_world *w = soft_world(4, 1e-3, -G, 0.0, 3);
+        rbs_material_id m;
+        rbs_pair_def pd;
+        rbs_plane_def pl;
+        rbs_body_id b;
+        rbs_body_state st;
+        double down, normal;
+        CHECK_OK(rbs_world_add_material(w, "m", &m));
+        rbs_pair_def_init(&pd);
+        pd.a = pd.b = m;
+        pd.static_friction = mus[i] * t;
+        pd.kinetic_friction = muk[i] * t;
+        pd.rolling = 10.0 * t;
+        CHECK_OK(rbs_world_set_pair(w, &pd));
+        rbs_plane_def_init(&pl);
+        pl.normal.x = -sin(th);
+        pl.normal.z = cos(th);
+        pl.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+        b = ball(w, r, 1.0, -r * sin(th), 0, r * cos(th), 0, 0, 0, m);
+        step_n(w, (int)(T / 1e-3 + 0.5));
+        st = state_of(w, b);
+        incline_speeds(st, th, &down, &normal);
+        if (i < 2) {
+            ASSERT_NEAR(down, 0.0, 1e-12);
+            ASSERT_NEAR(st.position.x, -r * sin(th), 1e-6);
+        } else {
+            ASSERT_NEAR(down, G * (sin(th) - muk[i] * t * cos(th)) * T, 1e-2);
+        }
+        ASSERT_NEAR(st.angular_velocity.y, 0.0, 1e-9);
+        rbs_world_destroy(w);
+    }
+}
+
 /* No tunnelling: a ball crossing 10 radii a step stops at a plane, and two
  * crossing 5 radii a step each meet instead of passing (the swept margins
  * |v| dt make them contacts a frame ahead).  e = 0: after the impact the
@@ -1213,6 +1262,7 @@ int main(void)
         cmocka_unit_test(sliding_sphere_starts_rolling),
         cmocka_unit_test(incline_rolls_or_slides),
         cmocka_unit_test(rolling_resistance_decelerates),
+        cmocka_unit_test(rolling_resistance_holds_a_ball_on_a_slope),
         cmocka_unit_test(fast_bodies_do_not_tunnel),
         cmocka_unit_test(spaced_cradle_passes_the_velocity_down_the_line),
         cmocka_unit_test(kicked_ball_stops_at_the_guard_depth),
