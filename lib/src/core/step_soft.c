@@ -227,7 +227,7 @@ static inline v3 normal_accumulate(rbs__contact *c, double dj)
 static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair *p, uint32_t i, v3 j)
 {
     const double lim = p->mu_s * c->jn;
-    int round, bound = 0;
+    int round, bound = 0, was_bound = 0;
     v3 stick = v3_make(0, 0, 0);
     rbs__apply_pair(w, c, j);
     for (round = 0; round < ROLL_ROUNDS; ++round) {
@@ -242,8 +242,9 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
         rbs__apply_pair(w, c, v3_sub(cand, c->jt));
         c->jt = cand;
         (void)rbs__resist_row(w, i);
-        if (v3_dot(stick, stick) <= 1e-24 * (lim * lim + v3_dot(c->jt, c->jt)))
-            break;
+        if (v3_dot(stick, stick) <= 1e-24 * (lim * lim + v3_dot(c->jt, c->jt)) || (bound && was_bound))
+            break; /* (held; or the cone binds twice: it slides) */
+        was_bound = bound;
     }
     if (bound) {
         /* slides: kinetic friction along the last (static-limited) impulse */
