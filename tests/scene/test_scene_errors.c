@@ -650,7 +650,7 @@ static void test_renderers(void **state)
         "  {\"type\": \"csv\", \"path\": \"out/a.csv\"},\n"
         "  {\"type\": \"plotter\", \"pen\": \"blue\", \"nested\": {\"a\": [1, 2.5]}},\n"
         "  {\"type\": \"sdl\", \"views\": [{\"mount\": \"ball\", \"offset\": [0, 0, 2]},"
-        " {\"mode\": \"free\", \"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}]}]}\n"
+        " {\"mode\": \"fixed\", \"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}]}]}\n"
         " ]}\n";
     rbs_scene *scene = NULL;
     rbs_scene_renderer r;
@@ -670,6 +670,61 @@ static void test_renderers(void **state)
     assert_string_equal(r.type, "sdl");
     assert_int_equal(rbs_scene_renderer_get(scene, 3, &r), RBS_E_NOT_FOUND);
     rbs_scene_free(scene);
+}
+
+/* A camera path's keyframes are checked where they are written, as the
+ * sdl renderer would refuse them (which pointed at the renderer's entry):
+ * a target at the keyframe's position, a view along up (sine below 1e-6);
+ * and a path is for fixed cameras only, without a position or target of
+ * the camera's own. */
+static void test_camera_path_errors_at_the_keyframe(void **state)
+{
+    static const struct {
+        const char *camera, *path, *message;
+        const char *at; /* the error points at its last occurrence in camera */
+    } cases[] = {
+        {"{\"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}, "
+         "{\"t\": 1, \"position\": [2, 0, 0], \"target\": [2, 0, 0]}]}",
+         "renderers[0].camera.path[1].target", "must differ from the keyframe's position, got [2, 0, 0] for both",
+         "[2, 0, 0]}"},
+        {"{\"path\": [{\"t\": 0, \"position\": [0, 0, 5], \"target\": [0, 0, 0]}]}",
+         "renderers[0].camera.path[0].target",
+         "the view from the keyframe's position to [0, 0, 0] is along the camera's up; choose another "
+         "target, position or up", "[0, 0, 0]}"},
+        {"{\"mode\": \"free\", \"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}]}",
+         "renderers[0].camera.path", "a free camera is steered from the keyboard; \"path\" is for fixed cameras",
+         "\"path\""},
+        {"{\"position\": [1, 1, 1], \"path\": [{\"t\": 0, \"position\": [1, 0, 0], \"target\": [0, 0, 0]}]}",
+         "renderers[0].camera.path",
+         "a camera with a path takes its position and target from the path: leave out \"position\"",
+         "\"path\""},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[1024];
+        rbs_scene *scene = NULL;
+        rbs_scene_error e;
+        snprintf(text, sizeof text,
+                 "{\"simulation\": {\"steps\": 1}, \"bodies\": [],\n"
+                 "\"renderers\": [{\"type\": \"sdl\", \"path\": \"p\", \"camera\":\n%s}]}\n",
+                 cases[i].camera);
+        assert_int_equal(rbs_scene_parse_json(text, strlen(text), "c.json", &scene), RBS_E_SCENE);
+        assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+        if (strcmp(e.path, cases[i].path) != 0 || strcmp(e.message, cases[i].message) != 0)
+            fail_msg("case %lu: '%s: %s'", (unsigned long)i, e.path, e.message);
+        assert_int_equal(e.line, 3);
+        {
+            const char *at = NULL, *p = cases[i].camera;
+            while ((p = strstr(p, cases[i].at)) != NULL)
+                at = p++;
+            assert_non_null(at);
+            if (e.column != (int32_t)(at - cases[i].camera) + 1)
+                fail_msg("case %lu: column %d, not %d", (unsigned long)i, (int)e.column,
+                         (int)(at - cases[i].camera) + 1);
+        }
+        rbs_scene_free(scene);
+    }
 }
 
 /* A renderer entry's numbers come back as the same doubles, in their
@@ -1005,6 +1060,7 @@ int main(void)
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers), cmocka_unit_test(test_renderer_numbers_exact),
         cmocka_unit_test(test_names_beyond_ascii),
+        cmocka_unit_test(test_camera_path_errors_at_the_keyframe),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),
     };

@@ -1846,6 +1846,37 @@ static int find_sphere(const rbs_scene *s, const char *name)
     return -1;
 }
 
+/* The sine of the angle between the view direction and up below which the
+ * sdl renderer refuses a camera (frontends/sdl/sdl_config.c: up_sine), so
+ * that the error comes from the key here, not from the renderer's entry. */
+static const double kCamUpSine = 1e-6;
+
+/* Whether a camera at pos looking at target can take up: 0 yes, 1 target
+ * is pos, 2 target within kCamDistMin of pos, 3 the view is along up (its
+ * sine below kCamUpSine, or up zero). */
+static int aim_kind(rbs_vec3 pos, rbs_vec3 target, rbs_vec3 up)
+{
+    rbs_vec3 d = {target.x - pos.x, target.y - pos.y, target.z - pos.z}, x;
+    double ld = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    double um = fmax(fabs(up.x), fmax(fabs(up.y), fabs(up.z))), lu, lx;
+    rbs_vec3 un;
+    if (d.x == 0 && d.y == 0 && d.z == 0)
+        return 1;
+    if (!(ld >= kCamDistMin))
+        return 2;
+    if (!(um > 0))
+        return 3;
+    un.x = up.x / um;
+    un.y = up.y / um;
+    un.z = up.z / um;
+    lu = sqrt(un.x * un.x + un.y * un.y + un.z * un.z);
+    x.x = d.y * un.z - d.z * un.y;
+    x.y = d.z * un.x - d.x * un.z;
+    x.z = d.x * un.y - d.y * un.x;
+    lx = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
+    return lx > kCamUpSine * ld * lu ? 0 : 3;
+}
+
 static void check_camera(vctx *v, const cJSON *cam)
 {
     const cJSON *c;
@@ -1930,7 +1961,7 @@ static void check_camera(vctx *v, const cJSON *cam)
             err(v, loc_value(v, c), "must differ from the position, got [%g, %g, %g] for both",
                 target.x, target.y, target.z);
             pop(v, saved);
-        } else if (!(lu > 0) || !(lx > 1e-9 * ld * lu)) {
+        } else if (!(lu > 0) || !(lx > kCamUpSine * ld * lu)) {
             char g[256];
             c = member(cam, "up") != NULL ? member(cam, "up") : cam;
             if (c != cam) {
@@ -2014,7 +2045,14 @@ static void check_camera(vctx *v, const cJSON *cam)
         saved = push_key(v, "path");
         if (mode == 1) {
             err(v, loc_key(v, c), "a mounted camera follows its body; \"path\" is for "
-                                  "fixed and free cameras");
+                                  "fixed cameras");
+        } else if (mode == 2) {
+            err(v, loc_key(v, c), "a free camera is steered from the keyboard; \"path\" is for "
+                                  "fixed cameras");
+        } else if (member(cam, "position") != NULL || member(cam, "target") != NULL) {
+            err(v, loc_key(v, c), "a camera with a path takes its position and target from "
+                                  "the path: leave out \"%s\"",
+                member(cam, "position") != NULL ? "position" : "target");
         } else if (require_array(v, c, "a list of {\"t\", \"position\", \"target\"} "
                                        "keyframes") == 0) {
             const cJSON *kf;
@@ -2026,7 +2064,6 @@ static void check_camera(vctx *v, const cJSON *cam)
             for (kf = c->child; kf != NULL; kf = kf->next, i++) {
                 size_t s2 = push_index(v, i), s3;
                 const cJSON *e;
-                rbs_vec3 tmp;
                 if (require_object(v, kf, "a camera keyframe") == 0) {
                     check_keys(v, kf, path_keys, 3, "a camera keyframe");
                     if ((e = member(kf, "t")) != NULL) {
@@ -2045,19 +2082,38 @@ static void check_camera(vctx *v, const cJSON *cam)
                     } else {
                         missing(v, kf, "t", "the keyframe's time, s");
                     }
-                    if ((e = member(kf, "position")) != NULL) {
-                        s3 = push_key(v, "position");
-                        (void)get_cam_vec3(v, e, &tmp);
-                        pop(v, s3);
-                    } else {
-                        missing(v, kf, "position", "the camera position, m");
-                    }
-                    if ((e = member(kf, "target")) != NULL) {
-                        s3 = push_key(v, "target");
-                        (void)get_cam_vec3(v, e, &tmp);
-                        pop(v, s3);
-                    } else {
-                        missing(v, kf, "target", "the point looked at, m");
+                    {
+                        rbs_vec3 kpos = {0, 0, 0}, ktarget = {0, 0, 0};
+                        int kpos_ok = 0, ktarget_ok = 0, kind;
+                        if ((e = member(kf, "position")) != NULL) {
+                            s3 = push_key(v, "position");
+                            kpos_ok = get_cam_vec3(v, e, &kpos) == 0;
+                            pop(v, s3);
+                        } else {
+                            missing(v, kf, "position", "the camera position, m");
+                        }
+                        if ((e = member(kf, "target")) != NULL) {
+                            s3 = push_key(v, "target");
+                            ktarget_ok = get_cam_vec3(v, e, &ktarget) == 0;
+                            if (kpos_ok && ktarget_ok && up_ok &&
+                                (kind = aim_kind(kpos, ktarget, up)) != 0) {
+                                char g[256];
+                                got_list(v, e, g, sizeof g);
+                                if (kind == 1)
+                                    err(v, loc_value(v, e), "must differ from the keyframe's position, "
+                                        "got %s for both", g);
+                                else if (kind == 2)
+                                    err(v, loc_value(v, e), "must be at least 1e-100 m from the "
+                                        "keyframe's position (too close to aim), got %s", g);
+                                else
+                                    err(v, loc_value(v, e), "the view from the keyframe's position "
+                                        "to %s is along the camera's up; choose another target, "
+                                        "position or up", g);
+                            }
+                            pop(v, s3);
+                        } else {
+                            missing(v, kf, "target", "the point looked at, m");
+                        }
                     }
                 }
                 pop(v, s2);
