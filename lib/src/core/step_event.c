@@ -251,9 +251,21 @@ static rbs_status classify(rbs_world *w, double dt)
                     }
                     w->ev_mode[i] = EV_ROLL;
                 } else {
-                    /* starts to slide along the drive c = g_t - (r/I) tau x n */
+                    /* starts to slide along the drive c = g_t - (r/I) tau x n,
+                     * from a slip of exactly 0 (the rounding-level one
+                     * removed as for rolling: left, it pointed anywhere, and
+                     * at the top of a frictionless slide up an incline its
+                     * stop was due again at once, event after event, until
+                     * the step gave up -- a probe of session 39) */
                     v3 c = v3_sub(gt, v3_scale(tn, r / I));
                     double cl = v3_len(c);
+                    if (!zero3(u)) {
+                        v3 jimp = v3_scale(u, -1.0 / kk);
+                        v = v3_mad(v, jimp, 1.0 / m);
+                        om = v3_add(om, v3_scale(v3_cross(v3_scale(n, -r), jimp), invI));
+                        v3_store(&w->vel[3 * i], v);
+                        v3_store(&w->avel[3 * i], om);
+                    }
                     f = cl > 0.0 ? v3_scale(c, -mu_k * N / cl) : v3_make(0, 0, 0);
                     w->ev_mode[i] = EV_SLIDE;
                 }
