@@ -1046,6 +1046,40 @@ static rbs_status hook(void *context, const rbs_world *world, uint64_t frame,
     return RBS_OK;
 }
 
+/* A run stopped on a frame that a recorder's every K leaves out still gives
+ * it that frame, as its last (the interrupted run's last frame is kept):
+ * every 5, quit at frame 13 from the hook (the world ends there) -- the
+ * recorder draws 0, 5, 10 and 13, once each, 13 marked last; a recorder
+ * with every 1 beside it draws 0..13 as before. */
+static void stopped_run_keeps_its_last_frame_under_every(void **state)
+{
+    fixture fx;
+    static hook_ctx h;
+    rec *r;
+    (void)state;
+    memset(&h, 0, sizeof h);
+    h.caller = pthread_self();
+    h.quit_at = 13;
+    fx_init(&fx, "rec", NULL);
+    fx.cfg[0].every = 5;
+    fx.def.steps = 100000;
+    fx.def.reel_capacity = 2;
+    fx.def.after_step = hook;
+    fx.def.after_step_context = &h;
+    CHECK_OK(fx_create(&fx));
+    h.projector = fx.p;
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_CLOSED);
+    r = fx.ctx.made[0];
+    assert_int_equal(rbs_world_step_count(fx.w), 13);
+    assert_int_equal(r->count, 4);
+    assert_int_equal(r->numbers[0], 0);
+    assert_int_equal(r->numbers[1], 5);
+    assert_int_equal(r->numbers[2], 10);
+    assert_int_equal(r->numbers[3], 13);
+    assert_int_equal(r->lasts, 1);
+    fx_done(&fx);
+}
+
 /* The hook sees frames 1..steps in order, on the simulation thread, with
  * the world at that frame. */
 static void after_step_sees_every_frame(void **state)
@@ -1281,6 +1315,7 @@ int main(void)
         cmocka_unit_test(after_step_failure_stops_the_run),
         cmocka_unit_test(quit_ends_at_the_last_frame),
         cmocka_unit_test(status_says_how_far_the_simulation_is),
+        cmocka_unit_test(stopped_run_keeps_its_last_frame_under_every),
         cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
         cmocka_unit_test(realtime_paces_frames),

@@ -98,6 +98,12 @@ struct rbs_projector {
     /* Renderer thread only. */
     rbs_frame hold;
     rbs_frame_body *hold_bodies;
+    /* The last frame taken when a recorder's every K left it out: a run
+     * stopped there (quit, a signal) still gives it to that recorder, as
+     * its last frame (tail_bodies: max_bodies, only when some every > 1). */
+    rbs_frame tail;
+    rbs_frame_body *tail_bodies;
+    int have_tail;
     int have_hold;
 };
 
@@ -401,6 +407,19 @@ rbs_status rbs_projector_create(rbs_world *world,
             return RBS_E_MEMORY;
         }
     }
+    {
+        uint32_t k;
+        for (k = 0; k < p->count; k++)
+            if (!p->renderers[k].live && p->renderers[k].every > 1)
+                break;
+        if (k < p->count) {
+            p->tail_bodies = calloc(p->max_bodies, sizeof *p->tail_bodies);
+            if (p->tail_bodies == NULL) {
+                set_error(p, RBS_E_MEMORY, "out of memory");
+                return RBS_E_MEMORY;
+            }
+        }
+    }
     p->usable = 1;
     return RBS_OK;
 }
@@ -578,6 +597,39 @@ static void serve_command(rbs_projector *p)
     pthread_mutex_unlock(&p->mu);
 }
 
+/* Whether recorder r leaves frame f out (its every K). */
+static int every_skips(const renderer *r, const rbs_frame *f, uint64_t first)
+{
+    return !r->live && !f->last && f->number != first && f->number % r->every != 0;
+}
+
+/* The run stopped on a frame some recorder's every K left out: it gets it
+ * now, as the run's last (the README's promise: an interrupted run's last
+ * frame is kept).  0, or -1 after fail(). */
+static int draw_tail(rbs_projector *p, uint64_t first)
+{
+    uint32_t i;
+    p->tail.last = 0;
+    for (i = 0; i < p->count; i++) {
+        renderer *r = &p->renderers[i];
+        char err[ERROR_MAX - 200];
+        rbs_status st;
+        if (!every_skips(r, &p->tail, first))
+            continue;
+        p->tail.last = 1;
+        err[0] = '\0';
+        st = r->cls->draw(r->instance, &p->tail, err, sizeof err);
+        p->tail.last = 0;
+        if (st != RBS_OK) {
+            fail(p, st == RBS_E_INVALID || strcmp(rbs_status_name(st), "UNKNOWN") == 0 ? RBS_E_RENDERER : st,
+                 "%s: frame %llu: %s", r->label, (unsigned long long)p->tail.number,
+                 err[0] ? err : rbs_status_string(st));
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Draw one frame on the renderers that keep it.  Returns 0 or -1 (failed). */
 static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
                       int live_ok, int repeat)
@@ -591,8 +643,7 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
             continue; /* recorders never get a frame twice */
         if (r->live && !live_ok)
             continue;
-        if (!repeat && !f->last && f->number != first &&
-            f->number % r->every != 0)
+        if (!repeat && every_skips(r, f, first))
             continue;
         err[0] = '\0';
         st = r->cls->draw(r->instance, f, err, sizeof err);
@@ -671,6 +722,7 @@ static void *ren_main(void *arg)
     int anchored = 0;
     double base_wall = 0, base_sim = 0, last_live = -1e300;
     uint32_t i;
+    int drained = 0;
 
     for (;;) {
         const rbs_frame *f;
@@ -701,8 +753,10 @@ static void *ren_main(void *arg)
             anchored = 0; /* re-anchor the clock after a pause */
             continue;
         }
-        if (st != RBS_OK)
+        if (st != RBS_OK) {
+            drained = 1;
             break; /* closed and drained */
+        }
 
         pthread_mutex_lock(&p->mu);
         quit = p->quit;
@@ -769,6 +823,17 @@ static void *ren_main(void *arg)
         }
         if (p->live_count > 0)
             copy_to_hold(p, f);
+        p->have_tail = 0;
+        if (p->tail_bodies != NULL) {
+            for (i = 0; i < p->count && !every_skips(&p->renderers[i], f, first); i++) {
+            }
+            if (i < p->count) {
+                p->tail = *f;
+                p->tail.bodies = p->tail_bodies;
+                memcpy(p->tail_bodies, f->bodies, f->body_count * sizeof *f->bodies);
+                p->have_tail = 1;
+            }
+        }
 
         pthread_mutex_lock(&p->mu);
         p->drawn++;
@@ -779,6 +844,9 @@ static void *ren_main(void *arg)
         pthread_mutex_unlock(&p->mu);
         rbs_reel_end_read(p->reel);
     }
+
+    if (drained && p->have_tail)
+        (void)draw_tail(p, first);
 
     /* Finish every renderer (flush, close), even after a failure, so each
      * output is complete up to its last frame. */
@@ -1218,6 +1286,7 @@ void rbs_projector_destroy(rbs_projector *p)
             p->renderers[i].cls->destroy(p->renderers[i].instance);
     rbs_reel_destroy(p->reel);
     free(p->hold_bodies);
+    free(p->tail_bodies);
     pthread_cond_destroy(&p->cond);
     pthread_mutex_destroy(&p->direct_mu);
     pthread_mutex_destroy(&p->mu);
