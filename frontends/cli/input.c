@@ -89,7 +89,8 @@ static void *input_main(void *arg)
              * could never be resumed, so resume it. */
             rbs_run_info info;
             if (rbs_projector_status(in->projector, &info) == RBS_OK &&
-                info.state == RBS_RUN_RUNNING && info.paused) {
+                info.state == RBS_RUN_RUNNING && info.paused && !info.quit) {
+                /* (a run quitting ends by itself: nothing to resume) */
                 rbs_projector_command(in->projector, "resume", NULL, 0);
                 pthread_mutex_lock(in->reply_lock);
                 fprintf(in->reply, "end of input: resumed (no command could "

@@ -1367,20 +1367,23 @@ static void progress(const rbs_run_info *info, uint64_t start)
             info->time, info->paused ? " (paused)" : "");
 }
 
+/* start: the frame the run started from (a resumed run's k), start_time
+ * its time: the steps and time counted are this run's own. */
 static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
-                    const output *outs, uint32_t n)
+                    const output *outs, uint32_t n, uint64_t start, double start_time)
 {
     uint32_t i;
     double drift = info->energy_last - info->energy_initial;
+    const uint64_t steps = info->frame > start ? info->frame - start : 0;
     fprintf(out, "scene: %s\n", scene_name);
     fprintf(out, "simulated %.6g s: %llu steps (%llu sub-steps, %llu rollbacks), "
                  "%llu collisions\n",
-            info->time, (unsigned long long)info->frame,
+            steps > 0 ? info->time - start_time : 0.0, (unsigned long long)steps,
             (unsigned long long)info->substeps,
             (unsigned long long)info->rollbacks,
             (unsigned long long)info->collisions);
     fprintf(out, "wall time %.3f s, %.0f steps/s\n", info->wall_time,
-            info->wall_time > 0 ? (double)info->frame / info->wall_time : 0.0);
+            info->wall_time > 0 ? (double)steps / info->wall_time : 0.0);
     fprintf(out, "energy: %.9g J at the start, %.9g J at the end (drift %+.3g J",
             info->energy_initial, info->energy_last, drift);
     if (info->energy_initial != 0)
@@ -1446,6 +1449,7 @@ int rbsf_run_main(int argc, char **argv)
     checkpointer ckpt;
     char *ckpt_target = NULL;
     uint64_t start_frame = 0, target;
+    double start_time = 0.0; /* the resumed world's time */
     double started;
     struct timespec ts;
 
@@ -1519,6 +1523,7 @@ int rbsf_run_main(int argc, char **argv)
         rbs_world_destroy(world);
         world = ck;
         start_frame = rbs_world_step_count(world);
+        start_time = rbs_world_time(world);
     }
     /* 1c. --threads N: a pool of N - 1 threads lends the world's steps its
      * threads (the results are the same bits for any N). */
@@ -1805,7 +1810,7 @@ int rbsf_run_main(int argc, char **argv)
                     (unsigned long long)info.frame,
                     sig != 0 ? rbsf_signal_name(sig) : "quit");
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
-                outs, n_out);
+                outs, n_out, start_frame, start_time);
         if (o.resume)
             fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
                     (unsigned long long)start_frame);

@@ -100,6 +100,24 @@ class ProjectorTests(CkptBase):
         self.assertIn("at step 600", r.stderr)
         self.assertIn("nothing to run", r.stderr)
 
+    def test_resumed_status_and_summary_count_from_the_checkpoint(self):
+        # A run resumed at frame 437: 'status' says frame 437 of 1000 at
+        # t = 0.437 s before any frame is drawn (it said frame 0 of 563),
+        # and the summary counts the run's own steps (563, not 1000; the
+        # end of input resumes the run).
+        s = self.scene()
+        r = self.rbsim("run", s, "--steps", "437", "--checkpoint", "ck.bin",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--paused", "--steps", "1000", "--resume",
+                       "ck.bin", "--csv", "r.csv",
+                       stdin=None, input="status\n")
+        out = r.stdout + r.stderr
+        self.assertEqual(r.returncode, 0, out)
+        self.assertIn("frame 437 of 1000, t = 0.437 s, paused", out)
+        self.assertIn(": 563 steps (", out)
+        self.assertIn("simulated 0.563 s", out)
+
     def test_every_k_keeps_frame_numbers(self):
         # --every 10 keeps frames 0, 10, 20, ... in both runs.
         s = self.scene()

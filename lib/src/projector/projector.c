@@ -895,6 +895,11 @@ rbs_status rbs_projector_start(rbs_projector *p)
     if (ok) {
         p->first_frame = rbs_world_step_count(p->world);
         p->frame_taken = p->show_until = p->first_frame;
+        /* (what status says until a frame is drawn: the world's own frame,
+         * not 0 -- a resumed run's starts at its checkpoint's) */
+        p->frame_drawn = p->first_frame;
+        p->frame_made = p->first_frame;
+        p->time_drawn = rbs_world_time(p->world);
         if (p->def.start_paused)
             p->paused = 1;
         p->t_start = rbs__now();
@@ -1208,7 +1213,8 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         reply_to(reply, reply_size,
                  "frame %llu of %llu, t = %.6g s, %s%s, speed %g, "
                  "%llu collisions, %llu sub-steps, %llu rollbacks%s",
-                 (unsigned long long)info.frame, (unsigned long long)info.steps,
+                 (unsigned long long)info.frame,
+                 (unsigned long long)(p->first_frame + info.steps), /* (the last frame's number) */
                  info.time,
                  info.state == RBS_RUN_READY   ? "not started"
                  : info.state == RBS_RUN_DONE  ? "done"
