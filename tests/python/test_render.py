@@ -208,6 +208,36 @@ def test_stop_run_from_finish_or_close_changes_nothing():
     assert late.frames == 11 and not info.quit and w.step_count == 10
 
 
+def test_commands_from_threads_while_wait_ends_the_run():
+    # Run.command is thread-safe: from other threads while wait() ends the
+    # run and frees the projector, each command answers or raises
+    # ClosedError (the projector was freed under a command in flight: a
+    # hang within ~1000 runs, or a crash).
+    import threading
+    w = make_world()
+    closed = [0]
+    for _ in range(2000):
+        run = w.start(0, renderers=[lambda f: None])
+        stop = threading.Event()
+
+        def hammer():
+            while not stop.is_set():
+                try:
+                    run.command("status")
+                except rbsim.ClosedError:
+                    closed[0] += 1
+
+        threads = [threading.Thread(target=hammer) for _ in range(3)]
+        for t in threads:
+            t.start()
+        run.wait()
+        stop.set()
+        for t in threads:
+            t.join(timeout=10)
+            assert not t.is_alive()
+    assert closed[0] > 0
+
+
 def test_steps_zero_gives_frame_zero_only():
     frames = []
     make_world().run(0, renderers=[frames.append])

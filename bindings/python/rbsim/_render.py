@@ -27,6 +27,7 @@ original exception again.
 
 from __future__ import annotations
 
+import threading
 import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence, Tuple
@@ -250,6 +251,11 @@ class Run:
         self._stopped = False
         self._world = world
         self._projector: Any = ffi.NULL
+        # command/status/finished from other threads hold the projector
+        # through _use/_unuse; _close_projector waits until none does (it
+        # was destroyed under a command in flight: a hang or a crash)
+        self._users = 0
+        self._cond = threading.Condition()
         self._registry: Any = ffi.NULL
         self._result: Optional[int] = None
         self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
@@ -318,16 +324,32 @@ class Run:
             self._close_projector()
             raise _e.error_class(status)(detail)
 
+    def _use(self) -> Any:
+        """The projector, held until _unuse(); ClosedError once the run is
+        over."""
+        with self._cond:
+            if self._projector == ffi.NULL:
+                raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
+            self._users += 1
+            return self._projector
+
+    def _unuse(self) -> None:
+        with self._cond:
+            self._users -= 1
+            self._cond.notify_all()
+
     def command(self, line: str) -> str:
         """Send a command line ("pause", "resume", "step [N]", "speed X",
         "quit", "status"); returns the reply.  Thread-safe."""
         raw = _check.text(line, "line")
-        if self._projector == ffi.NULL:
-            raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
         reply = ffi.new("char[]", 512)
-        if line.split()[:1] == ["quit"]:
-            self._stopped = True  # wait() then treats RBS_E_CLOSED as the end
-        status = lib.rbs_projector_command(self._projector, raw, reply, 512)
+        projector = self._use()
+        try:
+            if line.split()[:1] == ["quit"]:
+                self._stopped = True  # wait() then treats RBS_E_CLOSED as the end
+            status = lib.rbs_projector_command(projector, raw, reply, 512)
+        finally:
+            self._unuse()
         text = _text(reply)
         if status != lib.RBS_OK:
             raise _e.error_class(status)("%r: %s" % (line, text))
@@ -336,17 +358,24 @@ class Run:
     def finished(self, timeout: float = 0.0) -> bool:
         """Wait up to timeout seconds for the run to end; True if it has."""
         t = _check.real(timeout, "timeout")
-        if self._projector == ffi.NULL:
+        try:
+            projector = self._use()
+        except _e.Error:
             return True
-        return bool(lib.rbs_projector_finished(self._projector, max(t, 0.0)))
+        try:
+            return bool(lib.rbs_projector_finished(projector, max(t, 0.0)))
+        finally:
+            self._unuse()
 
     def status(self) -> RunInfo:
         """A snapshot of the run (also after it ended, until wait())."""
-        if self._projector == ffi.NULL:
-            raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
         out = ffi.new("rbs_run_info *")
-        status = lib.rbs_projector_status_sized(self._projector, out,
-                                                ffi.sizeof("rbs_run_info"))
+        projector = self._use()
+        try:
+            status = lib.rbs_projector_status_sized(projector, out,
+                                                    ffi.sizeof("rbs_run_info"))
+        finally:
+            self._unuse()
         if status != lib.RBS_OK:
             raise _e.error_class(status)("projector status")
         return _run_info(out)
@@ -378,9 +407,13 @@ class Run:
         return info
 
     def _close_projector(self) -> None:
-        if self._projector != ffi.NULL:
-            lib.rbs_projector_destroy(self._projector)
-            self._projector = ffi.NULL
+        with self._cond:
+            projector = self._projector
+            self._projector = ffi.NULL  # (new callers: ClosedError)
+            while self._users > 0:
+                self._cond.wait()
+        if projector != ffi.NULL:
+            lib.rbs_projector_destroy(projector)
         self._release()
 
     def _release(self) -> None:
