@@ -238,34 +238,27 @@ static rbs_status classify(rbs_world *w, double dt)
              * session 38: I = 1e9 m r^2 up an incline slid back down). */
             const double du = v3_len(v3_sub(gt, v3_scale(tn, r / I))) + mu_k * N * kk;
             if (v3_len(u) <= 1e-12 * (v3_len(v) + r * v3_len(om) + du * dt) + 1e-300) {
+                /* the slip stopped: remove its rounding, so that rolling is
+                 * exact, and a slide starts from a slip of exactly 0 (left,
+                 * it pointed anywhere, and at the top of a frictionless
+                 * slide up an incline its stop was due again at once, event
+                 * after event, until the step gave up -- a probe of session
+                 * 39) */
+                if (!zero3(u)) {
+                    v3 jimp = v3_scale(u, -1.0 / kk);
+                    v = v3_mad(v, jimp, 1.0 / m);
+                    om = v3_add(om, v3_scale(v3_cross(v3_scale(n, -r), jimp), invI));
+                    v3_store(&w->vel[3 * i], v);
+                    v3_store(&w->avel[3 * i], om);
+                }
                 /* rolls if the friction that keeps it rolling is available */
                 f = v3_scale(v3_sub(v3_scale(tn, r / I), gt), 1.0 / kk);
                 if (v3_len(f) <= mu_s * N) {
-                    /* exact rolling: remove the rounding-level slip */
-                    if (!zero3(u)) {
-                        v3 jimp = v3_scale(u, -1.0 / kk);
-                        v = v3_mad(v, jimp, 1.0 / m);
-                        om = v3_add(om, v3_scale(v3_cross(v3_scale(n, -r), jimp), invI));
-                        v3_store(&w->vel[3 * i], v);
-                        v3_store(&w->avel[3 * i], om);
-                    }
                     w->ev_mode[i] = EV_ROLL;
                 } else {
-                    /* starts to slide along the drive c = g_t - (r/I) tau x n,
-                     * from a slip of exactly 0 (the rounding-level one
-                     * removed as for rolling: left, it pointed anywhere, and
-                     * at the top of a frictionless slide up an incline its
-                     * stop was due again at once, event after event, until
-                     * the step gave up -- a probe of session 39) */
+                    /* starts to slide along the drive c = g_t - (r/I) tau x n */
                     v3 c = v3_sub(gt, v3_scale(tn, r / I));
                     double cl = v3_len(c);
-                    if (!zero3(u)) {
-                        v3 jimp = v3_scale(u, -1.0 / kk);
-                        v = v3_mad(v, jimp, 1.0 / m);
-                        om = v3_add(om, v3_scale(v3_cross(v3_scale(n, -r), jimp), invI));
-                        v3_store(&w->vel[3 * i], v);
-                        v3_store(&w->avel[3 * i], om);
-                    }
                     f = cl > 0.0 ? v3_scale(c, -mu_k * N / cl) : v3_make(0, 0, 0);
                     w->ev_mode[i] = EV_SLIDE;
                 }
