@@ -238,6 +238,19 @@ def test_commands_from_threads_while_wait_ends_the_run():
     assert closed[0] > 0
 
 
+def test_pause_after_the_end_says_the_run_is_over():
+    # Before wait(), a finished run takes no pause or resume (it answered
+    # "paused at frame 20"); status still answers.
+    w = make_world()
+    run = w.start(20, renderers=[lambda f: None])
+    assert run.finished(30.0)
+    for word in ("pause", "resume"):
+        with pytest.raises(rbsim.ClosedError, match="the run is over"):
+            run.command(word)
+    assert "frame 20 of 20" in run.command("status")
+    run.wait()
+
+
 def test_steps_zero_gives_frame_zero_only():
     frames = []
     make_world().run(0, renderers=[frames.append])

@@ -1107,6 +1107,15 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
             return RBS_E_INVALID;
         }
         pthread_mutex_lock(&p->mu);
+        if (!quit && p->started && p->sim_done && p->ren_done) {
+            /* (after the end there is nothing to hold or go on with: it
+             * said "paused at frame K") */
+            held = p->frame_drawn;
+            pthread_mutex_unlock(&p->mu);
+            reply_to(reply, reply_size, "the run is over (at frame %llu): nothing to %s",
+                     (unsigned long long)held, word);
+            return RBS_E_CLOSED;
+        }
         if (quit) {
             p->quit = 1;
         } else {
