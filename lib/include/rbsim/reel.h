@@ -370,7 +370,7 @@ RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
  * Lines are at most 255 bytes.  Returns RBS_OK, RBS_E_INVALID for bad
  * arguments (the reply says why), RBS_E_NOT_FOUND if no one knows the
  * command, or RBS_E_CLOSED if the renderer thread ended before it could
- * answer. */
+ * answer, or for "pause" and "resume" once the run is over. */
 RBS_API rbs_status rbs_projector_command(rbs_projector *projector,
                                          const char *line, char *reply,
                                          size_t reply_size);
