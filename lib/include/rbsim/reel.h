@@ -61,7 +61,9 @@ typedef struct rbs_frame {
     double target_time;     /**< wall time it should stay on screen, s
                                  (dt / speed when it was made) */
     int32_t last;           /**< nonzero on the run's last frame (a run
-                                 stopped by quit or an error has none) */
+                                 stopped by quit or an error has none, but
+                                 for its last frame given at the end to a
+                                 recorder whose every K had left it out) */
     int32_t paused;         /**< nonzero if the run was paused when this
                                  frame was made, and on repeats of the held
                                  frame shown to live views while paused */

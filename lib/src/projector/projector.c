@@ -98,9 +98,10 @@ struct rbs_projector {
     /* Renderer thread only. */
     rbs_frame hold;
     rbs_frame_body *hold_bodies;
-    /* The last frame taken when a recorder's every K left it out: a run
-     * stopped there (quit, a signal) still gives it to that recorder, as
-     * its last frame (tail_bodies: max_bodies, only when some every > 1). */
+    /* The header of the last frame taken (its bodies NULL): a run stopped
+     * there (quit, a signal) still gives it to a recorder whose every K
+     * left it out, as its last frame (draw_tail, into tail_bodies: room
+     * for max_bodies, only when some recorder's every > 1). */
     rbs_frame tail;
     rbs_frame_body *tail_bodies;
     int have_tail;
@@ -603,64 +604,73 @@ static int every_skips(const renderer *r, const rbs_frame *f, uint64_t first)
     return !r->live && !f->last && f->number != first && f->number % r->every != 0;
 }
 
-/* The run stopped on a frame some recorder's every K left out: it gets it
- * now, as the run's last (the README's promise: an interrupted run's last
- * frame is kept).  0, or -1 after fail(). */
-static int draw_tail(rbs_projector *p, uint64_t first)
+/* Draw one frame on the renderers that keep it.  Returns 0 or -1 (failed). */
+/* Renderer r draws f.  0, or -1 after fail(). */
+static int draw_one(rbs_projector *p, renderer *r, const rbs_frame *f)
 {
-    uint32_t i;
-    p->tail.last = 0;
-    for (i = 0; i < p->count; i++) {
-        renderer *r = &p->renderers[i];
-        char err[ERROR_MAX - 200];
-        rbs_status st;
-        if (!every_skips(r, &p->tail, first))
-            continue;
-        p->tail.last = 1;
-        err[0] = '\0';
-        st = r->cls->draw(r->instance, &p->tail, err, sizeof err);
-        p->tail.last = 0;
-        if (st != RBS_OK) {
-            fail(p, st == RBS_E_INVALID || strcmp(rbs_status_name(st), "UNKNOWN") == 0 ? RBS_E_RENDERER : st,
-                 "%s: frame %llu: %s", r->label, (unsigned long long)p->tail.number,
-                 err[0] ? err : rbs_status_string(st));
-            return -1;
-        }
+    char err[ERROR_MAX - 200];
+    rbs_status st;
+    err[0] = '\0';
+    st = r->cls->draw(r->instance, f, err, sizeof err);
+    if (st != RBS_OK && strcmp(rbs_status_name(st), "UNKNOWN") == 0) {
+        /* not an rbs_status (a renderer's own code): the run's result
+         * must be one */
+        fail(p, RBS_E_RENDERER, "%s: frame %llu: draw returned %d, not an rbs_status%s%s",
+             r->label, (unsigned long long)f->number, (int)st, err[0] ? ": " : "", err);
+        return -1;
+    }
+    if (st != RBS_OK) {
+        fail(p, st == RBS_E_INVALID ? RBS_E_RENDERER : st,
+             "%s: frame %llu: %s", r->label,
+             (unsigned long long)f->number,
+             err[0] ? err : rbs_status_string(st));
+        return -1;
     }
     return 0;
 }
 
-/* Draw one frame on the renderers that keep it.  Returns 0 or -1 (failed). */
 static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
                       int live_ok, int repeat)
 {
     uint32_t i;
     for (i = 0; i < p->count; i++) {
         renderer *r = &p->renderers[i];
-        char err[ERROR_MAX - 200];
-        rbs_status st;
         if (repeat && !r->live)
             continue; /* recorders never get a frame twice */
         if (r->live && !live_ok)
             continue;
         if (!repeat && every_skips(r, f, first))
             continue;
-        err[0] = '\0';
-        st = r->cls->draw(r->instance, f, err, sizeof err);
-        if (st != RBS_OK && strcmp(rbs_status_name(st), "UNKNOWN") == 0) {
-            /* not an rbs_status (a renderer's own code): the run's result
-             * must be one */
-            fail(p, RBS_E_RENDERER, "%s: frame %llu: draw returned %d, not an rbs_status%s%s",
-                 r->label, (unsigned long long)f->number, (int)st, err[0] ? ": " : "", err);
+        if (draw_one(p, r, f) != 0)
             return -1;
-        }
-        if (st != RBS_OK) {
-            fail(p, st == RBS_E_INVALID ? RBS_E_RENDERER : st,
-                 "%s: frame %llu: %s", r->label,
-                 (unsigned long long)f->number,
-                 err[0] ? err : rbs_status_string(st));
+    }
+    return 0;
+}
+
+/* The run stopped on a frame that some recorder's every K left out: that
+ * recorder gets it now, as the run's last (the README's promise: an
+ * interrupted run's last frame is kept).  Its bodies come from the world,
+ * which the simulation thread, done, left at that frame (the header kept
+ * when the frame was taken gives its step's counts); no frame is copied
+ * while the run goes on.  0, or -1 after fail(). */
+static int draw_tail(rbs_projector *p, uint64_t first)
+{
+    rbs_frame f;
+    uint32_t i;
+    if (p->tail.last)
+        return 0; /* (the run ended: every recorder had it) */
+    f = p->tail;
+    f.bodies = p->tail_bodies;
+    if (rbs_frame_capture(p->world, &f, p->max_bodies) != RBS_OK || f.number != p->tail.number)
+        return 0; /* (not the frame taken: nothing to add) */
+    f.stats.step = p->tail.stats.step;
+    for (i = 0; i < p->count; i++) {
+        renderer *r = &p->renderers[i];
+        if (!every_skips(r, &p->tail, first))
+            continue;
+        f.last = 1;
+        if (draw_one(p, r, &f) != 0)
             return -1;
-        }
     }
     return 0;
 }
@@ -823,16 +833,11 @@ static void *ren_main(void *arg)
         }
         if (p->live_count > 0)
             copy_to_hold(p, f);
-        p->have_tail = 0;
         if (p->tail_bodies != NULL) {
-            for (i = 0; i < p->count && !every_skips(&p->renderers[i], f, first); i++) {
-            }
-            if (i < p->count) {
-                p->tail = *f;
-                p->tail.bodies = p->tail_bodies;
-                memcpy(p->tail_bodies, f->bodies, f->body_count * sizeof *f->bodies);
-                p->have_tail = 1;
-            }
+            /* (the header only: draw_tail takes the bodies from the world) */
+            p->tail = *f;
+            p->tail.bodies = NULL;
+            p->have_tail = 1;
         }
 
         pthread_mutex_lock(&p->mu);
