@@ -208,7 +208,8 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
     if (d.mutual_gravity && !(d.gravity_constant > 0.0)) {
         /* (G = 0 would attract nothing, yet cost the pair sums and keep
          * auto from the soft step; a scene's mutual_gravity.G is > 0 too) */
-        snprintf(msg, len, "gravity_constant must be > 0 with mutual_gravity on, got %g", d.gravity_constant);
+        snprintf(msg, len, "gravity_constant must be > 0 with mutual_gravity on, got %s",
+                 rbs__shortest(nb, d.gravity_constant));
         return RBS_E_INVALID;
     }
     if (out)
@@ -950,7 +951,7 @@ int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_ve
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
-    char nb[32]; /* (a number for a message) */
+    char nb[32], nb2[32], nb3[32]; /* (numbers for a message) */
     double mass, I[9], inv[9], c2;
     v3 c, p, v, av, f, t;
     quat q;
@@ -993,10 +994,11 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
      * rbs_body_set_velocity refuses it) */
     if (d.fixed && (v.x != 0.0 || v.y != 0.0 || v.z != 0.0))
         FAIL(w, RBS_E_INVALID, "sphere velocity must be zero for a fixed sphere (it never moves), got "
-             "(%.17g, %.17g, %.17g) m/s", v.x, v.y, v.z);
+             "(%s, %s, %s) m/s", rbs__shortest(nb, v.x), rbs__shortest(nb2, v.y), rbs__shortest(nb3, v.z));
     if (d.fixed && (av.x != 0.0 || av.y != 0.0 || av.z != 0.0))
         FAIL(w, RBS_E_INVALID, "sphere angular_velocity must be zero for a fixed sphere (it never "
-             "moves), got (%.17g, %.17g, %.17g) rad/s", av.x, av.y, av.z);
+             "moves), got (%s, %s, %s) rad/s", rbs__shortest(nb, av.x), rbs__shortest(nb2, av.y),
+             rbs__shortest(nb3, av.z));
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
     if (!isfinite(q.w) || !isfinite(q.x) || !isfinite(q.y) || !isfinite(q.z))
         FAIL(w, RBS_E_NUMERIC, "sphere orientation must be finite");
@@ -1075,8 +1077,8 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         rbs_vec3 g = w->def.gravity;
         rbs_quat qp = {q.w, q.x, q.y, q.z};
         if (!isfinite(1.0 / mass))
-            FAIL(w, RBS_E_INVALID, "sphere mass %g kg is too small for double precision (1 / mass "
-                 "overflows); a fixed sphere may have it", mass);
+            FAIL(w, RBS_E_INVALID, "sphere mass %s kg is too small for double precision (1 / mass "
+                 "overflows); a fixed sphere may have it", rbs__shortest(nb, mass));
         k = rbs__sphere_energy(mass, I[0] + I[4] + I[8], d.velocity, d.angular_velocity, d.position, qp,
                                d.center_of_mass, g, w->def.gravity_mode == RBS_GRAVITY_FORCE, d.force, e);
         if (k >= 0)
