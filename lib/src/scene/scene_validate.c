@@ -1933,35 +1933,21 @@ static void check_camera(vctx *v, const cJSON *cam)
         pop(v, saved);
     }
     if (pos_ok && target_ok && up_ok) {
-        rbs_vec3 d = {target.x - pos.x, target.y - pos.y, target.z - pos.z};
-        rbs_vec3 x = {d.y * up.z - d.z * up.y, d.z * up.x - d.x * up.z,
-                      d.x * up.y - d.y * up.x};
-        double ld = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-        /* up scaled by its largest component, so a tiny up does not underflow */
-        double um = fmax(fabs(up.x), fmax(fabs(up.y), fabs(up.z)));
-        double lu = 0.0, lx = 0.0;
-        if (um > 0) {
-            rbs_vec3 un = {up.x / um, up.y / um, up.z / um};
-            lu = sqrt(un.x * un.x + un.y * un.y + un.z * un.z);
-            x.x = d.y * un.z - d.z * un.y;
-            x.y = d.z * un.x - d.x * un.z;
-            x.z = d.x * un.y - d.y * un.x;
-            lx = sqrt(x.x * x.x + x.y * x.y + x.z * x.z);
-        }
-        int same = d.x == 0 && d.y == 0 && d.z == 0;
-        if (!same && !(ld >= kCamDistMin)) {
+        const rbs_vec3 d = {target.x - pos.x, target.y - pos.y, target.z - pos.z};
+        const int kind = aim_kind(pos, target, up);
+        if (kind == 2) {
             c = member(cam, "target") != NULL ? member(cam, "target") : cam;
             saved = push_key(v, "target");
             err(v, loc_value(v, c), "must be at least 1e-100 m from the position (too close "
                 "to aim), got [%g, %g, %g] m apart", d.x, d.y, d.z);
             pop(v, saved);
-        } else if (same) {
+        } else if (kind == 1) {
             c = member(cam, "target") != NULL ? member(cam, "target") : cam;
             saved = push_key(v, "target");
             err(v, loc_value(v, c), "must differ from the position, got [%g, %g, %g] for both",
                 target.x, target.y, target.z);
             pop(v, saved);
-        } else if (!(lu > 0) || !(lx > kCamUpSine * ld * lu)) {
+        } else if (kind == 3) {
             char g[256];
             c = member(cam, "up") != NULL ? member(cam, "up") : cam;
             if (c != cam) {
