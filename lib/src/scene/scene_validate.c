@@ -2120,18 +2120,11 @@ static int numbers_exact(cJSON *item)
             char b[40];
             double x = item->valuedouble;
             char *raw;
-            int prec;
             if (x == floor(x) && fabs(x) < 1e17) {
                 /* a whole number as one (3000000000, not 3e+09; -0 kept) */
                 snprintf(b, sizeof b, "%.0f", x);
             } else {
-                for (prec = 1; prec < 17; prec++) {
-                    snprintf(b, sizeof b, "%.*g", prec, x);
-                    if (strtod(b, NULL) == x)
-                        break;
-                }
-                if (prec == 17)
-                    snprintf(b, sizeof b, "%.17g", x);
+                (void)rbs__shortest(b, x);
             }
             /* (cJSON's allocator: cJSON_Delete frees it) */
             raw = (char *)cJSON_malloc(strlen(b) + 1);
