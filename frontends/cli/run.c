@@ -1276,16 +1276,10 @@ static int checkpoint_matches(const rbs_world *scene_world,
     }
     if (a.gravity.x != b.gravity.x || a.gravity.y != b.gravity.y ||
         a.gravity.z != b.gravity.z) {
-        char g[6][40];
-        rbsf_format_double(g[0], sizeof g[0], a.gravity.x);
-        rbsf_format_double(g[1], sizeof g[1], a.gravity.y);
-        rbsf_format_double(g[2], sizeof g[2], a.gravity.z);
-        rbsf_format_double(g[3], sizeof g[3], b.gravity.x);
-        rbsf_format_double(g[4], sizeof g[4], b.gravity.y);
-        rbsf_format_double(g[5], sizeof g[5], b.gravity.z);
-        snprintf(why, n, "gravity differs (the scene has %s %s %s, the "
-                         "checkpoint %s %s %s)",
-                 g[0], g[1], g[2], g[3], g[4], g[5]);
+        char ga[128], gb[128];
+        show3(ga, sizeof ga, a.gravity);
+        show3(gb, sizeof gb, b.gravity);
+        say_into(why, n, "gravity differs (the scene has %s, the checkpoint %s)", ga, gb);
         return -1;
     }
     if (a.gravity_mode != b.gravity_mode) {
