@@ -605,6 +605,56 @@ static void mutual_gravity_needs_a_positive_g(void **state)
     CHECK_OK(rbs_world_def_validate(&d, msg, sizeof msg));
 }
 
+/* Each field out of range has its own message, naming it and the value
+ * given: max_halvings and max_sweeps shared "max_halvings must be <= 60 and
+ * max_sweeps in [1, 100000]", max_materials and max_pairs another, and
+ * gravity_constant and softening a third, none with the value (a C caller
+ * had to guess which field was wrong; the Python binding re-checked the
+ * ranges itself to say). */
+static void each_def_field_has_its_own_message(void **state)
+{
+    static const struct {
+        const char *field;
+        const char *expect;
+    } cases[] = {
+        {"max_materials", "max_materials must be <= 4096, got 4097"},
+        {"max_pairs", "max_pairs must be <= 65536, got 65537"},
+        {"max_substeps", "max_substeps must be >= 1, got 0"},
+        {"max_halvings", "max_halvings must be <= 60, got 61"},
+        {"max_sweeps0", "max_sweeps must be in [1, 100000], got 0"},
+        {"max_sweeps", "max_sweeps must be in [1, 100000], got 100001"},
+        {"gravity_constant", "gravity_constant must be finite and >= 0, got -5e-324"},
+        {"softening", "softening must be finite and >= 0, got inf"},
+    };
+    size_t k;
+    char msg[256];
+    (void)state;
+    for (k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+        rbs_world_def d;
+        const char *f = cases[k].field;
+        rbs_world_def_init(&d);
+        CHECK_OK(rbs_world_def_validate(&d, msg, sizeof msg));
+        if (strcmp(f, "max_materials") == 0)
+            d.max_materials = 4097;
+        else if (strcmp(f, "max_pairs") == 0)
+            d.max_pairs = 65537;
+        else if (strcmp(f, "max_substeps") == 0)
+            d.max_substeps = 0;
+        else if (strcmp(f, "max_halvings") == 0)
+            d.max_halvings = 61;
+        else if (strcmp(f, "max_sweeps0") == 0)
+            d.max_sweeps = 0;
+        else if (strcmp(f, "max_sweeps") == 0)
+            d.max_sweeps = 100001;
+        else if (strcmp(f, "gravity_constant") == 0)
+            d.gravity_constant = -5e-324;
+        else
+            d.softening = INFINITY;
+        assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
+        assert_string_equal(msg, cases[k].expect);
+    }
+}
+
 static void pair_rules(void **state)
 {
     rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
@@ -915,6 +965,7 @@ int main(void)
         cmocka_unit_test(fixed_sphere_refuses_a_velocity),
         cmocka_unit_test(sphere_energy_at_the_start_is_bounded),
         cmocka_unit_test(mutual_gravity_needs_a_positive_g),
+        cmocka_unit_test(each_def_field_has_its_own_message),
         cmocka_unit_test(pair_rules),
         cmocka_unit_test(most_specific_pair_wins),
         cmocka_unit_test(star_star_row_covers_named_materials),

@@ -145,8 +145,12 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "max_bodies must be in [1, 16777216], got %u", (unsigned)d.max_bodies);
         return RBS_E_INVALID;
     }
-    if (d.max_materials > (1u << 12) || d.max_pairs > (1u << 16)) {
-        snprintf(msg, len, "max_materials must be <= 4096 and max_pairs <= 65536");
+    if (d.max_materials > (1u << 12)) {
+        snprintf(msg, len, "max_materials must be <= 4096, got %u", (unsigned)d.max_materials);
+        return RBS_E_INVALID;
+    }
+    if (d.max_pairs > (1u << 16)) {
+        snprintf(msg, len, "max_pairs must be <= 65536, got %u", (unsigned)d.max_pairs);
         return RBS_E_INVALID;
     }
     if (d.max_contacts == 0)
@@ -184,7 +188,7 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (d.max_substeps < 1) {
-        snprintf(msg, len, "max_substeps must be >= 1");
+        snprintf(msg, len, "max_substeps must be >= 1, got %u", (unsigned)d.max_substeps);
         return RBS_E_INVALID;
     }
     if (d.soft_substeps < 1 || d.soft_substeps > RBS__SOFT_SUBSTEPS_MAX) {
@@ -196,13 +200,21 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "soft_tolerance must be in [0, 1] (a fraction of the radius), got %s", rbs__shortest(nb, d.soft_tolerance));
         return RBS_E_INVALID;
     }
-    if (d.max_halvings > 60 || d.max_sweeps < 1 || d.max_sweeps > 100000) {
-        snprintf(msg, len, "max_halvings must be <= 60 and max_sweeps in [1, 100000]");
+    if (d.max_halvings > 60) {
+        snprintf(msg, len, "max_halvings must be <= 60, got %u", (unsigned)d.max_halvings);
         return RBS_E_INVALID;
     }
-    if (!(d.gravity_constant >= 0.0) || !isfinite(d.gravity_constant) ||
-        !(d.softening >= 0.0) || !isfinite(d.softening)) {
-        snprintf(msg, len, "gravity_constant and softening must be finite and >= 0");
+    if (d.max_sweeps < 1 || d.max_sweeps > 100000) {
+        snprintf(msg, len, "max_sweeps must be in [1, 100000], got %u", (unsigned)d.max_sweeps);
+        return RBS_E_INVALID;
+    }
+    if (!(d.gravity_constant >= 0.0) || !isfinite(d.gravity_constant)) {
+        snprintf(msg, len, "gravity_constant must be finite and >= 0, got %s",
+                 rbs__shortest(nb, d.gravity_constant));
+        return RBS_E_INVALID;
+    }
+    if (!(d.softening >= 0.0) || !isfinite(d.softening)) {
+        snprintf(msg, len, "softening must be finite and >= 0, got %s", rbs__shortest(nb, d.softening));
         return RBS_E_INVALID;
     }
     if (d.mutual_gravity && !(d.gravity_constant > 0.0)) {
