@@ -96,14 +96,74 @@ static inline v3 rbs__slip(const rbs_world *w, const rbs__contact *c)
     return v3_mad(v, c->n, -v3_dot(v, c->n));
 }
 
+/* A sliding contact's friction impulse: of the impulses |j| <= lim, the
+ * one nearest to the sticking impulse stick (|stick| = len > lim) in the
+ * metric of the contact's tangential mass K -- the one that leaves the
+ * least kinetic energy, whose slip after it is against it (the principle
+ * of maximal dissipation; Moreau 1988, Stewart & Trinkle 1996).  With K
+ * isotropic in the tangent plane (c->kt_inv > 0: centred spheres of
+ * isotropic inertia) that is stick scaled to lim.  Otherwise the slip
+ * left by stick scaled down would not be against it: a sphere of
+ * principal moments (2, 6, 5) g m^2 sliding diagonally on a floor went
+ * 0.04 m/s (3 %) off Coulomb's law in 0.15 s (a probe of session 40).
+ * In the basis (t1 = stick / len, t2 = n x t1), j = (K + s I)^-1 K stick
+ * with the s >= 0 that makes |j| = lim: |j(s)| falls from len at s = 0
+ * to at most |K stick| / s, so s lies in (0, |K stick| / lim]; Newton's
+ * steps on 1/|j(s)| - 1/lim, kept inside that bracket by bisection. */
+static inline v3 rbs__slide_impulse(const rbs_world *w, const rbs__contact *c, v3 stick, double len,
+                                    double lim)
+{
+    v3 t1, t2, kt1, kt2;
+    double k11, k12, k22, r1, r2, lo = 0.0, hi, s, j1 = len, j2 = 0.0, l = len;
+    int it;
+    if (c->kt_inv > 0.0 || !(lim > 0.0))
+        return v3_scale(stick, lim / len);
+    t1 = v3_scale(stick, 1.0 / len);
+    t2 = v3_cross(c->n, t1);
+    kt1 = rbs__k_apply(w, c, t1);
+    kt2 = rbs__k_apply(w, c, t2);
+    k11 = v3_dot(t1, kt1);
+    k22 = v3_dot(t2, kt2);
+    k12 = 0.5 * (v3_dot(t1, kt2) + v3_dot(t2, kt1)); /* (K is symmetric) */
+    r1 = len * k11;
+    r2 = len * k12;
+    hi = sqrt(r1 * r1 + r2 * r2) / lim;
+    s = 0.0;
+    for (it = 0; it < 200; ++it) {
+        double a = k11 + s, b = k22 + s, det = a * b - k12 * k12, d1, d2, q, next;
+        if (!(det > 0.0))
+            break; /* (K not positive definite: cannot happen for bodies with mass) */
+        j1 = (b * r1 - k12 * r2) / det;
+        j2 = (a * r2 - k12 * r1) / det;
+        l = sqrt(j1 * j1 + j2 * j2);
+        if (l > lim)
+            lo = s;
+        else
+            hi = s;
+        /* d|j|/ds = -j.(K + s I)^-1 j / |j|; Newton on 1/|j| - 1/lim */
+        d1 = (b * j1 - k12 * j2) / det;
+        d2 = (a * j2 - k12 * j1) / det;
+        q = j1 * d1 + j2 * d2;
+        if (l == lim || !(hi - lo > 4e-16 * hi))
+            break;
+        next = q > 0.0 ? s + (1.0 / l - 1.0 / lim) * l * l * l / q : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        s = next;
+    }
+    if (!(l > 0.0))
+        return v3_scale(stick, lim / len);
+    return v3_add(v3_scale(t1, j1 * lim / l), v3_scale(t2, j2 * lim / l));
+}
+
 /* The accumulated friction impulse jt + stick kept within Coulomb's cone
- * (|Jt| <= mu_s Jn sticks, else mu_k Jn against the slip). */
-static inline v3 rbs__cone(const rbs__contact *c, const rbs__pair *p, v3 stick)
+ * (|Jt| <= mu_s Jn sticks, else mu_k Jn: rbs__slide_impulse). */
+static inline v3 rbs__cone(const rbs_world *w, const rbs__contact *c, const rbs__pair *p, v3 stick)
 {
     v3 cand = v3_add(c->jt, stick);
     double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
     if (l2 > lim * lim) /* (a square root only to slide) */
-        cand = v3_scale(cand, p->mu_k * c->jn / sqrt(l2));
+        cand = rbs__slide_impulse(w, c, cand, sqrt(l2), p->mu_k * c->jn);
     return cand;
 }
 

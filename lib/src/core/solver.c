@@ -6,7 +6,7 @@
  *     contact approaching faster than its resting threshold gets the impulse
  *     that makes it leave with e times its approach speed, with Coulomb
  *     friction (stick if the impulse that stops slip is at most mu_s * Jn,
- *     else slide with mu_k * Jn against slip).  Pair by pair, swept until no
+ *     else slide with mu_k * Jn against the slip it leaves: rbs__slide_impulse).  Pair by pair, swept until no
  *     contact approaches, at most max_sweeps times.
  *  2. Resting contact, after the forces: projected Gauss-Seidel on
  *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn, rolling and spinning
@@ -32,7 +32,7 @@ void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
         v3 jt = rbs__stick_impulse(w, c, vt);
         double l = v3_len(jt);
         if (l > p->mu_s * jn)
-            jt = v3_scale(jt, p->mu_k * jn / l);
+            jt = rbs__slide_impulse(w, c, jt, l, p->mu_k * jn);
         rbs__apply_pair(w, c, jt);
     }
 }
@@ -377,7 +377,7 @@ static int sweep_generic(rbs_world *w, int friction, double *change_out, double 
                 vt = rbs__slip(w, c);
             }
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                v3 cand = rbs__cone(c, p, rbs__stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
+                v3 cand = rbs__cone(w, c, p, rbs__stick_impulse(w, c, vt)), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;
@@ -497,7 +497,7 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
                 /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
                  * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
                 v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
-                v3 cand = rbs__cone(c, p, stick), dj = v3_sub(cand, c->jt);
+                v3 cand = rbs__cone(w, c, p, stick), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;
                 c->jt = cand;

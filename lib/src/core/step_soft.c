@@ -228,7 +228,7 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
 {
     const double lim = p->mu_s * c->jn;
     int round, bound = 0, was_bound = 0;
-    v3 stick = v3_make(0, 0, 0);
+    v3 stick = v3_make(0, 0, 0), unbound = v3_make(0, 0, 0);
     rbs__apply_pair(w, c, j);
     for (round = 0; round < ROLL_ROUNDS; ++round) {
         v3 cand;
@@ -237,8 +237,10 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
         cand = v3_add(c->jt, stick);
         l2 = v3_dot(cand, cand);
         bound = l2 > lim * lim;
-        if (bound)
-            cand = v3_scale(cand, lim / sqrt(l2));
+        if (bound) {
+            unbound = cand;
+            cand = rbs__slide_impulse(w, c, cand, sqrt(l2), lim);
+        }
         rbs__apply_pair(w, c, v3_sub(cand, c->jt));
         c->jt = cand;
         (void)rbs__resist_row(w, i);
@@ -247,10 +249,13 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
         was_bound = bound;
     }
     if (bound) {
-        /* slides: kinetic friction along the last (static-limited) impulse */
+        /* slides: kinetic friction along the last (static-limited) impulse;
+         * without an isotropic tangent plane, the one nearest to the last
+         * sticking impulse (see rbs__slide_impulse) */
         double l = v3_len(c->jt);
         if (l > 0.0) {
-            v3 kin = v3_scale(c->jt, p->mu_k * c->jn / l);
+            v3 kin = c->kt_inv > 0.0 ? v3_scale(c->jt, p->mu_k * c->jn / l)
+                                     : rbs__slide_impulse(w, c, unbound, v3_len(unbound), p->mu_k * c->jn);
             rbs__apply_pair(w, c, v3_sub(kin, c->jt));
             c->jt = kin;
             (void)rbs__resist_row(w, i);
@@ -296,7 +301,7 @@ static void pass(soft_pass *sp, int stage)
             /* the slip after the normal impulse (levers need not lie along n) */
             v3 cand;
             rbs__apply_pair(w, c, j);
-            cand = rbs__cone(c, p, rbs__stick_impulse(w, c, rbs__slip(w, c)));
+            cand = rbs__cone(w, c, p, rbs__stick_impulse(w, c, rbs__slip(w, c)));
             j = v3_sub(cand, c->jt);
             c->jt = cand;
         }
