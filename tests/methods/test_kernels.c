@@ -530,7 +530,9 @@ static void warm_table_is_the_same_on_any_threads(void **state)
  * frames whose pass searches the soft step's table by key (it sorts it
  * first; sort_first: the test sorts it before the switch) -- Euler's
  * (rolling 0), or the soft step's general layout, which a pair with rolling
- * resistance takes (rolling > 0: "*"/"*" gets it, and loses it again) --
+ * resistance takes (rolling > 0: "a"/"a" gets it, and loses it again; not
+ * "*"/"*", which no contact of the pile takes, every pair of its materials
+ * having its own row) --
  * then 40 soft frames again (which index the key-ordered table); its hash. */
 static uint64_t switching_methods(uint32_t threads, int sort_first, double rolling)
 {
@@ -550,6 +552,8 @@ static uint64_t switching_methods(uint32_t threads, int sort_first, double rolli
     if (sort_first)
         rbs__warm_sort(w);
     rbs_pair_def_init(&pair);
+    CHECK_OK(rbs_world_find_material(w, "a", &pair.a));
+    pair.b = pair.a;
     pair.static_friction = pair.kinetic_friction = 0.5;
     if (rolling > 0.0) {
         pair.rolling = rolling;

@@ -78,7 +78,8 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
 {
     text t;
     rbs__plan p;
-    uint32_t i, k, moving = 0, fixed = 0;
+    uint32_t k, moving = 0, fixed = 0;
+    int32_t row;
     const char *why;
     rbs_method m;
     if (needed)
@@ -156,19 +157,15 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
 
     /* Friction. */
     stage(&t, p.friction, "friction, rolling and spinning resistance");
-    for (i = 0; i < w->pairs; ++i) {
-        const rbs__pair *r = &w->pair[i];
-        if (r->mu_s > 0.0 || r->mu_k > 0.0 || r->rolling > 0.0 || r->spinning > 0.0)
-            break;
-    }
-    if (i < w->pairs) {
-        const rbs__pair *r = &w->pair[i];
+    row = rbs__row_in_use(w, 0);
+    if (row >= 0) {
+        const rbs__pair *r = &w->pair[row];
         put(&t, "pair \"%s\"/\"%s\" has mu_s %g, mu_k %g, rolling %g, spinning %g m\n",
             r->a ? w->material_name[r->a - 1] : "*", r->b ? w->material_name[r->b - 1] : "*", r->mu_s,
             r->mu_k, r->rolling, r->spinning);
     } else {
-        put(&t, "no material pair has friction or resistance (pairs without a row are "
-                "frictionless)%s\n", why);
+        put(&t, "no material pair has friction or resistance on its bodies' materials (pairs "
+                "without a row are frictionless)%s\n", why);
     }
 
     /* Angular motion. */
@@ -240,9 +237,7 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         for (k = 0; k < w->sphere_count && odd == UINT32_MAX; ++k)
             if (!w->isotropic[w->spheres[k]] || nonzero3(&w->com_body[3 * w->spheres[k]]))
                 odd = w->spheres[k];
-        for (i = 0; i < w->pairs; ++i)
-            if (w->pair[i].rolling > 0.0 || w->pair[i].spinning > 0.0)
-                break;
+        row = rbs__row_in_use(w, 1);
         if (m == RBS_METHOD_SOFT) {
             /* the soft step's layout follows the bodies alone (the plan's
              * gather; the lines below name what keeps it off) */
@@ -252,22 +247,24 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
             } else if (odd != UINT32_MAX) {
                 body_name(&t, w, odd);
                 put(&t, " has anisotropic inertia or an off-centre mass: the general rows\n");
-            } else if (i < w->pairs) {
-                put(&t, "a pair has rolling or spinning resistance: the general rows\n");
+            } else if (row >= 0) {
+                const rbs__pair *r = &w->pair[row];
+                put(&t, "pair \"%s\"/\"%s\" has rolling or spinning resistance: the general rows\n",
+                    r->a ? w->material_name[r->a - 1] : "*", r->b ? w->material_name[r->b - 1] : "*");
             } else {
                 put(&t, "centred isotropic spheres: v, w, 1/m, 1/I and the frame's motion in one "
                         "record per body\n");
             }
         } else {
-        stage(&t, w->def.prune && odd == UINT32_MAX && i == w->pairs, "compact resting sweep");
+        stage(&t, w->def.prune && odd == UINT32_MAX && row < 0, "compact resting sweep");
         if (!w->def.prune) {
             put(&t, "every impulse through the general sweep (pruning off)\n");
         } else if (odd != UINT32_MAX) {
             body_name(&t, w, odd);
             put(&t, " has anisotropic inertia or an off-centre mass: its contacts need the general "
                     "sweep (passes without them still take the compact one)\n");
-        } else if (i < w->pairs) {
-            const rbs__pair *r = &w->pair[i];
+        } else if (row >= 0) {
+            const rbs__pair *r = &w->pair[row];
             put(&t, "pair \"%s\"/\"%s\" has rolling or spinning resistance: its contacts need the "
                     "general sweep\n", r->a ? w->material_name[r->a - 1] : "*",
                 r->b ? w->material_name[r->b - 1] : "*");

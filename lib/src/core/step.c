@@ -9,6 +9,50 @@
 
 static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2] != 0.0; }
 
+static int row_has(const rbs__pair *r, int resist)
+{
+    return r->rolling > 0.0 || r->spinning > 0.0 || (!resist && (r->mu_s > 0.0 || r->mu_k > 0.0));
+}
+
+int32_t rbs__row_in_use(const rbs_world *w, int resist)
+{
+    /* the materials of moving spheres and of all bodies, one bit each (at
+     * most 4096 materials and "none": 1 KiB on the stack) */
+    unsigned char moving[(4097 + 7) / 8], any[(4097 + 7) / 8];
+    const uint32_t n = w->def.max_materials + 1;
+    uint32_t i, a, b;
+    for (i = 0; i < w->pairs; ++i)
+        if (row_has(&w->pair[i], resist))
+            break;
+    if (i == w->pairs)
+        return -1; /* (the common case: no row has it) */
+    memset(moving, 0, (n + 7) / 8);
+    memset(any, 0, (n + 7) / 8);
+    for (i = 0; i < w->sphere_count; ++i) {
+        const uint32_t s = w->spheres[i], m = w->material[s];
+        any[m >> 3] |= (unsigned char)(1u << (m & 7));
+        if (!w->fixed[s])
+            moving[m >> 3] |= (unsigned char)(1u << (m & 7));
+    }
+    for (i = 0; i < w->plane_count; ++i) {
+        const uint32_t m = w->material[w->planes[i]];
+        any[m >> 3] |= (unsigned char)(1u << (m & 7));
+    }
+    for (a = 0; a < n; ++a) {
+        if (!(moving[a >> 3] & (1u << (a & 7))))
+            continue;
+        for (b = 0; b < n; ++b) {
+            int32_t row;
+            if (!(any[b >> 3] & (1u << (b & 7))))
+                continue;
+            row = w->pair_table[a * n + b];
+            if (row >= 0 && row_has(&w->pair[row], resist))
+                return row;
+        }
+    }
+    return -1;
+}
+
 /* Decide which stages can change the result.  A stage left out is one whose
  * every contribution would be exactly zero, so results are bit-identical. */
 void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
@@ -16,14 +60,12 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     rbs__plan p;
     uint32_t i, moving = 0;
     memset(&p, 0, sizeof p);
-    p.gather = !w->def.mutual_gravity;
-    for (i = 0; i < w->pairs; ++i) {
-        const rbs__pair *r = &w->pair[i];
-        if (r->mu_s > 0.0 || r->mu_k > 0.0 || r->rolling > 0.0 || r->spinning > 0.0)
-            p.friction = 1;
-        if (r->rolling > 0.0 || r->spinning > 0.0)
-            p.gather = 0;
-    }
+    /* (rows no contact can take -- a material on no body -- count for
+     * nothing: an unused row with rolling resistance took the soft step
+     * off its gathered layout, first order in free fall, and refused the
+     * scene to event; a probe of session 40) */
+    p.gather = !w->def.mutual_gravity && rbs__row_in_use(w, 1) < 0;
+    p.friction = rbs__row_in_use(w, 0) >= 0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t s = w->spheres[i];
         if (!w->isotropic[s] || nonzero3(&w->com_body[3 * s]))

@@ -146,14 +146,19 @@ static int zero3(v3 a) { return a.x == 0.0 && a.y == 0.0 && a.z == 0.0; }
 /* Check the scene is within the method's scope. */
 static rbs_status check_scope(rbs_world *w)
 {
-    uint32_t k, p;
+    uint32_t k;
+    int32_t row;
     if (w->def.mutual_gravity)
         return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
             "method \"event\": mutual gravity is not a constant force; use \"adaptive\"");
-    for (p = 0; p < w->pairs; ++p)
-        if (w->pair[p].rolling > 0.0 || w->pair[p].spinning > 0.0)
-            return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
-                "method \"event\": rolling and spinning resistance are not supported; use \"euler\"");
+    /* (only a row some contact can take: one on no body's materials is
+     * not in the scene) */
+    if ((row = rbs__row_in_use(w, 1)) >= 0) {
+        const rbs__pair *r = &w->pair[row];
+        return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
+            "method \"event\": rolling and spinning resistance are not supported (pair \"%s\"/\"%s\"); use "
+            "\"euler\"", r->a ? w->material_name[r->a - 1] : "*", r->b ? w->material_name[r->b - 1] : "*");
+    }
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         if (w->fixed[i])

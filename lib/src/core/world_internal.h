@@ -276,7 +276,14 @@ void rbs__rebuild_lists(rbs_world *w); /* spheres, planes, item */
  * file written before session 38 holds a table whose "*"/"*" row missed
  * pairs of two named materials). */
 void rbs__rebuild_pair_table(rbs_world *w);
-void rbs__plan_compute(const rbs_world *w, rbs__plan *out); /* pure (step.c) */
+void rbs__plan_compute(const rbs_world *w, rbs__plan *out);
+/* The first material-pair row some contact of the world can take -- a
+ * moving sphere's material with any body's -- that has friction (resist
+ * 0: mu_s, mu_k, rolling or spinning > 0) or resistance (resist 1:
+ * rolling or spinning > 0); -1 when none.  A row no such pair takes (a
+ * material defined but on no body) changes nothing, so it must not change
+ * the stages or the layout either (step.c). */
+int32_t rbs__row_in_use(const rbs_world *w, int resist); /* pure (step.c) */
 
 /* Body helpers (world.c; the inline ones here). */
 v3 rbs__body_com(const rbs_world *w, uint32_t i);
