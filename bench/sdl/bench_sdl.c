@@ -6,7 +6,7 @@
  *   render_ms   - ray casting one view (sdl_raster.c) with the default camera:
  *                 every pixel against the planes, and each sphere only over
  *                 its exact screen-space bounding box, with a depth test
- *   draw_png_ms - the class's draw(): render + legend + IMG_SavePNG to disk
+ *   draw_png_ms - the class's draw(): render + legend + the PNG file (sdl_png.c)
  *   brute_ms    - for comparison, the design the renderer avoids: every
  *                 pixel's ray against every sphere (nearest hit only, no
  *                 shading, so a lower bound; median of BRUTE_RUNS runs)

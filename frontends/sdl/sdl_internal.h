@@ -8,11 +8,12 @@
  * sdl_font.c    a 5x7 bitmap font and the legend.
  * sdl_window.c  the live window on its own thread: SDL video, events, keys,
  *               mouse, redraws when the camera moves.
+ * sdl_png.c     writes an SDL surface as a PNG file, every write checked.
  * sdl_renderer.c the renderer class: SDL surfaces, PNG files, contact sheet,
  *               commands.
  *
- * Only sdl_renderer.c and sdl_window.c touch SDL; the rest works on plain
- * memory so it can be reasoned about (and benchmarked) without SDL.
+ * Only sdl_renderer.c, sdl_png.c and sdl_window.c touch SDL; the rest works
+ * on plain memory so it can be reasoned about (and benchmarked) without SDL.
  */
 #ifndef RBSF_SDL_INTERNAL_H
 #define RBSF_SDL_INTERNAL_H
@@ -250,5 +251,28 @@ rbs_status rbsf__window_publish(rbsf__window *w, const uint32_t *const *pixels,
                                 const size_t *pitch, const rbs_frame *frame);
 /** Stop the thread, close the windows, free everything.  NULL ok. */
 void rbsf__window_destroy(rbsf__window *w);
+
+/* ------------------------------------------------------------------------- */
+/* PNG files (sdl_png.c)                                                     */
+/* ------------------------------------------------------------------------- */
+
+struct SDL_Surface;
+
+/** A PNG writer: SDL_image encodes into a stream of ours whose every write,
+ * and the file's close, is checked (IMG_SavePNG in SDL_image 2.6.3 reports
+ * neither).  Opaque; one file at a time, from one thread. */
+typedef struct rbsf__png rbsf__png;
+
+/** Reserve a writer and its write buffer (about 64 KiB); NULL when out of
+ * memory. */
+rbsf__png *rbsf__png_create(void);
+/** Write surface as the PNG file path (created or truncated).  RBS_OK, or
+ * RBS_E_IO with `cannot write "PATH": REASON` in err (the system's reason,
+ * e.g. "No space left on device", "File too large") and no file left at
+ * path.  Allocates nothing itself (SDL_image and libpng do inside). */
+rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char *path,
+                          char *err, size_t errlen);
+/** Free a writer.  NULL ok. */
+void rbsf__png_destroy(rbsf__png *w);
 
 #endif /* RBSF_SDL_INTERNAL_H */

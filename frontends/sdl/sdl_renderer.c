@@ -5,16 +5,17 @@
  * Design notes.
  *  - Headless first.  Drawing is ray casting into SDL surfaces in memory
  *    (sdl_raster.c); surfaces need no SDL_Init, and PNG files are written
- *    with IMG_SavePNG.  SDL video is initialised only for a window, only when
+ *    by sdl_png.c, which checks every write (a failed one removes the file
+ *    and fails the draw or finish with RBS_E_IO).  SDL video is initialised only for a window, only when
  *    DISPLAY or WAYLAND_DISPLAY is set, and only on the window's own thread
  *    (sdl_window.c), started at the first frame; that thread polls the
  *    window's events, so the window answers even while no frame comes.
  *    The cameras are shared with it under its lock.
  *  - Memory.  create() reserves every buffer: the view images, a depth
  *    buffer, ray tables, the contact sheet's thumbnails and the sheet itself,
- *    and the file-name buffer.  draw() allocates nothing itself; SDL_image
- *    allocates inside IMG_SavePNG (its libpng/zlib state and a converted
- *    copy of the surface).  With a window, the frame is also copied to the
+ *    the file-name buffer and the PNG writer's buffer.  draw() allocates
+ *    nothing itself; SDL_image allocates inside IMG_SavePNG_RW (its
+ *    libpng/zlib state and a converted copy of the surface).  With a window, the frame is also copied to the
  *    window thread (its buffers are reserved at create too; the copy of the
  *    bodies grows only when a frame has more bodies than any before).
  *    finish() makes one small SDL_Surface header for the contact sheet.
@@ -39,7 +40,6 @@
 #include <unistd.h>
 
 #include <SDL.h>
-#include <SDL_image.h>
 
 #include "sdl_internal.h"
 #include "sdl_renderer.h"
@@ -58,6 +58,7 @@ typedef struct sdl_instance {
     char *dir;     /* output folder (owned) */
     char *file;    /* file-name buffer (owned), file_cap bytes */
     size_t file_cap;
+    rbsf__png *png; /* writes every PNG file (owned) */
     void (*control)(void *context, const char *command);
     void *control_context;
 
@@ -334,7 +335,9 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     r->depth = (double *)malloc((size_t)W * H * sizeof *r->depth);
     r->ray_x = (double *)malloc((size_t)W * sizeof *r->ray_x);
     r->ray_y = (double *)malloc((size_t)H * sizeof *r->ray_y);
-    if (r->depth == NULL || r->ray_x == NULL || r->ray_y == NULL) goto nomem;
+    r->png = rbsf__png_create();
+    if (r->depth == NULL || r->ray_x == NULL || r->ray_y == NULL || r->png == NULL)
+        goto nomem;
 
     /* Contact sheet: thumbnails of the views laid out cols x rows. */
     if (r->cfg.contact_sheet) {
@@ -495,7 +498,7 @@ static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
     size_t size = (size_t)r->thumb_w * r->thumb_h;
     int newest = r->seen > 0 && (r->seen - 1) % r->stride != 0;
     SDL_Surface *s;
-    int ok;
+    rbs_status st;
     if (newest) n++;
     rows = (n + RBSF_SHEET_COLUMNS - 1) / RBSF_SHEET_COLUMNS;
     h = rows * (r->thumb_h + RBSF_SHEET_CAPTION + RBSF_SHEET_GAP) + RBSF_SHEET_GAP;
@@ -520,14 +523,14 @@ static rbs_status sheet_write(sdl_instance *r, char *err, size_t errlen)
     s = SDL_CreateRGBSurfaceWithFormatFrom(r->sheet, (int)r->sheet_w, (int)h, 32,
                                            (int)(r->sheet_w * 4), SDL_PIXELFORMAT_ARGB8888);
     snprintf(r->file, r->file_cap, "%s/contact_sheet.png", r->dir);
-    ok = s != NULL && IMG_SavePNG(s, r->file) == 0;
-    if (s != NULL) SDL_FreeSurface(s);
-    if (!ok) {
+    if (s == NULL) {
         char msg[600];
         snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
         return say(err, errlen, RBS_E_IO, msg);
     }
-    return RBS_OK;
+    st = rbsf__png_save(r->png, s, r->file, err, errlen);
+    SDL_FreeSurface(s);
+    return st;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -606,11 +609,8 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
         else
             snprintf(r->file, r->file_cap, "%s/frame_%06llu.png", r->dir,
                      (unsigned long long)frame->number);
-        if (IMG_SavePNG(r->images[v], r->file) != 0) {
-            char msg[600];
-            snprintf(msg, sizeof msg, "cannot write \"%s\": %s", r->file, SDL_GetError());
-            return say(err, errlen, RBS_E_IO, msg);
-        }
+        if ((st = rbsf__png_save(r->png, r->images[v], r->file, err, errlen)) != RBS_OK)
+            return st;
     }
     if (r->cfg.contact_sheet) sheet_add(r, frame->number, frame->time);
     return RBS_OK;
@@ -639,6 +639,7 @@ static void destroy(void *instance)
     free(r->sheet);
     free(r->dir);
     free(r->file);
+    rbsf__png_destroy(r->png);
     rbsf__config_free(&r->cfg);
     free(r);
 }

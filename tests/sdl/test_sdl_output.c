@@ -1,15 +1,19 @@
 /*
  * test_sdl_output.c - the files the "sdl" renderer writes: names and sizes
  * of the PNG frames, one folder per view or the views tiled, the contact
- * sheet and its decimation, the legend, and the camera commands.
+ * sheet and its decimation, the legend, the camera commands, and what is
+ * left when a write fails.
  */
+#include <errno.h>
 #include <math.h>
 #include <setjmp.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <cmocka.h>
@@ -269,6 +273,120 @@ static void test_io_error(void **state)
     assert_non_null(strstr(err, "blocker"));
 }
 
+/* Size of a file in bytes, -1 if it is missing. */
+static long file_size(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0 ? (long)sb.st_size : -1;
+}
+
+/* Whether a file ends with a PNG's IEND chunk (length 0, "IEND", its CRC):
+ * the last bytes a whole PNG has. */
+static int ends_with_iend(const char *path)
+{
+    static const unsigned char iend[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D',
+                                           0xae, 0x42, 0x60, 0x82};
+    unsigned char tail[12];
+    FILE *fp = fopen(path, "rb");
+    int ok;
+    if (fp == NULL) return 0;
+    ok = fseek(fp, -12, SEEK_END) == 0 && fread(tail, 1, 12, fp) == 12 &&
+         memcmp(tail, iend, 12) == 0;
+    fclose(fp);
+    return ok;
+}
+
+static void set_file_limit(rlim_t bytes)
+{
+    struct rlimit rl;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &rl), 0);
+    rl.rlim_cur = bytes;
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &rl), 0);
+}
+
+/* Teardown of test_write_error, also when an assertion left it early: the
+ * soft file size limit back to the hard one (which the test never lowers),
+ * SIGXFSZ back to its default. */
+static int lift_file_limit(void **state)
+{
+    struct rlimit rl;
+    (void)state;
+    signal(SIGXFSZ, SIG_DFL);
+    if (getrlimit(RLIMIT_FSIZE, &rl) != 0) return -1;
+    rl.rlim_cur = rl.rlim_max;
+    return setrlimit(RLIMIT_FSIZE, &rl);
+}
+
+/* A write that fails (here: a file size limit, EFBIG, as `ulimit -f` sets)
+ * fails draw() and finish() with RBS_E_IO and `cannot write "FILE": REASON`,
+ * and the file is removed, so the PNG files left are whole.  SDL_image
+ * 2.6.3's IMG_SavePNG reported success with the file cut at the limit.  The
+ * limit is half of frame 0's file (frame 1 differs only in its legend, so
+ * it does not fit); only the soft limit is lowered, and it is put back. */
+static void test_write_error(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    const char *json = "{\"width\":200,\"height\":150,\"window\":false}";
+    const char *dir = tu_dir("write_error");
+    char err[512], path[1400], want[1600];
+    void *inst = NULL;
+    struct rlimit saved;
+    long size0;
+    SDL_Surface *s;
+    int k;
+    (void)state;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &saved), 0);
+    signal(SIGXFSZ, SIG_IGN); /* a failed write, not the default's death */
+    assert_int_equal(tu_create(json, dir, &inst, err, sizeof err), RBS_OK);
+    for (k = 0; k < 3; k++) {
+        tu_frame f;
+        rbs_status st;
+        tu_frame_init(&f, (uint64_t)k, 0.01 * k);
+        tu_add_plane(&f, 0, 0, 0, 0, 0, 1, 0x808080);
+        tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030)->texture = RBS_TEXTURE_STRIPES;
+        if (k == 1) {
+            snprintf(path, sizeof path, "%s/frame_000000.png", dir);
+            size0 = file_size(path);
+            assert_true(size0 > 1000);
+            set_file_limit((rlim_t)size0 / 2);
+        }
+        err[0] = '\0';
+        st = cls->draw(inst, &f.frame, err, sizeof err);
+        if (k == 1) {
+            /* Frame 1 fails and leaves nothing; the limit goes again. */
+            assert_int_equal(st, RBS_E_IO);
+            snprintf(path, sizeof path, "%s/frame_000001.png", dir);
+            snprintf(want, sizeof want, "cannot write \"%s\": %s", path, strerror(EFBIG));
+            assert_string_equal(err, want);
+            assert_int_equal(file_size(path), -1);
+            assert_int_equal(setrlimit(RLIMIT_FSIZE, &saved), 0);
+        } else {
+            /* The writer is whole again after a failure. */
+            assert_int_equal(st, RBS_OK);
+        }
+    }
+    /* The contact sheet (frames 0 and 2) fails the same way in finish(). */
+    set_file_limit(100);
+    err[0] = '\0';
+    assert_int_equal(cls->finish(inst, err, sizeof err), RBS_E_IO);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &saved), 0);
+    snprintf(path, sizeof path, "%s/contact_sheet.png", dir);
+    snprintf(want, sizeof want, "cannot write \"%s\": %s", path, strerror(EFBIG));
+    assert_string_equal(err, want);
+    assert_int_equal(file_size(path), -1);
+    cls->destroy(inst);
+    /* Frames 0 and 2 are whole pictures. */
+    for (k = 0; k < 3; k += 2) {
+        snprintf(path, sizeof path, "%s/frame_%06d.png", dir, k);
+        assert_true(ends_with_iend(path));
+        s = tu_load(path);
+        assert_non_null(s);
+        assert_int_equal(s->w, 200);
+        assert_int_equal(s->h, 150);
+        SDL_FreeSurface(s);
+    }
+}
+
 /* Camera commands through the class's command hook. */
 static void test_commands(void **state)
 {
@@ -458,6 +576,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_legend),
         cmocka_unit_test(test_contact_sheet),
         cmocka_unit_test(test_io_error),
+        cmocka_unit_test_teardown(test_write_error, lift_file_limit),
         cmocka_unit_test(test_commands),
         cmocka_unit_test(test_commands_refused),
         cmocka_unit_test(test_camera_commands_exact),

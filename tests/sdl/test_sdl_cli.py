@@ -1,0 +1,172 @@
+"""The "sdl" renderer's PNG files when writes fail, through the rbsim command.
+
+Run as: python test_sdl_cli.py, with RBSIM (the rbsim binary, built with SDL)
+in the environment.  Writes fail deterministically under a file size limit
+(RLIMIT_FSIZE, `ulimit -f`): a write that would make a file larger than the
+limit fails with EFBIG, "File too large" (rbsim ignores SIGXFSZ itself, so
+it is left at its default here, which would kill a process that did not).
+The limits are taken from the sizes of the same run's files without a limit
+(rendering is deterministic: same scene, same bytes), so the test does not
+depend on what the PNG encoder makes of a picture.  A failed file must be
+reported (exit 4, the file and the reason) and removed; every file left
+must be whole, byte for byte the file of the run without a limit.
+"""
+import json
+import os
+import resource
+import signal
+import subprocess
+import sys
+import tempfile
+import unittest
+
+RBSIM = os.environ.get("RBSIM", "rbsim")
+
+# A PNG ends with the IEND chunk: length 0, "IEND", its CRC.
+IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+
+STEPS = 20
+SCENE = {
+    "format": 1,
+    "simulation": {"steps": STEPS, "dt": 0.01},
+    "materials": [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3,
+                   "restitution": 0.7}],
+    "bodies": [
+        {"name": "floor", "type": "plane", "point": [0, 0, 0],
+         "normal": [0, 0, 1], "color": "#808080", "texture": "checker"},
+        {"name": "ball", "type": "sphere", "radius": 0.1, "mass": 1,
+         "position": [0, 0, 1.1], "velocity": [1, 0, 0],
+         "color": "#d03030", "texture": "stripes"},
+    ],
+}
+
+
+def file_size_limit(limit):
+    """A preexec_fn: files may grow to `limit` bytes, SIGXFSZ at its
+    default (death, unless the program ignores it)."""
+    def apply():
+        signal.signal(signal.SIGXFSZ, signal.SIG_DFL)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+    return apply
+
+
+def frame(k):
+    return "frame_%06d.png" % k
+
+
+class PngWriteErrors(unittest.TestCase):
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix="rbsim-sdl-")
+        self.dir = self._tmp.name
+        self.scene = os.path.join(self.dir, "scene.json")
+        with open(self.scene, "w") as f:
+            json.dump(SCENE, f)
+        # The run without a limit: the files every limited run is held to.
+        r = self.run_png("full", None)
+        if "without SDL" in r.stderr:
+            self.skipTest("rbsim built without SDL")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.full = self.files("full")
+        self.assertEqual(sorted(self.full),
+                         ["contact_sheet.png"] +
+                         [frame(k) for k in range(STEPS + 1)])
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def run_png(self, folder, limit, *extra):
+        return subprocess.run(
+            [RBSIM, "run", self.scene, "--png", folder, "--quiet"] +
+            list(extra), cwd=self.dir, stdin=subprocess.DEVNULL,
+            capture_output=True, text=True, timeout=120,
+            preexec_fn=None if limit is None else file_size_limit(limit))
+
+    def files(self, folder):
+        """{name: bytes} of the folder's files; each must be a whole PNG."""
+        out = {}
+        for name in os.listdir(os.path.join(self.dir, folder)):
+            with open(os.path.join(self.dir, folder, name), "rb") as f:
+                data = f.read()
+            self.assertTrue(data.endswith(IEND), "%s/%s is cut short (%d "
+                            "bytes)" % (folder, name, len(data)))
+            out[name] = data
+        return out
+
+    def assert_failed_on(self, r, folder, name):
+        """Exit 4 (a renderer failure), one message naming the file and the
+        system's reason."""
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn('cannot write "%s/%s": File too large' % (folder, name),
+                      r.stderr)
+
+    def test_frame_fails_mid_run(self):
+        # The first frame larger than every frame before it, k: with the
+        # limit at the largest of frames 0..k-1 those are written and frame
+        # k fails, so the run stops there.
+        sizes = [len(self.full[frame(k)]) for k in range(STEPS + 1)]
+        k = next((i for i in range(1, len(sizes))
+                  if sizes[i] > max(sizes[:i])), None)
+        self.assertIsNotNone(k, "no frame larger than those before it: %r"
+                             % sizes)
+        r = self.run_png("png", max(sizes[:k]))
+        self.assert_failed_on(r, "png", frame(k))
+        self.assertIn("frame %d: " % k, r.stderr)
+        left = self.files("png")
+        # Frames 0..k-1, byte for byte.  The contact sheet (of those k
+        # frames, so not the full run's) is there if it fitted under the
+        # limit; files() has checked it is whole.
+        left.pop("contact_sheet.png", None)
+        self.assertEqual(sorted(left), [frame(i) for i in range(k)])
+        for name, data in left.items():
+            self.assertEqual(data, self.full[name], name)
+
+    def test_contact_sheet_fails(self):
+        # Every frame fits, the contact sheet does not: exit 4 naming it,
+        # no sheet left, the frames whole.
+        biggest = max(len(d) for n, d in self.full.items()
+                      if n != "contact_sheet.png")
+        sheet = len(self.full["contact_sheet.png"])
+        self.assertGreater(sheet, biggest, "the sheet must be the largest")
+        r = self.run_png("png", biggest)
+        self.assert_failed_on(r, "png", "contact_sheet.png")
+        left = self.files("png")
+        self.assertEqual(sorted(left), [frame(k) for k in range(STEPS + 1)])
+        for name, data in left.items():
+            self.assertEqual(data, self.full[name], name)
+
+    def test_full_disk(self):
+        # A full file system ("No space left on device"): each PNG is a new
+        # file, so /dev/full cannot stand in; a small tmpfs can, but
+        # mounting one needs root (skipped otherwise).  The frames that fit
+        # are whole; the one that did not is removed, which frees its
+        # space, so the contact sheet may or may not fit after it.
+        if os.geteuid() != 0:
+            self.skipTest("mounting a small tmpfs needs root")
+        mnt = os.path.join(self.dir, "small")
+        os.mkdir(mnt)
+        size = 3 * len(self.full[frame(0)])  # room for about 3 frames
+        m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=%d" % size,
+                            "tmpfs", mnt], capture_output=True, text=True)
+        if m.returncode != 0:
+            self.skipTest("cannot mount a tmpfs: " + m.stderr.strip())
+        try:
+            r = self.run_png("small/png", None)
+            self.assertEqual(r.returncode, 4, r.stderr)
+            self.assertRegex(r.stderr, r'cannot write "small/png/'
+                             r'frame_\d{6}\.png": No space left on device')
+            left = self.files("small/png")
+            left.pop("contact_sheet.png", None)
+            self.assertGreater(len(left), 0)
+            k = len(left)
+            self.assertIn('"small/png/%s": No space' % frame(k), r.stderr)
+            self.assertEqual(sorted(left), [frame(i) for i in range(k)])
+            for name, data in left.items():
+                self.assertEqual(data, self.full[name], name)
+        finally:
+            subprocess.run(["umount", mnt], check=True)
+
+
+if __name__ == "__main__":
+    result = unittest.TextTestRunner(verbosity=2).run(
+        unittest.defaultTestLoader.loadTestsFromTestCase(PngWriteErrors))
+    sys.exit(0 if result.wasSuccessful() else 1)
