@@ -620,7 +620,9 @@ static rbs_status finish(void *instance, char *err, size_t errlen)
 {
     sdl_instance *r = (sdl_instance *)instance;
     if (r == NULL) return RBS_E_INVALID;
-    if (r->cfg.contact_sheet && r->drawn_any) return sheet_write(r, err, errlen);
+    /* The sheet shows the frames whose files were written (seen counts
+     * them): none, as when the first file could not be written, no sheet. */
+    if (r->cfg.contact_sheet && r->seen > 0) return sheet_write(r, err, errlen);
     return RBS_OK;
 }
 

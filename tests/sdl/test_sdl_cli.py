@@ -134,6 +134,14 @@ class PngWriteErrors(unittest.TestCase):
         for name, data in left.items():
             self.assertEqual(data, self.full[name], name)
 
+    def test_first_frame_fails(self):
+        # Nothing fits: frame 0 fails, and no file is left at all (no empty
+        # or cut PNG, and no contact sheet of no frames).
+        r = self.run_png("png", 1000)
+        self.assert_failed_on(r, "png", frame(0))
+        self.assertIn("frame 0: ", r.stderr)
+        self.assertEqual(self.files("png"), {})
+
     def test_full_disk(self):
         # A full file system ("No space left on device"): each PNG is a new
         # file, so /dev/full cannot stand in; a small tmpfs can, but
