@@ -338,3 +338,103 @@ def test_speed_needs_realtime():
     assert w.step_count == 0
     assert w.run(5, speed=1.0).steps == 5          # the default: no pace asked for
     assert w.run(5, speed=50.0, realtime=True).steps == 5
+
+
+_WAIT_FROM_RENDERER = r"""
+import json, rbsim
+w = rbsim.World(dt=0.001, restitution=0.8)
+w.add_plane("ground")
+w.add_sphere("ball", radius=0.1, position=(0.0, 0.0, 0.5))
+seen, calls = [], {}
+
+def attempt(where, name, call):
+    try:
+        calls[where + " " + name] = "returned %r" % (call(),)
+    except rbsim.Error as e:
+        calls[where + " " + name] = "%s: %s" % (type(e).__name__, e)
+
+class Waiter:
+    def draw(self, frame):
+        seen.append(frame.number)
+        if frame.number == 5:
+            attempt("draw", "wait", run.wait)
+            attempt("draw", "finished3", lambda: run.finished(3.0))
+            attempt("draw", "finished0", lambda: run.finished(0))
+            attempt("draw", "status", lambda: run.status().state)
+    def finish(self):
+        attempt("finish", "wait", run.wait)
+        attempt("finish", "finished1", lambda: run.finished(1.0))
+    def close(self):
+        attempt("close", "wait", run.wait)
+
+run = w.start(50, renderers=[Waiter()])
+info = run.wait()
+w.step()  # the world is free again
+print(json.dumps({"seen": seen, "calls": calls, "frame": info.frame,
+                  "quit": info.quit, "steps": w.step_count}))
+"""
+
+
+def test_wait_from_the_runs_own_renderer_raises_at_once():
+    """Run.wait() (and finished(timeout)) from inside the run's own
+    renderer can never see the end -- the run cannot end while its renderer
+    thread is in draw() or finish() -- so it raises DeadlockError at once
+    and the run goes on to its normal end.  (It hung for good: finished(3)
+    waited 3 s for False, the world stayed busy and the main thread's wait()
+    never returned.)  Run in a child with a timeout so a regression fails
+    instead of hanging the suite.  close() runs during the main thread's
+    wait(), after the run is over: wait() there is "the run is over"."""
+    import json
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", _WAIT_FROM_RENDERER],
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    got = json.loads(out.stdout)
+    assert got["seen"] == list(range(51))
+    assert got["frame"] == 50 and not got["quit"] and got["steps"] == 51
+    why = ("from the run's own renderer (inside draw() or finish()) would never "
+           "return: the run cannot end until the renderer returns; raise StopRun "
+           "to end the run, and wait() from another thread")
+    assert got["calls"] == {
+        "draw wait": "DeadlockError: wait() " + why,
+        "draw finished3": "DeadlockError: finished(3.0) " + why,
+        "draw finished0": "returned False",
+        "draw status": "returned 'running'",
+        "finish wait": "DeadlockError: wait() " + why,
+        "finish finished1": "DeadlockError: finished(1.0) " + why,
+        "close wait": "ClosedError: closed or interrupted: the run is over",
+    }
+
+
+_WAIT_UNCAUGHT = r"""
+import rbsim
+w = rbsim.World(dt=0.001)
+w.add_sphere("ball", radius=0.1)
+box = {}
+
+def draw(frame):
+    if frame.number == 5:
+        box["run"].wait()
+
+box["run"] = w.start(100000, renderers=[draw])
+try:
+    box["run"].wait()
+except rbsim.DeadlockError as e:
+    print("%s; steps < 100000: %s" % (str(e)[:34], w.step_count < 100000))
+w.step()  # the world is usable again
+"""
+
+
+def test_wait_from_the_renderer_left_uncaught_stops_the_run():
+    """The DeadlockError, not caught in draw(), is that renderer's exception:
+    it stops the run early and the main thread's wait() raises it; the world
+    is usable afterwards.  (In a child with a timeout, as above.)"""
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", _WAIT_UNCAUGHT],
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == "wait() from the run's own renderer; steps < 100000: True\n"
+    assert issubclass(rbsim.DeadlockError, rbsim.Error)
+    assert issubclass(rbsim.DeadlockError, RuntimeError)  # as Thread.join on itself

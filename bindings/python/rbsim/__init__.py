@@ -25,8 +25,8 @@ from . import _check
 from . import errors as _e
 from ._native import ffi, lib
 from ._render import Frame, Run, RunInfo, StopRun
-from .errors import (ArgumentTypeError, BusyError, Error, SceneError,
-                     SceneIssue, error_class)
+from .errors import (ArgumentTypeError, BusyError, DeadlockError, Error,
+                     SceneError, SceneIssue, error_class)
 from .errors import *  # noqa: F401,F403 - the generated classes
 from .world import (METHODS, Body, BodyMap, BodyState, Energy, Material,
                     Momentum, StepInfo, Usage, World)
@@ -191,4 +191,4 @@ def version() -> str:
 __all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
            "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "StopRun", "METHODS",
            "load", "parse_json", "resume", "version", "Error", "SceneError", "SceneIssue",
-           "BusyError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)
+           "BusyError", "DeadlockError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)

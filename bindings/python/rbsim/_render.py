@@ -19,6 +19,12 @@ to the reel's frames, so the world ends at the last frame made (RunInfo's
 ``frame``), which the other renderers still get, not at the frame that
 raised StopRun.  StopRun from finish() or close(), when no frame is left,
 changes nothing: the run ends as it would have.
+Blocking on the run from its own renderer (:meth:`Run.wait`, or
+:meth:`Run.finished` with a timeout, inside draw() or finish()) could never
+see the end: the run cannot end while its renderer thread is inside a
+callback.  The adapter marks the thread while it is inside one, and those
+calls raise :class:`~rbsim.DeadlockError` there at once instead of hanging
+the run, its world and the main thread's wait().
 The frame slot is reused by the reel, so a :class:`Frame` holds copies.  An
 exception raised by a renderer is kept, the callback returns
 RBS_E_RENDERER, the projector stops the run, and :meth:`Run.wait` raises the
@@ -196,6 +202,7 @@ def rbs_py_renderer_draw(instance: Any, frame: Any, err: Any, errlen: int) -> in
     adapter = ffi.from_handle(instance)
     if adapter.stopped:
         return lib.RBS_OK
+    adapter.run._callback_thread = threading.get_ident()
     try:
         adapter.draw(adapter.frame(frame))
     except StopRun:
@@ -205,6 +212,8 @@ def rbs_py_renderer_draw(instance: Any, frame: Any, err: Any, errlen: int) -> in
             adapter.control(adapter.control_context, b"quit")
     except BaseException as exc:  # noqa: B902 - everything goes back to run()
         return _fail(adapter, exc, err, errlen)
+    finally:
+        adapter.run._callback_thread = None
     return lib.RBS_OK
 
 
@@ -213,12 +222,15 @@ def rbs_py_renderer_finish(instance: Any, err: Any, errlen: int) -> int:
     adapter = ffi.from_handle(instance)
     if adapter.finish is None:
         return lib.RBS_OK
+    adapter.run._callback_thread = threading.get_ident()
     try:
         adapter.finish()
     except StopRun:
         pass  # (no frame is left to stop: the run ends as it would have)
     except BaseException as exc:  # noqa: B902
         return _fail(adapter, exc, err, errlen)
+    finally:
+        adapter.run._callback_thread = None
     return lib.RBS_OK
 
 
@@ -241,7 +253,10 @@ class Run:
 
     From start until :meth:`wait` returns, the world belongs to the
     simulation thread: using it raises BusyError.  :meth:`command`,
-    :meth:`status` and :meth:`finished` are thread-safe."""
+    :meth:`status` and :meth:`finished` are thread-safe.  From the run's own
+    renderers (inside draw() or finish()), :meth:`wait` and
+    :meth:`finished` with a timeout raise DeadlockError: the run cannot end
+    while its renderer is drawing."""
 
     def __init__(self, world: World, steps: int, renderers: Sequence[Any],
                  realtime: bool, speed: float, start_paused: bool,
@@ -249,6 +264,9 @@ class Run:
                  endless: bool) -> None:
         self._error: Optional[BaseException] = None
         self._stopped = False
+        # the thread inside one of this run's renderer callbacks (draw,
+        # finish), None between them: see _refuse_from_renderer
+        self._callback_thread: Optional[int] = None
         self._world = world
         self._projector: Any = ffi.NULL
         # command/status/finished from other threads hold the projector
@@ -324,6 +342,16 @@ class Run:
             self._close_projector()
             raise _e.error_class(status)(detail)
 
+    def _refuse_from_renderer(self, call: str) -> None:
+        """Raise DeadlockError when called from inside this run's own
+        renderer: the renderer thread must return for the run to end."""
+        if self._callback_thread == threading.get_ident():
+            raise _e.DeadlockError(
+                "%s from the run's own renderer (inside draw() or finish()) "
+                "would never return: the run cannot end until the renderer "
+                "returns; raise StopRun to end the run, and wait() from "
+                "another thread" % call)
+
     def _use(self) -> Any:
         """The projector, held until _unuse(); ClosedError once the run is
         over."""
@@ -356,8 +384,12 @@ class Run:
         return text
 
     def finished(self, timeout: float = 0.0) -> bool:
-        """Wait up to timeout seconds for the run to end; True if it has."""
+        """Wait up to timeout seconds for the run to end; True if it has.
+        From the run's own renderer only ``finished(0)`` is allowed (it is
+        False there): a wait would last the whole timeout for nothing."""
         t = _check.real(timeout, "timeout")
+        if t > 0:
+            self._refuse_from_renderer("finished(%r)" % t)
         try:
             projector = self._use()
         except _e.Error:
@@ -382,7 +414,9 @@ class Run:
 
     def wait(self) -> RunInfo:
         """Wait for the end of the run; raise what stopped it early (a
-        renderer's own exception, or the library's error)."""
+        renderer's own exception, or the library's error).  Raises
+        DeadlockError from the run's own renderer (it would never return)."""
+        self._refuse_from_renderer("wait()")
         if self._projector == ffi.NULL:
             raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
         try:

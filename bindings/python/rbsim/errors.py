@@ -135,6 +135,11 @@ class BusyError(Error, RuntimeError):
     thread-safe; distinct worlds may be used from distinct threads)."""
 
 
+class DeadlockError(Error, RuntimeError):
+    """A blocking call that could never return, such as Run.wait() from the
+    run's own renderer (the run cannot end while its renderer is drawing)."""
+
+
 class ArgumentTypeError(Error, TypeError):
     """An argument of the wrong type, found in Python before calling C."""
 
@@ -195,5 +200,6 @@ def raise_status(status: int, detail: str = "") -> None:
     raise cls(detail, status=status)
 
 
-__all__ = ["Error", "SceneError", "SceneIssue", "BusyError", "ArgumentTypeError",
+__all__ = ["Error", "SceneError", "SceneIssue", "BusyError", "DeadlockError",
+           "ArgumentTypeError",
            "BY_STATUS", "error_class", "raise_status"] + sorted(GENERATED)
