@@ -2,7 +2,8 @@
  * input.c - the input thread: reads command lines from standard input and
  * answers each through the command map.  It waits with poll() on the input
  * and on a self-pipe, so it can be stopped at any time; end of input (a pipe
- * or /dev/null) ends the thread but never the run.
+ * or /dev/null) ends the thread but never the run.  A last line without a
+ * newline at end of input is answered as a whole line.
  */
 #include "cli.h"
 
@@ -88,6 +89,13 @@ static void *input_main(void *arg)
             /* End of input: the run goes on by itself.  A run paused now
              * could never be resumed, so resume it. */
             rbs_run_info info;
+            /* A last line without its newline is still a line, as a shell
+             * takes it (printf 'quit' | rbsim run ...): answer it first,
+             * so a "pause" there is resumed just below like any other. */
+            if (n == 0 && len > 0 && !overlong) {
+                buf[len] = '\0';
+                answer(in, buf, len);
+            }
             if (rbs_projector_status(in->projector, &info) == RBS_OK &&
                 info.state == RBS_RUN_RUNNING && info.paused && !info.quit) {
                 /* (a run quitting ends by itself: nothing to resume) */

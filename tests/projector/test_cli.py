@@ -770,6 +770,35 @@ class CliTests(Base):
         self.assertEqual(out.count("frame 0 of 1000"), 1, out)  # the one status
         self.assertIn("stopped at frame", out)
 
+    def test_last_line_without_newline_is_a_command(self):
+        # At end of input a last line without its newline is a line, as a
+        # shell takes it: printf 'quit' | rbsim run ... stopped nothing
+        # (the partial line was thrown away: the run went to its end) and
+        # printf 'status' got no reply.  Paused runs, so only the commands
+        # move them: "quit" stops at frame 0; "status" answers, then end of
+        # input resumes the run, which ends by itself.
+        s = self.scene()
+        for name, data in (("q", b"status\nquit"), ("s", b"status")):
+            p = subprocess.Popen([RBSIM, "run", s, "--paused", "--steps", "1000",
+                                  "--csv", name + ".csv"], cwd=self.dir,
+                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True)
+            try:
+                out, err = p.communicate(data.decode(), timeout=60)
+            finally:
+                if p.poll() is None:
+                    p.kill()
+            self.assertEqual(p.returncode, 0, err)
+            self.assertEqual(out.count("frame 0 of 1000"), 1, out)
+            frames = self.assert_whole_frames(self.path(name + ".csv"))
+            if name == "q":
+                self.assertIn("stopped at frame 0", out)
+                self.assertNotIn("end of input", out)
+                self.assertEqual(frames, 1)  # frame 0 only: quit while paused there
+            else:
+                self.assertIn("end of input: resumed", out)
+                self.assertEqual(frames, 1001)
+
     def test_paused_start_and_step(self):
         s = self.scene()
         p = subprocess.Popen([RBSIM, "run", s, "--paused", "--steps",
