@@ -163,11 +163,43 @@ rbs_status rbsf__out_commit(rbsf__out *out, char *err, size_t errlen)
     return RBS_OK;
 }
 
+/* Is the file written still at out->path?  A file removed during the run
+ * (rm -rf of its folder) takes every write to the end without an error, into
+ * an inode with no name that goes when it is closed; one moved or replaced
+ * is not where the output was asked for.  Either is an output lost, as a
+ * failed write is: RBS_E_IO naming the path.  Regular files only (a device
+ * or a pipe keeps nothing to lose). */
+static rbs_status out_still_there(const rbsf__out *out, char *err, size_t errlen)
+{
+    struct stat fd_sb, path_sb;
+    if (fstat(out->fd, &fd_sb) != 0 || !S_ISREG(fd_sb.st_mode))
+        return RBS_OK;
+    if (fd_sb.st_nlink == 0) {
+        snprintf(err, errlen, "'%s' was removed during the run (the file or its "
+                              "folder): what was written to it is lost", out->path);
+        return RBS_E_IO;
+    }
+    if (stat(out->path, &path_sb) != 0) {
+        snprintf(err, errlen, "'%s' was moved or removed during the run (%s): "
+                              "what was written to it is not there",
+                 out->path, strerror(errno));
+        return RBS_E_IO;
+    }
+    if (path_sb.st_dev != fd_sb.st_dev || path_sb.st_ino != fd_sb.st_ino) {
+        snprintf(err, errlen, "'%s' was replaced by another file during the run: "
+                              "what was written to it is not there", out->path);
+        return RBS_E_IO;
+    }
+    return RBS_OK;
+}
+
 rbs_status rbsf__out_close(rbsf__out *out, char *err, size_t errlen)
 {
     rbs_status st = RBS_OK;
     if (out->fd >= 0 && out->owned) {
-        if (close(out->fd) != 0 && !out->failed) {
+        if (!out->failed)
+            st = out_still_there(out, err, errlen);
+        if (close(out->fd) != 0 && !out->failed && st == RBS_OK) {
             snprintf(err, errlen, "closing '%s' failed: %s", out->path,
                      strerror(errno));
             st = RBS_E_IO;

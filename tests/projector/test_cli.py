@@ -1264,6 +1264,75 @@ class FaultTests(Base):
         with open(self.path("conv.json")) as f:
             self.assertEqual(f.read(), "OLD\n")
 
+    def _lose_outputs_mid_run(self, folder, lose):
+        """A --realtime run writing FOLDER/c.csv and FOLDER/j.jsonl; once
+        frames are in c.csv, lose(self) takes the outputs away.  Returns
+        (exit code, stderr)."""
+        s = self.scene()
+        p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--steps", "1500",
+                              "--quiet", "--csv", folder + "/c.csv", "--json",
+                              folder + "/j.jsonl"], cwd=self.dir,
+                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+        try:
+            deadline = time.time() + 30
+            c = self.path(folder + "/c.csv")
+            while time.time() < deadline and not (
+                    os.path.exists(c) and os.path.getsize(c) > 2000):
+                time.sleep(0.02)
+            self.assertIsNone(p.poll(), "the run ended before the outputs were lost")
+            lose(self)
+            out, err = p.communicate(timeout=60)
+        finally:
+            if p.poll() is None:
+                p.kill()
+        return p.returncode, err
+
+    def test_output_folder_removed_mid_run(self):
+        # rm -rf of the outputs' folder during a run: the new files were
+        # written to the end into unlinked inodes and the run exited 0 with
+        # nothing on disk, while an existing output (a temporary renamed at
+        # the end), --png or --checkpoint reported the same loss with exit
+        # 4.  At finish a dumper's file with no link left is an error naming
+        # it (the first lost output is the run's error, as for write errors).
+        code, err = self._lose_outputs_mid_run(
+            "gone", lambda t: shutil.rmtree(t.path("gone")))
+        self.assertEqual(code, 4, err)
+        self.assertIn("rbsim: error: csv renderer 'gone/c.csv': 'gone/c.csv' was "
+                      "removed during the run (the file or its folder): what was "
+                      "written to it is lost\n", err)
+        self.assertFalse(os.path.exists(self.path("gone")))
+
+    def test_output_moved_mid_run(self):
+        # The path no longer names the file written (renamed away, or
+        # replaced by another file): the output is not where it was asked
+        # for, also exit 4 naming the path.
+        os.mkdir(self.path("kept"))
+
+        def move(t):
+            os.rename(t.path("kept/c.csv"), t.path("kept/moved.csv"))
+
+        code, err = self._lose_outputs_mid_run("kept", move)
+        self.assertEqual(code, 4, err)
+        self.assertIn("rbsim: error: csv renderer 'kept/c.csv': 'kept/c.csv' was "
+                      "moved or removed during the run (No such file or "
+                      "directory): what was written to it is not there\n", err)
+
+        os.mkdir(self.path("kept2"))  # (a fresh folder: kept/j.jsonl exists now)
+
+        def replace(t):
+            os.rename(t.path("kept2/j.jsonl"), t.path("kept2/moved.jsonl"))
+            with open(t.path("kept2/j.jsonl"), "w") as f:
+                f.write("another file\n")
+
+        code, err = self._lose_outputs_mid_run("kept2", replace)
+        self.assertEqual(code, 4, err)
+        self.assertIn("rbsim: error: json renderer 'kept2/j.jsonl': 'kept2/j.jsonl' "
+                      "was replaced by another file during the run: what was "
+                      "written to it is not there\n", err)
+        with open(self.path("kept2/j.jsonl")) as f:
+            self.assertEqual(f.read(), "another file\n")  # never touched
+
     def test_numerical_failure_exit_4(self):
         bodies = SCENE["bodies"] + [
             {"name": "rocket", "type": "sphere", "radius": 0.1, "mass": 1,
