@@ -32,7 +32,8 @@ static const char usage_text[] =
     "                         stage in or out, and why)\n"
     "  convert IN OUT         convert a scene between JSON (.json) and the\n"
     "                         config.txt format (OUT ending in .txt)\n"
-    "  help [COMMAND]         this text, or a command's options\n"
+    "  help [COMMAND]         this text, or a command's options (also\n"
+    "                         COMMAND --help, or -h)\n"
     "  --version              print the version\n"
     "\n"
     "exit codes: 0 success, 2 usage error, 3 scene error, 4 run-time error\n"
@@ -490,6 +491,22 @@ int main(int argc, char **argv)
     return finish_stdout(dispatch(argc, argv));
 }
 
+/* Does an argument of a command ask for its help ("--help" or "-h", before
+ * a "--" that ends the options)?  It wins over the other arguments, as in
+ * most commands: "rbsim run scene.json --csv a.csv --help" shows run's help
+ * and runs nothing. */
+static int asks_help(int argc, char **argv)
+{
+    int i;
+    for (i = 0; i < argc; i++) {
+        if (strcmp(argv[i], "--") == 0)
+            return 0;
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return 1;
+    }
+    return 0;
+}
+
 static int dispatch(int argc, char **argv)
 {
     const char *cmd;
@@ -514,6 +531,8 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 ||
         strcmp(cmd, "help") == 0) {
+        if (argc == 3 && asks_help(1, argv + 2)) /* help --help */
+            return rbsf_help(stdout, "help") == 0 ? RBSF_EXIT_OK : RBSF_EXIT_USAGE;
         if (argc > 3) {
             fprintf(stderr, "rbsim help: one command at most\n");
             return RBSF_EXIT_USAGE;
@@ -525,6 +544,10 @@ static int dispatch(int argc, char **argv)
         }
         return RBSF_EXIT_OK;
     }
+    if ((strcmp(cmd, "run") == 0 || strcmp(cmd, "check") == 0 ||
+         strcmp(cmd, "convert") == 0 || strcmp(cmd, "explain") == 0) &&
+        asks_help(argc - 2, argv + 2))
+        return rbsf_help(stdout, cmd) == 0 ? RBSF_EXIT_OK : RBSF_EXIT_USAGE;
     if (strcmp(cmd, "run") == 0)
         return rbsf_run_main(argc - 2, argv + 2);
     if (strcmp(cmd, "check") == 0)

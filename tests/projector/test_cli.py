@@ -121,6 +121,34 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 2)
         self.assertIn("unknown command 'frobnicate'", r.stderr)
 
+    def test_help_after_a_command(self):
+        # "rbsim run --help" (or -h, for each command) was "unknown option"
+        # with exit 2; only "rbsim help run" worked.  It prints exactly what
+        # "rbsim help COMMAND" prints, on stdout, exit 0 -- also among other
+        # arguments, which it then ignores (no run, nothing written) -- but
+        # not after "--", where it is a file name.
+        s = self.scene()
+        for cmd in ("run", "check", "explain", "convert", "help"):
+            want = self.rbsim("help", cmd)
+            self.assertEqual(want.returncode, 0, cmd)
+            self.assertIn("usage: rbsim " + cmd, want.stdout)
+            for flag in ("--help", "-h"):
+                r = self.rbsim(cmd, flag)
+                self.assertEqual((r.returncode, r.stdout, r.stderr),
+                                 (0, want.stdout, ""), (cmd, flag))
+        r = self.rbsim("run", s, "--csv", "h.csv", "--help")
+        self.assertEqual((r.returncode, r.stdout), (0, self.rbsim("help", "run").stdout))
+        self.assertFalse(os.path.exists(self.path("h.csv")))
+        r = self.rbsim("convert", s, "out.json", "-h")
+        self.assertEqual((r.returncode, r.stdout),
+                         (0, self.rbsim("help", "convert").stdout))
+        self.assertFalse(os.path.exists(self.path("out.json")))
+        r = self.rbsim("run", "--quiet", "--", "--help")
+        self.assertEqual(r.returncode, 3, r.stderr)  # the scene file '--help'
+        self.assertIn("--help", r.stderr)
+        self.assertIn("also\n                         COMMAND --help",
+                      self.rbsim("help").stdout)
+
     def test_usage_errors_write_nothing(self):
         s = self.scene()
         cases = [
