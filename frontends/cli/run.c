@@ -12,6 +12,7 @@
 #endif
 
 #include <cjson/cJSON.h>
+#include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <stdarg.h>
@@ -669,6 +670,26 @@ static int is_frame_png(const char *name)
     return (d == 6 || (d > 6 && name[0] != '0')) && strcmp(name + d, ".png") == 0;
 }
 
+/* The sdl entry's file layout (entry JSON json): its views (1 without a
+ * "views" list), "tile" and "contact_sheet". */
+static void png_layout(const char *json, int *views, int *tile, int *sheet)
+{
+    cJSON *root = json ? cJSON_Parse(json) : NULL;
+    *views = 1;
+    *tile = 0;
+    *sheet = 1;
+    if (root != NULL) {
+        const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "views");
+        const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "tile");
+        const cJSON *c = cJSON_GetObjectItemCaseSensitive(root, "contact_sheet");
+        if (cJSON_IsArray(v) && cJSON_GetArraySize(v) > 0)
+            *views = cJSON_GetArraySize(v);
+        *tile = cJSON_IsTrue(t);
+        *sheet = !cJSON_IsFalse(c);
+        cJSON_Delete(root);
+    }
+}
+
 /* Would the sdl output folder dir (entry JSON json) write the file path?
  * The renderer writes DIR/frame_NNNNNN.png (one view, or views tiled),
  * DIR/viewK/frame_NNNNNN.png for K < views (several views, not tiled) and
@@ -680,18 +701,8 @@ static int png_folder_writes(const char *dir, const char *json,
 {
     char parent[4096], grand[4096];
     const char *name, *vname;
-    int views = 1, tile = 0, sheet = 1;
-    cJSON *root = json ? cJSON_Parse(json) : NULL;
-    if (root != NULL) {
-        const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, "views");
-        const cJSON *t = cJSON_GetObjectItemCaseSensitive(root, "tile");
-        const cJSON *c = cJSON_GetObjectItemCaseSensitive(root, "contact_sheet");
-        if (cJSON_IsArray(v) && cJSON_GetArraySize(v) > 0)
-            views = cJSON_GetArraySize(v);
-        tile = cJSON_IsTrue(t);
-        sheet = !cJSON_IsFalse(c);
-        cJSON_Delete(root);
-    }
+    int views, tile, sheet;
+    png_layout(json, &views, &tile, &sheet);
     if (folder_of(path, parent, sizeof parent, &name) != 0)
         return 0;
     if (same_dir(parent, dir)) {
@@ -799,6 +810,121 @@ int rbsf_check_scene_outputs(const rbs_scene *scene, const char *scene_path)
     for (i = 0; i < n; i++)
         free(outs[i].owned_path);
     return code;
+}
+
+/* ---- png folders: this run's frames only -------------------------------- */
+
+/* What remove_stale_frames removed from one folder. */
+typedef struct stale_files {
+    unsigned long count;
+    uint64_t lo, hi; /* the frame numbers removed, when count > sheet */
+    int sheet;       /* contact_sheet.png was one of them */
+} stale_files;
+
+/* Remove from folder dir the regular files named as the sdl renderer names
+ * frames (is_frame_png) with a number from first on; the scene and the
+ * checkpoint resumed are never touched.  0, or -1 after saying why. */
+static int remove_stale_in(const char *dir, uint64_t first, const char *scene,
+                           const char *resume, stale_files *gone)
+{
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    int failed = 0;
+    if (d == NULL)
+        return 0; /* (no folder: no stale frame) */
+    while (!failed && (e = readdir(d)) != NULL) {
+        char path[4200];
+        struct stat sb;
+        uint64_t k;
+        int n;
+        if (!is_frame_png(e->d_name))
+            continue;
+        k = strtoull(e->d_name + 6, NULL, 10); /* (saturates: above first) */
+        if (k < first)
+            continue;
+        n = snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        if (n < 0 || (size_t)n >= sizeof path || lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) ||
+            (scene != NULL && same_file(path, scene)) ||
+            (resume != NULL && same_file(path, resume)))
+            continue;
+        if (unlink(path) != 0) {
+            fprintf(stderr, "rbsim: error: cannot remove '%s', a frame an "
+                            "earlier run left in the png folder: %s\n",
+                    path, strerror(errno));
+            failed = 1;
+            break;
+        }
+        if (gone->count == (unsigned long)gone->sheet || k < gone->lo)
+            gone->lo = k;
+        if (gone->count == (unsigned long)gone->sheet || k > gone->hi)
+            gone->hi = k;
+        gone->count++;
+    }
+    closedir(d);
+    return failed ? -1 : 0;
+}
+
+/* Before the run starts: an sdl output's folder may hold the frames of an
+ * earlier run, which this run's would only partly overwrite (a shorter run,
+ * another --every), so a glob of the folder would mix two runs.  Remove the
+ * files the renderer names in this entry's layout (frontends/sdl/README.md,
+ * "Files": DIR/frame_N.png or DIR/viewK/frame_N.png for K < views, and
+ * contact_sheet.png when it writes one): on a fresh run all of them, on a
+ * resumed run (first > 0) the frames from first on, keeping the first run's
+ * part of the sequence.  Files of other names, and of another layout, stay;
+ * no other output can be among these (check_distinct).  A note names what
+ * went (not with --quiet).  0, or -1 after saying why. */
+static int remove_stale_frames(const output *o, uint64_t first, const char *scene,
+                               const char *resume, int quiet)
+{
+    const char *dir = o->config.path;
+    stale_files gone;
+    char path[4200];
+    struct stat sb;
+    int views, tile, sheet, v;
+    memset(&gone, 0, sizeof gone);
+    if (strlen(dir) > 4096)
+        return 0; /* (longer than a path can be: the renderer made nothing) */
+    png_layout(o->config.json, &views, &tile, &sheet);
+    if (first == 0 && sheet) {
+        snprintf(path, sizeof path, "%s/contact_sheet.png", dir);
+        if (lstat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
+            !(scene != NULL && same_file(path, scene)) &&
+            !(resume != NULL && same_file(path, resume))) {
+            if (unlink(path) != 0) {
+                fprintf(stderr, "rbsim: error: cannot remove '%s', the contact "
+                                "sheet of an earlier run: %s\n",
+                        path, strerror(errno));
+                return -1;
+            }
+            gone.count = 1;
+            gone.sheet = 1;
+        }
+    }
+    for (v = 0; v < (views == 1 || tile ? 1 : views); v++) {
+        if (views == 1 || tile)
+            snprintf(path, sizeof path, "%s", dir);
+        else
+            snprintf(path, sizeof path, "%s/view%d", dir, v);
+        if (remove_stale_in(path, first, scene, resume, &gone) != 0)
+            return -1;
+    }
+    if (gone.count > 0 && !quiet) {
+        char frames[96] = "";
+        unsigned long n = gone.count - (unsigned long)gone.sheet;
+        if (n == 1)
+            snprintf(frames, sizeof frames, "frame %llu", (unsigned long long)gone.lo);
+        else if (n > 1)
+            snprintf(frames, sizeof frames, "frames %llu to %llu",
+                     (unsigned long long)gone.lo, (unsigned long long)gone.hi);
+        fprintf(stderr, "rbsim: note: removed %lu file%s an earlier run left in "
+                        "the png folder '%s' (%s%s%s), so that it holds this "
+                        "run's files only\n",
+                gone.count, gone.count == 1 ? "" : "s", dir, frames,
+                n > 0 && gone.sheet ? ", " : "",
+                gone.sheet ? "contact_sheet.png" : "");
+    }
+    return 0;
 }
 
 /* ---- staging: a rejected run writes nothing ------------------------------ */
@@ -1729,6 +1855,17 @@ int rbsf_run_main(int argc, char **argv)
                         outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
+    }
+    /* Every output is made and every renderer created: the run will start.
+     * A png folder is to hold this run's frames only. */
+    for (i = 0; i < n_out; i++) {
+        if (strcmp(outs[i].config.type, "sdl") != 0 || outs[i].config.path == NULL)
+            continue;
+        if (remove_stale_frames(&outs[i], o.resume ? start_frame + 1 : 0, o.scene,
+                                o.resume, o.quiet) != 0) {
+            code = RBSF_EXIT_RUN;
+            goto out;
+        }
     }
     rbsf_signals_attach(&signals, projector);
     if (rbs_projector_start(projector) != RBS_OK) {

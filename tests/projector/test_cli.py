@@ -719,6 +719,72 @@ class CliTests(Base):
         self.assertEqual(self.assert_whole_frames(
             self.path("pn/frame_000003.csv")), 6)
 
+    def test_png_folder_holds_only_this_runs_frames(self):
+        # A 10-step run into the folder of an earlier 30-step one left
+        # frame_000011..030.png beside its own frames, so a glob of the
+        # folder mixed two runs.  The frames (and contact sheet) of the
+        # renderer's naming that an earlier run left are removed when the
+        # run starts, and a note says so (not with --quiet); other files
+        # stay.  A resumed run keeps the frames up to its checkpoint's
+        # (the first run's part of the sequence) and removes those above.
+        s = self.scene()
+        probe = self.rbsim("run", s, "--steps", "1", "--png", "probe", "--quiet")
+        if "without SDL" in probe.stderr:
+            self.skipTest("built without SDL")
+        frames = lambda lo, hi: ["frame_%06d.png" % k for k in range(lo, hi + 1)]
+        r = self.rbsim("run", s, "--steps", "30", "--png", "pd", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("pd"))),
+                         ["contact_sheet.png"] + frames(0, 30))
+        with open(self.path("pd/notes.txt"), "w") as f:
+            f.write("mine\n")
+        os.mkdir(self.path("pd/frame_000099.png"))  # not a file: left alone
+        r = self.rbsim("run", s, "--steps", "10", "--png", "pd")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("rbsim: note: removed 32 files an earlier run left in the "
+                      "png folder 'pd' (frames 0 to 30, contact_sheet.png), so "
+                      "that it holds this run's files only\n", r.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("pd"))),
+                         ["contact_sheet.png"] + frames(0, 10) +
+                         ["frame_000099.png", "notes.txt"])
+        os.rmdir(self.path("pd/frame_000099.png"))
+        # --quiet: no note, the same removal
+        r = self.rbsim("run", s, "--steps", "3", "--every", "2", "--png", "pd",
+                       "--quiet")
+        self.assertEqual((r.returncode, r.stderr), (0, ""))
+        self.assertEqual(sorted(os.listdir(self.path("pd"))),
+                         ["contact_sheet.png", "frame_000000.png",
+                          "frame_000002.png", "frame_000003.png", "notes.txt"])
+        # A resumed run: frames 0..10 are the first run's, kept as they are;
+        # a stale frame above is removed.
+        r = self.rbsim("run", s, "--steps", "10", "--png", "pr", "--checkpoint",
+                       "c.ckpt", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        kept = os.stat(self.path("pr/frame_000010.png")).st_ino
+        shutil.copy(self.path("pr/frame_000010.png"), self.path("pr/frame_000050.png"))
+        r = self.rbsim("run", s, "--steps", "20", "--resume", "c.ckpt",
+                       "--png", "pr")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("rbsim: note: removed 1 file an earlier run left in the "
+                      "png folder 'pr' (frame 50), so that it holds this run's files "
+                      "only\n",
+                      r.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("pr"))),
+                         ["contact_sheet.png"] + frames(0, 20))
+        self.assertEqual(os.stat(self.path("pr/frame_000010.png")).st_ino, kept)
+        # Two views, not tiled: the frames in view0/ and view1/ alike.
+        views = [{"position": [3, -3, 2], "target": [0, 0, 0]},
+                 {"position": [-3, 3, 2], "target": [0, 0, 0]}]
+        sv = self.scene("views.json", renderers=[
+            {"type": "sdl", "path": "pv", "views": views, "window": False,
+             "contact_sheet": False}])
+        for steps in ("8", "4"):
+            r = self.rbsim("run", sv, "--steps", steps, "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(self.path("pv"))), ["view0", "view1"])
+        for v in ("view0", "view1"):
+            self.assertEqual(sorted(os.listdir(self.path("pv/" + v))), frames(0, 4))
+
     def test_stdin_end_does_not_stop_the_run(self):
         s = self.scene()
         r = self.rbsim("run", s, "--csv", "a.csv", "--steps", "400")
