@@ -547,6 +547,75 @@ static void far_motion_refused_where_it_would_be_rounding(void **state)
     }
 }
 
+/* Directions of any finite size are directions: a plane normal of
+ * (0, 0, 1e-310) was scaled by 1 / 1e-310 = inf and stored as NaN (the ball
+ * then fell through that floor with soft and event, and euler blamed the
+ * ball), and rbs_body_set_orientation took sqrt of the sum of squares as it
+ * came: it refused (1e300, 0, 0, 0) and (5e-324, 0, 0, 0) as "zero" and
+ * stored |q| = 0.954 for (3e-162, 0, 0, 0), while add_sphere took them (a
+ * probe of session 40).  Exact: the unit normal (0, 0, 1) and the identity
+ * (or 90 degrees about x for (1e308, 1e308, 0, 0)) to rounding.  And the
+ * time: dt = 1e308 makes the second step's time inf, which is refused. */
+static void tiny_and_huge_directions(void **state)
+{
+    static const double tiny[] = {1e-310, 4e-320, 5e-324, 1e-300, 1e300, 1.7976931348623157e308};
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof tiny / sizeof tiny[0]; ++k) {
+        rbs_world *w = new_world(RBS_METHOD_SOFT, -9.81, 0);
+        rbs_plane_def p;
+        rbs_body_id f, b;
+        rbs_body_state bs;
+        rbs_quat q;
+        rbs_plane_def_init(&p);
+        p.normal = V(0, 0, tiny[k]);
+        CHECK_OK(rbs_world_add_plane(w, &p, &f));
+        CHECK_OK(rbs_body_get_state(w, f, &bs));
+        if (!(bs.normal.x == 0.0 && bs.normal.y == 0.0 && bs.normal.z == 1.0))
+            fail_msg("normal (0, 0, %g) stored as (%g, %g, %g)", tiny[k], bs.normal.x, bs.normal.y, bs.normal.z);
+        b = add_ball(w, 0.1, 1.0, V(0, 0, 0.5), V(0, 0, 0), V(0, 0, 0));
+        q.w = tiny[k]; q.x = q.y = q.z = 0.0;
+        CHECK_OK(rbs_body_set_orientation(w, b, q));
+        CHECK_OK(rbs_body_get_state(w, b, &bs));
+        if (!(bs.orientation.w == 1.0 && bs.orientation.x == 0.0))
+            fail_msg("orientation (%g, 0, 0, 0) stored as (%.17g, %g, %g, %g)", tiny[k], bs.orientation.w,
+                     bs.orientation.x, bs.orientation.y, bs.orientation.z);
+        q.w = q.x = tiny[k];
+        CHECK_OK(rbs_body_set_orientation(w, b, q));
+        CHECK_OK(rbs_body_get_state(w, b, &bs));
+        if (!(fabs(bs.orientation.w - sqrt(0.5)) <= 2.3e-16 && fabs(bs.orientation.x - sqrt(0.5)) <= 2.3e-16))
+            fail_msg("orientation (%g, %g, 0, 0) stored as (%.17g, %.17g, ...)", tiny[k], tiny[k],
+                     bs.orientation.w, bs.orientation.x);
+        q.w = q.x = 0.0;
+        assert_int_equal(rbs_body_set_orientation(w, b, q), RBS_E_INVALID);
+        {
+            /* (e = 1: it bounces on the floor, never below it by more than
+             * soft's overlaps, a few mm at an impact of 2.8 m/s) */
+            int i;
+            for (i = 0; i < 1000; ++i) {
+                CHECK_OK(rbs_world_step(w, NULL));
+                CHECK_OK(rbs_body_get_state(w, b, &bs));
+                if (!(bs.position.z > 0.09))
+                    fail_msg("normal (0, 0, %g): the ball is at z = %g at step %d, through the floor", tiny[k],
+                             bs.position.z, i + 1);
+            }
+        }
+        rbs_world_destroy(w);
+    }
+    {
+        rbs_world *w = new_world(RBS_METHOD_EULER, 0.0, 0);
+        rbs_plane_def p;
+        rbs_plane_def_init(&p);
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        CHECK_OK(rbs_world_set_dt(w, 1e308));
+        CHECK_OK(rbs_world_step(w, NULL));
+        assert_int_equal(rbs_world_step(w, NULL), RBS_E_NUMERIC);
+        assert_non_null(strstr(rbs_world_last_error(w), "beyond the largest double"));
+        assert_true(rbs_world_time(w) == 1e308 && rbs_world_step_count(w) == 1);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -558,6 +627,7 @@ int main(void)
         cmocka_unit_test(far_contacts_refused_where_coordinates_are_coarse),
         cmocka_unit_test(far_drop_refused_by_every_slop_method),
         cmocka_unit_test(far_motion_refused_where_it_would_be_rounding),
+        cmocka_unit_test(tiny_and_huge_directions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -245,7 +245,18 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         rbs__world_plan(w);
     {
         int axis = 0;
-        uint32_t lost = lost_motion(w, &axis);
+        uint32_t lost;
+        /* (the time after the step must be a number: dt = 1e308 made the
+         * second step's time inf, with status OK; a probe of session 40) */
+        const double t1 = w->time_base + (double)(w->step_count + 1 - w->step_base) * w->def.dt;
+        if (!isfinite(t1)) {
+            char nb[32], nb2[32];
+            return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
+                "step %llu: the time after it would be beyond the largest double (t = %s s, dt = %s s)",
+                (unsigned long long)w->step_count + 1, rbs__shortest(nb, rbs_world_time(w)),
+                rbs__shortest(nb2, w->def.dt));
+        }
+        lost = lost_motion(w, &axis);
         if (lost != UINT32_MAX) {
             const double x = w->pos[3 * lost + axis], d = fabs(w->vel[3 * lost + axis]) * w->def.dt;
             return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,

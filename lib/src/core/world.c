@@ -960,6 +960,26 @@ int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_ve
     return -1;
 }
 
+/* *q (finite) made a unit quaternion: 0 when it is zero.  A quaternion
+ * whose norm overflows or underflows (1e300, 1e-200) is still a rotation:
+ * scaled by its largest component first -- only then, so that ordinary
+ * input rounds as before.  The one rule of add_sphere and set_orientation
+ * (the setter took sqrt of the sum of squares as it came: it refused
+ * (1e300, 0, 0, 0) and 5e-324, and stored |q| = 0.954 for 3e-162; a probe
+ * of session 40). */
+static int unit_quat(quat *q)
+{
+    double qn = sqrt(q->w * q->w + q->x * q->x + q->y * q->y + q->z * q->z);
+    if (!(qn > 1e-150) || !isfinite(qn)) {
+        double big = fmax(fmax(fabs(q->w), fabs(q->x)), fmax(fabs(q->y), fabs(q->z)));
+        if (!(big > 0.0))
+            return 0;
+        q->w /= big; q->x /= big; q->y /= big; q->z /= big;
+    }
+    *q = q_normalize(*q);
+    return 1;
+}
+
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
@@ -967,7 +987,6 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     double mass, I[9], inv[9], c2;
     v3 c, p, v, av, f, t;
     quat q;
-    double qn;
     uint32_t s;
     rbs_status st;
     int k;
@@ -1014,17 +1033,8 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
     if (!isfinite(q.w) || !isfinite(q.x) || !isfinite(q.y) || !isfinite(q.z))
         FAIL(w, RBS_E_NUMERIC, "sphere orientation must be finite");
-    qn = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (!(qn > 1e-150) || !isfinite(qn)) {
-        /* a finite quaternion whose norm overflows or underflows (1e300,
-         * 1e-200) is still a rotation: scaled by its largest component
-         * first (only then, so that ordinary input rounds as before) */
-        double big = fmax(fmax(fabs(q.w), fabs(q.x)), fmax(fabs(q.y), fabs(q.z)));
-        if (!(big > 0.0))
-            FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero quaternion");
-        q.w /= big; q.x /= big; q.y /= big; q.z /= big;
-    }
-    q = q_normalize(q);
+    if (!unit_quat(&q))
+        FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero quaternion");
     if (!(v3_len(c) < d.radius))
         FAIL(w, RBS_E_INVALID, "sphere centre of mass offset %g must be < radius %g", v3_len(c), d.radius);
 
@@ -1157,7 +1167,11 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
             FAIL(w, RBS_E_INVALID, "plane normal must be nonzero");
         len = v3_len(n);
         if (!(len > 1e-150) || !isfinite(len)) { /* (only then: ordinary input rounds as before) */
-            n = v3_scale(n, 1.0 / big);
+            /* divided, not scaled by 1 / big: below 2^-1024 (5.6e-309)
+             * that overflows, and 0 x inf stored a NaN normal (a probe of
+             * session 40: normal (0, 0, 1e-310) was taken, and the ball fell
+             * through the floor) */
+            n = v3_make(n.x / big, n.y / big, n.z / big);
             len = v3_len(n);
         }
     }
@@ -1321,16 +1335,14 @@ rbs_status rbs_body_set_orientation(rbs_world *w, rbs_body_id id, rbs_quat q)
 {
     double v[4] = {q.w, q.x, q.y, q.z};
     quat qq = {q.w, q.x, q.y, q.z};
-    double n;
     rbs_status st = setter_check(w, id, v, 4, "set_orientation");
     if (st != RBS_OK)
         return st;
-    n = sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
-    if (!(n > 0.0) || !isfinite(n))
+    if (!unit_quat(&qq))
         FAIL(w, RBS_E_INVALID, "set_orientation: quaternion must be nonzero");
     if (w->type[id.index] != RBS_BODY_SPHERE)
         FAIL(w, RBS_E_INVALID, "set_orientation: planes have no orientation");
-    q_store(&w->orient[4 * id.index], q_normalize(qq));
+    q_store(&w->orient[4 * id.index], qq);
     return RBS_OK;
 }
 
