@@ -2,6 +2,7 @@
  * main.c - the rbsim command: run, check, explain, convert, help,
  * --version.
  */
+#include "c_locale.h"
 #include "cli.h"
 #include "dump.h"
 #ifdef RBSF_HAVE_SDL
@@ -484,13 +485,22 @@ static int dispatch(int argc, char **argv);
 
 int main(int argc, char **argv)
 {
+    rbsf__locale l;
+    int code;
+    /* rbsim never calls setlocale, so it runs in the "C" locale, as its
+     * outputs need ('.' in every number it prints or reads); but libraries
+     * it links may (libSDL2 and libX11 import setlocale), and a thread with
+     * a locale of its own is not affected by that. */
+    rbsf__c_locale_push(&l);
     guard_standard_fds();
     /* A file size limit (ulimit -f) fails the write with EFBIG, reported and
      * cleaned up like any write error (run, convert), instead of a SIGXFSZ
      * death that leaves temporary files behind. */
     signal(SIGXFSZ, SIG_IGN);
     signal(SIGPIPE, SIG_IGN); /* a closed pipe is a write error, reported */
-    return finish_stdout(dispatch(argc, argv));
+    code = finish_stdout(dispatch(argc, argv));
+    rbsf__c_locale_pop(&l);
+    return code;
 }
 
 /* Does an argument of a command ask for its help ("--help" or "-h", before

@@ -7,7 +7,9 @@
  * reserved at create, then written in full), so a file never ends in half a
  * line: on a write error the frame's partial bytes are cut off again and the
  * run stops with a message naming the file.  Numbers are printed in the
- * shortest form that reads back as the same double.
+ * shortest form that reads back as the same double, in the "C" locale
+ * whatever the process's (a program may call setlocale(LC_ALL, "")): the
+ * renderer switches its own thread with uselocale while it formats a frame.
  *
  * Renderer entries in a scene: {"type": "csv"|"json"|"stats", "path": FILE,
  * "every": K}; "path" "-" is standard output.  No other keys.
@@ -34,8 +36,9 @@ const rbs_renderer_class *rbsf_json_class(void);
 const rbs_renderer_class *rbsf_stats_class(void);
 
 /** Write x in the shortest "%.Ng" (N = 1..17) that strtod reads back as the
- * same double ("nan", "inf", "-inf" for those).  Returns the length written
- * (buf must hold at least 32 bytes). */
+ * same double ("nan", "inf", "-inf" for those), in the "C" locale ('.' as
+ * the decimal point) whatever the thread's.  Returns the length written
+ * (buf must hold at least 32 bytes).  Thread-safe. */
 size_t rbsf_format_double(char *buf, size_t size, double x);
 
 /** Check that an output file could be created at path without creating it:

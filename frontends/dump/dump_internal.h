@@ -26,7 +26,12 @@ rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
                           char *err, size_t errlen);
 /** Append n bytes to the frame buffer; RBS_E_CAPACITY if they do not fit. */
 rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n);
-/** Append a number (rbsf_format_double). */
+/** rbsf_format_double in the thread's locale: for the formats, which run
+ * in the "C" locale (dumper_draw switches once a frame, not per number). */
+size_t rbsf__format_double(char *buf, size_t size, double x);
+
+/** Append a number (rbsf__format_double: in the "C" locale only if the
+ * thread is in it). */
 rbs_status rbsf__out_num(rbsf__out *out, double x);
 /** Append an unsigned integer. */
 rbs_status rbsf__out_uint(rbsf__out *out, unsigned long long v);

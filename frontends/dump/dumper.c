@@ -4,6 +4,7 @@
  * kept frame whole; finish closes and reports any error.
  */
 #include "dump_internal.h"
+#include "c_locale.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,7 +78,13 @@ static rbs_status dumper_draw(void *instance, const rbs_frame *frame, char *err,
                               size_t errlen)
 {
     dumper *d = instance;
-    rbs_status st = d->format->frame(&d->out, frame, NULL);
+    rbsf__locale l;
+    rbs_status st;
+    /* the whole frame in the "C" locale: one switch a frame, not one a
+     * number (the CSV of a 1,000-sphere run formats 13 numbers a body) */
+    rbsf__c_locale_push(&l);
+    st = d->format->frame(&d->out, frame, NULL);
+    rbsf__c_locale_pop(&l);
     if (st != RBS_OK) {
         rbsf__out_discard(&d->out);
         if (st == RBS_E_CAPACITY)

@@ -20,7 +20,7 @@ static cJSON *number(double x)
      * (Python's json) would lose its sign */
     if (x == 0.0 && signbit(x))
         return cJSON_CreateRaw("-0.0");
-    rbsf_format_double(b, sizeof b, x);
+    rbsf__format_double(b, sizeof b, x);
     return cJSON_CreateRaw(b);
 }
 

@@ -3,6 +3,7 @@
  * round-trip number format, and the check of a dumper's entry.
  */
 #include "dump_internal.h"
+#include "c_locale.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -14,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-size_t rbsf_format_double(char *buf, size_t size, double x)
+size_t rbsf__format_double(char *buf, size_t size, double x)
 {
     int prec, n = 0;
     if (size == 0)
@@ -58,6 +59,16 @@ size_t rbsf_format_double(char *buf, size_t size, double x)
         }
     }
     return (size_t)n;
+}
+
+size_t rbsf_format_double(char *buf, size_t size, double x)
+{
+    rbsf__locale l;
+    size_t n;
+    rbsf__c_locale_push(&l);
+    n = rbsf__format_double(buf, size, x);
+    rbsf__c_locale_pop(&l);
+    return n;
 }
 
 rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
@@ -117,7 +128,7 @@ rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n)
 rbs_status rbsf__out_num(rbsf__out *out, double x)
 {
     char b[40];
-    size_t n = rbsf_format_double(b, sizeof b, x);
+    size_t n = rbsf__format_double(b, sizeof b, x);
     return rbsf__out_put(out, b, n);
 }
 

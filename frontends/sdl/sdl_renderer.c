@@ -41,6 +41,7 @@
 
 #include <SDL.h>
 
+#include "c_locale.h"
 #include "sdl_internal.h"
 #include "sdl_renderer.h"
 
@@ -738,6 +739,62 @@ bad_usage:
 /* The class                                                                 */
 /* ------------------------------------------------------------------------- */
 
+/* Every entry point runs in the "C" locale on its thread (c_locale.h): the
+ * entry's numbers and messages, the legend and captions drawn into the
+ * pictures, the camera commands' numbers and replies.  destroy formats
+ * nothing. */
+static rbs_status c_check(void *context, const rbs_renderer_config *config,
+                          const rbs_world *world, char *err, size_t errlen)
+{
+    rbsf__locale l;
+    rbs_status st;
+    rbsf__c_locale_push(&l);
+    st = check(context, config, world, err, errlen);
+    rbsf__c_locale_pop(&l);
+    return st;
+}
+
+static rbs_status c_create(void *context, const rbs_renderer_config *config,
+                           const rbs_world *world, void **out, char *err, size_t errlen)
+{
+    rbsf__locale l;
+    rbs_status st;
+    rbsf__c_locale_push(&l);
+    st = create(context, config, world, out, err, errlen);
+    rbsf__c_locale_pop(&l);
+    return st;
+}
+
+static rbs_status c_draw(void *instance, const rbs_frame *frame, char *err, size_t errlen)
+{
+    rbsf__locale l;
+    rbs_status st;
+    rbsf__c_locale_push(&l);
+    st = draw(instance, frame, err, errlen);
+    rbsf__c_locale_pop(&l);
+    return st;
+}
+
+static rbs_status c_finish(void *instance, char *err, size_t errlen)
+{
+    rbsf__locale l;
+    rbs_status st;
+    rbsf__c_locale_push(&l);
+    st = finish(instance, err, errlen);
+    rbsf__c_locale_pop(&l);
+    return st;
+}
+
+static rbs_status c_command(void *instance, const char *line, char *out, size_t outlen)
+{
+    rbsf__locale l;
+    rbs_status st;
+    rbsf__c_locale_push(&l);
+    st = command(instance, line, out, outlen);
+    rbsf__c_locale_pop(&l);
+    return st;
+}
+
 /* A recorder (flags 0): it must see every kept frame to write it, so it is
  * not RBS_RENDERER_LIVE (that would allow a latest-only reel to drop frames).
  * While the run is paused no frame comes; the window thread keeps the window
@@ -746,13 +803,13 @@ static const rbs_renderer_class kSdlClass = {
     .struct_size = sizeof(rbs_renderer_class),
     .name = "sdl",
     .context = NULL,
-    .create = create,
-    .draw = draw,
-    .finish = finish,
+    .create = c_create,
+    .draw = c_draw,
+    .finish = c_finish,
     .destroy = destroy,
-    .command = command,
+    .command = c_command,
     .flags = 0,
-    .check = check,
+    .check = c_check,
 };
 
 const rbs_renderer_class *rbsf_sdl_class(void) { return &kSdlClass; }

@@ -29,6 +29,7 @@
 
 #include <SDL.h>
 
+#include "c_locale.h"
 #include "sdl_internal.h"
 
 /* Window controls: degrees per arrow key and per dragged pixel, zoom per
@@ -353,13 +354,19 @@ static void present(rbsf__window *w)
 static int SDLCALL window_main(void *arg)
 {
     rbsf__window *w = (rbsf__window *)arg;
-    int ok = open_windows(w) == 0;
+    rbsf__locale l;
+    int ok;
+    /* the legend and the camera replies in the titles, in the "C" locale
+     * (a new thread has the process's) */
+    rbsf__c_locale_push(&l);
+    ok = open_windows(w) == 0;
     pthread_mutex_lock(&w->mu);
     w->state = ok ? 1 : -1;
     pthread_cond_broadcast(&w->cond);
     pthread_mutex_unlock(&w->mu);
     if (!ok) {
         close_windows(w);
+        rbsf__c_locale_pop(&l);
         return 0;
     }
     for (;;) {
@@ -392,6 +399,7 @@ static int SDLCALL window_main(void *arg)
     pthread_mutex_lock(&w->mu);
     w->state = 2;
     pthread_mutex_unlock(&w->mu);
+    rbsf__c_locale_pop(&l);
     return 0;
 }
 

@@ -15,6 +15,10 @@
  *    room instead; all public structs only ever grow at the end.
  *  - Thread safety: a world is not thread-safe; distinct worlds may be used from
  *    distinct threads at once.  The library has no global mutable state.
+ *  - Numbers in text (messages, rbs_world_explain, scene files, commands) are
+ *    written and read in the "C" locale ('.' as the decimal point) whatever
+ *    the process's locale: the library switches its own thread with
+ *    uselocale for each such call and back, never with setlocale.
  *  - Quaternions are [w, x, y, z] and rotate body-frame vectors to world frame.
  */
 #ifndef RBSIM_RBSIM_H

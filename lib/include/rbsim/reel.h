@@ -361,7 +361,8 @@ RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
  * from a renderer's control hook), also before start and after the end.
  * Commands: "pause", "resume", "step [N]" (make N more frames, default 1,
  * then pause; sums up if repeated), "speed X" (real-time factor, 0 < X <=
- * 1e6), "quit" (stop after the frame being made, which is still
+ * 1e6, in the "C" locale's notation whatever the caller's: "0.5", never
+ * "0,5"), "quit" (stop after the frame being made, which is still
  * published, so the world ends at the last frame published; frames already
  * in the reel are still drawn and every output finished), "status" (a
  * one-line summary).

@@ -180,7 +180,7 @@ static rbs_status ckpt_check(const unsigned char *in, size_t size, rbs_world_def
     memcpy(c, in + sizeof h + sizeof *def, sizeof *c);
     /* (the time may be infinite: steps of a huge dt overflow it) */
     if (!(c->time_base >= 0.0) || c->step_base > c->step_count) {
-        snprintf(msg, len, "its time base is not a time (%g s at step %llu of %llu)", c->time_base,
+        rbs__snprintf_c(msg, len, "its time base is not a time (%g s at step %llu of %llu)", c->time_base,
                  (unsigned long long)c->step_base, (unsigned long long)c->step_count);
         return RBS_E_CORRUPT;
     }

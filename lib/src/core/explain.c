@@ -28,7 +28,7 @@ static void put(text *t, const char *fmt, ...)
     int n;
     size_t room = t->len < t->size ? t->size - t->len : 0;
     va_start(ap, fmt);
-    n = vsnprintf(room > 0 ? t->buf + t->len : NULL, room, fmt, ap);
+    n = rbs__vsnprintf_c(room > 0 ? t->buf + t->len : NULL, room, fmt, ap);
     va_end(ap);
     if (n > 0)
         t->len += (size_t)n;

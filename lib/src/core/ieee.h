@@ -25,21 +25,4 @@
 #error "rbsim must be compiled without -ffast-math and -ffinite-math-only: its NaN and infinity checks and its bit-for-bit results need IEEE-754 arithmetic"
 #endif
 
-/* x for a message, in its shortest form that reads back as the same double
- * (0.1, not 0.10000000000000001; 1.0000001, not %g's 1), in buf (32 bytes
- * or more); returns buf. */
-#include <stdio.h>
-#include <stdlib.h>
-static inline const char *rbs__shortest(char *buf, double x)
-{
-    int prec;
-    for (prec = 1; prec < 17; ++prec) {
-        snprintf(buf, 32, "%.*g", prec, x);
-        if (strtod(buf, NULL) == x || x != x)
-            return buf;
-    }
-    snprintf(buf, 32, "%.17g", x);
-    return buf;
-}
-
 #endif

@@ -470,7 +470,7 @@ int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(w->error, sizeof w->error, fmt, ap);
+    rbs__vsnprintf_c(w->error, sizeof w->error, fmt, ap);
     va_end(ap);
     return (int)status;
 }

@@ -14,6 +14,7 @@
 #define RBS_CORE_WORLD_INTERNAL_H
 
 #include "rbsim/rbsim.h"
+#include "core/c_locale.h" /* numbers in messages, in the "C" locale */
 #include "core/vec.h"
 
 #define RBS__ERROR_MAX 256
@@ -263,6 +264,8 @@ struct rbs_world {
 /* Layout and creation (world.c). */
 size_t rbs__team_size(void); /* bytes of team_mem (team.c) */
 size_t rbs__world_layout(rbs_world *w, const rbs_world_def *def, unsigned char *base);
+/* The world's last error (printf-style, numbers in the "C" locale); returns
+ * status. */
 int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))

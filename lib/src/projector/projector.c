@@ -118,7 +118,7 @@ static void set_error_locked(rbs_projector *p, rbs_status st, const char *fmt,
     if (p->result != RBS_OK)
         return; /* the first error is the one to report */
     p->result = st;
-    vsnprintf(p->error, sizeof p->error, fmt, ap);
+    rbs__vsnprintf_c(p->error, sizeof p->error, fmt, ap);
 }
 
 /* Record an error and stop the run: close the reel, wake everyone. */
@@ -173,7 +173,7 @@ static void reply_to(char *reply, size_t n, const char *fmt, ...)
     if (reply == NULL || n == 0)
         return;
     va_start(ap, fmt);
-    vsnprintf(reply, n, fmt, ap);
+    rbs__vsnprintf_c(reply, n, fmt, ap);
     va_end(ap);
 }
 
@@ -1194,7 +1194,7 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         char *end;
         double x;
         errno = 0;
-        x = strtod(rest, &end);
+        x = rbs__strtod_c(rest, &end);
         while (is_space(*end))
             end++;
         if (*rest == '\0' || *end != '\0' || errno != 0 || !isfinite(x) ||

@@ -7,6 +7,7 @@
 
 #include "rbsim/reel.h"
 
+#include "core/c_locale.h" /* rbs__shortest, rbs__strtod_c */
 #include "core/ieee.h"
 
 #include <time.h>

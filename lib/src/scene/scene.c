@@ -23,20 +23,6 @@ char *rbs__strdup(const char *s)
     return d;
 }
 
-void rbs__c_locale_push(rbs__locale *l)
-{
-    l->c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-    l->old = l->c != (locale_t)0 ? uselocale(l->c) : (locale_t)0;
-}
-
-void rbs__c_locale_pop(rbs__locale *l)
-{
-    if (l->c != (locale_t)0) {
-        uselocale(l->old);
-        freelocale(l->c);
-    }
-}
-
 rbs_scene *rbs__scene_new(void)
 {
     rbs_scene *scene = calloc(1, sizeof *scene);
@@ -87,7 +73,7 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
         return;
     }
     va_start(ap, fmt);
-    vsnprintf(message, sizeof message, fmt, ap);
+    rbs__vsnprintf_c(message, sizeof message, fmt, ap);
     va_end(ap);
     if (path == NULL) {
         path = "";
@@ -723,12 +709,8 @@ rbs_status rbs_scene_override_slop(rbs_scene *scene, double slop)
         return RBS_E_INVALID;
     }
     if (!(slop > 0.0 && slop < RBS__SCENE_SLOP_MAX)) {
-        /* the number in the C locale, as rbs_scene_override's */
-        rbs__locale l;
-        rbs__c_locale_push(&l);
         rbs__scene_error(scene, none, "--slop",
                          RBS__SCENE_SLOP_RANGE ", got %g", slop);
-        rbs__c_locale_pop(&l);
         return RBS_E_SCENE;
     }
     scene->slop = slop;

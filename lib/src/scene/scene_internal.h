@@ -12,11 +12,11 @@
 #define RBS_SCENE_INTERNAL_H
 
 #include <cjson/cJSON.h>
-#include <locale.h>
 
 #include "rbsim/reel.h"
 #include "rbsim/scene.h"
 
+#include "core/c_locale.h" /* numbers read and written in the "C" locale */
 #include "core/ieee.h"
 
 /** Deepest nesting of JSON arrays/objects accepted (cJSON allows 1000). */
@@ -159,7 +159,8 @@ struct rbs_scene {
 /* scene.c */
 rbs_scene *rbs__scene_new(void);
 int32_t rbs__scene_add_file(rbs_scene *scene, const char *name);
-/** Record an error (printf-style message).  at.line == 0: no place. */
+/** Record an error (printf-style message, numbers in the "C" locale).
+ * at.line == 0: no place. */
 void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
                       const char *fmt, ...)
 #ifdef __GNUC__
@@ -194,15 +195,6 @@ int rbs__json_parse(rbs_scene *scene, const rbs__src *src, int32_t file,
 /** Parse JSON text (strict, as above) without positions or messages; NULL
  * if invalid.  For re-reading text this module wrote. */
 cJSON *rbs__json_tree(const char *text, size_t len);
-
-/* scene.c: numbers are read and written in the "C" locale whatever the
- * process's LC_NUMERIC; per thread (uselocale), so other threads are not
- * affected. */
-typedef struct rbs__locale {
-    locale_t c, old;
-} rbs__locale;
-void rbs__c_locale_push(rbs__locale *l);
-void rbs__c_locale_pop(rbs__locale *l);
 
 /* scene_text.c: config.txt + materials.txt + objects.txt -> tree + positions */
 /** Load a text scene whose config (file 0, already registered as path) was

@@ -87,7 +87,7 @@ static void err(vctx *v, rbs__loc at, const char *fmt, ...)
     char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    rbs__vsnprintf_c(msg, sizeof msg, fmt, ap);
     va_end(ap);
     rbs__scene_error(v->scene, at, v->path, "%s", msg);
 }
