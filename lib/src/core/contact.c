@@ -111,8 +111,8 @@ static void contact_finish(rbs_world *w, rbs__contact *c, double dt, v3 aa, v3 a
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)
 {
     v3 aa, ab, t;
-    rbs__accelerations(w, c->a, &aa, &t);
-    rbs__accelerations(w, c->b, &ab, &t);
+    rbs__accelerations_all(w, c->a, &aa, &t);
+    rbs__accelerations_all(w, c->b, &ab, &t);
     contact_finish(w, c, dt, aa, ab);
 }
 
@@ -156,7 +156,7 @@ static double creep_bound(const rbs_world *w, double dt)
     for (i = 0; i < w->sphere_count; ++i) {
         v3 a, t;
         double l;
-        rbs__accelerations(w, w->spheres[i], &a, &t);
+        rbs__accelerations_all(w, w->spheres[i], &a, &t);
         l = v3_len(a);
         if (l > most)
             most = l;
@@ -515,6 +515,10 @@ rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, con
 
 rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
 {
+    /* (the methods compute it again at these positions as they start:
+     * the same numbers) */
+    if (w->plan.mutual)
+        rbs__mutual_gravity(w);
     return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL, NULL, NULL);
 }
 

@@ -565,8 +565,8 @@ static rbs_status detect_segment(rbs_world *w, double T)
     for (k = 0; k < w->contact_count; ++k) {
         rbs__contact *c = &w->contact[k];
         v3 aa, ab, ta;
-        rbs__accelerations(w, c->a, &aa, &ta);
-        rbs__accelerations(w, c->b, &ab, &ta);
+        rbs__accelerations_all(w, c->a, &aa, &ta);
+        rbs__accelerations_all(w, c->b, &ab, &ta);
         if (v3_dot(v3_sub(aa, ab), c->n) > 0.0)
             c->thr = 0.0;
     }

@@ -87,8 +87,8 @@ static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
 {
     v3 aa, ab, ta, vrel;
     double vn;
-    rbs__accelerations(w, a, &aa, &ta);
-    rbs__accelerations(w, b, &ab, &ta);
+    rbs__accelerations_all(w, a, &aa, &ta);
+    rbs__accelerations_all(w, b, &ab, &ta);
     /* the relative velocity at the time of touch: without the part of the
      * step's force kick that comes after it */
     vrel = v3_sub(v3_load(&w->vel[3 * a]),
@@ -107,7 +107,7 @@ static void late_kick(rbs_world *w, uint32_t i, double s, double sign)
     v3 a, t;
     if (w->type[i] != RBS_BODY_SPHERE || w->fixed[i])
         return;
-    rbs__accelerations(w, i, &a, &t);
+    rbs__accelerations_all(w, i, &a, &t); /* (the kick the step gave: mutual gravity too) */
     v3_store(&w->vel[3 * i], v3_mad(v3_load(&w->vel[3 * i]), a, sign * (1.0 - s) * w->def.dt));
 }
 
