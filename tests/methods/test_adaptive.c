@@ -389,6 +389,73 @@ static void create_in_and_numeric_failure(void **state)
  * of the circular orbit in one frame take well over 25 steps at tolerance
  * 1e-9, so with max_substeps = 1 the frame is refused with the reason and
  * the world keeps its state; at the default (102,400) it runs. */
+/* Two balls (3 kg and 1 kg, r = 0.1 m) held together by their attraction
+ * alone (G = 1, no uniform gravity, e = 1): they must stay in contact,
+ * within two slops (2e-7 m: rk4's resting pass leaves them up to 1.04e-7
+ * apart) and at rest relative to each other.  The
+ * contacts' resting thresholds left the attraction out, so every approach
+ * was an impact: adaptive let them sink 5e-5 m between its frame ends and
+ * bounced them, rk4 bounced them 8e-6 m apart gaining 8.5e-4 J (a probe of
+ * session 39; fixed in session 40).  And the same pair dropped from 0.5 m
+ * apart at e = 1 gains no energy beyond the slop's share of the potential
+ * (1e-6 J): selective gained 0.18 J of its 6 J, its late kicks leaving the
+ * attraction's part of the step's kick in.  (verlet gains 1.6e-3 J in that
+ * drop, before and after: docs/physics.md.) */
+static rbs_world *attracted_pair(rbs_method m, double sep, rbs_body_id *a, rbs_body_id *b)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_world_def_init(&d);
+    d.max_bodies = 4;
+    d.gravity.z = 0.0;
+    d.restitution = 1.0;
+    d.method = m;
+    d.mutual_gravity = 1;
+    d.gravity_constant = 1.0;
+    CHECK_OK(rbs_world_create(&d, &w));
+    *a = ball(w, 0.1, 3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, (rbs_material_id){0, 0});
+    *b = ball(w, 0.1, 1.0, sep, 0.0, 0.0, 0.0, 0.0, 0.0, (rbs_material_id){0, 0});
+    return w;
+}
+
+static void attracted_pair_rests_and_gains_nothing(void **state)
+{
+    const rbs_method ms[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_VERLET, RBS_METHOD_RK4,
+                             RBS_METHOD_ADAPTIVE};
+    size_t k;
+    int i;
+    (void)state;
+    for (k = 0; k < sizeof ms / sizeof ms[0]; ++k) {
+        rbs_body_id a, b;
+        rbs_world *w = attracted_pair(ms[k], 0.2, &a, &b);
+        rbs_body_state sa, sb;
+        for (i = 0; i < 3000; ++i) {
+            double gap;
+            step_n(w, 1);
+            sa = state_of(w, a);
+            sb = state_of(w, b);
+            gap = sb.position.x - sa.position.x - 0.2;
+            if (!(fabs(gap) <= 2e-7)) /* (measured: 3e-15 euler, 1.04e-7 rk4) */
+                fail_msg("%s: step %d: gap %.3g m, beyond the slop", rbs_method_name(ms[k]), i + 1, gap);
+        }
+        ASSERT_NEAR(sb.velocity.x - sa.velocity.x, 0.0, 1e-9);
+        rbs_world_destroy(w);
+        if (ms[k] != RBS_METHOD_VERLET) {
+            rbs_energy e0, e;
+            w = attracted_pair(ms[k], 0.5, &a, &b);
+            CHECK_OK(rbs_world_energy(w, &e0));
+            for (i = 0; i < 3000; ++i) {
+                step_n(w, 1);
+                CHECK_OK(rbs_world_energy(w, &e));
+                if (!(e.total <= e0.total + 1e-6))
+                    fail_msg("%s: drop, step %d: energy %.9g J above the start's %.9g J", rbs_method_name(ms[k]),
+                             i + 1, e.total, e0.total);
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* Mutual-gravity potential: -G ma mb / d for every pair with a moving
  * body, exactly; the constant of two fixed spheres -- here at one point,
  * where it would be infinite -- is left out, so the energy stays finite
@@ -466,6 +533,7 @@ int main(void)
         cmocka_unit_test(switch_methods),
         cmocka_unit_test(create_in_and_numeric_failure),
         cmocka_unit_test(steps_per_frame_are_bounded),
+        cmocka_unit_test(attracted_pair_rests_and_gains_nothing),
         cmocka_unit_test(fixed_pairs_leave_no_infinite_potential),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
