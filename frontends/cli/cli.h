@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <stdio.h>
 
+#include "dump.h"
 #include "rbsim/reel.h"
 #include "rbsim/scene.h"
 
@@ -50,6 +51,12 @@ void rbsf_input_stop(rbsf_input *in);
 
 /* ---- signals.c: the signal thread ---- */
 
+/* The signal that ends an output call blocked after a stop (its handler does
+ * nothing; see rbsf_stopper in dump.h), and how long such a call may block
+ * first (s): a reader that is slow, not stalled, still gets the frames. */
+#define RBSF_WAKE_SIGNAL SIGUSR2
+#define RBSF_STOP_GRACE 0.5
+
 typedef struct rbsf_signals {
     pthread_t thread;
     sigset_t set;             /* the signals the thread takes */
@@ -58,12 +65,15 @@ typedef struct rbsf_signals {
     int caught;               /* guarded; the first SIGINT/TERM/HUP, 0 if none */
     int stopping;             /* guarded; set by rbsf_signals_stop */
     int started;
+    rbsf_stopper stopper;     /* the dump outputs' (rbsf_dump_bind) */
 } rbsf_signals;
 
 /** Block SIGINT, SIGTERM, SIGHUP (unless the caller ignores it, as nohup
  * does) and SIGUSR1 in this thread (and the threads it starts) and start a
  * thread that takes them with sigwait.  A SIGUSR1 from outside is ignored.
- * Call before any other thread starts. */
+ * On the first of them the thread also stops s->stopper, so dump outputs
+ * blocked on a pipe or FIFO give up (RBSF_WAKE_SIGNAL gets its empty handler
+ * then, before it is first sent).  Call before any other thread starts. */
 int rbsf_signals_start(rbsf_signals *s);
 /** From now on a signal sends "quit" to this projector (at once if one was
  * caught already). */

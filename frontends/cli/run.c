@@ -1560,6 +1560,7 @@ int rbsf_run_main(int argc, char **argv)
     uint32_t n_out = 0, i;
     rbs_projector_def def;
     rbsf_signals signals;
+    rbsf_dump_bound dumps[3]; /* csv, json, stats: signals.stopper ends them */
     rbsf_input input;
     pthread_mutex_t reply_lock = PTHREAD_MUTEX_INITIALIZER;
     FILE *talk = stdout;
@@ -1677,9 +1678,12 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 2. The renderer types. */
     if (rbs_renderer_registry_create(&registry) != RBS_OK ||
-        rbs_renderer_register(registry, rbsf_csv_class()) != RBS_OK ||
-        rbs_renderer_register(registry, rbsf_json_class()) != RBS_OK ||
-        rbs_renderer_register(registry, rbsf_stats_class()) != RBS_OK) {
+        rbsf_dump_bind(&dumps[0], rbsf_csv_class(), &signals.stopper) != RBS_OK ||
+        rbsf_dump_bind(&dumps[1], rbsf_json_class(), &signals.stopper) != RBS_OK ||
+        rbsf_dump_bind(&dumps[2], rbsf_stats_class(), &signals.stopper) != RBS_OK ||
+        rbs_renderer_register(registry, &dumps[0].cls) != RBS_OK ||
+        rbs_renderer_register(registry, &dumps[1].cls) != RBS_OK ||
+        rbs_renderer_register(registry, &dumps[2].cls) != RBS_OK) {
         fprintf(stderr, "rbsim: cannot set up the renderer types\n");
         code = RBSF_EXIT_RUN;
         goto out;
@@ -1849,6 +1853,16 @@ int rbsf_run_main(int argc, char **argv)
                             "ignored: standard input is not a terminal\n");
     }
     st = rbs_projector_create(world, registry, configs, n_out, &def, &projector);
+    if (st == RBS_E_CLOSED && (sig = rbsf_signals_caught(&signals)) != 0) {
+        /* A signal ended an output's open (a FIFO waiting for a reader):
+         * stopped before the run started, so nothing is written. */
+        char prefix[96];
+        snprintf(prefix, sizeof prefix, "stopped by %s before the run started: ",
+                 rbsf_signal_name(sig));
+        print_run_error(prefix, rbs_projector_last_error(projector), outs, n_out);
+        code = 128 + sig;
+        goto out;
+    }
     if (st != RBS_OK) {
         print_run_error("", projector ? rbs_projector_last_error(projector)
                                       : rbs_status_string(st),
@@ -1923,7 +1937,12 @@ int rbsf_run_main(int argc, char **argv)
         }
     }
 
-    /* 7. Report. */
+    /* 7. Report.  Stopped with a message: a signal ended an output's write
+     * that blocked (a pipe whose reader stopped reading), said even with
+     * --quiet, since that output is cut short. */
+    if (st == RBS_E_CLOSED && rbs_projector_last_error(projector)[0] != '\0')
+        print_run_error("note: ", rbs_projector_last_error(projector), outs,
+                        n_out);
     if (st != RBS_OK && st != RBS_E_CLOSED) {
         print_run_error("error: ", rbs_projector_last_error(projector), outs,
                         n_out);

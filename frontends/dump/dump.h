@@ -19,6 +19,8 @@
 
 #include "rbsim/reel.h"
 
+#include <pthread.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -34,6 +36,62 @@ const rbs_renderer_class *rbsf_json_class(void);
  * lx,ly,lz,max_overlap,contacts,collisions,substeps,rollbacks.  Static
  * table. */
 const rbs_renderer_class *rbsf_stats_class(void);
+
+/* ---- Stopping outputs that block ---------------------------------------
+ * A FIFO that no one opens for reading blocks open() for ever, and a pipe
+ * whose reader stopped reading blocks write() once it is full: nothing the
+ * projector does (quit) reaches a thread blocked there.  A stopper lets
+ * another thread end such calls: the outputs of a dump type bound to it
+ * (rbsf_dump_bind) enter each open() and write() in it, and
+ * rbsf_stopper_stop() sends a signal to every thread that has been blocked
+ * there for longer than a grace time.  The caller installs that signal's
+ * handler, one that does nothing, without SA_RESTART, so the call fails
+ * with EINTR; once stopped, the output gives up (RBS_E_CLOSED, naming the
+ * file; a regular file is cut back to its last whole frame).  Before the
+ * stop an EINTR is retried.  Writes that do not block (regular files, a
+ * reader that keeps up) go on after the stop: a run stopped by a signal
+ * still writes the frames it has made. */
+
+/** Most threads at once in an output call of one stopper. */
+#define RBSF_STOPPER_THREADS 4
+
+/** Fill with rbsf_stopper_init; the fields are the stopper's own. */
+typedef struct rbsf_stopper {
+    pthread_mutex_t lock;
+    int stopped;                      /* guarded by lock */
+    struct {
+        pthread_t thread;
+        double since;                 /* CLOCK_MONOTONIC seconds */
+        int busy;
+    } blocked[RBSF_STOPPER_THREADS];  /* guarded by lock */
+} rbsf_stopper;
+
+/** Make a stopper (not stopped).  0, or -1 if its mutex cannot be made. */
+int rbsf_stopper_init(rbsf_stopper *s);
+/** Stop: from now on an interrupted open() or write() gives up.  Sends
+ * signo to every thread blocked in an output call for grace seconds or
+ * more, and returns how many threads are in one (interrupted or not yet).
+ * Call it again every 0.1 s or so for as long as the outputs may still be
+ * written: a thread may enter a call that blocks after this one (or just
+ * after its signal, which then cannot end the call).  Thread-safe. */
+int rbsf_stopper_stop(rbsf_stopper *s, int signo, double grace);
+/** Free a stopper no output uses any more. */
+void rbsf_stopper_destroy(rbsf_stopper *s);
+
+/** A dump type whose outputs a stopper can end: register &bound->cls.  It
+ * must outlive the registry and every projector using it. */
+typedef struct rbsf_dump_bound {
+    rbs_renderer_class cls;
+    struct rbsf_dump_type {
+        const void *format;     /* the type's format (internal) */
+        rbsf_stopper *stopper;  /* NULL: none */
+    } type;
+} rbsf_dump_bound;
+
+/** Bind a dump type (rbsf_csv_class(), rbsf_json_class() or
+ * rbsf_stats_class()) to a stopper.  RBS_E_INVALID for another class. */
+rbs_status rbsf_dump_bind(rbsf_dump_bound *bound, const rbs_renderer_class *dump_class,
+                          rbsf_stopper *stopper);
 
 /** Write x in the shortest "%.Ng" (N = 1..17) that strtod reads back as the
  * same double ("nan", "inf", "-inf" for those), in the "C" locale ('.' as

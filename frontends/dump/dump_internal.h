@@ -18,12 +18,14 @@ typedef struct rbsf__out {
     char *buf;
     size_t len, cap;
     off_t good;    /* bytes known to be written in full */
+    rbsf_stopper *stopper; /* may end a blocked open or write; NULL: none */
 } rbsf__out;
 
 /** Open (create or truncate) path, "-" for stdout, with a frame buffer of
- * cap bytes. */
+ * cap bytes.  An open that blocks (a FIFO with no reader) can be ended by
+ * the stopper (NULL: none): RBS_E_CLOSED. */
 rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
-                          char *err, size_t errlen);
+                          rbsf_stopper *stopper, char *err, size_t errlen);
 /** Append n bytes to the frame buffer; RBS_E_CAPACITY if they do not fit. */
 rbs_status rbsf__out_put(rbsf__out *out, const char *s, size_t n);
 /** rbsf_format_double in the thread's locale: for the formats, which run
@@ -36,7 +38,8 @@ rbs_status rbsf__out_num(rbsf__out *out, double x);
 /** Append an unsigned integer. */
 rbs_status rbsf__out_uint(rbsf__out *out, unsigned long long v);
 /** Write the buffer in full; on failure cut the file back to the last whole
- * frame and explain. */
+ * frame and explain.  RBS_E_CLOSED when the stopper ended a write that
+ * blocked (a pipe's bytes cannot be taken back: it may end mid-frame). */
 rbs_status rbsf__out_commit(rbsf__out *out, char *err, size_t errlen);
 /** Drop the buffer (a frame that will not be written). */
 void rbsf__out_discard(rbsf__out *out);
@@ -53,6 +56,13 @@ rbs_status rbsf__dump_check(const char *name, const rbs_renderer_config *config,
 /** The output path: config->path, else the entry's "path". */
 rbs_status rbsf__dump_path(const rbs_renderer_config *config, char *buf,
                            size_t n, char *err, size_t errlen);
+
+/** The stopper's part for outputs: enter a slot before an output call that
+ * may block (the slot, or -1 when none: stopper NULL or no slot free),
+ * leave it right after; whether the stopper was stopped. */
+int rbsf__stopper_enter(rbsf_stopper *s);
+void rbsf__stopper_leave(rbsf_stopper *s, int slot);
+int rbsf__stopper_stopped(rbsf_stopper *s);
 
 /** Bytes per frame the formats need at most for max_bodies bodies. */
 size_t rbsf__frame_bytes(uint32_t max_bodies, size_t per_body);

@@ -12,6 +12,8 @@
 
 #define PATH_MAX_BYTES 4096
 
+typedef struct rbsf_dump_type dump_type; /* a class's context (dump.h) */
+
 typedef struct dumper {
     const rbsf__format *format;
     rbsf__out out;
@@ -21,7 +23,8 @@ typedef struct dumper {
 static rbs_status dumper_check(void *context, const rbs_renderer_config *config,
                                const rbs_world *world, char *err, size_t errlen)
 {
-    const rbsf__format *format = context;
+    const dump_type *type = context;
+    const rbsf__format *format = type->format;
     (void)world;
     return rbsf__dump_check(format->name, config, err, errlen);
 }
@@ -30,7 +33,8 @@ static rbs_status dumper_create(void *context, const rbs_renderer_config *config
                                 const rbs_world *world, void **instance,
                                 char *err, size_t errlen)
 {
-    const rbsf__format *format = context;
+    const dump_type *type = context;
+    const rbsf__format *format = type->format;
     rbs_world_def wd;
     char path[PATH_MAX_BYTES];
     dumper *d;
@@ -55,8 +59,8 @@ static rbs_status dumper_create(void *context, const rbs_renderer_config *config
     }
     d->format = format;
     st = rbsf__out_open(&d->out, path,
-                        rbsf__frame_bytes(wd.max_bodies, format->per_body), err,
-                        errlen);
+                        rbsf__frame_bytes(wd.max_bodies, format->per_body),
+                        type->stopper, err, errlen);
     if (st != RBS_OK) {
         free(d);
         return st;
@@ -117,20 +121,36 @@ static void dumper_destroy(void *instance)
     free(d);
 }
 
-/* The classes: one table per format, the format as context. */
-#define DUMPER_CLASS(name, fmt)                                                \
+/* The classes: one table per format, its type (the format, no stopper) as
+ * context. */
+#define DUMPER_CLASS(name, type)                                               \
     {                                                                          \
-        sizeof(rbs_renderer_class), name, (void *)&(fmt), dumper_create,       \
+        sizeof(rbs_renderer_class), name, (void *)&(type), dumper_create,      \
             dumper_draw, dumper_finish, dumper_destroy, NULL, 0, dumper_check  \
     }
 
-static const rbs_renderer_class csv_class =
-    DUMPER_CLASS("csv", rbsf__csv_format);
-static const rbs_renderer_class json_class =
-    DUMPER_CLASS("json", rbsf__json_format);
+static const dump_type csv_type = {&rbsf__csv_format, NULL};
+static const dump_type json_type = {&rbsf__json_format, NULL};
+static const dump_type stats_type = {&rbsf__stats_format, NULL};
+
+static const rbs_renderer_class csv_class = DUMPER_CLASS("csv", csv_type);
+static const rbs_renderer_class json_class = DUMPER_CLASS("json", json_type);
 static const rbs_renderer_class stats_class =
-    DUMPER_CLASS("stats", rbsf__stats_format);
+    DUMPER_CLASS("stats", stats_type);
 
 const rbs_renderer_class *rbsf_csv_class(void) { return &csv_class; }
 const rbs_renderer_class *rbsf_json_class(void) { return &json_class; }
 const rbs_renderer_class *rbsf_stats_class(void) { return &stats_class; }
+
+rbs_status rbsf_dump_bind(rbsf_dump_bound *bound, const rbs_renderer_class *dump_class,
+                          rbsf_stopper *stopper)
+{
+    if (bound == NULL || (dump_class != &csv_class && dump_class != &json_class &&
+                          dump_class != &stats_class))
+        return RBS_E_INVALID;
+    bound->cls = *dump_class;
+    bound->type = *(const dump_type *)dump_class->context;
+    bound->type.stopper = stopper;
+    bound->cls.context = &bound->type;
+    return RBS_OK;
+}

@@ -71,11 +71,29 @@ size_t rbsf_format_double(char *buf, size_t size, double x)
     return n;
 }
 
+/* open(path, O_WRONLY | O_CREAT | O_TRUNC) in the stopper (it blocks for a
+ * FIFO until a reader comes): the descriptor, or -1 with errno, EINTR when
+ * the stopper ended it. */
+static int open_output(rbsf_stopper *stopper, const char *path)
+{
+    for (;;) {
+        int slot = rbsf__stopper_enter(stopper);
+        int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        int e = errno;
+        rbsf__stopper_leave(stopper, slot);
+        if (fd >= 0 || e != EINTR || rbsf__stopper_stopped(stopper)) {
+            errno = e;
+            return fd;
+        }
+    }
+}
+
 rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
-                          char *err, size_t errlen)
+                          rbsf_stopper *stopper, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     out->fd = -1;
+    out->stopper = stopper;
     out->path = malloc(strlen(path) + 1);
     out->buf = malloc(cap);
     if (out->path == NULL || out->buf == NULL) {
@@ -91,7 +109,7 @@ rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
         out->owned = 0;
         return RBS_OK;
     }
-    out->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    out->fd = open_output(stopper, path);
     if (out->fd < 0 && errno == ENOENT) {
         /* the one missing folder rbsf_check_output_file allowed */
         char *slash = strrchr(out->path, '/');
@@ -104,8 +122,14 @@ rbs_status rbsf__out_open(rbsf__out *out, const char *path, size_t cap,
                 return RBS_E_IO;
             }
             *slash = '/';
-            out->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+            out->fd = open_output(stopper, path);
         }
+    }
+    if (out->fd < 0 && errno == EINTR) {
+        snprintf(err, errlen, "opening '%s' given up: the run was stopped while "
+                              "it waited (a FIFO waits for a reader)", path);
+        rbsf__out_free(out);
+        return RBS_E_CLOSED;
     }
     if (out->fd < 0) {
         snprintf(err, errlen, "cannot create '%s': %s", path, strerror(errno));
@@ -152,20 +176,29 @@ rbs_status rbsf__out_commit(rbsf__out *out, char *err, size_t errlen)
         return RBS_E_IO;
     }
     while (done < out->len) {
+        int slot = rbsf__stopper_enter(out->stopper);
         ssize_t w = write(out->fd, out->buf + done, out->len - done);
-        if (w < 0 && errno == EINTR)
+        int e = w < 0 ? errno : EIO, given_up;
+        rbsf__stopper_leave(out->stopper, slot);
+        given_up = w < 0 && e == EINTR && rbsf__stopper_stopped(out->stopper);
+        if (w < 0 && e == EINTR && !given_up)
             continue;
         if (w <= 0) {
-            int e = w < 0 ? errno : EIO;
             out->failed = 1;
             /* Cut the frame's partial bytes off again: the file ends on the
-             * last whole frame. */
+             * last whole frame (a pipe keeps what it took). */
             if (done > 0 && out->owned && ftruncate(out->fd, out->good) == 0)
                 lseek(out->fd, out->good, SEEK_SET);
-            snprintf(err, errlen, "write to '%s' failed: %s", out->path,
-                     strerror(e));
+            if (given_up)
+                snprintf(err, errlen, "write to '%s' given up: the run was "
+                                      "stopped while it blocked (%lu of the "
+                                      "frame's %lu bytes written)",
+                         out->path, (unsigned long)done, (unsigned long)out->len);
+            else
+                snprintf(err, errlen, "write to '%s' failed: %s", out->path,
+                         strerror(e));
             out->len = 0;
-            return RBS_E_IO;
+            return given_up ? RBS_E_CLOSED : RBS_E_IO;
         }
         done += (size_t)w;
     }

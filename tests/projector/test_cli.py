@@ -1321,6 +1321,80 @@ class FaultTests(Base):
         self._interrupt(signal.SIGTERM, 143, first=[signal.SIGINT],
                         preexec=ignore_int)
 
+    def _stop_blocked(self, p, sig, blocked_for=1.0):
+        """Send sig to p once it has been blocked for blocked_for seconds;
+        it must end within 5 s (a regression is killed, not waited for):
+        its (stdout, stderr)."""
+        time.sleep(blocked_for)
+        self.assertIsNone(p.poll(), "ended before the signal")
+        p.send_signal(sig)
+        sent = time.time()
+        try:
+            p.wait(timeout=5)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            p.communicate()
+            self.fail("still running 5 s after %s" % sig.name)
+        self.assertLess(time.time() - sent, 5)
+        return p.communicate(timeout=30)
+
+    def test_signal_stops_a_fifo_without_reader(self):
+        # A FIFO no one opens for reading blocks open() for ever: the signal
+        # thread took SIGINT/SIGTERM but nothing woke the main thread, which
+        # ran until SIGKILL.  The signal ends the run before it starts: exit
+        # 128 + the signal, and like any run stopped before it starts it
+        # leaves nothing (the existing stats file as it was, no temporary).
+        s = self.scene()
+        os.mkfifo(self.path("ff"))
+        for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+            with open(self.path("old.csv"), "w") as f:
+                f.write("OLD\n")
+            p = subprocess.Popen([RBSIM, "run", s, "--steps", "2", "--quiet",
+                                  "--stats", "old.csv", "--csv", "ff"],
+                                 cwd=self.dir, stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True)
+            out, err = self._stop_blocked(p, sig)
+            self.assertEqual(p.returncode, code, err)
+            self.assertIn("stopped by %s before the run started" % sig.name,
+                          err)
+            self.assertIn("'ff'", err)
+            with open(self.path("old.csv")) as f:
+                self.assertEqual(f.read(), "OLD\n")
+            self.assertEqual(sorted(os.listdir(self.dir)),
+                             ["ff", "old.csv", "scene.json"])
+
+    def test_signal_stops_a_stalled_pipe_reader(self):
+        # Standard output is a pipe whose reader stopped reading (here: never
+        # reads): write() blocks once the pipe is full.  SIGTERM/SIGINT stop
+        # the run within seconds, exit 128 + the signal; the other output
+        # (a file) holds whole frames, renamed onto the old file; a note names
+        # the output cut short.  (What the pipe took cannot be taken back.)
+        s = self.scene()
+        for sig, code in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
+            with open(self.path("st.csv"), "w") as f:
+                f.write("OLD\n")
+            p = subprocess.Popen([RBSIM, "run", s, "--steps", "1000000",
+                                  "--csv", "-", "--stats", "st.csv"],
+                                 cwd=self.dir, stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE)
+            out, err = self._stop_blocked(p, sig, 1.5)
+            err = err.decode()
+            self.assertEqual(p.returncode, code, err)
+            self.assertIn("by " + sig.name, err)
+            self.assertRegex(err, r"rbsim: note: csv renderer '-': frame \d+: "
+                             r"write to '-' given up")
+            self.assertTrue(out.startswith(CSV_HEADER.encode() + b"\n"))
+            self.assertGreater(len(out), 4096)
+            with open(self.path("st.csv")) as f:
+                rows = f.read().splitlines()
+            self.assertEqual(rows[0], STATS_HEADER)
+            self.assertEqual([int(r.split(",")[0]) for r in rows[1:]],
+                             list(range(len(rows) - 1)))
+            self.assertEqual([n for n in os.listdir(self.dir)
+                              if n.startswith(".rbsim-")], [])
+
     def test_file_size_limit_is_a_write_error(self):
         # Under ulimit -f with SIGXFSZ at its default (death), replacing an
         # existing file: exit 4 naming the file (not its temporary), the file

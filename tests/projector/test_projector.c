@@ -875,6 +875,106 @@ static void destroy_while_running(void **state)
     fx_done(&fx);
 }
 
+/* One run of a world at a time: a second projector on the same world cannot
+ * start while the first runs (both started, two simulation threads stepped
+ * the world at once: a data race, and frames of a world stepped twice as
+ * fast).  It says why, leaves its own projector unstarted, and starts once
+ * the first run is over (wait returned), continuing the world where that
+ * run left it, with no error of its own. */
+static void one_run_of_a_world_at_a_time(void **state)
+{
+    fixture fx;
+    rbs_projector_def def2;
+    rbs_projector *p2 = NULL;
+    rbs_run_info info;
+    uint64_t at;
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    fx.def.endless = 1;
+    CHECK_OK(fx_create(&fx));
+    rbs_projector_def_init(&def2);
+    def2.steps = 5;
+    CHECK_OK(rbs_projector_create(fx.w, fx.reg, NULL, 0, &def2, &p2));
+    CHECK_OK(rbs_projector_start(fx.p));
+    assert_int_equal(rbs_projector_start(p2), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_projector_last_error(p2),
+                           "the world is in use by another projector's run"));
+    CHECK_OK(rbs_projector_status(p2, &info));
+    assert_int_equal(info.state, RBS_RUN_READY);
+    assert_int_equal(rbs_projector_wait(p2), RBS_E_INVALID); /* never started */
+    CHECK_OK(rbs_projector_command(fx.p, "quit", NULL, 0));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_E_CLOSED);
+    /* The world is the caller's again: the second run takes it from here. */
+    at = rbs_world_step_count(fx.w);
+    CHECK_OK(rbs_projector_start(p2));
+    assert_string_equal(rbs_projector_last_error(p2), "");
+    CHECK_OK(rbs_projector_wait(p2));
+    assert_int_equal(rbs_world_step_count(fx.w), at + 5);
+    /* and it is free once more after that run (the first stays once-only) */
+    assert_int_equal(rbs_projector_start(fx.p), RBS_E_INVALID);
+    rbs_projector_destroy(p2);
+    fx_done(&fx);
+}
+
+/* Two threads start two projectors of one world at the same moment: exactly
+ * one run starts (the claim is one compare-and-exchange; under the
+ * ThreadSanitizer build, two runs were reported as a race on the world). */
+typedef struct racer {
+    rbs_projector *p;
+    pthread_barrier_t *go;
+    rbs_status st;
+} racer;
+
+static void *race_start(void *arg)
+{
+    racer *r = arg;
+    pthread_barrier_wait(r->go);
+    r->st = rbs_projector_start(r->p);
+    return NULL;
+}
+
+static void two_starts_at_once_one_runs(void **state)
+{
+    int round;
+    (void)state;
+    for (round = 0; round < 20; round++) {
+        fixture fx;
+        rbs_projector_def def2;
+        pthread_barrier_t go;
+        pthread_t t[2];
+        racer r[2];
+        int i, started = 0;
+        fx_init(&fx, "rec", NULL);
+        fx.def.steps = 3;
+        CHECK_OK(fx_create(&fx));
+        rbs_projector_def_init(&def2);
+        def2.steps = 3;
+        r[0].p = fx.p;
+        CHECK_OK(rbs_projector_create(fx.w, fx.reg, NULL, 0, &def2, &r[1].p));
+        assert_int_equal(pthread_barrier_init(&go, NULL, 2), 0);
+        for (i = 0; i < 2; i++) {
+            r[i].go = &go;
+            r[i].st = RBS_E_NOT_FOUND;
+            assert_int_equal(pthread_create(&t[i], NULL, race_start, &r[i]), 0);
+        }
+        for (i = 0; i < 2; i++)
+            assert_int_equal(pthread_join(t[i], NULL), 0);
+        pthread_barrier_destroy(&go);
+        for (i = 0; i < 2; i++) {
+            if (r[i].st == RBS_OK) {
+                started++;
+                CHECK_OK(rbs_projector_wait(r[i].p));
+            } else {
+                assert_int_equal(r[i].st, RBS_E_INVALID);
+            }
+        }
+        assert_int_equal(started, 1);
+        assert_int_equal(rbs_world_step_count(fx.w), 3);
+        rbs_projector_destroy(r[1].p);
+        fx_done(&fx);
+    }
+}
+
 /* Real time: 200 frames of 1 ms at speed 1 take at least 0.2 s of wall
  * time (pacing sleeps; the lower bound cannot be met by chance). */
 static void realtime_paces_frames(void **state)
@@ -1318,6 +1418,8 @@ int main(void)
         cmocka_unit_test(stopped_run_keeps_its_last_frame_under_every),
         cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
+        cmocka_unit_test(one_run_of_a_world_at_a_time),
+        cmocka_unit_test(two_starts_at_once_one_runs),
         cmocka_unit_test(realtime_paces_frames),
         cmocka_unit_test(realtime_wait_beyond_any_clock_still_quits),
         cmocka_unit_test(live_view_gets_repeats_while_paused),

@@ -364,6 +364,19 @@ static const bad_case cases[] = {
      {E("nothere.txt", 1, 0,
         "cannot open 'bad/text_missing_objects_file/nothere.txt': No such file or "
         "directory")}},
+    /* a renderer line's bad keys: each is reported at its place (only the
+     * first was, the rest of the line unread), and a bad key leaves nothing
+     * behind: "camera..x" made no "camera" for csv to call unknown */
+    {"bad/text_renderer_keys/config.txt", RBS_E_SCENE,
+     {E("..b", 1, 1, "bad key \"a..b\": expected names joined by '.' and [index]"),
+      E("[]", 1, 1, "bad index in key \"a[]\": expected [number]"),
+      E("[0=", 1, 1, "bad index in key \"a[0\": expected [number]")}},
+    {"bad/text_renderer_words/config.txt", RBS_E_SCENE,
+     {E("word", 1, 0, "expected key=value, got \"word\""),
+      E("..x", 1, 1, "bad key \"camera..x\": expected names joined by '.' and [index]"),
+      E(" x=", 1, 1, "missing value after \"x=\""),
+      E("every=0", 1, 6,
+        "renderers[0].every: must be an integer from 1 to 2147483647 (2^31 - 1), got 0")}},
     {"bad/text_bad_values/config.txt", RBS_E_SCENE,
      {E("abc", 1, 0,
         "simulation.steps: must be a non-negative integer (at most 2^53), got \"abc\""),

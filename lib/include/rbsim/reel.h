@@ -354,7 +354,11 @@ RBS_API rbs_status rbs_projector_create(rbs_world *world,
 /** Capture frame 0 (the initial state) into the reel on the calling thread,
  * then start the simulation and renderer threads; from here the world
  * belongs to the simulation thread.  Once only (RBS_E_INVALID again, or on a
- * projector whose create failed). */
+ * projector whose create failed).  One run of a world at a time: while
+ * another projector's run holds the world (from its start until its
+ * rbs_projector_wait returns) this returns RBS_E_INVALID, says so in
+ * rbs_projector_last_error(), and may be called again once that run is
+ * over.  Thread-safe with respect to other projectors' starts. */
 RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
 
 /** Send a command line, as typed by a user.  Thread-safe (any thread, also

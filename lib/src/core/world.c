@@ -466,6 +466,31 @@ void rbs_world_destroy(rbs_world *w)
         free(w);
 }
 
+int rbs__world_claim(rbs_world *w)
+{
+#if defined(__GNUC__)
+    int expected = 0;
+    return __atomic_compare_exchange_n(&w->in_run, &expected, 1, 0, __ATOMIC_ACQUIRE,
+                                       __ATOMIC_RELAXED)
+               ? 0
+               : -1;
+#else
+    if (w->in_run)
+        return -1;
+    w->in_run = 1;
+    return 0;
+#endif
+}
+
+void rbs__world_release(rbs_world *w)
+{
+#if defined(__GNUC__)
+    __atomic_store_n(&w->in_run, 0, __ATOMIC_RELEASE);
+#else
+    w->in_run = 0;
+#endif
+}
+
 int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
 {
     va_list ap;

@@ -119,6 +119,9 @@ typedef struct rbs__plan {
 struct rbs_world {
     uint32_t magic;
     int owns_memory;
+    int in_run; /* 1 while a projector's run holds the world (from its
+                   rbs_projector_start until its rbs_projector_wait):
+                   rbs__world_claim, rbs__world_release */
     size_t bytes;
     rbs_world_def def;
     char error[RBS__ERROR_MAX];
@@ -271,6 +274,16 @@ int rbs__world_set_error(rbs_world *w, rbs_status status, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* A projector's run takes the world (rbs__world_claim: 0, or -1 when
+ * another run holds it) and gives it back once its threads are joined
+ * (rbs__world_release).  Two projectors may be started from two threads at
+ * once, so the claim is one compare-and-exchange (GCC's and Clang's
+ * __atomic built-ins; other compilers: a plain test, which catches a second
+ * start from the same thread only).  Acquire on the claim and release on
+ * the give-back: a run started after another ended sees every write that
+ * run's threads made to the world. */
+int rbs__world_claim(rbs_world *w);
+void rbs__world_release(rbs_world *w);
 void rbs__world_plan(rbs_world *w);
 void rbs__rebuild_lists(rbs_world *w); /* spheres, planes, item */
 /* The best row for every pair of material codes (world.c): exact pair, then

@@ -5,7 +5,10 @@
  *
  * Design.
  *  - The world belongs to the simulation thread from start to the end of
- *    wait; renderers see only frames (copies in the reel).
+ *    wait; renderers see only frames (copies in the reel).  So start claims
+ *    it (a flag in the world, compare-and-exchange) and wait gives it back
+ *    after joining both threads: a second projector's start on the same
+ *    world fails instead of stepping it from a second thread.
  *  - One mutex (mu) guards the control state (paused, show_until, speed,
  *    quit), the counters and the first error.  One condition (cond, on the
  *    monotonic clock) is broadcast on every change of that state: the
@@ -25,6 +28,7 @@
  *    get a frame twice.
  */
 #include "reel_internal.h"
+#include "core/world_internal.h" /* rbs__world_claim, rbs__world_release */
 
 #include <errno.h>
 #include <math.h>
@@ -897,7 +901,19 @@ rbs_status rbs_projector_start(rbs_projector *p)
     /* Commands may come from other threads already (a signal's "quit"). */
     pthread_mutex_lock(&p->mu);
     ok = p->usable && !p->started;
+    if (ok && rbs__world_claim(p->world) != 0) {
+        /* (not the run's error: this projector may start once that run is
+         * over, and then its result must be its own) */
+        snprintf(p->error, sizeof p->error,
+                 "the world is in use by another projector's run (from its "
+                 "rbs_projector_start until its rbs_projector_wait returns): "
+                 "one run of a world at a time");
+        pthread_mutex_unlock(&p->mu);
+        return RBS_E_INVALID;
+    }
     if (ok) {
+        if (p->result == RBS_OK)
+            p->error[0] = '\0'; /* (a refused start's message) */
         p->first_frame = rbs_world_step_count(p->world);
         p->frame_taken = p->show_until = p->first_frame;
         /* (what status says until a frame is drawn: the world's own frame,
@@ -937,6 +953,7 @@ rbs_status rbs_projector_start(rbs_projector *p)
             st = p->result;
             pthread_mutex_unlock(&p->mu);
             p->joined = 1;
+            rbs__world_release(p->world);
             return st != RBS_OK ? st : RBS_E_CLOSED;
         }
     }
@@ -949,8 +966,10 @@ rbs_status rbs_projector_start(rbs_projector *p)
         set_error(p, RBS_E_MEMORY, "cannot start the renderer thread");
     }
     pthread_mutex_unlock(&p->mu);
-    if (!ok)
+    if (!ok) {
+        rbs__world_release(p->world);
         return RBS_E_MEMORY;
+    }
     if (pthread_create(&p->sim_thread, NULL, sim_main, p) != 0) {
         /* Stop the renderer thread we started, then report: the run is
          * over (done, with this error). */
@@ -960,6 +979,7 @@ rbs_status rbs_projector_start(rbs_projector *p)
         p->sim_done = 1;
         pthread_mutex_unlock(&p->mu);
         p->joined = 1;
+        rbs__world_release(p->world);
         return RBS_E_MEMORY;
     }
     return RBS_OK;
@@ -1272,6 +1292,7 @@ rbs_status rbs_projector_wait(rbs_projector *p)
         pthread_join(p->sim_thread, NULL);
         pthread_join(p->ren_thread, NULL);
         p->joined = 1;
+        rbs__world_release(p->world); /* the caller's again */
     }
     rbs_projector_status(p, &info);
     return info.result;

@@ -293,8 +293,11 @@ static void add(cJSON *obj, const char *key, cJSON *item)
 /* ---- key=value lists (renderers, mutual_gravity) ------------------------ */
 
 /* Walk a dotted key ("camera.position", "views[1].fov", "path[0].t") from obj,
- * creating objects/arrays, and add the value at the end. */
-static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *value)
+ * creating objects/arrays, and add the value at the end.  The first
+ * container it creates goes into *made (with its parent in *made_in), so a
+ * key found bad part way can take back what it made. */
+static int kv_walk(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *value,
+                   cJSON **made, cJSON **made_in)
 {
     const char *s = t->srcs[t->file].text;
     size_t i = key_off, end = key_off + key_len, k;
@@ -338,6 +341,10 @@ static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *va
                 }
                 record(t, next, seg, 0, 1, seg);
                 add(cur, name, next);
+                if (*made == NULL) {
+                    *made = next;
+                    *made_in = cur;
+                }
             } else if (!cJSON_IsObject(next)) {
                 rbs__scene_error(t->scene, tloc(t, seg), "",
                                  "\"%s\" was given a value and cannot also have keys", name);
@@ -356,6 +363,10 @@ static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *va
             }
             record(t, next, seg, 0, 1, seg);
             add(cur, name, next);
+            if (*made == NULL) {
+                *made = next;
+                *made_in = cur;
+            }
         } else if (!cJSON_IsArray(next)) {
             rbs__scene_error(t->scene, tloc(t, seg), "",
                              "\"%s\" was given a value and cannot also have [index]", name);
@@ -401,6 +412,10 @@ static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *va
                     }
                     record(t, elem, seg, 0, 0, 0);
                     cJSON_AddItemToArray(next, elem);
+                    if (*made == NULL) {
+                        *made = elem;
+                        *made_in = next;
+                    }
                 } else if (!cJSON_IsArray(elem)) {
                     rbs__scene_error(t->scene, tloc(t, istart), "",
                                      "element [%lu] is not an array", (unsigned long)idx);
@@ -423,6 +438,10 @@ static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *va
                 }
                 record(t, elem, seg, 0, 0, 0);
                 cJSON_AddItemToArray(next, elem);
+                if (*made == NULL) {
+                    *made = elem;
+                    *made_in = next;
+                }
             } else if (!cJSON_IsObject(elem)) {
                 rbs__scene_error(t->scene, tloc(t, istart), "",
                                  "element [%lu] is not an object", (unsigned long)idx);
@@ -435,8 +454,38 @@ static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *va
     }
 }
 
+/* kv_walk; a bad key leaves nothing behind (a half-made "a" of "a..b=1" would
+ * make the next key's error, or an unknown-key error, about it). */
+static int kv_set(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *value)
+{
+    cJSON *made = NULL, *made_in = NULL;
+    if (kv_walk(t, obj, key_off, key_len, value, &made, &made_in) == 0) {
+        return 0;
+    }
+    if (made != NULL) {
+        cJSON_Delete(cJSON_DetachItemViaPointer(made_in, made));
+    }
+    return -1;
+}
+
+/* Skip a word from i: to the next blank outside quotes (or end). */
+static size_t skip_word(const char *s, size_t i, size_t end)
+{
+    int inq = 0;
+    while (i < end && (inq || !is_blank(s[i]))) {
+        if (s[i] == '"') {
+            inq = !inq;
+        } else if (inq && s[i] == '\\' && i + 1 < end) {
+            i++;
+        }
+        i++;
+    }
+    return i;
+}
+
 /* Parse "k=v k=v ..." in [i, end) into obj.  A value is one token or a
- * comma-separated list (an array); "..." quotes a string. */
+ * comma-separated list (an array); "..." quotes a string.  A bad word is
+ * reported and skipped: each is reported, at its place. */
 static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
 {
     const char *s = t->srcs[t->file].text;
@@ -461,7 +510,8 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
             rbs__scene_error(t->scene, tloc(t, key_off), "",
                              "expected key=value, got \"%.*s\"", (int)(key_len ? key_len : 1),
                              s + key_off);
-            return;
+            i = skip_word(s, i, end);
+            continue;
         }
         i++; /* '=' */
         /* the value runs to the next blank outside quotes */
@@ -487,16 +537,19 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
             if (vend == vstart) {
                 rbs__scene_error(t->scene, tloc(t, key_off), "",
                                  "missing value after \"%.*s=\"", (int)key_len, s + key_off);
-                return;
+                continue;
             }
             n = tokenize(t, vstart, vend, 1, toks, TOKS_MAX);
             if (n < 0) {
-                return;
+                if (t->failed) {
+                    return;
+                }
+                continue; /* (said by tokenize) */
             }
             if (n == 0) {
                 rbs__scene_error(t->scene, tloc(t, vstart), "",
                                  "missing value after \"%.*s=\"", (int)key_len, s + key_off);
-                return;
+                continue;
             }
             if (n == 1 && !comma) {
                 value = tok_value(t, s, toks[0].off, toks[0].len, toks[0].quoted, 1,
@@ -520,12 +573,17 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
                 }
             }
             if (value == NULL) {
-                return;
+                if (t->failed) {
+                    return;
+                }
+                continue; /* (said where it was read) */
             }
         }
         if (kv_set(t, obj, key_off, key_len, value) != 0) {
             cJSON_Delete(value);
-            return;
+            if (t->failed) {
+                return;
+            }
         }
     }
 }
