@@ -341,7 +341,8 @@ def test_speed_needs_realtime():
 
 
 _WAIT_FROM_RENDERER = r"""
-import json, rbsim
+import json, threading, rbsim
+ready = threading.Event()  # (run is set: draw may reach frame 5 before start returns)
 w = rbsim.World(dt=0.001, restitution=0.8)
 w.add_plane("ground")
 w.add_sphere("ball", radius=0.1, position=(0.0, 0.0, 0.5))
@@ -357,17 +358,20 @@ class Waiter:
     def draw(self, frame):
         seen.append(frame.number)
         if frame.number == 5:
+            ready.wait()
             attempt("draw", "wait", run.wait)
             attempt("draw", "finished3", lambda: run.finished(3.0))
             attempt("draw", "finished0", lambda: run.finished(0))
             attempt("draw", "status", lambda: run.status().state)
     def finish(self):
+        ready.wait()
         attempt("finish", "wait", run.wait)
         attempt("finish", "finished1", lambda: run.finished(1.0))
     def close(self):
         attempt("close", "wait", run.wait)
 
 run = w.start(50, renderers=[Waiter()])
+ready.set()
 info = run.wait()
 w.step()  # the world is free again
 print(json.dumps({"seen": seen, "calls": calls, "frame": info.frame,
@@ -408,16 +412,19 @@ def test_wait_from_the_runs_own_renderer_raises_at_once():
 
 
 _WAIT_UNCAUGHT = r"""
-import rbsim
+import threading, rbsim
 w = rbsim.World(dt=0.001)
 w.add_sphere("ball", radius=0.1)
 box = {}
+ready = threading.Event()  # (box["run"] is set: draw may reach frame 5 before start returns)
 
 def draw(frame):
     if frame.number == 5:
+        ready.wait()
         box["run"].wait()
 
 box["run"] = w.start(100000, renderers=[draw])
+ready.set()
 try:
     box["run"].wait()
 except rbsim.DeadlockError as e:
