@@ -57,8 +57,20 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
         for (i = 0; i < w->contact_count; ++i) {
             rbs__contact *c = &w->contact[i];
             double vn;
-            if (c->flags & RBS__APART)
-                continue; /* speculative: not touching */
+            if (c->flags & RBS__APART) {
+                /* speculative: not touching.  But one that an impulse of
+                 * this pass has set approaching faster than its threshold
+                 * is an impact too, when it touches: left out of the
+                 * resting pass (bias -1), so that the step's overlap finds
+                 * it and its impact has restitution.  Marked only on the
+                 * velocities before any impulse, a cradle on a floor with
+                 * gaps under g dt^2 (9.8 um at dt = 1 ms) lost 80 % of its
+                 * energy: each ball struck in a sub-step was stopped by the
+                 * resting pass against the next (a probe of session 40). */
+                if (c->bias == 0.0 && v3_dot(rbs__rel_velocity(w, c), c->n) < -c->thr)
+                    c->bias = -1.0;
+                continue;
+            }
             vn = v3_dot(rbs__rel_velocity(w, c), c->n);
             if (!(vn < -c->thr) || vn >= 0.0)
                 continue;
