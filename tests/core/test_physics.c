@@ -689,6 +689,49 @@ static void cradle_on_a_floor_with_micro_gaps(void **state)
     }
 }
 
+/* A ball resting on two touching balls on the floor (r = 0.1 m, 1 kg,
+ * e = 0.5, every pair mu_s = mu_k = mu).  It holds when mu >= tan 15 deg =
+ * 0.268 (the friction the pile needs; a probe of session 40 found the
+ * threshold between 0.25 and 0.30 with every method) and falls through
+ * below.  verlet, rk4 and adaptive took their resting pass cold each
+ * sub-step, its friction rows unconverged after max_sweeps, and the
+ * bottom balls slid apart at 2.3e-4 m/s^2 for any mu (11.6 mm in 10 s);
+ * warm-started like euler's they hold.  Held: every ball within 1e-7 m
+ * (the slop) of its start after 5 s; at mu = 0.25 the pile falls (over
+ * 0.1 m). */
+static void ball_on_two_balls_holds_by_friction(void **state)
+{
+    const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_SELECTIVE, RBS_METHOD_VERLET, RBS_METHOD_RK4,
+                                  RBS_METHOD_ADAPTIVE};
+    const double mus[] = {0.3, 1.0, 0.25};
+    size_t m, u;
+    (void)state;
+    for (m = 0; m < sizeof methods / sizeof methods[0]; ++m) {
+        for (u = 0; u < sizeof mus / sizeof mus[0]; ++u) {
+            rbs_world *w = make_world(8, 1e-3, -9.81, 0.5);
+            rbs_material_id mat = material(w, "m", mus[u], mus[u], 0.5);
+            rbs_body_id b[3];
+            double moved = 0.0;
+            int k;
+            CHECK_OK(rbs_world_set_method(w, methods[m], 0.0));
+            floor_plane(w, mat);
+            b[0] = ball(w, 0.1, 1.0, -0.1, 0, 0.1, 0, 0, 0, mat);
+            b[1] = ball(w, 0.1, 1.0, 0.1, 0, 0.1, 0, 0, 0, mat);
+            b[2] = ball(w, 0.1, 1.0, 0.0, 0, 0.1 + sqrt(3.0) * 0.1, 0, 0, 0, mat);
+            step_n(w, 5000);
+            for (k = 0; k < 3; ++k) {
+                rbs_body_state st = state_of(w, b[k]);
+                double d = fabs(st.position.x - (k == 0 ? -0.1 : k == 1 ? 0.1 : 0.0));
+                d = fmax(d, fabs(st.position.z - (k < 2 ? 0.1 : 0.1 + sqrt(3.0) * 0.1)));
+                moved = fmax(moved, d);
+            }
+            if (mus[u] > 0.268 ? !(moved <= 1e-7) : !(moved > 0.1))
+                fail_msg("%s, mu %g: the balls moved %.3g m in 5 s", rbs_method_name(methods[m]), mus[u], moved);
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* Overlap a step did not make is pushed apart by an iterated projection,
  * however the overlaps chain: a row of eight spheres each 20 % of a radius
  * into the next (one push closes the next pair's gap: a single pass leaves
@@ -1103,6 +1146,7 @@ int main(void)
         cmocka_unit_test(anisotropic_impact_slides_against_the_slip_it_leaves),
         cmocka_unit_test(wedged_balls_gain_no_energy),
         cmocka_unit_test(cradle_on_a_floor_with_micro_gaps),
+        cmocka_unit_test(ball_on_two_balls_holds_by_friction),
         cmocka_unit_test(chained_overlap_is_separated),
         cmocka_unit_test(reported_overlap_is_the_states),
         cmocka_unit_test(creeping_gap_closes_to_the_slop),

@@ -113,7 +113,7 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
     }
 
     /* Resting contact on the end velocities. */
-    rbs__solve_resting(w, info);
+    rbs__solve_resting_warm(w, info, h);
 
     /* Drift by the mean of the start and end velocities. */
     for (k = 0; k < w->sphere_count; ++k) {
