@@ -59,12 +59,24 @@ static inline void rbs__apply_pair(rbs_world *w, const rbs__contact *c, v3 j)
     rbs__apply_impulse(w, c->b, rbs__contact_rb(w, c), v3_scale(j, -1.0));
 }
 
+/* A contact's tangential mass K_tt in a basis of its tangent plane (set:
+ * 0 until rbs__stick_impulse_kt has computed it), kept so that a sliding
+ * contact's rbs__slide_impulse need not compute it again. */
+typedef struct rbs__kt {
+    v3 t1, t2;
+    double k11, k12, k21, k22;
+    int set;
+} rbs__kt;
+
 /* Tangential impulse that stops the slip vt (in the tangent plane): solves
- * the 2x2 system K_tt j = -vt in the basis (t1 = vt/|vt|, t2 = n x t1). */
-static inline v3 rbs__stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
+ * the 2x2 system K_tt j = -vt in the basis (t1 = vt/|vt|, t2 = n x t1);
+ * K_tt into *kt when kt is given and the plane is not isotropic. */
+static inline v3 rbs__stick_impulse_kt(const rbs_world *w, const rbs__contact *c, v3 vt, rbs__kt *kt)
 {
     double s = v3_len(vt), k11, k12, k21, k22, det, j1, j2;
     v3 t1, t2, kt1, kt2;
+    if (kt)
+        kt->set = 0;
     if (!(s > 0.0))
         return v3_make(0, 0, 0);
     if (c->kt_inv > 0.0)
@@ -77,6 +89,15 @@ static inline v3 rbs__stick_impulse(const rbs_world *w, const rbs__contact *c, v
     k12 = v3_dot(t1, kt2);
     k21 = v3_dot(t2, kt1);
     k22 = v3_dot(t2, kt2);
+    if (kt) {
+        kt->t1 = t1;
+        kt->t2 = t2;
+        kt->k11 = k11;
+        kt->k12 = k12;
+        kt->k21 = k21;
+        kt->k22 = k22;
+        kt->set = 1;
+    }
     det = k11 * k22 - k12 * k21;
     if (k12 == 0.0 && k21 == 0.0) {
         /* the common case (centred spheres): decoupled */
@@ -87,6 +108,11 @@ static inline v3 rbs__stick_impulse(const rbs_world *w, const rbs__contact *c, v
         j2 = s * k21 / det;
     }
     return v3_add(v3_scale(t1, j1), v3_scale(t2, j2));
+}
+
+static inline v3 rbs__stick_impulse(const rbs_world *w, const rbs__contact *c, v3 vt)
+{
+    return rbs__stick_impulse_kt(w, c, vt, NULL);
 }
 
 /* Tangential part of the relative velocity at a contact. */
@@ -106,27 +132,43 @@ static inline v3 rbs__slip(const rbs_world *w, const rbs__contact *c)
  * left by stick scaled down would not be against it: a sphere of
  * principal moments (2, 6, 5) g m^2 sliding diagonally on a floor went
  * 0.04 m/s (3 %) off Coulomb's law in 0.15 s (a probe of session 40).
- * In the basis (t1 = stick / len, t2 = n x t1), j = (K + s I)^-1 K stick
- * with the s >= 0 that makes |j| = lim: |j(s)| falls from len at s = 0
- * to at most |K stick| / s, so s lies in (0, |K stick| / lim]; Newton's
- * steps on 1/|j(s)| - 1/lim, kept inside that bracket by bisection. */
+ * In a basis (t1, t2) of the tangent plane -- kt's, when given and set,
+ * else t1 = stick / len -- j = (K + s I)^-1 K stick with the s >= 0 that
+ * makes |j| = lim: |j(s)| falls from len at s = 0 to at most |K stick| / s,
+ * so s lies in (0, |K stick| / lim]; Newton's steps on 1/|j(s)| - 1/lim,
+ * kept inside that bracket by bisection. */
 static inline v3 rbs__slide_impulse(const rbs_world *w, const rbs__contact *c, v3 stick, double len,
-                                    double lim)
+                                    double lim, const rbs__kt *kt)
 {
-    v3 t1, t2, kt1, kt2;
-    double k11, k12, k22, r1, r2, lo = 0.0, hi, s, j1 = len, j2 = 0.0, l = len;
+    v3 t1, t2;
+    double k11, k12, k22, c1, c2, r1, r2, lo = 0.0, hi, s, j1, j2, l = len;
     int it;
     if (c->kt_inv > 0.0 || !(lim > 0.0))
         return v3_scale(stick, lim / len);
-    t1 = v3_scale(stick, 1.0 / len);
-    t2 = v3_cross(c->n, t1);
-    kt1 = rbs__k_apply(w, c, t1);
-    kt2 = rbs__k_apply(w, c, t2);
-    k11 = v3_dot(t1, kt1);
-    k22 = v3_dot(t2, kt2);
-    k12 = 0.5 * (v3_dot(t1, kt2) + v3_dot(t2, kt1)); /* (K is symmetric) */
-    r1 = len * k11;
-    r2 = len * k12;
+    if (kt && kt->set) {
+        t1 = kt->t1;
+        t2 = kt->t2;
+        k11 = kt->k11;
+        k22 = kt->k22;
+        k12 = 0.5 * (kt->k12 + kt->k21); /* (K is symmetric) */
+        c1 = v3_dot(stick, t1);
+        c2 = v3_dot(stick, t2);
+    } else {
+        v3 kt1, kt2;
+        t1 = v3_scale(stick, 1.0 / len);
+        t2 = v3_cross(c->n, t1);
+        kt1 = rbs__k_apply(w, c, t1);
+        kt2 = rbs__k_apply(w, c, t2);
+        k11 = v3_dot(t1, kt1);
+        k22 = v3_dot(t2, kt2);
+        k12 = 0.5 * (v3_dot(t1, kt2) + v3_dot(t2, kt1));
+        c1 = len;
+        c2 = 0.0;
+    }
+    j1 = c1;
+    j2 = c2;
+    r1 = k11 * c1 + k12 * c2;
+    r2 = k12 * c1 + k22 * c2;
     hi = sqrt(r1 * r1 + r2 * r2) / lim;
     s = 0.0;
     for (it = 0; it < 200; ++it) {
@@ -140,15 +182,18 @@ static inline v3 rbs__slide_impulse(const rbs_world *w, const rbs__contact *c, v
             lo = s;
         else
             hi = s;
-        /* d|j|/ds = -j.(K + s I)^-1 j / |j|; Newton on 1/|j| - 1/lim */
+        /* d|j|/ds = -j.(K + s I)^-1 j / |j|, so d(1/|j|)/ds = q / |j|^3:
+         * Newton on 1/|j| - 1/lim (nearly linear in s: a few steps) */
         d1 = (b * j1 - k12 * j2) / det;
         d2 = (a * j2 - k12 * j1) / det;
         q = j1 * d1 + j2 * d2;
         if (l == lim || !(hi - lo > 4e-16 * hi))
             break;
-        next = q > 0.0 ? s + (1.0 / l - 1.0 / lim) * l * l * l / q : 0.5 * (lo + hi);
+        next = q > 0.0 ? s - (1.0 / l - 1.0 / lim) * l * l * l / q : 0.5 * (lo + hi);
         if (!(next > lo && next < hi))
             next = 0.5 * (lo + hi);
+        else if (fabs(next - s) <= 4e-16 * s)
+            break; /* (Newton's step is rounding: s is the root) */
         s = next;
     }
     if (!(l > 0.0))
@@ -158,12 +203,13 @@ static inline v3 rbs__slide_impulse(const rbs_world *w, const rbs__contact *c, v
 
 /* The accumulated friction impulse jt + stick kept within Coulomb's cone
  * (|Jt| <= mu_s Jn sticks, else mu_k Jn: rbs__slide_impulse). */
-static inline v3 rbs__cone(const rbs_world *w, const rbs__contact *c, const rbs__pair *p, v3 stick)
+static inline v3 rbs__cone(const rbs_world *w, const rbs__contact *c, const rbs__pair *p, v3 stick,
+                           const rbs__kt *kt)
 {
     v3 cand = v3_add(c->jt, stick);
     double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
     if (l2 > lim * lim) /* (a square root only to slide) */
-        cand = rbs__slide_impulse(w, c, cand, sqrt(l2), p->mu_k * c->jn);
+        cand = rbs__slide_impulse(w, c, cand, sqrt(l2), p->mu_k * c->jn, kt);
     return cand;
 }
 

@@ -229,17 +229,19 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
     const double lim = p->mu_s * c->jn;
     int round, bound = 0, was_bound = 0;
     v3 stick = v3_make(0, 0, 0), unbound = v3_make(0, 0, 0);
+    rbs__kt kt;
     rbs__apply_pair(w, c, j);
+    kt.set = 0;
     for (round = 0; round < ROLL_ROUNDS; ++round) {
         v3 cand;
         double l2;
-        stick = rbs__stick_impulse(w, c, rbs__slip(w, c));
+        stick = rbs__stick_impulse_kt(w, c, rbs__slip(w, c), &kt);
         cand = v3_add(c->jt, stick);
         l2 = v3_dot(cand, cand);
         bound = l2 > lim * lim;
         if (bound) {
             unbound = cand;
-            cand = rbs__slide_impulse(w, c, cand, sqrt(l2), lim);
+            cand = rbs__slide_impulse(w, c, cand, sqrt(l2), lim, &kt);
         }
         rbs__apply_pair(w, c, v3_sub(cand, c->jt));
         c->jt = cand;
@@ -255,7 +257,7 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
         double l = v3_len(c->jt);
         if (l > 0.0) {
             v3 kin = c->kt_inv > 0.0 ? v3_scale(c->jt, p->mu_k * c->jn / l)
-                                     : rbs__slide_impulse(w, c, unbound, v3_len(unbound), p->mu_k * c->jn);
+                                     : rbs__slide_impulse(w, c, unbound, v3_len(unbound), p->mu_k * c->jn, &kt);
             rbs__apply_pair(w, c, v3_sub(kin, c->jt));
             c->jt = kin;
             (void)rbs__resist_row(w, i);
@@ -301,7 +303,9 @@ static void pass(soft_pass *sp, int stage)
             /* the slip after the normal impulse (levers need not lie along n) */
             v3 cand;
             rbs__apply_pair(w, c, j);
-            cand = rbs__cone(w, c, p, rbs__stick_impulse(w, c, rbs__slip(w, c)));
+            rbs__kt kt;
+            v3 stick = rbs__stick_impulse_kt(w, c, rbs__slip(w, c), &kt);
+            cand = rbs__cone(w, c, p, stick, &kt);
             j = v3_sub(cand, c->jt);
             c->jt = cand;
         }
