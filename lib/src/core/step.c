@@ -14,7 +14,8 @@ static int row_has(const rbs__pair *r, int resist)
     return r->rolling > 0.0 || r->spinning > 0.0 || (!resist && (r->mu_s > 0.0 || r->mu_k > 0.0));
 }
 
-int32_t rbs__row_in_use(const rbs_world *w, int resist)
+/* rbs__row_in_use's search (its cache aside). */
+static int32_t row_in_use_find(const rbs_world *w, int resist)
 {
     /* the materials of moving spheres and of all bodies, one bit each (at
      * most 4096 materials and "none": 1 KiB on the stack) */
@@ -51,6 +52,15 @@ int32_t rbs__row_in_use(const rbs_world *w, int resist)
         }
     }
     return -1;
+}
+
+int32_t rbs__row_in_use(const rbs_world *w, int resist)
+{
+    /* (cached by rbs__world_plan: a setter makes the plan again, and the
+     * search is O(materials^2) at worst -- 22 ms a step with 4000) */
+    if (!w->rows_dirty)
+        return resist ? w->row_resist : w->row_friction;
+    return row_in_use_find(w, resist);
 }
 
 /* Decide which stages can change the result.  A stage left out is one whose
@@ -109,6 +119,11 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
 
 void rbs__world_plan(rbs_world *w)
 {
+    if (w->rows_dirty) {
+        w->row_friction = row_in_use_find(w, 0);
+        w->row_resist = row_in_use_find(w, 1);
+        w->rows_dirty = 0;
+    }
     rbs__plan_compute(w, &w->plan);
     w->plan_dirty = 0;
 }

@@ -695,6 +695,7 @@ void rbs__rebuild_pair_table(rbs_world *w)
         }
     }
     w->plan_dirty = 1;
+    w->rows_dirty = 1;
 }
 
 rbs_status rbs_world_set_pair(rbs_world *w, const rbs_pair_def *def)
@@ -960,6 +961,7 @@ static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
 {
     add_to_lists(w, s);
     w->plan_dirty = 1;
+    w->rows_dirty = 1;
     if (out) {
         out->index = s;
         out->generation = w->generation[s];
@@ -1239,6 +1241,7 @@ rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
     w->bodies--;
     rbs__rebuild_lists(w);
     w->plan_dirty = 1;
+    w->rows_dirty = 1;
     return RBS_OK;
 }
 

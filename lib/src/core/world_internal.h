@@ -140,6 +140,9 @@ struct rbs_world {
     uint32_t contacts_high;
     rbs__plan plan;
     int plan_dirty;
+    int rows_dirty;            /* bodies or pair rows changed: row_friction and
+                                  row_resist to be found again (step.c) */
+    int32_t row_friction, row_resist; /* rbs__row_in_use's answers, cached */
     int overlap_unmeasured; /* set by a method that leaves info->max_overlap to rbs_world_step */
     int step_saved; /* step_save holds the state at this step's start (a failed
                        step restores it); the soft step's gathered layout
