@@ -22,6 +22,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -174,9 +175,15 @@ rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char 
     w->fd = -1;
     if (encoded && w->error == 0) return RBS_OK;
 
-    /* A partial file is not a picture: remove it.  The system's reason
-     * wins over SDL's, which is then only an echo of it. */
-    (void)unlink(path);
+    /* A partial file is not a picture: remove it -- a regular file only:
+     * a link the user put there (to /dev/full, say) is theirs, and stays
+     * (a review of session 40).  The system's reason wins over SDL's,
+     * which is then only an echo of it. */
+    {
+        struct stat st;
+        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
+            (void)unlink(path);
+    }
     if (w->error != 0)
         reason(w->error, why, sizeof why);
     else if (why[0] == '\0')

@@ -142,6 +142,20 @@ class PngWriteErrors(unittest.TestCase):
         self.assertIn("frame 0: ", r.stderr)
         self.assertEqual(self.files("png"), {})
 
+    def test_a_users_link_is_left(self):
+        # A frame's name that is the user's link to /dev/full: the write
+        # fails (exit 4, named), and the link stays -- only a regular file
+        # the renderer cannot write whole is removed (it unlinked whatever
+        # was there: a review of session 40).
+        os.mkdir(os.path.join(self.dir, "png"))
+        link = os.path.join(self.dir, "png", frame(1))
+        os.symlink("/dev/full", link)
+        r = self.run_png("png", None)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn('cannot write "png/%s": No space left on device' % frame(1),
+                      r.stderr)
+        self.assertEqual(os.readlink(link), "/dev/full")
+
     def test_full_disk(self):
         # A full file system ("No space left on device"): each PNG is a new
         # file, so /dev/full cannot stand in; a small tmpfs can, but
