@@ -166,10 +166,14 @@ rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char 
         return RBS_E_IO;
     }
 
-    /* Encode, write what is left in the buffer, close: each checked. */
-    SDL_ClearError();
+    /* Encode, write what is left in the buffer, close: each checked.  SDL's
+     * error text is read only when the encoder failed: the first SDL error
+     * call on a thread makes that thread's SDL storage, which SDL frees
+     * only on SDL_TLSCleanup (the sanitizer pass found it leaked by every
+     * renderer thread that had cleared the error before each frame). */
     encoded = IMG_SavePNG_RW(surface, &w->rw, 0) == 0;
-    snprintf(why, sizeof why, "%s", SDL_GetError());
+    why[0] = '\0';
+    if (!encoded) snprintf(why, sizeof why, "%s", SDL_GetError());
     if (w->error == 0) drain(w);
     if (close(w->fd) != 0 && w->error == 0) w->error = errno;
     w->fd = -1;
@@ -190,5 +194,6 @@ rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char 
         snprintf(why, sizeof why, "the PNG encoder failed");
     if (err != NULL && errlen > 0)
         snprintf(err, errlen, "cannot write \"%s\": %s", path, why);
+    SDL_TLSCleanup(); /* (the error calls above made this thread's SDL storage) */
     return RBS_E_IO;
 }
