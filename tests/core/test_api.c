@@ -629,6 +629,7 @@ static void each_def_field_has_its_own_message(void **state)
         {"max_sweeps", "max_sweeps must be in [1, 100000], got 100001"},
         {"gravity_constant", "gravity_constant must be finite and >= 0, got -5e-324"},
         {"softening", "softening must be finite and >= 0, got inf"},
+        {"gravity", "gravity must be finite, got (0, nan, -9.81)"},
     };
     size_t k;
     char msg[256];
@@ -652,8 +653,10 @@ static void each_def_field_has_its_own_message(void **state)
             d.max_sweeps = 100001;
         else if (strcmp(f, "gravity_constant") == 0)
             d.gravity_constant = -5e-324;
-        else
+        else if (strcmp(f, "softening") == 0)
             d.softening = INFINITY;
+        else
+            d.gravity.y = NAN;
         assert_int_equal(rbs_world_def_validate(&d, msg, sizeof msg), RBS_E_INVALID);
         assert_string_equal(msg, cases[k].expect);
     }

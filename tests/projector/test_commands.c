@@ -150,6 +150,12 @@ static void projector_commands_reach_the_projector(void **state)
     assert_int_equal(rbsf_command_run(f->projector, "speed", reply, sizeof reply),
                      RBS_E_INVALID);
     assert_non_null(strstr(reply, "speed: expected"));
+    /* decimal only: strtod read "0x10" as 16 (a probe of session 40) */
+    assert_int_equal(rbsf_command_run(f->projector, "speed 0x10", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_non_null(strstr(reply, "got '0x10'"));
+    assert_int_equal(rbs_projector_status(f->projector, &info), RBS_OK);
+    assert_true(info.speed == 0.25);
     assert_int_equal(rbsf_command_run(f->projector, "step -1", reply,
                                       sizeof reply),
                      RBS_E_INVALID);

@@ -164,7 +164,9 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         return RBS_E_INVALID;
     }
     if (!isfinite(d.gravity.x) || !isfinite(d.gravity.y) || !isfinite(d.gravity.z)) {
-        snprintf(msg, len, "gravity must be finite");
+        char nb2[32], nb3[32];
+        snprintf(msg, len, "gravity must be finite, got (%s, %s, %s)", rbs__shortest(nb, d.gravity.x),
+                 rbs__shortest(nb2, d.gravity.y), rbs__shortest(nb3, d.gravity.z));
         return RBS_E_INVALID;
     }
     if (d.gravity_mode != RBS_GRAVITY_ACCELERATION && d.gravity_mode != RBS_GRAVITY_FORCE) {

@@ -1217,8 +1217,9 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         x = rbs__strtod_c(rest, &end);
         while (is_space(*end))
             end++;
+        /* (decimal only: strtod also reads "0x10" and "inf") */
         if (*rest == '\0' || *end != '\0' || errno != 0 || !isfinite(x) ||
-            !(x > 0) || x > 1e6) {
+            !(x > 0) || x > 1e6 || strpbrk(rest, "xXpP") != NULL) {
             reply_to(reply, reply_size,
                      "speed: expected a factor > 0 and <= 1e6, got '%s'", rest);
             return RBS_E_INVALID;
