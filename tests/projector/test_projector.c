@@ -67,7 +67,8 @@ static double now_s(void)
 
 typedef struct rec_opts {
     int fail_check, fail_create, fail_draw_at, fail_finish;
-    int draw_code; /* what draw returns at fail_draw_at (0: RBS_E_IO) */
+    int draw_code; /* what draw returns at fail_draw_at (0: RBS_E_IO), and a
+                      failing check, create or finish (0: their own) */
     int quit_at;          /* send "quit" through control at this frame, -1 */
     int live;
     int draw_ms;          /* each draw takes this long (a slow renderer) */
@@ -103,7 +104,7 @@ static rbs_status rec_check(void *context, const rbs_renderer_config *config,
     (void)world;
     if (c->opts.fail_check) {
         snprintf(err, errlen, "check says no");
-        return RBS_E_SCENE;
+        return c->opts.draw_code != 0 ? (rbs_status)c->opts.draw_code : RBS_E_SCENE;
     }
     return RBS_OK;
 }
@@ -117,7 +118,7 @@ static rbs_status rec_create(void *context, const rbs_renderer_config *config,
     (void)world;
     if (c->opts.fail_create) {
         snprintf(err, errlen, "cannot create");
-        return RBS_E_IO;
+        return c->opts.draw_code != 0 ? (rbs_status)c->opts.draw_code : RBS_E_IO;
     }
     r = calloc(1, sizeof *r);
     r->opts = c->opts;
@@ -173,7 +174,7 @@ static rbs_status rec_finish(void *instance, char *err, size_t errlen)
     r->finished++;
     if (r->opts.fail_finish) {
         snprintf(err, errlen, "cannot close");
-        return RBS_E_IO;
+        return r->opts.draw_code != 0 ? (rbs_status)r->opts.draw_code : RBS_E_IO;
     }
     return RBS_OK;
 }
@@ -626,6 +627,33 @@ static void foreign_draw_code_is_a_renderer_error(void **state)
     assert_non_null(strstr(rbs_projector_last_error(fx.p), "draw returned 5, not an rbs_status"));
     CHECK_OK(rbs_projector_status(fx.p, &info));
     assert_int_equal(info.result, RBS_E_RENDERER);
+    fx_done(&fx);
+}
+
+/* The same for check, create and finish: a renderer's own 42 passed out
+ * of rbs_projector_create and rbs_projector_wait as 42 (a probe of session
+ * 40); now RBS_E_RENDERER naming the code. */
+static void foreign_codes_of_every_call_are_renderer_errors(void **state)
+{
+    fixture fx;
+    (void)state;
+    fx_init(&fx, "good", "bad");
+    fx.other.opts.fail_check = 1;
+    fx.other.opts.draw_code = 42;
+    fx.def.steps = 10;
+    assert_int_equal(fx_create(&fx), RBS_E_RENDERER);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "check returned 42, not an rbs_status: check says no"));
+    rbs_projector_destroy(fx.p);
+    fx.other.opts.fail_check = 0;
+    fx.other.opts.fail_create = 1;
+    assert_int_equal(fx_create(&fx), RBS_E_RENDERER);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "create returned 42, not an rbs_status"));
+    rbs_projector_destroy(fx.p);
+    fx.other.opts.fail_create = 0;
+    fx.other.opts.fail_finish = 1;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_RENDERER);
+    assert_non_null(strstr(rbs_projector_last_error(fx.p), "finish returned 42, not an rbs_status"));
     fx_done(&fx);
 }
 
@@ -1407,6 +1435,7 @@ int main(void)
         cmocka_unit_test(failing_create_destroys_the_others),
         cmocka_unit_test(failing_draw_stops_the_run),
         cmocka_unit_test(foreign_draw_code_is_a_renderer_error),
+        cmocka_unit_test(foreign_codes_of_every_call_are_renderer_errors),
         cmocka_unit_test(failing_finish_is_reported),
         cmocka_unit_test(numerical_failure_stops_the_run),
         cmocka_unit_test(commands_steer_the_run),

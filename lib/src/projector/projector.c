@@ -139,6 +139,15 @@ static void fail(rbs_projector *p, rbs_status st, const char *fmt, ...)
     rbs_reel_close(p->reel);
 }
 
+/* Whether a renderer's return is an rbs_status (a renderer's own code is
+ * not: the projector's calls must return one -- rbsim.h; draw's was
+ * mapped, check's, create's, finish's and command's passed out as 42 or 99:
+ * a probe of session 40). */
+static int is_status(rbs_status st)
+{
+    return strcmp(rbs_status_name(st), "UNKNOWN") != 0;
+}
+
 /* Error text for a create-time failure (no threads yet). */
 static void set_error(rbs_projector *p, rbs_status st, const char *fmt, ...)
 {
@@ -368,6 +377,11 @@ rbs_status rbs_projector_create(rbs_world *world,
             continue;
         err[0] = '\0';
         st = r->cls->check(r->cls->context, &cfg[i], world, err, sizeof err);
+        if (st != RBS_OK && !is_status(st)) {
+            set_error(p, RBS_E_RENDERER, "%s: check returned %d, not an rbs_status%s%s", r->label,
+                      (int)st, err[0] ? ": " : "", err);
+            return RBS_E_RENDERER;
+        }
         if (st != RBS_OK) {
             set_error(p, st, "%s: %s", r->label,
                       err[0] ? err : rbs_status_string(st));
@@ -384,6 +398,11 @@ rbs_status rbs_projector_create(rbs_world *world,
         err[0] = '\0';
         st = r->cls->create(r->cls->context, &c, world, &r->instance, err,
                             sizeof err);
+        if (st != RBS_OK && !is_status(st)) {
+            set_error(p, RBS_E_RENDERER, "%s: create returned %d, not an rbs_status%s%s", r->label,
+                      (int)st, err[0] ? ": " : "", err);
+            return RBS_E_RENDERER;
+        }
         if (st != RBS_OK) {
             set_error(p, st, "%s: %s", r->label,
                       err[0] ? err : rbs_status_string(st));
@@ -569,6 +588,10 @@ static rbs_status forward_command(rbs_projector *p, const char *line,
         st = r->cls->command(r->instance, line, buf, sizeof buf);
         if (st == RBS_E_NOT_FOUND)
             continue;
+        if (st != RBS_OK && !is_status(st)) {
+            snprintf(buf, sizeof buf, "%s: command returned %d, not an rbs_status", r->label, (int)st);
+            st = RBS_E_RENDERER;
+        }
         if (result == RBS_E_NOT_FOUND || (result == RBS_OK && st != RBS_OK)) {
             result = st;
             if (out && outlen)
@@ -616,7 +639,7 @@ static int draw_one(rbs_projector *p, renderer *r, const rbs_frame *f)
     rbs_status st;
     err[0] = '\0';
     st = r->cls->draw(r->instance, f, err, sizeof err);
-    if (st != RBS_OK && strcmp(rbs_status_name(st), "UNKNOWN") == 0) {
+    if (st != RBS_OK && !is_status(st)) {
         /* not an rbs_status (a renderer's own code): the run's result
          * must be one */
         fail(p, RBS_E_RENDERER, "%s: frame %llu: draw returned %d, not an rbs_status%s%s",
@@ -867,7 +890,10 @@ static void *ren_main(void *arg)
             continue;
         err[0] = '\0';
         st = r->cls->finish(r->instance, err, sizeof err);
-        if (st != RBS_OK)
+        if (st != RBS_OK && !is_status(st))
+            fail(p, RBS_E_RENDERER, "%s: finish returned %d, not an rbs_status%s%s", r->label, (int)st,
+                 err[0] ? ": " : "", err);
+        else if (st != RBS_OK)
             fail(p, st == RBS_E_INVALID ? RBS_E_RENDERER : st, "%s: %s",
                  r->label, err[0] ? err : rbs_status_string(st));
     }
