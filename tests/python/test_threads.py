@@ -195,3 +195,33 @@ def test_world_threads_bad_values():
     w.close()                 # the pool goes with the world
     with pytest.raises(rbsim.ClosedError):
         w.threads
+
+
+_WAIT_FROM_THREE = r"""
+import threading, rbsim
+for it in range(30):
+    w = rbsim.World(max_bodies=4)
+    w.add_sphere(position=(0, 0, 1))
+    run = w.start(50, [lambda f: None])
+    got = []
+    def waiter():
+        got.append(run.wait().frame)
+    ts = [threading.Thread(target=waiter) for k in range(3)]
+    for t in ts: t.start()
+    for t in ts: t.join()
+    assert got == [50, 50, 50], got
+print("ok")
+"""
+
+
+def test_wait_from_three_threads_gives_each_the_end():
+    """Run.wait() from three threads at once: one waits on the projector,
+    the others get its RunInfo.  (Two inside rbs_projector_wait joined the
+    run's threads twice and hung within two runs: a probe of session 40.)
+    In a child with a timeout, so a regression fails instead of hanging."""
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", _WAIT_FROM_THREE],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == "ok\n"

@@ -274,6 +274,13 @@ class Run:
         # was destroyed under a command in flight: a hang or a crash)
         self._users = 0
         self._cond = threading.Condition()
+        # wait() from several threads: one waits on the projector, the
+        # others after it get its outcome (two in rbs_projector_wait joined
+        # the same threads twice: a hang).  Re-entrant: a renderer's close(),
+        # run inside wait(), may call wait() (it is told the run is over).
+        self._wait_lock = threading.RLock()
+        self._outcome: Optional[Any] = None  # (RunInfo, or the exception)
+        self._in_wait = False
         self._registry: Any = ffi.NULL
         self._result: Optional[int] = None
         self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
@@ -415,8 +422,31 @@ class Run:
     def wait(self) -> RunInfo:
         """Wait for the end of the run; raise what stopped it early (a
         renderer's own exception, or the library's error).  Raises
-        DeadlockError from the run's own renderer (it would never return)."""
+        DeadlockError from the run's own renderer (it would never return).
+        Thread-safe: waiters in several threads each get the same outcome."""
         self._refuse_from_renderer("wait()")
+        with self._wait_lock:
+            if self._outcome is not None:
+                if isinstance(self._outcome, BaseException):
+                    raise self._outcome
+                return self._outcome
+            if self._in_wait:  # (a renderer's close(), inside our own wait())
+                raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
+            self._in_wait = True
+            try:
+                info = self._wait()
+            except (KeyboardInterrupt, SystemExit):
+                raise
+            except BaseException as e:
+                if self._projector == ffi.NULL:  # (the run is over: for later waiters too)
+                    self._outcome = e
+                raise
+            finally:
+                self._in_wait = False
+            self._outcome = info
+            return info
+
+    def _wait(self) -> RunInfo:
         if self._projector == ffi.NULL:
             raise _e.error_class(lib.RBS_E_CLOSED)("the run is over")
         try:
