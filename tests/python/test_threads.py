@@ -225,3 +225,31 @@ def test_wait_from_three_threads_gives_each_the_end():
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout == "ok\n"
+
+
+_RUN_NOT_WAITED = r"""
+import time, rbsim
+w = rbsim.World()
+w.add_sphere(position=(0, 0, 1))
+w.run_kept = w.start(10, [lambda f: None])  # (a cycle: the world holds its run)
+time.sleep(0.3)
+try:
+    w.step()
+except rbsim.BusyError as e:
+    print(e)
+"""
+
+
+def test_a_run_not_waited_on():
+    """A run never waited on holds its world: the BusyError says so (it
+    blamed another thread), and at exit the world, in a reference cycle
+    with its run, is left to the run: destroyed first, it had the projector
+    write into freed memory ("free(): corrupted unsorted chunks", abort) --
+    a probe of session 40."""
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", _RUN_NOT_WAITED],
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout == ("world is held by a run until its Run.wait() (or from inside that "
+                          "run's renderer): call wait() on the Run that start() returned\n")

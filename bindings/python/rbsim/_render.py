@@ -286,6 +286,8 @@ class Run:
         self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
         self._keep: List[Any] = []
         self._cworld = world._acquire()  # held until wait() ends
+        world._held_by_run = True
+        self._world_mem = world._mem  # (the world's memory, alive while the run holds it)
         try:
             self._make(steps, realtime, speed, start_paused, pause_on_collision,
                        reel_capacity, endless)
@@ -486,6 +488,7 @@ class Run:
             self._registry = ffi.NULL
         if self._cworld is not None:
             self._cworld = None
+            self._world._held_by_run = False
             self._world._lock.release()
 
     def __del__(self) -> None:

@@ -532,6 +532,9 @@ class World:
         self._world: Any = ffi.NULL
         self._pool: Any = ffi.NULL  # rbs_pool lent to the world, or NULL
         self._lock = threading.Lock()
+        #: whether a Run holds the world (start() until its wait()), for
+        #: the busy message (a flag, not the Run: no reference cycle)
+        self._held_by_run = False
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
         #: the scene's description ("" for a world built in code)
@@ -637,7 +640,11 @@ class World:
         self.close()
 
     def __del__(self) -> None:
-        if getattr(self, "_world", ffi.NULL) != ffi.NULL:
+        # (a Run not waited on still holds the world: it is left to the
+        # Run, which keeps the memory alive and ends its projector -- the
+        # world destroyed first, in a reference cycle at exit, had the
+        # projector write into freed memory: a probe of session 40)
+        if getattr(self, "_world", ffi.NULL) != ffi.NULL and not getattr(self, "_held_by_run", False):
             self._release_world()
 
     @property
@@ -699,6 +706,13 @@ class World:
 
     def _acquire(self) -> Any:
         if not self._lock.acquire(blocking=False):
+            if self._held_by_run:
+                # (a run not waited on held it until the garbage collector
+                # came, and the message blamed another thread: a probe of
+                # session 40)
+                raise _e.BusyError("world is held by a run until its Run.wait() (or from "
+                                   "inside that run's renderer): call wait() on the Run that "
+                                   "start() returned")
             raise _e.BusyError("world is in use by another thread (a World is not "
                                "thread-safe; give each thread its own)")
         if self._world == ffi.NULL:
