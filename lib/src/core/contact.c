@@ -515,10 +515,12 @@ rbs_status rbs__detect_guards(rbs_world *w, double dt, const double *margin, con
 
 rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
 {
-    /* (the methods compute it again at these positions as they start:
-     * the same numbers) */
-    if (w->plan.mutual)
+    /* (the sub-step that follows starts from these positions and takes
+     * the same sum: rbs__mutual_gravity_start) */
+    if (w->plan.mutual) {
         rbs__mutual_gravity(w);
+        w->acc_fresh = 1;
+    }
     return detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL, NULL, NULL);
 }
 

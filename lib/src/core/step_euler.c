@@ -26,6 +26,7 @@ void rbs__mutual_gravity(rbs_world *w)
 {
     uint32_t i, j;
     double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+    w->acc_fresh = 0;
     memset(w->acc, 0, 3 * w->slots * sizeof(double));
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
@@ -43,12 +44,19 @@ void rbs__mutual_gravity(rbs_world *w)
     }
 }
 
+void rbs__mutual_gravity_start(rbs_world *w)
+{
+    if (!w->acc_fresh)
+        rbs__mutual_gravity(w);
+    w->acc_fresh = 0;
+}
+
 /* v += a h; w += I^-1 (tau - w x I w) h. */
 void rbs__integrate_velocities(rbs_world *w, double h)
 {
     uint32_t k;
     if (w->plan.mutual)
-        rbs__mutual_gravity(w);
+        rbs__mutual_gravity_start(w);
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         v3 a, tau;

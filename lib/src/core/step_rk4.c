@@ -151,8 +151,12 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
     /* Four stages: evaluate at the current stage state, accumulate, move to
      * the next stage state. */
     for (s = 0; s < 4; ++s) {
-        if (w->plan.mutual)
-            rbs__mutual_gravity(w);
+        if (w->plan.mutual) {
+            if (s == 0)
+                rbs__mutual_gravity_start(w);
+            else
+                rbs__mutual_gravity(w);
+        }
         for (k = 0; k < w->sphere_count; ++k) {
             uint32_t i = w->spheres[k];
             double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];

@@ -89,7 +89,7 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
     /* Forces at the start; predicted end velocities; spinning bodies'
      * rotation over the whole sub-step. */
     if (w->plan.mutual)
-        rbs__mutual_gravity(w);
+        rbs__mutual_gravity_start(w);
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];

@@ -140,6 +140,8 @@ struct rbs_world {
     uint32_t contacts_high;
     rbs__plan plan;
     int plan_dirty;
+    int acc_fresh;             /* w->acc is rbs__detect's, at the positions the
+                                  sub-step starts from (rbs__mutual_gravity_start) */
     int rows_dirty;            /* bodies or pair rows changed: row_friction and
                                   row_resist to be found again (step.c) */
     int32_t row_friction, row_resist; /* rbs__row_in_use's answers, cached */
@@ -763,6 +765,9 @@ static inline v3 rbs__angular_acceleration(const rbs_world *w, uint32_t i, v3 ta
     return m3_mul_world(&w->inv_inertia[9 * i], q, tau);
 }
 void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
+/* The same at a sub-step's start: rbs__detect's sum when it is fresh (only
+ * velocities changed since: the same numbers), else computed. */
+void rbs__mutual_gravity_start(rbs_world *w);
 void rbs__integrate_velocities(rbs_world *w, double h);
 void rbs__integrate_positions(rbs_world *w, double h);
 
