@@ -155,43 +155,96 @@ static void rest_stays_rest(void **state)
     }
 }
 
-/* A solid sphere launched sliding at v0 = 5 m/s, mu = 0.3, rolls from
- * t = 2 v0 / (7 mu g) at 5/7 v0.  Kinetic friction is a constant
- * deceleration, integrated exactly by every method, and the switch is an
- * exact stick impulse: speed within 1e-12 relative, the switch seen in the
- * frame containing it (within dt). */
+/* A solid sphere launched sliding at v0 = 5 m/s, mu_k = 0.3, rolls from
+ * t = 2 v0 / (7 mu_k g) at 5/7 v0, whatever mu_s >= mu_k: while it slides
+ * only kinetic friction acts (Coulomb), and on a level floor rolling needs
+ * no friction at all.  Kinetic friction is a constant deceleration,
+ * integrated exactly by every method, and the switch is an exact stick
+ * impulse: speed within 1e-12 relative, the switch seen in the frame
+ * containing it (within dt).  With mu_s = 3 mu_k the rollback methods rolled
+ * one to two frames early (a stick was taken whenever mu_s could stop the
+ * slip within the step: 0.484 s for 0.4854 s; a probe of session 41). */
 static void sliding_then_rolling(void **state)
 {
-    const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3, g = 9.81;
-    const double t_roll = 2.0 * v0 / (7.0 * mu * g);
-    size_t k;
+    const double v0 = 5.0, mu_k = 0.3, r = 0.1, dt = 1e-3, g = 9.81;
+    const double mu_s[] = {0.3, 0.9};
+    const double t_roll = 2.0 * v0 / (7.0 * mu_k * g);
+    size_t k, f;
+    (void)state;
+    for (f = 0; f < sizeof mu_s / sizeof mu_s[0]; ++f) {
+        for (k = 0; k < N_METHODS; ++k) {
+            rbs_world *w = world_for(all_methods[k], 4, dt, -g, 0.5);
+            rbs_material_id m;
+            rbs_body_id b;
+            double t_seen = -1.0;
+            int i, ok = 1;
+            if (w == NULL)
+                continue;
+            m = material(w, "m", mu_s[f], mu_k, -1.0);
+            floor_plane(w, m);
+            b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
+            for (i = 0; i < 3000 && ok; ++i) {
+                rbs_body_state s;
+                ok = run(w, 1);
+                s = state_of(w, b);
+                if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < 1e-12 * v0)
+                    t_seen = rbs_world_time(w);
+            }
+            if (ok) {
+                print_message("%s, mu_s %g: rolling from %.6f s (exact %.6f s)\n",
+                              rbs_method_name(all_methods[k]), mu_s[f], t_seen, t_roll);
+                assert_true(t_seen >= t_roll && t_seen <= t_roll + dt);
+                ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
+                ASSERT_NEAR(state_of(w, b).position.z, r, 1e-12);
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
+/* A solid ball (m = 1 kg, r = 0.1 m, no spin) strikes a floor at vz = -1
+ * with slip vx0 along it, e = 0.5, mu_s = 0.5, mu_k = 0.1, no gravity: the
+ * normal impulse is Jn = (1 + e) m = 1.5 N s, and the impulse that would
+ * stop the slip is m vx0 / 3.5 (K_tt = 1/m + r^2/I = 3.5/m).  The contact
+ * slips from the start, so friction is kinetic until the slip is gone
+ * (Coulomb; Stronge, Impact Mechanics, 2000, ch. 5): with vx0 = 1 it would
+ * need 0.286 N s, more than mu_k Jn = 0.15, and the ball leaves sliding:
+ * vx' = vx0 - 0.15, wy' = 0.15 r / I = 3.75 rad/s, vz' = 0.5 (with mu_s Jn =
+ * 0.75 it used to stick: vx' = 5/7 vx0, an outcome that jumped at vx0 =
+ * 2.625).  With vx0 = 0.5 (0.143 N s <= mu_k Jn) it rolls away at 5/7 vx0.
+ * Free flight without forces is exact, one impact's rounding: 1e-12. */
+static void impact_with_slip(void **state)
+{
+    const double r = 0.1, vx0[] = {1.0, 0.5};
+    size_t k, i;
     (void)state;
     for (k = 0; k < N_METHODS; ++k) {
-        rbs_world *w = world_for(all_methods[k], 4, dt, -g, 0.5);
-        rbs_material_id m;
-        rbs_body_id b;
-        double t_seen = -1.0;
-        int i, ok = 1;
-        if (w == NULL)
-            continue;
-        m = material(w, "m", mu, mu, -1.0);
-        floor_plane(w, m);
-        b = ball(w, r, 1.0, 0, 0, r, v0, 0, 0, m);
-        for (i = 0; i < 3000 && ok; ++i) {
+        for (i = 0; i < 2; ++i) {
+            rbs_world *w = world_for(all_methods[k], 4, 1e-3, 0.0, 0.5);
+            rbs_material_id m;
+            rbs_body_id b;
             rbs_body_state s;
-            ok = run(w, 1);
+            double vx, wy;
+            if (w == NULL)
+                continue;
+            m = material(w, "m", 0.5, 0.1, 0.5);
+            floor_plane(w, m);
+            b = ball(w, r, 1.0, 0, 0, r + 0.01, vx0[i], 0, -1.0, m);
+            if (!run(w, 40)) {
+                rbs_world_destroy(w);
+                continue;
+            }
             s = state_of(w, b);
-            if (t_seen < 0.0 && fabs(s.velocity.x - s.angular_velocity.y * r) < 1e-12 * v0)
-                t_seen = rbs_world_time(w);
+            vx = i == 0 ? vx0[i] - 0.15 : 5.0 / 7.0 * vx0[i];
+            wy = i == 0 ? 0.15 * r / (0.4 * r * r) : vx / r;
+            print_message("%s, vx0 %g: vx %.15f (exact %.15f), wy %.15f (exact %.15f)\n",
+                          rbs_method_name(all_methods[k]), vx0[i], s.velocity.x, vx, s.angular_velocity.y,
+                          wy);
+            ASSERT_NEAR(s.velocity.z, 0.5, 1e-12);
+            ASSERT_NEAR(s.velocity.x, vx, 1e-12);
+            ASSERT_NEAR(s.angular_velocity.y, wy, 1e-11);
+            rbs_world_destroy(w);
         }
-        if (ok) {
-            print_message("%s: rolling from %.6f s (exact %.6f s)\n", rbs_method_name(all_methods[k]),
-                          t_seen, t_roll);
-            assert_true(t_seen >= t_roll && t_seen <= t_roll + dt);
-            ASSERT_NEAR(state_of(w, b).velocity.x, 5.0 / 7.0 * v0, 1e-12 * v0);
-            ASSERT_NEAR(state_of(w, b).position.z, r, 1e-12);
-        }
-        rbs_world_destroy(w);
     }
 }
 
@@ -292,6 +345,7 @@ int main(void)
         cmocka_unit_test(rest_stays_rest),
         cmocka_unit_test(stack_stays_put),
         cmocka_unit_test(sliding_then_rolling),
+        cmocka_unit_test(impact_with_slip),
         cmocka_unit_test(bouncing_apexes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -43,8 +43,9 @@
  * may be in the soft step's buckets; 10 has the same layout, but the soft
  * step's model changed (its contact spring at a third of the sub-step
  * rate, exact flight of a body no contact touches), so a 9 file would
- * resume on other physics than the run that wrote it. */
-#define CKPT_VERSION 10u
+ * resume on other physics than the run that wrote it; 11 has contacts of
+ * 128 bytes (jslip: kinetic friction for a contact that came in slipping). */
+#define CKPT_VERSION 11u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

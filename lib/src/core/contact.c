@@ -106,6 +106,7 @@ static void contact_finish(rbs_world *w, rbs__contact *c, double dt, v3 aa, v3 a
     c->bias = 0.0;
     c->jn = 0.0;
     c->jt = v3_make(0, 0, 0);
+    c->jslip = 0.0;
 }
 
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt)

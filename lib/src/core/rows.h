@@ -201,13 +201,29 @@ static inline v3 rbs__slide_impulse(const rbs_world *w, const rbs__contact *c, v
     return v3_add(v3_scale(t1, j1 * lim / l), v3_scale(t2, j2 * lim / l));
 }
 
+/* The friction coefficient that decides whether a contact sticks, given
+ * jslip, the impulse that would stop the slip it came in with, and its
+ * normal impulse jn: mu_s, unless that slip is more than kinetic friction
+ * mu_k jn can stop -- then the contact slides all the interval, only mu_k
+ * acts, and it sticks only if mu_k jn suffices.  Static friction holds a
+ * contact that does not slip; one that slips feels mu_k until its slip is
+ * gone (Coulomb).  Sticking whenever mu_s jn could stop the slip rolled a
+ * ball sliding on a floor up to (mu_s / mu_k - 1) steps early, and left an
+ * impact's slip at zero where mu_k leaves some: an outcome that jumped at
+ * mu_s jn (a probe of session 41).  With mu_s == mu_k, or no slip, mu_s. */
+static inline double rbs__friction_cap(const rbs__pair *p, double jslip, double jn)
+{
+    return jslip > p->mu_k * jn ? p->mu_k : p->mu_s;
+}
+
 /* The accumulated friction impulse jt + stick kept within Coulomb's cone
- * (|Jt| <= mu_s Jn sticks, else mu_k Jn: rbs__slide_impulse). */
+ * (|Jt| <= cap Jn sticks, cap from rbs__friction_cap, else mu_k Jn:
+ * rbs__slide_impulse). */
 static inline v3 rbs__cone(const rbs_world *w, const rbs__contact *c, const rbs__pair *p, v3 stick,
                            const rbs__kt *kt)
 {
     v3 cand = v3_add(c->jt, stick);
-    double l2 = v3_dot(cand, cand), lim = p->mu_s * c->jn;
+    double l2 = v3_dot(cand, cand), lim = rbs__friction_cap(p, c->jslip, c->jn) * c->jn;
     if (l2 > lim * lim) /* (a square root only to slide) */
         cand = rbs__slide_impulse(w, c, cand, sqrt(l2), p->mu_k * c->jn, kt);
     return cand;

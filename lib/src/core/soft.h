@@ -61,6 +61,10 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
 #define RBS__CH_PLANE 12u   /* body b is a plane: only a moves */
 #define RBS__CH_SERIAL 16u  /* one bit: the lanes may share bodies, and are
                                taken one after the other */
+#define RBS__CH_SLIP 20u    /* it came in slipping more than mu_k times its
+                               last frame's normal impulse can stop: only
+                               kinetic friction acts this frame
+                               (rbs__friction_cap; only where mu_s > mu_k) */
 
 /* The passes of a frame (step_soft.c). */
 enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_REPORT };

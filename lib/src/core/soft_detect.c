@@ -181,11 +181,11 @@ static double threshold(const detect *d, uint32_t a, uint32_t b, v3 n)
 /* A lane's warm start from the last frame's forces fn (normal) and ft
  * (tangent, in this frame's tangent plane) for sub-steps of h, the tangent
  * kept in the static cone (rbs__warm_tangent). */
-static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double mus, double fn, v3 ft, double h)
+static void lane_warm(rbs__chunk *k, uint32_t l, int friction, double mu, double fn, v3 ft, double h)
 {
     k->jn[l] = fn * h;
     if (friction) {
-        const v3 jt = rbs__warm_tangent(v3_scale(ft, h), mus * k->jn[l]);
+        const v3 jt = rbs__warm_tangent(v3_scale(ft, h), mu * k->jn[l]);
         k->jx[l] = jt.x;
         k->jy[l] = jt.y;
         k->jz[l] = jt.z;
@@ -291,6 +291,17 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
             em->q = q; /* (a NaN stays, and keeps every sub-step) */
     }
     m = warm_of(w, rbs__warm_key_of(plane, a, b), plane, a);
+    if (in->friction && p->mu_s > p->mu_k) {
+        /* the slip it comes in with: more than kinetic friction stops in
+         * the frame at the last frame's load (none: a new contact), and
+         * only mu_k acts (rbs__friction_cap) */
+        const v3 vt = v3_mad(rv, n, -bias);
+        double kt = w->inv_mass[a] + la * la * w->iso_inv_inertia[a];
+        if (!plane)
+            kt += w->inv_mass[b] + lb * lb * w->iso_inv_inertia[b];
+        if (kt > 0.0 && v3_len(vt) / kt > p->mu_k * (m != NULL ? m->n : 0.0) * in->dt)
+            k->flags |= 1u << (RBS__CH_SLIP + l);
+    }
     if (m != NULL) {
         v3 ft = in->friction ? v3_mad(m->t, n, -v3_dot(m->t, n)) : v3_make(0, 0, 0);
         if (in->h == 0.0) {
@@ -300,7 +311,8 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
             k->jy[l] = ft.y;
             k->jz[l] = ft.z;
         } else {
-            lane_warm(k, l, in->friction, p->mu_s, m->n, ft, in->h);
+            lane_warm(k, l, in->friction, k->flags >> (RBS__CH_SLIP + l) & 1u ? p->mu_k : p->mu_s, m->n, ft,
+                      in->h);
         }
     }
 }
@@ -931,7 +943,9 @@ void rbs__soft_warm_h(rbs_world *w, const rbs__soft_groups *g, int friction, dou
         for (i = g->first[k]; i < g->first[k] + g->used[k]; ++i) {
             rbs__chunk *c = &w->chunk[i];
             for (l = 0; l < c->count; ++l)
-                lane_warm(c, l, friction, w->pair[c->row[l]].mu_s, c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
+                lane_warm(c, l, friction,
+                          c->flags >> (RBS__CH_SLIP + l) & 1u ? w->pair[c->row[l]].mu_k : w->pair[c->row[l]].mu_s,
+                          c->jn[l], v3_make(c->jx[l], c->jy[l], c->jz[l]), h);
         }
 }
 

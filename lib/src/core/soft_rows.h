@@ -254,6 +254,9 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
             mus = wd_make(p0->mu_s, p1->mu_s, p2->mu_s, p3->mu_s);
             muk = wd_make(p0->mu_k, p1->mu_k, p2->mu_k, p3->mu_k);
         }
+        if (flags >> RBS__CH_SLIP & 0xFu)
+            /* lanes that came in slipping: kinetic friction only */
+            mus = wd_sel(wm_from_bits(flags >> RBS__CH_SLIP & 0xFu), muk, mus);
         on = wm_and(wm_or(wm_gt(jn1, zero), wm_or(wm_or(wm_ne(jtx, zero), wm_ne(jty, zero)), wm_ne(jtz, zero))),
                     wm_or(wm_gt(mus, zero), wm_gt(muk, zero)));
         /* the tangent effective mass 1 / (1/m_a + 1/m_b + r_a^2/I_a +
@@ -320,7 +323,8 @@ static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__s
         one.flags = ((f >> RBS__CH_TOUCHED >> l & 1u) << RBS__CH_TOUCHED) |
                     ((f >> RBS__CH_BOUNCE >> l & 1u) << RBS__CH_BOUNCE) |
                     ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
-                    ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE);
+                    ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE) |
+                    ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP);
         if (stage < 0) {
             warm_chunk(k, &one, plane);
             continue;

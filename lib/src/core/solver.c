@@ -5,11 +5,14 @@
  *  1. Collisions, on the velocities before this sub-step's forces: every
  *     contact approaching faster than its resting threshold gets the impulse
  *     that makes it leave with e times its approach speed, with Coulomb
- *     friction (stick if the impulse that stops slip is at most mu_s * Jn,
- *     else slide with mu_k * Jn against the slip it leaves: rbs__slide_impulse).  Pair by pair, swept until no
- *     contact approaches, at most max_sweeps times.
+ *     friction (stick if the impulse that stops slip is at most mu_s * Jn --
+ *     mu_k * Jn when the impact starts with more slip than that stops:
+ *     rbs__friction_cap -- else slide with mu_k * Jn against the slip it
+ *     leaves: rbs__slide_impulse).  Pair by pair, swept until no contact
+ *     approaches, at most max_sweeps times.
  *  2. Resting contact, after the forces: projected Gauss-Seidel on
- *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn, rolling and spinning
+ *     accumulated impulses (Jn >= 0, |Jt| <= mu * Jn with mu as above for
+ *     the slip the contact had before the forces, rolling and spinning
  *     resistance bounded by Jn), cancelling the approach the forces built.
  * A speculative contact (gap > slop, contact.c) takes no collision impulse;
  * the collision pass marks it as an impact (bias -1: left out of the resting
@@ -25,16 +28,35 @@
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn)
 {
     const rbs__pair *p = rbs__contact_pair(w, c);
-    double jn = -(1.0 + rbs__contact_e(w, c)) * vn / c->kn;
+    const int friction = w->plan.friction && (p->mu_s > 0.0 || p->mu_k > 0.0);
+    double jn = -(1.0 + rbs__contact_e(w, c)) * vn / c->kn, jslip = 0.0;
+    if (friction && p->mu_s > p->mu_k)
+        /* the slip the impact starts with (rbs__friction_cap) */
+        jslip = v3_len(rbs__stick_impulse(w, c, rbs__slip(w, c)));
     rbs__apply_pair(w, c, v3_scale(c->n, jn));
-    if (w->plan.friction && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
+    if (friction) {
         rbs__kt kt;
         v3 vt = rbs__slip(w, c);
         v3 jt = rbs__stick_impulse_kt(w, c, vt, &kt);
         double l = v3_len(jt);
-        if (l > p->mu_s * jn)
+        if (l > rbs__friction_cap(p, jslip, jn) * jn)
             jt = rbs__slide_impulse(w, c, jt, l, p->mu_k * jn, &kt);
         rbs__apply_pair(w, c, jt);
+    }
+}
+
+/* Each contact's jslip for the resting pass: the impulse that stops the
+ * slip the collision pass leaves it, before the sub-step's forces add to it
+ * (the start of the interval the pass covers), where mu_s > mu_k; else 0. */
+static void slip_marks(rbs_world *w)
+{
+    uint32_t i;
+    for (i = 0; i < w->contact_count; ++i) {
+        rbs__contact *c = &w->contact[i];
+        const rbs__pair *p = rbs__contact_pair(w, c);
+        c->jslip = 0.0;
+        if (w->plan.friction && p->mu_s > p->mu_k && !(c->bias < 0.0))
+            c->jslip = v3_len(rbs__stick_impulse(w, c, rbs__slip(w, c)));
     }
 }
 
@@ -43,7 +65,7 @@ double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c)
     return v3_dot(rbs__rel_velocity(w, c), c->n);
 }
 
-void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
+static void collision_sweeps(rbs_world *w, rbs_step_info *info)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps;
     for (i = 0; i < w->contact_count; ++i) {
@@ -86,6 +108,12 @@ void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
     }
     if (info)
         info->sweep_limit++;
+}
+
+void rbs__solve_collisions(rbs_world *w, rbs_step_info *info)
+{
+    collision_sweeps(w, info);
+    slip_marks(w);
 }
 
 /* Warm-start cache: the resting impulse rates (impulse / h) of the last
@@ -640,7 +668,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
                 if (friction) {
                     double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
                     v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
-                    c->jt = rbs__warm_tangent(l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0), p->mu_s * c->jn);
+                    c->jt = rbs__warm_tangent(l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0),
+                                              rbs__friction_cap(p, c->jslip, c->jn) * c->jn);
                 }
                 rbs__apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
                 any = warmed = 1;

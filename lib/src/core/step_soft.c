@@ -226,7 +226,7 @@ static inline v3 normal_accumulate(rbs__contact *c, double dj)
  * at mu_k, and the rolling row takes the turning once more. */
 static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair *p, uint32_t i, v3 j)
 {
-    const double lim = p->mu_s * c->jn;
+    const double lim = rbs__friction_cap(p, c->jslip, c->jn) * c->jn;
     int round, bound = 0, was_bound = 0;
     v3 stick = v3_make(0, 0, 0), unbound = v3_make(0, 0, 0);
     rbs__kt kt;
@@ -422,7 +422,7 @@ static inline void warm_for_h(rbs__contact *c, const rbs__pair *p, int friction,
 {
     c->jn = fn * h;
     if (friction)
-        c->jt = rbs__warm_tangent(v3_scale(ft, h), p->mu_s * c->jn);
+        c->jt = rbs__warm_tangent(v3_scale(ft, h), rbs__friction_cap(p, c->jslip, c->jn) * c->jn);
 }
 
 /* The row kernels of this processor: AVX where the build has them and the
@@ -955,6 +955,13 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         if (rbs__contact_e(w, c) > 0.0 && c->bias < -c->thr)
             c->flags |= RBS__BOUNCE;
         c->thr = 1.0 / c->kn; /* (its test is taken: from here the effective mass) */
+        c->jslip = 0.0;
+        if (sp.friction && p->mu_s > p->mu_k &&
+            v3_len(rbs__stick_impulse(w, c, rbs__slip(w, c))) > p->mu_k * (m != NULL ? m->n : 0.0) * dt)
+            /* it comes in slipping more than kinetic friction stops in the
+             * frame at the last frame's load (none: a new contact): only
+             * mu_k acts this frame (rbs__friction_cap with any jn > 0) */
+            c->jslip = HUGE_VAL;
         if (p->rolling > 0.0 || p->spinning > 0.0) {
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;

@@ -35,7 +35,7 @@ typedef struct rbs__contact {
     double lb;     /* lever along n: rb = lb n from b's centre to the contact
                       point (minus the centre of mass offset R c when off;
                       rbs__contact_rb); a's is la = -r_a (rbs__contact_la),
-                      looked up rather than kept, for a 120-byte contact */
+                      looked up rather than kept, for a 128-byte contact */
     double gap;    /* signed distance between surfaces, m (< 0: overlap) */
     double thr;    /* approach speed below which the contact is resting, m/s
                       (the soft step takes its test at the frame's start and
@@ -51,6 +51,12 @@ typedef struct rbs__contact {
     /* accumulated impulses in the resting pass */
     double jn;
     v3 jt;
+    double jslip;  /* the friction impulse that would stop the contact's slip
+                      as the collision pass leaves it (before the sub-step's
+                      forces), N s; while it is over mu_k Jn the contact
+                      slides all the sub-step and only kinetic friction acts
+                      (rbs__friction_cap); 0 when mu_s == mu_k, and in the
+                      soft step */
 } rbs__contact;
 
 #define RBS__OFF_A 1u
