@@ -248,6 +248,64 @@ static void impact_with_slip(void **state)
     }
 }
 
+/* A light ball (1 kg) against a wall and a heavy one (M) against it, all
+ * touching, M moving into them at 1 m/s, e = 1, no friction, no gravity:
+ * the impact passes to and fro between wall and light ball, about
+ * pi sqrt(M) times, until the heavy ball leaves (the pi billiard; G.
+ * Galperin, Regular and Chaotic Dynamics 8, 2003).  The exact sequence is
+ * the recursion below; every impulse conserves energy, so the end state is
+ * exact to the rounding of ~pi sqrt(M) impulses: 1e-9.  With the collision
+ * pass capped at max_sweeps (20) sweeps, from M = 300 what was left of the
+ * impact was stopped by the resting pass as if plastic: M = 1e4 ended at
+ * rest, all its energy gone (a probe of session 41). */
+static void elastic_impact_through_a_chain(void **state)
+{
+    const double Ms[] = {100.0, 1e4, 1e5};
+    size_t k, i;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        for (i = 0; i < sizeof Ms / sizeof Ms[0]; ++i) {
+            const double M = Ms[i], r = 0.1;
+            rbs_world *w = world_for(all_methods[k], 4, 1e-3, 0.0, 1.0);
+            rbs_plane_def pd;
+            rbs_body_id wall, light, heavy;
+            double v1 = 0.0, v2 = -1.0;
+            int n = 0;
+            if (w == NULL)
+                continue;
+            rbs_plane_def_init(&pd);
+            pd.normal = (rbs_vec3){1, 0, 0};
+            CHECK_OK(rbs_world_add_plane(w, &pd, &wall));
+            light = ball(w, r, 1.0, r, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+            heavy = ball(w, r, M, 3.0 * r, 0, 0, -1.0, 0, 0, (rbs_material_id){0, 0});
+            /* the exact sequence: light (v1) between wall and heavy (v2) */
+            for (;;) {
+                if (v2 < v1) {
+                    const double u1 = ((1.0 - M) * v1 + 2.0 * M * v2) / (1.0 + M);
+                    v2 = (2.0 * v1 + (M - 1.0) * v2) / (1.0 + M);
+                    v1 = u1;
+                } else if (v1 < 0.0) {
+                    v1 = -v1;
+                } else {
+                    break;
+                }
+                n++;
+            }
+            if (!run(w, 50)) {
+                rbs_world_destroy(w);
+                continue;
+            }
+            print_message("%s, M %g: %d impacts; heavy %.12f (exact %.12f), light %.12f (exact %.12f)\n",
+                          rbs_method_name(all_methods[k]), M, n, state_of(w, heavy).velocity.x, v2,
+                          state_of(w, light).velocity.x, v1);
+            ASSERT_NEAR(state_of(w, heavy).velocity.x, v2, 1e-9);
+            ASSERT_NEAR(state_of(w, light).velocity.x, v1, 1e-9 * sqrt(M));
+            rbs_world_destroy(w);
+            (void)wall;
+        }
+    }
+}
+
 /* A ball dropped from a gap h = 1 m with e = 0.5: the apexes are at h e^(2n)
  * (exact); the apex height is recovered from the frame after it as
  * z + v^2 / (2 g), exact for free flight.  Verlet, RK4 and adaptive
@@ -346,6 +404,7 @@ int main(void)
         cmocka_unit_test(stack_stays_put),
         cmocka_unit_test(sliding_then_rolling),
         cmocka_unit_test(impact_with_slip),
+        cmocka_unit_test(elastic_impact_through_a_chain),
         cmocka_unit_test(bouncing_apexes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

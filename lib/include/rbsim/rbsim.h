@@ -211,7 +211,10 @@ typedef struct rbs_world_def {
     double slop;              /**< allowed overlap and contact margin, relative to
                                    the smaller radius of a pair; default 1e-6 */
     uint32_t max_halvings;    /**< rollback floor: dt / 2^max_halvings; default 30 */
-    uint32_t max_sweeps;      /**< impulse sweeps per contact pass, selective
+    uint32_t max_sweeps;      /**< impulse sweeps per resting-contact pass
+                                   (100 times as many for the collision pass,
+                                   which an elastic impact through a chain
+                                   of touching bodies needs), selective
                                    fix-up rounds and separation iterations;
                                    default 20 */
     int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
