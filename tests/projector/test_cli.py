@@ -942,6 +942,32 @@ class CliTests(Base):
             r = self.rbsim(*args, timeout=300)
             self.assertEqual(r.returncode, 0, (args, r.stderr))
 
+    def test_check_and_explain_refuse_what_event_refuses(self):
+        # (they passed it; run then failed at step 1 with exit 4)
+        sim = {"steps": 10, "method": "event", "mutual_gravity": True}
+        s = self.scene(simulation=sim)
+        want = ("scene.json:%d:%d: simulation.mutual_gravity: method \"event\" "
+                "does not support mutual gravity")
+        with open(s) as f:
+            text = f.read()
+        head = text[:text.index('"mutual_gravity": true') + len('"mutual_gravity": ')]
+        where = (head.count("\n") + 1, len(head) - head.rfind("\n"))
+        for cmd in ("check", "explain"):
+            r = self.rbsim(cmd, "scene.json")
+            self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+            self.assertIn(want % where, r.stdout)
+        r = self.rbsim("run", "scene.json", "--csv", "ev.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        # --method event on a scene of another method: the same, from the
+        # command line
+        sim = {"steps": 10, "mutual_gravity": True}
+        self.scene(simulation=sim)
+        for cmd, code in ((["explain", "scene.json"], 3), (["run", "scene.json"], 2)):
+            r = self.rbsim(*cmd, "--method", "event")
+            self.assertEqual(r.returncode, code, r.stdout + r.stderr)
+            self.assertIn("command line: --method: method \"event\" does not "
+                          "support mutual gravity", r.stdout + r.stderr)
+
     def test_convert_round_trip(self):
         s = self.scene()
         os.mkdir(self.path("txt"))

@@ -307,6 +307,24 @@ static const bad_case cases[] = {
      {E("\"t\": 0.5", 1, 5, "renderers[0].camera.path[1].t: times must increase, got 0.5 after 1")}},
     {"bad/views_too_many.json", RBS_E_SCENE,
      {E("[{}, {}", 1, 0, "renderers[0].views: must have 1 to 4 cameras, got 5")}},
+    /* the "event" method's scope, which its step checks, is decided at load
+     * as far as the scene decides it: mutual gravity, a resistance row that
+     * a moving sphere's material takes (not steel on steel: the fixed
+     * sphere alone is steel), a moving sphere with anisotropic inertia or
+     * an off-centre mass (not the fixed one, nor the isotropic "d") */
+    {"bad/event_out_of_scope.json", RBS_E_SCENE,
+     {E("{\"G\"", 1, 0,
+        "simulation.mutual_gravity: method \"event\" does not support mutual gravity (not a "
+        "constant force); use \"adaptive\""),
+      E("0.001}", 1, 0,
+        "materials[0].spinning: method \"event\" does not support rolling and spinning "
+        "resistance (pair \"rubber\"/\"*\", which bodies of this scene take); use \"euler\""),
+      E("[0.004", 1, 0,
+        "bodies[0].inertia: method \"event\" does not support a moving sphere with anisotropic "
+        "inertia (\"a\"); use \"euler\""),
+      E("[0.01, 0, 0]", 1, 0,
+        "bodies[1].center_of_mass: method \"event\" does not support a moving sphere with an "
+        "off-centre mass (\"b\"); use \"euler\"")}},
     /* several errors in one file: all are reported, sorted by place (a
      * missing key is reported at its object's opening brace) */
     {"bad/many_errors.json", RBS_E_SCENE,
@@ -862,6 +880,103 @@ static void test_material_rules(void **state)
     rbs_scene_free(scene);
 }
 
+/* The "event" method's scope decided at load (rbs_scene_override with
+ * "event" here) agrees with its step's own check: a scene is refused at
+ * load exactly when the world built from it with another method, switched
+ * to "event", refuses its first step as RBS_E_UNSUPPORTED. */
+static void test_event_scope_agrees_with_the_step(void **state)
+{
+#define EV_SIM "{\"simulation\": {\"steps\": 1, \"gravity\": [0, 0, 0]"
+#define EV_BALL(name, x, extra)                                                              \
+    "{\"name\": \"" name "\", \"type\": \"sphere\", \"radius\": 0.1, \"mass\": 1, "           \
+    "\"position\": [" x ", 0, 1]" extra "}"
+#define EV_FLOOR(extra) \
+    "{\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1]" extra "}"
+    static const char *const texts[] = {
+        /* 0: within the scope */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 1: mutual gravity */
+        EV_SIM ", \"mutual_gravity\": true}, \"materials\": [{\"pair\": [\"*\", \"*\"], "
+        "\"static\": 0.5, \"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", "") ", "
+        EV_BALL("b", "1", "") "]}",
+        /* 2: rolling on the row every contact takes */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"rolling\": 0.01}], \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 3: spinning on a row of a material no body has */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"ice\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"spinning\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 4: rolling on a "*" row that exact pairs shadow (the sphere's
+         * material with itself among them) */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"rubber\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"rolling\": 0.01}, {\"pair\": [\"rubber\", \"wood\"], \"static\": 0.5, \"kinetic\": 0.3}, "
+        "{\"pair\": [\"rubber\", \"rubber\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", ", \"material\": \"rubber\"") ", "
+        EV_FLOOR(", \"material\": \"wood\"") "]}",
+        /* 5: rolling on the pair of a moving sphere's material with itself
+         * (one sphere of it: the world counts the pair all the same) */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"rubber\", \"rubber\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3, \"rolling\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", ", \"material\": \"rubber\"") ", "
+        EV_FLOOR("") "]}",
+        /* 6: rolling on a pair of two materials of fixed bodies only */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"steel\", \"wood\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3, \"rolling\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", "") ", "
+        EV_BALL("s", "1", ", \"fixed\": true, \"material\": \"steel\"") ", "
+        EV_FLOOR(", \"material\": \"wood\"") "]}",
+        /* 7, 8, 9: anisotropic inertia, moving and fixed; equal moments */
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.005]") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.005], "
+                                               "\"fixed\": true") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.004]") "]}",
+        /* 10, 11: an off-centre mass; -0 is the centre */
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"center_of_mass\": [0, 1e-300, 0]") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"center_of_mass\": [-0.0, 0, -0.0]") "]}",
+    };
+    static const int refused[] = {0, 1, 1, 0, 0, 1, 0, 1, 0, 0, 1, 0};
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof texts / sizeof *texts; k++) {
+        rbs_scene *scene = NULL;
+        rbs_world *world = NULL;
+        rbs_status st;
+        assert_int_equal(rbs_scene_parse_json(texts[k], strlen(texts[k]), "ev", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+        assert_int_equal(rbs_world_set_method(world, RBS_METHOD_EVENT, 0.0), RBS_OK);
+        st = rbs_world_step(world, NULL);
+        if (st != (refused[k] ? RBS_E_UNSUPPORTED : RBS_OK))
+            fail_msg("scene %lu: the step says %s", (unsigned long)k, rbs_status_string(st));
+        st = rbs_scene_override(scene, 0, 0.0, "event");
+        if (st != (refused[k] ? RBS_E_SCENE : RBS_OK))
+            fail_msg("scene %lu: the override says %s", (unsigned long)k, rbs_status_string(st));
+        rbs_world_destroy(world);
+        rbs_scene_free(scene);
+    }
+    /* and every demonstration scene: the two agree */
+    for (k = 0; k < DEMO_COUNT; k++) {
+        char path[256];
+        rbs_scene *scene = NULL;
+        rbs_world *world = NULL;
+        rbs_status step, load;
+        snprintf(path, sizeof path, "../../scenes/%s.json", demo_names[k]);
+        assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_OK);
+        assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+        assert_int_equal(rbs_world_set_method(world, RBS_METHOD_EVENT, 0.0), RBS_OK);
+        step = rbs_world_step(world, NULL);
+        load = rbs_scene_override(scene, 0, 0.0, "event");
+        if ((step == RBS_E_UNSUPPORTED) != (load == RBS_E_SCENE))
+            fail_msg("%s: the step says %s, the override %s", path, rbs_status_string(step),
+                     rbs_status_string(load));
+        rbs_world_destroy(world);
+        rbs_scene_free(scene);
+    }
+#undef EV_SIM
+#undef EV_BALL
+#undef EV_FLOOR
+}
+
 /* simulation.slop reaches the world, and is the overlap a scene may start
  * with: a ball 0.4 % of its radius inside the floor loads with slop 0.005
  * and is an error with the world's default (1e-6); absent, the world's
@@ -1075,6 +1190,7 @@ int main(void)
         cmocka_unit_test(test_names_beyond_ascii),
         cmocka_unit_test(test_camera_path_errors_at_the_keyframe),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
+        cmocka_unit_test(test_event_scope_agrees_with_the_step),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),
     };
     if (enter_test_dir() != 0) {

@@ -1605,6 +1605,167 @@ static void check_pairs(vctx *v)
     free(other);
 }
 
+/* ---- the "event" method's scope ------------------------------------------ */
+
+/* The row the world takes for materials a and b (-1 = none; a material
+ * code as rbs__rebuild_pair_table scores it: exact pair, then one "*", then
+ * "*" with "*", the first of equals). */
+static int32_t event_best_row(const rbs_scene *s, int32_t a, int32_t b)
+{
+    int32_t best = -1, best_score = -1;
+    uint32_t p;
+    for (p = 0; p < s->pair_count; p++) {
+        const rbs__scene_pair *r = &s->pairs[p];
+        int score = -1;
+        int exact = (r->a == a && r->b == b) || (r->a == b && r->b == a);
+        if (exact) {
+            score = (r->a >= 0) + (r->b >= 0);
+        } else if (r->a < 0 && (r->b == a || r->b == b)) {
+            score = r->b >= 0;
+        } else if (r->b < 0 && (r->a == a || r->a == b)) {
+            score = r->a >= 0;
+        } else if (r->a < 0 && r->b < 0) {
+            score = 0;
+        }
+        if (score >= 0 && r->a >= 0 && r->b >= 0 && !exact) {
+            score = -1;
+        }
+        if (score > best_score) {
+            best_score = score;
+            best = (int32_t)p;
+        }
+    }
+    return best;
+}
+
+int rbs__event_rows(const rbs_scene *s, unsigned char *refused)
+{
+    /* step.c's rbs__row_in_use: the rows with rolling or spinning
+     * resistance that the materials of a moving sphere and of any body
+     * (itself included) take */
+    uint32_t m = s->material_count + 1, i, a, b;
+    unsigned char *moving, *any;
+    int count = 0;
+    for (i = 0; i < s->pair_count; i++) {
+        refused[i] = 0;
+        if (s->pairs[i].rolling > 0.0 || s->pairs[i].spinning > 0.0) {
+            count = 1;
+        }
+    }
+    if (count == 0) {
+        return 0; /* (the common case: no row has it) */
+    }
+    moving = calloc(2 * (size_t)m, 1);
+    if (moving == NULL) {
+        return -1;
+    }
+    any = moving + m;
+    for (i = 0; i < s->body_count; i++) {
+        const rbs__scene_body *bd = &s->bodies[i];
+        uint32_t mi = bd->material >= 0 ? (uint32_t)bd->material + 1 : 0;
+        any[mi] = 1;
+        if (bd->type == RBS_BODY_SPHERE && !bd->fixed) {
+            moving[mi] = 1;
+        }
+    }
+    count = 0;
+    for (a = 0; a < m; a++) {
+        for (b = 0; b < m && moving[a]; b++) {
+            int32_t row;
+            if (!any[b]) {
+                continue;
+            }
+            row = event_best_row(s, (int32_t)a - 1, (int32_t)b - 1);
+            if (row >= 0 && !refused[row] &&
+                (s->pairs[row].rolling > 0.0 || s->pairs[row].spinning > 0.0)) {
+                refused[row] = 1;
+                count++;
+            }
+        }
+    }
+    free(moving);
+    return count;
+}
+
+int rbs__event_sphere_refused(const rbs_scene *s, uint32_t i)
+{
+    /* step_event.c's check_scope on the world rbs_world_add_sphere makes:
+     * a moving sphere with anisotropic inertia or an off-centre mass */
+    const rbs__scene_body *b = &s->bodies[i];
+    if (b->type != RBS_BODY_SPHERE || b->fixed) {
+        return 0;
+    }
+    if (!vec_len_zero(b->center_of_mass)) {
+        return 2;
+    }
+    return b->inertia_kind == RBS_INERTIA_PRINCIPAL &&
+           !(b->inertia.x == b->inertia.y && b->inertia.y == b->inertia.z);
+}
+
+/* The scene with method "event" must be within its scope, which the step
+ * checks too (rbs__step_event): reported here at the keys that leave it. */
+static void check_event_scope(vctx *v, const cJSON *tree, const cJSON **body_items,
+                               int materials_ok)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *sim = member(tree, "simulation"), *c;
+    size_t saved;
+    uint32_t i;
+    if (s->method != RBS_METHOD_EVENT) {
+        return;
+    }
+    if (s->mutual_gravity && (c = member(sim, "mutual_gravity")) != NULL) {
+        saved = push_key(v, "simulation");
+        push_key(v, "mutual_gravity");
+        err(v, loc_value(v, c),
+            "method \"event\" does not support mutual gravity (not a constant force); use "
+            "\"adaptive\"");
+        pop(v, saved);
+    }
+    if (materials_ok && s->pair_count > 0) {
+        const cJSON *mats = member(tree, "materials"), *row;
+        unsigned char *refused = malloc(s->pair_count);
+        int n = refused != NULL ? rbs__event_rows(s, refused) : -1;
+        if (n < 0) {
+            err(v, loc_value(v, mats), "out of memory");
+        }
+        for (row = mats->child, i = 0; n > 0 && row != NULL && i < s->pair_count;
+             row = row->next, i++) {
+            const rbs__scene_pair *p = &s->pairs[i];
+            const char *key = p->rolling > 0.0 ? "rolling" : "spinning";
+            if (!refused[i] || (c = member(row, key)) == NULL) {
+                continue;
+            }
+            saved = push_key(v, "materials");
+            push_index(v, i);
+            push_key(v, key);
+            err(v, loc_value(v, c),
+                "method \"event\" does not support rolling and spinning resistance (pair "
+                "\"%s\"/\"%s\", which bodies of this scene take); use \"euler\"",
+                p->a >= 0 ? s->materials[p->a] : "*", p->b >= 0 ? s->materials[p->b] : "*");
+            pop(v, saved);
+        }
+        free(refused);
+    }
+    for (i = 0; body_items != NULL && i < s->body_count; i++) {
+        int why;
+        if (!s->bodies[i].ok || (why = rbs__event_sphere_refused(s, i)) == 0) {
+            continue;
+        }
+        c = member(body_items[i], why == 2 ? "center_of_mass" : "inertia");
+        if (c == NULL) {
+            continue;
+        }
+        saved = push_key(v, "bodies");
+        push_index(v, i);
+        push_key(v, why == 2 ? "center_of_mass" : "inertia");
+        err(v, loc_value(v, c),
+            "method \"event\" does not support a moving sphere with %s (\"%s\"); use \"euler\"",
+            why == 2 ? "an off-centre mass" : "anisotropic inertia", s->bodies[i].name);
+        pop(v, saved);
+    }
+}
+
 /* A sphere in the overlap grid: its level (cells of 2^level m, at least its
  * diameter) and the cell holding its centre. */
 typedef struct grid_rec {
@@ -2411,5 +2572,6 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
     if (materials_ok) {
         check_pairs(&v);
     }
+    check_event_scope(&v, tree, body_items, materials_ok);
     free(body_items);
 }
