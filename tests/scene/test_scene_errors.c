@@ -265,6 +265,13 @@ static const bad_case cases[] = {
         "\"json\" or \"sdl\")")}},
     {"bad/renderer_csv_unknown_key.json", RBS_E_SCENE,
      {E("\"evrey\"", 1, 0, "renderers[0].evrey: unknown key in csv (did you mean \"every\"?)")}},
+    /* a type the library does not know: a key given twice at any depth */
+    {"bad/renderer_duplicate_nested.json", RBS_E_SCENE,
+     {E("\"b\": 2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 4, column 40)"),
+      E("\"d\": 2", 1, 0,
+        "renderers[0].l[1].c.d: duplicate key (first given at line 4, column 80)")}},
+    {"bad/text_renderer_duplicate/config.txt", RBS_E_SCENE,
+     {E("a.b=2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 3, column 17)")}},
     {"bad/renderer_sdl_bad_width.json", RBS_E_SCENE,
      {E("8}", 1, 0, "renderers[0].width: must be an integer in 16..8192 (pixels), got 8")}},
     {"bad/camera_up_parallel.json", RBS_E_SCENE,

@@ -2313,6 +2313,35 @@ static char *print_exact(const cJSON *r)
     return text;
 }
 
+/* A key given twice in an object of item, at any depth (the entries of
+ * renderer types the library does not know, whose keys it does not check;
+ * the JSON and text readers keep both). */
+static void check_duplicates(vctx *v, const cJSON *item)
+{
+    const cJSON *a, *b;
+    size_t i = 0;
+    for (a = item->child; a != NULL; a = a->next, i++) {
+        size_t saved;
+        if (cJSON_IsObject(item)) {
+            for (b = item->child; b != a; b = b->next) {
+                if (strcmp(a->string, b->string) == 0) {
+                    rbs__loc first = loc_key(v, b);
+                    saved = push_key(v, a->string);
+                    err(v, loc_key(v, a), "duplicate key (first given at line %ld, column %ld)",
+                        (long)first.line, (long)first.column);
+                    pop(v, saved);
+                    break;
+                }
+            }
+        }
+        if (a->child != NULL) {
+            saved = cJSON_IsObject(item) ? push_key(v, a->string) : push_index(v, i);
+            check_duplicates(v, a);
+            pop(v, saved);
+        }
+    }
+}
+
 static void check_renderer(vctx *v, const cJSON *r, size_t index)
 {
     rbs_scene *s = v->scene;
@@ -2340,20 +2369,9 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     } else if (type != NULL && strcmp(type, "sdl") == 0) {
         check_keys(v, r, sdl_keys, (int)(sizeof sdl_keys / sizeof *sdl_keys), "sdl");
     } else {
-        /* other types validate their own keys; duplicates are still wrong */
-        const cJSON *a, *b;
-        for (a = r->child; a != NULL; a = a->next) {
-            for (b = r->child; b != a; b = b->next) {
-                if (strcmp(a->string, b->string) == 0) {
-                    rbs__loc first = loc_key(v, b);
-                    saved = push_key(v, a->string);
-                    err(v, loc_key(v, a), "duplicate key (first given at line %ld, column %ld)",
-                        (long)first.line, (long)first.column);
-                    pop(v, saved);
-                    break;
-                }
-            }
-        }
+        /* other types validate their own keys; duplicates are still wrong,
+         * at any depth */
+        check_duplicates(v, r);
     }
     if ((c = member(r, "path")) != NULL) {
         const char *p;
