@@ -276,6 +276,40 @@ static void test_save_errors(void **state)
         assert_int_equal(rbs_scene_save(scene, cfg, RBS_SCENE_TEXT), RBS_E_UNSUPPORTED);
         rbs_scene_free(scene);
     }
+    {
+        /* each key the text format cannot spell: the message names the
+         * entry, the key (its path) and why (it was a bare "not supported") */
+        static const struct {
+            const char *entry, *key, *why;
+        } cases[] = {
+            {"\"a b\": 1", "a b", "a key with a blank or a control character"},
+            {"\"n\": {\"m\": [1, {\"x=y\": 1}]}", "n.m[1].x=y",
+             "a key with one of . [ ] = \" # ,"},
+            {"\"n\": {\"\": 1}", "n.", "an empty key"},
+            {"\"k123456789012345678901234567890123456789012345678901234567890123\": 1",
+             "k123456789012345678901234567890123456789012345678901234567890123",
+             "a key of 63 bytes or more"},
+        };
+        size_t k;
+        for (k = 0; k < sizeof cases / sizeof *cases; k++) {
+            char text[512], cfg[512], msg[600], want[600];
+            snprintf(text, sizeof text,
+                     "{\"simulation\": {\"steps\": 1}, \"bodies\": [], \"renderers\": "
+                     "[{\"type\": \"csv\"}, {\"type\": \"plotter\", %s}]}",
+                     cases[k].entry);
+            snprintf(want, sizeof want,
+                     "renderers[1] (plotter): key \"%s\" cannot be written in the text "
+                     "format: %s (its keys are names of 1 to 62 bytes without blanks or "
+                     ". [ ] = \" # , in paths under 512 bytes); keep this scene as JSON",
+                     cases[k].key, cases[k].why);
+            tmp(cfg, sizeof cfg, "config.txt");
+            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "keys", &scene), RBS_OK);
+            assert_int_equal(rbs_scene_save_v2(scene, cfg, RBS_SCENE_TEXT, msg, sizeof msg),
+                             RBS_E_UNSUPPORTED);
+            assert_string_equal(msg, want);
+            rbs_scene_free(scene);
+        }
+    }
 }
 
 /* Entries in a folder (".", ".." left out). */

@@ -142,13 +142,16 @@ RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
  * symbolic link writes the link's target.  RBS_E_SCENE for
  * a scene with errors, RBS_E_IO if a file cannot be written,
  * RBS_E_UNSUPPORTED if a renderer entry has a key the text format cannot
- * spell (containing '.', '[', '=', blanks ...).  Reads the scene only: safe
+ * spell (empty, 63 bytes or more, containing '.', '[', '=', blanks ..., or
+ * a nested key path of 512 bytes or more).  Reads the scene only: safe
  * to call from several threads on one scene. */
 RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
                                   rbs_scene_format format);
 
 /** rbs_scene_save, and on RBS_E_IO a message ("cannot write 'PATH':
- * REASON", naming the file that failed) in message (message_size bytes,
+ * REASON", naming the file that failed), on RBS_E_UNSUPPORTED one naming
+ * the renderer entry, its key and why the text format cannot write it, in
+ * message (message_size bytes,
  * NUL-terminated; "" on success).  message may be NULL. */
 RBS_API rbs_status rbs_scene_save_v2(const rbs_scene *scene, const char *path,
                                      rbs_scene_format format, char *message,
