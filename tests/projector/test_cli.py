@@ -213,21 +213,40 @@ class CliTests(Base):
         # output onto the scene itself, are refused by `check` as by `run`
         # (exit 3 both; the probe of session 38 found check passing a scene
         # whose two outputs were "out/same.csv" and "out/../out/same.csv").
+        # Each is said at the entry's place and key path (FORMAT.md's
+        # "FILE:LINE:COLUMN: KEY.PATH: ..."; it was "rbsim check: ..."), and
+        # two spellings of one path as written ("a.csv", "./a.csv") are the
+        # library's own error, at the path itself.
         os.mkdir(self.path("out"))
-        for rs, msg in (
+        for rs, msg, where in (
                 ([{"type": "csv", "path": "out/same.csv"},
                   {"type": "json", "path": "out/../out/same.csv"}],
-                 "both write 'out/../out/same.csv'"),
+                 "both write 'out/../out/same.csv'", (1, "{")),
                 ([{"type": "csv", "path": "./scene.json"}],
-                 "would overwrite the scene")):
+                 "would overwrite the scene", (0, "{")),
+                ([{"type": "csv", "path": "out/a.csv"},
+                  {"type": "json", "path": "./out/a.csv"}],
+                 "renderers[0] already writes \"out/a.csv\", the file "
+                 "\"./out/a.csv\" names", (1, '"./out/a.csv"'))):
             s = self.scene(renderers=rs)
-            r = self.rbsim("check", s)
+            with open(s) as f:
+                text = f.read()
+            at = text.index('"renderers"')
+            for _ in range(where[0] + 1):
+                at = text.index('{', at + 1)
+            if where[1] != "{":
+                at = text.index(where[1], at)
+            head = text[:at]
+            place = "scene.json:%d:%d: renderers[%d].path: " % (
+                head.count("\n") + 1, at - head.rfind("\n"), where[0])
+            r = self.rbsim("check", "scene.json")
             self.assertEqual(r.returncode, 3, (rs, r.stdout, r.stderr))
-            self.assertIn("rbsim check: ", r.stderr)
-            self.assertIn(msg, r.stderr)
-            r = self.rbsim("run", s)
+            self.assertIn(place, r.stdout + r.stderr)
+            self.assertIn(msg, r.stdout + r.stderr)
+            r = self.rbsim("run", "scene.json")
             self.assertEqual(r.returncode, 3, (rs, r.stderr))
-            self.assertIn(msg, r.stderr)
+            self.assertIn(place, r.stdout + r.stderr)
+            self.assertIn(msg, r.stdout + r.stderr)
             self.assertEqual(os.listdir(self.path("out")), [])
         # distinct files pass both
         s = self.scene(renderers=[{"type": "csv", "path": "out/a.csv"},

@@ -188,6 +188,15 @@ static const bad_case cases[] = {
       E("\"out/a.csv\"", 2, 0,
         "renderers[1].path: renderers[0] already writes \"out/a.csv\"; give each renderer "
         "its own path")}},
+    /* two spellings of one path as written (the command line caught these
+     * without a place) */
+    {"bad/renderer_paths_one_file.json", RBS_E_SCENE,
+     {E("\"./out//a.csv\"", 1, 0,
+        "renderers[1].path: renderers[0] already writes \"out/a.csv\", the file "
+        "\"./out//a.csv\" names; give each renderer its own path"),
+      E("\"/tmp/./frames/\"", 1, 0,
+        "renderers[3].path: renderers[2] already writes \"/tmp/frames\", the file "
+        "\"/tmp/./frames/\" names; give each renderer its own path")}},
     {"bad/limits_bodies.json", RBS_E_SCENE,
      {E("1, \"position\": [0", 1, 0,
         "bodies[0].mass: the moments of inertia (mass 1 kg, radius 1e-300 m) underflow or "

@@ -2489,6 +2489,50 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     }
 }
 
+/* The next component of path p ('.' components and repeated '/' skipped);
+ * its length in *n, NULL at the end. */
+static const char *path_part(const char *p, size_t *n)
+{
+    for (;;) {
+        while (*p == '/') {
+            p++;
+        }
+        *n = strcspn(p, "/");
+        if (*n == 0) {
+            return NULL;
+        }
+        if (!(*n == 1 && p[0] == '.')) {
+            return p;
+        }
+        p += 1;
+    }
+}
+
+/* Two renderer paths that name one file as written: equal once '.'
+ * components and repeated or trailing '/' are dropped ("a.csv" and
+ * "./a.csv", "out//a.csv" and "out/a.csv"), absolute or both relative.
+ * ("..", links and other names of one file are for the front ends to find,
+ * which know the file system.) */
+static int same_path(const char *a, const char *b)
+{
+    size_t na, nb;
+    if ((a[0] == '/') != (b[0] == '/')) {
+        return 0;
+    }
+    for (;;) {
+        a = path_part(a, &na);
+        b = path_part(b, &nb);
+        if (a == NULL || b == NULL) {
+            return a == b;
+        }
+        if (na != nb || memcmp(a, b, na) != 0) {
+            return 0;
+        }
+        a += na;
+        b += nb;
+    }
+}
+
 /* ---- the whole scene ---------------------------------------------------- */
 
 static const char *const top_keys[] = {"description", "format",    "simulation",
@@ -2569,12 +2613,19 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
                 for (q = c->child; q != r && cJSON_IsString(p); q = q->next, j++) {
                     const cJSON *qp = cJSON_IsObject(q) ? member(q, "path") : NULL;
                     if (cJSON_IsString(qp) && p->valuestring[0] != '\0' &&
-                        strcmp(qp->valuestring, p->valuestring) == 0) {
+                        same_path(qp->valuestring, p->valuestring)) {
                         size_t s3 = push_key(&v, "path");
-                        err(&v, loc_value(&v, p),
-                            "renderers[%lu] already writes \"%s\"; give each renderer its "
-                            "own path",
-                            (unsigned long)j, p->valuestring);
+                        if (strcmp(qp->valuestring, p->valuestring) == 0) {
+                            err(&v, loc_value(&v, p),
+                                "renderers[%lu] already writes \"%s\"; give each renderer "
+                                "its own path",
+                                (unsigned long)j, p->valuestring);
+                        } else {
+                            err(&v, loc_value(&v, p),
+                                "renderers[%lu] already writes \"%s\", the file \"%s\" "
+                                "names; give each renderer its own path",
+                                (unsigned long)j, qp->valuestring, p->valuestring);
+                        }
                         pop(&v, s3);
                         break;
                     }
