@@ -281,6 +281,12 @@ static const bad_case cases[] = {
         "renderers[0].l[1].c.d: duplicate key (first given at line 4, column 80)")}},
     {"bad/text_renderer_duplicate/config.txt", RBS_E_SCENE,
      {E("a.b=2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 3, column 17)")}},
+    /* stats knows the keys csv and json know (the command refused others
+     * at the entry's '{', with no suggestion) */
+    {"bad/renderer_stats_unknown_key.json", RBS_E_SCENE,
+     {E("\"evrey\"", 1, 0, "renderers[0].evrey: unknown key in stats (did you mean \"every\"?)"),
+      E("\"foo\"", 1, 0,
+        "renderers[0].foo: unknown key in stats; expected one of: type, path, every")}},
     {"bad/renderer_sdl_bad_width.json", RBS_E_SCENE,
      {E("8}", 1, 0, "renderers[0].width: must be an integer in 16..8192 (pixels), got 8")}},
     {"bad/camera_up_parallel.json", RBS_E_SCENE,

@@ -2364,7 +2364,8 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
         }
         pop(v, saved);
     }
-    if (type != NULL && (strcmp(type, "csv") == 0 || strcmp(type, "json") == 0)) {
+    if (type != NULL && (strcmp(type, "csv") == 0 || strcmp(type, "json") == 0 ||
+                         strcmp(type, "stats") == 0)) {
         check_keys(v, r, renderer_common_keys, 3, type);
     } else if (type != NULL && strcmp(type, "sdl") == 0) {
         check_keys(v, r, sdl_keys, (int)(sizeof sdl_keys / sizeof *sdl_keys), "sdl");
