@@ -417,6 +417,27 @@ static const bad_case cases[] = {
       E(" x=", 1, 1, "missing value after \"x=\""),
       E("every=0", 1, 6,
         "renderers[0].every: must be an integer from 1 to 2147483647 (2^31 - 1), got 0")}},
+    /* messages that misled: a key missing before '=' (it was "simulation.:
+     * unknown key"), a word after a file name ("expected a file name"), an
+     * array or object given keys or [index] (it was "was given a value"), a
+     * number literal over 63 characters (it was "must be a number") */
+    {"bad/text_misleading/config.txt", RBS_E_SCENE,
+     {E("= 5", 1, 0, "missing key before '=': expected \"key = value\""),
+      E("extra", 1, 0,
+        "extra word \"extra\" after the file name of \"objects\" (one name; quote a name "
+        "with blanks or commas: objects = \"my file.txt\")"),
+      E("a.b=2", 1, 0, "\"a\" is an array (given by [index]) and cannot also have keys"),
+      E("c[0]=2", 1, 0, "\"c\" is an object (given by keys) and cannot also have [index]"),
+      E("e.f=2", 1, 0, "\"e\" was given a value and cannot also have keys"),
+      EIN("bad/text_misleading/objects.txt", "0.111", 1, 0,
+          "number literal longer than 63 characters (72)")}},
+    /* carriage returns alone (old Mac line endings): said so, once (it was
+     * one long line: "missing objects", steps "an array of 7 elements") */
+    {"bad/text_cr_only/config.txt", RBS_E_SCENE,
+     {E("\robjects", 1, 0,
+        "a carriage return (\\r) not followed by a line feed: lines end in \\n or \\r\\n (a "
+        "file with carriage returns alone, old Mac line endings, reads as one line; convert "
+        "it, e.g. tr '\\r' '\\n')")}},
     {"bad/text_bad_values/config.txt", RBS_E_SCENE,
      {E("abc", 1, 0,
         "simulation.steps: must be a non-negative integer (at most 2^53), got \"abc\""),
