@@ -279,6 +279,15 @@ static const bad_case cases[] = {
      {E("\"b\": 2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 4, column 40)"),
       E("\"d\": 2", 1, 0,
         "renderers[0].l[1].c.d: duplicate key (first given at line 4, column 80)")}},
+    /* and an integer a double would round (convert wrote 9007199254740992) */
+    {"bad/renderer_integer_above_2_53.json", RBS_E_SCENE,
+     {E("9007199254740993", 1, 0,
+        "renderers[0].id: the integer 9007199254740993 is beyond 2^53, which a double cannot "
+        "hold exactly (it would be read as 9007199254740992); give it as a string"),
+      E("-1234", 1, 0,
+        "renderers[0].l[1]: the integer -123456789012345678901234 is beyond 2^53, which a "
+        "double cannot hold exactly (it would be read as -123456789012345685803008); give it "
+        "as a string")}},
     {"bad/text_renderer_duplicate/config.txt", RBS_E_SCENE,
      {E("a.b=2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 3, column 17)")}},
     /* stats knows the keys csv and json know (the command refused others

@@ -2313,9 +2313,34 @@ static char *print_exact(const cJSON *r)
     return text;
 }
 
+/* Whether a number item is held exactly: a literal of digits alone
+ * ("9007199254740993") must be the integer its double is (as for steps);
+ * one with a fraction or an exponent is read as a double is. */
+static int number_exact(const vctx *v, const cJSON *item)
+{
+    const rbs__pos *pos = rbs__posmap_get(v->map, item);
+    double x = fabs(item->valuedouble);
+    const char *t;
+    size_t k, n;
+    if (pos == NULL || pos->file < 0 || pos->file >= v->src_count || pos->raw_len == 0 ||
+        (size_t)pos->raw_off + pos->raw_len > v->srcs[pos->file].len ||
+        !(x >= 9007199254740992.0)) {
+        return 1;
+    }
+    t = v->srcs[pos->file].text + pos->raw_off;
+    n = pos->raw_len;
+    for (k = t[0] == '-'; k < n; k++) {
+        if (t[k] < '0' || t[k] > '9') {
+            return 1;
+        }
+    }
+    return x < 18446744073709551616.0 && literal_is(t, n, (uint64_t)x);
+}
+
 /* A key given twice in an object of item, at any depth (the entries of
  * renderer types the library does not know, whose keys it does not check;
- * the JSON and text readers keep both). */
+ * the JSON and text readers keep both), and an integer a double would
+ * round (number_exact). */
 static void check_duplicates(vctx *v, const cJSON *item)
 {
     const cJSON *a, *b;
@@ -2337,6 +2362,16 @@ static void check_duplicates(vctx *v, const cJSON *item)
         if (a->child != NULL) {
             saved = cJSON_IsObject(item) ? push_key(v, a->string) : push_index(v, i);
             check_duplicates(v, a);
+            pop(v, saved);
+        } else if (cJSON_IsNumber(a) && !number_exact(v, a)) {
+            char g[64], d[40];
+            saved = cJSON_IsObject(item) ? push_key(v, a->string) : push_index(v, i);
+            got(v, a, g, sizeof g);
+            snprintf(d, sizeof d, "%.0f", a->valuedouble);
+            err(v, loc_value(v, a),
+                "the integer %s is beyond 2^53, which a double cannot hold exactly (it "
+                "would be read as %s); give it as a string",
+                g, d);
             pop(v, saved);
         }
     }
