@@ -260,6 +260,22 @@ static void test_save_errors(void **state)
     assert_int_equal(rbs_scene_save(scene, "/nonexistent_dir/x/y.json", RBS_SCENE_JSON), RBS_E_IO);
     assert_int_equal(rbs_scene_save(scene, "/nonexistent_dir/x/config.txt", RBS_SCENE_TEXT),
                      RBS_E_IO);
+    {
+        /* a missing folder is made one level deep only (FORMAT.md) */
+        char one[512], two[512], mdir[512];
+        tmp(one, sizeof one, "made/config.txt");
+        tmp(two, sizeof two, "not/made/config.txt");
+        tmp(mdir, sizeof mdir, "made");
+        assert_int_equal(rbs_scene_save(scene, one, RBS_SCENE_TEXT), RBS_OK);
+        assert_int_equal(rbs_scene_save(scene, two, RBS_SCENE_TEXT), RBS_E_IO);
+        tmp(one, sizeof one, "made/materials.txt");
+        assert_int_equal(unlink(one), 0);
+        tmp(one, sizeof one, "made/objects.txt");
+        assert_int_equal(unlink(one), 0);
+        tmp(one, sizeof one, "made/config.txt");
+        assert_int_equal(unlink(one), 0);
+        assert_int_equal(rmdir(mdir), 0);
+    }
     assert_int_equal(rbs_scene_save(scene, NULL, RBS_SCENE_JSON), RBS_E_INVALID);
     assert_int_equal(rbs_scene_save(NULL, "x.json", RBS_SCENE_JSON), RBS_E_INVALID);
     rbs_scene_free(scene);
