@@ -172,6 +172,44 @@ static void test_features(void **state)
     round_trip("roundtrip_features.json");
 }
 
+/* Negative zero: written "-0.0" (not "-0", which Python's json reads as
+ * the integer 0), read back bit-exactly, in the bodies and in a renderer
+ * entry alike. */
+static void test_negative_zero(void **state)
+{
+    char a[512];
+    size_t len = 0;
+    char *text;
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    rbs_state_view view;
+    rbs_scene_renderer r;
+    (void)state;
+    round_trip("negative_zero.json");
+    tmp(a, sizeof a, "nz.json");
+    assert_int_equal(rbs_scene_load("negative_zero.json", RBS_SCENE_AUTO, &scene), RBS_OK);
+    assert_int_equal(rbs_scene_save(scene, a, RBS_SCENE_JSON), RBS_OK);
+    rbs_scene_free(scene);
+    text = read_all(a, &len);
+    assert_non_null(text);
+    assert_non_null(strstr(text, "\"position\": [-0.0, -0.0, 1]"));
+    assert_non_null(strstr(text, "\"z\":-0.0"));
+    assert_null(strstr(text, "-0,"));
+    assert_null(strstr(text, "-0]"));
+    assert_null(strstr(text, "-0}"));
+    free(text);
+    assert_int_equal(rbs_scene_load(a, RBS_SCENE_AUTO, &scene), RBS_OK);
+    assert_int_equal(unlink(a), 0);
+    assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
+    assert_string_equal(r.json, "{\"type\":\"plot\",\"z\":-0.0,\"l\":[-0.0,1]}");
+    assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+    assert_int_equal(rbs_world_state(world, &view), RBS_OK);
+    assert_true(view.position[0] == 0.0 && signbit(view.position[0]));
+    assert_true(view.position[1] == 0.0 && signbit(view.position[1]));
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+}
+
 static void test_demos(void **state)
 {
     size_t i;
@@ -404,7 +442,7 @@ int main(void)
         cmocka_unit_test(test_issue_example),   cmocka_unit_test(test_features),
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
         cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
-        cmocka_unit_test(test_save_is_all_or_nothing),
+        cmocka_unit_test(test_save_is_all_or_nothing), cmocka_unit_test(test_negative_zero),
     };
     if (enter_test_dir() != 0) {
         return 1;

@@ -175,6 +175,12 @@ static rbs_status stage_finish(staged *o, int n, rbs_status st, save_report *r)
 static void fmt_num(char *out, size_t n, double x)
 {
     int p;
+    if (x == 0.0 && signbit(x)) {
+        /* "-0" is the integer 0 to JSON readers that keep integers (Python's
+         * json): "-0.0" keeps the sign for them, and reads back here as -0 */
+        snprintf(out, n, "-0.0");
+        return;
+    }
     for (p = 15; p <= 17; p++) {
         snprintf(out, n, "%.*g", p, x);
         if (strtod(out, NULL) == x) {

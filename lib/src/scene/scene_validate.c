@@ -2281,8 +2281,12 @@ static int numbers_exact(cJSON *item)
             char b[40];
             double x = item->valuedouble;
             char *raw;
-            if (x == floor(x) && fabs(x) < 1e17) {
-                /* a whole number as one (3000000000, not 3e+09; -0 kept) */
+            if (x == 0.0 && signbit(x)) {
+                /* (not "-0", which JSON readers that keep integers take for
+                 * the integer 0: Python's json) */
+                snprintf(b, sizeof b, "-0.0");
+            } else if (x == floor(x) && fabs(x) < 1e17) {
+                /* a whole number as one (3000000000, not 3e+09) */
                 snprintf(b, sizeof b, "%.0f", x);
             } else {
                 (void)rbs__shortest(b, x);
