@@ -830,7 +830,7 @@ static void test_renderer_numbers_exact(void **state)
     (void)state;
     assert_int_equal(rbs_scene_parse_json(text, sizeof text - 1, "r.json", &scene), RBS_OK);
     assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
-    assert_string_equal(r.json, "{\"type\":\"plotter\",\"a\":179.99999999999997,\"b\":[0.1,1e+300,-0,3000000000,"
+    assert_string_equal(r.json, "{\"type\":\"plotter\",\"a\":179.99999999999997,\"b\":[0.1,1e+300,-0.0,3000000000,"
                                 "2.2250738585072014e-308,5e-324],\"c\":{\"d\":1.0000000000000002}}");
     assert_int_equal(rbs_scene_renderer_get(scene, 1, &r), RBS_OK);
     assert_string_equal(r.json, "{\"type\":\"sdl\",\"window\":false,\"camera\":{\"fov\":179.99999999999997}}");
