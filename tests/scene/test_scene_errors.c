@@ -660,6 +660,17 @@ static void test_override(void **state)
     assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);
     rbs_scene_free(scene);
 
+    /* the capacities of a scene with no bodies (FORMAT.md, "Limits"): room
+     * for one, and max_contacts 4 * 1 + 16 */
+    {
+        static const char empty[] = "{\"simulation\": {\"steps\": 1}, \"bodies\": []}";
+        assert_int_equal(rbs_scene_parse_json(empty, sizeof empty - 1, "e", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_world_def(scene, &def), RBS_OK);
+        assert_int_equal(def.max_bodies, 1);
+        assert_int_equal(def.max_contacts, 20);
+        rbs_scene_free(scene);
+    }
+
     /* every method the library names is a valid override, "soft" among them */
     {
         int k;

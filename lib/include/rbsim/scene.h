@@ -77,7 +77,9 @@ RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
                                        rbs_scene_error *out);
 
 /** The world definition the scene asks for: settings from "simulation",
- * capacities that fit the scene exactly (max_contacts 4*bodies+16), the
+ * capacities that fit the scene exactly (max_bodies, max_materials and
+ * max_pairs its counts, each at least 1; max_contacts the scene's or
+ * 4*max_bodies+16, so 20 with no bodies), the
  * rest rbs_world_def_init defaults.  RBS_E_SCENE if the scene has errors. */
 RBS_API rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out);
 /** Add the scene's materials, pairs and bodies, in file order, to an empty

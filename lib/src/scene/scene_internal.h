@@ -135,7 +135,7 @@ struct rbs_scene {
     double tolerance;
     double slop; /* allowed overlap and contact margin, of the smaller radius */
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
-    uint32_t max_contacts; /* contacts a step may hold; 0: 4 x bodies + 16
+    uint32_t max_contacts; /* contacts a step may hold; 0: 4 x max(bodies, 1) + 16
                               (rbs_world_def.max_contacts) */
     uint32_t soft_substeps; /* sub-steps per frame of the soft method
                                (rbs_world_def.soft_substeps) */
