@@ -61,6 +61,7 @@ typedef struct checkpointer {
 typedef struct output {
     rbs_renderer_config config;
     int from_scene;        /* 1: a scene entry (errors exit 3), 0: argv (2) */
+    uint32_t scene_index;  /* a scene entry's index in "renderers" */
     char *owned_json;      /* JSON text made here, freed at the end */
     char *owned_path;
     /* A file output staged by stage_output: the renderer writes work, which
@@ -443,6 +444,7 @@ static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
         o = &outs[(*n)++];
         memset(o, 0, sizeof *o);
         o->from_scene = 1;
+        o->scene_index = i;
         o->config.struct_size = sizeof o->config;
         o->config.type = r.type;
         o->config.json = r.json;
@@ -737,6 +739,18 @@ static int png_folder_writes(const char *dir, const char *json,
     return 1;
 }
 
+/* The start of check_distinct's message about output o: a scene entry's
+ * place and key ("FILE:LINE:COL: renderers[K].path: "), else who's name. */
+static void distinct_prefix(const output *o, const char *who)
+{
+    if (o->from_scene)
+        fprintf(stderr, "%s:%d:%d: renderers[%lu].path: ", o->config.file,
+                (int)o->config.line, (int)o->config.column,
+                (unsigned long)o->scene_index);
+    else
+        fprintf(stderr, "%s: ", who);
+}
+
 /* No two outputs may write one file (standard output included), and none
  * may overwrite the scene or the checkpoint being resumed. */
 static int check_distinct(const output *outs, uint32_t n, const char *scene,
@@ -748,10 +762,11 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
         const char *a = outs[i].config.path;
         if (a != NULL && strcmp(a, "-") == 0) {
             if (on_stdout != NULL) {
-                fprintf(stderr, "%s: the %s and %s outputs both write "
+                distinct_prefix(&outs[i], who);
+                fprintf(stderr, "the %s and %s outputs both write "
                                 "to standard output ('-'): at most one "
                                 "output may\n",
-                        who, on_stdout->config.type, outs[i].config.type);
+                        on_stdout->config.type, outs[i].config.type);
                 return outs[i].from_scene && on_stdout->from_scene
                            ? RBSF_EXIT_SCENE
                            : RBSF_EXIT_USAGE;
@@ -762,14 +777,16 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
         if (a == NULL)
             continue;
         if (resume != NULL && same_file(a, resume)) {
-            fprintf(stderr, "%s: the %s output '%s' would overwrite the "
+            distinct_prefix(&outs[i], who);
+            fprintf(stderr, "the %s output '%s' would overwrite the "
                             "--resume checkpoint '%s'\n",
-                    who, outs[i].config.type, a, resume);
+                    outs[i].config.type, a, resume);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
         if (scene != NULL && same_file(a, scene)) {
-            fprintf(stderr, "%s: the %s output '%s' would overwrite the "
-                            "scene\n", who, outs[i].config.type, a);
+            distinct_prefix(&outs[i], who);
+            fprintf(stderr, "the %s output '%s' would overwrite the "
+                            "scene\n", outs[i].config.type, a);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
         for (j = 0; j < n; j++) {
@@ -779,10 +796,11 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
                 strcmp(outs[i].config.type, "sdl") == 0 ||
                 !png_folder_writes(b, outs[j].config.json, a, &what))
                 continue;
-            fprintf(stderr, "%s: the %s output '%s' is a file the sdl "
+            distinct_prefix(&outs[i], who);
+            fprintf(stderr, "the %s output '%s' is a file the sdl "
                             "output writes in its folder '%s' (%s): give it "
                             "another name\n",
-                    who, outs[i].config.type, a, b, what);
+                    outs[i].config.type, a, b, what);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }
@@ -790,8 +808,9 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
             const char *b = outs[j].config.path;
             if (b == NULL || strcmp(b, "-") == 0 || !same_file(a, b))
                 continue;
-            fprintf(stderr, "%s: the %s and %s outputs both write '%s'\n",
-                    who, outs[j].config.type, outs[i].config.type, a);
+            distinct_prefix(&outs[i], who);
+            fprintf(stderr, "the %s and %s outputs both write '%s'\n",
+                    outs[j].config.type, outs[i].config.type, a);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }

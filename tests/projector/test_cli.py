@@ -213,21 +213,40 @@ class CliTests(Base):
         # output onto the scene itself, are refused by `check` as by `run`
         # (exit 3 both; the probe of session 38 found check passing a scene
         # whose two outputs were "out/same.csv" and "out/../out/same.csv").
+        # Each is said at the entry's place and key path (FORMAT.md's
+        # "FILE:LINE:COLUMN: KEY.PATH: ..."; it was "rbsim check: ..."), and
+        # two spellings of one path as written ("a.csv", "./a.csv") are the
+        # library's own error, at the path itself.
         os.mkdir(self.path("out"))
-        for rs, msg in (
+        for rs, msg, where in (
                 ([{"type": "csv", "path": "out/same.csv"},
                   {"type": "json", "path": "out/../out/same.csv"}],
-                 "both write 'out/../out/same.csv'"),
+                 "both write 'out/../out/same.csv'", (1, "{")),
                 ([{"type": "csv", "path": "./scene.json"}],
-                 "would overwrite the scene")):
+                 "would overwrite the scene", (0, "{")),
+                ([{"type": "csv", "path": "out/a.csv"},
+                  {"type": "json", "path": "./out/a.csv"}],
+                 "renderers[0] already writes \"out/a.csv\", the file "
+                 "\"./out/a.csv\" names", (1, '"./out/a.csv"'))):
             s = self.scene(renderers=rs)
-            r = self.rbsim("check", s)
+            with open(s) as f:
+                text = f.read()
+            at = text.index('"renderers"')
+            for _ in range(where[0] + 1):
+                at = text.index('{', at + 1)
+            if where[1] != "{":
+                at = text.index(where[1], at)
+            head = text[:at]
+            place = "scene.json:%d:%d: renderers[%d].path: " % (
+                head.count("\n") + 1, at - head.rfind("\n"), where[0])
+            r = self.rbsim("check", "scene.json")
             self.assertEqual(r.returncode, 3, (rs, r.stdout, r.stderr))
-            self.assertIn("rbsim check: ", r.stderr)
-            self.assertIn(msg, r.stderr)
-            r = self.rbsim("run", s)
+            self.assertIn(place, r.stdout + r.stderr)
+            self.assertIn(msg, r.stdout + r.stderr)
+            r = self.rbsim("run", "scene.json")
             self.assertEqual(r.returncode, 3, (rs, r.stderr))
-            self.assertIn(msg, r.stderr)
+            self.assertIn(place, r.stdout + r.stderr)
+            self.assertIn(msg, r.stdout + r.stderr)
             self.assertEqual(os.listdir(self.path("out")), [])
         # distinct files pass both
         s = self.scene(renderers=[{"type": "csv", "path": "out/a.csv"},
@@ -941,6 +960,32 @@ class CliTests(Base):
         for args in lines:
             r = self.rbsim(*args, timeout=300)
             self.assertEqual(r.returncode, 0, (args, r.stderr))
+
+    def test_check_and_explain_refuse_what_event_refuses(self):
+        # (they passed it; run then failed at step 1 with exit 4)
+        sim = {"steps": 10, "method": "event", "mutual_gravity": True}
+        s = self.scene(simulation=sim)
+        want = ("scene.json:%d:%d: simulation.mutual_gravity: method \"event\" "
+                "does not support mutual gravity")
+        with open(s) as f:
+            text = f.read()
+        head = text[:text.index('"mutual_gravity": true') + len('"mutual_gravity": ')]
+        where = (head.count("\n") + 1, len(head) - head.rfind("\n"))
+        for cmd in ("check", "explain"):
+            r = self.rbsim(cmd, "scene.json")
+            self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+            self.assertIn(want % where, r.stdout)
+        r = self.rbsim("run", "scene.json", "--csv", "ev.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        # --method event on a scene of another method: the same, from the
+        # command line
+        sim = {"steps": 10, "mutual_gravity": True}
+        self.scene(simulation=sim)
+        for cmd, code in ((["explain", "scene.json"], 3), (["run", "scene.json"], 2)):
+            r = self.rbsim(*cmd, "--method", "event")
+            self.assertEqual(r.returncode, code, r.stdout + r.stderr)
+            self.assertIn("command line: --method: method \"event\" does not "
+                          "support mutual gravity", r.stdout + r.stderr)
 
     def test_convert_round_trip(self):
         s = self.scene()

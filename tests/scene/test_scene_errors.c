@@ -188,6 +188,15 @@ static const bad_case cases[] = {
       E("\"out/a.csv\"", 2, 0,
         "renderers[1].path: renderers[0] already writes \"out/a.csv\"; give each renderer "
         "its own path")}},
+    /* two spellings of one path as written (the command line caught these
+     * without a place) */
+    {"bad/renderer_paths_one_file.json", RBS_E_SCENE,
+     {E("\"./out//a.csv\"", 1, 0,
+        "renderers[1].path: renderers[0] already writes \"out/a.csv\", the file "
+        "\"./out//a.csv\" names; give each renderer its own path"),
+      E("\"/tmp/./frames/\"", 1, 0,
+        "renderers[3].path: renderers[2] already writes \"/tmp/frames\", the file "
+        "\"/tmp/./frames/\" names; give each renderer its own path")}},
     {"bad/limits_bodies.json", RBS_E_SCENE,
      {E("1, \"position\": [0", 1, 0,
         "bodies[0].mass: the moments of inertia (mass 1 kg, radius 1e-300 m) underflow or "
@@ -265,6 +274,28 @@ static const bad_case cases[] = {
         "\"json\" or \"sdl\")")}},
     {"bad/renderer_csv_unknown_key.json", RBS_E_SCENE,
      {E("\"evrey\"", 1, 0, "renderers[0].evrey: unknown key in csv (did you mean \"every\"?)")}},
+    /* a type the library does not know: a key given twice at any depth */
+    {"bad/renderer_duplicate_nested.json", RBS_E_SCENE,
+     {E("\"b\": 2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 4, column 40)"),
+      E("\"d\": 2", 1, 0,
+        "renderers[0].l[1].c.d: duplicate key (first given at line 4, column 80)")}},
+    /* and an integer a double would round (convert wrote 9007199254740992) */
+    {"bad/renderer_integer_above_2_53.json", RBS_E_SCENE,
+     {E("9007199254740993", 1, 0,
+        "renderers[0].id: the integer 9007199254740993 is beyond 2^53, which a double cannot "
+        "hold exactly (it would be read as 9007199254740992); give it as a string"),
+      E("-1234", 1, 0,
+        "renderers[0].l[1]: the integer -123456789012345678901234 is beyond 2^53, which a "
+        "double cannot hold exactly (it would be read as -123456789012345685803008); give it "
+        "as a string")}},
+    {"bad/text_renderer_duplicate/config.txt", RBS_E_SCENE,
+     {E("a.b=2", 1, 0, "renderers[0].a.b: duplicate key (first given at line 3, column 17)")}},
+    /* stats knows the keys csv and json know (the command refused others
+     * at the entry's '{', with no suggestion) */
+    {"bad/renderer_stats_unknown_key.json", RBS_E_SCENE,
+     {E("\"evrey\"", 1, 0, "renderers[0].evrey: unknown key in stats (did you mean \"every\"?)"),
+      E("\"foo\"", 1, 0,
+        "renderers[0].foo: unknown key in stats; expected one of: type, path, every")}},
     {"bad/renderer_sdl_bad_width.json", RBS_E_SCENE,
      {E("8}", 1, 0, "renderers[0].width: must be an integer in 16..8192 (pixels), got 8")}},
     {"bad/camera_up_parallel.json", RBS_E_SCENE,
@@ -307,6 +338,24 @@ static const bad_case cases[] = {
      {E("\"t\": 0.5", 1, 5, "renderers[0].camera.path[1].t: times must increase, got 0.5 after 1")}},
     {"bad/views_too_many.json", RBS_E_SCENE,
      {E("[{}, {}", 1, 0, "renderers[0].views: must have 1 to 4 cameras, got 5")}},
+    /* the "event" method's scope, which its step checks, is decided at load
+     * as far as the scene decides it: mutual gravity, a resistance row that
+     * a moving sphere's material takes (not steel on steel: the fixed
+     * sphere alone is steel), a moving sphere with anisotropic inertia or
+     * an off-centre mass (not the fixed one, nor the isotropic "d") */
+    {"bad/event_out_of_scope.json", RBS_E_SCENE,
+     {E("{\"G\"", 1, 0,
+        "simulation.mutual_gravity: method \"event\" does not support mutual gravity (not a "
+        "constant force); use \"adaptive\""),
+      E("0.001}", 1, 0,
+        "materials[0].spinning: method \"event\" does not support rolling and spinning "
+        "resistance (pair \"rubber\"/\"*\", which bodies of this scene take); use \"euler\""),
+      E("[0.004", 1, 0,
+        "bodies[0].inertia: method \"event\" does not support a moving sphere with anisotropic "
+        "inertia (\"a\"); use \"euler\""),
+      E("[0.01, 0, 0]", 1, 0,
+        "bodies[1].center_of_mass: method \"event\" does not support a moving sphere with an "
+        "off-centre mass (\"b\"); use \"euler\"")}},
     /* several errors in one file: all are reported, sorted by place (a
      * missing key is reported at its object's opening brace) */
     {"bad/many_errors.json", RBS_E_SCENE,
@@ -377,6 +426,27 @@ static const bad_case cases[] = {
       E(" x=", 1, 1, "missing value after \"x=\""),
       E("every=0", 1, 6,
         "renderers[0].every: must be an integer from 1 to 2147483647 (2^31 - 1), got 0")}},
+    /* messages that misled: a key missing before '=' (it was "simulation.:
+     * unknown key"), a word after a file name ("expected a file name"), an
+     * array or object given keys or [index] (it was "was given a value"), a
+     * number literal over 63 characters (it was "must be a number") */
+    {"bad/text_misleading/config.txt", RBS_E_SCENE,
+     {E("= 5", 1, 0, "missing key before '=': expected \"key = value\""),
+      E("extra", 1, 0,
+        "extra word \"extra\" after the file name of \"objects\" (one name; quote a name "
+        "with blanks or commas: objects = \"my file.txt\")"),
+      E("a.b=2", 1, 0, "\"a\" is an array (given by [index]) and cannot also have keys"),
+      E("c[0]=2", 1, 0, "\"c\" is an object (given by keys) and cannot also have [index]"),
+      E("e.f=2", 1, 0, "\"e\" was given a value and cannot also have keys"),
+      EIN("bad/text_misleading/objects.txt", "0.111", 1, 0,
+          "number literal longer than 63 characters (72)")}},
+    /* carriage returns alone (old Mac line endings): said so, once (it was
+     * one long line: "missing objects", steps "an array of 7 elements") */
+    {"bad/text_cr_only/config.txt", RBS_E_SCENE,
+     {E("\robjects", 1, 0,
+        "a carriage return (\\r) not followed by a line feed: lines end in \\n or \\r\\n (a "
+        "file with carriage returns alone, old Mac line endings, reads as one line; convert "
+        "it, e.g. tr '\\r' '\\n')")}},
     {"bad/text_bad_values/config.txt", RBS_E_SCENE,
      {E("abc", 1, 0,
         "simulation.steps: must be a non-negative integer (at most 2^53), got \"abc\""),
@@ -590,6 +660,17 @@ static void test_override(void **state)
     assert_int_equal(rbs_scene_world_def(scene, &def), RBS_E_SCENE);
     rbs_scene_free(scene);
 
+    /* the capacities of a scene with no bodies (FORMAT.md, "Limits"): room
+     * for one, and max_contacts 4 * 1 + 16 */
+    {
+        static const char empty[] = "{\"simulation\": {\"steps\": 1}, \"bodies\": []}";
+        assert_int_equal(rbs_scene_parse_json(empty, sizeof empty - 1, "e", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_world_def(scene, &def), RBS_OK);
+        assert_int_equal(def.max_bodies, 1);
+        assert_int_equal(def.max_contacts, 20);
+        rbs_scene_free(scene);
+    }
+
     /* every method the library names is a valid override, "soft" among them */
     {
         int k;
@@ -760,7 +841,7 @@ static void test_renderer_numbers_exact(void **state)
     (void)state;
     assert_int_equal(rbs_scene_parse_json(text, sizeof text - 1, "r.json", &scene), RBS_OK);
     assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
-    assert_string_equal(r.json, "{\"type\":\"plotter\",\"a\":179.99999999999997,\"b\":[0.1,1e+300,-0,3000000000,"
+    assert_string_equal(r.json, "{\"type\":\"plotter\",\"a\":179.99999999999997,\"b\":[0.1,1e+300,-0.0,3000000000,"
                                 "2.2250738585072014e-308,5e-324],\"c\":{\"d\":1.0000000000000002}}");
     assert_int_equal(rbs_scene_renderer_get(scene, 1, &r), RBS_OK);
     assert_string_equal(r.json, "{\"type\":\"sdl\",\"window\":false,\"camera\":{\"fov\":179.99999999999997}}");
@@ -860,6 +941,103 @@ static void test_material_rules(void **state)
                                 "\"(no material)\"]: bodies \"ball\" and \"floor\" could touch; "
                                 "add the pair or a \"*\" row to \"materials\"");
     rbs_scene_free(scene);
+}
+
+/* The "event" method's scope decided at load (rbs_scene_override with
+ * "event" here) agrees with its step's own check: a scene is refused at
+ * load exactly when the world built from it with another method, switched
+ * to "event", refuses its first step as RBS_E_UNSUPPORTED. */
+static void test_event_scope_agrees_with_the_step(void **state)
+{
+#define EV_SIM "{\"simulation\": {\"steps\": 1, \"gravity\": [0, 0, 0]"
+#define EV_BALL(name, x, extra)                                                              \
+    "{\"name\": \"" name "\", \"type\": \"sphere\", \"radius\": 0.1, \"mass\": 1, "           \
+    "\"position\": [" x ", 0, 1]" extra "}"
+#define EV_FLOOR(extra) \
+    "{\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1]" extra "}"
+    static const char *const texts[] = {
+        /* 0: within the scope */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 1: mutual gravity */
+        EV_SIM ", \"mutual_gravity\": true}, \"materials\": [{\"pair\": [\"*\", \"*\"], "
+        "\"static\": 0.5, \"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", "") ", "
+        EV_BALL("b", "1", "") "]}",
+        /* 2: rolling on the row every contact takes */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"rolling\": 0.01}], \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 3: spinning on a row of a material no body has */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"ice\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"spinning\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", "") ", " EV_FLOOR("") "]}",
+        /* 4: rolling on a "*" row that exact pairs shadow (the sphere's
+         * material with itself among them) */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"rubber\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3, "
+        "\"rolling\": 0.01}, {\"pair\": [\"rubber\", \"wood\"], \"static\": 0.5, \"kinetic\": 0.3}, "
+        "{\"pair\": [\"rubber\", \"rubber\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+        " \"bodies\": [" EV_BALL("a", "0", ", \"material\": \"rubber\"") ", "
+        EV_FLOOR(", \"material\": \"wood\"") "]}",
+        /* 5: rolling on the pair of a moving sphere's material with itself
+         * (one sphere of it: the world counts the pair all the same) */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"rubber\", \"rubber\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3, \"rolling\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", ", \"material\": \"rubber\"") ", "
+        EV_FLOOR("") "]}",
+        /* 6: rolling on a pair of two materials of fixed bodies only */
+        EV_SIM "}, \"materials\": [{\"pair\": [\"steel\", \"wood\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3, \"rolling\": 0.01}, {\"pair\": [\"*\", \"*\"], \"static\": 0.5, "
+        "\"kinetic\": 0.3}], \"bodies\": [" EV_BALL("a", "0", "") ", "
+        EV_BALL("s", "1", ", \"fixed\": true, \"material\": \"steel\"") ", "
+        EV_FLOOR(", \"material\": \"wood\"") "]}",
+        /* 7, 8, 9: anisotropic inertia, moving and fixed; equal moments */
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.005]") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.005], "
+                                               "\"fixed\": true") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"inertia\": [0.004, 0.004, 0.004]") "]}",
+        /* 10, 11: an off-centre mass; -0 is the centre */
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"center_of_mass\": [0, 1e-300, 0]") "]}",
+        EV_SIM "}, \"bodies\": [" EV_BALL("a", "0", ", \"center_of_mass\": [-0.0, 0, -0.0]") "]}",
+    };
+    static const int refused[] = {0, 1, 1, 0, 0, 1, 0, 1, 0, 0, 1, 0};
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof texts / sizeof *texts; k++) {
+        rbs_scene *scene = NULL;
+        rbs_world *world = NULL;
+        rbs_status st;
+        assert_int_equal(rbs_scene_parse_json(texts[k], strlen(texts[k]), "ev", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+        assert_int_equal(rbs_world_set_method(world, RBS_METHOD_EVENT, 0.0), RBS_OK);
+        st = rbs_world_step(world, NULL);
+        if (st != (refused[k] ? RBS_E_UNSUPPORTED : RBS_OK))
+            fail_msg("scene %lu: the step says %s", (unsigned long)k, rbs_status_string(st));
+        st = rbs_scene_override(scene, 0, 0.0, "event");
+        if (st != (refused[k] ? RBS_E_SCENE : RBS_OK))
+            fail_msg("scene %lu: the override says %s", (unsigned long)k, rbs_status_string(st));
+        rbs_world_destroy(world);
+        rbs_scene_free(scene);
+    }
+    /* and every demonstration scene: the two agree */
+    for (k = 0; k < DEMO_COUNT; k++) {
+        char path[256];
+        rbs_scene *scene = NULL;
+        rbs_world *world = NULL;
+        rbs_status step, load;
+        snprintf(path, sizeof path, "../../scenes/%s.json", demo_names[k]);
+        assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_OK);
+        assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+        assert_int_equal(rbs_world_set_method(world, RBS_METHOD_EVENT, 0.0), RBS_OK);
+        step = rbs_world_step(world, NULL);
+        load = rbs_scene_override(scene, 0, 0.0, "event");
+        if ((step == RBS_E_UNSUPPORTED) != (load == RBS_E_SCENE))
+            fail_msg("%s: the step says %s, the override %s", path, rbs_status_string(step),
+                     rbs_status_string(load));
+        rbs_world_destroy(world);
+        rbs_scene_free(scene);
+    }
+#undef EV_SIM
+#undef EV_BALL
+#undef EV_FLOOR
 }
 
 /* simulation.slop reaches the world, and is the overlap a scene may start
@@ -1075,6 +1253,7 @@ int main(void)
         cmocka_unit_test(test_names_beyond_ascii),
         cmocka_unit_test(test_camera_path_errors_at_the_keyframe),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
+        cmocka_unit_test(test_event_scope_agrees_with_the_step),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),
     };
     if (enter_test_dir() != 0) {

@@ -172,6 +172,44 @@ static void test_features(void **state)
     round_trip("roundtrip_features.json");
 }
 
+/* Negative zero: written "-0.0" (not "-0", which Python's json reads as
+ * the integer 0), read back bit-exactly, in the bodies and in a renderer
+ * entry alike. */
+static void test_negative_zero(void **state)
+{
+    char a[512];
+    size_t len = 0;
+    char *text;
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    rbs_state_view view;
+    rbs_scene_renderer r;
+    (void)state;
+    round_trip("negative_zero.json");
+    tmp(a, sizeof a, "nz.json");
+    assert_int_equal(rbs_scene_load("negative_zero.json", RBS_SCENE_AUTO, &scene), RBS_OK);
+    assert_int_equal(rbs_scene_save(scene, a, RBS_SCENE_JSON), RBS_OK);
+    rbs_scene_free(scene);
+    text = read_all(a, &len);
+    assert_non_null(text);
+    assert_non_null(strstr(text, "\"position\": [-0.0, -0.0, 1]"));
+    assert_non_null(strstr(text, "\"z\":-0.0"));
+    assert_null(strstr(text, "-0,"));
+    assert_null(strstr(text, "-0]"));
+    assert_null(strstr(text, "-0}"));
+    free(text);
+    assert_int_equal(rbs_scene_load(a, RBS_SCENE_AUTO, &scene), RBS_OK);
+    assert_int_equal(unlink(a), 0);
+    assert_int_equal(rbs_scene_renderer_get(scene, 0, &r), RBS_OK);
+    assert_string_equal(r.json, "{\"type\":\"plot\",\"z\":-0.0,\"l\":[-0.0,1]}");
+    assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+    assert_int_equal(rbs_world_state(world, &view), RBS_OK);
+    assert_true(view.position[0] == 0.0 && signbit(view.position[0]));
+    assert_true(view.position[1] == 0.0 && signbit(view.position[1]));
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+}
+
 static void test_demos(void **state)
 {
     size_t i;
@@ -260,6 +298,22 @@ static void test_save_errors(void **state)
     assert_int_equal(rbs_scene_save(scene, "/nonexistent_dir/x/y.json", RBS_SCENE_JSON), RBS_E_IO);
     assert_int_equal(rbs_scene_save(scene, "/nonexistent_dir/x/config.txt", RBS_SCENE_TEXT),
                      RBS_E_IO);
+    {
+        /* a missing folder is made one level deep only (FORMAT.md) */
+        char one[512], two[512], mdir[512];
+        tmp(one, sizeof one, "made/config.txt");
+        tmp(two, sizeof two, "not/made/config.txt");
+        tmp(mdir, sizeof mdir, "made");
+        assert_int_equal(rbs_scene_save(scene, one, RBS_SCENE_TEXT), RBS_OK);
+        assert_int_equal(rbs_scene_save(scene, two, RBS_SCENE_TEXT), RBS_E_IO);
+        tmp(one, sizeof one, "made/materials.txt");
+        assert_int_equal(unlink(one), 0);
+        tmp(one, sizeof one, "made/objects.txt");
+        assert_int_equal(unlink(one), 0);
+        tmp(one, sizeof one, "made/config.txt");
+        assert_int_equal(unlink(one), 0);
+        assert_int_equal(rmdir(mdir), 0);
+    }
     assert_int_equal(rbs_scene_save(scene, NULL, RBS_SCENE_JSON), RBS_E_INVALID);
     assert_int_equal(rbs_scene_save(NULL, "x.json", RBS_SCENE_JSON), RBS_E_INVALID);
     rbs_scene_free(scene);
@@ -275,6 +329,40 @@ static void test_save_errors(void **state)
         assert_int_equal(rbs_scene_save(scene, a, RBS_SCENE_JSON), RBS_OK);
         assert_int_equal(rbs_scene_save(scene, cfg, RBS_SCENE_TEXT), RBS_E_UNSUPPORTED);
         rbs_scene_free(scene);
+    }
+    {
+        /* each key the text format cannot spell: the message names the
+         * entry, the key (its path) and why (it was a bare "not supported") */
+        static const struct {
+            const char *entry, *key, *why;
+        } cases[] = {
+            {"\"a b\": 1", "a b", "a key with a blank or a control character"},
+            {"\"n\": {\"m\": [1, {\"x=y\": 1}]}", "n.m[1].x=y",
+             "a key with one of . [ ] = \" # ,"},
+            {"\"n\": {\"\": 1}", "n.", "an empty key"},
+            {"\"k123456789012345678901234567890123456789012345678901234567890123\": 1",
+             "k123456789012345678901234567890123456789012345678901234567890123",
+             "a key of 63 bytes or more"},
+        };
+        size_t k;
+        for (k = 0; k < sizeof cases / sizeof *cases; k++) {
+            char text[512], cfg[512], msg[600], want[600];
+            snprintf(text, sizeof text,
+                     "{\"simulation\": {\"steps\": 1}, \"bodies\": [], \"renderers\": "
+                     "[{\"type\": \"csv\"}, {\"type\": \"plotter\", %s}]}",
+                     cases[k].entry);
+            snprintf(want, sizeof want,
+                     "renderers[1] (plotter): key \"%s\" cannot be written in the text "
+                     "format: %s (its keys are names of 1 to 62 bytes without blanks or "
+                     ". [ ] = \" # , in paths under 512 bytes); keep this scene as JSON",
+                     cases[k].key, cases[k].why);
+            tmp(cfg, sizeof cfg, "config.txt");
+            assert_int_equal(rbs_scene_parse_json(text, strlen(text), "keys", &scene), RBS_OK);
+            assert_int_equal(rbs_scene_save_v2(scene, cfg, RBS_SCENE_TEXT, msg, sizeof msg),
+                             RBS_E_UNSUPPORTED);
+            assert_string_equal(msg, want);
+            rbs_scene_free(scene);
+        }
     }
 }
 
@@ -354,7 +442,7 @@ int main(void)
         cmocka_unit_test(test_issue_example),   cmocka_unit_test(test_features),
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
         cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
-        cmocka_unit_test(test_save_is_all_or_nothing),
+        cmocka_unit_test(test_save_is_all_or_nothing), cmocka_unit_test(test_negative_zero),
     };
     if (enter_test_dir() != 0) {
         return 1;

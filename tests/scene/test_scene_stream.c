@@ -221,7 +221,7 @@ static void test_text_from_pipe(void **state)
     assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
     assert_string_equal(e.message,
                         "cannot open '/dev/fd/materials.txt': No such file or directory");
-    assert_int_equal(e.line, 12); /* "materials = materials.txt" */
+    assert_int_equal(e.line, 16); /* "materials = materials.txt" */
     assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
     snprintf(path, sizeof path,
              "'%s' is a pipe or device: the file names in it are looked for "
@@ -229,7 +229,7 @@ static void test_text_from_pipe(void **state)
              "config.txt file itself",
              dev);
     assert_string_equal(e.message, path);
-    assert_int_equal(e.line, 12);
+    assert_int_equal(e.line, 16);
     rbs_scene_free(scene);
 
     free(want);

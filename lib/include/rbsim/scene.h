@@ -77,7 +77,9 @@ RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
                                        rbs_scene_error *out);
 
 /** The world definition the scene asks for: settings from "simulation",
- * capacities that fit the scene exactly (max_contacts 4*bodies+16), the
+ * capacities that fit the scene exactly (max_bodies, max_materials and
+ * max_pairs its counts, each at least 1; max_contacts the scene's or
+ * 4*max_bodies+16, so 20 with no bodies), the
  * rest rbs_world_def_init defaults.  RBS_E_SCENE if the scene has errors. */
 RBS_API rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out);
 /** Add the scene's materials, pairs and bodies, in file order, to an empty
@@ -142,13 +144,16 @@ RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
  * symbolic link writes the link's target.  RBS_E_SCENE for
  * a scene with errors, RBS_E_IO if a file cannot be written,
  * RBS_E_UNSUPPORTED if a renderer entry has a key the text format cannot
- * spell (containing '.', '[', '=', blanks ...).  Reads the scene only: safe
+ * spell (empty, 63 bytes or more, containing '.', '[', '=', blanks ..., or
+ * a nested key path of 512 bytes or more).  Reads the scene only: safe
  * to call from several threads on one scene. */
 RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
                                   rbs_scene_format format);
 
 /** rbs_scene_save, and on RBS_E_IO a message ("cannot write 'PATH':
- * REASON", naming the file that failed) in message (message_size bytes,
+ * REASON", naming the file that failed), on RBS_E_UNSUPPORTED one naming
+ * the renderer entry, its key and why the text format cannot write it, in
+ * message (message_size bytes,
  * NUL-terminated; "" on success).  message may be NULL. */
 RBS_API rbs_status rbs_scene_save_v2(const rbs_scene *scene, const char *path,
                                      rbs_scene_format format, char *message,

@@ -634,6 +634,54 @@ int32_t rbs_scene_pause_on_collision(const rbs_scene *scene)
     return scene != NULL ? scene->pause_on_collision : 0;
 }
 
+/* --method event on a scene outside that method's scope (as the scene's own
+ * "method": "event" would be reported at load, rbs__scene_validate): the
+ * first thing it refuses, which its step would refuse. */
+static void event_override(rbs_scene *scene)
+{
+    rbs__loc none = {-1, 0, 0};
+    unsigned char *refused;
+    uint32_t i;
+    int n;
+    if (scene->mutual_gravity) {
+        rbs__scene_error(scene, none, "--method",
+                         "method \"event\" does not support mutual gravity "
+                         "(simulation.mutual_gravity; not a constant force); use \"adaptive\"");
+        return;
+    }
+    refused = malloc(scene->pair_count + 1);
+    n = refused != NULL ? rbs__event_rows(scene, refused) : -1;
+    for (i = 0; n != 0 && i < scene->pair_count; i++) {
+        const rbs__scene_pair *p = &scene->pairs[i];
+        if (n > 0 && !refused[i]) {
+            continue;
+        }
+        if (n < 0) {
+            rbs__scene_error(scene, none, "--method", "out of memory");
+        } else {
+            rbs__scene_error(scene, none, "--method",
+                             "method \"event\" does not support rolling and spinning resistance "
+                             "(materials[%lu], pair \"%s\"/\"%s\"); use \"euler\"",
+                             (unsigned long)i, p->a >= 0 ? scene->materials[p->a] : "*",
+                             p->b >= 0 ? scene->materials[p->b] : "*");
+        }
+        free(refused);
+        return;
+    }
+    free(refused);
+    for (i = 0; i < scene->body_count; i++) {
+        int why = rbs__event_sphere_refused(scene, i);
+        if (why != 0) {
+            rbs__scene_error(scene, none, "--method",
+                             "method \"event\" does not support a moving sphere with %s "
+                             "(bodies[%lu], \"%s\"); use \"euler\"",
+                             why == 2 ? "an off-centre mass" : "anisotropic inertia",
+                             (unsigned long)i, scene->bodies[i].name);
+            return;
+        }
+    }
+}
+
 static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
                                  const char *method)
 {
@@ -692,6 +740,10 @@ static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
                          "unknown method \"%.64s\"%s%s%s; expected %s", method,
                          hint ? " (did you mean \"" : "", hint ? hint : "",
                          hint ? "\"?)" : "", list);
+    }
+    if (scene->error_count == before && new_method == RBS_METHOD_EVENT &&
+        scene->method != RBS_METHOD_EVENT) {
+        event_override(scene);
     }
     if (scene->error_count != before) {
         return RBS_E_SCENE;

@@ -135,7 +135,7 @@ struct rbs_scene {
     double tolerance;
     double slop; /* allowed overlap and contact margin, of the smaller radius */
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
-    uint32_t max_contacts; /* contacts a step may hold; 0: 4 x bodies + 16
+    uint32_t max_contacts; /* contacts a step may hold; 0: 4 x max(bodies, 1) + 16
                               (rbs_world_def.max_contacts) */
     uint32_t soft_substeps; /* sub-steps per frame of the soft method
                                (rbs_world_def.soft_substeps) */
@@ -208,6 +208,15 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
 void rbs__scene_validate(rbs_scene *scene, const cJSON *tree,
                          const rbs__posmap *map, const rbs__src *srcs,
                          int32_t src_count);
+
+/** The method "event"'s scope as its step checks it (step_event.c), decided
+ * from the scene's values.  rbs__event_rows marks in refused[k] (pair_count
+ * entries) each material row with rolling or spinning resistance that the
+ * materials of a moving sphere and of a body take, and returns how many
+ * (-1: out of memory).  rbs__event_sphere_refused: body i is a moving sphere
+ * with an off-centre mass (2) or anisotropic inertia (1), else 0. */
+int rbs__event_rows(const rbs_scene *scene, unsigned char *refused);
+int rbs__event_sphere_refused(const rbs_scene *scene, uint32_t i);
 
 /** Whether word is a key of a sphere or a plane, or close enough to one to
  * be its misspelling (objects.txt tells a mistyped body line from a key). */

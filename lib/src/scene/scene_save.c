@@ -175,6 +175,12 @@ static rbs_status stage_finish(staged *o, int n, rbs_status st, save_report *r)
 static void fmt_num(char *out, size_t n, double x)
 {
     int p;
+    if (x == 0.0 && signbit(x)) {
+        /* "-0" is the integer 0 to JSON readers that keep integers (Python's
+         * json): "-0.0" keeps the sign for them, and reads back here as -0 */
+        snprintf(out, n, "-0.0");
+        return;
+    }
     for (p = 15; p <= 17; p++) {
         snprintf(out, n, "%.*g", p, x);
         if (strtod(out, NULL) == x) {
@@ -507,23 +513,44 @@ static void put_text_string(FILE *f, const char *str)
     put_quoted(f, str);
 }
 
-static int key_is_simple(const char *k)
+/* Why key k cannot be a word of a renderer line ("key=value", names joined
+ * by '.' and [index]), or NULL when it can. */
+static const char *key_unwritable(const char *k)
 {
-    if (*k == '\0' || strlen(k) >= RBS_NAME_MAX) {
-        return 0;
+    if (*k == '\0') {
+        return "an empty key";
+    }
+    if (strlen(k) >= RBS_NAME_MAX) {
+        return "a key of 63 bytes or more";
     }
     for (; *k; k++) {
         unsigned char u = (unsigned char)*k;
-        if (u <= 0x20 || u == 0x7f || u == '.' || u == '[' || u == ']' || u == '=' ||
-            u == '"' || u == '#' || u == ',') {
-            return 0;
+        if (u <= 0x20 || u == 0x7f) {
+            return "a key with a blank or a control character";
+        }
+        if (u == '.' || u == '[' || u == ']' || u == '=' || u == '"' || u == '#' || u == ',') {
+            return "a key with one of . [ ] = \" # ,";
         }
     }
-    return 1;
+    return NULL;
 }
 
-/* Flatten a renderer entry's value into " prefix=value" words. */
-static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *item)
+/* What a renderer entry holds that the text format cannot write. */
+typedef struct unwritable {
+    char key[600]; /* the key path, as far as it was made */
+    const char *why;
+} unwritable;
+
+static void unwritable_at(unwritable *u, const char *prefix, const char *key, const char *why)
+{
+    snprintf(u->key, sizeof u->key, "%s%s%s", prefix, prefix[0] && key[0] != '[' ? "." : "", key);
+    u->why = why;
+}
+
+/* Flatten a renderer entry's value into " prefix=value" words; -1 (with
+ * *u filled) for what the text format cannot write. */
+static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *item,
+                   unwritable *u)
 {
     const cJSON *c;
     if (cJSON_IsObject(item)) {
@@ -533,11 +560,18 @@ static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *
         }
         for (c = item->child; c != NULL; c = c->next) {
             int w;
-            if (!key_is_simple(c->string)) {
+            const char *why = key_unwritable(c->string);
+            if (why != NULL) {
+                unwritable_at(u, prefix, c->string, why);
                 return -1;
             }
             w = snprintf(prefix + plen, cap - plen, "%s%s", plen ? "." : "", c->string);
-            if (w < 0 || (size_t)w >= cap - plen || flatten(f, prefix, plen + (size_t)w, cap, c) != 0) {
+            if (w < 0 || (size_t)w >= cap - plen) {
+                prefix[plen] = '\0';
+                unwritable_at(u, prefix, c->string, "a key path of 512 bytes or more");
+                return -1;
+            }
+            if (flatten(f, prefix, plen + (size_t)w, cap, c, u) != 0) {
                 return -1;
             }
             prefix[plen] = '\0';
@@ -567,8 +601,15 @@ static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *
             return 0;
         }
         for (c = item->child; c != NULL; c = c->next, k++) {
+            char index[24];
             int w = snprintf(prefix + plen, cap - plen, "[%d]", k);
-            if (w < 0 || (size_t)w >= cap - plen || flatten(f, prefix, plen + (size_t)w, cap, c) != 0) {
+            if (w < 0 || (size_t)w >= cap - plen) {
+                prefix[plen] = '\0';
+                snprintf(index, sizeof index, "[%d]", k);
+                unwritable_at(u, prefix, index, "a key path of 512 bytes or more");
+                return -1;
+            }
+            if (flatten(f, prefix, plen + (size_t)w, cap, c, u) != 0) {
                 return -1;
             }
             prefix[plen] = '\0';
@@ -590,33 +631,44 @@ static int flatten(FILE *f, char *prefix, size_t plen, size_t cap, const cJSON *
     return 0;
 }
 
-static rbs_status put_renderer(FILE *f, const rbs__scene_renderer *r)
+/* Renderer entry r (renderers[index]) as a config.txt line; for a key the
+ * text format cannot write, RBS_E_UNSUPPORTED with a message naming the
+ * entry, the key and why. */
+static rbs_status put_renderer(FILE *f, const rbs__scene_renderer *r, uint32_t index,
+                               save_report *rep)
 {
     cJSON *root = rbs__json_tree(r->json, strlen(r->json));
-    const cJSON *c;
     char prefix[512];
-    rbs_status st = RBS_OK;
+    unwritable u;
     if (root == NULL) {
         return RBS_E_MEMORY;
     }
     fputs("renderer = ", f);
     put_text_string(f, r->type);
-    for (c = root->child; c != NULL && st == RBS_OK; c = c->next) {
-        if (strcmp(c->string, "type") == 0) {
-            continue;
+    prefix[0] = '\0';
+    u.key[0] = '\0';
+    u.why = NULL;
+    {
+        /* (the type is the line's first word, not a key=value word) */
+        cJSON *type = cJSON_DetachItemFromObjectCaseSensitive(root, "type");
+        cJSON_Delete(type);
+    }
+    if (root->child != NULL && flatten(f, prefix, 0, sizeof prefix, root, &u) != 0) {
+        if (rep->text != NULL && rep->size > 0 && rep->text[0] == '\0') {
+            int cut = strlen(u.key) > 160;
+            snprintf(rep->text, rep->size,
+                     "renderers[%lu] (%.64s): key \"%.160s%s\" cannot be written in the text "
+                     "format: %s (its keys are names of 1 to 62 bytes without blanks or "
+                     ". [ ] = \" # , in paths under 512 bytes); keep this scene as JSON",
+                     (unsigned long)index, r->type, u.key, cut ? "..." : "", u.why);
         }
-        if (!key_is_simple(c->string)) {
-            st = RBS_E_UNSUPPORTED;
-            break;
-        }
-        snprintf(prefix, sizeof prefix, "%s", c->string);
-        if (flatten(f, prefix, strlen(prefix), sizeof prefix, c) != 0) {
-            st = RBS_E_UNSUPPORTED;
-        }
+        fputc('\n', f);
+        cJSON_Delete(root);
+        return RBS_E_UNSUPPORTED;
     }
     fputc('\n', f);
     cJSON_Delete(root);
-    return st;
+    return RBS_OK;
 }
 
 static char *sibling(const char *config, const char *suffix)
@@ -690,7 +742,7 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *mess
     put_text_string(f, obase);
     fputc('\n', f);
     for (i = 0; i < s->renderer_count && st == RBS_OK; i++) {
-        st = put_renderer(f, &s->renderers[i]);
+        st = put_renderer(f, &s->renderers[i], i, &r);
     }
     free(mpath);
     free(opath);

@@ -153,8 +153,8 @@ static int tokenize(tctx *t, size_t begin, size_t end, int commas, ttok *toks,
     return n;
 }
 
-/* JSON number grammar, the whole token. */
-static int is_number(const char *s, size_t n)
+/* JSON number grammar, the whole token, of any length. */
+static int number_grammar(const char *s, size_t n)
 {
     size_t i = 0;
     if (i < n && s[i] == '-') {
@@ -191,7 +191,14 @@ static int is_number(const char *s, size_t n)
             i++;
         }
     }
-    return i == n && n <= RBS__SCENE_NUMBER_MAX;
+    return i == n;
+}
+
+/* A number: JSON number grammar, the whole token, at most
+ * RBS__SCENE_NUMBER_MAX characters. */
+static int is_number(const char *s, size_t n)
+{
+    return n <= RBS__SCENE_NUMBER_MAX && number_grammar(s, n);
 }
 
 /* Decode a quoted token (quotes included) into a new string. */
@@ -239,6 +246,21 @@ static cJSON *tok_value(tctx *t, const char *s, size_t off, size_t len, int quot
         memcpy(buf, w, len);
         buf[len] = '\0';
         item = cJSON_CreateNumber(strtod(buf, NULL));
+    } else if (number_grammar(w, len)) {
+        /* (as the JSON reader says it; a string here was called "not a
+         * number"): the error, and the number read, so that no other error
+         * follows from it */
+        char *buf = malloc(len + 1);
+        rbs__scene_error(t->scene, tloc(t, off), "",
+                         "number literal longer than %d characters (%lu)",
+                         RBS__SCENE_NUMBER_MAX, (unsigned long)len);
+        item = NULL;
+        if (buf != NULL) {
+            memcpy(buf, w, len);
+            buf[len] = '\0';
+            item = cJSON_CreateNumber(strtod(buf, NULL));
+            free(buf);
+        }
     } else {
         char *str = malloc(len + 1);
         if (str != NULL) {
@@ -347,7 +369,11 @@ static int kv_walk(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *v
                 }
             } else if (!cJSON_IsObject(next)) {
                 rbs__scene_error(t->scene, tloc(t, seg), "",
-                                 "\"%s\" was given a value and cannot also have keys", name);
+                                 cJSON_IsArray(next)
+                                     ? "\"%s\" is an array (given by [index]) and cannot "
+                                       "also have keys"
+                                     : "\"%s\" was given a value and cannot also have keys",
+                                 name);
                 return -1;
             }
             cur = next;
@@ -369,7 +395,11 @@ static int kv_walk(tctx *t, cJSON *obj, size_t key_off, size_t key_len, cJSON *v
             }
         } else if (!cJSON_IsArray(next)) {
             rbs__scene_error(t->scene, tloc(t, seg), "",
-                             "\"%s\" was given a value and cannot also have [index]", name);
+                             cJSON_IsObject(next)
+                                 ? "\"%s\" is an object (given by keys) and cannot also have "
+                                   "[index]"
+                                 : "\"%s\" was given a value and cannot also have [index]",
+                             name);
             return -1;
         }
         for (;;) {
@@ -631,6 +661,19 @@ static void check_binary(tctx *t)
             return;
         }
         i += n;
+    }
+    /* a line ends in "\n" or "\r\n": a carriage return alone (a file with
+     * the old Mac line endings) would make the file one line */
+    for (i = 0; i < src->len; i++) {
+        if (src->text[i] == '\r' && i + 1 < src->len && src->text[i + 1] != '\n') {
+            rbs__scene_error(t->scene, tloc(t, i), "",
+                             "a carriage return (\\r) not followed by a line feed: lines end "
+                             "in \\n or \\r\\n (a file with carriage returns alone, old "
+                             "Mac line endings, reads as one line; convert it, e.g. "
+                             "tr '\\r' '\\n')");
+            t->failed = 2;
+            return;
+        }
     }
 }
 
@@ -986,6 +1029,11 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
                              (int)((e - key_off) < 40 ? (e - key_off) : 40), s + key_off);
             continue;
         }
+        if (key_len == 0) {
+            rbs__scene_error(scene, tloc(&t, key_off), "",
+                             "missing key before '=': expected \"key = value\"");
+            continue;
+        }
         if (key_len >= sizeof key) {
             rbs__scene_error(scene, tloc(&t, key_off), "", "key too long");
             continue;
@@ -1081,7 +1129,15 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
                                  "\"%s\" is given twice", key);
                 continue;
             }
-            *slot = toks_value(&t, toks, n, key_off);
+            if (n > 1) {
+                rbs__scene_error(scene, tloc(&t, toks[1].off), "",
+                                 "extra word \"%.*s\" after the file name of \"%s\" (one "
+                                 "name; quote a name with blanks or commas: %s = \"my "
+                                 "file.txt\")",
+                                 (int)(toks[1].len < 40 ? toks[1].len : 40), s + toks[1].off,
+                                 key, key);
+            }
+            *slot = toks_value(&t, toks, 1, key_off);
             if (key[0] == 'm') {
                 mat_off = toks[0].off;
             } else {

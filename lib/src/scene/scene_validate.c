@@ -1605,6 +1605,167 @@ static void check_pairs(vctx *v)
     free(other);
 }
 
+/* ---- the "event" method's scope ------------------------------------------ */
+
+/* The row the world takes for materials a and b (-1 = none; a material
+ * code as rbs__rebuild_pair_table scores it: exact pair, then one "*", then
+ * "*" with "*", the first of equals). */
+static int32_t event_best_row(const rbs_scene *s, int32_t a, int32_t b)
+{
+    int32_t best = -1, best_score = -1;
+    uint32_t p;
+    for (p = 0; p < s->pair_count; p++) {
+        const rbs__scene_pair *r = &s->pairs[p];
+        int score = -1;
+        int exact = (r->a == a && r->b == b) || (r->a == b && r->b == a);
+        if (exact) {
+            score = (r->a >= 0) + (r->b >= 0);
+        } else if (r->a < 0 && (r->b == a || r->b == b)) {
+            score = r->b >= 0;
+        } else if (r->b < 0 && (r->a == a || r->a == b)) {
+            score = r->a >= 0;
+        } else if (r->a < 0 && r->b < 0) {
+            score = 0;
+        }
+        if (score >= 0 && r->a >= 0 && r->b >= 0 && !exact) {
+            score = -1;
+        }
+        if (score > best_score) {
+            best_score = score;
+            best = (int32_t)p;
+        }
+    }
+    return best;
+}
+
+int rbs__event_rows(const rbs_scene *s, unsigned char *refused)
+{
+    /* step.c's rbs__row_in_use: the rows with rolling or spinning
+     * resistance that the materials of a moving sphere and of any body
+     * (itself included) take */
+    uint32_t m = s->material_count + 1, i, a, b;
+    unsigned char *moving, *any;
+    int count = 0;
+    for (i = 0; i < s->pair_count; i++) {
+        refused[i] = 0;
+        if (s->pairs[i].rolling > 0.0 || s->pairs[i].spinning > 0.0) {
+            count = 1;
+        }
+    }
+    if (count == 0) {
+        return 0; /* (the common case: no row has it) */
+    }
+    moving = calloc(2 * (size_t)m, 1);
+    if (moving == NULL) {
+        return -1;
+    }
+    any = moving + m;
+    for (i = 0; i < s->body_count; i++) {
+        const rbs__scene_body *bd = &s->bodies[i];
+        uint32_t mi = bd->material >= 0 ? (uint32_t)bd->material + 1 : 0;
+        any[mi] = 1;
+        if (bd->type == RBS_BODY_SPHERE && !bd->fixed) {
+            moving[mi] = 1;
+        }
+    }
+    count = 0;
+    for (a = 0; a < m; a++) {
+        for (b = 0; b < m && moving[a]; b++) {
+            int32_t row;
+            if (!any[b]) {
+                continue;
+            }
+            row = event_best_row(s, (int32_t)a - 1, (int32_t)b - 1);
+            if (row >= 0 && !refused[row] &&
+                (s->pairs[row].rolling > 0.0 || s->pairs[row].spinning > 0.0)) {
+                refused[row] = 1;
+                count++;
+            }
+        }
+    }
+    free(moving);
+    return count;
+}
+
+int rbs__event_sphere_refused(const rbs_scene *s, uint32_t i)
+{
+    /* step_event.c's check_scope on the world rbs_world_add_sphere makes:
+     * a moving sphere with anisotropic inertia or an off-centre mass */
+    const rbs__scene_body *b = &s->bodies[i];
+    if (b->type != RBS_BODY_SPHERE || b->fixed) {
+        return 0;
+    }
+    if (!vec_len_zero(b->center_of_mass)) {
+        return 2;
+    }
+    return b->inertia_kind == RBS_INERTIA_PRINCIPAL &&
+           !(b->inertia.x == b->inertia.y && b->inertia.y == b->inertia.z);
+}
+
+/* The scene with method "event" must be within its scope, which the step
+ * checks too (rbs__step_event): reported here at the keys that leave it. */
+static void check_event_scope(vctx *v, const cJSON *tree, const cJSON **body_items,
+                               int materials_ok)
+{
+    rbs_scene *s = v->scene;
+    const cJSON *sim = member(tree, "simulation"), *c;
+    size_t saved;
+    uint32_t i;
+    if (s->method != RBS_METHOD_EVENT) {
+        return;
+    }
+    if (s->mutual_gravity && (c = member(sim, "mutual_gravity")) != NULL) {
+        saved = push_key(v, "simulation");
+        push_key(v, "mutual_gravity");
+        err(v, loc_value(v, c),
+            "method \"event\" does not support mutual gravity (not a constant force); use "
+            "\"adaptive\"");
+        pop(v, saved);
+    }
+    if (materials_ok && s->pair_count > 0) {
+        const cJSON *mats = member(tree, "materials"), *row;
+        unsigned char *refused = malloc(s->pair_count);
+        int n = refused != NULL ? rbs__event_rows(s, refused) : -1;
+        if (n < 0) {
+            err(v, loc_value(v, mats), "out of memory");
+        }
+        for (row = mats->child, i = 0; n > 0 && row != NULL && i < s->pair_count;
+             row = row->next, i++) {
+            const rbs__scene_pair *p = &s->pairs[i];
+            const char *key = p->rolling > 0.0 ? "rolling" : "spinning";
+            if (!refused[i] || (c = member(row, key)) == NULL) {
+                continue;
+            }
+            saved = push_key(v, "materials");
+            push_index(v, i);
+            push_key(v, key);
+            err(v, loc_value(v, c),
+                "method \"event\" does not support rolling and spinning resistance (pair "
+                "\"%s\"/\"%s\", which bodies of this scene take); use \"euler\"",
+                p->a >= 0 ? s->materials[p->a] : "*", p->b >= 0 ? s->materials[p->b] : "*");
+            pop(v, saved);
+        }
+        free(refused);
+    }
+    for (i = 0; body_items != NULL && i < s->body_count; i++) {
+        int why;
+        if (!s->bodies[i].ok || (why = rbs__event_sphere_refused(s, i)) == 0) {
+            continue;
+        }
+        c = member(body_items[i], why == 2 ? "center_of_mass" : "inertia");
+        if (c == NULL) {
+            continue;
+        }
+        saved = push_key(v, "bodies");
+        push_index(v, i);
+        push_key(v, why == 2 ? "center_of_mass" : "inertia");
+        err(v, loc_value(v, c),
+            "method \"event\" does not support a moving sphere with %s (\"%s\"); use \"euler\"",
+            why == 2 ? "an off-centre mass" : "anisotropic inertia", s->bodies[i].name);
+        pop(v, saved);
+    }
+}
+
 /* A sphere in the overlap grid: its level (cells of 2^level m, at least its
  * diameter) and the cell holding its centre. */
 typedef struct grid_rec {
@@ -2120,8 +2281,12 @@ static int numbers_exact(cJSON *item)
             char b[40];
             double x = item->valuedouble;
             char *raw;
-            if (x == floor(x) && fabs(x) < 1e17) {
-                /* a whole number as one (3000000000, not 3e+09; -0 kept) */
+            if (x == 0.0 && signbit(x)) {
+                /* (not "-0", which JSON readers that keep integers take for
+                 * the integer 0: Python's json) */
+                snprintf(b, sizeof b, "-0.0");
+            } else if (x == floor(x) && fabs(x) < 1e17) {
+                /* a whole number as one (3000000000, not 3e+09) */
                 snprintf(b, sizeof b, "%.0f", x);
             } else {
                 (void)rbs__shortest(b, x);
@@ -2152,6 +2317,70 @@ static char *print_exact(const cJSON *r)
     return text;
 }
 
+/* Whether a number item is held exactly: a literal of digits alone
+ * ("9007199254740993") must be the integer its double is (as for steps);
+ * one with a fraction or an exponent is read as a double is. */
+static int number_exact(const vctx *v, const cJSON *item)
+{
+    const rbs__pos *pos = rbs__posmap_get(v->map, item);
+    double x = fabs(item->valuedouble);
+    const char *t;
+    size_t k, n;
+    if (pos == NULL || pos->file < 0 || pos->file >= v->src_count || pos->raw_len == 0 ||
+        (size_t)pos->raw_off + pos->raw_len > v->srcs[pos->file].len ||
+        !(x >= 9007199254740992.0)) {
+        return 1;
+    }
+    t = v->srcs[pos->file].text + pos->raw_off;
+    n = pos->raw_len;
+    for (k = t[0] == '-'; k < n; k++) {
+        if (t[k] < '0' || t[k] > '9') {
+            return 1;
+        }
+    }
+    return x < 18446744073709551616.0 && literal_is(t, n, (uint64_t)x);
+}
+
+/* A key given twice in an object of item, at any depth (the entries of
+ * renderer types the library does not know, whose keys it does not check;
+ * the JSON and text readers keep both), and an integer a double would
+ * round (number_exact). */
+static void check_duplicates(vctx *v, const cJSON *item)
+{
+    const cJSON *a, *b;
+    size_t i = 0;
+    for (a = item->child; a != NULL; a = a->next, i++) {
+        size_t saved;
+        if (cJSON_IsObject(item)) {
+            for (b = item->child; b != a; b = b->next) {
+                if (strcmp(a->string, b->string) == 0) {
+                    rbs__loc first = loc_key(v, b);
+                    saved = push_key(v, a->string);
+                    err(v, loc_key(v, a), "duplicate key (first given at line %ld, column %ld)",
+                        (long)first.line, (long)first.column);
+                    pop(v, saved);
+                    break;
+                }
+            }
+        }
+        if (a->child != NULL) {
+            saved = cJSON_IsObject(item) ? push_key(v, a->string) : push_index(v, i);
+            check_duplicates(v, a);
+            pop(v, saved);
+        } else if (cJSON_IsNumber(a) && !number_exact(v, a)) {
+            char g[64], d[40];
+            saved = cJSON_IsObject(item) ? push_key(v, a->string) : push_index(v, i);
+            got(v, a, g, sizeof g);
+            snprintf(d, sizeof d, "%.0f", a->valuedouble);
+            err(v, loc_value(v, a),
+                "the integer %s is beyond 2^53, which a double cannot hold exactly (it "
+                "would be read as %s); give it as a string",
+                g, d);
+            pop(v, saved);
+        }
+    }
+}
+
 static void check_renderer(vctx *v, const cJSON *r, size_t index)
 {
     rbs_scene *s = v->scene;
@@ -2174,25 +2403,15 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
         }
         pop(v, saved);
     }
-    if (type != NULL && (strcmp(type, "csv") == 0 || strcmp(type, "json") == 0)) {
+    if (type != NULL && (strcmp(type, "csv") == 0 || strcmp(type, "json") == 0 ||
+                         strcmp(type, "stats") == 0)) {
         check_keys(v, r, renderer_common_keys, 3, type);
     } else if (type != NULL && strcmp(type, "sdl") == 0) {
         check_keys(v, r, sdl_keys, (int)(sizeof sdl_keys / sizeof *sdl_keys), "sdl");
     } else {
-        /* other types validate their own keys; duplicates are still wrong */
-        const cJSON *a, *b;
-        for (a = r->child; a != NULL; a = a->next) {
-            for (b = r->child; b != a; b = b->next) {
-                if (strcmp(a->string, b->string) == 0) {
-                    rbs__loc first = loc_key(v, b);
-                    saved = push_key(v, a->string);
-                    err(v, loc_key(v, a), "duplicate key (first given at line %ld, column %ld)",
-                        (long)first.line, (long)first.column);
-                    pop(v, saved);
-                    break;
-                }
-            }
-        }
+        /* other types validate their own keys; duplicates are still wrong,
+         * at any depth */
+        check_duplicates(v, r);
     }
     if ((c = member(r, "path")) != NULL) {
         const char *p;
@@ -2310,6 +2529,50 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     }
 }
 
+/* The next component of path p ('.' components and repeated '/' skipped);
+ * its length in *n, NULL at the end. */
+static const char *path_part(const char *p, size_t *n)
+{
+    for (;;) {
+        while (*p == '/') {
+            p++;
+        }
+        *n = strcspn(p, "/");
+        if (*n == 0) {
+            return NULL;
+        }
+        if (!(*n == 1 && p[0] == '.')) {
+            return p;
+        }
+        p += 1;
+    }
+}
+
+/* Two renderer paths that name one file as written: equal once '.'
+ * components and repeated or trailing '/' are dropped ("a.csv" and
+ * "./a.csv", "out//a.csv" and "out/a.csv"), absolute or both relative.
+ * ("..", links and other names of one file are for the front ends to find,
+ * which know the file system.) */
+static int same_path(const char *a, const char *b)
+{
+    size_t na, nb;
+    if ((a[0] == '/') != (b[0] == '/')) {
+        return 0;
+    }
+    for (;;) {
+        a = path_part(a, &na);
+        b = path_part(b, &nb);
+        if (a == NULL || b == NULL) {
+            return a == b;
+        }
+        if (na != nb || memcmp(a, b, na) != 0) {
+            return 0;
+        }
+        a += na;
+        b += nb;
+    }
+}
+
 /* ---- the whole scene ---------------------------------------------------- */
 
 static const char *const top_keys[] = {"description", "format",    "simulation",
@@ -2390,12 +2653,19 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
                 for (q = c->child; q != r && cJSON_IsString(p); q = q->next, j++) {
                     const cJSON *qp = cJSON_IsObject(q) ? member(q, "path") : NULL;
                     if (cJSON_IsString(qp) && p->valuestring[0] != '\0' &&
-                        strcmp(qp->valuestring, p->valuestring) == 0) {
+                        same_path(qp->valuestring, p->valuestring)) {
                         size_t s3 = push_key(&v, "path");
-                        err(&v, loc_value(&v, p),
-                            "renderers[%lu] already writes \"%s\"; give each renderer its "
-                            "own path",
-                            (unsigned long)j, p->valuestring);
+                        if (strcmp(qp->valuestring, p->valuestring) == 0) {
+                            err(&v, loc_value(&v, p),
+                                "renderers[%lu] already writes \"%s\"; give each renderer "
+                                "its own path",
+                                (unsigned long)j, p->valuestring);
+                        } else {
+                            err(&v, loc_value(&v, p),
+                                "renderers[%lu] already writes \"%s\", the file \"%s\" "
+                                "names; give each renderer its own path",
+                                (unsigned long)j, qp->valuestring, p->valuestring);
+                        }
                         pop(&v, s3);
                         break;
                     }
@@ -2411,5 +2681,6 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
     if (materials_ok) {
         check_pairs(&v);
     }
+    check_event_scope(&v, tree, body_items, materials_ok);
     free(body_items);
 }
