@@ -79,6 +79,16 @@ static void record(search_ctx *ctx, uint32_t a, uint32_t b, double s)
     ctx->count++;
 }
 
+/* Did the sphere pair (a, b) hold a load in the last resting pass (an
+ * entry of the warm table, in key order since rbs__detect)?  Else its
+ * resting threshold is only the press along n (contact.c, unloaded_pairs). */
+static int pair_loaded(const rbs_world *w, uint32_t a, uint32_t b)
+{
+    uint32_t at = 0, at2 = 0;
+    return rbs__warm_find(w, rbs__warm_key_of(0, a, b), &at) != NULL ||
+           rbs__warm_find(w, rbs__warm_key_of(0, b, a), &at2) != NULL;
+}
+
 /* Is the approach along n slower than one step of the applied forces can
  * build (a resting contact creeping, not an impact)?  Such overlap is left
  * to the warm-started resting pass and the end-of-step separation: pairwise
@@ -95,7 +105,10 @@ static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
                   w->type[b] == RBS_BODY_SPHERE ? v3_load(&w->vel[3 * b]) : v3_make(0, 0, 0));
     vrel = v3_mad(vrel, v3_sub(aa, ab), -(1.0 - s) * w->def.dt);
     vn = v3_dot(vrel, n);
-    /* the same threshold as a detected contact's (contact.c) */
+    /* the same threshold as a detected contact's (contact.c: a sphere pair
+     * that held no load in the last pass has only the press along n) */
+    if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b))
+        return -vn <= rbs__press_threshold(aa, ab, n, w->def.dt);
     return -vn <= rbs__resting_threshold(aa, ab, n, w->def.dt);
 }
 
@@ -304,6 +317,12 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
     }
     rbs__contact_set(w, &c, dist, gap);
     rbs__contact_finish(w, &c, dt);
+    if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b)) {
+        v3 aa, ab, t;
+        rbs__accelerations_all(w, a, &aa, &t);
+        rbs__accelerations_all(w, b, &ab, &t);
+        c.thr = rbs__press_threshold(aa, ab, c.n, dt);
+    }
     vn = rbs__normal_velocity(w, &c);
     if (!(vn < 0.0))
         return;

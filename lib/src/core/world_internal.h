@@ -614,6 +614,9 @@ void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
  * apart (a sphere pair; unused for a plane) and whose surfaces gap. */
 void rbs__contact_set(const rbs_world *w, rbs__contact *c, double dist, double gap);
 double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
+/* Its part along n alone: the approach one step of the forces that press
+ * the pair together builds, m/s (0 if they pull it apart). */
+double rbs__press_threshold(v3 aa, v3 ab, v3 n, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* Rolling and spinning resistance at contact i, Jn > 0 (solver.c); returns
  * the square of the velocity change it made, 0 if none. */
