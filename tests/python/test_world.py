@@ -459,6 +459,9 @@ def test_work_cap_is_reported_and_set():
     assert info.work_limit == 0 and info.colliding == 3141
     assert w.bodies["light"].velocity[0] == pytest.approx(0.406299066323439, abs=1e-9)
     assert w.bodies["heavy"].velocity[0] == pytest.approx(0.999999917460534, abs=1e-9)
+    # a run through the projector counts them too
+    assert _pi_billiard().run(2000).work_limited == 1
+    assert _pi_billiard(max_substeps=20000).run(2000).work_limited == 0
     # one step's own report: 0 or 1
     w = _pi_billiard(max_substeps=1)
     assert w.step().work_limit in (0, 1)
