@@ -90,6 +90,7 @@ static rbs_status rbs_py_step(rbs_world *world, uint64_t n, rbs_step_info *sum,
         total.floor_hits += info.floor_hits;
         total.sweep_limit += info.sweep_limit;
         total.events += info.events;
+        total.work_limit += info.work_limit; /* (the steps that hit the cap) */
         if (info.max_overlap > total.max_overlap) {
             total.max_overlap = info.max_overlap;
         }

@@ -1507,9 +1507,11 @@ static void progress(const rbs_run_info *info, uint64_t start)
 }
 
 /* start: the frame the run started from (a resumed run's k), start_time
- * its time: the steps and time counted are this run's own. */
+ * its time: the steps and time counted are this run's own.  max_substeps:
+ * the world's work cap, named when steps hit it. */
 static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
-                    const output *outs, uint32_t n, uint64_t start, double start_time)
+                    const output *outs, uint32_t n, uint64_t start, double start_time,
+                    uint32_t max_substeps)
 {
     uint32_t i;
     double drift = info->energy_last - info->energy_initial;
@@ -1521,6 +1523,17 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
             (unsigned long long)info->substeps,
             (unsigned long long)info->rollbacks,
             (unsigned long long)info->collisions);
+    if (info->work_limited > 0) {
+        char cap[32] = "";
+        if (max_substeps > 0)
+            snprintf(cap, sizeof cap, " = %u", (unsigned)max_substeps);
+        fprintf(out, "work cap: %llu of %llu steps hit max_substeps%s (sub-steps + "
+                     "rollbacks, adaptive's events, in one step) and took the rest of their "
+                     "frame without rollback, overlap pushed apart: impacts there may be missed "
+                     "or wrong, a ball may pass through another (raise simulation.max_substeps "
+                     "or shorten dt)\n",
+                (unsigned long long)info->work_limited, (unsigned long long)steps, cap);
+    }
     fprintf(out, "wall time %.3f s, %.0f steps/s\n", info->wall_time,
             info->wall_time > 0 ? (double)steps / info->wall_time : 0.0);
     fprintf(out, "energy: %.9g J at the start, %.9g J at the end (drift %+.3g J",
@@ -1974,12 +1987,16 @@ int rbsf_run_main(int argc, char **argv)
         code = RBSF_EXIT_OK;
     }
     if (!o.quiet) {
+        rbs_world_def wd;
         if (st == RBS_E_CLOSED)
             fprintf(talk, "stopped at frame %llu by %s\n",
                     (unsigned long long)info.frame,
                     sig != 0 ? rbsf_signal_name(sig) : "quit");
+        rbs_world_def_init(&wd);
+        if (world == NULL || rbs_world_get_def(world, &wd) != RBS_OK)
+            wd.max_substeps = 0; /* (not named) */
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
-                outs, n_out, start_frame, start_time);
+                outs, n_out, start_frame, start_time, wd.max_substeps);
         if (o.resume)
             fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
                     (unsigned long long)start_frame);

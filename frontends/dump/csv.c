@@ -89,6 +89,8 @@ static rbs_status stats_frame(rbsf__out *out, const rbs_frame *f, void *scratch)
     if (st == RBS_OK) st = rbsf__out_uint(out, s->step.substeps);
     if (st == RBS_OK) st = rbsf__out_put(out, ",", 1);
     if (st == RBS_OK) st = rbsf__out_uint(out, s->step.rollbacks);
+    if (st == RBS_OK) st = rbsf__out_put(out, ",", 1);
+    if (st == RBS_OK) st = rbsf__out_uint(out, s->step.work_limit);
     if (st == RBS_OK) st = rbsf__out_put(out, "\n", 1);
     return st;
 }
@@ -104,6 +106,6 @@ const rbsf__format rbsf__csv_format = {
 const rbsf__format rbsf__stats_format = {
     "stats",
     "frame,t,kinetic,potential,total,px,py,pz,lx,ly,lz,max_overlap,contacts,"
-    "collisions,substeps,rollbacks\n",
+    "collisions,substeps,rollbacks,work_limit\n",
     0, /* one row per frame: fits the 1024 fixed bytes */
     stats_frame};

@@ -33,7 +33,8 @@ const rbs_renderer_class *rbsf_csv_class(void);
  * "velocity","angular_velocity"}]}.  Static table. */
 const rbs_renderer_class *rbsf_json_class(void);
 /** "stats": one CSV row per frame: frame,t,kinetic,potential,total,px,py,pz,
- * lx,ly,lz,max_overlap,contacts,collisions,substeps,rollbacks.  Static
+ * lx,ly,lz,max_overlap,contacts,collisions,substeps,rollbacks,work_limit
+ * (1 where the step hit its work cap, rbs_step_info.work_limit).  Static
  * table. */
 const rbs_renderer_class *rbsf_stats_class(void);
 

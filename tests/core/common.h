@@ -216,4 +216,54 @@ static inline void cradle_check(const rbs_world *w, const rbs_body_id b[5], doub
     ASSERT_NEAR(state_of(w, b[4]).velocity.x, 1.0, tol);
 }
 
+/* Galperin's billiard: a wall (the plane x = 0), a 1 kg ball of r = 0.1 m
+ * at rest at x = 0.5 and a ball of `heavy` kg at x = 1 moving to the wall
+ * at 1 m/s; no gravity, no friction, e = 1.  For heavy = 100^k the impacts
+ * number the first k + 1 digits of pi (31, 314, 3141).  Runs `steps` steps
+ * of dt with the work cap max_substeps (0: the default) and returns the
+ * impacts counted (rbs_step_info.colliding) or -1 on a failed step;
+ * *v_light, *v_heavy get the final velocities along x, *capped the steps
+ * that hit the work cap. */
+static inline long pi_billiard(rbs_method method, double heavy, double dt, int steps,
+                               uint32_t max_substeps, double *v_light, double *v_heavy,
+                               int *capped)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_plane_def p;
+    rbs_material_id none = {0, 0};
+    rbs_body_id wall, light, big;
+    long impacts = 0;
+    int k;
+    rbs_world_def_init(&d);
+    d.max_bodies = 3;
+    d.dt = dt;
+    d.gravity.z = 0.0;
+    d.restitution = 1.0;
+    d.method = method;
+    if (max_substeps > 0)
+        d.max_substeps = max_substeps;
+    CHECK_OK(rbs_world_create(&d, &w));
+    rbs_plane_def_init(&p);
+    p.normal.x = 1.0;
+    p.normal.z = 0.0;
+    CHECK_OK(rbs_world_add_plane(w, &p, &wall));
+    light = ball(w, 0.1, 1.0, 0.5, 0, 0, 0, 0, 0, none);
+    big = ball(w, 0.1, heavy, 1.0, 0, 0, -1.0, 0, 0, none);
+    *capped = 0;
+    for (k = 0; k < steps; ++k) {
+        rbs_step_info info;
+        if (rbs_world_step(w, &info) != RBS_OK) {
+            impacts = -1;
+            break;
+        }
+        impacts += info.colliding;
+        *capped += info.work_limit != 0;
+    }
+    *v_light = state_of(w, light).velocity.x;
+    *v_heavy = state_of(w, big).velocity.x;
+    rbs_world_destroy(w);
+    return impacts;
+}
+
 #endif

@@ -230,6 +230,30 @@ static void fast_sphere_does_not_tunnel_through_plane(void **state)
     rbs_world_destroy(w);
 }
 
+/* The pi billiard 100^2:1 (common.h): 314 impacts, each counted once by
+ * the rollback methods (a sub-step undone takes its impacts back: euler
+ * counted 329, the rolled-back tries of the same impacts), and the final
+ * velocities of the exact sequence (0.169731316195054 and
+ * 0.999998559562978 m/s; 1e-9: rounding over 314 impulses at a mass ratio
+ * of 1e4).  4 s: the last impact, on the wall, is at about 3.05 s. */
+static void pi_billiard_counts_each_impact_once(void **state)
+{
+    static const rbs_method methods[] = {RBS_METHOD_EULER, RBS_METHOD_VERLET, RBS_METHOD_RK4,
+                                         RBS_METHOD_EVENT};
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof methods / sizeof *methods; ++i) {
+        double v, V;
+        int capped;
+        long n = pi_billiard(methods[i], 1e4, 1e-3, 4000, 0, &v, &V, &capped);
+        if (n != 314 || capped != 0)
+            fail_msg("%s: %ld impacts (expected 314), %d steps at the work cap", rbs_method_name(methods[i]), n,
+                     capped);
+        ASSERT_NEAR(v, 0.169731316195054, 1e-9);
+        ASSERT_NEAR(V, 0.999998559562978, 1e-9);
+    }
+}
+
 /* A sphere crossing 20 radii per step hits another instead of passing it. */
 static void fast_sphere_does_not_tunnel_through_sphere(void **state)
 {
@@ -1185,6 +1209,7 @@ int main(void)
         cmocka_unit_test(incline_rolls_or_slides),
         cmocka_unit_test(fast_sphere_does_not_tunnel_through_plane),
         cmocka_unit_test(fast_sphere_does_not_tunnel_through_sphere),
+        cmocka_unit_test(pi_billiard_counts_each_impact_once),
         cmocka_unit_test(newtons_cradle),
         cmocka_unit_test(gravity_modes),
         cmocka_unit_test(rolling_resistance_decelerates),

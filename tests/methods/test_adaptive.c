@@ -517,6 +517,29 @@ static void steps_per_frame_are_bounded(void **state)
     }
 }
 
+/* The pi billiard 1e6:1 (common.h) at dt = 1 ms: 3141 impacts, about a
+ * thousand of them in one frame near the wall, each an event.  At the
+ * default work cap (max_substeps 4096 events a frame) every one is located:
+ * the count and the final velocities of the exact sequence (1e-9).  With
+ * max_substeps = 100 a frame of more events finishes in one RK4 sub-step,
+ * reported in work_limit (it was RBS_E_NUMERIC, "more than 1000 contact
+ * events in one frame", at any max_substeps). */
+static void pi_billiard_events_and_the_work_cap(void **state)
+{
+    double v, V;
+    int capped;
+    long n;
+    (void)state;
+    n = pi_billiard(RBS_METHOD_ADAPTIVE, 1e6, 1e-3, 2000, 0, &v, &V, &capped);
+    assert_int_equal(n, 3141);
+    assert_int_equal(capped, 0);
+    ASSERT_NEAR(v, 0.406299066323439, 1e-9);
+    ASSERT_NEAR(V, 0.999999917460534, 1e-9);
+    n = pi_billiard(RBS_METHOD_ADAPTIVE, 1e6, 1e-3, 2000, 100, &v, &V, &capped);
+    assert_true(n > 0);
+    assert_true(capped > 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -533,6 +556,7 @@ int main(void)
         cmocka_unit_test(switch_methods),
         cmocka_unit_test(create_in_and_numeric_failure),
         cmocka_unit_test(steps_per_frame_are_bounded),
+        cmocka_unit_test(pi_billiard_events_and_the_work_cap),
         cmocka_unit_test(attracted_pair_rests_and_gains_nothing),
         cmocka_unit_test(fixed_pairs_leave_no_infinite_potential),
     };

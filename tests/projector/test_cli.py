@@ -23,7 +23,7 @@ CSV_TRUTH = os.environ.get("CSV_TRUTH", "csv_truth")
 
 CSV_HEADER = ("frame,t,body,name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz")
 STATS_HEADER = ("frame,t,kinetic,potential,total,px,py,pz,lx,ly,lz,"
-                "max_overlap,contacts,collisions,substeps,rollbacks")
+                "max_overlap,contacts,collisions,substeps,rollbacks,work_limit")
 
 SCENE = {
     "format": 1,
@@ -303,6 +303,41 @@ class CliTests(Base):
         soft_substeps does, above); out of [0, 1] the scene is rejected."""
         self.setting_binds_checkpoint("soft_tolerance", 0.25, 0, 2,
                                       "must be in [0, 1], got 2")
+
+    def test_work_cap_is_reported(self):
+        """A step past its work cap (simulation.max_substeps) takes the
+        rest of its frame without rollback: in the 1e6:1 pi billiard at
+        dt = 1 ms the light ball then passed through the heavy one, and the
+        summary looked clean.  Now the summary says how many steps hit the
+        cap and what it means, the stats have a work_limit column, and the
+        scene's max_substeps raises the cap (3141 impacts, exact)."""
+        bodies = [
+            {"name": "wall", "type": "plane", "point": [0, 0, 0], "normal": [1, 0, 0]},
+            {"name": "light", "type": "sphere", "radius": 0.1, "mass": 1,
+             "position": [0.5, 0, 0]},
+            {"name": "heavy", "type": "sphere", "radius": 0.1, "mass": 1e6,
+             "position": [1, 0, 0], "velocity": [-1, 0, 0]}]
+        sim = {"steps": 2000, "dt": 0.001, "gravity": [0, 0, 0], "restitution": 1,
+               "method": "euler"}
+        mats = [{"pair": ["*", "*"], "static": 0, "kinetic": 0, "restitution": 1}]
+        s = self.scene("pi.json", bodies=bodies, simulation=sim, materials=mats)
+        r = self.rbsim("run", s, "--stats", "pi.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.path("pi.csv"), newline="") as f:
+            rows = list(csv.DictReader(f))
+        capped = sum(int(x["work_limit"]) for x in rows)
+        self.assertGreater(capped, 0)
+        self.assertIn("work cap: %d of 2000 steps hit max_substeps = 4096" % capped, r.stdout)
+        self.assertIn("impacts there may be missed or wrong", r.stdout)
+        s = self.scene("pi2.json", bodies=bodies, materials=mats,
+                       simulation=dict(sim, max_substeps=20000))
+        r = self.rbsim("run", s, "--stats", "pi2.csv")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("work cap", r.stdout)
+        self.assertIn("3141 collisions", r.stdout)
+        self.setting_binds_checkpoint("max_substeps", 512, 4096, 0,
+                                      "must be an integer from 1 to 4294967295 (2^32 - 1), "
+                                      "got 0")
 
     def setting_binds_checkpoint(self, key, made, other, bad, message):
         """A soft scene's simulation.KEY reaches the world: a checkpoint
@@ -600,7 +635,7 @@ class CliTests(Base):
         self.assertEqual(",".join(st[0]), STATS_HEADER)
         self.assertEqual([int(x[0]) for x in st[1:]], list(range(201)))
         for x in st[1:]:
-            self.assertEqual(len(x), 16)
+            self.assertEqual(len(x), 17)
             # total = kinetic + potential, as the world computed it (to
             # rounding of the sum: 1 ulp of the larger part, times 4).
             k, p, t = float(x[2]), float(x[3]), float(x[4])

@@ -176,3 +176,23 @@ def test_scene_without_method_is_auto():
     assert few.method_in_use == "euler" and heap.method_in_use == "soft"
     assert rbsim.parse_json(scene(64), method="euler").method_in_use == "euler"
     heap.step(10)
+
+
+def test_max_substeps_from_json_and_config_txt(write_scene, tmp_path):
+    """simulation.max_substeps (config.txt: max_substeps = N) sets the work
+    cap; the scene format had no key for it."""
+    scene = bounce_scene()
+    assert rbsim.load(write_scene(scene)).settings["max_substeps"] == 4096
+    scene["simulation"]["max_substeps"] = 100
+    assert rbsim.load(write_scene(scene)).settings["max_substeps"] == 100
+    (tmp_path / "objects.txt").write_text("sphere ball\n  radius 0.1\n  mass 1\n"
+                                          "  position 0 0 1\n")
+    config = write_scene("format = 1\nsteps = 10\nmax_substeps = 77\nobjects = objects.txt\n",
+                         name="config.txt")
+    assert rbsim.load(config).settings["max_substeps"] == 77
+    for bad in (0, 2 ** 32, 1.5):
+        scene["simulation"]["max_substeps"] = bad
+        with pytest.raises(rbsim.SceneError,
+                           match=r"simulation\.max_substeps: must be an integer from 1 to "
+                                 r"4294967295 \(2\^32 - 1\), got"):
+            rbsim.load(write_scene(scene))

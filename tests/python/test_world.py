@@ -429,3 +429,44 @@ def test_capacity_not_reached_is_not_resident():
     grew, block = (int(x) for x in out.stdout.split())
     assert block > 100e6
     assert grew < 0.1 * block, (grew, block)
+
+
+def _pi_billiard(**kw):
+    """Galperin's billiard 1e6:1: a wall (x = 0), a 1 kg ball at rest and a
+    1e6 kg ball moving to it at 1 m/s, e = 1, no gravity: 3141 impacts."""
+    w = rbsim.World(max_bodies=3, dt=1e-3, gravity=(0, 0, 0), restitution=1.0,
+                    method="euler", **kw)
+    w.add_plane("wall", point=(0, 0, 0), normal=(1, 0, 0))
+    w.add_sphere("light", radius=0.1, mass=1.0, position=(0.5, 0, 0))
+    w.add_sphere("heavy", radius=0.1, mass=1e6, position=(1.0, 0, 0),
+                 velocity=(-1.0, 0, 0))
+    return w
+
+
+def test_work_cap_is_reported_and_set():
+    """The work cap (max_substeps) was set and seen only from C: Python's
+    StepInfo had no work_limit and World() no max_substeps, so a ball that
+    passed through another when the cap cut a frame short looked clean."""
+    w = _pi_billiard()
+    assert w.settings["max_substeps"] == 4096  # the library's default
+    info = w.step(2000)
+    assert 0 < info.work_limit <= info.steps
+    # past the cap the light ball went through the heavy one
+    assert w.bodies["light"].position[0] > w.bodies["heavy"].position[0]
+    w = _pi_billiard(max_substeps=20000)
+    assert w.settings["max_substeps"] == 20000
+    info = w.step(2000)
+    assert info.work_limit == 0 and info.colliding == 3141
+    assert w.bodies["light"].velocity[0] == pytest.approx(0.406299066323439, abs=1e-9)
+    assert w.bodies["heavy"].velocity[0] == pytest.approx(0.999999917460534, abs=1e-9)
+    # a run through the projector counts them too
+    assert _pi_billiard().run(2000).work_limited == 1
+    assert _pi_billiard(max_substeps=20000).run(2000).work_limited == 0
+    # one step's own report: 0 or 1
+    w = _pi_billiard(max_substeps=1)
+    assert w.step().work_limit in (0, 1)
+    for bad in (0, -1, 2 ** 32):
+        with pytest.raises(rbsim.InvalidError,
+                           match=r"max_substeps: must be in \[1, 4294967295\], got %d" % bad):
+            rbsim.World(max_substeps=bad)
+    assert rbsim.World(max_substeps=2 ** 32 - 1).settings["max_substeps"] == 2 ** 32 - 1

@@ -106,6 +106,9 @@ class RunInfo:
     energy_initial: float  #: J at frame 0
     energy_last: float     #: J at the last frame captured
     wall_time: float       #: s
+    #: steps that hit their work cap (:attr:`StepInfo.work_limit`): their
+    #: impacts may be missed or wrong
+    work_limited: int = 0
 
 
 class StopRun(Exception):
@@ -510,7 +513,7 @@ def _run_info(s: Any) -> RunInfo:
                    int(s.steps), bool(s.endless), int(s.captured), int(s.drawn), int(s.frame),
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
-                   float(s.energy_last), float(s.wall_time))
+                   float(s.energy_last), float(s.wall_time), int(s.work_limited))
 
 
 def start_world(world: World, steps: Optional[int] = None,

@@ -101,12 +101,18 @@ class StepInfo:
     events: int         #: events processed (event method)
     max_overlap: float  #: deepest overlap at the end of a step, m
     steps: int = 1      #: steps this call made
+    #: steps that hit the work cap (``World(max_substeps=)``) and took the
+    #: rest of their frame without further rollback or events: overlap
+    #: there was pushed apart, so impacts may be missed or wrong (a ball
+    #: may pass through another); 0 when every step was resolved in time
+    work_limit: int = 0
 
     @classmethod
     def _from_c(cls, c: Any, steps: int = 1) -> "StepInfo":
         return cls(int(c.contacts), int(c.colliding), int(c.resting),
                    int(c.substeps), int(c.rollbacks), int(c.floor_hits),
-                   int(c.sweep_limit), int(c.events), float(c.max_overlap), steps)
+                   int(c.sweep_limit), int(c.events), float(c.max_overlap), steps,
+                   int(c.work_limit))
 
 
 class Energy(NamedTuple):
@@ -412,6 +418,11 @@ class World:
         max_halvings: rollback floor dt / 2**max_halvings, 0 to 60.
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
                 and separation iterations, 1 to 100000.
+        max_substeps: a step's work cap, 1 to 2**32 - 1 (default 4096):
+                sub-steps + rollbacks of euler, verlet and rk4, contact
+                events of adaptive in one frame; past it the rest of the
+                frame is one sub-step with overlap pushed apart, reported
+                in :attr:`StepInfo.work_limit` (rbsim.h, ``max_substeps``).
         soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
                 (default 3); more make piles stiffer, at a cost in proportion.
         soft_tolerance: the "soft" method's overlap budget, a fraction of the
@@ -446,6 +457,7 @@ class World:
                  slop: Optional[float] = None,
                  max_halvings: Optional[int] = None,
                  max_sweeps: Optional[int] = None,
+                 max_substeps: Optional[int] = None,
                  soft_substeps: Optional[int] = None,
                  soft_tolerance: Optional[float] = None,
                  mutual_gravity: Optional[bool] = None,
@@ -470,7 +482,7 @@ class World:
                 "over %d: give max_contacts" % (4 * d.max_bodies + 16, d.max_bodies,
                                                 _INT_RANGES["max_contacts"][1]))
         for key, value in (("max_halvings", max_halvings), ("max_sweeps", max_sweeps),
-                           ("soft_substeps", soft_substeps)):
+                           ("max_substeps", max_substeps), ("soft_substeps", soft_substeps)):
             if value is not None:
                 setattr(d, key, _check.integer(value, key, *_INT_RANGES[key]))
         for key, value in (("dt", dt), ("restitution", restitution),
@@ -1073,7 +1085,7 @@ class World:
         if count == 0:
             return StepInfo._from_c(total, 0)
         fields = ("colliding", "resting", "substeps", "rollbacks", "floor_hits",
-                  "sweep_limit", "events")
+                  "sweep_limit", "events", "work_limit")
         while made < count:
             todo = min(_STEP_CHUNK, count - made)
             w = self._acquire()
@@ -1211,6 +1223,7 @@ class World:
             "restitution": float(d.restitution), "method": METHODS[int(d.method)],
             "tolerance": float(d.tolerance), "slop": float(d.slop),
             "max_halvings": int(d.max_halvings), "max_sweeps": int(d.max_sweeps),
+            "max_substeps": int(d.max_substeps),
             "soft_substeps": int(d.soft_substeps),
             "soft_tolerance": float(d.soft_tolerance),
             "mutual_gravity": bool(d.mutual_gravity),
@@ -1359,6 +1372,7 @@ _INT_RANGES: Dict[str, Tuple[int, int]] = {
     "max_contacts": (0, 1 << 26),  # (0: 4 x max_bodies + 16)
     "max_halvings": (0, 60),
     "max_sweeps": (1, 100000),
+    "max_substeps": (1, (1 << 32) - 1),
     "soft_substeps": (1, 1000),  # (RBS__SOFT_SUBSTEPS_MAX)
 }
 

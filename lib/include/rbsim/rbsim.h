@@ -195,11 +195,19 @@ typedef struct rbs_world_def {
     uint32_t max_pairs;       /**< material-pair rows; default 64 */
     uint32_t max_contacts;    /**< contacts per step; default 4*max_bodies+16.
                                    euler and selective also keep pairs a
-                                   resting approach closes within the step,
-                                   soft every pair the bodies' motion can
-                                   close within it (speculative contacts),
-                                   while room is left; only touching pairs
-                                   beyond it are an error */
+                                   resting approach closes within the step
+                                   (speculative contacts) while room is
+                                   left, in the order found; a touching
+                                   pair with no room left is
+                                   RBS_E_CAPACITY.  soft's reach is each
+                                   body's |v| dt + |a| dt^2 (its own speed,
+                                   not the pair's approach), so a fast
+                                   cloud -- even one moving as a whole --
+                                   fills the room with pairs that are apart
+                                   and stops at a touching one (30 balls at
+                                   300 m/s, dt = 1 ms, 2 touching: over
+                                   140); give it room for every pair within
+                                   that reach */
     double dt;                /**< step, s; default 0.001, > 0 */
     rbs_vec3 gravity;         /**< m/s^2 (or N in force mode); default 0,0,-9.81 */
     rbs_gravity_mode gravity_mode; /**< default acceleration */
@@ -224,13 +232,20 @@ typedef struct rbs_world_def {
     int32_t prune;            /**< nonzero (default): leave out stages that cannot
                                    change the result; 0 runs every stage */
     uint32_t max_substeps;    /**< work cap per step: sub-steps + rollbacks of the
-                                   rollback methods, past which the rest of the
-                                   frame is taken at once (reported in
-                                   work_limit); also 256x this many rotation
-                                   sub-steps (verlet, rk4; then work_limit) and
-                                   events (event; then RBS_E_UNSUPPORTED), 25x
-                                   this many adaptive steps (then
-                                   RBS_E_NUMERIC); default 4096, >= 1 */
+                                   rollback methods (euler, verlet, rk4),
+                                   past which the rest of the frame is one
+                                   sub-step with its overlap pushed apart
+                                   instead of rolled back -- impacts in it
+                                   may be missed or wrong, a ball may pass
+                                   through another (reported in work_limit);
+                                   also this many contact events of adaptive
+                                   in one frame (then the same, its rest one
+                                   RK4 sub-step), 256x this many rotation
+                                   sub-steps (verlet, rk4; then work_limit)
+                                   and events (event; then
+                                   RBS_E_UNSUPPORTED), 25x this many adaptive
+                                   steps (then RBS_E_NUMERIC); default 4096,
+                                   >= 1 (a scene's simulation.max_substeps) */
     uint32_t soft_substeps;   /**< sub-steps per frame of RBS_METHOD_SOFT, each
                                    one solve and one relax pass over the
                                    contacts; default 3, 1 to 1000.  More
@@ -480,7 +495,9 @@ RBS_API rbs_status rbs_body_set_torque(rbs_world *world, rbs_body_id id, rbs_vec
 /** What one call of rbs_world_step did. */
 typedef struct rbs_step_info {
     uint32_t contacts;    /**< contacts touching at the end of the step */
-    uint32_t colliding;   /**< impacts resolved with restitution */
+    uint32_t colliding;   /**< impacts resolved with restitution (in the
+                               sub-steps kept: a sub-step rolled back takes
+                               its impacts and resting impulses back) */
     uint32_t resting;     /**< resting-contact impulses */
     uint32_t substeps;    /**< accepted sub-steps (1 if no rollback) */
     uint32_t rollbacks;   /**< sub-steps undone because of overlap */
@@ -489,8 +506,12 @@ typedef struct rbs_step_info {
     uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
     uint32_t events;      /**< events processed (event method) */
     double max_overlap;   /**< deepest overlap at the end of the step, m */
-    uint32_t work_limit;  /**< 1 if the step hit max_substeps and took the
-                               rest of the frame without further rollback */
+    uint32_t work_limit;  /**< 1 if the step hit its work cap
+                               (rbs_world_def.max_substeps) and took the
+                               rest of the frame without further rollback
+                               or events: overlap there was pushed apart,
+                               not resolved in time order, so its impacts
+                               may be missed or wrong */
     uint32_t reserved[7]; /**< zero; room for new counters without an ABI break */
 } rbs_step_info;
 

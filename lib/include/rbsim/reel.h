@@ -325,6 +325,10 @@ typedef struct rbs_run_info {
     double energy_initial;    /**< total energy at frame 0, J */
     double energy_last;       /**< total energy at the last frame captured, J */
     double wall_time;         /**< seconds since start (until done) */
+    uint64_t work_limited;    /**< steps that hit their work cap
+                                   (rbs_step_info.work_limit), all steps so
+                                   far: their impacts may be missed or
+                                   wrong */
 } rbs_run_info;
 
 /** A run: owns a reel, the renderer instances and two threads.  Opaque. */

@@ -35,7 +35,11 @@
  *
  * Limits (docs/methods.md): a sphere pair that touches and parts again
  * inside one accepted step along a curved path is not seen (the swept test
- * assumes straight relative motion over the step).
+ * assumes straight relative motion over the step).  Work: a frame of more
+ * than max_substeps contact events takes the rest of the frame as one RK4
+ * sub-step, overlap pushed apart (work_limit); one of more than
+ * max_substeps * 25 accepted ODE steps is RBS_E_NUMERIC (a tolerance too
+ * tight for the forces).
  *
  * Memory: GSL's workspaces come from GSL's own allocator (malloc).  They are
  * allocated once, when a world is created with, or switched to, the
@@ -60,9 +64,6 @@
 #include "core/world_internal.h"
 
 #define STRIDE 13            /* doubles per sphere in the ODE state */
-#define MAX_EVENTS 1000u     /* events in one frame before giving up (each costs
-                                root finding; 1000 is far beyond any scene the
-                                method is for, and bounds a step's work) */
 #define STEPS_PER_SUBSTEP 25u /* accepted steps in one frame before giving up:
                                  max_substeps * 25 (102,400 at the default),
                                  the work bound the other methods share */
@@ -699,13 +700,22 @@ rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)
             unpack(a, a->yt);
             t = te;
             info->events++;
-            if (++events > MAX_EVENTS) {
-                /* (far from the origin the events may be rounding alone) */
+            if (++events > w->def.max_substeps && t < T) {
+                /* The work cap: more than max_substeps contact events in
+                 * one frame (each costs root finding).  The rest of the
+                 * frame is one RK4 sub-step with its overlap pushed apart,
+                 * as the rollback methods take theirs past the cap, and
+                 * reported (work_limit).  (It was RBS_E_NUMERIC at a fixed
+                 * 1000 events: the 1e6:1 pi billiard, 3141 impacts, stopped
+                 * at dt = 1 ms as a "numerical failure".)  Far from the
+                 * origin the events may be rounding alone: refused, as
+                 * elsewhere. */
                 rbs__coarse co;
                 if (rbs__coarse_contact(w, &co))
                     return rbs__coarse_error(w, &co);
-                return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
-                    "adaptive: more than %u contact events in one frame", MAX_EVENTS);
+                info->work_limit = 1;
+                info->substeps += substeps;
+                return finish_with_rk4(w, info, T - t);
             }
             if (t >= T) {
                 /* the contact is at the frame end: resolve it now */

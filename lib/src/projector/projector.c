@@ -86,7 +86,7 @@ struct rbs_projector {
     int completed;        /* the last frame was drawn */
     rbs_status result;    /* first error, or RBS_OK */
     char error[ERROR_MAX];
-    uint64_t captured, drawn, frame_drawn, substeps, rollbacks, collisions;
+    uint64_t captured, drawn, frame_drawn, substeps, rollbacks, collisions, work_limited;
     uint64_t frame_made; /* number of the last frame captured */
     double time_drawn, energy_initial, energy_last;
     double t_start, t_end;
@@ -498,6 +498,7 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     p->substeps += info->substeps;
     p->rollbacks += info->rollbacks;
     p->collisions += info->colliding;
+    p->work_limited += info->work_limit != 0;
     pthread_mutex_unlock(&p->mu);
 
     slot->paused = paused;
@@ -1033,6 +1034,7 @@ static void status_locked(rbs_projector *p, rbs_run_info *info)
     info->substeps = p->substeps;
     info->rollbacks = p->rollbacks;
     info->collisions = p->collisions;
+    info->work_limited = p->work_limited;
     info->energy_initial = p->energy_initial;
     info->energy_last = p->energy_last;
     if (p->started)
@@ -1262,7 +1264,7 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
     if (strcmp(word, "status") == 0) {
         /* the frame shown, and how far the simulation has gone when it is
          * ahead (the counters are the simulation's, to its last frame) */
-        char ahead[96] = "";
+        char ahead[96] = "", capped[64] = "";
         uint64_t made;
         pthread_mutex_lock(&p->mu);
         status_locked(p, &info);
@@ -1271,9 +1273,12 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         if (info.captured > 0 && made > info.frame)
             snprintf(ahead, sizeof ahead, " (counts to frame %llu, made ahead of the frame shown)",
                      (unsigned long long)made);
+        if (info.work_limited > 0)
+            snprintf(capped, sizeof capped, ", %llu steps at the work cap",
+                     (unsigned long long)info.work_limited);
         reply_to(reply, reply_size,
                  "frame %llu of %llu, t = %.6g s, %s%s, speed %g, "
-                 "%llu collisions, %llu sub-steps, %llu rollbacks%s",
+                 "%llu collisions, %llu sub-steps, %llu rollbacks%s%s",
                  (unsigned long long)info.frame,
                  (unsigned long long)(p->first_frame + info.steps), /* (the last frame's number) */
                  info.time,
@@ -1284,7 +1289,7 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
                  info.quit && info.state != RBS_RUN_DONE ? " (quitting)" : "",
                  info.speed, (unsigned long long)info.collisions,
                  (unsigned long long)info.substeps,
-                 (unsigned long long)info.rollbacks, ahead);
+                 (unsigned long long)info.rollbacks, capped, ahead);
         return RBS_OK;
     }
     return renderer_command(p, line, reply, reply_size);

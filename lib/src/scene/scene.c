@@ -33,6 +33,7 @@ rbs_scene *rbs__scene_new(void)
     rbs_world_def_init(&def);
     scene->slop = def.slop; /* the world's defaults */
     scene->max_sweeps = def.max_sweeps;
+    scene->max_substeps = def.max_substeps;
     scene->soft_substeps = def.soft_substeps;
     scene->soft_tolerance = def.soft_tolerance;
     scene->dt = 0.001;
@@ -508,6 +509,7 @@ rbs_status rbs_scene_world_def(const rbs_scene *scene, rbs_world_def *out)
     out->tolerance = scene->tolerance;
     out->slop = scene->slop;
     out->max_sweeps = scene->max_sweeps;
+    out->max_substeps = scene->max_substeps;
     out->soft_substeps = scene->soft_substeps;
     out->soft_tolerance = scene->soft_tolerance;
     out->mutual_gravity = scene->mutual_gravity;

@@ -39,6 +39,8 @@
 #define RBS__SCENE_SWEEPS_MAX 100000
 /* The world's largest max_contacts (rbs_world_def_validate). */
 #define RBS__SCENE_CONTACTS_MAX 67108864u /* 2^26 */
+/* The largest max_substeps (the field's: the world takes any >= 1). */
+#define RBS__SCENE_SUBSTEPS_MAX 4294967295.0 /* 2^32 - 1 */
 /* The world's smallest tolerance (world.c: double precision). */
 #define RBS__SCENE_TOLERANCE_MIN 1e-15
 
@@ -137,6 +139,7 @@ struct rbs_scene {
     uint32_t max_sweeps; /* impulse sweeps per contact pass (rbs_world_def.max_sweeps) */
     uint32_t max_contacts; /* contacts a step may hold; 0: 4 x max(bodies, 1) + 16
                               (rbs_world_def.max_contacts) */
+    uint32_t max_substeps; /* a step's work cap (rbs_world_def.max_substeps) */
     uint32_t soft_substeps; /* sub-steps per frame of the soft method
                                (rbs_world_def.soft_substeps) */
     double soft_tolerance; /* the soft method's overlap budget, a fraction

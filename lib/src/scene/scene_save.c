@@ -295,6 +295,8 @@ static void put_vec_field(FILE *f, const key_style *k, const char *key, int wher
 static void put_simulation(FILE *f, const key_style *k, const key_style *g, const rbs_scene *s)
 {
     const char *method = rbs_method_name(s->method);
+    rbs_world_def def;
+    rbs_world_def_init(&def);
     put_key(f, k, "steps", KEY_FIRST);
     fprintf(f, "%llu", (unsigned long long)s->steps);
     put_key(f, k, "dt", KEY_NEXT);
@@ -314,6 +316,11 @@ static void put_simulation(FILE *f, const key_style *k, const key_style *g, cons
         /* (only when given: the default follows the bodies) */
         put_key(f, k, "max_contacts", KEY_NEXT);
         fprintf(f, "%u", (unsigned)s->max_contacts);
+    }
+    if (s->max_substeps != def.max_substeps) {
+        /* (only when not the default: files without it stay as they were) */
+        put_key(f, k, "max_substeps", KEY_NEXT);
+        fprintf(f, "%u", (unsigned)s->max_substeps);
     }
     put_key(f, k, "soft_substeps", KEY_NEXT);
     fprintf(f, "%u", (unsigned)s->soft_substeps);

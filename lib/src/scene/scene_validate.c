@@ -589,7 +589,7 @@ static void missing(vctx *v, const cJSON *obj, const char *key, const char *what
 
 static const char *const sim_keys[] = {
     "steps", "dt", "gravity", "gravity_mode", "method", "tolerance", "slop",
-    "max_sweeps", "max_contacts", "soft_substeps", "soft_tolerance", "restitution",
+    "max_sweeps", "max_contacts", "max_substeps", "soft_substeps", "soft_tolerance", "restitution",
     "pause_on_collision", "mutual_gravity"};
 static const char *const mutual_keys[] = {"G", "softening"};
 static const char *const gravity_modes[] = {"acceleration", "force"};
@@ -698,6 +698,15 @@ static void check_simulation(vctx *v, const cJSON *sim)
         saved = push_key(v, "max_contacts");
         if (get_integer(v, c, 1, RBS__SCENE_CONTACTS_MAX, "an integer from 1 to 67108864 (2^26)", &n) == 0) {
             s->max_contacts = (uint32_t)n;
+        }
+        pop(v, saved);
+    }
+    if ((c = member(sim, "max_substeps")) != NULL) {
+        uint64_t n;
+        saved = push_key(v, "max_substeps");
+        if (get_integer(v, c, 1, RBS__SCENE_SUBSTEPS_MAX, "an integer from 1 to 4294967295 (2^32 - 1)",
+                        &n) == 0) {
+            s->max_substeps = (uint32_t)n;
         }
         pop(v, saved);
     }
