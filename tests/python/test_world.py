@@ -429,3 +429,45 @@ def test_capacity_not_reached_is_not_resident():
     grew, block = (int(x) for x in out.stdout.split())
     assert block > 100e6
     assert grew < 0.1 * block, (grew, block)
+
+
+@pytest.mark.parametrize("how", ["copy", "deepcopy", "pickle"])
+def test_handles_cannot_be_copied_or_pickled(how):
+    """copy.copy(world) shared the C world, and deleting the copy destroyed
+    the original's (with threads > 1, a segfault: a probe of session 41).
+    Every handle -- World, Body, Material, BodyMap, Run -- refuses to be
+    copied or pickled, with a TypeError saying what to do instead; the
+    world is untouched."""
+    import copy
+    import pickle
+    fn = {"copy": copy.copy, "deepcopy": copy.deepcopy, "pickle": pickle.dumps}[how]
+    w = make_world(threads=2)
+    ball = w.bodies["ball"]
+    mat = w.add_material("rubber")
+    hints = {"World": "checkpoint", "Body": "state()", "Material": "name",
+             "BodyMap": "dict(world.bodies)"}
+    for obj in (w, ball, mat, w.bodies):
+        name = type(obj).__name__
+        with pytest.raises(TypeError, match="cannot copy or pickle a %s" % name) as info:
+            fn(obj)
+        assert hints[name] in str(info.value)
+    run = w.start(3, [lambda frame: None])
+    with pytest.raises(TypeError, match="cannot copy or pickle a Run"):
+        fn(run)
+    run.wait()
+    w.step(10)
+    assert w.step_count == 13 and ball.position[2] < 1.0
+
+
+def test_repr_never_raises(monkeypatch):
+    """repr() of a world whose library calls fail says why instead of
+    raising (it raised InvalidError: a probe of session 41)."""
+    w = make_world()
+
+    def broken():
+        raise rbsim.InvalidError("rbs_world_state")
+    monkeypatch.setattr(w, "all_bodies", broken)
+    assert repr(w) == "World(<invalid argument: rbs_world_state>)"
+    w2 = make_world()
+    w2.close()
+    assert repr(w2.bodies) == "BodyMap(<closed or interrupted: world is closed>)"

@@ -43,7 +43,7 @@ import numpy as np
 from . import _check
 from . import errors as _e
 from ._native import ffi, lib
-from .world import Energy, Momentum, StepInfo, World
+from .world import Energy, Momentum, StepInfo, World, _Handle
 
 _FIELDS = (("type", np.int32, ()), ("color", np.uint32, ()),
            ("texture", np.int32, ()), ("slot", np.uint32, ()),
@@ -248,7 +248,7 @@ def rbs_py_renderer_destroy(instance: Any) -> None:
             adapter.run._error = exc
 
 
-class Run:
+class Run(_Handle):
     """A run of a world through the projector (see :meth:`World.start`).
 
     From start until :meth:`wait` returns, the world belongs to the
@@ -256,7 +256,10 @@ class Run:
     :meth:`status` and :meth:`finished` are thread-safe.  From the run's own
     renderers (inside draw() or finish()), :meth:`wait` and
     :meth:`finished` with a timeout raise DeadlockError: the run cannot end
-    while its renderer is drawing."""
+    while its renderer is drawing.  A Run cannot be copied or pickled."""
+
+    _COPY_HINT = ("run (its threads); wait() on it, and copy its RunInfo or the world's "
+                  "checkpoint()")
 
     def __init__(self, world: World, steps: int, renderers: Sequence[Any],
                  realtime: bool, speed: float, start_paused: bool,

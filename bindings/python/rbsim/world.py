@@ -81,6 +81,26 @@ def _str(p: Any) -> str:
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
 
 
+class _Handle:
+    """Base of the objects that stand for something of the library's (a
+    world, a body of it, a run): none can be copied or pickled.  The
+    default copy shared the C world, and deleting the copy destroyed the
+    original's (a crash with threads > 1: a probe of session 41).
+    _COPY_HINT says what to do instead."""
+
+    __slots__ = ()
+    _COPY_HINT = ""
+
+    def _refuse_copy(self, *args: Any) -> Any:
+        raise TypeError("cannot copy or pickle a %s: it is a handle to the library's %s"
+                        % (type(self).__name__, self._COPY_HINT))
+
+    __copy__ = _refuse_copy
+    __deepcopy__ = _refuse_copy
+    __reduce_ex__ = _refuse_copy
+    __reduce__ = _refuse_copy
+
+
 # --------------------------------------------------------------------------
 # Small result types
 # --------------------------------------------------------------------------
@@ -141,10 +161,12 @@ class Usage(NamedTuple):
 # Materials and bodies
 # --------------------------------------------------------------------------
 
-class Material:
+class Material(_Handle):
     """A named material of a world (a handle; compare with ==)."""
 
     __slots__ = ("_world", "_index", "_generation", "name")
+    _COPY_HINT = ("material of one world; use the Material itself (handles compare equal), "
+                  "or its name")
 
     def __init__(self, world: "World", cid: Any, name: str) -> None:
         self._world = world
@@ -187,15 +209,18 @@ class BodyState:
     fixed: bool
 
 
-class Body:
+class Body(_Handle):
     """A body of a world, by id (slot index + generation).
 
     Getters copy the state out; setters validate (finite numbers) and call
     the library.  Using a body after it was removed raises
-    :class:`~rbsim.StaleIdError`.
+    :class:`~rbsim.StaleIdError`.  A Body cannot be copied or pickled (use
+    it as it is, or :meth:`state` for a copy of its state).
     """
 
     __slots__ = ("_world", "_index", "_generation")
+    _COPY_HINT = ("body of one world; use the Body itself (handles compare equal), "
+                  "or body.state() for a copy of its state")
 
     def __init__(self, world: "World", bid: Any) -> None:
         self._world = world
@@ -362,10 +387,12 @@ def _reverse(table: Mapping[str, int], value: int) -> str:
     return str(value)
 
 
-class BodyMap(Mapping[str, Body]):
+class BodyMap(_Handle, Mapping[str, Body]):
     """The named bodies of a world: ``world.bodies["ball"]``.  Unnamed
     bodies are left out (see :meth:`World.all_bodies`).  A live view: it
     reflects bodies added or removed later."""
+
+    _COPY_HINT = "bodies of one world (a live view); use dict(world.bodies) for a snapshot"
 
     def __init__(self, world: "World") -> None:
         self._world = world
@@ -380,14 +407,17 @@ class BodyMap(Mapping[str, Body]):
         return sum(1 for b in self._world.all_bodies() if b.name)
 
     def __repr__(self) -> str:
-        return "BodyMap(%r)" % list(self)
+        try:
+            return "BodyMap(%r)" % list(self)
+        except _e.Error as exc:  # (repr never raises: closed, busy, ...)
+            return "BodyMap(<%s>)" % exc
 
 
 # --------------------------------------------------------------------------
 # World
 # --------------------------------------------------------------------------
 
-class World:
+class World(_Handle):
     """A simulated world of spheres and planes.
 
     Every keyword is optional; None keeps the library's default (see
@@ -427,11 +457,18 @@ class World:
         threads: threads that step the world, the caller's included, 1 to
                 16 (default 1; see :attr:`World.threads`).
 
+    A World cannot be copied or pickled (copy.copy would share the C
+    world); duplicate one through :meth:`checkpoint` and
+    :meth:`from_checkpoint`, or :meth:`save` and :meth:`restore`.
+
     Raises:
         InvalidError: a value out of range (the message names it, gives
                 its range and echoes the value exactly).
         ArgumentTypeError, NumericError: a wrong type, NaN or infinity.
     """
+
+    _COPY_HINT = ("world; duplicate it with World.from_checkpoint(world.checkpoint()), "
+                  "or world.save(path) and rbsim.resume(path)")
 
     def __init__(self, *, max_bodies: Optional[int] = None,
                  max_materials: Optional[int] = None,
@@ -1346,6 +1383,8 @@ class World:
                 len(self.all_bodies()), self.time, self.method)
         except _e.BusyError:
             return "World(<busy: in use by another thread or a run>)"
+        except _e.Error as exc:  # (repr never raises)
+            return "World(<%s>)" % exc
 
 
 #: World(...)'s integer ranges, as rbs_world_def_validate (world.c) has
