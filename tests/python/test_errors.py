@@ -475,3 +475,65 @@ def test_pair_restitution_outside_0_1_is_refused():
     assert w.pairs() == []
     w.set_material("*", "*", restitution=0.25)
     assert w.pairs()[0]["restitution"] == 0.25
+
+
+def test_star_import_keeps_the_builtins():
+    """`from rbsim import *` replaced the built-in MemoryError with rbsim's
+    (__all__ held every generated class): names of built-in exceptions are
+    left out of the star import and stay attributes (a probe of session
+    41)."""
+    import builtins
+    for module in ("rbsim", "rbsim.errors"):
+        ns = {}
+        exec("from %s import *" % module, ns)
+        hidden = [n for n in ns if n != "__builtins__" and hasattr(builtins, n)]
+        assert hidden == [], (module, hidden)
+        assert "InvalidError" in ns and "CapacityError" in ns
+    assert rbsim.MemoryError is rbsim.errors.GENERATED["MemoryError"]
+    assert rbsim.MemoryError is not builtins.MemoryError
+    assert issubclass(rbsim.MemoryError, builtins.MemoryError)
+    assert rbsim.errors.SHADOWING == ["MemoryError"]
+
+
+def _raise_in_worker(_):
+    rbsim.World(dt=-1)
+
+
+def test_errors_round_trip_through_pickle():
+    """A pickled rbsim error came back with its prefix twice ("invalid
+    argument: invalid argument: ..."), also from a multiprocessing worker
+    (a probe of session 41): every attribute now comes back as it was."""
+    import multiprocessing
+    import pickle
+    w = make_world()
+    cases = [rbsim.InvalidError("radius: must be > 0, got -1"),
+             rbsim.errors.GENERATED["MemoryError"]("out"),
+             rbsim.Error("unknown status -999: x", status=-999),
+             rbsim.BusyError("world is busy"), rbsim.ArgumentTypeError("n: int")]
+    try:
+        w.step(10 ** 30)
+    except rbsim.Error as e:
+        cases.append(e)
+    try:
+        rbsim.parse_json('{"format": 1, "bodies": [{"type": "cube"}]}', "s.json")
+    except rbsim.SceneError as e:
+        cases.append(e)
+    try:
+        w.bodies["nope"]
+    except rbsim.NotFoundError as e:
+        cases.append(e)
+    assert len(cases) == 8
+    for e in cases:
+        r = pickle.loads(pickle.dumps(e))
+        assert type(r) is type(e)
+        assert str(r) == str(e) and r.args == e.args
+        assert (r.status, r.name, r.detail) == (e.status, e.name, e.detail)
+        assert vars(r).keys() == vars(e).keys()
+    scene = cases[6]
+    back = pickle.loads(pickle.dumps(scene))
+    assert [i.text for i in back.errors] == [i.text for i in scene.errors]
+    assert (back.file, back.line, back.message) == (scene.file, scene.line, scene.message)
+    with multiprocessing.get_context("spawn").Pool(1) as pool:
+        with pytest.raises(rbsim.InvalidError) as info:
+            pool.map(_raise_in_worker, [0])
+    assert str(info.value) == "invalid argument: dt: must be > 0, got -1"
