@@ -471,3 +471,26 @@ def test_repr_never_raises(monkeypatch):
     w2 = make_world()
     w2.close()
     assert repr(w2.bodies) == "BodyMap(<closed or interrupted: world is closed>)"
+
+
+def test_values_with_arrays_compare_exactly_and_are_unhashable():
+    """== on BodyState and Momentum raised ("truth value of an array is
+    ambiguous") and hash() raised from numpy (a probe of session 41): they
+    compare every element exactly, and are plainly unhashable."""
+    w = make_world()
+    ball = w.bodies["ball"]
+    s0, m0 = ball.state(), w.momentum()
+    assert s0 == ball.state() and not (s0 != ball.state())
+    assert m0 == w.momentum() and not (m0 != w.momentum())
+    assert m0 == (m0.linear.copy(), m0.angular.copy())
+    assert s0 != w.bodies["ground"].state() and s0 != "ball"
+    w.step()
+    assert ball.state() != s0 and w.momentum() != m0
+    nudged = ball.state()
+    assert nudged == ball.state()
+    nudged.position[2] = np.nextafter(nudged.position[2], 2.0)  # one ulp
+    assert nudged != ball.state()
+    for value in (s0, m0):
+        with pytest.raises(TypeError, match="unhashable type: '%s'" % type(value).__name__):
+            hash(value)
+    assert w.energy() == w.energy() and hash(w.energy()) == hash(w.energy())

@@ -43,7 +43,7 @@ import numpy as np
 from . import _check
 from . import errors as _e
 from ._native import ffi, lib
-from .world import Energy, Momentum, StepInfo, World, _Handle
+from .world import Energy, Momentum, StepInfo, World, _fields_equal, _Handle
 
 _FIELDS = (("type", np.int32, ()), ("color", np.uint32, ()),
            ("texture", np.int32, ()), ("slot", np.uint32, ()),
@@ -59,10 +59,11 @@ _BODY_DTYPE = np.dtype({
 })
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Frame:
     """One frame of a run, as a renderer receives it (arrays are copies,
-    one row per body in slot order)."""
+    one row per body in slot order).  == compares every field exactly
+    (arrays element by element); not hashable (its arrays can change)."""
 
     number: int                   #: k: the frame at t = k dt; 0 is the start
     time: float                   #: simulated time, s
@@ -82,6 +83,13 @@ class Frame:
     energy: Energy                #: J
     momentum: Momentum            #: kg m/s and kg m^2/s about the origin
     step: StepInfo                #: the step that made this frame
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Frame):
+            return NotImplemented
+        return _fields_equal(self, other, [f for f in self.__dataclass_fields__])
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 @dataclass(frozen=True)

@@ -105,6 +105,19 @@ class _Handle:
 # Small result types
 # --------------------------------------------------------------------------
 
+def _same(a: Any, b: Any) -> bool:
+    """Exact equality of two fields: arrays by shape and every element
+    (np.array_equal; == of arrays is an array, whose truth value raised),
+    anything else by ==."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return bool(np.array_equal(a, b))
+    return bool(a == b)
+
+
+def _fields_equal(a: Any, b: Any, names: Sequence[str]) -> bool:
+    return all(_same(getattr(a, n), getattr(b, n)) for n in names)
+
+
 @dataclass(frozen=True)
 class StepInfo:
     """What a call of :meth:`World.step` did.  For n > 1 steps the counts
@@ -140,10 +153,22 @@ class Energy(NamedTuple):
 
 class Momentum(NamedTuple):
     """Total linear momentum (kg m/s) and angular momentum about the origin
-    (kg m^2/s), as arrays of 3."""
+    (kg m^2/s), as arrays of 3.  == compares every element exactly; not
+    hashable (its arrays can change)."""
 
     linear: np.ndarray
     angular: np.ndarray
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, tuple) or len(other) != 2:
+            return NotImplemented
+        return _same(self[0], other[0]) and _same(self[1], other[1])
+
+    def __ne__(self, other: object) -> bool:
+        eq = self.__eq__(other)
+        return eq if eq is NotImplemented else not eq
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 class Usage(NamedTuple):
@@ -188,9 +213,11 @@ class Material(_Handle):
         return "Material(%r)" % self.name
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BodyState:
-    """A body's full state, copied out (arrays are copies)."""
+    """A body's full state, copied out (arrays are copies).  == compares
+    every field exactly (arrays element by element); not hashable (its
+    arrays can change)."""
 
     type: str                     #: "sphere" or "plane"
     slot: int
@@ -207,6 +234,13 @@ class BodyState:
     color: int                    #: 0xRRGGBB
     texture: str
     fixed: bool
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, BodyState):
+            return NotImplemented
+        return _fields_equal(self, other, [f for f in self.__dataclass_fields__])
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 class Body(_Handle):
