@@ -537,3 +537,21 @@ def test_errors_round_trip_through_pickle():
         with pytest.raises(rbsim.InvalidError) as info:
             pool.map(_raise_in_worker, [0])
     assert str(info.value) == "invalid argument: dt: must be > 0, got -1"
+
+
+def test_numpy_bools_are_flags():
+    """numpy's booleans were refused as "expected True or False, got bool
+    np.True_" (numpy 2 names its bool_ "bool"): they are flags, as numpy's
+    0 and 1 are; other values are refused with numpy's full type name."""
+    w = rbsim.World(mutual_gravity=np.True_, gravity_constant=1.0, prune=np.False_)
+    assert w.settings["mutual_gravity"] is True and w.settings["prune"] is False
+    assert w.add_sphere(fixed=np.bool_(True)).fixed
+    assert not w.add_sphere(fixed=np.int64(0), position=(0, 0, 1)).fixed
+    run = w.start(2, [], realtime=np.False_, start_paused=np.False_)
+    run.wait()
+    for bad, text in ((2, "got int 2"), (np.float64(1.0), "got numpy.float64"),
+                      (np.array([True]), "got numpy.ndarray")):
+        with pytest.raises(rbsim.ArgumentTypeError, match="fixed: expected True or False, " + text):
+            w.add_sphere(fixed=bad, position=(0, 0, 3))
+    with pytest.raises(rbsim.ArgumentTypeError, match="radius: expected a real number, got numpy.bool"):
+        w.add_sphere(radius=np.True_)

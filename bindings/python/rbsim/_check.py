@@ -14,6 +14,8 @@ import numbers
 import os
 from typing import Any, Optional, Tuple
 
+import numpy as np
+
 from . import errors as _e
 
 _U32 = 2 ** 32
@@ -90,9 +92,9 @@ def u64(value: Any, what: str, low: int = 0) -> int:
 
 
 def flag(value: Any, what: str) -> bool:
-    """A bool (or 0/1)."""
-    if isinstance(value, bool):
-        return value
+    """A bool, numpy's included, or an integer 0/1 (Python's or numpy's)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
     if isinstance(value, numbers.Integral) and int(value) in (0, 1):
         return bool(value)
     raise _e.ArgumentTypeError("%s: expected True or False, got %s"
@@ -172,4 +174,9 @@ def _describe(value: Any) -> str:
     text = repr(value)
     if len(text) > 40:
         text = text[:37] + "..."
-    return "%s %s" % (type(value).__name__, text)
+    kind = type(value)
+    # (numpy's scalar types by their full name: numpy 2's bool_ is named
+    # "bool", and "got bool np.True_" read as if a bool were refused)
+    name = kind.__name__ if kind.__module__ == "builtins" else "%s.%s" % (
+        kind.__module__, kind.__name__)
+    return "%s %s" % (name, text)
