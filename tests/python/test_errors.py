@@ -555,3 +555,46 @@ def test_numpy_bools_are_flags():
             w.add_sphere(fixed=bad, position=(0, 0, 3))
     with pytest.raises(rbsim.ArgumentTypeError, match="radius: expected a real number, got numpy.bool"):
         w.add_sphere(radius=np.True_)
+
+
+def test_messages_name_the_argument_and_echo_the_value():
+    """The library's messages for these named neither the argument nor the
+    value ("sphere principal moments must be finite and > 0", "sphere name
+    longer than 63 bytes", "...: rbs_world_energy": a probe of session 41):
+    Python checks them first and says which argument and what it got."""
+    w = make_world()
+    cases = [
+        (lambda: w.add_sphere(inertia=[-1, 1, 1]),
+         "inertia: principal moments must be > 0 kg m^2, got (-1, 1, 1)"),
+        (lambda: w.add_sphere(inertia=[1e-320, 1, 1]),
+         "inertia: principal moments must be >= 2.2250738585072014e-308 kg m^2"),
+        (lambda: w.add_sphere(inertia=[1, 1, 3]),
+         "inertia: principal moments must satisfy the triangle inequality"),
+        (lambda: w.add_sphere(orientation=(0, 0, 0, 0)),
+         "orientation: must be a nonzero quaternion [w, x, y, z], got (0, 0, 0, 0)"),
+        (lambda: setattr(w.bodies["ball"], "orientation", (0, 0, 0.0, 0)),
+         "orientation: must be a nonzero quaternion [w, x, y, z], got (0, 0, 0, 0)"),
+        (lambda: w.add_plane(normal=(0, 0, 0)),
+         "normal: must be a nonzero vector"),
+        (lambda: w.add_sphere("x" * 64), "name: must be at most 63 bytes of UTF-8, got 64 bytes"),
+        (lambda: w.add_plane("\u00e9" * 32), "name: must be at most 63 bytes of UTF-8, got 64 bytes"),
+        (lambda: w.add_material("m" * 70), "name: must be at most 63 bytes of UTF-8, got 70 bytes"),
+        (lambda: w.add_material("*"), "name: a material's name must not be empty nor"),
+    ]
+    for call, text in cases:
+        with pytest.raises(rbsim.InvalidError) as info:
+            call()
+        assert str(info.value).startswith("invalid argument: " + text), str(info.value)
+    assert w.add_sphere("y" * 63, position=(1, 0, 1)).name == "y" * 63
+    assert w.add_sphere(inertia=[1, 1, 2], position=(2, 0, 1)).inertia[2][2] == 2.0
+    hot = rbsim.World(gravity=(0, 0, 0))
+    ball = hot.add_sphere(position=(1, 0, 0))
+    other = hot.add_sphere(position=(2, 0, 0))
+    ball.velocity = (1e200, 0, 0)
+    with pytest.raises(rbsim.NumericError, match=r"energy: not finite at step 0 "
+                       r"\(kinetic inf J, potential 0\.0 J\): a sum overflows a double"):
+        hot.energy()
+    ball.velocity = other.velocity = (1.7e308, 0, 0)
+    with pytest.raises(rbsim.NumericError, match=r"momentum: not finite at step 0 "
+                       r"\(linear \(inf, 0, 0\) kg m/s"):
+        hot.momentum()

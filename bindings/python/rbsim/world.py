@@ -19,6 +19,7 @@ Design notes
 
 from __future__ import annotations
 
+import sys
 import threading
 from dataclasses import dataclass
 from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
@@ -36,6 +37,7 @@ if TYPE_CHECKING:
 Vector = Union[Sequence[float], np.ndarray]
 
 _ALIGN = 16  # rbs_world_create_in wants 16-byte alignment
+_DBL_MIN = sys.float_info.min  # (DBL_MIN, the library's floor of a moment of inertia)
 _STEP_CHUNK = 4096  # steps per C call in World.step (Ctrl-C between chunks)
 
 
@@ -367,7 +369,8 @@ class Body(_Handle):
 
     @orientation.setter
     def orientation(self, value: Vector) -> None:
-        q = _check.vector(value, "orientation", 4)
+        q = _check.nonzero(_check.vector(value, "orientation", 4), "orientation",
+                           "quaternion [w, x, y, z]")
         cid = self._world._cbody(self)
         cq = ffi.new("rbs_quat *")
         cq.w, cq.x, cq.y, cq.z = q
@@ -860,7 +863,7 @@ class World(_Handle):
 
     def add_material(self, name: str) -> Material:
         """Add a named material (names are unique; < 64 bytes)."""
-        raw = _check.text(name, "name")
+        raw = _check.name(name, "name", material=True)
         out = ffi.new("rbs_material_id *")
         self._call(lib.rbs_world_add_material, raw, out)
         return Material(self, out, name)
@@ -1023,7 +1026,7 @@ class World(_Handle):
         lib.rbs_sphere_def_init_sized(d, ffi.sizeof("rbs_sphere_def"))
         keep = []
         if name is not None:
-            raw = _check.text(name, "name")
+            raw = _check.name(name, "name")
             keep.append(ffi.new("char[]", raw))
             d.name = keep[-1]
         # (the library's ranges, checked here to echo the value exactly)
@@ -1043,7 +1046,8 @@ class World(_Handle):
             if value is not None:
                 _set_vec3(getattr(d, key), _check.vector(value, key))
         if orientation is not None:
-            q = _check.vector(orientation, "orientation", 4)
+            q = _check.nonzero(_check.vector(orientation, "orientation", 4), "orientation",
+                               "quaternion [w, x, y, z]")
             d.orientation.w, d.orientation.x, d.orientation.y, d.orientation.z = q
         if inertia is not None:
             if isinstance(inertia, str):
@@ -1051,7 +1055,7 @@ class World(_Handle):
                 d.inertia_kind = _INERTIA[_check.choice(inertia, "inertia", kinds)]
             else:
                 d.inertia_kind = _INERTIA["principal"]
-                _set_vec3(d.inertia, _check.vector(inertia, "inertia"))
+                _set_vec3(d.inertia, _principal_moments(inertia))
         if material is not None:
             mat = self._cmaterial(material, "material")
             d.material = mat[0]
@@ -1078,12 +1082,13 @@ class World(_Handle):
         lib.rbs_plane_def_init_sized(d, ffi.sizeof("rbs_plane_def"))
         keep = []
         if name is not None:
-            keep.append(ffi.new("char[]", _check.text(name, "name")))
+            keep.append(ffi.new("char[]", _check.name(name, "name")))
             d.name = keep[-1]
         if point is not None:
             _set_vec3(d.point, _check.vector(point, "point"))
         if normal is not None:
-            _set_vec3(d.normal, _check.vector(normal, "normal"))
+            _set_vec3(d.normal, _check.nonzero(_check.vector(normal, "normal"), "normal",
+                                               "vector (the plane's outward normal)"))
         if material is not None:
             mat = self._cmaterial(material, "material")
             d.material = mat[0]
@@ -1344,7 +1349,20 @@ class World(_Handle):
     def energy(self) -> Energy:
         """Kinetic, potential and total energy, J."""
         out = ffi.new("rbs_energy *")
-        self._query("rbs_world_energy", lib.rbs_world_energy, out)
+        w = self._acquire()
+        try:
+            status = lib.rbs_world_energy(w, out)
+        finally:
+            self._lock.release()
+        if status == lib.RBS_E_NUMERIC:
+            # (it said only "numerical failure: rbs_world_energy")
+            raise _e.error_class(status)(
+                "energy: not finite at step %d (kinetic %r J, potential %r J): a sum "
+                "overflows a double -- speeds, masses, spins or forces this large -- or "
+                "two spheres are at one point under mutual gravity without softening"
+                % (self.step_count, float(out.kinetic), float(out.potential)))
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("rbs_world_energy")
         return Energy(float(out.kinetic), float(out.potential), float(out.total))
 
     def momentum(self) -> Momentum:
@@ -1352,7 +1370,19 @@ class World(_Handle):
         (kg m^2/s)."""
         lin = ffi.new("rbs_vec3 *")
         ang = ffi.new("rbs_vec3 *")
-        self._query("rbs_world_momentum", lib.rbs_world_momentum, lin, ang)
+        w = self._acquire()
+        try:
+            status = lib.rbs_world_momentum(w, lin, ang)
+        finally:
+            self._lock.release()
+        if status == lib.RBS_E_NUMERIC:
+            raise _e.error_class(status)(
+                "momentum: not finite at step %d (linear %s kg m/s, angular %s kg m^2/s): "
+                "a sum overflows a double -- speeds, masses or spins this large"
+                % (self.step_count, _check.numbers_text(tuple(_vec3(lin))),
+                   _check.numbers_text(tuple(_vec3(ang)))))
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("rbs_world_momentum")
         return Momentum(_vec3(lin), _vec3(ang))
 
     def usage(self) -> Usage:
@@ -1446,6 +1476,25 @@ _REAL_RANGES: Dict[str, Dict[str, Any]] = {
                  note=" (a fraction of the smaller radius)"),
     "soft_tolerance": dict(low=0.0, high=1.0, note=" (a fraction of the radius)"),
 }
+
+
+def _principal_moments(value: Any) -> Tuple[float, ...]:
+    """add_sphere's inertia=(Ix, Iy, Iz), checked as the library does (its
+    message named neither the argument nor the values)."""
+    v = _check.vector(value, "inertia")
+    if not all(x > 0.0 for x in v):
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must be > 0 kg m^2, got %s" % _check.numbers_text(v))
+    if not all(x >= _DBL_MIN for x in v):
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must be >= %r kg m^2 (the smallest normal double: "
+            "their inverses must be finite), got %s" % (_DBL_MIN, _check.numbers_text(v)))
+    a, b, c = v
+    if a + b < c or b + c < a or a + c < b:
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must satisfy the triangle inequality (each <= the "
+            "sum of the other two), got %s" % _check.numbers_text(v))
+    return v
 
 
 def _method_value(name: Any) -> int:
