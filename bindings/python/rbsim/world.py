@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import sys
 import threading
+import time
 from dataclasses import dataclass
 from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
                     NamedTuple, Optional, Sequence, Tuple, Union)
@@ -38,7 +39,9 @@ Vector = Union[Sequence[float], np.ndarray]
 
 _ALIGN = 16  # rbs_world_create_in wants 16-byte alignment
 _DBL_MIN = sys.float_info.min  # (DBL_MIN, the library's floor of a moment of inertia)
-_STEP_CHUNK = 4096  # steps per C call in World.step (Ctrl-C between chunks)
+_STEP_SLICE = 0.02  # s of stepping per C call in World.step (Ctrl-C between calls)
+_STEP_SLICE_MAX = 1 << 20  # steps per C call in World.step, at most
+_STEP_FIRST = 64  # steps of a World.step's first C call, at most
 
 
 def _enum_names(ctype: str, prefix: str) -> Dict[str, int]:
@@ -609,6 +612,8 @@ class World(_Handle):
         #: whether a Run holds the world (start() until its wait()), for
         #: the busy message (a flag, not the Run: no reference cycle)
         self._held_by_run = False
+        #: seconds the last step took (World.step's slices), None at first
+        self._step_seconds: Optional[float] = None
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
         #: the scene's description ("" for a world built in code)
@@ -1140,7 +1145,10 @@ class World(_Handle):
         """Advance the world n steps of dt (the GIL is released while C
         steps).  Returns what the steps did (see :class:`StepInfo`).  On
         error the world stays at its last good state and the exception's
-        ``steps_done`` tells how many steps were made."""
+        ``steps_done`` tells how many steps were made.  Ctrl-C
+        (KeyboardInterrupt) lands within about 20 ms, or one step if a step
+        takes longer; the world is then at the last step made (see
+        :attr:`step_count`) and usable."""
         count = _check.u64(n, "n")
         total = ffi.new("rbs_step_info *")
         chunk = ffi.new("rbs_step_info *")
@@ -1150,25 +1158,47 @@ class World(_Handle):
             return StepInfo._from_c(total, 0)
         fields = ("colliding", "resting", "substeps", "rollbacks", "floor_hits",
                   "sweep_limit", "events")
-        while made < count:
-            todo = min(_STEP_CHUNK, count - made)
-            w = self._acquire()
-            try:
+        # C steps in slices of about _STEP_SLICE s: a signal (Ctrl-C) is
+        # handled when C returns, so KeyboardInterrupt lands within a slice,
+        # or one step of a world slower than that, with the world at the
+        # last step made (a fixed 4096 steps a call took minutes for a big
+        # world: a probe of session 41).  A slice is sized from the last
+        # step's time (the first of a call at most _STEP_FIRST steps, so a
+        # world that became slow is not given a long one) and doubles while
+        # slices are quick.  The world is held throughout.
+        per = self._step_seconds
+        size = 1 if per is None else max(1, min(_STEP_FIRST, int(_STEP_SLICE / max(per, 1e-9))))
+        status = lib.RBS_OK
+        detail = ""
+        w = self._acquire()
+        try:
+            while made < count:
+                todo = min(size, count - made)
+                start = time.perf_counter()
                 status = lib.rbs_py_step(w, todo, chunk, done, ffi.NULL)
-                detail = _str(lib.rbs_world_last_error(w)) if status != lib.RBS_OK else ""
-            finally:
-                self._lock.release()
-            made += int(done[0])
-            total.contacts = chunk.contacts
-            for f in fields:
-                setattr(total, f, getattr(total, f) + getattr(chunk, f))
-            total.max_overlap = max(total.max_overlap, chunk.max_overlap)
-            if status != lib.RBS_OK:
-                exc = _e.error_class(status)(
-                    "%s (after %d of %d steps, t = %.17g s)"
-                    % (detail, made, count, self.time))
-                exc.steps_done = made  # type: ignore[attr-defined]
-                raise exc
+                elapsed = time.perf_counter() - start
+                made += int(done[0])
+                if done[0] > 0:
+                    self._step_seconds = elapsed / int(done[0])
+                total.contacts = chunk.contacts
+                for f in fields:
+                    setattr(total, f, getattr(total, f) + getattr(chunk, f))
+                total.max_overlap = max(total.max_overlap, chunk.max_overlap)
+                if status != lib.RBS_OK:
+                    detail = _str(lib.rbs_world_last_error(w))
+                    break
+                if elapsed > _STEP_SLICE:
+                    size = max(1, int(size * _STEP_SLICE / elapsed))
+                elif elapsed < _STEP_SLICE / 2 and todo == size:
+                    size = min(2 * size, _STEP_SLICE_MAX)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            exc = _e.error_class(status)(
+                "%s (after %d of %d steps, t = %.17g s)"
+                % (detail, made, count, self.time))
+            exc.steps_done = made  # type: ignore[attr-defined]
+            raise exc
         return StepInfo._from_c(total, made)
 
     def run(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
