@@ -692,6 +692,8 @@ class World(_Handle):
         """Destroy the C world.  State arrays taken before stay readable
         (they stop changing); any other use raises ClosedError.  Idempotent."""
         if not self._lock.acquire(blocking=False):
+            if self._held_by_run:
+                raise _e.BusyError("cannot close the world: " + _HELD_BY_RUN)
             raise _e.BusyError("world is in use by another thread; cannot close it")
         try:
             self._release_world()
@@ -789,9 +791,7 @@ class World(_Handle):
                 # (a run not waited on held it until the garbage collector
                 # came, and the message blamed another thread: a probe of
                 # session 40)
-                raise _e.BusyError("world is held by a run until its Run.wait() (or from "
-                                   "inside that run's renderer): call wait() on the Run that "
-                                   "start() returned")
+                raise _e.BusyError(_HELD_BY_RUN)
             raise _e.BusyError("world is in use by another thread (a World is not "
                                "thread-safe; give each thread its own)")
         if self._world == ffi.NULL:
@@ -1241,7 +1241,9 @@ class World(_Handle):
         """Start a run (as :meth:`run`) and return at once with a
         :class:`Run` to send commands to ("pause", "resume", "step N",
         "speed X", "quit") and to wait on.  pause_on_collision None takes
-        the scene's setting.  The world is busy until ``Run.wait()``."""
+        the scene's setting.  The world is busy until ``Run.wait()``.  A run
+        never waited on is quit and waited for when the interpreter exits
+        (a line on stderr says so)."""
         from ._render import start_world
         return start_world(self, steps, renderers, realtime=realtime, speed=speed,
                            start_paused=start_paused,
@@ -1479,6 +1481,11 @@ class World(_Handle):
             return "World(<busy: in use by another thread or a run>)"
         except _e.Error as exc:  # (repr never raises)
             return "World(<%s>)" % exc
+
+
+#: why a world held by a run refuses calls (BusyError)
+_HELD_BY_RUN = ("world is held by a run until its Run.wait() (or from inside that run's "
+                "renderer): call wait() on the Run that start() returned")
 
 
 #: World(...)'s integer ranges, as rbs_world_def_validate (world.c) has
