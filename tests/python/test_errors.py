@@ -475,3 +475,126 @@ def test_pair_restitution_outside_0_1_is_refused():
     assert w.pairs() == []
     w.set_material("*", "*", restitution=0.25)
     assert w.pairs()[0]["restitution"] == 0.25
+
+
+def test_star_import_keeps_the_builtins():
+    """`from rbsim import *` replaced the built-in MemoryError with rbsim's
+    (__all__ held every generated class): names of built-in exceptions are
+    left out of the star import and stay attributes (a probe of session
+    41)."""
+    import builtins
+    for module in ("rbsim", "rbsim.errors"):
+        ns = {}
+        exec("from %s import *" % module, ns)
+        hidden = [n for n in ns if n != "__builtins__" and hasattr(builtins, n)]
+        assert hidden == [], (module, hidden)
+        assert "InvalidError" in ns and "CapacityError" in ns
+    assert rbsim.MemoryError is rbsim.errors.GENERATED["MemoryError"]
+    assert rbsim.MemoryError is not builtins.MemoryError
+    assert issubclass(rbsim.MemoryError, builtins.MemoryError)
+    assert rbsim.errors.SHADOWING == ["MemoryError"]
+
+
+def _raise_in_worker(_):
+    rbsim.World(dt=-1)
+
+
+def test_errors_round_trip_through_pickle():
+    """A pickled rbsim error came back with its prefix twice ("invalid
+    argument: invalid argument: ..."), also from a multiprocessing worker
+    (a probe of session 41): every attribute now comes back as it was."""
+    import multiprocessing
+    import pickle
+    w = make_world()
+    cases = [rbsim.InvalidError("radius: must be > 0, got -1"),
+             rbsim.errors.GENERATED["MemoryError"]("out"),
+             rbsim.Error("unknown status -999: x", status=-999),
+             rbsim.BusyError("world is busy"), rbsim.ArgumentTypeError("n: int")]
+    try:
+        w.step(10 ** 30)
+    except rbsim.Error as e:
+        cases.append(e)
+    try:
+        rbsim.parse_json('{"format": 1, "bodies": [{"type": "cube"}]}', "s.json")
+    except rbsim.SceneError as e:
+        cases.append(e)
+    try:
+        w.bodies["nope"]
+    except rbsim.NotFoundError as e:
+        cases.append(e)
+    assert len(cases) == 8
+    for e in cases:
+        r = pickle.loads(pickle.dumps(e))
+        assert type(r) is type(e)
+        assert str(r) == str(e) and r.args == e.args
+        assert (r.status, r.name, r.detail) == (e.status, e.name, e.detail)
+        assert vars(r).keys() == vars(e).keys()
+    scene = cases[6]
+    back = pickle.loads(pickle.dumps(scene))
+    assert [i.text for i in back.errors] == [i.text for i in scene.errors]
+    assert (back.file, back.line, back.message) == (scene.file, scene.line, scene.message)
+    with multiprocessing.get_context("spawn").Pool(1) as pool:
+        with pytest.raises(rbsim.InvalidError) as info:
+            pool.map(_raise_in_worker, [0])
+    assert str(info.value) == "invalid argument: dt: must be > 0, got -1"
+
+
+def test_numpy_bools_are_flags():
+    """numpy's booleans were refused as "expected True or False, got bool
+    np.True_" (numpy 2 names its bool_ "bool"): they are flags, as numpy's
+    0 and 1 are; other values are refused with numpy's full type name."""
+    w = rbsim.World(mutual_gravity=np.True_, gravity_constant=1.0, prune=np.False_)
+    assert w.settings["mutual_gravity"] is True and w.settings["prune"] is False
+    assert w.add_sphere(fixed=np.bool_(True)).fixed
+    assert not w.add_sphere(fixed=np.int64(0), position=(0, 0, 1)).fixed
+    run = w.start(2, [], realtime=np.False_, start_paused=np.False_)
+    run.wait()
+    for bad, text in ((2, "got int 2"), (np.float64(1.0), "got numpy.float64"),
+                      (np.array([True]), "got numpy.ndarray")):
+        with pytest.raises(rbsim.ArgumentTypeError, match="fixed: expected True or False, " + text):
+            w.add_sphere(fixed=bad, position=(0, 0, 3))
+    with pytest.raises(rbsim.ArgumentTypeError, match="radius: expected a real number, got numpy.bool"):
+        w.add_sphere(radius=np.True_)
+
+
+def test_messages_name_the_argument_and_echo_the_value():
+    """The library's messages for these named neither the argument nor the
+    value ("sphere principal moments must be finite and > 0", "sphere name
+    longer than 63 bytes", "...: rbs_world_energy": a probe of session 41):
+    Python checks them first and says which argument and what it got."""
+    w = make_world()
+    cases = [
+        (lambda: w.add_sphere(inertia=[-1, 1, 1]),
+         "inertia: principal moments must be > 0 kg m^2, got (-1, 1, 1)"),
+        (lambda: w.add_sphere(inertia=[1e-320, 1, 1]),
+         "inertia: principal moments must be >= 2.2250738585072014e-308 kg m^2"),
+        (lambda: w.add_sphere(inertia=[1, 1, 3]),
+         "inertia: principal moments must satisfy the triangle inequality"),
+        (lambda: w.add_sphere(orientation=(0, 0, 0, 0)),
+         "orientation: must be a nonzero quaternion [w, x, y, z], got (0, 0, 0, 0)"),
+        (lambda: setattr(w.bodies["ball"], "orientation", (0, 0, 0.0, 0)),
+         "orientation: must be a nonzero quaternion [w, x, y, z], got (0, 0, 0, 0)"),
+        (lambda: w.add_plane(normal=(0, 0, 0)),
+         "normal: must be a nonzero vector"),
+        (lambda: w.add_sphere("x" * 64), "name: must be at most 63 bytes of UTF-8, got 64 bytes"),
+        (lambda: w.add_plane("\u00e9" * 32), "name: must be at most 63 bytes of UTF-8, got 64 bytes"),
+        (lambda: w.add_material("m" * 70), "name: must be at most 63 bytes of UTF-8, got 70 bytes"),
+        (lambda: w.add_material("*"), "name: a material's name must not be empty nor"),
+    ]
+    for call, text in cases:
+        with pytest.raises(rbsim.InvalidError) as info:
+            call()
+        assert str(info.value).startswith("invalid argument: " + text), str(info.value)
+    assert w.add_sphere("y" * 63, position=(1, 0, 1)).name == "y" * 63
+    assert w.add_sphere(inertia=[1, 1, 2], position=(2, 0, 1)).inertia[2][2] == 2.0
+    hot = rbsim.World(gravity=(0, 0, 0))
+    ball = hot.add_sphere(position=(1, 0, 0))
+    other = hot.add_sphere(position=(2, 0, 0))
+    ball.velocity = (1e200, 0, 0)
+    with pytest.raises(rbsim.NumericError, match=r"energy: not finite at step 0 "
+                       r"\(kinetic inf J, potential 0\.0 J\): a sum overflows a double"):
+        hot.energy()
+    ball.velocity = other.velocity = (1.7e308, 0, 0)
+    with pytest.raises(rbsim.NumericError, match=r"momentum: not finite at step 0 "
+                       r"\(linear \(inf, 0, 0\) kg m/s"):
+        hot.momentum()

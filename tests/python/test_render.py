@@ -445,3 +445,14 @@ def test_wait_from_the_renderer_left_uncaught_stops_the_run():
     assert out.stdout == "wait() from the run's own renderer; steps < 100000: True\n"
     assert issubclass(rbsim.DeadlockError, rbsim.Error)
     assert issubclass(rbsim.DeadlockError, RuntimeError)  # as Thread.join on itself
+
+
+def test_frames_compare_exactly_and_are_unhashable():
+    """Frame == Frame raised (its arrays' truth value): it compares every
+    field exactly, and is plainly unhashable."""
+    a, b = [], []
+    make_world().run(3, renderers=[a.append])
+    make_world().run(3, renderers=[b.append])
+    assert a == b and a[1] != a[2] and a[0] != "frame"
+    with pytest.raises(TypeError, match="unhashable type: 'Frame'"):
+        hash(a[0])

@@ -253,3 +253,89 @@ def test_a_run_not_waited_on():
     assert out.returncode == 0, out.stderr
     assert out.stdout == ("world is held by a run until its Run.wait() (or from inside that "
                           "run's renderer): call wait() on the Run that start() returned\n")
+
+
+_LEFT_RUNNING = r"""
+import sys, rbsim
+kind = sys.argv[1]
+if kind == "raise":
+    w = rbsim.World(); w.add_plane(); w.add_sphere("b", position=(0, 0, 1))
+    frames = []
+    run = w.start(100000, renderers=[frames.append])
+    raise RuntimeError("user code fails before run.wait()")
+if kind == "paused-and-endless":
+    a = rbsim.World(); a.add_sphere(position=(0, 0, 1))
+    b = rbsim.World(); b.add_sphere(position=(0, 0, 1))
+    runs = [a.start(100000, [lambda f: None], start_paused=True),
+            b.start(endless=True, renderers=[lambda f: None])]
+    print("end of script", flush=True)
+if kind == "with":
+    with rbsim.World() as w:
+        w.add_sphere("b", position=(0, 0, 1))
+        run = w.start(100000, renderers=[lambda f: None])
+        raise ValueError("original error")
+"""
+
+
+@pytest.mark.parametrize("kind", ["raise", "paused-and-endless", "with"])
+def test_runs_never_waited_on_end_at_exit(kind):
+    """A script that ends (or raises) with a run of Python renderers never
+    waited on exits at once: the interpreter never did (Run.__del__ joined
+    a renderer thread that could no longer take the GIL, and Ctrl-C did
+    not help: a probe of session 41).  An at-exit hook quits and waits for
+    such runs and says so; World.close() in `with` says a run holds the
+    world (it blamed another thread)."""
+    import subprocess
+    import sys
+    out = subprocess.run([sys.executable, "-c", _LEFT_RUNNING, kind],
+                         capture_output=True, text=True, timeout=60)
+    note = "rbsim: a run never waited on was stopped at exit, at frame "
+    assert out.stderr.count(note) == (2 if kind == "paused-and-endless" else 1), out.stderr
+    assert "(call Run.wait() before the end)" in out.stderr
+    if kind == "raise":
+        assert out.returncode == 1 and "RuntimeError: user code fails" in out.stderr
+        assert " of 100000 " in out.stderr
+    elif kind == "with":
+        assert out.returncode == 1 and "ValueError: original error" in out.stderr
+        assert ("BusyError: cannot close the world: world is held by a run until its "
+                "Run.wait()") in out.stderr
+    else:
+        assert out.returncode == 0 and out.stdout == "end of script\n", out.stderr
+        assert "frame 0 of 100000" in out.stderr
+
+
+_BLOCKED_RENDERER = r"""
+import time, rbsim
+w = rbsim.World(); w.add_plane(); w.add_sphere("b", position=(0, 0, 1))
+def draw(frame):
+    if frame.number == 3:
+        print("renderer blocks", flush=True)
+        time.sleep(1000)
+run = w.start(100, renderers=[draw])
+time.sleep(0.2)
+print("end of script", flush=True)
+"""
+
+
+def test_ctrl_c_at_exit_ends_a_blocked_run():
+    """A run whose renderer never returns keeps the at-exit hook waiting;
+    Ctrl-C then ends the process at once (it never did: the main thread
+    sat in pthread_join under Run.__del__)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+    child = subprocess.Popen([sys.executable, "-c", _BLOCKED_RENDERER],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline() == "renderer blocks\n"
+        assert child.stdout.readline() == "end of script\n"
+        time.sleep(0.5)  # (in the hook now)
+        child.send_signal(signal.SIGINT)
+        child.wait(timeout=30)
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    err = child.stderr.read()
+    assert "rbsim: Ctrl-C: no longer waiting at exit for runs never waited on" in err, err

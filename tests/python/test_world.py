@@ -470,3 +470,113 @@ def test_work_cap_is_reported_and_set():
                            match=r"max_substeps: must be in \[1, 4294967295\], got %d" % bad):
             rbsim.World(max_substeps=bad)
     assert rbsim.World(max_substeps=2 ** 32 - 1).settings["max_substeps"] == 2 ** 32 - 1
+
+
+@pytest.mark.parametrize("how", ["copy", "deepcopy", "pickle"])
+def test_handles_cannot_be_copied_or_pickled(how):
+    """copy.copy(world) shared the C world, and deleting the copy destroyed
+    the original's (with threads > 1, a segfault: a probe of session 41).
+    Every handle -- World, Body, Material, BodyMap, Run -- refuses to be
+    copied or pickled, with a TypeError saying what to do instead; the
+    world is untouched."""
+    import copy
+    import pickle
+    fn = {"copy": copy.copy, "deepcopy": copy.deepcopy, "pickle": pickle.dumps}[how]
+    w = make_world(threads=2)
+    ball = w.bodies["ball"]
+    mat = w.add_material("rubber")
+    hints = {"World": "checkpoint", "Body": "state()", "Material": "name",
+             "BodyMap": "dict(world.bodies)"}
+    for obj in (w, ball, mat, w.bodies):
+        name = type(obj).__name__
+        with pytest.raises(TypeError, match="cannot copy or pickle a %s" % name) as info:
+            fn(obj)
+        assert hints[name] in str(info.value)
+    run = w.start(3, [lambda frame: None])
+    with pytest.raises(TypeError, match="cannot copy or pickle a Run"):
+        fn(run)
+    run.wait()
+    w.step(10)
+    assert w.step_count == 13 and ball.position[2] < 1.0
+
+
+def test_repr_never_raises(monkeypatch):
+    """repr() of a world whose library calls fail says why instead of
+    raising (it raised InvalidError: a probe of session 41)."""
+    w = make_world()
+
+    def broken():
+        raise rbsim.InvalidError("rbs_world_state")
+    monkeypatch.setattr(w, "all_bodies", broken)
+    assert repr(w) == "World(<invalid argument: rbs_world_state>)"
+    w2 = make_world()
+    w2.close()
+    assert repr(w2.bodies) == "BodyMap(<closed or interrupted: world is closed>)"
+
+
+def test_values_with_arrays_compare_exactly_and_are_unhashable():
+    """== on BodyState and Momentum raised ("truth value of an array is
+    ambiguous") and hash() raised from numpy (a probe of session 41): they
+    compare every element exactly, and are plainly unhashable."""
+    w = make_world()
+    ball = w.bodies["ball"]
+    s0, m0 = ball.state(), w.momentum()
+    assert s0 == ball.state() and not (s0 != ball.state())
+    assert m0 == w.momentum() and not (m0 != w.momentum())
+    assert m0 == (m0.linear.copy(), m0.angular.copy())
+    assert s0 != w.bodies["ground"].state() and s0 != "ball"
+    w.step()
+    assert ball.state() != s0 and w.momentum() != m0
+    nudged = ball.state()
+    assert nudged == ball.state()
+    nudged.position[2] = np.nextafter(nudged.position[2], 2.0)  # one ulp
+    assert nudged != ball.state()
+    for value in (s0, m0):
+        with pytest.raises(TypeError, match="unhashable type: '%s'" % type(value).__name__):
+            hash(value)
+    assert w.energy() == w.energy() and hash(w.energy()) == hash(w.energy())
+
+
+def _gravitating(n=1000):
+    """A world whose step takes milliseconds: n spheres under mutual
+    gravity, far apart."""
+    w = rbsim.World(max_bodies=n, mutual_gravity=True, gravity_constant=1e-9,
+                    gravity=(0, 0, 0), method="euler")
+    rng = np.random.default_rng(1)
+    for p in rng.uniform(-100.0, 100.0, (n, 3)):
+        w.add_sphere(radius=0.01, position=tuple(p))
+    return w
+
+
+def test_ctrl_c_during_step_lands_within_about_a_step():
+    """Ctrl-C during step(n) was seen only after a C call of 4096 steps
+    (minutes for a big world: a probe of session 41).  It lands within a
+    slice of about 20 ms or one step, and the world is usable, exactly at
+    the step count it reports: its state is the same bits as a world
+    stepped that many times."""
+    import _thread
+    import threading
+    import time
+    w = _gravitating()
+    w.step(2)  # (a slow step, about 10 ms on the test machine)
+    signalled = []
+
+    def interrupt():
+        signalled.append(time.perf_counter())
+        _thread.interrupt_main()
+    timer = threading.Timer(0.3, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            w.step(10 ** 9)
+        landed = time.perf_counter()
+    finally:
+        timer.cancel()
+    assert landed - signalled[0] < 2.0  # (a 4096-step call: some 40 s)
+    made = w.step_count
+    assert made > 2
+    w.step()
+    assert w.step_count == made + 1 and w.time == pytest.approx((made + 1) * w.dt)
+    reference = _gravitating()
+    reference.step(made + 1)
+    assert reference.hash() == w.hash()

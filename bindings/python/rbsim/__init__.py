@@ -28,6 +28,9 @@ from ._render import Frame, Run, RunInfo, StopRun
 from .errors import (ArgumentTypeError, BusyError, DeadlockError, Error,
                      SceneError, SceneIssue, error_class)
 from .errors import *  # noqa: F401,F403 - the generated classes
+# (those named as a built-in exception are not in errors.__all__, so that
+# "from rbsim import *" keeps the built-in: here as attributes only)
+globals().update({n: _e.GENERATED[n] for n in _e.SHADOWING})
 from .world import (METHODS, Body, BodyMap, BodyState, Energy, Material,
                     Momentum, StepInfo, Usage, World)
 
@@ -191,4 +194,5 @@ def version() -> str:
 __all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
            "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "StopRun", "METHODS",
            "load", "parse_json", "resume", "version", "Error", "SceneError", "SceneIssue",
-           "BusyError", "DeadlockError", "ArgumentTypeError", "error_class"] + sorted(_e.GENERATED)
+           "BusyError", "DeadlockError", "ArgumentTypeError", "error_class"] + sorted(
+               n for n in _e.GENERATED if n not in _e.SHADOWING)

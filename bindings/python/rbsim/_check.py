@@ -14,6 +14,8 @@ import numbers
 import os
 from typing import Any, Optional, Tuple
 
+import numpy as np
+
 from . import errors as _e
 
 _U32 = 2 ** 32
@@ -90,9 +92,9 @@ def u64(value: Any, what: str, low: int = 0) -> int:
 
 
 def flag(value: Any, what: str) -> bool:
-    """A bool (or 0/1)."""
-    if isinstance(value, bool):
-        return value
+    """A bool, numpy's included, or an integer 0/1 (Python's or numpy's)."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
     if isinstance(value, numbers.Integral) and int(value) in (0, 1):
         return bool(value)
     raise _e.ArgumentTypeError("%s: expected True or False, got %s"
@@ -139,6 +141,40 @@ def text(value: Any, what: str, optional: bool = False) -> Optional[bytes]:
                                  "position %d" % (what, value[exc.start], exc.start)) from None
 
 
+_NAME_MAX = 64  # RBS_NAME_MAX: a name is at most 63 bytes of UTF-8
+
+
+def name(value: Any, what: str, material: bool = False) -> bytes:
+    """text() of a body's or material's name, shorter than RBS_NAME_MAX
+    bytes (a material's also not "" nor "*"): checked here so that the
+    message names the argument and echoes the value (the library's said
+    "sphere name longer than 63 bytes")."""
+    raw = text(value, what)
+    assert raw is not None
+    if len(raw) >= _NAME_MAX:
+        raise _e.error_class(-1)("%s: must be at most %d bytes of UTF-8, got %d bytes (%s)"
+                                 % (what, _NAME_MAX - 1, len(raw), _describe(value)))
+    if material and raw in (b"", b"*"):
+        raise _e.error_class(-1)("%s: a material's name must not be empty nor \"*\" (which "
+                                 "means any material), got %r" % (what, value))
+    return raw
+
+
+def numbers_text(values: Tuple[float, ...]) -> str:
+    """"(1, -0.5, 1e-320)": checked numbers echoed, each in its shortest
+    exact form."""
+    return "(%s)" % ", ".join(_bound(x) if math.isfinite(x) else repr(float(x))
+                              for x in values)
+
+
+def nonzero(values: Tuple[float, ...], what: str, kind: str) -> Tuple[float, ...]:
+    """values (from vector()) not all zero: kind names what they are."""
+    if all(x == 0.0 for x in values):
+        raise _e.error_class(-1)("%s: must be a nonzero %s, got %s"
+                                 % (what, kind, numbers_text(values)))
+    return values
+
+
 def path(value: Any, what: str) -> bytes:
     """File-system bytes of a str or os.PathLike."""
     if isinstance(value, (str, bytes)) or isinstance(value, os.PathLike):
@@ -172,4 +208,9 @@ def _describe(value: Any) -> str:
     text = repr(value)
     if len(text) > 40:
         text = text[:37] + "..."
-    return "%s %s" % (type(value).__name__, text)
+    kind = type(value)
+    # (numpy's scalar types by their full name: numpy 2's bool_ is named
+    # "bool", and "got bool np.True_" read as if a bool were refused)
+    name = kind.__name__ if kind.__module__ == "builtins" else "%s.%s" % (
+        kind.__module__, kind.__name__)
+    return "%s %s" % (name, text)

@@ -33,8 +33,11 @@ original exception again.
 
 from __future__ import annotations
 
+import atexit
+import sys
 import threading
 import warnings
+import weakref
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence, Tuple
 
@@ -43,7 +46,7 @@ import numpy as np
 from . import _check
 from . import errors as _e
 from ._native import ffi, lib
-from .world import Energy, Momentum, StepInfo, World
+from .world import Energy, Momentum, StepInfo, World, _fields_equal, _Handle
 
 _FIELDS = (("type", np.int32, ()), ("color", np.uint32, ()),
            ("texture", np.int32, ()), ("slot", np.uint32, ()),
@@ -59,10 +62,11 @@ _BODY_DTYPE = np.dtype({
 })
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Frame:
     """One frame of a run, as a renderer receives it (arrays are copies,
-    one row per body in slot order)."""
+    one row per body in slot order).  == compares every field exactly
+    (arrays element by element); not hashable (its arrays can change)."""
 
     number: int                   #: k: the frame at t = k dt; 0 is the start
     time: float                   #: simulated time, s
@@ -82,6 +86,13 @@ class Frame:
     energy: Energy                #: J
     momentum: Momentum            #: kg m/s and kg m^2/s about the origin
     step: StepInfo                #: the step that made this frame
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Frame):
+            return NotImplemented
+        return _fields_equal(self, other, [f for f in self.__dataclass_fields__])
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 @dataclass(frozen=True)
@@ -251,7 +262,7 @@ def rbs_py_renderer_destroy(instance: Any) -> None:
             adapter.run._error = exc
 
 
-class Run:
+class Run(_Handle):
     """A run of a world through the projector (see :meth:`World.start`).
 
     From start until :meth:`wait` returns, the world belongs to the
@@ -259,7 +270,10 @@ class Run:
     :meth:`status` and :meth:`finished` are thread-safe.  From the run's own
     renderers (inside draw() or finish()), :meth:`wait` and
     :meth:`finished` with a timeout raise DeadlockError: the run cannot end
-    while its renderer is drawing."""
+    while its renderer is drawing.  A Run cannot be copied or pickled."""
+
+    _COPY_HINT = ("run (its threads); wait() on it, and copy its RunInfo or the world's "
+                  "checkpoint()")
 
     def __init__(self, world: World, steps: int, renderers: Sequence[Any],
                  realtime: bool, speed: float, start_paused: bool,
@@ -297,6 +311,7 @@ class Run:
         except BaseException:
             self._release()
             raise
+        _LIVE_RUNS.add(self)
 
     def _make(self, steps: int, realtime: bool, speed: float, start_paused: bool,
               pause_on_collision: bool, reel_capacity: Optional[int],
@@ -476,6 +491,7 @@ class Run:
         return info
 
     def _close_projector(self) -> None:
+        _LIVE_RUNS.discard(self)
         with self._cond:
             projector = self._projector
             self._projector = ffi.NULL  # (new callers: ClosedError)
@@ -494,9 +510,76 @@ class Run:
             self._world._held_by_run = False
             self._world._lock.release()
 
+    def _end_at_exit(self) -> None:
+        """Quit the run and wait for it (the interpreter is exiting and no
+        one waited on it); say so on stderr."""
+        try:
+            projector = self._use()
+        except _e.Error:
+            return  # (over already)
+        try:
+            self._stopped = True  # (a clean end: wait() returns the RunInfo)
+            lib.rbs_projector_command(projector, b"quit", ffi.NULL, 0)
+            # in slices, so that Ctrl-C is seen (the renderer thread draws
+            # the frames left in the reel meanwhile)
+            while not lib.rbs_projector_finished(projector, 0.05):
+                pass
+            info = _run_info_of(projector)
+        finally:
+            self._unuse()
+        ending = ""
+        if self._wait_lock.acquire(blocking=False):  # (else a thread is in wait())
+            try:
+                self.wait()
+            except Exception as exc:  # noqa: B902 - reported below, the process is ending
+                ending = "; it ended with %s: %s" % (type(exc).__name__, exc)
+            finally:
+                self._wait_lock.release()
+        sys.stderr.write("rbsim: a run never waited on was stopped at exit, at frame %d%s "
+                         "(call Run.wait() before the end)%s\n"
+                         % (info.frame, "" if info.endless else " of %d" % info.steps, ending))
+
     def __del__(self) -> None:
-        if getattr(self, "_projector", ffi.NULL) != ffi.NULL:
-            self._close_projector()
+        if getattr(self, "_projector", ffi.NULL) == ffi.NULL:
+            return
+        try:
+            finalizing = sys.is_finalizing()
+        except Exception:  # noqa: B902 - (sys torn down: the very end)
+            finalizing = True
+        if finalizing:
+            # The at-exit hook ended every run it could; one left (Ctrl-C
+            # in the hook) cannot be waited for now: its Python renderers'
+            # thread can no longer take the GIL, and joining it never
+            # returned (a probe of session 41).  Quit it; if it does not end
+            # within a second, leave it to the end of the process.
+            lib.rbs_projector_command(self._projector, b"quit", ffi.NULL, 0)
+            if not lib.rbs_projector_finished(self._projector, 1.0):
+                return
+        self._close_projector()
+
+
+#: the runs started and not over yet (weak: a Run that is collected ends
+#: its own run), for _end_runs_at_exit
+_LIVE_RUNS: "weakref.WeakSet[Run]" = weakref.WeakSet()
+
+
+def _end_runs_at_exit() -> None:
+    """At exit, quit and wait for every run no one waited on (the script
+    ended, or raised, before Run.wait()) while the interpreter can still
+    run their Python renderers.  Left to finalisation, Run.__del__ joined a
+    renderer thread that could no longer take the GIL, and the interpreter
+    never exited, Ctrl-C or not (a probe of session 41)."""
+    for run in list(_LIVE_RUNS):
+        try:
+            run._end_at_exit()
+        except KeyboardInterrupt:
+            # (the rest are left to Run.__del__, which gives up on them)
+            sys.stderr.write("rbsim: Ctrl-C: no longer waiting at exit for runs never "
+                             "waited on\n")
+            return
+
+
+atexit.register(_end_runs_at_exit)
 
 
 _STATES = {v: k[len("RBS_RUN_"):].lower()
@@ -505,6 +588,14 @@ _STATES = {v: k[len("RBS_RUN_"):].lower()
 
 def _text(p: Any) -> str:
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
+
+
+def _run_info_of(projector: Any) -> RunInfo:
+    out = ffi.new("rbs_run_info *")
+    status = lib.rbs_projector_status_sized(projector, out, ffi.sizeof("rbs_run_info"))
+    if status != lib.RBS_OK:
+        raise _e.error_class(status)("projector status")
+    return _run_info(out)
 
 
 def _run_info(s: Any) -> RunInfo:

@@ -8,13 +8,15 @@ on.  All derive from :class:`Error`; some also from the built-in exception of
 the same meaning (:class:`InvalidError` is a ``ValueError``,
 :class:`NotFoundError` a ``KeyError``, :class:`MemoryError` the built-in
 ``MemoryError``, :class:`IoError` an ``OSError``), so ordinary Python
-handlers work too.
+handlers work too.  ``from rbsim import *`` leaves out the classes named as
+a built-in exception (:data:`SHADOWING`: ``MemoryError``), so as not to hide
+the built-in; use ``rbsim.MemoryError``.
 """
 
 from __future__ import annotations
 
 import builtins
-from typing import TYPE_CHECKING, Dict, List, Optional, Sequence, Type
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Type
 
 from ._native import ffi, lib
 
@@ -50,6 +52,19 @@ class Error(Exception):
     def __str__(self) -> str:
         # KeyError would quote the message; every rbsim error reads alike.
         return str(self.args[0]) if self.args else ""
+
+    def __reduce__(self) -> Any:
+        # (the default rebuilt the error from args, the message with its
+        # prefix, and the prefix came twice: "invalid argument: invalid
+        # argument: ...", in a multiprocessing worker's error too)
+        return (_rebuild, (type(self), self.detail, self.status), self.__dict__)
+
+
+def _rebuild(cls: Type["Error"], detail: str, status: Optional[int]) -> "Error":
+    """An error of class cls unpickled: the message made from detail as
+    when it was raised (a SceneError's detail already holds its list);
+    __reduce__'s state gives the other attributes."""
+    return cls(detail, status=status)
 
 
 def _name(status: int) -> str:
@@ -200,6 +215,12 @@ def raise_status(status: int, detail: str = "") -> None:
     raise cls(detail, status=status)
 
 
+#: the generated classes that ``import *`` leaves out: their names are
+#: built-in exceptions' (MemoryError), which a star import would hide;
+#: reach them as ``rbsim.MemoryError``
+SHADOWING = sorted(n for n in GENERATED if hasattr(builtins, n))
+
 __all__ = ["Error", "SceneError", "SceneIssue", "BusyError", "DeadlockError",
            "ArgumentTypeError",
-           "BY_STATUS", "error_class", "raise_status"] + sorted(GENERATED)
+           "BY_STATUS", "error_class", "raise_status"] + sorted(
+               n for n in GENERATED if n not in SHADOWING)

@@ -19,7 +19,9 @@ Design notes
 
 from __future__ import annotations
 
+import sys
 import threading
+import time
 from dataclasses import dataclass
 from typing import (TYPE_CHECKING, Any, Dict, Iterator, List, Mapping,
                     NamedTuple, Optional, Sequence, Tuple, Union)
@@ -36,7 +38,10 @@ if TYPE_CHECKING:
 Vector = Union[Sequence[float], np.ndarray]
 
 _ALIGN = 16  # rbs_world_create_in wants 16-byte alignment
-_STEP_CHUNK = 4096  # steps per C call in World.step (Ctrl-C between chunks)
+_DBL_MIN = sys.float_info.min  # (DBL_MIN, the library's floor of a moment of inertia)
+_STEP_SLICE = 0.02  # s of stepping per C call in World.step (Ctrl-C between calls)
+_STEP_SLICE_MAX = 1 << 20  # steps per C call in World.step, at most
+_STEP_FIRST = 64  # steps of a World.step's first C call, at most
 
 
 def _enum_names(ctype: str, prefix: str) -> Dict[str, int]:
@@ -81,9 +86,42 @@ def _str(p: Any) -> str:
     return ffi.string(p).decode("utf-8", "replace") if p != ffi.NULL else ""
 
 
+class _Handle:
+    """Base of the objects that stand for something of the library's (a
+    world, a body of it, a run): none can be copied or pickled.  The
+    default copy shared the C world, and deleting the copy destroyed the
+    original's (a crash with threads > 1: a probe of session 41).
+    _COPY_HINT says what to do instead."""
+
+    __slots__ = ()
+    _COPY_HINT = ""
+
+    def _refuse_copy(self, *args: Any) -> Any:
+        raise TypeError("cannot copy or pickle a %s: it is a handle to the library's %s"
+                        % (type(self).__name__, self._COPY_HINT))
+
+    __copy__ = _refuse_copy
+    __deepcopy__ = _refuse_copy
+    __reduce_ex__ = _refuse_copy
+    __reduce__ = _refuse_copy
+
+
 # --------------------------------------------------------------------------
 # Small result types
 # --------------------------------------------------------------------------
+
+def _same(a: Any, b: Any) -> bool:
+    """Exact equality of two fields: arrays by shape and every element
+    (np.array_equal; == of arrays is an array, whose truth value raised),
+    anything else by ==."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return bool(np.array_equal(a, b))
+    return bool(a == b)
+
+
+def _fields_equal(a: Any, b: Any, names: Sequence[str]) -> bool:
+    return all(_same(getattr(a, n), getattr(b, n)) for n in names)
+
 
 @dataclass(frozen=True)
 class StepInfo:
@@ -126,10 +164,22 @@ class Energy(NamedTuple):
 
 class Momentum(NamedTuple):
     """Total linear momentum (kg m/s) and angular momentum about the origin
-    (kg m^2/s), as arrays of 3."""
+    (kg m^2/s), as arrays of 3.  == compares every element exactly; not
+    hashable (its arrays can change)."""
 
     linear: np.ndarray
     angular: np.ndarray
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, tuple) or len(other) != 2:
+            return NotImplemented
+        return _same(self[0], other[0]) and _same(self[1], other[1])
+
+    def __ne__(self, other: object) -> bool:
+        eq = self.__eq__(other)
+        return eq if eq is NotImplemented else not eq
+
+    __hash__ = None  # type: ignore[assignment]
 
 
 class Usage(NamedTuple):
@@ -147,10 +197,12 @@ class Usage(NamedTuple):
 # Materials and bodies
 # --------------------------------------------------------------------------
 
-class Material:
+class Material(_Handle):
     """A named material of a world (a handle; compare with ==)."""
 
     __slots__ = ("_world", "_index", "_generation", "name")
+    _COPY_HINT = ("material of one world; use the Material itself (handles compare equal), "
+                  "or its name")
 
     def __init__(self, world: "World", cid: Any, name: str) -> None:
         self._world = world
@@ -172,9 +224,11 @@ class Material:
         return "Material(%r)" % self.name
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BodyState:
-    """A body's full state, copied out (arrays are copies)."""
+    """A body's full state, copied out (arrays are copies).  == compares
+    every field exactly (arrays element by element); not hashable (its
+    arrays can change)."""
 
     type: str                     #: "sphere" or "plane"
     slot: int
@@ -192,16 +246,26 @@ class BodyState:
     texture: str
     fixed: bool
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, BodyState):
+            return NotImplemented
+        return _fields_equal(self, other, [f for f in self.__dataclass_fields__])
 
-class Body:
+    __hash__ = None  # type: ignore[assignment]
+
+
+class Body(_Handle):
     """A body of a world, by id (slot index + generation).
 
     Getters copy the state out; setters validate (finite numbers) and call
     the library.  Using a body after it was removed raises
-    :class:`~rbsim.StaleIdError`.
+    :class:`~rbsim.StaleIdError`.  A Body cannot be copied or pickled (use
+    it as it is, or :meth:`state` for a copy of its state).
     """
 
     __slots__ = ("_world", "_index", "_generation")
+    _COPY_HINT = ("body of one world; use the Body itself (handles compare equal), "
+                  "or body.state() for a copy of its state")
 
     def __init__(self, world: "World", bid: Any) -> None:
         self._world = world
@@ -314,7 +378,8 @@ class Body:
 
     @orientation.setter
     def orientation(self, value: Vector) -> None:
-        q = _check.vector(value, "orientation", 4)
+        q = _check.nonzero(_check.vector(value, "orientation", 4), "orientation",
+                           "quaternion [w, x, y, z]")
         cid = self._world._cbody(self)
         cq = ffi.new("rbs_quat *")
         cq.w, cq.x, cq.y, cq.z = q
@@ -368,10 +433,12 @@ def _reverse(table: Mapping[str, int], value: int) -> str:
     return str(value)
 
 
-class BodyMap(Mapping[str, Body]):
+class BodyMap(_Handle, Mapping[str, Body]):
     """The named bodies of a world: ``world.bodies["ball"]``.  Unnamed
     bodies are left out (see :meth:`World.all_bodies`).  A live view: it
     reflects bodies added or removed later."""
+
+    _COPY_HINT = "bodies of one world (a live view); use dict(world.bodies) for a snapshot"
 
     def __init__(self, world: "World") -> None:
         self._world = world
@@ -386,14 +453,17 @@ class BodyMap(Mapping[str, Body]):
         return sum(1 for b in self._world.all_bodies() if b.name)
 
     def __repr__(self) -> str:
-        return "BodyMap(%r)" % list(self)
+        try:
+            return "BodyMap(%r)" % list(self)
+        except _e.Error as exc:  # (repr never raises: closed, busy, ...)
+            return "BodyMap(<%s>)" % exc
 
 
 # --------------------------------------------------------------------------
 # World
 # --------------------------------------------------------------------------
 
-class World:
+class World(_Handle):
     """A simulated world of spheres and planes.
 
     Every keyword is optional; None keeps the library's default (see
@@ -438,11 +508,18 @@ class World:
         threads: threads that step the world, the caller's included, 1 to
                 16 (default 1; see :attr:`World.threads`).
 
+    A World cannot be copied or pickled (copy.copy would share the C
+    world); duplicate one through :meth:`checkpoint` and
+    :meth:`from_checkpoint`, or :meth:`save` and :meth:`restore`.
+
     Raises:
         InvalidError: a value out of range (the message names it, gives
                 its range and echoes the value exactly).
         ArgumentTypeError, NumericError: a wrong type, NaN or infinity.
     """
+
+    _COPY_HINT = ("world; duplicate it with World.from_checkpoint(world.checkpoint()), "
+                  "or world.save(path) and rbsim.resume(path)")
 
     def __init__(self, *, max_bodies: Optional[int] = None,
                  max_materials: Optional[int] = None,
@@ -547,6 +624,8 @@ class World:
         #: whether a Run holds the world (start() until its wait()), for
         #: the busy message (a flag, not the Run: no reference cycle)
         self._held_by_run = False
+        #: seconds the last step took (World.step's slices), None at first
+        self._step_seconds: Optional[float] = None
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
         #: the scene's description ("" for a world built in code)
@@ -625,6 +704,8 @@ class World:
         """Destroy the C world.  State arrays taken before stay readable
         (they stop changing); any other use raises ClosedError.  Idempotent."""
         if not self._lock.acquire(blocking=False):
+            if self._held_by_run:
+                raise _e.BusyError("cannot close the world: " + _HELD_BY_RUN)
             raise _e.BusyError("world is in use by another thread; cannot close it")
         try:
             self._release_world()
@@ -722,9 +803,7 @@ class World:
                 # (a run not waited on held it until the garbage collector
                 # came, and the message blamed another thread: a probe of
                 # session 40)
-                raise _e.BusyError("world is held by a run until its Run.wait() (or from "
-                                   "inside that run's renderer): call wait() on the Run that "
-                                   "start() returned")
+                raise _e.BusyError(_HELD_BY_RUN)
             raise _e.BusyError("world is in use by another thread (a World is not "
                                "thread-safe; give each thread its own)")
         if self._world == ffi.NULL:
@@ -801,7 +880,7 @@ class World:
 
     def add_material(self, name: str) -> Material:
         """Add a named material (names are unique; < 64 bytes)."""
-        raw = _check.text(name, "name")
+        raw = _check.name(name, "name", material=True)
         out = ffi.new("rbs_material_id *")
         self._call(lib.rbs_world_add_material, raw, out)
         return Material(self, out, name)
@@ -964,7 +1043,7 @@ class World:
         lib.rbs_sphere_def_init_sized(d, ffi.sizeof("rbs_sphere_def"))
         keep = []
         if name is not None:
-            raw = _check.text(name, "name")
+            raw = _check.name(name, "name")
             keep.append(ffi.new("char[]", raw))
             d.name = keep[-1]
         # (the library's ranges, checked here to echo the value exactly)
@@ -984,7 +1063,8 @@ class World:
             if value is not None:
                 _set_vec3(getattr(d, key), _check.vector(value, key))
         if orientation is not None:
-            q = _check.vector(orientation, "orientation", 4)
+            q = _check.nonzero(_check.vector(orientation, "orientation", 4), "orientation",
+                               "quaternion [w, x, y, z]")
             d.orientation.w, d.orientation.x, d.orientation.y, d.orientation.z = q
         if inertia is not None:
             if isinstance(inertia, str):
@@ -992,7 +1072,7 @@ class World:
                 d.inertia_kind = _INERTIA[_check.choice(inertia, "inertia", kinds)]
             else:
                 d.inertia_kind = _INERTIA["principal"]
-                _set_vec3(d.inertia, _check.vector(inertia, "inertia"))
+                _set_vec3(d.inertia, _principal_moments(inertia))
         if material is not None:
             mat = self._cmaterial(material, "material")
             d.material = mat[0]
@@ -1019,12 +1099,13 @@ class World:
         lib.rbs_plane_def_init_sized(d, ffi.sizeof("rbs_plane_def"))
         keep = []
         if name is not None:
-            keep.append(ffi.new("char[]", _check.text(name, "name")))
+            keep.append(ffi.new("char[]", _check.name(name, "name")))
             d.name = keep[-1]
         if point is not None:
             _set_vec3(d.point, _check.vector(point, "point"))
         if normal is not None:
-            _set_vec3(d.normal, _check.vector(normal, "normal"))
+            _set_vec3(d.normal, _check.nonzero(_check.vector(normal, "normal"), "normal",
+                                               "vector (the plane's outward normal)"))
         if material is not None:
             mat = self._cmaterial(material, "material")
             d.material = mat[0]
@@ -1076,7 +1157,10 @@ class World:
         """Advance the world n steps of dt (the GIL is released while C
         steps).  Returns what the steps did (see :class:`StepInfo`).  On
         error the world stays at its last good state and the exception's
-        ``steps_done`` tells how many steps were made."""
+        ``steps_done`` tells how many steps were made.  Ctrl-C
+        (KeyboardInterrupt) lands within about 20 ms, or one step if a step
+        takes longer; the world is then at the last step made (see
+        :attr:`step_count`) and usable."""
         count = _check.u64(n, "n")
         total = ffi.new("rbs_step_info *")
         chunk = ffi.new("rbs_step_info *")
@@ -1086,25 +1170,47 @@ class World:
             return StepInfo._from_c(total, 0)
         fields = ("colliding", "resting", "substeps", "rollbacks", "floor_hits",
                   "sweep_limit", "events", "work_limit")
-        while made < count:
-            todo = min(_STEP_CHUNK, count - made)
-            w = self._acquire()
-            try:
+        # C steps in slices of about _STEP_SLICE s: a signal (Ctrl-C) is
+        # handled when C returns, so KeyboardInterrupt lands within a slice,
+        # or one step of a world slower than that, with the world at the
+        # last step made (a fixed 4096 steps a call took minutes for a big
+        # world: a probe of session 41).  A slice is sized from the last
+        # step's time (the first of a call at most _STEP_FIRST steps, so a
+        # world that became slow is not given a long one) and doubles while
+        # slices are quick.  The world is held throughout.
+        per = self._step_seconds
+        size = 1 if per is None else max(1, min(_STEP_FIRST, int(_STEP_SLICE / max(per, 1e-9))))
+        status = lib.RBS_OK
+        detail = ""
+        w = self._acquire()
+        try:
+            while made < count:
+                todo = min(size, count - made)
+                start = time.perf_counter()
                 status = lib.rbs_py_step(w, todo, chunk, done, ffi.NULL)
-                detail = _str(lib.rbs_world_last_error(w)) if status != lib.RBS_OK else ""
-            finally:
-                self._lock.release()
-            made += int(done[0])
-            total.contacts = chunk.contacts
-            for f in fields:
-                setattr(total, f, getattr(total, f) + getattr(chunk, f))
-            total.max_overlap = max(total.max_overlap, chunk.max_overlap)
-            if status != lib.RBS_OK:
-                exc = _e.error_class(status)(
-                    "%s (after %d of %d steps, t = %.17g s)"
-                    % (detail, made, count, self.time))
-                exc.steps_done = made  # type: ignore[attr-defined]
-                raise exc
+                elapsed = time.perf_counter() - start
+                made += int(done[0])
+                if done[0] > 0:
+                    self._step_seconds = elapsed / int(done[0])
+                total.contacts = chunk.contacts
+                for f in fields:
+                    setattr(total, f, getattr(total, f) + getattr(chunk, f))
+                total.max_overlap = max(total.max_overlap, chunk.max_overlap)
+                if status != lib.RBS_OK:
+                    detail = _str(lib.rbs_world_last_error(w))
+                    break
+                if elapsed > _STEP_SLICE:
+                    size = max(1, int(size * _STEP_SLICE / elapsed))
+                elif elapsed < _STEP_SLICE / 2 and todo == size:
+                    size = min(2 * size, _STEP_SLICE_MAX)
+        finally:
+            self._lock.release()
+        if status != lib.RBS_OK:
+            exc = _e.error_class(status)(
+                "%s (after %d of %d steps, t = %.17g s)"
+                % (detail, made, count, self.time))
+            exc.steps_done = made  # type: ignore[attr-defined]
+            raise exc
         return StepInfo._from_c(total, made)
 
     def run(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
@@ -1147,7 +1253,9 @@ class World:
         """Start a run (as :meth:`run`) and return at once with a
         :class:`Run` to send commands to ("pause", "resume", "step N",
         "speed X", "quit") and to wait on.  pause_on_collision None takes
-        the scene's setting.  The world is busy until ``Run.wait()``."""
+        the scene's setting.  The world is busy until ``Run.wait()``.  A run
+        never waited on is quit and waited for when the interpreter exits
+        (a line on stderr says so)."""
         from ._render import start_world
         return start_world(self, steps, renderers, realtime=realtime, speed=speed,
                            start_paused=start_paused,
@@ -1286,7 +1394,20 @@ class World:
     def energy(self) -> Energy:
         """Kinetic, potential and total energy, J."""
         out = ffi.new("rbs_energy *")
-        self._query("rbs_world_energy", lib.rbs_world_energy, out)
+        w = self._acquire()
+        try:
+            status = lib.rbs_world_energy(w, out)
+        finally:
+            self._lock.release()
+        if status == lib.RBS_E_NUMERIC:
+            # (it said only "numerical failure: rbs_world_energy")
+            raise _e.error_class(status)(
+                "energy: not finite at step %d (kinetic %r J, potential %r J): a sum "
+                "overflows a double -- speeds, masses, spins or forces this large -- or "
+                "two spheres are at one point under mutual gravity without softening"
+                % (self.step_count, float(out.kinetic), float(out.potential)))
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("rbs_world_energy")
         return Energy(float(out.kinetic), float(out.potential), float(out.total))
 
     def momentum(self) -> Momentum:
@@ -1294,7 +1415,19 @@ class World:
         (kg m^2/s)."""
         lin = ffi.new("rbs_vec3 *")
         ang = ffi.new("rbs_vec3 *")
-        self._query("rbs_world_momentum", lib.rbs_world_momentum, lin, ang)
+        w = self._acquire()
+        try:
+            status = lib.rbs_world_momentum(w, lin, ang)
+        finally:
+            self._lock.release()
+        if status == lib.RBS_E_NUMERIC:
+            raise _e.error_class(status)(
+                "momentum: not finite at step %d (linear %s kg m/s, angular %s kg m^2/s): "
+                "a sum overflows a double -- speeds, masses or spins this large"
+                % (self.step_count, _check.numbers_text(tuple(_vec3(lin))),
+                   _check.numbers_text(tuple(_vec3(ang)))))
+        if status != lib.RBS_OK:
+            raise _e.error_class(status)("rbs_world_momentum")
         return Momentum(_vec3(lin), _vec3(ang))
 
     def usage(self) -> Usage:
@@ -1359,6 +1492,13 @@ class World:
                 len(self.all_bodies()), self.time, self.method)
         except _e.BusyError:
             return "World(<busy: in use by another thread or a run>)"
+        except _e.Error as exc:  # (repr never raises)
+            return "World(<%s>)" % exc
+
+
+#: why a world held by a run refuses calls (BusyError)
+_HELD_BY_RUN = ("world is held by a run until its Run.wait() (or from inside that run's "
+                "renderer): call wait() on the Run that start() returned")
 
 
 #: World(...)'s integer ranges, as rbs_world_def_validate (world.c) has
@@ -1387,6 +1527,25 @@ _REAL_RANGES: Dict[str, Dict[str, Any]] = {
                  note=" (a fraction of the smaller radius)"),
     "soft_tolerance": dict(low=0.0, high=1.0, note=" (a fraction of the radius)"),
 }
+
+
+def _principal_moments(value: Any) -> Tuple[float, ...]:
+    """add_sphere's inertia=(Ix, Iy, Iz), checked as the library does (its
+    message named neither the argument nor the values)."""
+    v = _check.vector(value, "inertia")
+    if not all(x > 0.0 for x in v):
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must be > 0 kg m^2, got %s" % _check.numbers_text(v))
+    if not all(x >= _DBL_MIN for x in v):
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must be >= %r kg m^2 (the smallest normal double: "
+            "their inverses must be finite), got %s" % (_DBL_MIN, _check.numbers_text(v)))
+    a, b, c = v
+    if a + b < c or b + c < a or a + c < b:
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must satisfy the triangle inequality (each <= the "
+            "sum of the other two), got %s" % _check.numbers_text(v))
+    return v
 
 
 def _method_value(name: Any) -> int:
