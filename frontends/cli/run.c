@@ -751,22 +751,60 @@ static void distinct_prefix(const output *o, const char *who)
         fprintf(stderr, "%s: ", who);
 }
 
-/* No two outputs may write one file (standard output included), and none
- * may overwrite the scene or the checkpoint being resumed. */
+/* Does the sdl output folder dir run through file, a file output's path (or
+ * the checkpoint's): is one of the folders on dir's way that file?  Its
+ * folder would be made where the file is, or the file where the folder is,
+ * and one of them fails once the run has begun.  Nonzero if so, with that
+ * folder's part of dir (n bytes) in part. */
+static int folder_runs_through(const char *dir, const char *file, char *part,
+                               size_t n)
+{
+    size_t i, len = strlen(dir);
+    for (i = 1; i < len && i < n; i++) {
+        if (dir[i] != '/' || dir[i - 1] == '/')
+            continue;
+        memcpy(part, dir, i);
+        part[i] = '\0';
+        if (same_file(part, file))
+            return 1;
+    }
+    return 0;
+}
+
+/* "the csv and json outputs", or "two sdl outputs" for two of a type. */
+static const char *two_outputs(const char *a, const char *b, char *buf,
+                               size_t n)
+{
+    if (strcmp(a, b) == 0)
+        snprintf(buf, n, "two %s outputs", a);
+    else
+        snprintf(buf, n, "the %s and %s outputs", a, b);
+    return buf;
+}
+
+/* No two outputs may write one file (standard output included), no sdl
+ * folder may run through another output's file, and none may overwrite
+ * the scene or the checkpoint being resumed. */
 static int check_distinct(const output *outs, uint32_t n, const char *scene,
                           const char *resume, const char *who)
 {
     uint32_t i, j;
     const output *on_stdout = NULL;
+    char both[64];
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
+        int sdl = strcmp(outs[i].config.type, "sdl") == 0;
+        if (a != NULL && sdl && strcmp(a, "-") == 0)
+            continue; /* not standard output: its check() refuses it */
         if (a != NULL && strcmp(a, "-") == 0) {
             if (on_stdout != NULL) {
                 distinct_prefix(&outs[i], who);
-                fprintf(stderr, "the %s and %s outputs both write "
+                fprintf(stderr, "%s both write "
                                 "to standard output ('-'): at most one "
                                 "output may\n",
-                        on_stdout->config.type, outs[i].config.type);
+                        two_outputs(on_stdout->config.type,
+                                    outs[i].config.type, both,
+                                    sizeof both));
                 return outs[i].from_scene && on_stdout->from_scene
                            ? RBSF_EXIT_SCENE
                            : RBSF_EXIT_USAGE;
@@ -809,8 +847,25 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
             if (b == NULL || strcmp(b, "-") == 0 || !same_file(a, b))
                 continue;
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the %s and %s outputs both write '%s'\n",
-                    outs[j].config.type, outs[i].config.type, a);
+            fprintf(stderr, "%s both write '%s'\n",
+                    two_outputs(outs[j].config.type, outs[i].config.type,
+                                both, sizeof both),
+                    a);
+            return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
+                                                            : RBSF_EXIT_USAGE;
+        }
+        for (j = 0; sdl && j < n; j++) {
+            const char *b = outs[j].config.path;
+            char part[4096];
+            if (j == i || b == NULL || strcmp(b, "-") == 0 ||
+                strcmp(outs[j].config.type, "sdl") == 0 ||
+                !folder_runs_through(a, b, part, sizeof part))
+                continue;
+            distinct_prefix(&outs[i], who);
+            fprintf(stderr, "the sdl output's folder '%s' runs through "
+                            "'%s', which the %s output '%s' writes as a file: "
+                            "give one of them another name\n",
+                    a, part, outs[j].config.type, b);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }
@@ -1173,6 +1228,18 @@ static int check_checkpoint_path(const char *path, const char *target,
                             "output writes in its folder '%s' (%s): give it "
                             "another name\n", path, a, what);
             return RBSF_EXIT_USAGE;
+        }
+        if (a != NULL && strcmp(outs[i].config.type, "sdl") == 0 &&
+            strcmp(a, "-") != 0) {
+            char part[4096];
+            if (folder_runs_through(a, path, part, sizeof part) ||
+                folder_runs_through(a, target, part, sizeof part)) {
+                fprintf(stderr, "rbsim run: --checkpoint '%s': the sdl "
+                                "output's folder '%s' runs through '%s', "
+                                "which the checkpoint is: give one of them "
+                                "another name\n", path, a, part);
+                return RBSF_EXIT_USAGE;
+            }
         }
     }
     return 0;
@@ -1896,8 +1963,9 @@ int rbsf_run_main(int argc, char **argv)
         goto out;
     }
     if (st != RBS_OK) {
-        print_run_error("", projector ? rbs_projector_last_error(projector)
-                                      : rbs_status_string(st),
+        print_run_error("error: ",
+                        projector ? rbs_projector_last_error(projector)
+                                  : rbs_status_string(st),
                         outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;
@@ -1917,7 +1985,7 @@ int rbsf_run_main(int argc, char **argv)
     if (rbs_projector_start(projector) != RBS_OK) {
         /* The run began (frame 0 failed): its outputs stand, as after a
          * failure at any later frame. */
-        print_run_error("", rbs_projector_last_error(projector), outs, n_out);
+        print_run_error("error: ", rbs_projector_last_error(projector), outs, n_out);
         commit_staged(outs, n_out);
         code = RBSF_EXIT_RUN;
         goto out;

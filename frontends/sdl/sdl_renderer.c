@@ -30,6 +30,7 @@
  *    would get while paused) is neither drawn nor written again.
  */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -57,6 +58,9 @@
 typedef struct sdl_instance {
     rbsf__config cfg;
     char *dir;     /* output folder (owned) */
+    char *made;    /* made[i]: create made the folder dir[0..i) (owned) */
+    int view_made[RBSF__VIEWS_MAX]; /* create made DIR/viewK */
+    int draw_called; /* draw was called: the folders stay */
     char *file;    /* file-name buffer (owned), file_cap bytes */
     size_t file_cap;
     rbsf__png *png; /* writes every PNG file (owned) */
@@ -107,85 +111,147 @@ static rbs_status say(char *err, size_t errlen, rbs_status st, const char *what)
     return st;
 }
 
-/* Whether mkdir -p of path can work, found before anything is made: each
- * folder on the way that exists is a folder, and the first that does not
- * is in a folder this process may write (path is restored).  0, or -1 with
- * the reason in err. */
-static int folder_can_be(char *path, char *err, size_t errlen)
+/* strerror_r into why (n bytes), "errno N" if it has no text. */
+static void reason(int e, char *why, size_t n)
 {
-    size_t i, n = strlen(path);
-    char msg[600];
-    for (i = 1; i <= n; i++) {
-        if (path[i] == '/' || path[i] == '\0') {
-            char c = path[i];
-            struct stat sb;
-            int e;
-            path[i] = '\0';
-            if (stat(path, &sb) == 0) {
-                if (!S_ISDIR(sb.st_mode)) {
-                    snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder", path);
-                    path[i] = c;
-                    say(err, errlen, RBS_E_IO, msg);
-                    return -1;
-                }
-                path[i] = c;
-                continue;
-            }
-            e = errno;
-            if (e == ENOENT) {
-                /* the first missing folder: its parent must take it */
-                char *slash = strrchr(path, '/');
-                int ok;
-                if (slash == NULL) {
-                    ok = access(".", W_OK | X_OK) == 0;
-                } else if (slash == path) {
-                    ok = access("/", W_OK | X_OK) == 0;
-                } else {
-                    *slash = '\0';
-                    ok = access(path, W_OK | X_OK) == 0;
-                    *slash = '/';
-                }
-                e = errno;
-                if (ok) {
-                    path[i] = c;
-                    return 0; /* the rest is made below it */
-                }
-            }
-            {
-                char why[128];
-                if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
-                snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
-            }
-            path[i] = c;
+    if (strerror_r(e, why, n) != 0) snprintf(why, n, "errno %d", e);
+}
+
+/* The longest name the renderer puts after its folder's path: "/viewK"
+ * (several views, not tiled), then "/frame_" with a frame number of up to
+ * 20 digits and ".png" ("/contact_sheet.png" is shorter). */
+static size_t longest_file(const rbsf__config *cfg)
+{
+    size_t n = strlen("/frame_") + 20 + strlen(".png");
+    if (cfg->view_count > 1 && !cfg->tile) n += strlen("/view0");
+    return n;
+}
+
+/* Whether mkdir -p of path, and the files the renderer writes in it (names
+ * up to tail bytes after path), can work, found before anything is kept:
+ *  - the path with the files' names fits the system's limit (PATH_MAX), and
+ *    each of its names the file system's (NAME_MAX of the folder it is in);
+ *  - each folder on the way that exists is a folder;
+ *  - the first that does not is made and removed again: that proves its
+ *    parent takes a new folder where access() alone would not (root may
+ *    "write" in /proc and /sys, which take no folder), and the folders below
+ *    it are made in it;
+ *  - a folder that exists takes a file: a ".rbsim-XXXXXX" made and removed.
+ * path is restored.  0, or -1 with the reason in err. */
+static int folder_can_be(char *path, size_t tail, char *err, size_t errlen)
+{
+    size_t i, start = 0, n = strlen(path);
+    long name_max = pathconf(path[0] == '/' ? "/" : ".", _PC_NAME_MAX);
+    int missing = 0; /* a folder is missing: the rest are only measured */
+    char msg[600], why[128];
+#ifdef PATH_MAX
+    if (n + tail >= (size_t)PATH_MAX) {
+        snprintf(msg, sizeof msg,
+                 "path: too long: %lu bytes, and the files' names in it add up to "
+                 "%lu more, past the system's limit of %d bytes for a path",
+                 (unsigned long)n, (unsigned long)tail, PATH_MAX - 1);
+        say(err, errlen, RBS_E_IO, msg);
+        return -1;
+    }
+#endif
+    for (i = 0; i <= n; i++) {
+        size_t len;
+        char c;
+        struct stat sb;
+        if (path[i] != '/' && path[i] != '\0') continue;
+        len = i - start;
+        if (len == 0) { /* the root, or a doubled or trailing slash */
+            start = i + 1;
+            continue;
+        }
+        if (name_max > 0 && len > (size_t)name_max) {
+            snprintf(msg, sizeof msg,
+                     "path: the name \"%.40s%s\" is %lu bytes long, longer than the "
+                     "file system takes (%ld bytes)",
+                     path + start, len > 40 ? "..." : "", (unsigned long)len, name_max);
             say(err, errlen, RBS_E_IO, msg);
             return -1;
         }
-    }
-    if (access(path, W_OK | X_OK) != 0) {
-        char why[128];
-        int e = errno;
-        if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
-        snprintf(msg, sizeof msg, "path: cannot write in folder \"%s\": %s", path, why);
+        start = i + 1;
+        if (missing) continue;
+        c = path[i];
+        path[i] = '\0';
+        if (stat(path, &sb) == 0) {
+            long m;
+            if (!S_ISDIR(sb.st_mode)) {
+                snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder", path);
+                path[i] = c;
+                say(err, errlen, RBS_E_IO, msg);
+                return -1;
+            }
+            m = pathconf(path, _PC_NAME_MAX);
+            if (m > 0) name_max = m;
+            path[i] = c;
+            continue;
+        }
+        if (errno == ENOENT && mkdir(path, 0700) == 0) {
+            /* the first missing folder: it can be made (and is not kept) */
+            if (rmdir(path) != 0) {
+                reason(errno, why, sizeof why);
+                snprintf(msg, sizeof msg,
+                         "path: cannot remove \"%s\" again (made to test the path): %s",
+                         path, why);
+                path[i] = c;
+                say(err, errlen, RBS_E_IO, msg);
+                return -1;
+            }
+            path[i] = c;
+            missing = 1;
+            continue;
+        }
+        reason(errno, why, sizeof why);
+        snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
+        path[i] = c;
         say(err, errlen, RBS_E_IO, msg);
         return -1;
+    }
+    if (!missing) {
+        /* The folder exists: does it take a file? */
+        char *probe = (char *)malloc(n + 16);
+        int fd;
+        if (probe == NULL) {
+            say(err, errlen, RBS_E_MEMORY, "out of memory");
+            return -1;
+        }
+        snprintf(probe, n + 16, "%s/.rbsim-XXXXXX", path);
+        fd = mkstemp(probe);
+        if (fd < 0) {
+            reason(errno, why, sizeof why);
+            snprintf(msg, sizeof msg, "path: cannot write in folder \"%s\": %s", path, why);
+            free(probe);
+            say(err, errlen, RBS_E_IO, msg);
+            return -1;
+        }
+        close(fd);
+        unlink(probe);
+        free(probe);
     }
     return 0;
 }
 
-/* mkdir -p. */
-static int make_dirs(char *path, char *err, size_t errlen)
+/* mkdir -p.  made (strlen(path) + 1 flags, all 0 on entry) marks each
+ * folder this call made: made[i] for the folder path[0..i); unmake_dirs
+ * removes them again. */
+static int make_dirs(char *path, char *made, char *err, size_t errlen)
 {
     size_t i, n = strlen(path);
     for (i = 1; i <= n; i++) {
         if (path[i] == '/' || path[i] == '\0') {
             char c = path[i];
             struct stat sb;
+            if (path[i - 1] == '/') continue; /* a doubled or trailing slash */
             path[i] = '\0';
-            if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+            if (mkdir(path, 0777) == 0) {
+                made[i] = 1;
+            } else if (errno != EEXIST) {
                 char why[128];
                 char msg[600];
-                int e = errno;
-                if (strerror_r(e, why, sizeof why) != 0) snprintf(why, sizeof why, "errno %d", e);
+                reason(errno, why, sizeof why);
                 snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s", path, why);
                 path[i] = c;
                 say(err, errlen, RBS_E_IO, msg);
@@ -202,6 +268,22 @@ static int make_dirs(char *path, char *err, size_t errlen)
         }
     }
     return 0;
+}
+
+/* Remove the folders make_dirs marked in made, deepest first.  Only empty
+ * ones go (rmdir): a file put there since stays, with its folders. */
+static void unmake_dirs(char *path, char *made)
+{
+    size_t i = strlen(path) + 1;
+    while (i-- > 0) {
+        if (made[i]) {
+            char c = path[i];
+            path[i] = '\0';
+            rmdir(path);
+            path[i] = c;
+            made[i] = 0;
+        }
+    }
 }
 
 static uint32_t *image_pixels(SDL_Surface *s) { return (uint32_t *)s->pixels; }
@@ -249,14 +331,31 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     if (path == NULL)
         return say(err, errlen, RBS_E_INVALID,
                    "path: missing (the folder the PNG files go to)");
+    if (strcmp(path, "-") == 0)
+        return say(err, errlen, RBS_E_INVALID,
+                   "path: \"-\" would be standard output, and PNG files go to a "
+                   "folder; for a folder named \"-\" write \"./-\"");
     r->dir = (char *)malloc(strlen(path) + 1);
     r->file_cap = strlen(path) + 64;
     r->file = (char *)malloc(r->file_cap);
     if (r->dir == NULL || r->file == NULL)
         return say(err, errlen, RBS_E_MEMORY, "out of memory");
     strcpy(r->dir, path);
-    if (folder_can_be(r->dir, err, errlen) != 0)
+    if (folder_can_be(r->dir, longest_file(&r->cfg), err, errlen) != 0)
         return RBS_E_IO;
+    if (!r->cfg.tile && r->cfg.view_count > 1) {
+        /* DIR/viewK: each is a folder if it is there */
+        uint32_t v;
+        for (v = 0; v < r->cfg.view_count; v++) {
+            struct stat sb;
+            snprintf(r->file, r->file_cap, "%s/view%u", r->dir, v);
+            if (stat(r->file, &sb) == 0 && !S_ISDIR(sb.st_mode)) {
+                snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder",
+                         r->file);
+                return say(err, errlen, RBS_E_IO, msg);
+            }
+        }
+    }
 
     /* Window: decided here, opened at the first draw (on its own thread). */
     if (r->cfg.window == RBSF__WINDOW_ON && !has_display())
@@ -381,15 +480,31 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
         if (rbsf__window_create(&wd, &r->window) != RBS_OK) goto nomem;
     }
 
-    /* Output folders. */
-    if (make_dirs(r->dir, err, errlen) != 0) {
+    /* Output folders (a failure removes those made: destroy). */
+    r->made = (char *)calloc(strlen(r->dir) + 1, 1);
+    if (r->made == NULL) goto nomem;
+    if (make_dirs(r->dir, r->made, err, errlen) != 0) {
         destroy(r);
         return RBS_E_IO;
     }
     if (!r->cfg.tile && r->views > 1) {
         for (v = 0; v < r->views; v++) {
+            struct stat sb;
             snprintf(r->file, r->file_cap, "%s/view%u", r->dir, v);
-            if (make_dirs(r->file, err, errlen) != 0) {
+            int e = mkdir(r->file, 0777) == 0 ? 0 : errno;
+            if (e == 0) {
+                r->view_made[v] = 1;
+            } else if (e != EEXIST || stat(r->file, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+                char why[128];
+                if (e == EEXIST)
+                    snprintf(msg, sizeof msg, "path: \"%s\" exists and is not a folder",
+                             r->file);
+                else {
+                    reason(e, why, sizeof why);
+                    snprintf(msg, sizeof msg, "path: cannot create folder \"%s\": %s",
+                             r->file, why);
+                }
+                say(err, errlen, RBS_E_IO, msg);
                 destroy(r);
                 return RBS_E_IO;
             }
@@ -549,6 +664,7 @@ static rbs_status draw(void *instance, const rbs_frame *frame, char *err, size_t
     if (frame->body_count > 0 && frame->bodies == NULL)
         return say(err, errlen, RBS_E_INVALID, "frame: bodies is NULL");
     repeat = r->drawn_any && frame->number == r->last_number;
+    r->draw_called = 1;
 
     /* The window opens at the first frame, on its own thread. */
     if (r->window != NULL && !r->window_started) {
@@ -633,6 +749,16 @@ static void destroy(void *instance)
     uint32_t i;
     if (r == NULL) return;
     rbsf__window_destroy(r->window); /* first: its thread uses the cameras */
+    /* Never drawn (create failed, or the run was rejected after it): the
+     * folders create made go again, empty, so a rejected run leaves none. */
+    if (!r->draw_called && r->made != NULL) {
+        for (i = 0; i < RBSF__VIEWS_MAX; i++) {
+            if (!r->view_made[i]) continue;
+            snprintf(r->file, r->file_cap, "%s/view%u", r->dir, i);
+            rmdir(r->file);
+        }
+        unmake_dirs(r->dir, r->made);
+    }
     for (i = 0; i < RBSF__VIEWS_MAX; i++)
         if (r->images[i] != NULL) SDL_FreeSurface(r->images[i]);
     free(r->depth);
@@ -641,6 +767,7 @@ static void destroy(void *instance)
     free(r->thumbs);
     free(r->sheet);
     free(r->dir);
+    free(r->made);
     free(r->file);
     rbsf__png_destroy(r->png);
     rbsf__config_free(&r->cfg);

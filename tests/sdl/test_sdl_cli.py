@@ -188,7 +188,142 @@ class PngWriteErrors(unittest.TestCase):
             subprocess.run(["umount", mnt], check=True)
 
 
+class PngPathChecks(unittest.TestCase):
+    """A --png folder (or a scene's sdl "path") that cannot work is refused
+    before anything is written: exit 2 (3 for a scene entry), and no folder
+    or file left.  Only the first missing folder's parent used to be
+    checked, so deeper names were found by create() once other outputs were
+    made: exit 4, folders left behind."""
+
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix="rbsim-sdl-path-")
+        self.dir = self._tmp.name
+        self.long = "z" * 300
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def scene(self, renderers=None):
+        s = dict(SCENE, simulation={"steps": 2, "dt": 0.01})
+        if renderers is not None:
+            s["renderers"] = renderers
+        path = os.path.join(self.dir, "scene.json")
+        with open(path, "w") as f:
+            json.dump(s, f)
+        return "scene.json"
+
+    def rbsim(self, *args):
+        r = subprocess.run([RBSIM] + list(args), cwd=self.dir,
+                           stdin=subprocess.DEVNULL, capture_output=True,
+                           text=True, timeout=120)
+        if "without SDL" in r.stderr:
+            self.skipTest("rbsim built without SDL")
+        return r
+
+    def left(self):
+        return sorted(n for n in os.listdir(self.dir) if n != "scene.json")
+
+    def test_name_too_long_below_a_missing_folder(self):
+        scene = self.scene()
+        png = "x/y/" + self.long
+        r = self.rbsim("run", scene, "--png", png, "--csv", "new.csv", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("300 bytes long, longer than the file system takes",
+                      r.stderr)
+        self.assertEqual(self.left(), [])
+        # The same with x/y there already.
+        os.makedirs(os.path.join(self.dir, "x", "y"))
+        r = self.rbsim("run", scene, "--png", png, "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(os.listdir(os.path.join(self.dir, "x", "y")), [])
+
+    def test_scene_entry_name_too_long(self):
+        scene = self.scene([{"type": "sdl", "path": "x/y/" + self.long,
+                             "window": False}])
+        r = self.rbsim("check", scene)
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertIn("longer than the file system takes", r.stdout)
+        r = self.rbsim("run", scene, "--quiet")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertEqual(self.left(), [])
+
+    def test_path_too_long(self):
+        png = "/".join(["d"] * 2100)
+        r = self.rbsim("run", self.scene(), "--png", png, "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("path: too long", r.stderr)
+        self.assertEqual(self.left(), [])
+
+    def test_proc(self):
+        if not os.path.isdir("/proc/self"):
+            self.skipTest("no /proc")
+        scene = self.scene()
+        r = self.rbsim("run", scene, "--png", "/proc/rbsim-nope", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn('cannot create folder "/proc/rbsim-nope"', r.stderr)
+        r = self.rbsim("run", scene, "--png", "/proc", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn('cannot write in folder "/proc"', r.stderr)
+        scene = self.scene([{"type": "sdl", "path": "/proc/rbsim-nope/png",
+                             "window": False}])
+        self.assertEqual(self.rbsim("check", scene).returncode, 3)
+        self.assertEqual(self.rbsim("run", scene, "--quiet").returncode, 3)
+
+    def test_folder_through_another_outputs_file(self):
+        scene = self.scene()
+        for opt in ("--csv", "--json", "--stats", "--checkpoint"):
+            r = self.rbsim("run", scene, "--png", "mm/a", opt, "mm", "--quiet")
+            self.assertEqual(r.returncode, 2, opt + ": " + r.stderr)
+            self.assertIn("runs through 'mm'", r.stderr)
+            self.assertEqual(self.left(), [], opt)
+        r = self.rbsim("run", scene, "--png", "./mm/a/b", "--csv", "mm",
+                       "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("runs through './mm'", r.stderr)
+        # Both scene entries: a scene error.
+        scene = self.scene([{"type": "csv", "path": "mm"},
+                            {"type": "sdl", "path": "mm/a", "window": False}])
+        r = self.rbsim("check", scene)
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertEqual(self.rbsim("run", scene, "--quiet").returncode, 3)
+        self.assertEqual(self.left(), [])
+
+    def test_rejected_after_create_leaves_no_folder(self):
+        # The scene's sdl entry is created (its folders made), then the
+        # --csv output fails at its create (its header, on /dev/full): the
+        # run is rejected, exit 4, and the folders are removed again.
+        if not os.path.exists("/dev/full"):
+            self.skipTest("no /dev/full")
+        scene = self.scene([{"type": "sdl", "path": "new/deep",
+                             "window": False}])
+        r = self.rbsim("run", scene, "--csv", "/dev/full", "--quiet")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("rbsim: error: csv renderer '/dev/full': ", r.stderr)
+        self.assertEqual(self.left(), [])
+
+    def test_dash_is_not_standard_output(self):
+        scene = self.scene()
+        r = self.rbsim("run", scene, "--png", "-", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn('"-" would be standard output', r.stderr)
+        r = self.rbsim("run", scene, "--png", "-", "--csv", "-", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn('"-" would be standard output', r.stderr)
+        self.assertEqual(self.left(), [])
+        r = self.rbsim("run", scene, "--png", "./-", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("frame_000000.png", os.listdir(os.path.join(self.dir, "-")))
+
+    def test_two_sdl_outputs_message(self):
+        scene = self.scene([{"type": "sdl", "path": "cam1", "window": False}])
+        r = self.rbsim("run", scene, "--png", "cam1", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("two sdl outputs both write 'cam1'", r.stderr)
+
+
 if __name__ == "__main__":
-    result = unittest.TextTestRunner(verbosity=2).run(
-        unittest.defaultTestLoader.loadTestsFromTestCase(PngWriteErrors))
+    loader = unittest.defaultTestLoader
+    result = unittest.TextTestRunner(verbosity=2).run(unittest.TestSuite(
+        [loader.loadTestsFromTestCase(PngWriteErrors),
+         loader.loadTestsFromTestCase(PngPathChecks)]))
     sys.exit(0 if result.wasSuccessful() else 1)

@@ -200,8 +200,8 @@ static void test_missing_path(void **state)
         snprintf(json, sizeof json, "{\"window\":false,\"path\":\"%s\"}",
                  tu_dir("entry_path"));
         assert_int_equal(tu_create(json, NULL, &inst, err, sizeof err), RBS_OK);
-        rbsf_sdl_class()->destroy(inst);
         assert_true(dir_exists(tu_dir("entry_path")));
+        rbsf_sdl_class()->destroy(inst);
     }
 }
 

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmocka.h>
 
@@ -243,10 +244,8 @@ static void test_io_error(void **state)
     FILE *fp;
     (void)state;
     /* The output folder's name is taken by a regular file. */
-    assert_int_equal(tu_create("{\"window\":false}", tu_dir("a_file_dir"), &inst, err,
-                               sizeof err),
-                     RBS_OK);
-    rbsf_sdl_class()->destroy(inst);
+    assert_true(mkdir(tu_dir(""), 0777) == 0 || errno == EEXIST);
+    assert_true(mkdir(tu_dir("a_file_dir"), 0777) == 0 || errno == EEXIST);
     snprintf(path, sizeof path, "%s/blocker", tu_dir("a_file_dir"));
     fp = fopen(path, "w");
     assert_non_null(fp);
@@ -271,6 +270,178 @@ static void test_io_error(void **state)
     assert_null(inst);
     assert_non_null(strstr(err, "path:"));
     assert_non_null(strstr(err, "blocker"));
+}
+
+/* check() of path alone: RBS_OK, or the status with the message in err. */
+static rbs_status check_path(const char *json, const char *path, char *err, size_t errlen)
+{
+    rbs_renderer_config c;
+    memset(&c, 0, sizeof c);
+    c.struct_size = sizeof c;
+    c.type = "sdl";
+    c.path = path;
+    c.json = json;
+    err[0] = '\0';
+    return rbsf_sdl_class()->check(NULL, &c, NULL, err, errlen);
+}
+
+/* Paths that cannot work are refused by check() (and create()) before any
+ * folder is made: a name longer than the file system takes, at any depth
+ * (only the first missing folder's parent was checked, so "x/y/<300 z>"
+ * passed and create() left x and x/y behind); a path that with the files'
+ * names passes PATH_MAX; a folder in a file system that takes none; "-". */
+static void test_path_refused(void **state)
+{
+    char err[512], path[6000], base[1200];
+    size_t i;
+    void *inst = NULL;
+    (void)state;
+    assert_true(mkdir(tu_dir(""), 0777) == 0 || errno == EEXIST);
+    snprintf(base, sizeof base, "%s", tu_dir("path_refused"));
+    assert_true(mkdir(base, 0777) == 0 || errno == EEXIST);
+
+    /* A 300-byte name two levels below the first missing folder. */
+    i = (size_t)snprintf(path, sizeof path, "%s/x/y/", base);
+    memset(path + i, 'z', 300);
+    path[i + 300] = '\0';
+    assert_int_equal(check_path("{\"window\":false}", path, err, sizeof err), RBS_E_IO);
+    assert_non_null(strstr(err, "300 bytes long, longer than the file system takes"));
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
+    assert_null(inst);
+    snprintf(path, sizeof path, "%s/x", base);
+    assert_false(exists(path));
+
+    /* 4200 bytes of d/d/d/...: past PATH_MAX (it left ~2050 folders). */
+    i = (size_t)snprintf(path, sizeof path, "%s/", base);
+    while (i < 4200) {
+        path[i++] = 'd';
+        path[i++] = '/';
+    }
+    path[i - 1] = '\0';
+    assert_int_equal(check_path("{\"window\":false}", path, err, sizeof err), RBS_E_IO);
+    assert_non_null(strstr(err, "path: too long"));
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
+    snprintf(path, sizeof path, "%s/d", base);
+    assert_false(exists(path));
+
+    /* /proc takes no folder, though root's access(W_OK) says it may. */
+    if (exists("/proc/self")) {
+        assert_int_equal(check_path("{\"window\":false}", "/proc/rbsim-nope/png", err,
+                                    sizeof err),
+                         RBS_E_IO);
+        assert_non_null(strstr(err, "cannot create folder \"/proc/rbsim-nope\""));
+        /* and, existing, no file */
+        assert_int_equal(check_path("{\"window\":false}", "/proc", err, sizeof err),
+                         RBS_E_IO);
+        assert_non_null(strstr(err, "cannot write in folder \"/proc\""));
+    }
+
+    /* "-" is not standard output for PNG files. */
+    assert_int_equal(check_path("{\"window\":false}", "-", err, sizeof err), RBS_E_INVALID);
+    assert_non_null(strstr(err, "standard output"));
+    assert_false(exists("-"));
+
+    /* A views folder taken by a file: found by check(), before view0 is
+     * made. */
+    snprintf(path, sizeof path, "%s/views", base);
+    assert_true(mkdir(path, 0777) == 0 || errno == EEXIST);
+    snprintf(path, sizeof path, "%s/views/view1", base);
+    {
+        FILE *fp = fopen(path, "w");
+        char json[1024];
+        assert_non_null(fp);
+        fclose(fp);
+        snprintf(json, sizeof json, "{\"window\":false,%s}", kViews);
+        snprintf(path, sizeof path, "%s/views", base);
+        assert_int_equal(check_path(json, path, err, sizeof err), RBS_E_IO);
+        assert_non_null(strstr(err, "view1\" exists and is not a folder"));
+        snprintf(path, sizeof path, "%s/views/view0", base);
+        assert_false(exists(path));
+    }
+}
+
+/* The folders create() made go again (empty) when it fails at a later
+ * level, or when the renderer is destroyed without a draw (a run rejected
+ * after create, as when another output fails); folders that were there
+ * stay, and so do those of a renderer that drew. */
+static void test_folders_undone(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512], path[1600], base[1400], json[1024];
+    void *inst = NULL;
+    tu_frame f;
+    FILE *fp;
+    (void)state;
+    assert_true(mkdir(tu_dir(""), 0777) == 0 || errno == EEXIST);
+    snprintf(base, sizeof base, "%s", tu_dir("undone"));
+    assert_true(mkdir(base, 0777) == 0 || errno == EEXIST);
+    {
+        /* what a failed earlier run of this test may have left */
+        static const char *const old[] = {"new", "a/b", "a", "v/view0", "v/view1",
+                                          "v/view2", "v/view3"};
+        size_t k;
+        for (k = 0; k < sizeof old / sizeof old[0]; k++) {
+            snprintf(path, sizeof path, "%s/%s", base, old[k]);
+            rmdir(path);
+        }
+    }
+
+    /* A later level fails: "new/../blocker/png", blocker a file. */
+    snprintf(path, sizeof path, "%s/blocker", base);
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fclose(fp);
+    snprintf(path, sizeof path, "%s/new/../blocker/png", base);
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_E_IO);
+    assert_null(inst);
+    assert_non_null(strstr(err, "blocker\" exists and is not a folder"));
+    snprintf(path, sizeof path, "%s/new", base);
+    assert_false(exists(path));
+
+    /* Made, never drawn, destroyed: gone; the folder that was there stays. */
+    snprintf(path, sizeof path, "%s/a/b", base);
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_OK);
+    assert_true(exists(path));
+    cls->destroy(inst);
+    snprintf(path, sizeof path, "%s/a", base);
+    assert_false(exists(path));
+    assert_true(exists(base));
+
+    /* Views into an existing folder: only the viewK folders go. */
+    snprintf(json, sizeof json, "{\"window\":false,%s}", kViews);
+    snprintf(path, sizeof path, "%s/v", base);
+    assert_true(mkdir(path, 0777) == 0 || errno == EEXIST);
+    assert_int_equal(tu_create(json, path, &inst, err, sizeof err), RBS_OK);
+    snprintf(path, sizeof path, "%s/v/view3", base);
+    assert_true(exists(path));
+    cls->destroy(inst);
+    assert_false(exists(path));
+    snprintf(path, sizeof path, "%s/v/view0", base);
+    assert_false(exists(path));
+    snprintf(path, sizeof path, "%s/v", base);
+    assert_true(exists(path));
+
+    /* A file put in a made folder keeps it (and its parents). */
+    snprintf(path, sizeof path, "%s/c/d", base);
+    assert_int_equal(tu_create("{\"window\":false}", path, &inst, err, sizeof err), RBS_OK);
+    snprintf(path, sizeof path, "%s/c/d/mine.txt", base);
+    fp = fopen(path, "w");
+    assert_non_null(fp);
+    fclose(fp);
+    cls->destroy(inst);
+    assert_true(exists(path));
+
+    /* Drawn: the folder and its frame stay. */
+    snprintf(path, sizeof path, "%s/e/f", base);
+    assert_int_equal(tu_create("{\"window\":false,\"width\":64,\"height\":48}", path, &inst,
+                               err, sizeof err),
+                     RBS_OK);
+    tu_frame_init(&f, 0, 0.0);
+    tu_add_sphere(&f, "ball", 0, 0, 0.5, 0.5, 0xd03030);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    snprintf(path, sizeof path, "%s/e/f/frame_000000.png", base);
+    assert_true(exists(path));
 }
 
 /* Size of a file in bytes, -1 if it is missing. */
@@ -576,6 +747,8 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_legend),
         cmocka_unit_test(test_contact_sheet),
         cmocka_unit_test(test_io_error),
+        cmocka_unit_test(test_path_refused),
+        cmocka_unit_test(test_folders_undone),
         cmocka_unit_test_teardown(test_write_error, lift_file_limit),
         cmocka_unit_test(test_commands),
         cmocka_unit_test(test_commands_refused),
