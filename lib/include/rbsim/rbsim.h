@@ -222,8 +222,9 @@ typedef struct rbs_world_def {
     uint32_t max_sweeps;      /**< impulse sweeps per resting-contact pass
                                    (100 times as many for the collision pass,
                                    which an elastic impact through a chain
-                                   of touching bodies needs), selective
-                                   fix-up rounds and separation iterations;
+                                   of touching bodies needs, and for the
+                                   impacts a body takes in a selective
+                                   step) and separation iterations;
                                    default 20 */
     int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
     double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11;

@@ -10,21 +10,39 @@
  * it first touches, the collision impulse is applied there (the same
  * restitution and Coulomb friction as every method), and the pair goes on
  * with its new velocities for the rest of the step.  The rest of the world
- * keeps its full step.  New overlaps this creates are found and handled the
- * same way, earliest first, in at most max_sweeps rounds; anything left is
+ * keeps its full step.
+ *
+ * Impacts are taken in the order they happen, as an event-driven simulation
+ * within the step: every candidate impact (a pair and its first touch) waits
+ * in a queue by time, the earliest is resolved, and then only the pairs of
+ * the two re-aimed bodies are tested again, from that time on, on their new
+ * paths.  So every body's path is final up to the time of the impact being
+ * resolved, and a pair's first touch is never looked for before its later
+ * body's last re-aim: nothing earlier is left to find.  (Rounds of fix-ups,
+ * each sorted by time, as the method first did, resolved a pair at a late
+ * touch when one of its bodies had been re-aimed later in the step than the
+ * pair really met: four balls lost 1.3 % of their angular momentum in one
+ * 1 ms step.)  A candidate whose pair was re-aimed after it was found is
+ * dropped when it comes up; the re-test after that re-aim queued the pair's
+ * new first touch, if any.  A body takes at most MOST x max_sweeps impacts
+ * in a step (see MOST), and the queue has a fixed room; what is left is
  * pushed apart and reported (floor_hits, sweep_limit).
  *
  * Each body keeps the start of its current straight path: its position and
  * orientation there (in w->sub_save) and the fraction t0 where it starts
- * (w->ev_alpha[i], scratch this method borrows from the event method).
- * Cost: one step plus O(1) per impact, instead of a whole-world sub-step per
- * halving.  Accuracy: first order, like Euler.  The impact point lies
- * exactly on the Euler path; the impulse acts on the velocity the body has at
- * that time (the part of the step's force kick a dt after the impact is taken
- * away first and given back after), so a bounce neither gains nor is
- * inflated by the forces of the rest of the step.  Approaches slower than
- * one step of the forces builds are resting contact, left to the
- * warm-started resting pass and the end-of-step separation.
+ * (w->ev_alpha[i], scratch this method borrows from the event method, as
+ * it does for the impacts each body took, after them).  The queue and the
+ * first search's pair list fill the contact array (free after the solve),
+ * the neighbour adjacency the other methods' w->method_scratch.
+ * Cost: one step plus O(neighbours) per impact, instead of a whole-world
+ * sub-step per halving.  Accuracy: first order, like Euler.  The impact
+ * point lies exactly on the bodies' piecewise Euler paths; the impulse acts
+ * on the velocity the body has at that time (the part of the step's force
+ * kick a dt after the impact is taken away first and given back after), so
+ * a bounce neither gains nor is inflated by the forces of the rest of the
+ * step.  Approaches slower than one step of the forces builds are resting
+ * contact, left to the warm-started resting pass and the end-of-step
+ * separation.
  */
 #include <string.h>
 
@@ -32,33 +50,47 @@
 
 #define S RBS__SAVE_STRIDE
 #define T0(w, i) ((w)->ev_alpha[i]) /* (dense: one double a body made resident, not three) */
+#define HITS(w, i) ((w)->ev_alpha[(w)->slots + (i)]) /* impacts body i took this step */
 
-/* A violation found by the search: a pair and the fraction it first touches. */
-typedef struct violation {
+/* A candidate impact: a pair (b may be a plane) and the fraction of the
+ * step it first touches on the paths it was found on. */
+typedef struct impact {
     uint32_t a, b;
     double s;
-} violation;
+} impact;
 
-/* The fix-up rounds' neighbour list (Verlet's "neighbour list" of molecular
- * dynamics, L. Verlet, Phys. Rev. 159, 98, 1967).  The first round's broad
- * phase gives each sphere item a ball: the middle of its path (bp_center)
- * and a reach (bp_reach) of its radius, half its path and a skin of
- * SKIN radii; every pair whose balls meet is kept in the list.  While each
- * body's path, cut and re-aimed by fix-ups, stays inside its ball, two
- * bodies not on the list cannot touch, so a round only tests listed pairs
- * with a moved body instead of rebuilding the grid.  A body whose path
- * leaves its ball (or a list too long for its scratch) sends the rest of
- * the step back to the grid: the list saves work, it never decides. */
+/* The neighbour list (Verlet's "neighbour list" of molecular dynamics,
+ * L. Verlet, Phys. Rev. 159, 98, 1967).  The first search's broad phase
+ * gives each sphere item a ball: the middle of its path (bp_center) and a
+ * reach (bp_reach) of its radius, half its path and a skin of SKIN radii;
+ * every pair whose balls meet is kept in the list, and then in an
+ * adjacency (every item's neighbours).  While each body's path, cut and
+ * re-aimed by fix-ups, stays inside its ball, two bodies not on the list
+ * cannot touch, so the re-test after an impact only tests the two bodies'
+ * neighbours instead of querying the grid.  A body whose path leaves its
+ * ball (or a list too long for its scratch) sends the rest of the step back
+ * to the grid: the list saves work, it never decides. */
 #define SKIN 0.1
+
+/* The impacts a body may take in one step: MOST x max_sweeps, as the
+ * collision pass's sweeps (solver.c).  A light ball between a floor and a
+ * heavy ball falling on it is struck about pi sqrt(M/m) / 2 times before
+ * the heavy one turns back (the pi billiard), most of them at one time;
+ * a body struck more often than this is jammed, and what is left of its
+ * impacts goes to the separation pass (reported). */
+#define MOST 100u
 
 typedef struct search_ctx {
     rbs_world *w;
     double h;
+    impact *heap;               /* the queue: a binary heap, earliest first */
     uint32_t count, cap;
-    violation *out;
-    uint32_t *list;             /* item pairs, 2 per pair */
+    int left;                   /* an impact was left (no room, max_sweeps) */
+    uint32_t *list;             /* item pairs, 2 per pair (the first search) */
     uint32_t list_count, list_cap;
-    int building, list_full;    /* round 0 appends to the list */
+    int building, list_full;    /* the first search appends to the list */
+    uint32_t *adj_start, *adj;  /* item i's neighbours: adj[adj_start[i]] ..
+                                   adj[adj_start[i + 1] - 1] */
 } search_ctx;
 
 /* Position of body i at fraction s of the step (on its current path). */
@@ -69,14 +101,53 @@ static v3 pos_at(const rbs_world *w, uint32_t i, double s, double h)
     return v3_mad(v3_load(&w->sub_save[S * i]), v3_load(&w->vel[3 * i]), (s - T0(w, i)) * h);
 }
 
-static void record(search_ctx *ctx, uint32_t a, uint32_t b, double s)
+/* Does x come before y (time, then bodies, so that ties are resolved in
+ * one order on every machine)? */
+static int earlier(const impact *x, const impact *y)
 {
-    if (ctx->count < ctx->cap) {
-        ctx->out[ctx->count].a = a;
-        ctx->out[ctx->count].b = b;
-        ctx->out[ctx->count].s = s;
+    if (x->s != y->s)
+        return x->s < y->s;
+    if (x->a != y->a)
+        return x->a < y->a;
+    return x->b < y->b;
+}
+
+/* Queue the impact of a and b at s. */
+static void push(search_ctx *ctx, uint32_t a, uint32_t b, double s)
+{
+    impact e, *H = ctx->heap;
+    uint32_t k;
+    if (ctx->count == ctx->cap) {
+        ctx->left = 1;
+        return;
     }
-    ctx->count++;
+    e.a = a;
+    e.b = b;
+    e.s = s;
+    for (k = ctx->count++; k > 0 && earlier(&e, &H[(k - 1) / 2]); k = (k - 1) / 2)
+        H[k] = H[(k - 1) / 2];
+    H[k] = e;
+}
+
+/* Take the earliest impact off the queue (count > 0). */
+static impact pop(search_ctx *ctx)
+{
+    impact *H = ctx->heap, top = H[0], last = H[--ctx->count];
+    uint32_t k = 0, n = ctx->count;
+    for (;;) {
+        uint32_t c = 2 * k + 1;
+        if (c >= n)
+            break;
+        if (c + 1 < n && earlier(&H[c + 1], &H[c]))
+            c++;
+        if (!earlier(&H[c], &last))
+            break;
+        H[k] = H[c];
+        k = c;
+    }
+    if (n > 0)
+        H[k] = last;
+    return top;
 }
 
 /* Did the sphere pair (a, b) hold a load in the last resting pass (an
@@ -181,14 +252,22 @@ static int plane_violates(const rbs_world *w, uint32_t a, uint32_t p, double h, 
     return !creeping(w, a, p, n, *s);
 }
 
-static void search_pair(void *vctx, uint32_t i, uint32_t j)
+/* Test spheres items i < j and queue their impact, if any. */
+static void test_pair(search_ctx *ctx, uint32_t i, uint32_t j)
 {
-    search_ctx *ctx = (search_ctx *)vctx;
     rbs_world *w = ctx->w;
     uint32_t a = w->spheres[i], b = w->spheres[j];
     double s;
     if (w->fixed[a] && w->fixed[b])
         return;
+    if (pair_violates(w, a, b, ctx->h, &s))
+        push(ctx, a, b, s);
+}
+
+/* The broad phase's pairs: tested, and on the first search listed. */
+static void search_pair(void *vctx, uint32_t i, uint32_t j)
+{
+    search_ctx *ctx = (search_ctx *)vctx;
     if (ctx->building) {
         if (ctx->list_count < ctx->list_cap) {
             ctx->list[2 * ctx->list_count] = i;
@@ -198,39 +277,28 @@ static void search_pair(void *vctx, uint32_t i, uint32_t j)
             ctx->list_full = 1;
         }
     }
-    if (pair_violates(w, a, b, ctx->h, &s))
-        record(ctx, a, b, s);
+    test_pair(ctx, i, j);
 }
 
-/* Find every pair whose overlap grew along the current paths.  Round 0
- * (masked == 0) searches every sphere and builds the neighbour list;
- * later rounds only pairs with a sphere marked in w->bp_query, from the list
- * when *list_ok, else from a grid rebuilt at the current paths. */
-static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
+/* Test sphere a against every plane. */
+static void test_planes(search_ctx *ctx, uint32_t a)
+{
+    rbs_world *w = ctx->w;
+    uint32_t k;
+    double s;
+    for (k = 0; k < w->plane_count; ++k)
+        if (plane_violates(w, a, w->planes[k], ctx->h, &s))
+            push(ctx, a, w->planes[k], s);
+}
+
+/* The grid's pairs at the current paths: every sphere (masked == 0; the
+ * first search, which also builds the list, with the skin) or the pairs
+ * with a sphere marked in w->bp_query. */
+static void search_grid(search_ctx *ctx, int masked)
 {
     rbs_world *w = ctx->w;
     double h = ctx->h, skin = masked ? 0.0 : SKIN; /* (of the radius, in the reach) */
-    uint32_t i, k;
-    ctx->count = 0;
-    for (i = 0; i < w->sphere_count; ++i) {
-        uint32_t a = w->spheres[i];
-        double s;
-        if (w->fixed[a] || (masked && !w->bp_query[i]))
-            continue;
-        for (k = 0; k < w->plane_count; ++k)
-            if (plane_violates(w, a, w->planes[k], h, &s))
-                record(ctx, a, w->planes[k], s);
-    }
-    if (!w->plan.sphere_pairs)
-        return ctx->count;
-    if (masked && *list_ok) {
-        for (k = 0; k < ctx->list_count; ++k) {
-            uint32_t p = ctx->list[2 * k], q = ctx->list[2 * k + 1];
-            if (w->bp_query[p] || w->bp_query[q])
-                search_pair(ctx, p, q);
-        }
-        return ctx->count;
-    }
+    uint32_t i;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t a = w->spheres[i];
         v3 p0 = pos_at(w, a, T0(w, a), h), p1 = v3_load(&w->pos[3 * a]);
@@ -240,12 +308,37 @@ static uint32_t search(search_ctx *ctx, int masked, int *list_ok)
     ctx->building = !masked;
     rbs__broadphase_pairs(w, NULL, w->sphere_count, masked ? w->bp_query : NULL, skin, search_pair, ctx);
     ctx->building = 0;
-    *list_ok = !masked && !ctx->list_full;
-    return ctx->count;
 }
 
-/* Is body i's current path inside its ball of round 0 (see SKIN)?  Its
- * start is on an earlier path that was; the end decides. */
+/* The list as an adjacency in words uint32_t of scratch at mem: 1, or 0
+ * when it does not fit (or the list was full). */
+static int build_adjacency(search_ctx *ctx, uint32_t *mem, size_t words)
+{
+    const rbs_world *w = ctx->w;
+    uint32_t n = w->sphere_count, k, i, *start = mem, *adj = mem + n + 1;
+    if (ctx->list_full || (size_t)n + 1 + 2 * (size_t)ctx->list_count > words)
+        return 0;
+    memset(start, 0, ((size_t)n + 1) * sizeof *start);
+    for (k = 0; k < 2 * ctx->list_count; ++k)
+        start[ctx->list[k] + 1]++;
+    for (i = 0; i < n; ++i)
+        start[i + 1] += start[i];
+    /* fill with start[i] as item i's cursor, then shift the cursors back */
+    for (k = 0; k < ctx->list_count; ++k) {
+        uint32_t p = ctx->list[2 * k], q = ctx->list[2 * k + 1];
+        adj[start[p]++] = q;
+        adj[start[q]++] = p;
+    }
+    for (i = n; i > 0; --i)
+        start[i] = start[i - 1];
+    start[0] = 0;
+    ctx->adj_start = start;
+    ctx->adj = adj;
+    return 1;
+}
+
+/* Is body i's current path inside its ball of the first search (see
+ * SKIN)?  Its start is on an earlier path that was; the end decides. */
 static int inside_ball(const rbs_world *w, uint32_t i)
 {
     uint32_t k = w->item[i];
@@ -253,10 +346,49 @@ static int inside_ball(const rbs_world *w, uint32_t i)
     return v3_len(v3_sub(v3_load(&w->pos[3 * i]), c)) + w->radius[i] <= w->bp_reach[k];
 }
 
-/* Later first touch, for ordering violations by it (rbs__heap_sort). */
-static int later(const void *x, const void *y)
+/* Is body i a sphere that moves (one that an impact re-aims)? */
+static int moving_sphere(const rbs_world *w, uint32_t i)
 {
-    return ((const violation *)x)->s > ((const violation *)y)->s;
+    return w->type[i] == RBS_BODY_SPHERE && !w->fixed[i];
+}
+
+/* After an impact of a and b re-aimed them: queue every impact of theirs on
+ * their new paths, from the neighbour list when list_ok, else the grid. */
+static void retest(search_ctx *ctx, uint32_t a, uint32_t b, int list_ok)
+{
+    rbs_world *w = ctx->w;
+    const uint32_t body[2] = {a, b};
+    int m;
+    for (m = 0; m < 2; ++m)
+        if (moving_sphere(w, body[m]))
+            test_planes(ctx, body[m]);
+    if (!w->plan.sphere_pairs)
+        return;
+    if (!list_ok) {
+        for (m = 0; m < 2; ++m)
+            if (moving_sphere(w, body[m]))
+                w->bp_query[w->item[body[m]]] = 1;
+        search_grid(ctx, 1);
+        for (m = 0; m < 2; ++m)
+            if (w->type[body[m]] == RBS_BODY_SPHERE)
+                w->bp_query[w->item[body[m]]] = 0;
+        return;
+    }
+    for (m = 0; m < 2; ++m) {
+        uint32_t p, k;
+        if (!moving_sphere(w, body[m]))
+            continue;
+        p = w->item[body[m]];
+        for (k = ctx->adj_start[p]; k < ctx->adj_start[p + 1]; ++k) {
+            uint32_t q = ctx->adj[k];
+            if (m == 1 && q == w->item[a] && moving_sphere(w, a))
+                continue; /* (tested from a's side) */
+            if (p < q)
+                test_pair(ctx, p, q);
+            else
+                test_pair(ctx, q, p);
+        }
+    }
 }
 
 /* Move body i back along its path to fraction s and start a new path there. */
@@ -335,12 +467,14 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
 rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
 {
     const double dt = w->def.dt;
-    /* scratch after the solve: the contact array, half for violations and
-     * half for the neighbour list */
+    /* scratch after the solve: the contact array, half for the queue and
+     * half for the neighbour list; method_scratch (the other methods')
+     * for its adjacency */
     size_t half = (size_t)w->def.max_contacts * sizeof(rbs__contact) / 2;
-    violation *v = (violation *)(void *)w->contact;
-    uint32_t cap = (uint32_t)(half / sizeof(violation));
-    uint32_t round, i, n = 0, contacts;
+    size_t words = ((size_t)RBS__SCRATCH_STRIDE * w->def.max_bodies + RBS__SCRATCH_EXTRA) * sizeof(double) /
+                   sizeof(uint32_t);
+    const double most = (double)MOST * w->def.max_sweeps;
+    uint32_t i, contacts;
     int list_ok = 0;
     search_ctx ctx;
     rbs_status st;
@@ -355,53 +489,60 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     rbs__solve_resting_warm(w, info, dt);
     rbs__integrate_positions(w, dt);
     contacts = rbs__touching(w);
-    for (i = 0; i < w->slots; ++i)
+    for (i = 0; i < w->slots; ++i) {
         T0(w, i) = 0.0;
+        HITS(w, i) = 0.0;
+    }
 
-    /* selective rollback: overlapping pairs only, earliest first */
+    /* selective rollback: the impacts on the Euler paths queued, and the
+     * neighbour list built */
+    memset(&ctx, 0, sizeof ctx);
     ctx.w = w;
     ctx.h = dt;
-    ctx.cap = cap;
-    ctx.out = v;
+    ctx.heap = (impact *)(void *)w->contact;
+    ctx.cap = (uint32_t)(half / sizeof(impact));
     ctx.list = (uint32_t *)(void *)((unsigned char *)w->contact + half);
-    ctx.list_count = 0;
     ctx.list_cap = (uint32_t)(half / (2 * sizeof(uint32_t)));
-    ctx.list_full = 0;
-    ctx.building = 0;
-    for (round = 0; round < w->def.max_sweeps; ++round) {
-        /* after the first round only bodies moved by a fix-up can overlap anew */
-        n = search(&ctx, round > 0, &list_ok);
+    for (i = 0; i < w->sphere_count; ++i)
+        if (!w->fixed[w->spheres[i]])
+            test_planes(&ctx, w->spheres[i]);
+    if (w->plan.sphere_pairs) {
         memset(w->bp_query, 0, w->sphere_count);
-        if (n == 0)
-            break;
-        if (n > cap)
-            n = cap;
-        rbs__heap_sort(v, n, sizeof *v, later);
-        for (i = 0; i < n; ++i) {
-            double s;
-            uint32_t a = v[i].a, b = v[i].b;
-            int still = w->type[b] == RBS_BODY_PLANE ? plane_violates(w, a, b, dt, &s)
-                                                     : pair_violates(w, a, b, dt, &s);
-            if (!still)
-                continue; /* an earlier fix-up already changed this pair */
-            cut_path(w, a, s, dt);
-            cut_path(w, b, s, dt);
-            late_kick(w, a, s, -1.0);
-            late_kick(w, b, s, -1.0);
-            collide_now(w, a, b, dt, info);
-            late_kick(w, a, s, 1.0);
-            late_kick(w, b, s, 1.0);
-            finish_path(w, a, dt);
-            finish_path(w, b, dt);
-            w->bp_query[w->item[a]] = 1;
-            if (w->type[b] == RBS_BODY_SPHERE)
-                w->bp_query[w->item[b]] = 1;
-            if (list_ok && (!inside_ball(w, a) || (w->type[b] == RBS_BODY_SPHERE && !inside_ball(w, b))))
-                list_ok = 0; /* a path left its ball: the grid from now on */
-            info->rollbacks++;
-        }
+        search_grid(&ctx, 0);
+        list_ok = build_adjacency(&ctx, (uint32_t *)(void *)w->method_scratch, words);
     }
-    if (n > 0 && round == w->def.max_sweeps) {
+
+    /* the earliest impact first, until none is left */
+    while (ctx.count > 0) {
+        impact e = pop(&ctx);
+        uint32_t a = e.a, b = e.b;
+        double s;
+        int still = w->type[b] == RBS_BODY_PLANE ? plane_violates(w, a, b, dt, &s)
+                                                 : pair_violates(w, a, b, dt, &s);
+        if (!still || s != e.s)
+            continue; /* re-aimed since it was found: its re-test queued what is left */
+        if ((moving_sphere(w, a) && HITS(w, a) >= most) || (moving_sphere(w, b) && HITS(w, b) >= most)) {
+            ctx.left = 1; /* (a body jammed: see MOST) */
+            continue;
+        }
+        HITS(w, a) += 1.0;
+        if (w->type[b] == RBS_BODY_SPHERE)
+            HITS(w, b) += 1.0;
+        cut_path(w, a, s, dt);
+        cut_path(w, b, s, dt);
+        late_kick(w, a, s, -1.0);
+        late_kick(w, b, s, -1.0);
+        collide_now(w, a, b, dt, info);
+        late_kick(w, a, s, 1.0);
+        late_kick(w, b, s, 1.0);
+        finish_path(w, a, dt);
+        finish_path(w, b, dt);
+        if (list_ok && (!inside_ball(w, a) || (w->type[b] == RBS_BODY_SPHERE && !inside_ball(w, b))))
+            list_ok = 0; /* a path left its ball: the grid from now on */
+        info->rollbacks++;
+        retest(&ctx, a, b, list_ok);
+    }
+    if (ctx.left) {
         /* what is left is pushed apart by the separation pass that
          * rbs_world_step runs after every selective step */
         info->sweep_limit++;

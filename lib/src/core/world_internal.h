@@ -270,7 +270,8 @@ struct rbs_world {
 
     /* methods (step_verlet.c, step_rk4.c, step_adaptive.c, step_soft.c) */
     double *method_scratch;               /* RBS__SCRATCH_STRIDE per slot, and
-                                             RBS__SCRATCH_EXTRA more */
+                                             RBS__SCRATCH_EXTRA more (also
+                                             selective's neighbour adjacency) */
     double *method_state;                 /* 8: adaptive's step-size suggestion, ... */
     struct rbs__adaptive *adaptive;       /* GSL workspaces (malloc'd); NULL unless reserved */
 };
