@@ -67,8 +67,11 @@ static rbs_status dumper_create(void *context, const rbs_renderer_config *config
     }
     if (format->header != NULL) {
         rbsf__out_put(&d->out, format->header, strlen(format->header));
-        st = rbsf__out_commit(&d->out, err, errlen);
+        char why[512];
+        st = rbsf__out_commit(&d->out, why, sizeof why);
         if (st != RBS_OK) {
+            /* before frame 0: say it was the header line */
+            snprintf(err, errlen, "header line: %s", why);
             rbsf__out_free(&d->out);
             free(d);
             return st;

@@ -1188,10 +1188,13 @@ class FaultTests(Base):
         self.assertEqual(r.returncode, 4)
         self.assertIn("'/dev/full'", r.stderr)
         self.assertIn("No space left on device", r.stderr)
+        # the CSV's first write is its header line, before any frame: named
+        self.assertIn("header line", r.stderr)
         r = self.rbsim("run", s, "--csv", "ok.csv", "--json", "/dev/full",
                        "--steps", "1000")
         self.assertEqual(r.returncode, 4)
         self.assertIn("json renderer '/dev/full'", r.stderr)
+        self.assertIn("frame 0", r.stderr)
         self.assertIn("No space left on device", r.stderr)
         self.assert_whole_frames(self.path("ok.csv"))
 
