@@ -56,7 +56,8 @@ static const char *method_summary(rbs_method m)
     case RBS_METHOD_EULER:
         return "semi-implicit Euler sub-steps (v += a h, then x += v h); 1 force evaluation per sub-step";
     case RBS_METHOD_SELECTIVE:
-        return "semi-implicit Euler sub-steps; only the groups of bodies that overlap roll back";
+        return "one semi-implicit Euler step; each pair that overlaps is moved back along its path "
+               "to its first touch and struck there, impacts in time order";
     case RBS_METHOD_EVENT:
         return "exact event-driven motion between impacts (closed-form trajectories, root-found events)";
     case RBS_METHOD_VERLET:
@@ -130,6 +131,15 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
             put(&t, "  soft_tolerance %g: not used, every frame takes all sub-steps (this world steps "
                     "in the general layout: mutual gravity, rolling or spinning resistance, or an "
                     "anisotropic or off-centre sphere)\n", w->def.soft_tolerance);
+    } else if (m == RBS_METHOD_SELECTIVE && p.uneven) {
+        put(&t, "  selective: this world steps as euler (sub-steps, whole-world rollback): a moving "
+                "sphere is anisotropic or has its centre of mass off its centre, which a fix-up's "
+                "straight path cannot follow\n");
+        put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
+            (unsigned)w->def.max_halvings);
+    } else if (m == RBS_METHOD_SELECTIVE) {
+        put(&t, "  impacts found on the step's straight paths; each pair moved back to its first touch "
+                "(at most %u impacts a body a step)\n", (unsigned)(100u * w->def.max_sweeps));
     } else if (m != RBS_METHOD_EVENT) {
         put(&t, "  overlap check after every sub-step; rollback with h/2 down to dt/2^%u\n",
             (unsigned)w->def.max_halvings);

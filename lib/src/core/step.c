@@ -91,7 +91,7 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
          * arm is computed, never exactly along the normal) that the
          * gyroscopic term then sees, so angular motion must run too */
         if (!w->isotropic[s] || nonzero3(&w->com_body[3 * s]))
-            p.gyroscopic = p.angular = 1;
+            p.gyroscopic = p.angular = p.uneven = 1;
     }
     if (p.friction)
         p.angular = 1;

@@ -115,6 +115,9 @@ typedef struct rbs__plan {
                           spinning resistance, no mutual gravity (from the
                           bodies alone, never pruned: a pruned and a full
                           pipeline take the same layout, bit for bit) */
+    int uneven;        /* some moving sphere is anisotropic or has its centre
+                          of mass off its centre: selective steps as euler
+                          (never pruned) */
     int consecutive;   /* the spheres hold consecutive slots (spheres[k] =
                           spheres[0] + k: a scene of planes then spheres,
                           every pile): detection reads their centres from
