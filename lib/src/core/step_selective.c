@@ -226,14 +226,13 @@ static impact pop(search_ctx *ctx)
     return top;
 }
 
-/* Did the sphere pair (a, b) hold a load in the last resting pass (an
- * entry of the warm table, in key order since rbs__detect)?  Else its
- * resting threshold is only the press along n (contact.c, unloaded_pairs). */
+/* Does the sphere pair (a, b) keep the whole resting threshold (it, or
+ * both its spheres against others, held a load in this step's resting
+ * pass: rbs__pair_pressed, w->pressed marked after the pass)?  Else its
+ * threshold is only the press along n (contact.c, unloaded_pairs). */
 static int pair_loaded(const rbs_world *w, uint32_t a, uint32_t b)
 {
-    uint32_t at = 0, at2 = 0;
-    return rbs__warm_find(w, rbs__warm_key_of(0, a, b), &at) != NULL ||
-           rbs__warm_find(w, rbs__warm_key_of(0, b, a), &at2) != NULL;
+    return rbs__pair_pressed(w, a, b);
 }
 
 /* Is the approach along n slower than one step of the applied forces can
@@ -588,6 +587,8 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     rbs__solve_resting_warm(w, info, dt);
     rbs__integrate_positions(w, dt);
     contacts = rbs__touching(w);
+    rbs__warm_sort(w); /* (in key order for rbs__pair_pressed) */
+    rbs__mark_pressed(w);
     for (i = 0; i < w->slots; ++i) {
         T0(w, i) = 0.0;
         HITS(w, i) = 0.0;

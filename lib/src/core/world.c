@@ -353,6 +353,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
     }
     x->ev_alpha = carve(base, &at, 3 * B * sizeof(double));
     x->ev_mode = carve(base, &at, B * sizeof(int32_t));
+    x->pressed = carve(base, &at, B);
     x->ev_plane = carve(base, &at, B * sizeof(uint32_t));
     x->shock_order = carve(base, &at, (C + B + 2) * sizeof(uint32_t));
     return at;

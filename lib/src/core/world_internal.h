@@ -231,6 +231,9 @@ struct rbs_world {
     uint32_t *bp_start, *bp_fill;         /* bp_table_size + 1, bp_table_size */
     uint32_t bp_table_size;               /* power of two >= 2 * max_bodies */
     uint8_t *bp_query;                    /* per item: query mask (selective) */
+    uint8_t *pressed;                     /* per slot: a sphere that held a load
+                                             against another sphere in the last
+                                             resting pass (rbs__mark_pressed) */
     int32_t *bp_cell;                     /* 3 per item: grid cell */
     /* the candidate-pair list (broadphase.c, rbs__broadphase_pairs) */
     double *vl_pos;                       /* 3 per item: centres at its build */
@@ -621,6 +624,13 @@ double rbs__resting_threshold(v3 aa, v3 ab, v3 n, double dt);
 /* Its part along n alone: the approach one step of the forces that press
  * the pair together builds, m/s (0 if they pull it apart). */
 double rbs__press_threshold(v3 aa, v3 ab, v3 n, double dt);
+/* w->pressed from the warm table as it is (contact.c). */
+void rbs__mark_pressed(rbs_world *w);
+/* Does the sphere pair a, b keep the whole resting threshold: it held a
+ * load in the last resting pass (its warm entry, in key order), or both
+ * spheres held one against other spheres (w->pressed: neighbours in a
+ * pile)?  Else only the forces' press along n (contact.c). */
+int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* Rolling and spinning resistance at contact i, Jn > 0 (solver.c); returns
  * the square of the velocity change it made, 0 if none. */
