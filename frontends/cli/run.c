@@ -1601,6 +1601,17 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
                      "or shorten dt)\n",
                 (unsigned long long)info->work_limited, (unsigned long long)steps, cap);
     }
+    if (info->floor_hit_steps > 0)
+        fprintf(out, "overlap: %llu of %llu steps pushed overlap apart instead of resolving "
+                     "it (a sub-step at the rollback floor, dt / 2^30; or a body jammed in a "
+                     "selective step, simulation.max_sweeps): the impacts there are not "
+                     "exact (--stats' max_overlap shows the overlap; shorten dt, or raise "
+                     "max_sweeps)\n",
+                (unsigned long long)info->floor_hit_steps, (unsigned long long)steps);
+    if (info->sweep_limited > 0)
+        fprintf(out, "sweeps: %llu of %llu steps had a contact pass stop at max_sweeps with "
+                     "its impulses not converged (raise simulation.max_sweeps)\n",
+                (unsigned long long)info->sweep_limited, (unsigned long long)steps);
     fprintf(out, "wall time %.3f s, %.0f steps/s\n", info->wall_time,
             info->wall_time > 0 ? (double)steps / info->wall_time : 0.0);
     fprintf(out, "energy: %.9g J at the start, %.9g J at the end (drift %+.3g J",

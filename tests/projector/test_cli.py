@@ -339,6 +339,35 @@ class CliTests(Base):
                                       "must be an integer from 1 to 4294967295 (2^32 - 1), "
                                       "got 0")
 
+    def test_jam_and_sweep_limit_are_reported(self):
+        """A ball at 1000 m/s between two walls 20 um wider than it takes
+        ~5,000 impacts a step; selective stops a body at 2,000 a step
+        (100 x max_sweeps) and pushes what is left apart.  Only the C and
+        Python step reports said so: the run's summary looked clean (a
+        probe of session 43).  Now it counts the steps with overlap pushed
+        apart and those with a pass at max_sweeps; a quiet run says
+        neither."""
+        bodies = [
+            {"name": "b", "type": "sphere", "radius": 0.1, "mass": 1,
+             "position": [0, 0, 0], "velocity": [1000, 0, 0]},
+            {"name": "l", "type": "plane", "point": [-0.10001, 0, 0], "normal": [1, 0, 0]},
+            {"name": "r", "type": "plane", "point": [0.10001, 0, 0], "normal": [-1, 0, 0]}]
+        sim = {"steps": 20, "dt": 0.001, "gravity": [0, 0, 0], "restitution": 1,
+               "method": "selective"}
+        mats = [{"pair": ["*", "*"], "static": 0, "kinetic": 0, "restitution": 1}]
+        s = self.scene("walls.json", bodies=bodies, simulation=sim, materials=mats)
+        r = self.rbsim("run", s)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("overlap: 20 of 20 steps pushed overlap apart instead of resolving it",
+                      r.stdout)
+        self.assertIn("sweeps: 20 of 20 steps had a contact pass stop at max_sweeps", r.stdout)
+        s = self.scene("walls2.json", bodies=[dict(bodies[0], velocity=[1, 0, 0])] + bodies[1:],
+                       simulation=sim, materials=mats)
+        r = self.rbsim("run", s)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("overlap:", r.stdout)
+        self.assertNotIn("sweeps:", r.stdout)
+
     def setting_binds_checkpoint(self, key, made, other, bad, message):
         """A soft scene's simulation.KEY reaches the world: a checkpoint
         made with KEY = made does not resume with KEY = other, and resumes

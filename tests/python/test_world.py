@@ -580,3 +580,21 @@ def test_ctrl_c_during_step_lands_within_about_a_step():
     reference = _gravitating()
     reference.step(made + 1)
     assert reference.hash() == w.hash()
+
+
+def test_run_counts_jams_and_sweep_limits():
+    """RunInfo counts the steps whose overlap was pushed apart instead of
+    resolved and those with a contact pass at max_sweeps, as StepInfo's
+    floor_hits and sweep_limit do a step: a ball at 1000 m/s between walls
+    20 um wider than it jams every selective step (2,000 impacts a body a
+    step); at 1 m/s none does."""
+    def rattle(speed):
+        w = rbsim.World(dt=0.001, gravity=(0, 0, 0), restitution=1.0, method="selective")
+        w.add_plane("l", point=(-0.10001, 0, 0), normal=(1, 0, 0))
+        w.add_plane("r", point=(0.10001, 0, 0), normal=(-1, 0, 0))
+        w.add_sphere("b", radius=0.1, mass=1.0, velocity=(speed, 0, 0))
+        return w
+    info = rattle(1000.0).run(20)
+    assert info.floor_hit_steps == 20 and info.sweep_limited == 20
+    info = rattle(1.0).run(20)
+    assert info.floor_hit_steps == 0 and info.sweep_limited == 0

@@ -120,6 +120,12 @@ class RunInfo:
     #: steps that hit their work cap (:attr:`StepInfo.work_limit`): their
     #: impacts may be missed or wrong
     work_limited: int = 0
+    #: steps whose overlap was pushed apart instead of resolved
+    #: (:attr:`StepInfo.floor_hits` > 0)
+    floor_hit_steps: int = 0
+    #: steps with a contact pass at max_sweeps (:attr:`StepInfo.sweep_limit`
+    #: > 0): impulses not converged
+    sweep_limited: int = 0
 
 
 class StopRun(Exception):
@@ -604,7 +610,8 @@ def _run_info(s: Any) -> RunInfo:
                    int(s.steps), bool(s.endless), int(s.captured), int(s.drawn), int(s.frame),
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
-                   float(s.energy_last), float(s.wall_time), int(s.work_limited))
+                   float(s.energy_last), float(s.wall_time), int(s.work_limited),
+                   int(s.floor_hit_steps), int(s.sweep_limited))
 
 
 def start_world(world: World, steps: Optional[int] = None,

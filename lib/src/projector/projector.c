@@ -87,6 +87,7 @@ struct rbs_projector {
     rbs_status result;    /* first error, or RBS_OK */
     char error[ERROR_MAX];
     uint64_t captured, drawn, frame_drawn, substeps, rollbacks, collisions, work_limited;
+    uint64_t floor_hit_steps, sweep_limited;
     uint64_t frame_made; /* number of the last frame captured */
     double time_drawn, energy_initial, energy_last;
     double t_start, t_end;
@@ -499,6 +500,8 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     p->rollbacks += info->rollbacks;
     p->collisions += info->colliding;
     p->work_limited += info->work_limit != 0;
+    p->floor_hit_steps += info->floor_hits != 0;
+    p->sweep_limited += info->sweep_limit != 0;
     pthread_mutex_unlock(&p->mu);
 
     slot->paused = paused;
@@ -1035,6 +1038,8 @@ static void status_locked(rbs_projector *p, rbs_run_info *info)
     info->rollbacks = p->rollbacks;
     info->collisions = p->collisions;
     info->work_limited = p->work_limited;
+    info->floor_hit_steps = p->floor_hit_steps;
+    info->sweep_limited = p->sweep_limited;
     info->energy_initial = p->energy_initial;
     info->energy_last = p->energy_last;
     if (p->started)
