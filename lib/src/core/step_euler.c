@@ -16,6 +16,13 @@
  * floor dt / 2^max_halvings, where the overlap is accepted, pushed apart and
  * reported.  After an accepted sub-step h doubles again.  Time is kept in
  * integer units of the floor, so a frame always ends exactly at dt.
+ *
+ * The work cap (max_substeps) bounds the sub-steps tried, accepted or
+ * rolled back, strictly: a rollback is taken only while two more tries (the
+ * retry and the rest of the frame) fit, and the last try allowed takes the
+ * rest of the frame at once, its overlap pushed apart.  work_limit is set
+ * only if the cap changed something: a rollback refused, or a sub-step
+ * longer than the uncapped schedule's.
  */
 #include <string.h>
 
@@ -154,7 +161,9 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
     const uint64_t total = (uint64_t)1 << K;
+    const uint64_t cap = w->def.max_substeps;
     uint64_t done = 0, hu = total; /* progress and sub-step, in units of dt/2^K */
+    uint64_t hu_free = total;      /* the sub-step the uncapped schedule would take */
     double pen = 0.0, first = 1.0;
     rbs__coarse coarse;
     rbs_status st;
@@ -165,8 +174,17 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
          * accepted sub-steps (an impact retried after a rollback counted
          * once per try: 329 for the 314 of a 100^2:1 pi billiard) */
         const uint32_t colliding = info->colliding, resting = info->resting;
+        /* tries so far, this one excluded (adaptive's rest of a frame
+         * counts the free flight's steps before it too) */
+        const uint64_t tries = (uint64_t)info->substeps + info->rollbacks;
         if (hu > total - done)
             hu = total - done;
+        if (hu_free > total - done)
+            hu_free = total - done;
+        if (tries + 1 >= cap)
+            hu = total - done; /* the last try the cap allows: the rest at once */
+        if (hu > hu_free)
+            info->work_limit = 1; /* longer than the uncapped schedule's */
         h = span * ((double)hu / (double)total);
         /* until a sub-step is accepted the world is at the frame's start,
          * which rbs_world_step has just saved: no copy (and, for a frame of
@@ -185,18 +203,23 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
              * grow -- far from the origin -- would be rolled back forever) */
             if (coarse.a != UINT32_MAX)
                 return rbs__coarse_error(w, &coarse);
-            if (hu > 1 && !info->work_limit) {
+            if (hu > 1 && tries + 3 <= cap) {
                 /* Retry with at most half the sub-step (the seed's rule);
                  * when the straight-line time of first touch is earlier,
-                 * jump there at once instead of halving step by step. */
+                 * jump there at once instead of halving step by step.
+                 * (The cap leaves room for this try, the retry and the
+                 * rest of the frame.) */
                 uint64_t toi = (uint64_t)((double)hu * first);
                 rbs__restore_state(w, save);
                 info->colliding = colliding;
                 info->resting = resting;
                 info->rollbacks++;
                 hu = (toi >= 1 && toi < hu / 2) ? toi : hu / 2;
+                hu_free = hu;
                 continue;
             }
+            if (hu > 1)
+                info->work_limit = 1; /* a rollback the cap refused */
             info->floor_hits++;
             rbs__separate(w, NULL);
         }
@@ -204,12 +227,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
         info->substeps++;
         if (hu < total)
             hu <<= 1; /* grow back after an accepted sub-step */
-        if (!info->work_limit && info->substeps + info->rollbacks >= w->def.max_substeps) {
-            /* bounded work: the rest of the frame in one sub-step, overlap
-             * pushed apart instead of rolled back (reported) */
-            info->work_limit = 1;
-            hu = total;
-        }
+        hu_free = hu;
     }
     info->contacts = rbs__touching(w);
     info->max_overlap = pen;

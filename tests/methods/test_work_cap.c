@@ -1,0 +1,117 @@
+/*
+ * test_work_cap.c - the work cap (rbs_world_def.max_substeps): what a step
+ * may spend, when it says it hit the cap (work_limit), and that a capped
+ * step stays stable.
+ */
+#include "methods_common.h"
+
+static const rbs_method rollback_methods[3] = {RBS_METHOD_EULER, RBS_METHOD_VERLET, RBS_METHOD_RK4};
+
+/* A weightless world for method m with the work cap max_substeps. */
+static rbs_world *cap_world(rbs_method m, uint32_t max_substeps, double dt, double gz)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_world_def_init(&d);
+    d.max_bodies = 8;
+    d.dt = dt;
+    d.gravity.z = gz;
+    d.restitution = 1.0;
+    d.method = m;
+    d.max_substeps = max_substeps;
+    CHECK_OK(rbs_world_create(&d, &w));
+    return w;
+}
+
+/* A frame taken in one clean sub-step is not capped, even at a cap of 1:
+ * the two-body orbit (mutual gravity, no contact) with euler, verlet and
+ * rk4, and adaptive's resting-contact rk4 path (a touching row of balls,
+ * the first moving into the others).  work_limit said every step hit the
+ * cap. */
+static void clean_frame_at_cap_is_not_capped(void **state)
+{
+    int k, f;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_body_id a, b;
+        rbs_world_def_init(&d);
+        d.max_bodies = 4;
+        d.dt = 1e-3;
+        d.gravity.z = 0.0;
+        d.method = rollback_methods[k];
+        d.mutual_gravity = 1;
+        d.gravity_constant = 1.0;
+        d.max_substeps = 1;
+        CHECK_OK(rbs_world_create(&d, &w));
+        a = point_mass(w, 1.0, 0.5, 0.0, 0.0, 0.5 * sqrt(2.0));
+        b = point_mass(w, 1.0, -0.5, 0.0, 0.0, -0.5 * sqrt(2.0));
+        (void)a, (void)b;
+        for (f = 0; f < 100; ++f) {
+            rbs_step_info info;
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.substeps, 1);
+            assert_int_equal(info.work_limit, 0);
+        }
+        rbs_world_destroy(w);
+    }
+    {
+        rbs_world *w = cap_world(RBS_METHOD_ADAPTIVE, 1, 1e-3, 0.0);
+        int i;
+        ball(w, 0.0625, 1.0, 0.0, 0, 0, 1.0, 0, 0, (rbs_material_id){0, 0});
+        for (i = 1; i < 5; ++i)
+            ball(w, 0.0625, 1.0, 0.125 * i, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+        for (f = 0; f < 100; ++f) {
+            rbs_step_info info;
+            CHECK_OK(rbs_world_step(w, &info));
+            assert_int_equal(info.work_limit, 0);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* The cap bounds a step's tries strictly: sub-steps + rollbacks <= cap
+ * (they overshot by up to max_halvings + 1: rollbacks were checked only
+ * after an accepted sub-step).  The 1e4:1 pi billiard at dt = 10 ms (314
+ * impacts, many in one frame) with caps 1 to 9; the steps past their cap
+ * say so. */
+static void cap_is_strict(void **state)
+{
+    uint32_t cap;
+    int k;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        for (cap = 1; cap <= 9; ++cap) {
+            rbs_world *w = cap_world(rollback_methods[k], cap, 1e-2, 0.0);
+            rbs_plane_def p;
+            int f, capped = 0;
+            rbs_plane_def_init(&p);
+            p.normal.x = 1.0;
+            p.normal.z = 0.0;
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            ball(w, 0.1, 1.0, 0.5, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+            ball(w, 0.1, 1e4, 1.0, 0, 0, -1.0, 0, 0, (rbs_material_id){0, 0});
+            for (f = 0; f < 300; ++f) {
+                rbs_step_info info;
+                CHECK_OK(rbs_world_step(w, &info));
+                if (info.substeps + info.rollbacks > cap)
+                    fail_msg("%s, cap %u, step %d: %u sub-steps + %u rollbacks",
+                             rbs_method_name(rollback_methods[k]), (unsigned)cap, f, (unsigned)info.substeps,
+                             (unsigned)info.rollbacks);
+                capped += info.work_limit != 0;
+            }
+            assert_true(capped > 0);
+            rbs_world_destroy(w);
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(clean_frame_at_cap_is_not_capped),
+        cmocka_unit_test(cap_is_strict),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
