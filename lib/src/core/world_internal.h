@@ -743,9 +743,19 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
                               int speculative, int at_step_start, double span);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
  * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
- * isotropic body), and within the step's budget (max_substeps * 256 in all);
- * past the budget 1, with info->work_limit set. */
-int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact);
+ * isotropic body), and within the step's budget (max_substeps * 256 in all).
+ * Past the budget *stable is set, info->work_limit too, and the count is
+ * the parts (the budget's rest, at least 1) to take with rbs__spin_stable. */
+int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact, int *stable);
+/* Body i's rotation over h from (*q, *om) under the world-frame torque tau
+ * in n parts, each as euler takes it: L = I(q) w kicked by half the torque's
+ * impulse, q turned by the part's middle angular velocity (wm = I(q_mid)^-1
+ * L), the other half kick; then w = I(q')^-1 L.  Without torque |L| is kept
+ * exactly, so the energy L.I^-1 L / 2 stays between |L|^2 / (2 I_max) and
+ * |L|^2 / (2 I_min) at any angle per part: stable where verlet's and rk4's
+ * rotation blow up.  The mean of the parts' turning velocities into *mean
+ * (may be NULL). */
+void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, quat *q, v3 *om, v3 *mean);
 /* Orientation at the end of a verlet or rk4 sub-step of h after the contact
  * impulses changed the angular velocity to om.  A body whose rotation was
  * sub-stepped (spun: it ended at qe, we) takes half of the impulses' change
