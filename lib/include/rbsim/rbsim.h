@@ -239,19 +239,21 @@ typedef struct rbs_world_def {
                                    fit, and the last try takes the rest of
                                    the frame as one sub-step with its
                                    overlap pushed apart instead of rolled
-                                   back -- impacts in it may be missed or
-                                   wrong, a ball may pass through another
-                                   (reported in work_limit);
-                                   also this many contact events of adaptive
-                                   in one frame (then the same, its rest one
+                                   back (a push against a fixed body takes
+                                   its potential energy back from the
+                                   normal speed) -- impacts in it may be
+                                   missed or wrong, a ball may pass through
+                                   another (reported in work_limit); also
+                                   this many contact events of adaptive in
+                                   one frame (then the same, its rest one
                                    RK4 sub-step), 256x this many rotation
                                    sub-steps (verlet, rk4; then the rest of
                                    the turn by euler's stable update, |L|
-                                   kept, and work_limit)
-                                   and events (event; then
-                                   RBS_E_UNSUPPORTED), 25x this many adaptive
-                                   steps (then RBS_E_NUMERIC); default 4096,
-                                   >= 1 (a scene's simulation.max_substeps) */
+                                   kept, and work_limit) and events (event;
+                                   then RBS_E_UNSUPPORTED), 25x this many
+                                   adaptive steps (then RBS_E_NUMERIC);
+                                   default 4096, >= 1 (a scene's
+                                   simulation.max_substeps) */
     uint32_t soft_substeps;   /**< sub-steps per frame of RBS_METHOD_SOFT, each
                                    one solve and one relax pass over the
                                    contacts; default 3, 1 to 1000.  More
