@@ -66,8 +66,8 @@ static void spin_verlet(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, d
         rbs__spin_stable(w, i, tau, h, m, &q, &om, NULL);
         m = 0;
     }
-    hs = h / (m > 0 ? m : 1);
-    for (k = 0; k < m; ++k) { /* (none past the budget) */
+    hs = m > 0 ? h / m : h;
+    for (k = 0; k < m; ++k) {
         v3 wh = v3_mad(om, rbs__angular_acceleration(w, i, tau, om, q), 0.5 * hs), wp;
         if (wh.x != 0.0 || wh.y != 0.0 || wh.z != 0.0)
             q = q_normalize(q_mul(q_from_rotation(wh, hs), q));
