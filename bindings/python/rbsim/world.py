@@ -139,10 +139,12 @@ class StepInfo:
     events: int         #: events processed (event method)
     max_overlap: float  #: deepest overlap at the end of a step, m
     steps: int = 1      #: steps this call made
-    #: steps that hit the work cap (``World(max_substeps=)``) and took the
-    #: rest of their frame without further rollback or events: overlap
-    #: there was pushed apart, so impacts may be missed or wrong (a ball
-    #: may pass through another); 0 when every step was resolved in time
+    #: steps the work cap (``World(max_substeps=)``) changed: a rollback
+    #: refused or a sub-step lengthened (overlap there was pushed apart, so
+    #: impacts may be missed or wrong; a ball may pass through another),
+    #: adaptive's rest of a frame taken without events, or a turn past the
+    #: rotation budget; 0 when every step was resolved in time (a frame that
+    #: only ends at the cap in its own sub-steps is not counted)
     work_limit: int = 0
 
     @classmethod
@@ -489,10 +491,11 @@ class World(_Handle):
         max_sweeps: impulse sweeps per contact pass, selective fix-up rounds
                 and separation iterations, 1 to 100000.
         max_substeps: a step's work cap, 1 to 2**32 - 1 (default 4096):
-                sub-steps + rollbacks of euler, verlet and rk4, contact
-                events of adaptive in one frame; past it the rest of the
-                frame is one sub-step with overlap pushed apart, reported
-                in :attr:`StepInfo.work_limit` (rbsim.h, ``max_substeps``).
+                sub-steps + rollbacks of euler, verlet and rk4 (never
+                more), contact events of adaptive in one frame; at it the
+                rest of the frame is one sub-step with overlap pushed
+                apart, reported in :attr:`StepInfo.work_limit` (rbsim.h,
+                ``max_substeps``).
         soft_substeps: sub-steps per frame of the "soft" method, 1 to 1000
                 (default 3); more make piles stiffer, at a cost in proportion.
         soft_tolerance: the "soft" method's overlap budget, a fraction of the

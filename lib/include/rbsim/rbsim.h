@@ -234,19 +234,26 @@ typedef struct rbs_world_def {
                                    change the result; 0 runs every stage */
     uint32_t max_substeps;    /**< work cap per step: sub-steps + rollbacks of the
                                    rollback methods (euler, verlet, rk4),
-                                   past which the rest of the frame is one
-                                   sub-step with its overlap pushed apart
-                                   instead of rolled back -- impacts in it
-                                   may be missed or wrong, a ball may pass
-                                   through another (reported in work_limit);
-                                   also this many contact events of adaptive
-                                   in one frame (then the same, its rest one
+                                   never exceeded: a rollback is taken only
+                                   while the retry and the rest of the frame
+                                   fit, and the last try takes the rest of
+                                   the frame as one sub-step with its
+                                   overlap pushed apart instead of rolled
+                                   back (a push against a fixed body takes
+                                   its potential energy back from the
+                                   normal speed) -- impacts in it may be
+                                   missed or wrong, a ball may pass through
+                                   another (reported in work_limit); also
+                                   this many contact events of adaptive in
+                                   one frame (then the same, its rest one
                                    RK4 sub-step), 256x this many rotation
-                                   sub-steps (verlet, rk4; then work_limit)
-                                   and events (event; then
-                                   RBS_E_UNSUPPORTED), 25x this many adaptive
-                                   steps (then RBS_E_NUMERIC); default 4096,
-                                   >= 1 (a scene's simulation.max_substeps) */
+                                   sub-steps (verlet, rk4; then the rest of
+                                   the turn by euler's stable update, |L|
+                                   kept, and work_limit) and events (event;
+                                   then RBS_E_UNSUPPORTED), 25x this many
+                                   adaptive steps (then RBS_E_NUMERIC);
+                                   default 4096, >= 1 (a scene's
+                                   simulation.max_substeps) */
     uint32_t soft_substeps;   /**< sub-steps per frame of RBS_METHOD_SOFT, each
                                    one solve and one relax pass over the
                                    contacts; default 3, 1 to 1000.  More
@@ -507,12 +514,16 @@ typedef struct rbs_step_info {
     uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
     uint32_t events;      /**< events processed (event method) */
     double max_overlap;   /**< deepest overlap at the end of the step, m */
-    uint32_t work_limit;  /**< 1 if the step hit its work cap
-                               (rbs_world_def.max_substeps) and took the
-                               rest of the frame without further rollback
-                               or events: overlap there was pushed apart,
-                               not resolved in time order, so its impacts
-                               may be missed or wrong */
+    uint32_t work_limit;  /**< 1 if the work cap (rbs_world_def.max_substeps)
+                               changed the step: some of the frame was
+                               taken at reduced accuracy -- a rollback
+                               refused or a sub-step lengthened (overlap
+                               there was pushed apart, not resolved in time
+                               order, so its impacts may be missed or
+                               wrong), adaptive's rest of a frame taken
+                               without events, or a turn past the rotation
+                               budget.  0 for a frame that only ends at the
+                               cap in the sub-steps it would take anyway */
     uint32_t reserved[7]; /**< zero; room for new counters without an ABI break */
 } rbs_step_info;
 

@@ -69,7 +69,7 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0);
     double reach = (v3_len(om) + v3_len(rbs__angular_acceleration(w, i, tau, om, q)) * h) * h, hs;
-    int m, k;
+    int m, k, stable;
     if (w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0) {
         /* torque-free and isotropic: w is constant; the rotation is exact */
         if (om.x != 0.0 || om.y != 0.0 || om.z != 0.0)
@@ -79,7 +79,15 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
         v3_store(&S[S_WM], om);
         return;
     }
-    m = rbs__spin_substeps(w, info, reach, 0);
+    m = rbs__spin_substeps(w, info, reach, 0, &stable);
+    if (stable) {
+        /* the step's rotation budget is spent */
+        rbs__spin_stable(w, i, tau, h, m, &q, &om, &mean);
+        q_store(&S[S_QE], q);
+        v3_store(&S[S_WE], om);
+        v3_store(&S[S_WM], mean);
+        return;
+    }
     hs = h / m;
     for (k = 0; k < m; ++k) {
         v3 w1 = om, a1 = rbs__angular_acceleration(w, i, tau, w1, q);

@@ -57,10 +57,16 @@ static void spin_verlet(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, d
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]);
     double reach = (v3_len(om) + v3_len(rbs__angular_acceleration(w, i, tau, om, q)) * h) * h, hs;
-    int m, k;
+    int m, k, stable;
     /* torque-free and isotropic: w is constant, one rotation is exact */
-    m = rbs__spin_substeps(w, info, reach, w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0);
-    hs = h / m;
+    m = rbs__spin_substeps(w, info, reach, w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0,
+                           &stable);
+    if (stable) {
+        /* the step's rotation budget is spent */
+        rbs__spin_stable(w, i, tau, h, m, &q, &om, NULL);
+        m = 0;
+    }
+    hs = m > 0 ? h / m : h;
     for (k = 0; k < m; ++k) {
         v3 wh = v3_mad(om, rbs__angular_acceleration(w, i, tau, om, q), 0.5 * hs), wp;
         if (wh.x != 0.0 || wh.y != 0.0 || wh.z != 0.0)

@@ -538,6 +538,10 @@ int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out);
  * pushed anything.  *max_pen (may be NULL): the deepest overlap of the
  * state the pass leaves (what rbs__max_overlap_now would say). */
 int rbs__separate(rbs_world *w, double *max_pen);
+/* The same, adding to fixed_push (3 per slot, zeroed by the caller; may be
+ * NULL) the displacement each sphere got from pushes against fixed bodies
+ * (planes, fixed spheres). */
+int rbs__separate_fixed(rbs_world *w, double *max_pen, double *fixed_push);
 double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
 /* Velocity of the point at r from body i's centre of mass. */
 static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
@@ -756,9 +760,19 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
                               int speculative, int at_step_start, double span);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
  * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
- * isotropic body), and within the step's budget (max_substeps * 256 in all);
- * past the budget 1, with info->work_limit set. */
-int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact);
+ * isotropic body), and within the step's budget (max_substeps * 256 in all).
+ * Past the budget *stable is set, info->work_limit too, and the count is
+ * the parts (the budget's rest, at least 1) to take with rbs__spin_stable. */
+int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact, int *stable);
+/* Body i's rotation over h from (*q, *om) under the world-frame torque tau
+ * in n parts, each as euler takes it: L = I(q) w kicked by half the torque's
+ * impulse, q turned by the part's middle angular velocity (wm = I(q_mid)^-1
+ * L), the other half kick; then w = I(q')^-1 L.  Without torque |L| is kept
+ * exactly, so the energy L.I^-1 L / 2 stays between |L|^2 / (2 I_max) and
+ * |L|^2 / (2 I_min) at any angle per part: stable where verlet's and rk4's
+ * rotation blow up.  The mean of the parts' turning velocities into *mean
+ * (may be NULL). */
+void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, quat *q, v3 *om, v3 *mean);
 /* Orientation at the end of a verlet or rk4 sub-step of h after the contact
  * impulses changed the angular velocity to om.  A body whose rotation was
  * sub-stepped (spun: it ended at qe, we) takes half of the impulses' change
