@@ -82,6 +82,18 @@ void rbs__mark_pressed(rbs_world *w)
     }
 }
 
+void rbs__pressed_plane(const rbs_world *w, rbs__contact *c, double dt)
+{
+    v3 a, t;
+    double thr;
+    if (w->type[c->b] != RBS_BODY_PLANE || !w->pressed[c->a])
+        return;
+    rbs__accelerations_all(w, c->a, &a, &t);
+    thr = v3_len(a) * dt;
+    if (thr > c->thr)
+        c->thr = thr;
+}
+
 int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b)
 {
     uint32_t at = 0;
@@ -104,8 +116,6 @@ int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b)
 static void unloaded_pairs(rbs_world *w, double dt)
 {
     uint32_t i;
-    rbs__warm_sort(w);
-    rbs__mark_pressed(w);
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         v3 aa, ab, t;
@@ -302,6 +312,8 @@ static int contact_done(rbs_world *w, detect_ctx *ctx, rbs__contact *c, double s
         return 0;
     }
     finish_new(w, c, ctx->dt, ctx->acc);
+    if (!ctx->swept)
+        rbs__pressed_plane(w, c, ctx->dt);
     if (!ctx->swept && beyond_reach(c, slop, ctx->dt)) {
         w->contact_count--;
         return 0;
@@ -576,7 +588,10 @@ rbs_status rbs__detect(rbs_world *w, double dt, int speculative)
         rbs__mutual_gravity(w);
         w->acc_fresh = 1;
     }
-    rbs_status st = detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL, NULL, NULL);
+    rbs_status st;
+    rbs__warm_sort(w);
+    rbs__mark_pressed(w);
+    st = detect(w, dt, speculative ? creep_bound(w, dt) : 0.0, NULL, NULL, NULL, NULL, NULL);
     if (st == RBS_OK)
         unloaded_pairs(w, dt);
     return st;

@@ -255,6 +255,10 @@ static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
      * that held no load in the last pass has only the press along n) */
     if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b))
         return -vn <= rbs__press_threshold(aa, ab, n, w->def.dt);
+    if (w->type[b] == RBS_BODY_PLANE && w->pressed[a]) {
+        double thr = rbs__resting_threshold(aa, ab, n, w->def.dt), side = v3_len(aa) * w->def.dt;
+        return -vn <= (side > thr ? side : thr); /* (rbs__pressed_plane) */
+    }
     return -vn <= rbs__resting_threshold(aa, ab, n, w->def.dt);
 }
 
@@ -535,6 +539,7 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
     }
     rbs__contact_set(w, &c, dist, gap);
     rbs__contact_finish(w, &c, dt);
+    rbs__pressed_plane(w, &c, dt);
     if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b)) {
         v3 aa, ab, t;
         rbs__accelerations_all(w, a, &aa, &t);

@@ -635,6 +635,11 @@ void rbs__mark_pressed(rbs_world *w);
  * spheres held one against other spheres (w->pressed: neighbours in a
  * pile)?  Else only the forces' press along n (contact.c). */
 int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b);
+/* A plane contact of a sphere that held a load against another sphere
+ * (w->pressed) keeps, besides the press along n, the sphere's acceleration
+ * times dt as its resting threshold: its neighbours press it against walls
+ * whatever their direction, as in a pile (contact.c). */
+void rbs__pressed_plane(const rbs_world *w, rbs__contact *c, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* Rolling and spinning resistance at contact i, Jn > 0 (solver.c); returns
  * the square of the velocity change it made, 0 if none. */
