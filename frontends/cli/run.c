@@ -1603,10 +1603,11 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
     }
     if (info->floor_hit_steps > 0)
         fprintf(out, "overlap: %llu of %llu steps pushed overlap apart instead of resolving "
-                     "it (a sub-step at the rollback floor, dt / 2^30; or a body jammed in a "
+                     "it (a sub-step at the rollback floor, dt / 2^max_halvings; a rollback "
+                     "the work cap refused, simulation.max_substeps; or a body jammed in a "
                      "selective step, simulation.max_sweeps): the impacts there are not "
                      "exact (--stats' max_overlap shows the overlap; shorten dt, or raise "
-                     "max_sweeps)\n",
+                     "max_substeps or max_sweeps)\n",
                 (unsigned long long)info->floor_hit_steps, (unsigned long long)steps);
     if (info->sweep_limited > 0)
         fprintf(out, "sweeps: %llu of %llu steps had a contact pass stop at max_sweeps with "

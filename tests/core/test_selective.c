@@ -304,11 +304,12 @@ static void chain_within_a_step(void **state)
 
 /* More impacts in one step than the queue holds: 40 head-on pairs (r 5 cm,
  * 1 kg, +-60 m/s, 1 mm apart, e = 1, no gravity) in a world of
- * max_contacts = 8, whose queue (half the contact array) holds 37.  Every
+ * max_contacts = 8, whose queue (half the contact array) holds 21.  Every
  * pair touches at 1/120 ms and must come out at -+60 m/s, each ball at
- * x = -+(0.11 - 60 t_c) = -+0.1095 m after 1 ms.  The queue turned the
- * last three away and they passed through each other (a probe of session
- * 43).  (1e-12: rounding of the touch time.) */
+ * x = -+(0.11 - 60 t_c) = -+0.1095 m after 1 ms.  The queue (then 32
+ * entries of 16 bytes) turned the last eight away and they passed through
+ * each other (a probe of session 43).  (1e-12: rounding of the touch
+ * time.) */
 static void more_impacts_than_the_queue_holds(void **state)
 {
     rbs_world_def d;

@@ -241,7 +241,9 @@ typedef struct rbs_world_def {
                                    overlap pushed apart instead of rolled
                                    back (a push against a fixed body takes
                                    its potential energy back from the
-                                   normal speed) -- impacts in it may be
+                                   normal speed; one between moving
+                                   spheres does not: a capped stack can
+                                   gain energy) -- impacts in it may be
                                    missed or wrong, a ball may pass through
                                    another (reported in work_limit); also
                                    this many contact events of adaptive in
@@ -509,8 +511,11 @@ typedef struct rbs_step_info {
     uint32_t resting;     /**< resting-contact impulses */
     uint32_t substeps;    /**< accepted sub-steps (1 if no rollback) */
     uint32_t rollbacks;   /**< sub-steps undone because of overlap */
-    uint32_t floor_hits;  /**< sub-steps accepted at the rollback floor with
-                               overlap left (then pushed apart) */
+    uint32_t floor_hits;  /**< sub-steps accepted with overlap left (then
+                               pushed apart): at the rollback floor
+                               (dt / 2^max_halvings), a rollback the work
+                               cap refused, or a body jammed in a
+                               selective step */
     uint32_t sweep_limit; /**< contact passes that hit max_sweeps */
     uint32_t events;      /**< events processed (event method) */
     double max_overlap;   /**< deepest overlap at the end of the step, m */

@@ -331,8 +331,9 @@ typedef struct rbs_run_info {
                                    wrong */
     uint64_t floor_hit_steps; /**< steps with overlap pushed apart instead
                                    of resolved (rbs_step_info.floor_hits >
-                                   0: the rollback floor, or a body jammed
-                                   in a selective step), all steps so far */
+                                   0: the rollback floor, a rollback the
+                                   work cap refused, or a body jammed in a
+                                   selective step), all steps so far */
     uint64_t sweep_limited;   /**< steps with a contact pass that hit
                                    max_sweeps (rbs_step_info.sweep_limit >
                                    0: impulses not converged), all steps so

@@ -44,8 +44,11 @@
  * step's model changed (its contact spring at a third of the sub-step
  * rate, exact flight of a body no contact touches), so a 9 file would
  * resume on other physics than the run that wrote it; 11 has contacts of
- * 128 bytes (jslip: kinetic friction for a contact that came in slipping). */
-#define CKPT_VERSION 11u
+ * 128 bytes (jslip: kinetic friction for a contact that came in slipping);
+ * 12 has the pressed marks (a byte a slot: spheres loaded by other moving
+ * spheres) and their resting thresholds, the impact floor and the strict
+ * work cap, so an 11 file would resume on other physics. */
+#define CKPT_VERSION 12u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

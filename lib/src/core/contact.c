@@ -75,10 +75,12 @@ void rbs__mark_pressed(rbs_world *w)
     memset(w->pressed, 0, w->slots);
     for (k = 0; k < w->warm_used; ++k) {
         uint64_t key = w->warm[k].key;
-        if (key >> 63) { /* a sphere pair (rbs__warm_key_of) */
-            w->pressed[(uint32_t)(key >> 32) & 0x7fffffffu] = 1;
-            w->pressed[(uint32_t)key] = 1;
-        }
+        uint32_t a = (uint32_t)(key >> 32) & 0x7fffffffu, b = (uint32_t)key;
+        /* a pair of moving spheres (rbs__warm_key_of); a load against a
+         * fixed sphere is a floor's, not a neighbour's: two balls resting
+         * on a dome of one met plastically (a review of session 43) */
+        if ((key >> 63) && !w->fixed[a] && !w->fixed[b])
+            w->pressed[a] = w->pressed[b] = 1;
     }
 }
 
