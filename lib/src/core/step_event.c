@@ -182,6 +182,32 @@ static void pair_friction(const rbs_world *w, uint32_t i, uint32_t p, double *mu
 
 /* Decide each moving sphere's mode and its constant accelerations (w->acc,
  * w->ev_alpha).  Returns an error for configurations out of scope. */
+/* How long body i's acceleration (as classify left it) lasts at most,
+ * within dt: a sliding sphere's lasts until its slip stops (straight: the
+ * exact time; curving: re-evaluated after dt/16, as the event search does);
+ * any other's all of dt (until an event changes it). */
+static double accel_lasts(const rbs_world *w, uint32_t i, double dt)
+{
+    uint32_t p;
+    v3 n, u, du, cr;
+    double uu, ud, s;
+    if (w->fixed[i] || w->ev_mode[i] != EV_SLIDE)
+        return dt;
+    p = w->ev_plane[i];
+    n = v3_load(&w->normal[3 * p]);
+    u = v3_sub(v3_load(&w->vel[3 * i]), v3_scale(v3_cross(v3_load(&w->avel[3 * i]), n), w->radius[i]));
+    du = v3_sub(v3_load(&w->acc[3 * i]), v3_scale(v3_cross(v3_load(&w->ev_alpha[3 * i]), n), w->radius[i]));
+    uu = v3_dot(u, u);
+    ud = v3_dot(u, du);
+    if (!(ud < 0.0))
+        return dt;
+    s = -uu / ud;
+    cr = v3_cross(u, du);
+    if (v3_dot(cr, cr) > 1e-24 * uu * v3_dot(du, du) && dt / 16.0 < s)
+        s = dt / 16.0;
+    return s < dt ? s : dt;
+}
+
 static rbs_status classify(rbs_world *w, double dt)
 {
     rbs__coarse coarse;
@@ -299,7 +325,16 @@ static rbs_status classify(rbs_world *w, double dt)
             ab = w->fixed[b] ? v3_make(0, 0, 0) : v3_load(&w->acc[3 * b]);
             rel_an = v3_dot(v3_sub(a, ab), d);
             vn = v3_dot(v3_sub(v, v3_load(&w->vel[3 * b])), d);
-            if (rel_an < 0.0 && vn <= -rel_an * dt)
+            /* pressed: the accelerations bring the pair back together, or
+             * hold it, within the time they last -- a sliding sphere's
+             * friction stops with its slip (a ball rolling at 1 mm/s into
+             * a resting one with mu = 0.5 left it sliding for 58 us, its
+             * friction pressing the pair that whole time against a whole
+             * frame's worth: refused, though they part; a probe of
+             * session 43) */
+            if (rel_an < 0.0 && vn <= -rel_an * (accel_lasts(w, i, dt) < accel_lasts(w, b, dt)
+                                                     ? accel_lasts(w, i, dt)
+                                                     : accel_lasts(w, b, dt)))
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
                     "method \"event\": spheres %u and %u are pressed together at t = %.17g (a stack or "
                     "a pile); use \"euler\"", (unsigned)i, (unsigned)b, rbs_world_time(w));
