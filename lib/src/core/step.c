@@ -154,8 +154,6 @@ void rbs__restore_state(rbs_world *w, const double *save)
     }
 }
 
-
-
 #define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
 #define SPIN_STABLE_ROUNDS 32 /* fixed-point rounds of rbs__spin_stable's turn, at most */
 
@@ -190,12 +188,25 @@ static v3 inv_inertia_at(const rbs_world *w, uint32_t i, quat q, v3 L)
     return m3_mul_world(&w->inv_inertia[9 * i], q, L);
 }
 
+v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h, int rounds, double tol2)
+{
+    int it;
+    for (it = 0; it < rounds; ++it) {
+        quat qm = q_normalize(q_mul(q_from_rotation(wm, 0.5 * h), q));
+        v3 wn = inv_inertia_at(w, i, qm, L), d = v3_sub(wn, wm);
+        wm = wn;
+        if (v3_dot(d, d) <= tol2 * v3_dot(wn, wn))
+            break; /* converged */
+    }
+    return wm;
+}
+
 void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, quat *q, v3 *om, v3 *mean)
 {
     const double hs = h / n;
     v3 L = rbs__inertia_times(w, i, *q, *om), sum = v3_make(0.0, 0.0, 0.0), wm = *om;
     quat qq = *q;
-    int k, it;
+    int k;
     for (k = 0; k < n; ++k) {
         /* half the torque's impulse, the turn by the middle's angular
          * velocity, the other half.  The fixed point is iterated to
@@ -205,13 +216,7 @@ void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, q
          * parts, ending about its axis of most inertia.  (A part too long
          * to converge still keeps |L|.) */
         L = v3_mad(L, tau, 0.5 * hs);
-        for (it = 0; it < SPIN_STABLE_ROUNDS; ++it) {
-            quat qm = q_normalize(q_mul(q_from_rotation(wm, 0.5 * hs), qq));
-            v3 wn = inv_inertia_at(w, i, qm, L), d = v3_sub(wn, wm);
-            wm = wn;
-            if (v3_dot(d, d) <= 1e-28 * v3_dot(wn, wn))
-                break; /* converged */
-        }
+        wm = rbs__midpoint_spin(w, i, qq, L, wm, hs, SPIN_STABLE_ROUNDS, 1e-28);
         if (wm.x != 0.0 || wm.y != 0.0 || wm.z != 0.0)
             qq = q_normalize(q_mul(q_from_rotation(wm, hs), qq));
         sum = v3_add(sum, wm);

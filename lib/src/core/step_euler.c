@@ -116,12 +116,8 @@ void rbs__integrate_positions(rbs_world *w, double h)
              * dt = 1 ms and ended turning about its axis of least inertia
              * (a probe of session 40).  The midpoint rule is symmetric in
              * time, so the energy only oscillates, by O(h^2). */
-            int it;
             L = m3_mul_world(&w->inertia[9 * i], q, om);
-            for (it = 0; it < 2; ++it) {
-                quat qm = q_normalize(q_mul(q_from_rotation(om, 0.5 * h), q));
-                om = m3_mul_world(&w->inv_inertia[9 * i], qm, L);
-            }
+            om = rbs__midpoint_spin(w, i, q, L, om, h, 2, 0.0);
         }
         if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
             v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->pos[3 * i]), v, h));

@@ -778,6 +778,12 @@ int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exac
  * rotation blow up.  The mean of the parts' turning velocities into *mean
  * (may be NULL). */
 void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, quat *q, v3 *om, v3 *mean);
+/* The angular velocity of a turn's middle for body i at orientation q with
+ * angular momentum L over h: the fixed point wm = I(exp(wm h/2) q)^-1 L,
+ * from the guess wm, at most rounds rounds, stopping early once a round
+ * changes it by at most sqrt(tol2) of itself (tol2 = 0: every round that
+ * changes it).  euler's turn (two rounds) and rbs__spin_stable's. */
+v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h, int rounds, double tol2);
 /* Orientation at the end of a verlet or rk4 sub-step of h after the contact
  * impulses changed the angular velocity to om.  A body whose rotation was
  * sub-stepped (spun: it ended at qe, we) takes half of the impulses' change
