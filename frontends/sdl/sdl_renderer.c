@@ -138,6 +138,37 @@ static size_t longest_file(const rbsf__config *cfg)
  *    it are made in it;
  *  - a folder that exists takes a file: a ".rbsim-XXXXXX" made and removed.
  * path is restored.  0, or -1 with the reason in err. */
+static int folder_can_be(char *path, size_t tail, char *err, size_t errlen);
+
+/* path[up..end) is a ".." after a folder that is still to be made (mkdir -p
+ * makes it a real folder, so "new/.." is the folder new is made in): check
+ * the path with that name, the "." names after it and the ".." taken out. */
+static int folder_can_be_up(const char *path, size_t up, size_t end, size_t tail,
+                            char *err, size_t errlen)
+{
+    size_t n = strlen(path), ps = up, pe;
+    char *reduced;
+    int rc;
+    for (;;) { /* the name before: skip slashes, then "." names */
+        while (ps > 0 && path[ps - 1] == '/') ps--;
+        pe = ps;
+        while (ps > 0 && path[ps - 1] != '/') ps--;
+        if (!(pe - ps == 1 && path[ps] == '.')) break;
+    }
+    reduced = (char *)malloc(n + 2);
+    if (reduced == NULL) {
+        say(err, errlen, RBS_E_MEMORY, "out of memory");
+        return -1;
+    }
+    memcpy(reduced, path, ps);
+    if (ps == 0 && path[end] == '/') end++; /* stay relative */
+    strcpy(reduced + ps, path + end);
+    if (reduced[0] == '\0') strcpy(reduced, ".");
+    rc = folder_can_be(reduced, tail, err, errlen);
+    free(reduced);
+    return rc;
+}
+
 static int folder_can_be(char *path, size_t tail, char *err, size_t errlen)
 {
     size_t i, start = 0, n = strlen(path);
@@ -172,6 +203,8 @@ static int folder_can_be(char *path, size_t tail, char *err, size_t errlen)
             say(err, errlen, RBS_E_IO, msg);
             return -1;
         }
+        if (missing && len == 2 && path[start] == '.' && path[start + 1] == '.')
+            return folder_can_be_up(path, start, i, tail, err, errlen);
         start = i + 1;
         if (missing) continue;
         c = path[i];

@@ -737,12 +737,24 @@ class CliTests(Base):
             self.skipTest("built without SDL")
         with open(self.path("afile"), "w") as f:
             f.write("x")
-        for folder in ("afile", "afile/sub", "afile/sub/deeper"):
+        # A ".." after a folder still to be made steps back out of it
+        # (mkdir -p makes it a real folder): "new/../afile" is "afile".
+        for folder in ("afile", "afile/sub", "afile/sub/deeper",
+                       "new/../afile/png", "new/./../afile/png",
+                       "a/b/../../afile/png", "a/b/..//../afile"):
             r = self.rbsim("run", s, "--steps", "3", "--png", folder,
                            "--csv", "kept.csv")
             self.assertEqual(r.returncode, 2, r.stderr)
             self.assertIn('"afile" exists and is not a folder', r.stderr)
             self.assertFalse(os.path.exists(self.path("kept.csv")))
+            self.assertFalse(os.path.exists(self.path("new")))
+            self.assertFalse(os.path.exists(self.path("a")))
+        # ... and into a folder that can be made it runs, making the folders
+        # on the way as written.
+        r = self.rbsim("run", s, "--steps", "2", "--png", "new/../made/png",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.isfile(self.path("made/png/frame_000002.png")))
         with open(self.path("afile")) as f:
             self.assertEqual(f.read(), "x")
         bad = self.scene("badpng.json", renderers=[
