@@ -489,6 +489,56 @@ static void wedge_settles(void **state)
     }
 }
 
+/* A ball on two balls, the left one against a wall, all at rest, mu = 0.5:
+ * the exact answer is that nothing moves (the pile is in equilibrium: the
+ * floor's friction, a tenth of mu Jn, holds the bottom balls).  But the
+ * three can also roll away together for free -- bottom balls forward, the
+ * top one backward, no slip anywhere -- so a first pass that stops short of
+ * its solution leaves that motion for good: 20 cold sweeps pushed the wall
+ * with 3.4e-5 N s and the balls rolled off at 1e-5 m/s (session 44).  Bound:
+ * 1e-9 m/s and 1e-8 m in 2 s (the converged passes leave ~1e-11 m/s). */
+static void pyramid_beside_a_wall_stays(void **state)
+{
+    const double r = 0.1, gap = 1e-3, x1 = 2.0 * r + gap;
+    const double zc = r + sqrt(4.0 * r * r - 0.25 * x1 * x1);
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 6, 1e-3, -9.81, 0.0);
+        rbs_material_id m;
+        rbs_plane_def p;
+        rbs_body_id id, b[3];
+        rbs_vec3 x0[3];
+        int i;
+        if (w == NULL)
+            continue;
+        m = material(w, "m", 0.5, 0.5, 0.0);
+        floor_plane(w, m);
+        rbs_plane_def_init(&p);
+        p.point.x = -r;
+        p.normal.x = 1.0;
+        p.normal.z = 0.0;
+        p.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &p, &id));
+        b[0] = ball(w, r, 1.0, 0.0, 0, r, 0, 0, 0, m);
+        b[1] = ball(w, r, 1.0, x1, 0, r, 0, 0, 0, m);
+        b[2] = ball(w, r, 1.0, 0.5 * x1, 0, zc, 0, 0, 0, m);
+        for (i = 0; i < 3; ++i)
+            x0[i] = state_of(w, b[i]).position;
+        if (!run(w, 2000)) { /* (event: spheres pressed together) */
+            rbs_world_destroy(w);
+            continue;
+        }
+        for (i = 0; i < 3; ++i) {
+            rbs_body_state s = state_of(w, b[i]);
+            assert_true(fabs(s.velocity.x) < 1e-9 && fabs(s.velocity.z) < 1e-9);
+            ASSERT_NEAR(s.position.x, x0[i].x, 1e-8);
+            ASSERT_NEAR(s.position.z, x0[i].z, 1e-8);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 /* A ball dropped from a gap h = 1 m with e = 0.5: the apexes are at h e^(2n)
  * (exact); the apex height is recovered from the frame after it as
  * z + v^2 / (2 g), exact for free flight.  Verlet, RK4 and adaptive
@@ -590,6 +640,7 @@ int main(void)
         cmocka_unit_test(elastic_impact_through_a_chain),
         cmocka_unit_test(slow_impact_on_a_table),
         cmocka_unit_test(wedge_settles),
+        cmocka_unit_test(pyramid_beside_a_wall_stays),
         cmocka_unit_test(rolling_into_a_resting_ball),
         cmocka_unit_test(slow_impact_on_a_dome),
         cmocka_unit_test(bouncing_apexes),
