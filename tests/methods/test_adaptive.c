@@ -264,6 +264,56 @@ static void sphere_event_inside_a_frame(void **state)
     rbs_world_destroy(w);
 }
 
+/* A sphere that crosses another inside one frame and ends just touching its
+ * far side: d at -1000 m/s from 0.6 m + delta beyond c (r = 0.1), dt = 1 ms,
+ * e = 1, ends the frame 0.2 m - delta from c's centre, a gap of -delta.  For
+ * delta of 1e-15 .. 1e-11 that end gap lies within the contact time's
+ * tolerance (1e-3 slop = 1e-10 m), and the root search took the exit, where
+ * the pair parts: d went on through c (a probe of session 44).  Exact: the
+ * impact at t = 0.6 ms (+ delta / 1000 m/s); with c free they swap
+ * velocities (c ends at 4.4 + delta, d at 5.0), with c fixed d leaves at
+ * +1000 m/s from 5.0 and ends at 5.4 - delta.  Bound 1e-9 m: the contact time is
+ * located to 1e-10 m of gap. */
+static void crossing_that_ends_touching(void **state)
+{
+    const double deltas[] = {0.0, 1e-15, 1e-13, 1e-12, 1e-11, 1e-10, 1e-8};
+    size_t k;
+    int fixed;
+    (void)state;
+    for (fixed = 0; fixed <= 1; ++fixed)
+        for (k = 0; k < sizeof deltas / sizeof deltas[0]; ++k) {
+            const double dl = deltas[k];
+            rbs_world_def d;
+            rbs_world *w;
+            rbs_sphere_def s;
+            rbs_body_id c, e;
+            rbs_world_def_init(&d);
+            d.dt = 1e-3;
+            d.gravity.z = 0.0;
+            d.restitution = 1.0;
+            d.method = RBS_METHOD_ADAPTIVE;
+            CHECK_OK(rbs_world_create(&d, &w));
+            rbs_sphere_def_init(&s);
+            s.radius = 0.1;
+            s.mass = 1.0;
+            s.position.x = 4.8;
+            s.fixed = fixed;
+            CHECK_OK(rbs_world_add_sphere(w, &s, &c));
+            e = ball(w, 0.1, 1.0, 5.6 + dl, 0, 0, -1000.0, 0, 0, (rbs_material_id){0, 0});
+            CHECK_OK(rbs_world_step(w, NULL));
+            if (fixed) {
+                ASSERT_NEAR(state_of(w, e).velocity.x, 1000.0, 1e-9);
+                ASSERT_NEAR(state_of(w, e).position.x, 5.4 - dl, 1e-9);
+            } else {
+                ASSERT_NEAR(state_of(w, c).velocity.x, -1000.0, 1e-9);
+                ASSERT_NEAR(state_of(w, e).velocity.x, 0.0, 1e-9);
+                ASSERT_NEAR(state_of(w, c).position.x, 4.4 + dl, 1e-9);
+                ASSERT_NEAR(state_of(w, e).position.x, 5.0, 1e-9);
+            }
+            rbs_world_destroy(w);
+        }
+}
+
 /* A ball thrown up under a ceiling (a plane at z = 1 facing down) that it
  * overshoots by only 1e-4 m: in frames of 0.1 s the whole touch lasts 9 ms
  * inside one integrator step, with both ends of the step clear of the
@@ -593,6 +643,7 @@ int main(void)
         cmocka_unit_test(slow_departures_fly_and_thresholds_are_the_frames),
         cmocka_unit_test(sliding_over_a_fixed_sphere),
         cmocka_unit_test(sphere_event_inside_a_frame),
+        cmocka_unit_test(crossing_that_ends_touching),
         cmocka_unit_test(ceiling_graze_inside_a_step),
         cmocka_unit_test(tolerance_can_change),
         cmocka_unit_test(switch_methods),

@@ -475,11 +475,14 @@ static rbs_status find_crossings(rbs__adaptive *a, double t1, double *t_end)
                 s = s < 0.0 ? 0.0 : (s > 1.0 ? 1.0 : s);
             }
             dmin = v3_len(v3_mad(d0, dd, s));
-            if (v3_len(v3_add(d0, dd)) < rs) {
-                if ((st = flag_pair(a, i, b)) != RBS_OK)
-                    return st;
-            } else if (dmin < rs) {
-                /* passes through inside the step: bracket at the deepest point */
+            if (dmin < rs) {
+                /* meets inside the step: bracket at the deepest point, also
+                 * when the end overlaps -- a pair that went through each
+                 * other and out to a touch at the end (c at rest, d at
+                 * -1000 m/s from 0.6 m + 1e-13 m away, dt = 1 ms) has an
+                 * end gap of -1e-13 m, within the root's tolerance: from
+                 * [t0, t1] Brent took that exit, where the pair parts, and
+                 * d went on through c (a probe of session 44) */
                 double ts = a->t0 + s * (t1 - a->t0);
                 if ((st = flag_pair(a, i, b)) != RBS_OK)
                     return st;
