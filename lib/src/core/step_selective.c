@@ -102,11 +102,18 @@ typedef struct search_ctx {
                                    adj[adj_start[i + 1] - 1] */
 } search_ctx;
 
+/* HITS of a body held where an impact of a jammed body found it: it stays
+ * there, its velocities kept, for the rest of the step (see MOST).  Above
+ * any MOST x max_sweeps, and a version of its own. */
+#define HELD 2147483648.0
+
 /* Position of body i at fraction s of the step (on its current path). */
 static v3 pos_at(const rbs_world *w, uint32_t i, double s, double h)
 {
     if (w->fixed[i] || w->type[i] != RBS_BODY_SPHERE)
         return v3_load(&w->pos[3 * i]);
+    if (HITS(w, i) >= HELD)
+        return v3_load(&w->sub_save[S * i]);
     return v3_mad(v3_load(&w->sub_save[S * i]), v3_load(&w->vel[3 * i]), (s - T0(w, i)) * h);
 }
 
@@ -177,8 +184,8 @@ static void compact(search_ctx *ctx)
         sift_down(H, k, n);
 }
 
-/* Queue the impact of a and b at s.  A jammed body's impact is left (see
- * MOST).  With no room even without stale entries, the latest impact (the
+/* Queue the impact of a and b at s (a jammed body's too: it holds the pair
+ * when it comes up, see MOST).  With no room even without stale entries, the latest impact (the
  * new one or a queued one) is turned away and the time of the earliest
  * turned away kept: impacts before it are resolved from the queue, and
  * then every pair is searched again (rbs__step_selective), so no impact is
@@ -187,10 +194,6 @@ static void push(search_ctx *ctx, uint32_t a, uint32_t b, double s)
 {
     const rbs_world *w = ctx->w;
     impact e, *H = ctx->heap;
-    if ((moving_sphere(w, a) && HITS(w, a) >= ctx->most) || (moving_sphere(w, b) && HITS(w, b) >= ctx->most)) {
-        ctx->left = 1;
-        return;
-    }
     e.a = a;
     e.b = b;
     e.va = version(w, a);
@@ -501,6 +504,17 @@ static void cut_path(rbs_world *w, uint32_t i, double s, double h)
     q_store(&w->orient[4 * i], q);
 }
 
+/* Hold body i where it is at fraction s of the step until the step's end
+ * (a moving sphere not held yet): a path of length zero from s, its
+ * velocities kept for the next step. */
+static void hold(rbs_world *w, uint32_t i, double s, double h)
+{
+    if (!moving_sphere(w, i) || HITS(w, i) >= HELD)
+        return;
+    cut_path(w, i, s, h);
+    HITS(w, i) = HELD;
+}
+
 /* Finish body i's step from its path start with its current velocities. */
 static void finish_path(rbs_world *w, uint32_t i, double h)
 {
@@ -646,7 +660,17 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
         if (!still || s != e.s)
             continue; /* (cannot happen for an entry not stale; kept as the safe test) */
         if ((moving_sphere(w, a) && HITS(w, a) >= most) || (moving_sphere(w, b) && HITS(w, b) >= most)) {
-            ctx.left = 1; /* (a body jammed: see MOST) */
+            /* A body jammed (see MOST): this impact is left, and the pair
+             * is held where it meets, for the rest of the step.  Left to
+             * fly on, a jammed body went through what it could no longer
+             * strike: a 1 kg ball under a 1e6 kg one on a floor, e = 1,
+             * flew up through it at 2843 m/s (a probe of session 44).
+             * Held, the pair takes up its impacts in the next step; others
+             * meeting a held body are held too. */
+            ctx.left = 1;
+            hold(w, a, s, dt);
+            hold(w, b, s, dt);
+            retest(&ctx, a, b, list_ok);
             continue;
         }
         HITS(w, a) += 1.0;
