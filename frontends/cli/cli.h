@@ -89,9 +89,9 @@ void rbsf_signals_stop(rbsf_signals *s);
 /** "rbsim run ARGS": the exit code. */
 int rbsf_run_main(int argc, char **argv);
 /* The checks `run` makes of a scene's renderer entries before it opens any
- * (no two write one file, none overwrites the scene at scene_path), as
- * `check` makes them: 0, or an exit code with the reason on stderr. */
-int rbsf_check_scene_outputs(const rbs_scene *scene, const char *scene_path);
+ * (no two write one file, none overwrites a file the scene was read from),
+ * as `check` makes them: 0, or an exit code with the reason on stderr. */
+int rbsf_check_scene_outputs(const rbs_scene *scene);
 /** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */
 void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);

@@ -284,7 +284,7 @@ static int check_main(int argc, char **argv)
         }
     }
     if (code == RBSF_EXIT_OK)
-        code = rbsf_check_scene_outputs(scene, argv[0]); /* (as run checks them) */
+        code = rbsf_check_scene_outputs(scene); /* (as run checks them) */
     if (code == RBSF_EXIT_OK)
         printf("%s: ok (%llu steps, %lu renderer%s)\n", argv[0],
                (unsigned long long)rbs_scene_steps(scene), (unsigned long)n,

@@ -612,6 +612,33 @@ static int same_file(const char *a, const char *b)
              strcmp(ka.name, kb.name) == 0));
 }
 
+/* The file of scene that path names, if any: one the scene was read from
+ * (its own file, a text scene's materials.txt and objects.txt), which no
+ * output may overwrite; k gets its index (0: the scene's own).  NULL if
+ * none. */
+static const char *scene_file(const rbs_scene *scene, const char *path,
+                              uint32_t *k)
+{
+    const char *f;
+    uint32_t i;
+    for (i = 0; (f = rbs_scene_source(scene, i)) != NULL; i++)
+        if (same_file(path, f)) {
+            if (k != NULL)
+                *k = i;
+            return f;
+        }
+    return NULL;
+}
+
+/* "'s file 'F'" for a scene file after the first, "" for the scene's
+ * own: the end of a "would overwrite the scene" message. */
+static void scene_file_note(char *buf, size_t n, const char *f, uint32_t k)
+{
+    if (k == 0)
+        buf[0] = '\0';
+    else
+        snprintf(buf, n, "'s file '%s'", f);
+}
 
 /* A path without "./" parts, doubled or trailing slashes ("pd/./a//" is
  * "pd/a"), into out (n bytes); -1 if it does not fit. */
@@ -785,11 +812,12 @@ static const char *two_outputs(const char *a, const char *b, char *buf,
 /* No two outputs may write one file (standard output included), no sdl
  * folder may run through another output's file, and none may overwrite
  * the scene or the checkpoint being resumed. */
-static int check_distinct(const output *outs, uint32_t n, const char *scene,
+static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene,
                           const char *resume, const char *who)
 {
-    uint32_t i, j;
+    uint32_t i, j, k;
     const output *on_stdout = NULL;
+    const char *f;
     char both[64];
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
@@ -821,10 +849,12 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
                     outs[i].config.type, a, resume);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
-        if (scene != NULL && same_file(a, scene)) {
+        if ((f = scene_file(scene, a, &k)) != NULL) {
+            char note[4200];
+            scene_file_note(note, sizeof note, f, k);
             distinct_prefix(&outs[i], who);
             fprintf(stderr, "the %s output '%s' would overwrite the "
-                            "scene\n", outs[i].config.type, a);
+                            "scene%s\n", outs[i].config.type, a, note);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
         for (j = 0; j < n; j++) {
@@ -874,13 +904,13 @@ static int check_distinct(const output *outs, uint32_t n, const char *scene,
 }
 
 
-int rbsf_check_scene_outputs(const rbs_scene *scene, const char *scene_path)
+int rbsf_check_scene_outputs(const rbs_scene *scene)
 {
     output outs[RBS_RENDERERS_MAX];
     uint32_t n = 0, i;
     int code = add_scene_outputs(scene, outs, &n);
     if (code == 0)
-        code = check_distinct(outs, n, scene_path, NULL, "rbsim check");
+        code = check_distinct(outs, n, scene, NULL, "rbsim check");
     for (i = 0; i < n; i++)
         free(outs[i].owned_path);
     return code;
@@ -898,7 +928,7 @@ typedef struct stale_files {
 /* Remove from folder dir the regular files named as the sdl renderer names
  * frames (is_frame_png) with a number from first on; the scene and the
  * checkpoint resumed are never touched.  0, or -1 after saying why. */
-static int remove_stale_in(const char *dir, uint64_t first, const char *scene,
+static int remove_stale_in(const char *dir, uint64_t first, const rbs_scene *scene,
                            const char *resume, stale_files *gone)
 {
     DIR *d = opendir(dir);
@@ -918,7 +948,7 @@ static int remove_stale_in(const char *dir, uint64_t first, const char *scene,
             continue;
         n = snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
         if (n < 0 || (size_t)n >= sizeof path || lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) ||
-            (scene != NULL && same_file(path, scene)) ||
+            scene_file(scene, path, NULL) != NULL ||
             (resume != NULL && same_file(path, resume)))
             continue;
         if (unlink(path) != 0) {
@@ -948,7 +978,7 @@ static int remove_stale_in(const char *dir, uint64_t first, const char *scene,
  * part of the sequence.  Files of other names, and of another layout, stay;
  * no other output can be among these (check_distinct).  A note names what
  * went (not with --quiet).  0, or -1 after saying why. */
-static int remove_stale_frames(const output *o, uint64_t first, const char *scene,
+static int remove_stale_frames(const output *o, uint64_t first, const rbs_scene *scene,
                                const char *resume, int quiet)
 {
     const char *dir = o->config.path;
@@ -963,7 +993,7 @@ static int remove_stale_frames(const output *o, uint64_t first, const char *scen
     if (first == 0 && sheet) {
         snprintf(path, sizeof path, "%s/contact_sheet.png", dir);
         if (lstat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
-            !(scene != NULL && same_file(path, scene)) &&
+            scene_file(scene, path, NULL) == NULL &&
             !(resume != NULL && same_file(path, resume))) {
             if (unlink(path) != 0) {
                 fprintf(stderr, "rbsim: error: cannot remove '%s', the contact "
@@ -1149,14 +1179,15 @@ static rbs_status checkpoint_hook(void *context, const rbs_world *world,
  * it onto target, so that file is made and removed here: it proves the
  * folder, the name's length and the file system (e.g. /proc) at once. */
 static int check_checkpoint_path(const char *path, const char *target,
-                                 const char *scene, const output *outs,
+                                 const rbs_scene *scene, const output *outs,
                                  uint32_t n)
 {
     struct stat sb;
     const char *slash = strrchr(target, '/');
     char dir[4096], tmp[4200];
     size_t len = slash ? (size_t)(slash - target) : 0;
-    uint32_t i;
+    uint32_t i, k;
+    const char *f;
     int fd;
     if (stat(target, &sb) == 0 && !S_ISREG(sb.st_mode)) {
         fprintf(stderr, "rbsim run: --checkpoint '%s': not a regular file\n",
@@ -1209,9 +1240,11 @@ static int check_checkpoint_path(const char *path, const char *target,
     }
     close(fd);
     unlink(tmp);
-    if (scene != NULL && same_file(target, scene)) {
+    if ((f = scene_file(scene, target, &k)) != NULL) {
+        char note[4200];
+        scene_file_note(note, sizeof note, f, k);
         fprintf(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
-                        "scene\n", path);
+                        "scene%s\n", path, note);
         return RBSF_EXIT_USAGE;
     }
     for (i = 0; i < n; i++) {
@@ -1856,7 +1889,7 @@ int rbsf_run_main(int argc, char **argv)
 
     /* 4. Check every output before any is opened: a rejected run writes
      * nothing.  (The demonstration's folder is made first: it is ours.) */
-    code = check_distinct(outs, n_out, o.scene, o.resume, "rbsim run");
+    code = check_distinct(outs, n_out, scene, o.resume, "rbsim run");
     if (code != 0)
         goto out;
     if (o.checkpoint) {
@@ -1867,7 +1900,7 @@ int rbsf_run_main(int argc, char **argv)
             code = RBSF_EXIT_USAGE;
             goto out;
         }
-        code = check_checkpoint_path(o.checkpoint, ckpt_target, o.scene, outs,
+        code = check_checkpoint_path(o.checkpoint, ckpt_target, scene, outs,
                                      n_out);
         if (code != 0)
             goto out;
@@ -1987,7 +2020,7 @@ int rbsf_run_main(int argc, char **argv)
     for (i = 0; i < n_out; i++) {
         if (strcmp(outs[i].config.type, "sdl") != 0 || outs[i].config.path == NULL)
             continue;
-        if (remove_stale_frames(&outs[i], o.resume ? start_frame + 1 : 0, o.scene,
+        if (remove_stale_frames(&outs[i], o.resume ? start_frame + 1 : 0, scene,
                                 o.resume, o.quiet) != 0) {
             code = RBSF_EXIT_RUN;
             goto out;

@@ -254,6 +254,45 @@ class CliTests(Base):
         r = self.rbsim("check", s)
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
 
+    def test_no_output_overwrites_a_text_scenes_files(self):
+        # A text scene is read from three files: an output (or the
+        # checkpoint) onto its materials.txt or objects.txt was written over
+        # it (exit 0, objects.txt held the stats CSV); only config.txt was
+        # refused.  Now each is refused before the run (exit 2, a scene
+        # entry exit 3, `check` alike) and nothing is written.
+        s = self.scene()
+        self.assertEqual(self.rbsim("convert", s, "t/config.txt").returncode, 0)
+        files = ("config.txt", "materials.txt", "objects.txt")
+
+        def texts():
+            out = {}
+            for n in files:
+                with open(self.path("t/" + n)) as f:
+                    out[n] = f.read()
+            return out
+        before = texts()
+        for scene in ("t/config.txt", "t"):
+            for name in files:
+                for opt in ("--csv", "--json", "--stats", "--checkpoint"):
+                    r = self.rbsim("run", scene, opt, "t/" + name, "--quiet")
+                    self.assertEqual(r.returncode, 2, (scene, opt, name, r.stderr))
+                    self.assertIn("'t/%s' would overwrite the scene" % name,
+                                  r.stderr)
+                    if name != "config.txt":
+                        self.assertIn("the scene's file 't/%s'" % name, r.stderr)
+        self.assertEqual(texts(), before)
+        with open(self.path("t/config.txt"), "a") as f:
+            f.write("renderer = csv path=t/objects.txt\n")
+        before = texts()
+        for cmd in ("check", "run"):
+            r = self.rbsim(cmd, "t/config.txt")
+            self.assertEqual(r.returncode, 3, (cmd, r.stdout + r.stderr))
+            self.assertIn("renderers[0].path: the csv output 't/objects.txt' "
+                          "would overwrite the scene's file 't/objects.txt'",
+                          r.stdout + r.stderr)
+        self.assertEqual(texts(), before)
+        self.assertEqual(sorted(os.listdir(self.path("t"))), sorted(files))
+
     def test_soft_method(self):
         """--method soft runs a scene (frames 0..50, the method reported
         in explain); the scene's simulation.soft_substeps reaches the

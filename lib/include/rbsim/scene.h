@@ -130,6 +130,14 @@ RBS_API uint32_t rbs_scene_renderer_count(const rbs_scene *scene);
 RBS_API rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
                                           rbs_scene_renderer *out);
 
+/** The i-th file the scene was read from: the path rbs_scene_load opened
+ * (a folder's config.txt), then a text scene's materials and objects files
+ * as opened (beside the config); NULL past the last, and for i = 0 of a
+ * scene from rbs_scene_parse_json, which read no file.  Lets a caller keep
+ * its outputs off the scene's own files.  The string lives as long as the
+ * scene. */
+RBS_API const char *rbs_scene_source(const rbs_scene *scene, uint32_t i);
+
 /** Write the scene in a format (RBS_SCENE_AUTO: by path, as for loading).
  * JSON: one file.  TEXT: path names the config file; materials.txt and
  * objects.txt are written beside it ("X.materials.txt", "X.objects.txt" if

@@ -423,6 +423,7 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
         rbs_scene_free(scene);
         return RBS_E_MEMORY;
     }
+    scene->file_read[0] = 1;
     status = rbs__read_file(scene, path, at, &text, &len, &stream);
     if (status == RBS_OK) {
         if (format == RBS_SCENE_AUTO) {
@@ -795,6 +796,20 @@ rbs_status rbs_scene_renderer_get(const rbs_scene *scene, uint32_t i,
     out->line = r->at.line;
     out->column = r->at.column;
     return RBS_OK;
+}
+
+const char *rbs_scene_source(const rbs_scene *scene, uint32_t i)
+{
+    int32_t f;
+    if (scene == NULL) {
+        return NULL;
+    }
+    for (f = 0; f < scene->file_count; f++) {
+        if (scene->file_read[f] && i-- == 0) {
+            return scene->files[f];
+        }
+    }
+    return NULL;
 }
 
 static rbs_status scene_save(const rbs_scene *scene, const char *path,

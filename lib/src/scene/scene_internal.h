@@ -127,6 +127,9 @@ struct rbs_scene {
     /* files, for messages */
     char *files[RBS__SCENE_FILES_MAX];
     int32_t file_count;
+    /* files[k] names a file on disk the scene was read from (not a label:
+     * "<json>", "(no materials file)"); see rbs_scene_source */
+    uint8_t file_read[RBS__SCENE_FILES_MAX];
     /* description */
     char *description; /* NULL if none */
     uint64_t steps;

@@ -919,6 +919,7 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
         }
         return RBS_E_SCENE;
     }
+    t->scene->file_read[file] = 1;
     st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len, NULL);
     if (st == RBS_E_IO && t->stream && relative && access(path, F_OK) != 0) {
         /* A config given through a pipe works when its relative names lie
