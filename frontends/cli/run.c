@@ -1175,14 +1175,16 @@ static rbs_status checkpoint_hook(void *context, const rbs_world *world,
 
 /* Before anything runs: the checkpoint (path, its links followed: target)
  * must be a file we can make in an existing, writable folder, and not the
- * scene or an output.  rbs_world_save writes "<target>.tmp<pid>" and renames
+ * scene, an output or the file standard output is redirected to (which
+ * counts as '-': the rename would cut off what the run prints there, a '-'
+ * output or the summary, quiet or not, for one rule).  rbs_world_save writes "<target>.tmp<pid>" and renames
  * it onto target, so that file is made and removed here: it proves the
  * folder, the name's length and the file system (e.g. /proc) at once. */
 static int check_checkpoint_path(const char *path, const char *target,
                                  const rbs_scene *scene, const output *outs,
-                                 uint32_t n)
+                                 uint32_t n, int quiet)
 {
-    struct stat sb;
+    struct stat sb, so;
     const char *slash = strrchr(target, '/');
     char dir[4096], tmp[4200];
     size_t len = slash ? (size_t)(slash - target) : 0;
@@ -1245,6 +1247,20 @@ static int check_checkpoint_path(const char *path, const char *target,
         scene_file_note(note, sizeof note, f, k);
         fprintf(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
                         "scene%s\n", path, note);
+        return RBSF_EXIT_USAGE;
+    }
+    if (stat(target, &sb) == 0 && fstat(STDOUT_FILENO, &so) == 0 &&
+        sb.st_dev == so.st_dev && sb.st_ino == so.st_ino) {
+        char use[64];
+        snprintf(use, sizeof use, "%s", quiet ? "" : " (the summary goes there)");
+        for (i = 0; i < n; i++)
+            if (outs[i].config.path != NULL && strcmp(outs[i].config.path, "-") == 0 &&
+                strcmp(outs[i].config.type, "sdl") != 0)
+                snprintf(use, sizeof use, " (the %s output '-' goes there)",
+                         outs[i].config.type);
+        fprintf(stderr, "rbsim run: --checkpoint '%s' is the file standard "
+                        "output is redirected to%s: give it another name\n",
+                path, use);
         return RBSF_EXIT_USAGE;
     }
     for (i = 0; i < n; i++) {
@@ -1901,7 +1917,7 @@ int rbsf_run_main(int argc, char **argv)
             goto out;
         }
         code = check_checkpoint_path(o.checkpoint, ckpt_target, scene, outs,
-                                     n_out);
+                                     n_out, o.quiet);
         if (code != 0)
             goto out;
     }

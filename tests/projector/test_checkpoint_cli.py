@@ -367,6 +367,27 @@ class FaultTests(CkptBase):
         self.assertEqual(r.returncode, 3)
         self.assertFalse(os.path.exists(self.path("ck.bin")))
 
+    def test_checkpoint_is_not_where_stdout_goes(self):
+        # The file standard output is redirected to counts as '-': a
+        # checkpoint onto it replaced the file by rename, and the CSV or the
+        # summary printed there was lost (exit 0).  Refused before the run.
+        s = self.scene()
+        for name, args in (("so4.ck", ["--csv", "-", "--quiet"]),
+                           ("/dev/stdout", ["--csv", "-"]),
+                           ("so3.ck", [])):
+            out = self.path("so5" if name.startswith("/") else name)
+            with open(out, "w") as f:
+                r = subprocess.run([RBSIM, "run", s, "--checkpoint", name] + args,
+                                   stdin=subprocess.DEVNULL, stdout=f,
+                                   stderr=subprocess.PIPE, text=True,
+                                   cwd=self.dir, timeout=120)
+            self.assertEqual(r.returncode, 2, (name, r.stderr))
+            self.assertIn("--checkpoint '%s' is the file standard output is "
+                          "redirected to" % name, r.stderr)
+            self.assertIn("the csv output '-'" if args else "the summary",
+                          r.stderr)
+            self.assertEqual(os.path.getsize(out), 0, name)
+
     def test_checkpoint_path_checked_before_the_run(self):
         """A --checkpoint that cannot be written (a name too long for the
         file system, a folder that takes no files) is refused up front with
