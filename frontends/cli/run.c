@@ -719,12 +719,26 @@ static void png_layout(const char *json, int *views, int *tile, int *sheet)
     }
 }
 
+/* Is name "viewK" (no leading zero) with K < views? */
+static int is_view_folder(const char *name, int views)
+{
+    char *end;
+    unsigned long k;
+    if (strncmp(name, "view", 4) != 0 || name[4] < '0' || name[4] > '9' ||
+        (name[4] == '0' && name[5] != '\0'))
+        return 0;
+    k = strtoul(name + 4, &end, 10);
+    return *end == '\0' && k < (unsigned long)views;
+}
+
 /* Would the sdl output folder dir (entry JSON json) write the file path?
  * The renderer writes DIR/frame_NNNNNN.png (one view, or views tiled),
  * DIR/viewK/frame_NNNNNN.png for K < views (several views, not tiled) and
  * DIR/contact_sheet.png (unless "contact_sheet": false); see
- * frontends/sdl/README.md, "Files".  Nonzero if so, with the pattern in
- * what. */
+ * frontends/sdl/README.md, "Files".  1 if so, 2 if path is one of the
+ * DIR/viewK folders it makes (a file there fails the renderer, or the
+ * folder fails a file made there later), with the pattern in what; else
+ * 0. */
 static int png_folder_writes(const char *dir, const char *json,
                              const char *path, const char **what)
 {
@@ -743,23 +757,18 @@ static int png_folder_writes(const char *dir, const char *json,
             *what = "frame_NNNNNN.png";
             return 1;
         }
+        if (views > 1 && !tile && is_view_folder(name, views)) {
+            *what = "viewK, for K below its views";
+            return 2;
+        }
         return 0;
     }
     /* DIR/viewK/frame_NNNNNN.png */
     if (views == 1 || tile || !is_frame_png(name))
         return 0;
-    if (folder_of(parent, grand, sizeof grand, &vname) != 0)
+    if (folder_of(parent, grand, sizeof grand, &vname) != 0 ||
+        !is_view_folder(vname, views))
         return 0;
-    {
-        char *end;
-        unsigned long k;
-        if (strncmp(vname, "view", 4) != 0 || vname[4] < '0' || vname[4] > '9' ||
-            (vname[4] == '0' && vname[5] != '\0'))
-            return 0;
-        k = strtoul(vname + 4, &end, 10);
-        if (*end != '\0' || k >= (unsigned long)views)
-            return 0;
-    }
     if (!same_dir(grand, dir))
         return 0;
     *what = "viewK/frame_NNNNNN.png";
@@ -859,16 +868,18 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
         }
         for (j = 0; j < n; j++) {
             const char *b = outs[j].config.path, *what = NULL;
+            int kind;
             if (j == i || b == NULL || strcmp(b, "-") == 0 ||
                 strcmp(outs[j].config.type, "sdl") != 0 ||
                 strcmp(outs[i].config.type, "sdl") == 0 ||
-                !png_folder_writes(b, outs[j].config.json, a, &what))
+                !(kind = png_folder_writes(b, outs[j].config.json, a, &what)))
                 continue;
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the %s output '%s' is a file the sdl "
-                            "output writes in its folder '%s' (%s): give it "
+            fprintf(stderr, "the %s output '%s' is a %s the sdl "
+                            "output %s in its folder '%s' (%s): give it "
                             "another name\n",
-                    outs[i].config.type, a, b, what);
+                    outs[i].config.type, a, kind == 2 ? "folder" : "file",
+                    kind == 2 ? "makes" : "writes", b, what);
             return outs[i].from_scene && outs[j].from_scene ? RBSF_EXIT_SCENE
                                                             : RBSF_EXIT_USAGE;
         }
@@ -1266,16 +1277,19 @@ static int check_checkpoint_path(const char *path, const char *target,
     for (i = 0; i < n; i++) {
         const char *a = outs[i].config.path;
         const char *what = NULL;
+        int kind;
         if (a != NULL && strcmp(a, "-") != 0 && same_file(a, target)) {
             fprintf(stderr, "rbsim run: --checkpoint '%s' is also the %s "
                             "output\n", path, outs[i].config.type);
             return RBSF_EXIT_USAGE;
         }
         if (a != NULL && strcmp(outs[i].config.type, "sdl") == 0 &&
-            png_folder_writes(a, outs[i].config.json, target, &what)) {
-            fprintf(stderr, "rbsim run: --checkpoint '%s' is a file the sdl "
-                            "output writes in its folder '%s' (%s): give it "
-                            "another name\n", path, a, what);
+            (kind = png_folder_writes(a, outs[i].config.json, target, &what))) {
+            fprintf(stderr, "rbsim run: --checkpoint '%s' is a %s the sdl "
+                            "output %s in its folder '%s' (%s): give it "
+                            "another name\n", path,
+                    kind == 2 ? "folder" : "file",
+                    kind == 2 ? "makes" : "writes", a, what);
             return RBSF_EXIT_USAGE;
         }
         if (a != NULL && strcmp(outs[i].config.type, "sdl") == 0 &&

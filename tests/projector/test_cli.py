@@ -841,6 +841,28 @@ class CliTests(Base):
                        "pv/view1/frame_000005.png")
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("viewK/frame_NNNNNN.png", r.stderr)
+        # The viewK folders themselves: a file output there was made first
+        # and the renderer failed (exit 4); a checkpoint there ran the whole
+        # run, then failed to save (exit 4).  Refused before the run, and by
+        # check when both are scene entries (exit 3).
+        for extra in (["--csv", "pv/view1"], ["--json", "./pv//view0"],
+                      ["--checkpoint", "pv/view1"]):
+            os.makedirs(self.path("pv"), exist_ok=True)
+            r = self.rbsim("run", sv, "--steps", "5", *extra)
+            self.assertEqual(r.returncode, 2, (extra, r.stderr))
+            self.assertIn("is a folder the sdl output makes in its folder "
+                          "'pv' (viewK", r.stderr)
+            self.assertEqual(os.listdir(self.path("pv")), [], extra)
+        shutil.rmtree(self.path("pv"))
+        self.scene("views2.json", renderers=[
+            {"type": "sdl", "path": "pv", "views": views, "window": False},
+            {"type": "csv", "path": "pv/view1"}])
+        for cmd in ("check", "run"):
+            r = self.rbsim(cmd, "views2.json")
+            self.assertEqual(r.returncode, 3, (cmd, r.stdout + r.stderr))
+            self.assertIn("renderers[1].path: the csv output 'pv/view1' is a "
+                          "folder the sdl output makes", r.stdout + r.stderr)
+        self.assertFalse(os.path.exists(self.path("pv")))
         for name in ("pv/frame_000005.png", "pv/view2/frame_000005.png",
                      "pv/frame_00005.png", "pv/frame_0000005.png",
                      "pv/run.csv"):
