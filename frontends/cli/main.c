@@ -210,28 +210,68 @@ static void print_load_errors(const rbs_scene *scene, const char *path,
         printf("%s: %s\n", path, rbs_status_string(st));
 }
 
+/* A command's file arguments (check: SCENE; convert: IN OUT) into files:
+ * exactly want of them.  These commands take no option, so one ("--steps"
+ * after check) is named as unknown, and so is an argument too many, an
+ * empty one, or a missing one; "--" ends the options.  0, or an exit code
+ * after the message and the command's help. */
+static int file_args(const char *cmd, const char *help, int argc, char **argv,
+                     const char **files, int want)
+{
+    int i, got = 0, options = 1;
+    for (i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        if (options && strcmp(a, "--") == 0) {
+            options = 0;
+            continue;
+        }
+        if (options && a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "rbsim %s: unknown option '%s'\n%s", cmd, a, help);
+            return RBSF_EXIT_USAGE;
+        }
+        if (a[0] == '\0') {
+            fprintf(stderr, "rbsim %s: argument %d is an empty string, not a "
+                            "file name\n%s", cmd, i + 1, help);
+            return RBSF_EXIT_USAGE;
+        }
+        if (got == want) {
+            fprintf(stderr, "rbsim %s: unexpected argument '%s' (expected %s)\n%s",
+                    cmd, a, want == 1 ? "one scene file" : "IN and OUT", help);
+            return RBSF_EXIT_USAGE;
+        }
+        files[got++] = a;
+    }
+    if (got < want) {
+        fprintf(stderr, "rbsim %s: expected %s\n%s", cmd,
+                want == 1 ? "one scene file"
+                          : got == 0 ? "IN and OUT" : "OUT after IN",
+                help);
+        return RBSF_EXIT_USAGE;
+    }
+    return 0;
+}
+
 static int check_main(int argc, char **argv)
 {
     rbs_scene *scene = NULL;
     rbs_world *world = NULL;
     rbs_renderer_registry *registry = NULL;
     rbs_status st;
-    int code = RBSF_EXIT_OK;
+    const char *path;
+    int code = file_args("check", check_text, argc, argv, &path, 1);
     uint32_t i, n;
 
-    if (argc != 1 || argv[0][0] == '\0') {
-        fprintf(stderr, "rbsim check: expected one scene file\n%s", check_text);
-        return RBSF_EXIT_USAGE;
-    }
-    st = rbs_scene_load(argv[0], RBS_SCENE_AUTO, &scene);
+    if (code != 0)
+        return code;
+    st = rbs_scene_load(path, RBS_SCENE_AUTO, &scene);
     if (st != RBS_OK) {
-        print_load_errors(scene, argv[0], st);
+        print_load_errors(scene, path, st);
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
-        printf("%s: cannot build the world: %s%s%s\n", argv[0],
+        printf("%s: cannot build the world: %s%s%s\n", path,
                rbs_status_string(st), world ? ": " : "",
                world ? rbs_world_last_error(world) : "");
         code = RBSF_EXIT_SCENE;
@@ -286,7 +326,7 @@ static int check_main(int argc, char **argv)
     if (code == RBSF_EXIT_OK)
         code = rbsf_check_scene_outputs(scene); /* (as run checks them) */
     if (code == RBSF_EXIT_OK)
-        printf("%s: ok (%llu steps, %lu renderer%s)\n", argv[0],
+        printf("%s: ok (%llu steps, %lu renderer%s)\n", path,
                (unsigned long long)rbs_scene_steps(scene), (unsigned long)n,
                n == 1 ? "" : "s");
 out:
@@ -329,9 +369,13 @@ static int explain_main(int argc, char **argv)
             fprintf(stderr, "rbsim explain: unknown option '%s'\n%s", a,
                     explain_text);
             return RBSF_EXIT_USAGE;
-        } else if (path != NULL || a[0] == '\0') {
-            fprintf(stderr, "rbsim explain: expected one scene file\n%s",
-                    explain_text);
+        } else if (a[0] == '\0') {
+            fprintf(stderr, "rbsim explain: argument %d is an empty string, "
+                            "not a file name\n%s", i + 1, explain_text);
+            return RBSF_EXIT_USAGE;
+        } else if (path != NULL) {
+            fprintf(stderr, "rbsim explain: unexpected argument '%s' (expected "
+                            "one scene file)\n%s", a, explain_text);
             return RBSF_EXIT_USAGE;
         } else {
             path = a;
@@ -393,23 +437,23 @@ static int convert_main(int argc, char **argv)
     rbs_scene_format format;
     rbs_status st;
     uint32_t k, count;
+    const char *files[2];
+    int code = file_args("convert", convert_text, argc, argv, files, 2);
 
-    if (argc != 2 || argv[0][0] == '\0' || argv[1][0] == '\0') {
-        fprintf(stderr, "rbsim convert: expected IN and OUT\n%s", convert_text);
-        return RBSF_EXIT_USAGE;
-    }
-    if (ends_with(argv[1], ".json"))
+    if (code != 0)
+        return code;
+    if (ends_with(files[1], ".json"))
         format = RBS_SCENE_JSON;
-    else if (ends_with(argv[1], ".txt"))
+    else if (ends_with(files[1], ".txt"))
         format = RBS_SCENE_TEXT;
     else {
         fprintf(stderr,
                 "rbsim convert: cannot tell the format of '%s': name it *.json "
                 "or a config.txt path\n",
-                argv[1]);
+                files[1]);
         return RBSF_EXIT_USAGE;
     }
-    st = rbs_scene_load(argv[0], RBS_SCENE_AUTO, &scene);
+    st = rbs_scene_load(files[0], RBS_SCENE_AUTO, &scene);
     if (st != RBS_OK) {
         count = scene ? rbs_scene_error_count(scene) : 0;
         for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
@@ -418,17 +462,17 @@ static int convert_main(int argc, char **argv)
                 fprintf(stderr, "%s\n", e.text);
         }
         if (count == 0)
-            fprintf(stderr, "%s: %s\n", argv[0], rbs_status_string(st));
+            fprintf(stderr, "%s: %s\n", files[0], rbs_status_string(st));
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
-    st = rbs_scene_save_v2(scene, argv[1], format, why, sizeof why);
+    st = rbs_scene_save_v2(scene, files[1], format, why, sizeof why);
     if (st != RBS_OK) {
         /* nothing was written: the save replaces files only when all are complete */
         if (why[0] != '\0')
             fprintf(stderr, "rbsim convert: %s\n", why);
         else
-            fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", argv[1],
+            fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", files[1],
                     rbs_status_string(st));
         rbs_scene_free(scene);
         return RBSF_EXIT_RUN;

@@ -199,6 +199,36 @@ class CliTests(Base):
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
 
+    def test_check_convert_explain_name_the_bad_argument(self):
+        # They said "expected one scene file" / "expected IN and OUT" for
+        # any bad argument; like run, they name it (exit 2, nothing written).
+        s = self.scene()
+        for args, msg in (
+                (["check", s, "--bogus"], "rbsim check: unknown option '--bogus'"),
+                (["check", "--quiet", s], "rbsim check: unknown option '--quiet'"),
+                (["check", s, "--steps", "5"], "rbsim check: unknown option '--steps'"),
+                (["check", s, "more.json"], "rbsim check: unexpected argument 'more.json'"),
+                (["check", ""], "rbsim check: argument 1 is an empty string"),
+                (["check"], "rbsim check: expected one scene file"),
+                (["convert", "--force", s, "b.json"],
+                 "rbsim convert: unknown option '--force'"),
+                (["convert", s, "b.json", "c.json"],
+                 "rbsim convert: unexpected argument 'c.json'"),
+                (["convert", s], "rbsim convert: expected OUT after IN"),
+                (["explain", s, "more.json"],
+                 "rbsim explain: unexpected argument 'more.json'"),
+                (["explain", s, "--steps", "5"],
+                 "rbsim explain: unknown option '--steps'")):
+            r = self.rbsim(*args)
+            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertIn(msg, r.stderr, args)
+            self.assertIn("usage: rbsim " + args[0], r.stderr, args)
+        self.assertEqual(os.listdir(self.dir), ["scene.json"])
+        # "--" ends the options: a scene whose name starts with '-'
+        shutil.copy(s, self.path("-odd.json"))
+        r = self.rbsim("check", "--", "-odd.json")
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+
     def test_subnormal_dt_and_slop_are_numbers(self):
         # 5e-324 and 1e-310 are doubles > 0, as a scene's JSON takes them
         # (strtod's ERANGE for a subnormal result refused them).
