@@ -1055,12 +1055,14 @@ static int stage_output(output *o, char *err, size_t errlen)
     const char *path = o->config.path;
     struct stat sb;
     const char *slash;
+    char shown[160]; /* (shortened: the reason must fit in err) */
     size_t dir;
     int fd;
 
+    rbsf_shown_path(path, shown, sizeof shown);
     o->target = resolve_links(path);
     if (o->target == NULL) {
-        snprintf(err, errlen, "'%s': %s", path, strerror(errno));
+        snprintf(err, errlen, "'%s': %s", shown, strerror(errno));
         return -1;
     }
     slash = strrchr(o->target, '/');
@@ -1077,7 +1079,7 @@ static int stage_output(output *o, char *err, size_t errlen)
         }
         fd = open(o->target, O_WRONLY | O_NOCTTY);
         if (fd < 0) {
-            snprintf(err, errlen, "cannot write '%s': %s", path,
+            snprintf(err, errlen, "cannot write '%s': %s", shown,
                      strerror(errno));
             return -1;
         }
@@ -1087,7 +1089,7 @@ static int stage_output(output *o, char *err, size_t errlen)
         fd = mkstemp(o->work);
         if (fd < 0) {
             snprintf(err, errlen, "cannot create a temporary file beside '%s': "
-                                  "%s", path, strerror(errno));
+                                  "%s", shown, strerror(errno));
             return -1;
         }
         fchmod(fd, sb.st_mode & 07777); /* the old file's permissions */
@@ -1106,7 +1108,7 @@ static int stage_output(output *o, char *err, size_t errlen)
         fd = open(o->target, O_WRONLY | O_CREAT | O_EXCL | O_NOCTTY, 0666);
     }
     if (fd < 0) {
-        snprintf(err, errlen, "cannot create '%s': %s", path, strerror(errno));
+        snprintf(err, errlen, "cannot create '%s': %s", shown, strerror(errno));
         return -1;
     }
     close(fd);

@@ -107,6 +107,11 @@ size_t rbsf_format_double(char *buf, size_t size, double x);
  * standard output) is fine.  Returns RBS_OK or RBS_E_IO with a message. */
 rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen);
 
+/** path as a message shows it, in buf (size bytes, at least 16): whole if it
+ * fits, else its start and its end around "..." -- a message cut at the end
+ * of its buffer lost its reason along with the path's end.  Returns buf. */
+const char *rbsf_shown_path(const char *path, char *buf, size_t size);
+
 #ifdef __cplusplus
 }
 #endif

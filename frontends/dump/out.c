@@ -8,6 +8,7 @@
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -269,11 +270,26 @@ size_t rbsf__frame_bytes(uint32_t max_bodies, size_t per_body)
     return 1024 + (size_t)max_bodies * per_body;
 }
 
+const char *rbsf_shown_path(const char *path, char *buf, size_t size)
+{
+    size_t n = strlen(path), half = (size - 4) / 2;
+    if (n < size) {
+        memcpy(buf, path, n + 1);
+        return buf;
+    }
+    memcpy(buf, path, half);
+    memcpy(buf + half, "...", 3);
+    memcpy(buf + half + 3, path + n - half, half);
+    buf[2 * half + 3] = '\0';
+    return buf;
+}
+
 rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
 {
     struct stat sb;
     char *dir;
     const char *slash;
+    char shown[160], shown_dir[160];
     size_t n;
     int ok;
 
@@ -283,16 +299,30 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
     }
     if (strcmp(path, "-") == 0)
         return RBS_OK;
+    /* (paths are shown shortened: the reason must fit the message) */
+    rbsf_shown_path(path, shown, sizeof shown);
+#ifdef PATH_MAX
+    if (strlen(path) >= (size_t)PATH_MAX) {
+        snprintf(err, errlen, "'%s': path too long: %lu bytes, past the system's "
+                              "limit of %d bytes for a path",
+                 shown, (unsigned long)strlen(path), PATH_MAX - 1);
+        return RBS_E_IO;
+    }
+#endif
     if (stat(path, &sb) == 0) {
         if (S_ISDIR(sb.st_mode)) {
-            snprintf(err, errlen, "'%s' is a folder, expected a file name", path);
+            snprintf(err, errlen, "'%s' is a folder, expected a file name", shown);
             return RBS_E_IO;
         }
         if (access(path, W_OK) != 0) {
-            snprintf(err, errlen, "cannot write '%s': %s", path, strerror(errno));
+            snprintf(err, errlen, "cannot write '%s': %s", shown, strerror(errno));
             return RBS_E_IO;
         }
         return RBS_OK;
+    }
+    if (errno == ENAMETOOLONG) { /* a name in it past the file system's limit */
+        snprintf(err, errlen, "cannot create '%s': %s", shown, strerror(errno));
+        return RBS_E_IO;
     }
     /* The file does not exist yet: its folder must. */
     slash = strrchr(path, '/');
@@ -326,10 +356,11 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
             *up = '/';
         if (!ok)
             snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist",
-                     path, dir);
+                     shown, rbsf_shown_path(dir, shown_dir, sizeof shown_dir));
     } else if (access(dir, W_OK) != 0) {
-        snprintf(err, errlen, "cannot create '%s' in '%s': %s", path, dir,
-                 strerror(errno));
+        int e = errno;
+        snprintf(err, errlen, "cannot create '%s' in '%s': %s", shown,
+                 rbsf_shown_path(dir, shown_dir, sizeof shown_dir), strerror(e));
         ok = 0;
     }
     free(dir);

@@ -229,6 +229,30 @@ class CliTests(Base):
         r = self.rbsim("check", "--", "-odd.json")
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
 
+    def test_long_paths_keep_the_reason(self):
+        # A path past PATH_MAX was echoed whole into a 512-byte message, cut
+        # off mid-path with no reason.  The path is shown shortened (its
+        # start and end around "...") and the reason is said.
+        s = self.scene()
+        long = "a/" * 2100 + "x.csv"
+        for opt in ("--csv", "--json", "--stats"):
+            r = self.rbsim("run", s, opt, long)
+            self.assertEqual(r.returncode, 2, (opt, r.stderr))
+            self.assertIn("path too long: 4205 bytes, past the system's limit",
+                          r.stderr)
+            self.assertRegex(r.stderr, r"'a/a/[a/]*\.\.\.[a/]*/x\.csv': path too long")
+            self.assertLess(len(r.stderr), 400)
+        self.scene("long.json", renderers=[{"type": "csv", "path": long}])
+        r = self.rbsim("check", "long.json")
+        self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+        self.assertIn("renderers[0] (csv): 'a/a/", r.stdout)
+        self.assertIn("path too long", r.stdout)
+        # a name past the file system's limit: its own reason
+        r = self.rbsim("run", s, "--csv", "b" * 300 + "/x.csv")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertRegex(r.stderr, r"'b+\.\.\.b+/x\.csv': File name too long")
+        self.assertEqual(os.listdir(self.dir), ["scene.json", "long.json"])
+
     def test_subnormal_dt_and_slop_are_numbers(self):
         # 5e-324 and 1e-310 are doubles > 0, as a scene's JSON takes them
         # (strtod's ERANGE for a subnormal result refused them).
