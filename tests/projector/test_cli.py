@@ -1253,6 +1253,32 @@ class CliTests(Base):
         self.assertEqual(sorted(os.listdir(d)), ["config.txt", "objects.txt"])
         with open(os.path.join(d, "config.txt")) as f:
             self.assertEqual(f.read(), "old\n")
+        # objects.txt too large to write, into a folder convert makes: the
+        # message names objects.txt (not config.txt, flushed last of all on
+        # a full disk) and the folder it made is gone again.
+        bodies = SCENE["bodies"] + [
+            {"name": "s%d" % k, "type": "sphere", "radius": 0.01, "mass": 1,
+             "position": [0.03 * k, 2, 0.5]} for k in range(60)]
+        big = self.scene("big.json", bodies=bodies)
+        r = self.rbsim("convert", big, "pile/config.txt",
+                       preexec_fn=file_size_limit(4096, signal.SIG_IGN))
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("cannot write 'pile/objects.txt': File too large", r.stderr)
+        self.assertFalse(os.path.exists(self.path("pile")))
+        if os.geteuid() == 0:  # a full disk: a small tmpfs (needs root)
+            mnt = self.path("small")
+            os.mkdir(mnt)
+            m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=8k",
+                                "tmpfs", mnt], capture_output=True, text=True)
+            if m.returncode == 0:
+                try:
+                    r = self.rbsim("convert", big, "small/pile/config.txt")
+                    self.assertEqual(r.returncode, 4, r.stderr)
+                    self.assertIn("cannot write 'small/pile/objects.txt': No "
+                                  "space left on device", r.stderr)
+                    self.assertEqual(os.listdir(mnt), [])
+                finally:
+                    subprocess.run(["umount", mnt], check=True)
         # an OS reason, not "input/output error"
         r = self.rbsim("convert", s, self.path("no/such/dir/x.json"))
         self.assertEqual(r.returncode, 4)

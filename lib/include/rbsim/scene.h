@@ -141,7 +141,8 @@ RBS_API const char *rbs_scene_source(const rbs_scene *scene, uint32_t i);
 /** Write the scene in a format (RBS_SCENE_AUTO: by path, as for loading).
  * JSON: one file.  TEXT: path names the config file; materials.txt and
  * objects.txt are written beside it ("X.materials.txt", "X.objects.txt" if
- * the name is not config.txt).  A missing parent folder (one level) is made.
+ * the name is not config.txt).  A missing parent folder (one level) is made
+ * (and removed again if the save fails).
  * Every value is written (defaults included) with the fewest digits that
  * read back exactly, so loading the result gives an equal scene and a
  * bit-identical world.  Every file is written to a temporary beside it and
@@ -159,7 +160,8 @@ RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
                                   rbs_scene_format format);
 
 /** rbs_scene_save, and on RBS_E_IO a message ("cannot write 'PATH':
- * REASON", naming the file that failed), on RBS_E_UNSUPPORTED one naming
+ * REASON", naming the file that failed: each file is flushed before the next
+ * is written, so a full disk is named at the file that filled it), on RBS_E_UNSUPPORTED one naming
  * the renderer entry, its key and why the text format cannot write it, in
  * message (message_size bytes,
  * NUL-terminated; "" on success).  message may be NULL. */

@@ -25,6 +25,7 @@ typedef struct staged {
     char *path;
     char *tmp;
     FILE *f;
+    char *made_dir; /* the missing folder stage_open made, removed on failure */
 } staged;
 
 /* Report of a failed save: "cannot write 'PATH': REASON". */
@@ -65,6 +66,7 @@ static rbs_status stage_open(staged *o, const rbs_scene *s, const char *path, sa
     int fd = -1, attempt, have = 0;
     o->f = NULL;
     o->tmp = NULL;
+    o->made_dir = NULL;
     o->path = rbs__link_target(path);
     if (o->path == NULL) {
         return errno == ENOMEM ? RBS_E_MEMORY
@@ -93,10 +95,11 @@ static rbs_status stage_open(staged *o, const rbs_scene *s, const char *path, sa
             }
             memcpy(dir, o->path, d);
             dir[d] = '\0';
-            if (stat(dir, &sb) != 0 && errno == ENOENT) {
-                (void)mkdir(dir, 0777);
+            if (stat(dir, &sb) != 0 && errno == ENOENT && mkdir(dir, 0777) == 0) {
+                o->made_dir = dir; /* a failed save removes it again */
+            } else {
+                free(dir);
             }
-            free(dir);
         }
     }
     n = strlen(o->path) + 32;
@@ -167,6 +170,14 @@ static rbs_status stage_finish(staged *o, int n, rbs_status st, save_report *r)
         free(o[i].tmp);
         free(o[i].path);
         o[i].tmp = o[i].path = NULL;
+    }
+    /* the folder a failed save made goes too, once its temporaries have */
+    for (i = n - 1; i >= 0; i--) {
+        if (o[i].made_dir != NULL && st != RBS_OK) {
+            (void)rmdir(o[i].made_dir);
+        }
+        free(o[i].made_dir);
+        o[i].made_dir = NULL;
     }
     return st;
 }
@@ -712,7 +723,7 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *mess
                                 size_t message_size)
 {
     save_report r = {message, message_size};
-    staged o[3] = {{NULL, NULL, NULL}, {NULL, NULL, NULL}, {NULL, NULL, NULL}};
+    staged o[3] = {{NULL, NULL, NULL, NULL}, {NULL, NULL, NULL, NULL}, {NULL, NULL, NULL, NULL}};
     char *mpath = sibling(path, "materials.txt");
     char *opath = sibling(path, "objects.txt");
     const char *mbase, *obase;
@@ -753,6 +764,13 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *mess
     }
     free(mpath);
     free(opath);
+    /* Each file is flushed once complete, before the next is written: on a
+     * full disk the one that filled it is named (a flush of all three at
+     * the end failed at config.txt first, though objects.txt had filled
+     * the disk). */
+    if (st == RBS_OK) {
+        st = stage_close(&o[0], &r);
+    }
     /* materials.txt */
     f = o[1].f;
     fputs("# material_a material_b static kinetic restitution(- = the simulation's) "
@@ -778,6 +796,9 @@ rbs_status rbs__scene_save_text(const rbs_scene *s, const char *path, char *mess
         fputc(' ', f);
         put_num(f, p->spinning);
         fputc('\n', f);
+    }
+    if (st == RBS_OK) {
+        st = stage_close(&o[1], &r);
     }
     /* objects.txt */
     f = o[2].f;
