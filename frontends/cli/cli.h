@@ -99,6 +99,12 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
 int rbsf_help(FILE *out, const char *command);
 
 /* ---- main.c ---- */
+/** Flush standard output once a command has printed all it prints there:
+ * RBSF_EXIT_OK, or, when that was lost (a full disk, a closed pipe), a
+ * message with the reason and RBSF_EXIT_RUN.  Only the first flush that
+ * fails knows the reason (errno), so a command that flushes calls this and
+ * not fflush. */
+int rbsf_flush_stdout(void);
 /** The stepping methods the library knows, as "euler, selective, ... or
  * soft" (from rbs_method_name, so a new method is named in every message);
  * cut short if it does not fit in size bytes. */

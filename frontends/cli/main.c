@@ -413,10 +413,7 @@ static int explain_main(int argc, char **argv)
         goto out;
     }
     printf("scene: %s\n%s", path, text);
-    if (fflush(stdout) != 0) {
-        fprintf(stderr, "rbsim explain: cannot write the output\n");
-        code = RBSF_EXIT_RUN;
-    }
+    code = rbsf_flush_stdout();
 out:
     free(text);
     rbs_world_destroy(world);
@@ -509,21 +506,39 @@ static void guard_standard_fds(void)
     }
 }
 
+/* The message when what a command printed on the standard output was lost,
+ * with the reason (errno e; 0 if unknown). */
+static void say_stdout_lost(int e)
+{
+    fprintf(stderr, "rbsim: what it printed on the standard output was lost%s%s\n",
+            e ? ": " : "", e ? strerror(e) : "");
+}
+
+int rbsf_flush_stdout(void)
+{
+    int e;
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return RBSF_EXIT_OK;
+    e = errno;
+    say_stdout_lost(e);
+    clearerr(stdout); /* said once: finish_stdout need not say it again */
+    return RBSF_EXIT_RUN;
+}
+
 /* The command's exit code rc, unless what it printed on the standard output
  * was lost (a full disk, a closed pipe or descriptor): then a message and
- * RBSF_EXIT_RUN (a command that failed already keeps its code and message). */
+ * RBSF_EXIT_RUN (a command that failed keeps its code, and is told too:
+ * check's errors go to the standard output). */
 static int finish_stdout(int rc)
 {
-    int lost;
+    int code = rbsf_flush_stdout();
     errno = 0;
-    lost = fflush(stdout) != 0 || ferror(stdout);
-    if (fclose(stdout) != 0)
-        lost = 1;
-    if (!lost || rc != RBSF_EXIT_OK)
-        return rc;
-    fprintf(stderr, "rbsim: what it printed on the standard output was lost%s%s\n", errno ? ": " : "",
-            errno ? strerror(errno) : "");
-    return RBSF_EXIT_RUN;
+    if (fclose(stdout) != 0 && code == RBSF_EXIT_OK) {
+        say_stdout_lost(errno);
+        code = RBSF_EXIT_RUN;
+    }
+    return rc != RBSF_EXIT_OK ? rc : code;
 }
 
 static int dispatch(int argc, char **argv);

@@ -2155,7 +2155,10 @@ int rbsf_run_main(int argc, char **argv)
         if (failed > 0 && code == RBSF_EXIT_OK)
             code = RBSF_EXIT_RUN;
     }
-    fflush(talk);
+    if (talk == stdout && rbsf_flush_stdout() != RBSF_EXIT_OK && code == RBSF_EXIT_OK)
+        code = RBSF_EXIT_RUN;
+    else if (talk != stdout)
+        fflush(talk);
 
 out:
     rbsf_signals_stop(&signals);
