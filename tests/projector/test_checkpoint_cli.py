@@ -434,6 +434,32 @@ class FaultTests(CkptBase):
         self.assertIn("adir: is a folder", r.stderr)
         self.assertNotIn("memory", r.stderr)
 
+    def test_other_format_version_names_both(self):
+        # README.md: a checkpoint of another format version is refused with
+        # both versions named.  It also said "(now 10)" while the library
+        # wrote 12: any version the README names must be the library's.
+        import re
+        import struct
+        s = self.scene()
+        self.checkpoint(s)
+        with open(self.path("ck.bin"), "r+b") as f:
+            f.seek(8)  # after the 8-byte magic: the version (native order)
+            (version,) = struct.unpack("=I", f.read(4))
+            f.seek(8)
+            f.write(struct.pack("=I", version + 1))
+        r = self.rbsim("run", s, "--resume", "ck.bin", "--csv", "r.csv")
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("format version %d, this library reads version %d"
+                      % (version + 1, version), r.stderr)
+        self.assertFalse(os.path.exists(self.path("r.csv")))
+        top = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        with open(os.path.join(top, "README.md")) as f:
+            readme = " ".join(f.read().split())
+        self.assertIn("a checkpoint of another format version", readme)
+        for named in re.findall(r"another format version \(now (\d+)\)", readme):
+            self.assertEqual(int(named), version, "README.md names version "
+                             + named)
+
     def test_resume_other_body_definitions(self):
         """A body whose definition changed since the checkpoint (not its
         state) is refused, naming the body and the field: resuming would

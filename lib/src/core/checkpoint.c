@@ -7,10 +7,11 @@
  * double bit for bit -- followed by an FNV-1a 64-bit checksum of all that
  * precedes it.  Reading checks everything before it builds anything.
  *
- * Format version 10 (little or big endian as written; a reader on the other
- * byte order rejects it as foreign; see CKPT_VERSION for the earlier ones):
+ * Format version CKPT_VERSION (little or big endian as written; a reader on
+ * the other byte order rejects it as foreign; see CKPT_VERSION for the
+ * earlier ones):
  *   char     magic[8]   "RBSCKPT\0"
- *   uint32   version    10 (CKPT_VERSION)
+ *   uint32   version    CKPT_VERSION
  *   uint32   endian     0x01020304
  *   uint32   def_size   sizeof(rbs_world_def)
  *   uint32   reserved   0
