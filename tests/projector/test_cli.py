@@ -1151,6 +1151,26 @@ class CliTests(Base):
         for args in lines:
             r = self.rbsim(*args, timeout=300)
             self.assertEqual(r.returncode, 0, (args, r.stderr))
+        # The checkpoint example keeps what it says: the first run's CSV
+        # plus the resumed one's rows are the uninterrupted run's bytes (it
+        # once read the first part from the scene's own out/pile.csv, which
+        # the resumed run replaced with frames 1001.. only).
+        first = [a for a in lines if "--checkpoint" in a]
+        rest = [a for a in lines if "--resume" in a]
+        self.assertEqual((len(first), len(rest)), (1, 1))
+        first, rest = first[0], rest[0]
+        self.assertEqual(first[:2], rest[:2])
+        r = self.rbsim("run", first[1], "--csv", "whole.csv", "--quiet",
+                       timeout=300)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        parts = []
+        for args in (first, rest):
+            self.assertIn("--csv", args, args)
+            with open(self.path(args[args.index("--csv") + 1]), "rb") as f:
+                parts.append(f.read())
+        with open(self.path("whole.csv"), "rb") as f:
+            whole = f.read()
+        self.assertEqual(parts[0] + parts[1].split(b"\n", 1)[1], whole)
 
     def test_check_and_explain_refuse_what_event_refuses(self):
         # (they passed it; run then failed at step 1 with exit 4)
