@@ -308,6 +308,17 @@ static int parse_run_args(int argc, char **argv, run_options *o)
     if ((o->checkpoint || o->resume) && o->scene == NULL)
         return usage_error("--checkpoint and --resume need a SCENE (not the "
                            "demonstration)%s%s", "", "");
+    /* The demonstration checks its run against exact answers made for its
+     * own steps, time step, method and slop: with others they would fail
+     * (too few steps never reach the impact) or check nothing meant. */
+    if (o->scene == NULL && (o->steps_given || o->dt > 0 || o->method || o->slop > 0))
+        return usage_error("%s changes the built-in demonstration, which "
+                           "checks its run against exact answers for its own "
+                           "steps, dt, method and slop: give a SCENE to run "
+                           "with it%s",
+                           o->steps_given ? "--steps" : o->dt > 0 ? "--dt"
+                                            : o->method ? "--method" : "--slop",
+                           "");
     if (seen_speed && !o->realtime)
         return usage_error("--speed sets the pace of --realtime, and a run "
                            "without it goes as fast as it can: give "
@@ -481,15 +492,26 @@ static void free_outputs(output *outs, uint32_t n)
     }
 }
 
-static int make_dir(const char *path)
+/* The demonstration's output folder path, made if missing.  0, or -1 after
+ * saying why (a file in its place is named as such: "File exists" did not
+ * say what to do). */
+static int make_demo_dir(const char *path)
 {
     struct stat sb;
     if (mkdir(path, 0777) == 0)
         return 0;
     if (errno == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return 0;
-    fprintf(stderr, "rbsim: cannot create folder '%s': %s\n", path,
-            strerror(errno));
+    if (errno == EEXIST)
+        fprintf(stderr, "rbsim run: the demonstration writes its outputs in "
+                        "the folder '%s', and '%s' here is not a folder: move "
+                        "it, or run the demonstration in another folder\n",
+                path, path);
+    else
+        fprintf(stderr, "rbsim run: the demonstration cannot create its "
+                        "output folder '%s': %s (run it in a folder you can "
+                        "write in)\n",
+                path, strerror(errno));
     return -1;
 }
 
@@ -1937,10 +1959,10 @@ int rbsf_run_main(int argc, char **argv)
         if (code != 0)
             goto out;
     }
-    if (demo && (make_dir(DEMO_DIR) != 0 ||
+    if (demo && (make_demo_dir(DEMO_DIR) != 0 ||
                  (o.png && strcmp(o.png, DEMO_DIR "/png") == 0 &&
-                  make_dir(DEMO_DIR "/png") != 0))) {
-        code = RBSF_EXIT_RUN;
+                  make_demo_dir(DEMO_DIR "/png") != 0))) {
+        code = RBSF_EXIT_USAGE; /* before the run, nothing written */
         goto out;
     }
     for (i = 0; i < n_out; i++) {

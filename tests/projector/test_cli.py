@@ -1380,6 +1380,30 @@ class CliTests(Base):
         with open(self.path("rbsim-demo/stats.csv")) as f:
             self.assertEqual(f.readline().strip(), STATS_HEADER)
 
+    def test_demo_refuses_what_breaks_it(self):
+        # A file where the demonstration's folder goes was exit 4 "cannot
+        # create folder 'rbsim-demo': File exists"; --steps 5 ran, printed
+        # "check: first impact ... FAIL" and exited 4.  Both are usage
+        # errors now (exit 2, before the run, nothing written), saying why.
+        with open(self.path("rbsim-demo"), "w") as f:
+            f.write("mine\n")
+        r = self.rbsim("run")
+        self.assertEqual(r.returncode, 2, r.stdout + r.stderr)
+        self.assertIn("the demonstration writes its outputs in the folder "
+                      "'rbsim-demo', and 'rbsim-demo' here is not a folder",
+                      r.stderr)
+        with open(self.path("rbsim-demo")) as f:
+            self.assertEqual(f.read(), "mine\n")
+        os.remove(self.path("rbsim-demo"))
+        for args in (["--steps", "5"], ["--steps=0"], ["--dt", "0.01"],
+                     ["--method", "rk4"], ["--slop", "0.01", "--quiet"]):
+            r = self.rbsim("run", *args)
+            self.assertEqual(r.returncode, 2, (args, r.stdout + r.stderr))
+            self.assertIn("rbsim run: %s changes the built-in demonstration"
+                          % args[0].split("=")[0], r.stderr)
+            self.assertEqual(r.stdout, "")
+        self.assertEqual(os.listdir(self.dir), [])
+
 
 class FaultTests(Base):
     def test_dev_full(self):
