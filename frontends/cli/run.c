@@ -1364,6 +1364,17 @@ static const char *short_num(char *buf, double x)
     return buf;
 }
 
+/* A pair row's restitution for a message: a negative one is the row's
+ * "use the simulation's restitution" (as a scene leaves it out). */
+static const char *pair_e(char *buf, double e)
+{
+    if (e < 0.0) {
+        snprintf(buf, 40, "(the simulation's)");
+        return buf;
+    }
+    return short_num(buf, e);
+}
+
 /* The same materials (by index and name) and the same pair rows (in order,
  * every coefficient bit for bit)?  0 if so; otherwise the difference. */
 static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
@@ -1417,14 +1428,23 @@ static int materials_match(const rbs_world *a, const rbs_world *b, char *why,
                              "spinning %s",
                      material_label(a, pa.a), material_label(a, pa.b),
                      short_num(x[0], pa.static_friction), short_num(x[1], pa.kinetic_friction),
-                     short_num(x[2], pa.restitution), short_num(x[3], pa.rolling),
+                     pair_e(x[2], pa.restitution), short_num(x[3], pa.rolling),
                      short_num(x[4], pa.spinning), material_label(b, pb.a),
                      material_label(b, pb.b), short_num(x[5], pb.static_friction),
-                     short_num(x[6], pb.kinetic_friction), short_num(x[7], pb.restitution),
+                     short_num(x[6], pb.kinetic_friction), pair_e(x[7], pb.restitution),
                      short_num(x[8], pb.rolling), short_num(x[9], pb.spinning));
             return -1;
         }
     }
+}
+
+/* A texture as a scene names it. */
+static const char *texture_name(rbs_texture t)
+{
+    return t == RBS_TEXTURE_NONE      ? "none"
+           : t == RBS_TEXTURE_STRIPES ? "stripes"
+           : t == RBS_TEXTURE_CHECKER ? "checker"
+                                      : "(unknown)";
 }
 
 /* x in its shortest exact form, then unit. */
@@ -1494,8 +1514,8 @@ static int body_matches(const rbs_world *scene_world, const rbs_world *ck,
         snprintf(vb, sizeof vb, "#%06lx", (unsigned long)b->color);
     } else if (a->texture != b->texture) {
         what = "texture";
-        snprintf(va, sizeof va, "%d", (int)a->texture);
-        snprintf(vb, sizeof vb, "%d", (int)b->texture);
+        snprintf(va, sizeof va, "%s", texture_name(a->texture));
+        snprintf(vb, sizeof vb, "%s", texture_name(b->texture));
     } else if (a->type == RBS_BODY_SPHERE) {
         /* the mass distribution: centre of mass and inertia about it (from
          * the scene's inertia and center_of_mass) */
@@ -1602,11 +1622,18 @@ static int checkpoint_matches(const rbs_world *scene_world,
     DIFF_D(soft_substeps, "soft_substeps")
     DIFF_D(soft_tolerance, "soft_tolerance")
     DIFF_D(max_substeps, "max_substeps")
-    DIFF_D(mutual_gravity, "mutual_gravity")
     DIFF_D(gravity_constant, "gravity_constant")
     DIFF_D(softening, "softening")
-    DIFF_D(prune, "prune")
 #undef DIFF_D
+#define DIFF_B(field, what)                                                    \
+    if (!a.field != !b.field) {                                                \
+        snprintf(why, n, "%s: the scene has %s, the checkpoint %s", what,      \
+                 a.field ? "true" : "false", b.field ? "true" : "false");      \
+        return -1;                                                             \
+    }
+    DIFF_B(mutual_gravity, "mutual_gravity")
+    DIFF_B(prune, "prune")
+#undef DIFF_B
     if (materials_match(scene_world, ck, why, n) != 0)
         return -1;
     for (slot = 0; slot < a.max_bodies; slot++) {

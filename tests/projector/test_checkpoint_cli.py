@@ -331,6 +331,15 @@ class FaultTests(CkptBase):
                                                    gravity_mode="force")),
              ["gravity_mode: the scene has force, the checkpoint "
               "acceleration"]),
+            # as the scene says them, not as the world keeps them: a row
+            # without restitution takes the simulation's (kept as -1), a
+            # switch is true or false
+            (self.scene("noe.json", materials=[
+                {"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3}]),
+             ["e (the simulation's)", "e 0.7"]),
+            (self.scene("mg.json", simulation=dict(SCENE["simulation"],
+                                                   mutual_gravity={"G": 6.674e-11})),
+             ["mutual_gravity: the scene has true, the checkpoint false"]),
         ]
         for scene, words in cases:
             r = self.rbsim("run", scene, "--resume", "ck.bin", "--csv",
@@ -480,6 +489,8 @@ class FaultTests(CkptBase):
             (2, "center_of_mass", [0.01, 0, 0],
              "center_of_mass: the scene has [0.01, 0, 0], the checkpoint [0, 0, 0]"),
             (3, "color", "#00ff00", "color: the scene has #00ff00"),
+            (3, "texture", "none",
+             "texture: the scene has none, the checkpoint stripes"),
         ]
         names = ["floor", "a", "b", "c"]
         for i, key, value, words in cases:
