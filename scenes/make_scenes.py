@@ -257,7 +257,7 @@ write("orbit",
       "energy. Exact answer: a circular orbit about the origin: separation stays "
       "1 m, period T = 2 pi sqrt(d^3/(2 G m)) = %.9f s (the run is one period), "
       "kinetic 0.5 J, potential -1 J, total -0.5 J, momentum 0, angular momentum "
-      "0.5 kg m^2/s about +z." % (v, T),
+      "2 m (d/2) v = %.9f kg m^2/s about +z." % (v, T, 2 * m * (dist / 2) * v),
       {"steps": int(round(T / 0.001)), "dt": 0.001, "gravity": [0, 0, 0],
        "mutual_gravity": {"G": Gc, "softening": 0.0}},
       [{"pair": ["*", "*"], "static": 0.0, "kinetic": 0.0, "restitution": 1.0}],
