@@ -7,6 +7,7 @@ helper).  Each test works in its own temporary folder.
 import csv
 import json
 import math
+import re
 import os
 import resource
 import shutil
@@ -198,6 +199,26 @@ class CliTests(Base):
             self.assertEqual(r.returncode, 2, (extra, r.stderr))
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
+
+    def test_failed_step_says_the_time_in_its_shortest_form(self):
+        # Contacts outgrow max_contacts (2) when three balls land at once:
+        # exit 4, the step and its time as they read back (t = 0.1 s, not
+        # %.17g's 0.10000000000000001), the frames before it written.
+        bodies = [{"name": "floor", "type": "plane", "point": [0, 0, 0],
+                   "normal": [0, 0, 1]}]
+        bodies += [{"name": "b%d" % k, "type": "sphere", "radius": 0.1,
+                    "mass": 1, "position": [0.3 * k, 0, 0.15]}
+                   for k in range(3)]
+        s = self.scene(simulation={"steps": 1000, "dt": 0.001,
+                                   "method": "euler", "max_contacts": 2},
+                       bodies=bodies)
+        r = self.rbsim("run", s, "--csv", "f.csv", "--quiet")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        m = re.search(r"step (\d+) \(t = ([^ ]+) s\) failed", r.stderr)
+        self.assertIsNotNone(m, r.stderr)
+        t = float(m.group(2))
+        self.assertEqual(m.group(2), repr(t))
+        self.assertEqual(t, (int(m.group(1)) - 1) * 0.001)
 
     def test_check_convert_explain_name_the_bad_argument(self):
         # They said "expected one scene file" / "expected IN and OUT" for

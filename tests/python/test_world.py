@@ -357,6 +357,21 @@ def test_capacity():
     assert len(w.all_bodies()) == 2  # unchanged
 
 
+def test_step_error_says_the_time_in_its_shortest_form():
+    # A step that fails part way names the time as it reads back
+    # (t = 0.301 s, not %.17g's 0.30099999999999999).  Here: contacts
+    # outgrow max_contacts when three balls land on the floor at once.
+    w = rbsim.World(max_bodies=4, max_contacts=2, method="euler")
+    w.add_plane()
+    for k in range(3):
+        w.add_sphere(radius=0.1, position=(0.3 * k, 0, 0.1 + 0.05))
+    with pytest.raises(rbsim.CapacityError) as e:
+        w.step(1000)
+    t = w.time
+    assert ("t = %r s)" % t) in str(e.value), str(e.value)
+    assert "9999999" not in str(e.value) and "0000000" not in str(e.value)
+
+
 def test_close_and_context_manager():
     with make_world() as w:
         w.step(3)

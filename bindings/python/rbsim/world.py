@@ -1210,7 +1210,7 @@ class World(_Handle):
             self._lock.release()
         if status != lib.RBS_OK:
             exc = _e.error_class(status)(
-                "%s (after %d of %d steps, t = %.17g s)"
+                "%s (after %d of %d steps, t = %r s)"
                 % (detail, made, count, self.time))
             exc.steps_done = made  # type: ignore[attr-defined]
             raise exc

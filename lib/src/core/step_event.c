@@ -238,10 +238,12 @@ static rbs_status classify(rbs_world *w, double dt)
                 return rbs__coarse_error(w, &coarse);
             if (gap > w->def.slop * r || !(an < 0.0) || vn > -an * dt * 1e-9)
                 continue;
-            if (plane != UINT32_MAX)
+            if (plane != UINT32_MAX) {
+                char tb[40];
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
-                    "method \"event\": sphere %u (\"%s\") rests on two planes at t = %.17g; use \"euler\"",
-                    (unsigned)i, w->name[i], rbs_world_time(w));
+                    "method \"event\": sphere %u (\"%s\") rests on two planes at t = %s; use \"euler\"",
+                    (unsigned)i, w->name[i], rbs__shortest(tb, rbs_world_time(w)));
+            }
             plane = p;
         }
         w->ev_plane[i] = plane;
@@ -334,10 +336,12 @@ static rbs_status classify(rbs_world *w, double dt)
              * session 43) */
             if (rel_an < 0.0 && vn <= -rel_an * (accel_lasts(w, i, dt) < accel_lasts(w, b, dt)
                                                      ? accel_lasts(w, i, dt)
-                                                     : accel_lasts(w, b, dt)))
+                                                     : accel_lasts(w, b, dt))) {
+                char tb[40];
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
-                    "method \"event\": spheres %u and %u are pressed together at t = %.17g (a stack or "
-                    "a pile); use \"euler\"", (unsigned)i, (unsigned)b, rbs_world_time(w));
+                    "method \"event\": spheres %u and %u are pressed together at t = %s (a stack or "
+                    "a pile); use \"euler\"", (unsigned)i, (unsigned)b, rbs__shortest(tb, rbs_world_time(w)));
+            }
         }
     }
     return RBS_OK;
@@ -526,11 +530,13 @@ rbs_status rbs__step_event(rbs_world *w, rbs_step_info *info)
          * resolve here) repeated many times is a stuck configuration, not
          * a collapse: say so early instead of grinding to the cap */
         if (!(left - s < left)) {
-            if (++stalled >= EV_MAX_STALLED)
+            if (++stalled >= EV_MAX_STALLED) {
+                char tb[40];
                 return (rbs_status)rbs__world_set_error(w, RBS_E_NUMERIC,
-                    "method \"event\": %u events in a row at t = %.17g did not advance time "
+                    "method \"event\": %u events in a row at t = %s did not advance time "
                     "(bodies jammed at a grazing contact?); use \"euler\"",
-                    EV_MAX_STALLED, rbs_world_time(w) + (dt - left));
+                    EV_MAX_STALLED, rbs__shortest(tb, rbs_world_time(w) + (dt - left)));
+            }
         } else {
             stalled = 0;
         }

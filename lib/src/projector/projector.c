@@ -475,8 +475,9 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
             rbs_world_energy(p->world, &e) != RBS_OK           ? "energy: "
             : rbs_world_momentum(p->world, &lin, &ang) != RBS_OK ? "momentum: "
                                                                  : "";
-        fail(p, st, "frame capture at t = %.17g s failed: %s%s%s%s",
-             rbs_world_time(p->world), what, rbs_status_string(st),
+        char tb[40];
+        fail(p, st, "frame capture at t = %s s failed: %s%s%s%s",
+             rbs__shortest(tb, rbs_world_time(p->world)), what, rbs_status_string(st),
              why && why[0] ? ": " : "", why ? why : "");
         rbs_reel_end_write(p->reel);
         return -1;
@@ -534,9 +535,10 @@ static void *sim_main(void *arg)
         st = rbs_world_step(p->world, &info);
         if (st != RBS_OK) {
             const char *why = rbs_world_last_error(p->world);
-            fail(p, st, "step %llu (t = %.17g s) failed: %s%s%s",
+            char tb[40];
+            fail(p, st, "step %llu (t = %s s) failed: %s%s%s",
                  (unsigned long long)rbs_world_step_count(p->world) + 1,
-                 rbs_world_time(p->world),
+                 rbs__shortest(tb, rbs_world_time(p->world)),
                  rbs_status_string(st), why && why[0] ? ": " : "",
                  why ? why : "");
             break;
