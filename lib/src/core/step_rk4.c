@@ -21,7 +21,9 @@
  *
  * Contacts, as in Verlet: one resting pass per sub-step, on the RK4 end
  * velocities; what it changes moves positions by half of it over the
- * sub-step (the trapezoid), and orientations by exp(dw h / 2).  With
+ * sub-step (the trapezoid), and orientations by exp(dw h / 2); the other
+ * half of a sphere pair's impulse acts along the pair's end normal
+ * (rbs__turn_second_halves).  With
  * constant forces this is the exact constant-acceleration motion
  * (x' = x + v h + a h^2/2) of free, resting, rolling and sliding bodies.
  * Four acceleration evaluations per sub-step.
@@ -212,6 +214,8 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         q_store(&w->orient[4 * i], q);
         place(w, i, v3_mad(v3_load(&S[S_X0]), vd, h), q);
     }
+    /* the second half of each sphere pair's impulse along its end normal */
+    rbs__turn_second_halves(w);
 }
 
 rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info)

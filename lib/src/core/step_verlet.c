@@ -25,7 +25,9 @@
  *
  * Contacts: one resting pass per sub-step, on the end velocities, as in
  * Euler; its velocity change moves positions by half of it over the
- * sub-step (the trapezoid of the start and end velocities).  With constant
+ * sub-step (the trapezoid of the start and end velocities), and the other
+ * half of a sphere pair's impulse acts along the pair's end normal
+ * (rbs__turn_second_halves).  With constant
  * forces this is the exact constant-acceleration motion of free, resting,
  * rolling and sliding bodies.  Accelerations are evaluated twice per
  * sub-step (no reuse across sub-steps: contacts, rollback and setters move
@@ -141,6 +143,10 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
         else
             v3_store(&w->pos[3 * i], v3_sub(v3_mad(v3_load(&S[S_X0]), vd, h), q_rotate(q, c)));
     }
+
+    /* Contacts between spheres: the second half of each impulse along the
+     * line of centres at the end (rbs__turn_second_halves). */
+    rbs__turn_second_halves(w);
 
     /* Forces at the end: the second half kick's correction. */
     if (w->plan.mutual)

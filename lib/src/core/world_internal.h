@@ -647,6 +647,10 @@ double rbs__resist_row(rbs_world *w, uint32_t i);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
+/* verlet's and rk4's drift moves positions by half of a resting pass's
+ * impulses: after it, the other half of each sphere pair's impulse is
+ * turned onto the pair's end normal (solver.c). */
+void rbs__turn_second_halves(rbs_world *w);
 
 /* The warm-start table (solver.c): the key of a contact's body pair; store
  * the resting impulse rates of the current contacts (those with jn != 0)
