@@ -104,6 +104,21 @@ def test_sphere_energy_at_the_start_is_bounded():
     assert math.isfinite(w.energy().total)
 
 
+def test_mutual_gravity_potential_at_the_start_is_bounded():
+    """With mutual gravity the library refuses a sphere whose potential
+    with one already there is beyond 1e300 J (G = 1e308, 1 kg, 1 m: the
+    world was built and its first frame failed); softening bounds it."""
+    w = rbsim.World(max_bodies=4, mutual_gravity=True, gravity_constant=1e308)
+    w.add_sphere("a", radius=0.1, mass=1.0, position=(0, 0, 0))
+    with pytest.raises(rbsim.InvalidError,
+                       match=r'potential energy of mutual gravity with sphere 0 \("a"\) '
+                             r"at the start is 1e\+308 J, beyond 1e300 J"):
+        w.add_sphere("b", radius=0.1, mass=1.0, position=(1, 0, 0))
+    assert len(w.all_bodies()) == 1
+    w.add_sphere("b", radius=0.1, mass=1.0, position=(1e9, 0, 0))
+    assert math.isfinite(w.energy().total)
+
+
 def test_mutual_gravity_needs_a_positive_g():
     """With mutual gravity on, G must be > 0, as a scene's mutual_gravity.G
     (G = 0 was taken); off, G = 0 is fine."""

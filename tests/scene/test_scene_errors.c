@@ -211,6 +211,21 @@ static const bad_case cases[] = {
       E("[3, 0, 1.1]", 1, 0,
         "bodies[3].position: the potential energy in gravity at the start is inf J, beyond "
         "1e300 J (the world's energy would overflow)")}},
+    /* with mutual gravity, each pair's potential at the start too (a pair of
+     * fixed spheres, c and d, is left out, as the world's energy leaves it) */
+    {"bad/mutual_gravity_potential_overflow.json", RBS_E_SCENE,
+     {E("[1, 0, 0]", 1, 0,
+        "bodies[1].position: the potential energy of mutual gravity of \"b\" and \"a\" "
+        "(bodies[0]) at the start is 1e+308 J, beyond 1e300 J (the world's energy would "
+        "overflow; softening bounds it)"),
+      E("[20, 0, 0]", 1, 0,
+        "bodies[2].position: the potential energy of mutual gravity of \"c\" and \"a\" "
+        "(bodies[0]) at the start is 5e+306 J, beyond 1e300 J (the world's energy would "
+        "overflow; softening bounds it)"),
+      E("[21, 0, 0]", 1, 0,
+        "bodies[3].position: the potential energy of mutual gravity of \"d\" and \"a\" "
+        "(bodies[0]) at the start is 4.7619e+306 J, beyond 1e300 J (the world's energy would "
+        "overflow; softening bounds it)")}},
     {"bad/steps_dt_overflow.json", RBS_E_SCENE,
      {E("9007199254740992", 1, 0,
         "simulation.steps: steps * dt overflows (9007199254740992 * 1e+300 s)")}},

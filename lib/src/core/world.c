@@ -1137,6 +1137,28 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
             FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g J, beyond 1e300 J (the world's energy "
                  "would overflow)", what[k], e[k]);
     }
+    if (w->def.mutual_gravity) {
+        /* its potential energy of mutual gravity with each sphere there,
+         * within the same bound (a pair of fixed spheres is left out of
+         * the sum, as rbs_world_energy leaves it; G = 1e308 with 1 kg
+         * spheres 1 m apart passed here and failed at the first frame) */
+        const double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+        const v3 com = v3_add(p, q_rotate(q, c));
+        uint32_t j;
+        for (j = 0; j < w->sphere_count; ++j) {
+            const uint32_t b = w->spheres[j];
+            v3 dx;
+            double pot;
+            if (d.fixed && w->fixed[b])
+                continue;
+            dx = v3_sub(rbs__body_com(w, b), com);
+            pot = G * mass * w->mass[b] / sqrt(v3_dot(dx, dx) + eps2);
+            if (!(pot <= 1e300))
+                FAIL(w, RBS_E_INVALID, "sphere potential energy of mutual gravity with sphere %u (\"%s\") "
+                     "at the start is %g J, beyond 1e300 J (the world's energy would overflow; "
+                     "softening bounds it)", (unsigned)b, w->name[b], pot);
+        }
+    }
     st = take_slot(w, "sphere", RBS_BODY_SPHERE, d.material, d.texture, d.color, d.name, &s);
     if (st != RBS_OK)
         return st;
