@@ -160,6 +160,23 @@ static int open_windows(rbsf__window *w)
         return -1;
     }
     w->video_on = 1;
+    {
+        /* With no display to reach, SDL falls back to a driver that shows
+         * nothing ("offscreen", "dummy"): DISPLAY=:99 with no server opened
+         * an invisible window, and "window": true ran as if shown.  Such a
+         * driver is taken only when SDL_VIDEODRIVER names it (the tests
+         * drive the window through "offscreen" so). */
+        const char *drv = SDL_GetCurrentVideoDriver(), *asked = getenv("SDL_VIDEODRIVER");
+        if (drv == NULL || ((strcmp(drv, "offscreen") == 0 || strcmp(drv, "dummy") == 0) &&
+                            (asked == NULL || strcmp(asked, drv) != 0))) {
+            const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
+            snprintf(w->error, sizeof w->error,
+                     "window: no display answered (DISPLAY '%s', WAYLAND_DISPLAY '%s'): SDL "
+                     "video fell back to its '%s' driver, which shows nothing",
+                     x != NULL ? x : "", wl != NULL ? wl : "", drv != NULL ? drv : "(none)");
+            return -1;
+        }
+    }
     for (i = 0; i < w->def.image_count; i++) {
         char title[64];
         int iw = (int)w->def.image_w[i], ih = (int)w->def.image_h[i];

@@ -208,6 +208,35 @@ static void test_video_failure(void **state)
     cls->destroy(inst);
 }
 
+/* A display that does not answer, and no driver asked for: SDL falls back
+ * to "offscreen" (or fails to start): either way "window": true is an error
+ * at the first frame that says so, and "auto" writes the PNG files without
+ * a window (an invisible window was opened and true ran as if shown). */
+static void test_display_that_does_not_answer(void **state)
+{
+    const rbs_renderer_class *cls = rbsf_sdl_class();
+    char err[512], path[1400];
+    void *inst = NULL;
+    tu_frame f;
+    struct stat sb;
+    (void)state;
+    setenv("DISPLAY", ":rbsim-test-no-such-display", 1);
+    unsetenv("SDL_VIDEODRIVER");
+    assert_int_equal(tu_create("{\"window\":true}", tu_dir("silent"), &inst, err, sizeof err),
+                     RBS_OK);
+    frame(&f, 0, 0);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_E_RENDERER);
+    assert_non_null(strstr(err, "window"));
+    cls->destroy(inst);
+    assert_int_equal(tu_create("{\"window\":\"auto\"}", tu_dir("silent_auto"), &inst, err,
+                               sizeof err),
+                     RBS_OK);
+    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
+    cls->destroy(inst);
+    snprintf(path, sizeof path, "%s/frame_000000.png", tu_dir("silent_auto"));
+    assert_int_equal(stat(path, &sb), 0);
+}
+
 /* Newest "SDL_window<id>-<n>.bmp" the offscreen driver saved in the
  * current folder (SDL_VIDEO_OFFSCREEN_SAVE_FRAMES), by number; 0 if none. */
 static int newest_bmp(char *name, size_t n)
@@ -353,6 +382,7 @@ int main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_keys_and_mouse),
         cmocka_unit_test(test_video_failure),
+        cmocka_unit_test(test_display_that_does_not_answer),
         cmocka_unit_test(test_one_window_per_process),
         cmocka_unit_test(test_window_shows_and_redraws),
     };
