@@ -1692,18 +1692,35 @@ static void progress(const rbs_run_info *info, uint64_t start)
  * the world's work cap, named when steps hit it. */
 static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
                     const output *outs, uint32_t n, uint64_t start, double start_time,
-                    uint32_t max_substeps)
+                    uint32_t max_substeps, const rbs_world *world)
 {
     uint32_t i;
     double drift = info->energy_last - info->energy_initial;
-    const uint64_t steps = info->frame > start ? info->frame - start : 0;
+    const uint64_t drawn = info->frame > start ? info->frame - start : 0;
+    /* The steps made (the counters and the energy at the end are theirs):
+     * the simulation runs ahead of the renderers, and a run stopped by an
+     * error may have made steps no output has ("simulated 0 s: 0 steps
+     * (10 sub-steps ...)" after a failed first write). */
+    const uint64_t made = info->captured > 1 + drawn ? info->captured - 1 : drawn;
+    rbs_world_def wd;
+    double made_time = drawn > 0 ? info->time - start_time : 0.0;
+    const uint64_t steps = made;
+    rbs_world_def_init(&wd);
+    if (made > drawn && world != NULL && rbs_world_get_def(world, &wd) == RBS_OK)
+        made_time = (double)made * wd.dt; /* (the captured frames': a step the stop
+                                             cut short is in the world, not here) */
     fprintf(out, "scene: %s\n", scene_name);
     fprintf(out, "simulated %.6g s: %llu steps (%llu sub-steps, %llu rollbacks), "
                  "%llu collisions\n",
-            steps > 0 ? info->time - start_time : 0.0, (unsigned long long)steps,
+            made_time, (unsigned long long)steps,
             (unsigned long long)info->substeps,
             (unsigned long long)info->rollbacks,
             (unsigned long long)info->collisions);
+    if (made > drawn)
+        fprintf(out, "frames: up to frame %llu (t = %.6g s) reached the outputs; the "
+                     "simulation had made %llu more when the run stopped\n",
+                (unsigned long long)(start + drawn), drawn > 0 ? info->time : start_time,
+                (unsigned long long)(made - drawn));
     if (info->work_limited > 0) {
         char cap[32] = "";
         if (max_substeps > 0)
@@ -2190,7 +2207,7 @@ int rbsf_run_main(int argc, char **argv)
         if (world == NULL || rbs_world_get_def(world, &wd) != RBS_OK)
             wd.max_substeps = 0; /* (not named) */
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
-                outs, n_out, start_frame, start_time, wd.max_substeps);
+                outs, n_out, start_frame, start_time, wd.max_substeps, world);
         if (o.resume)
             fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
                     (unsigned long long)start_frame);

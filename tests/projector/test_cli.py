@@ -797,6 +797,24 @@ class CliTests(Base):
         self.assertEqual(json.loads(lines[0])["t"], 0)
         self.assertIn("simulated 0 s", r.stderr)
 
+    def test_summary_after_a_failed_output_counts_the_steps_made(self):
+        # The simulation runs ahead of the renderers: when the first write
+        # fails, steps were made that no output has.  The summary counts
+        # those (its sub-steps and energy are theirs) and says how far the
+        # outputs got ("simulated 0 s: 0 steps (10 sub-steps ...)" before).
+        s = self.scene()
+        r = self.rbsim("run", s, "--json", "/dev/full")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        m = re.search(r"simulated ([^ ]+) s: (\d+) steps \((\d+) sub-steps", r.stdout)
+        self.assertIsNotNone(m, r.stdout)
+        t, steps, subs = float(m.group(1)), int(m.group(2)), int(m.group(3))
+        self.assertAlmostEqual(t, steps * 0.001, places=9)
+        self.assertGreaterEqual(subs, steps)
+        if steps > 0:
+            self.assertIn("frames: up to frame 0 (t = 0 s) reached the outputs; the "
+                          "simulation had made %d more when the run stopped" % steps,
+                          r.stdout)
+
     def test_steps_zero_flag_as_scene(self):
         # --steps 0 is frame 0 only, exactly as "steps": 0 in the scene.
         sim = dict(SCENE["simulation"], steps=0)
