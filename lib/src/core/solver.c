@@ -346,7 +346,7 @@ void rbs__turn_second_halves(rbs_world *w)
         rbs__contact e;
         v3 j, d, n1, k;
         double len, cs, sn;
-        if (c->bias < 0.0 || w->type[c->b] != RBS_BODY_SPHERE || (c->flags & RBS__OFF))
+        if (c->bias < 0.0 || w->type[c->b] != RBS_BODY_SPHERE)
             continue;
         j = v3_mad(c->jt, c->n, c->jn);
         if (j.x == 0.0 && j.y == 0.0 && j.z == 0.0)
@@ -364,10 +364,27 @@ void rbs__turn_second_halves(rbs_world *w)
         k = v3_scale(k, 1.0 / sn);
         e = *c;
         e.n = n1;
-        /* Rodrigues: j cos + (k x j) sin + k (k.j)(1 - cos) */
+        /* Rodrigues: j cos + (k x j) sin + k (k.j)(1 - cos).  Each
+         * application puts equal and opposite impulses at one point (the
+         * levers of an off-centre mass from its orientation now), so the
+         * exchange keeps the pair's momentum and angular momentum. */
         rbs__apply_pair(w, c, v3_scale(j, -0.5));
         j = v3_add(v3_add(v3_scale(j, cs), v3_scale(v3_cross(k, j), sn)), v3_scale(k, v3_dot(k, j) * (1.0 - cs)));
         rbs__apply_pair(w, &e, v3_scale(j, 0.5));
+        {
+            /* rolling and spinning resistance: the angular impulse turns too */
+            const rbs__pair *p = rbs__contact_pair(w, c);
+            if (p->rolling > 0.0 || p->spinning > 0.0) {
+                const rbs__resist *r = &w->contact_resist[i];
+                v3 l = v3_mad(r->jroll, c->n, r->jspin);
+                if (l.x != 0.0 || l.y != 0.0 || l.z != 0.0) {
+                    rbs__apply_angular_pair(w, c, v3_scale(l, -0.5));
+                    l = v3_add(v3_add(v3_scale(l, cs), v3_scale(v3_cross(k, l), sn)),
+                               v3_scale(k, v3_dot(k, l) * (1.0 - cs)));
+                    rbs__apply_angular_pair(w, &e, v3_scale(l, 0.5));
+                }
+            }
+        }
     }
 }
 
@@ -743,8 +760,10 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
     /* (a pruning decision: with def.prune off every pass takes the generic
      * sweep, which test_prune compares bit for bit) */
     fast = w->def.prune && w->contact_count > 0 && fast_eligible(w, friction);
-    /* A pass with nothing warm (a world's first step, a group that has just
-     * come to rest) may take RBS__COLLISION_SWEEPS x max_sweeps sweeps: what
+    /* A pass with no contact warm (a world's first step among bodies at
+     * rest in contact; not a group that comes to rest while others in the
+     * world are warm -- the pass is the world's) may take
+     * RBS__COLLISION_SWEEPS x max_sweeps sweeps: what
      * it leaves unconverged the warm passes after it cannot take back where
      * it went into a motion that costs no energy.  A ball on two balls
      * beside a wall (mu = 0.5) pushed the wall with 3.4e-5 N s in its first
