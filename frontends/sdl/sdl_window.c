@@ -26,6 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include <SDL.h>
 
@@ -142,6 +143,20 @@ static void close_windows(rbsf__window *w)
     w->video_on = 0;
 }
 
+/* Whether the list SDL_VIDEODRIVER holds (names separated by commas, any
+ * case, as SDL reads it) names drv. */
+static int driver_named(const char *list, const char *drv)
+{
+    size_t n = strlen(drv);
+    while (list != NULL && *list != '\0') {
+        const char *end = strchr(list, ',');
+        size_t len = end != NULL ? (size_t)(end - list) : strlen(list);
+        if (len == n && strncasecmp(list, drv, n) == 0) return 1;
+        list = end != NULL ? end + 1 : NULL;
+    }
+    return 0;
+}
+
 /* Start video and open the windows; 0 or -1 with w->error set. */
 static int open_windows(rbsf__window *w)
 {
@@ -168,7 +183,7 @@ static int open_windows(rbsf__window *w)
          * drive the window through "offscreen" so). */
         const char *drv = SDL_GetCurrentVideoDriver(), *asked = getenv("SDL_VIDEODRIVER");
         if (drv == NULL || ((strcmp(drv, "offscreen") == 0 || strcmp(drv, "dummy") == 0) &&
-                            (asked == NULL || strcmp(asked, drv) != 0))) {
+                            !driver_named(asked, drv))) {
             const char *x = getenv("DISPLAY"), *wl = getenv("WAYLAND_DISPLAY");
             snprintf(w->error, sizeof w->error,
                      "window: no display answered (DISPLAY '%s', WAYLAND_DISPLAY '%s'): SDL "
