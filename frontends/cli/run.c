@@ -1692,7 +1692,7 @@ static void progress(const rbs_run_info *info, uint64_t start)
  * the world's work cap, named when steps hit it. */
 static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
                     const output *outs, uint32_t n, uint64_t start, double start_time,
-                    uint32_t max_substeps, const rbs_world *world)
+                    uint32_t max_substeps, const rbs_world *world, uint64_t first_captured)
 {
     uint32_t i;
     double drift = info->energy_last - info->energy_initial;
@@ -1701,7 +1701,10 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
      * the simulation runs ahead of the renderers, and a run stopped by an
      * error may have made steps no output has ("simulated 0 s: 0 steps
      * (10 sub-steps ...)" after a failed first write). */
-    const uint64_t made = info->captured > 1 + drawn ? info->captured - 1 : drawn;
+    /* (captured holds the starting frame too, unless a resumed run skipped
+     * it: first_captured) */
+    const uint64_t made_c = info->captured > first_captured ? info->captured - first_captured : 0;
+    const uint64_t made = made_c > drawn ? made_c : drawn;
     rbs_world_def wd;
     double made_time = drawn > 0 ? info->time - start_time : 0.0;
     const uint64_t steps = made;
@@ -2207,7 +2210,8 @@ int rbsf_run_main(int argc, char **argv)
         if (world == NULL || rbs_world_get_def(world, &wd) != RBS_OK)
             wd.max_substeps = 0; /* (not named) */
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
-                outs, n_out, start_frame, start_time, wd.max_substeps, world);
+                outs, n_out, start_frame, start_time, wd.max_substeps, world,
+                o.resume != NULL ? 0 : 1);
         if (o.resume)
             fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
                     (unsigned long long)start_frame);

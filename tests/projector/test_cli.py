@@ -814,6 +814,29 @@ class CliTests(Base):
             self.assertIn("frames: up to frame 0 (t = 0 s) reached the outputs; the "
                           "simulation had made %d more when the run stopped" % steps,
                           r.stdout)
+        # Surely ahead: the CSV on a pipe nobody reads blocks the renderer
+        # (64 KiB of rows) while the simulation fills the reel; SIGTERM
+        # ends the run.  A ball falling free takes one sub-step a step.
+        fall = [{"name": "ball", "type": "sphere", "radius": 0.1, "mass": 1,
+                 "position": [0, 0, 1000]}]
+        s2 = self.scene("fall.json", simulation={"steps": 100000, "dt": 0.001},
+                        bodies=fall)
+        p = subprocess.Popen([RBSIM, "run", s2, "--csv", "-"], cwd=self.dir,
+                             stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE)
+        time.sleep(1.0)
+        p.send_signal(signal.SIGTERM)
+        _, err = p.communicate(timeout=60)
+        err = err.decode()
+        self.assertEqual(p.returncode, 128 + signal.SIGTERM, err)
+        m = re.search(r"simulated ([^ ]+) s: (\d+) steps \((\d+) sub-steps", err)
+        self.assertIsNotNone(m, err)
+        steps, subs = int(m.group(2)), int(m.group(3))
+        self.assertEqual(subs, steps, err)
+        m2 = re.search(r"frames: up to frame (\d+) \(t = [^ ]+ s\) reached the outputs; "
+                       r"the simulation had made (\d+) more", err)
+        self.assertIsNotNone(m2, err)
+        self.assertEqual(int(m2.group(1)) + int(m2.group(2)), steps, err)
 
     def test_steps_zero_flag_as_scene(self):
         # --steps 0 is frame 0 only, exactly as "steps": 0 in the scene.
