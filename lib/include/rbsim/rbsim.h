@@ -239,11 +239,11 @@ typedef struct rbs_world_def {
                                    fit, and the last try takes the rest of
                                    the frame as one sub-step with its
                                    overlap pushed apart instead of rolled
-                                   back (a push against a fixed body takes
-                                   its potential energy back from the
-                                   normal speed; one between moving
-                                   spheres does not: a capped stack can
-                                   gain energy) -- impacts in it may be
+                                   back (the potential energy the pushes
+                                   give is taken back from the speeds of
+                                   the bodies they lift, along their
+                                   pushes, as far as those speeds allow)
+                                   -- impacts in it may be
                                    missed or wrong, a ball may pass through
                                    another (reported in work_limit); also
                                    this many contact events of adaptive in

@@ -766,7 +766,6 @@ typedef struct sep_pair {
 
 typedef struct separate_ctx {
     rbs_world *w;
-    double *fixed_push; /* 3 per slot: pushes against fixed bodies, or NULL */
     double worst;
     sep_pair *list;
     uint32_t count, cap;
@@ -775,9 +774,8 @@ typedef struct separate_ctx {
 } separate_ctx;
 
 /* Push a and b (b a sphere) apart if they overlap deeper than the slop;
- * 1 if it pushed.  fixed_push (may be NULL): per slot, the displacement
- * pushes against fixed bodies gave it (push_plane likewise). */
-static int push_pair(rbs_world *w, uint32_t a, uint32_t b, double *moved_by, double *fixed_push)
+ * 1 if it pushed. */
+static int push_pair(rbs_world *w, uint32_t a, uint32_t b, double *moved_by)
 {
     double ra = w->radius[a], rb = w->radius[b], rmin = ra < rb ? ra : rb, pen, dist, wa, wb, wsum;
     v3 pa = v3_load(&w->pos[3 * a]), pb = v3_load(&w->pos[3 * b]), d, n;
@@ -804,17 +802,13 @@ static int push_pair(rbs_world *w, uint32_t a, uint32_t b, double *moved_by, dou
         moved_by[w->item[a]] += pen * wa / wsum;
         moved_by[w->item[b]] += pen * wb / wsum;
     }
-    if (fixed_push && wb == 0.0 && wa > 0.0)
-        v3_store(&fixed_push[3 * a], v3_mad(v3_load(&fixed_push[3 * a]), n, pen));
-    if (fixed_push && wa == 0.0 && wb > 0.0)
-        v3_store(&fixed_push[3 * b], v3_mad(v3_load(&fixed_push[3 * b]), n, -pen));
     return 1;
 }
 
 /* Push sphere a out of plane p if it is deeper than the slop; 1 if it
  * pushed.  moved_by (may be NULL): per sphere item, the distance pushed so
  * far, increased by this push (push_pair likewise). */
-static int push_plane(rbs_world *w, uint32_t a, uint32_t p, double *moved_by, double *fixed_push)
+static int push_plane(rbs_world *w, uint32_t a, uint32_t p, double *moved_by)
 {
     v3 n = v3_load(&w->normal[3 * p]), pa = v3_load(&w->pos[3 * a]);
     double ra = w->radius[a], pen = ra - v3_dot(v3_sub(pa, v3_load(&w->pos[3 * p])), n);
@@ -823,15 +817,12 @@ static int push_plane(rbs_world *w, uint32_t a, uint32_t p, double *moved_by, do
     v3_store(&w->pos[3 * a], v3_mad(pa, n, pen));
     if (moved_by)
         moved_by[w->item[a]] += pen;
-    if (fixed_push)
-        v3_store(&fixed_push[3 * a], v3_mad(v3_load(&fixed_push[3 * a]), n, pen));
     return 1;
 }
 
-static int push(rbs_world *w, uint32_t a, uint32_t b, double *moved_by, double *fixed_push)
+static int push(rbs_world *w, uint32_t a, uint32_t b, double *moved_by)
 {
-    return w->type[b] == RBS_BODY_SPHERE ? push_pair(w, a, b, moved_by, fixed_push)
-                                         : push_plane(w, a, b, moved_by, fixed_push);
+    return w->type[b] == RBS_BODY_SPHERE ? push_pair(w, a, b, moved_by) : push_plane(w, a, b, moved_by);
 }
 
 static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
@@ -846,7 +837,7 @@ static void separate_keep(separate_ctx *ctx, uint32_t a, uint32_t b, double pen)
         /* the list is full (only when very many spheres overlap one
          * another): this pair gets the single push of the first pass */
         ctx->overflow = 1;
-        if (push(ctx->w, a, b, NULL, ctx->fixed_push))
+        if (push(ctx->w, a, b, NULL))
             ctx->pushed = 1;
     }
 }
@@ -907,17 +898,11 @@ static double overlap_after(rbs_world *w, const separate_ctx *ctx, const double 
 
 int rbs__separate(rbs_world *w, double *max_pen)
 {
-    return rbs__separate_fixed(w, max_pen, NULL);
-}
-
-int rbs__separate_fixed(rbs_world *w, double *max_pen, double *fixed_push)
-{
     uint32_t i, k, it;
     int32_t *moved;
     double *moved_by;
     separate_ctx ctx;
     ctx.w = w;
-    ctx.fixed_push = fixed_push;
     ctx.worst = 0.0;
     ctx.pushed = 0;
     ctx.overflow = 0;
@@ -968,7 +953,7 @@ int rbs__separate_fixed(rbs_world *w, double *max_pen, double *fixed_push)
             uint32_t ia = w->item[p->a], ib = sphere ? w->item[p->b] : 0;
             if (it > 0 && moved[3 * ia] < (int32_t)it && !(sphere && moved[3 * ib] >= (int32_t)it))
                 continue;
-            if (push(w, p->a, p->b, moved_by, fixed_push)) {
+            if (push(w, p->a, p->b, moved_by)) {
                 moved[3 * ia] = (int32_t)it + 1;
                 if (sphere)
                     moved[3 * ib] = (int32_t)it + 1;

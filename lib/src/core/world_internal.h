@@ -538,10 +538,6 @@ int rbs__coarse_contact(const rbs_world *w, rbs__coarse *out);
  * pushed anything.  *max_pen (may be NULL): the deepest overlap of the
  * state the pass leaves (what rbs__max_overlap_now would say). */
 int rbs__separate(rbs_world *w, double *max_pen);
-/* The same, adding to fixed_push (3 per slot, zeroed by the caller; may be
- * NULL) the displacement each sphere got from pushes against fixed bodies
- * (planes, fixed spheres). */
-int rbs__separate_fixed(rbs_world *w, double *max_pen, double *fixed_push);
 double rbs__max_overlap_now(rbs_world *w); /* deepest overlap of the state as it is */
 /* Velocity of the point at r from body i's centre of mass. */
 static inline v3 rbs__point_velocity(const rbs_world *w, uint32_t i, v3 r)
