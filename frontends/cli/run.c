@@ -2195,14 +2195,17 @@ int rbsf_run_main(int argc, char **argv)
         code = RBSF_EXIT_RUN;
     } else if (code == RBSF_EXIT_RUN) {
         /* the final checkpoint failed (said above) */
-    } else if (st == RBS_E_CLOSED && sig != 0) {
+    } else if ((st == RBS_E_CLOSED || st == RBS_OK) && sig != 0) {
+        /* (also when the simulation had made every frame: a signal drops
+         * realtime pacing and a slow output's wait, the reel is written
+         * out, the run "completes" -- but it was stopped) */
         code = 128 + sig;
     } else {
         code = RBSF_EXIT_OK;
     }
     if (!o.quiet) {
         rbs_world_def wd;
-        if (st == RBS_E_CLOSED)
+        if (st == RBS_E_CLOSED || (st == RBS_OK && sig != 0))
             fprintf(talk, "stopped at frame %llu by %s\n",
                     (unsigned long long)info.frame,
                     sig != 0 ? rbsf_signal_name(sig) : "quit");

@@ -1659,6 +1659,36 @@ class FaultTests(Base):
     def test_sigterm(self):
         self._interrupt(signal.SIGTERM, 143)
 
+    def test_signal_after_the_last_frame_was_made(self):
+        # A short realtime run: the simulation makes all 30 frames at once
+        # and the renderer paces them.  A signal then drops the pacing and
+        # the reel is written out, so the run "completes" -- it was still
+        # stopped: exit 128 + the signal and the "stopped" line (exit 0
+        # and a plain summary before).
+        sim = dict(SCENE["simulation"], steps=30, dt=0.02)
+        s = self.scene(simulation=sim)
+        for sig, code in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
+            p = subprocess.Popen([RBSIM, "run", s, "--realtime", "--csv", "r.csv"],
+                                 cwd=self.dir, stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                 text=True)
+            try:
+                deadline = time.time() + 30
+                while time.time() < deadline and not (
+                        os.path.exists(self.path("r.csv")) and
+                        os.path.getsize(self.path("r.csv")) > 0):
+                    time.sleep(0.02)
+                time.sleep(0.1)
+                p.send_signal(sig)
+                out, err = p.communicate(timeout=30)
+            finally:
+                if p.poll() is None:
+                    p.kill()
+            self.assertEqual(p.returncode, code, (out, err))
+            self.assertIn("stopped at frame", out)
+            self.assertIn("by " + sig.name, out)
+            self.assertEqual(self.assert_whole_frames(self.path("r.csv")), 31)
+
     def test_sigterm_replaces_existing_outputs(self):
         self._interrupt(signal.SIGTERM, 143, existing=True)
         self.assertEqual([n for n in os.listdir(self.dir)
