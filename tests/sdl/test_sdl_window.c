@@ -182,62 +182,52 @@ static void test_keys_and_mouse(void **state)
     pthread_mutex_destroy(&l.mu);
 }
 
-/* No usable video driver: "auto" draws PNG files without a window; true
- * fails at the first frame and says why. */
-static void test_video_failure(void **state)
+/* With DISPLAY naming a display that does not answer and SDL_VIDEODRIVER
+ * set to driver (NULL: unset): "auto" draws the PNG files without a window
+ * (in folder tag_auto) and true fails at the first frame, saying why. */
+static void no_window_to_be_had(const char *driver, const char *tag)
 {
     const rbs_renderer_class *cls = rbsf_sdl_class();
-    char err[512], path[1400];
+    char err[512], path[1400], dir[64];
     void *inst = NULL;
     tu_frame f;
     struct stat sb;
-    (void)state;
     setenv("DISPLAY", ":rbsim-test-no-such-display", 1);
-    setenv("SDL_VIDEODRIVER", "rbsim-no-such-driver", 1);
-    assert_int_equal(tu_create("{\"window\":\"auto\"}", tu_dir("auto"), &inst, err,
-                               sizeof err),
+    if (driver != NULL)
+        setenv("SDL_VIDEODRIVER", driver, 1);
+    else
+        unsetenv("SDL_VIDEODRIVER");
+    snprintf(dir, sizeof dir, "%s_auto", tag);
+    assert_int_equal(tu_create("{\"window\":\"auto\"}", tu_dir(dir), &inst, err, sizeof err),
                      RBS_OK);
     frame(&f, 0, 0);
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
     cls->destroy(inst);
-    snprintf(path, sizeof path, "%s/frame_000000.png", tu_dir("auto"));
+    snprintf(path, sizeof path, "%s/frame_000000.png", tu_dir(dir));
     assert_int_equal(stat(path, &sb), 0);
 
-    assert_int_equal(tu_create("{\"window\":true}", tu_dir("required"), &inst, err,
-                               sizeof err),
+    snprintf(dir, sizeof dir, "%s_required", tag);
+    assert_int_equal(tu_create("{\"window\":true}", tu_dir(dir), &inst, err, sizeof err),
                      RBS_OK);
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_E_RENDERER);
     assert_non_null(strstr(err, "window"));
     cls->destroy(inst);
 }
 
+/* No usable video driver. */
+static void test_video_failure(void **state)
+{
+    (void)state;
+    no_window_to_be_had("rbsim-no-such-driver", "nodriver");
+}
+
 /* A display that does not answer, and no driver asked for: SDL falls back
- * to "offscreen" (or fails to start): either way "window": true is an error
- * at the first frame that says so, and "auto" writes the PNG files without
- * a window (an invisible window was opened and true ran as if shown). */
+ * to "offscreen" (or fails to start), which shows nothing: an invisible
+ * window was opened and true ran as if shown. */
 static void test_display_that_does_not_answer(void **state)
 {
-    const rbs_renderer_class *cls = rbsf_sdl_class();
-    char err[512], path[1400];
-    void *inst = NULL;
-    tu_frame f;
-    struct stat sb;
     (void)state;
-    setenv("DISPLAY", ":rbsim-test-no-such-display", 1);
-    unsetenv("SDL_VIDEODRIVER");
-    assert_int_equal(tu_create("{\"window\":true}", tu_dir("silent"), &inst, err, sizeof err),
-                     RBS_OK);
-    frame(&f, 0, 0);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_E_RENDERER);
-    assert_non_null(strstr(err, "window"));
-    cls->destroy(inst);
-    assert_int_equal(tu_create("{\"window\":\"auto\"}", tu_dir("silent_auto"), &inst, err,
-                               sizeof err),
-                     RBS_OK);
-    assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
-    cls->destroy(inst);
-    snprintf(path, sizeof path, "%s/frame_000000.png", tu_dir("silent_auto"));
-    assert_int_equal(stat(path, &sb), 0);
+    no_window_to_be_had(NULL, "silent");
 }
 
 /* Newest "SDL_window<id>-<n>.bmp" the offscreen driver saved in the
