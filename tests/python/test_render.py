@@ -300,7 +300,14 @@ def test_frame_step_info():
     frames = []
     w.run(20, renderers=[frames.append])
     assert sum(f.step.colliding for f in frames) >= 1
-    assert frames[0].step.steps == 1
+    # the run's first frame is the world as it stood, made by no step
+    # (it said steps=1 with every counter 0); each later one by one step
+    assert frames[0].step.steps == 0 and frames[0].step.substeps == 0
+    assert all(f.step.steps == 1 and f.step.substeps >= 1 for f in frames[1:])
+    later = []
+    w.run(3, renderers=[later.append])
+    assert [f.number for f in later] == [20, 21, 22, 23]
+    assert [f.step.steps for f in later] == [0, 1, 1, 1]
 
 
 def test_ctrl_c_during_a_run_stops_it_and_propagates():

@@ -85,7 +85,7 @@ class Frame:
     radii: np.ndarray             #: n, m (spheres)
     energy: Energy                #: J
     momentum: Momentum            #: kg m/s and kg m^2/s about the origin
-    step: StepInfo                #: the step that made this frame
+    step: StepInfo                #: the step that made this frame (steps 0: the run's first frame, made by no step)
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Frame):
@@ -192,7 +192,7 @@ class _Adapter:
             energy=Energy(float(s.kinetic), float(s.potential), float(s.total)),
             momentum=Momentum(np.array(list(s.momentum), dtype=np.float64),
                               np.array(list(s.angular_momentum), dtype=np.float64)),
-            step=StepInfo._from_c(s.step))
+            step=StepInfo._from_c(s.step, 0 if int(f.number) == self.run._first_frame else 1))
 
 
 def _fail(adapter: _Adapter, exc: BaseException, err: Any, errlen: int) -> int:
@@ -309,6 +309,8 @@ class Run(_Handle):
         self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
         self._keep: List[Any] = []
         self._cworld = world._acquire()  # held until wait() ends
+        # the run's first frame: the world as it stands, made by no step
+        self._first_frame = int(lib.rbs_world_step_count(self._cworld))
         world._held_by_run = True
         self._world_mem = world._mem  # (the world's memory, alive while the run holds it)
         try:
