@@ -180,8 +180,6 @@ static void pair_friction(const rbs_world *w, uint32_t i, uint32_t p, double *mu
     *mu_k = row >= 0 ? w->pair[row].mu_k : 0.0;
 }
 
-/* Decide each moving sphere's mode and its constant accelerations (w->acc,
- * w->ev_alpha).  Returns an error for configurations out of scope. */
 /* How long body i's acceleration (as classify left it) lasts at most,
  * within dt: a sliding sphere's lasts until its slip stops (straight: the
  * exact time; curving: re-evaluated after dt/16, as the event search does);
@@ -208,6 +206,8 @@ static double accel_lasts(const rbs_world *w, uint32_t i, double dt)
     return s < dt ? s : dt;
 }
 
+/* Decide each moving sphere's mode and its constant accelerations (w->acc,
+ * w->ev_alpha).  Returns an error for configurations out of scope. */
 static rbs_status classify(rbs_world *w, double dt)
 {
     rbs__coarse coarse;
@@ -310,7 +310,7 @@ static rbs_status classify(rbs_world *w, double dt)
         uint32_t i = w->spheres[k];
         v3 x = v3_load(&w->pos[3 * i]), v = v3_load(&w->vel[3 * i]);
         v3 a = w->fixed[i] ? v3_make(0, 0, 0) : v3_load(&w->acc[3 * i]);
-        double r = w->radius[i];
+        double r = w->radius[i], lasts = accel_lasts(w, i, dt);
         for (j = k + 1; j < w->sphere_count; ++j) {
             uint32_t b = w->spheres[j];
             v3 d, ab;
@@ -334,9 +334,7 @@ static rbs_status classify(rbs_world *w, double dt)
              * friction pressing the pair that whole time against a whole
              * frame's worth: refused, though they part; a probe of
              * session 43) */
-            if (rel_an < 0.0 && vn <= -rel_an * (accel_lasts(w, i, dt) < accel_lasts(w, b, dt)
-                                                     ? accel_lasts(w, i, dt)
-                                                     : accel_lasts(w, b, dt))) {
+            if (rel_an < 0.0 && vn <= -rel_an * fmin(lasts, accel_lasts(w, b, dt))) {
                 char tb[40];
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
                     "method \"event\": spheres %u and %u are pressed together at t = %s (a stack or "
