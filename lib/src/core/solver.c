@@ -338,6 +338,13 @@ static void shock_propagation(rbs_world *w)
  * after their drift): J (normal and
  * friction, with its levers) rotated by the turn from the start's normal
  * n to the end's n'.  A plane's normal does not turn: nothing changes. */
+/* v turned about the unit axis k by the angle whose cosine and sine are
+ * cs, sn (Rodrigues: v cos + (k x v) sin + k (k.v)(1 - cos)). */
+static v3 turn(v3 v, v3 k, double cs, double sn)
+{
+    return v3_add(v3_add(v3_scale(v, cs), v3_scale(v3_cross(k, v), sn)), v3_scale(k, v3_dot(k, v) * (1.0 - cs)));
+}
+
 void rbs__turn_second_halves(rbs_world *w)
 {
     uint32_t i;
@@ -364,13 +371,11 @@ void rbs__turn_second_halves(rbs_world *w)
         k = v3_scale(k, 1.0 / sn);
         e = *c;
         e.n = n1;
-        /* Rodrigues: j cos + (k x j) sin + k (k.j)(1 - cos).  Each
-         * application puts equal and opposite impulses at one point (the
-         * levers of an off-centre mass from its orientation now), so the
-         * exchange keeps the pair's momentum and angular momentum. */
+        /* Each application puts equal and opposite impulses at one point
+         * (the levers of an off-centre mass from its orientation now), so
+         * the exchange keeps the pair's momentum and angular momentum. */
         rbs__apply_pair(w, c, v3_scale(j, -0.5));
-        j = v3_add(v3_add(v3_scale(j, cs), v3_scale(v3_cross(k, j), sn)), v3_scale(k, v3_dot(k, j) * (1.0 - cs)));
-        rbs__apply_pair(w, &e, v3_scale(j, 0.5));
+        rbs__apply_pair(w, &e, v3_scale(turn(j, k, cs, sn), 0.5));
         {
             /* rolling and spinning resistance: the angular impulse turns too */
             const rbs__pair *p = rbs__contact_pair(w, c);
@@ -379,9 +384,7 @@ void rbs__turn_second_halves(rbs_world *w)
                 v3 l = v3_mad(r->jroll, c->n, r->jspin);
                 if (l.x != 0.0 || l.y != 0.0 || l.z != 0.0) {
                     rbs__apply_angular_pair(w, c, v3_scale(l, -0.5));
-                    l = v3_add(v3_add(v3_scale(l, cs), v3_scale(v3_cross(k, l), sn)),
-                               v3_scale(k, v3_dot(k, l) * (1.0 - cs)));
-                    rbs__apply_angular_pair(w, &e, v3_scale(l, 0.5));
+                    rbs__apply_angular_pair(w, &e, v3_scale(turn(l, k, cs, sn), 0.5));
                 }
             }
         }
