@@ -171,29 +171,31 @@ rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
  * one's push out of the floor finds it at rest: counting only pushes
  * against fixed bodies, a ball on a ball on a floor (e = 0.9, verlet at
  * cap 1) kept hopping 62 um, gaining 0.061 J in 20 s (a review of session
- * 43).  The positions before the pushes are kept in w->method_scratch
- * (3 per slot), free between sub-steps. */
+ * 43).  The positions before the pushes, then each push and its gain,
+ * are kept in w->method_scratch (4 per slot), free between sub-steps. */
 static void separate_capped(rbs_world *w)
 {
-    double *before = w->method_scratch, du = 0.0, gains = 0.0;
+    double *sc = w->method_scratch, du = 0.0, gains = 0.0; /* per slot: x, then d and g */
     uint32_t k;
     for (k = 0; k < w->sphere_count; ++k) {
         const uint32_t i = w->spheres[k];
-        memcpy(&before[3 * i], &w->pos[3 * i], 3 * sizeof(double));
+        memcpy(&sc[4 * i], &w->pos[3 * i], 3 * sizeof(double));
     }
     if (!rbs__separate(w, NULL))
         return;
     for (k = 0; k < w->sphere_count; ++k) {
         const uint32_t i = w->spheres[k];
         v3 d, a, tau;
-        double g;
-        if (w->fixed[i])
-            continue;
-        d = v3_sub(v3_load(&w->pos[3 * i]), v3_load(&before[3 * i]));
-        if (d.x == 0.0 && d.y == 0.0 && d.z == 0.0)
-            continue;
-        rbs__accelerations_all(w, i, &a, &tau);
-        g = -w->mass[i] * v3_dot(a, d);
+        double g = 0.0;
+        if (!w->fixed[i]) {
+            d = v3_sub(v3_load(&w->pos[3 * i]), v3_load(&sc[4 * i]));
+            if (d.x != 0.0 || d.y != 0.0 || d.z != 0.0) {
+                rbs__accelerations_all(w, i, &a, &tau);
+                g = -w->mass[i] * v3_dot(a, d);
+            }
+            v3_store(&sc[4 * i], d);
+        }
+        sc[4 * i + 3] = g;
         du += g;
         if (g > 0.0)
             gains += g;
@@ -202,20 +204,14 @@ static void separate_capped(rbs_world *w)
         return;
     for (k = 0; k < w->sphere_count; ++k) {
         const uint32_t i = w->spheres[k];
-        v3 d, a, tau, n, v;
-        double g, len, u, u2, e;
-        if (w->fixed[i])
-            continue;
-        d = v3_sub(v3_load(&w->pos[3 * i]), v3_load(&before[3 * i]));
-        len = v3_len(d);
-        if (!(len > 0.0))
-            continue;
-        rbs__accelerations_all(w, i, &a, &tau);
-        g = -w->mass[i] * v3_dot(a, d);
+        const double g = sc[4 * i + 3];
+        v3 d, n, v;
+        double u, u2, e;
         if (!(g > 0.0))
-            continue;
+            continue; /* (fixed, not pushed, or pushed along its forces) */
+        d = v3_load(&sc[4 * i]);
         e = du >= gains ? g : g * (du / gains); /* its share of the gain, J */
-        n = v3_scale(d, 1.0 / len);
+        n = v3_scale(d, 1.0 / v3_len(d));
         v = v3_load(&w->vel[3 * i]);
         u = v3_dot(v, n);
         if (u == 0.0)
