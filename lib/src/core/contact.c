@@ -84,16 +84,22 @@ void rbs__mark_pressed(rbs_world *w)
     }
 }
 
+double rbs__pressed_threshold(const rbs_world *w, uint32_t i, v3 a, double thr, double dt)
+{
+    double side;
+    if (!w->pressed[i])
+        return thr;
+    side = v3_len(a) * dt;
+    return side > thr ? side : thr;
+}
+
 void rbs__pressed_plane(const rbs_world *w, rbs__contact *c, double dt)
 {
     v3 a, t;
-    double thr;
     if (w->type[c->b] != RBS_BODY_PLANE || !w->pressed[c->a])
         return;
     rbs__accelerations_all(w, c->a, &a, &t);
-    thr = v3_len(a) * dt;
-    if (thr > c->thr)
-        c->thr = thr;
+    c->thr = rbs__pressed_threshold(w, c->a, a, c->thr, dt);
 }
 
 int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b)

@@ -229,15 +229,6 @@ static impact pop(search_ctx *ctx)
     return top;
 }
 
-/* Does the sphere pair (a, b) keep the whole resting threshold (it, or
- * both its spheres against others, held a load in this step's resting
- * pass: rbs__pair_pressed, w->pressed marked after the pass)?  Else its
- * threshold is only the press along n (contact.c, unloaded_pairs). */
-static int pair_loaded(const rbs_world *w, uint32_t a, uint32_t b)
-{
-    return rbs__pair_pressed(w, a, b);
-}
-
 /* Is the approach along n slower than one step of the applied forces can
  * build (a resting contact creeping, not an impact)?  Such overlap is left
  * to the warm-started resting pass and the end-of-step separation: pairwise
@@ -245,7 +236,7 @@ static int pair_loaded(const rbs_world *w, uint32_t a, uint32_t b)
 static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
 {
     v3 aa, ab, ta, vrel;
-    double vn;
+    double vn, thr;
     rbs__accelerations_all(w, a, &aa, &ta);
     rbs__accelerations_all(w, b, &ab, &ta);
     /* the relative velocity at the time of touch: without the part of the
@@ -255,14 +246,15 @@ static int creeping(const rbs_world *w, uint32_t a, uint32_t b, v3 n, double s)
     vrel = v3_mad(vrel, v3_sub(aa, ab), -(1.0 - s) * w->def.dt);
     vn = v3_dot(vrel, n);
     /* the same threshold as a detected contact's (contact.c: a sphere pair
-     * that held no load in the last pass has only the press along n) */
-    if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b))
+     * that is not pressed -- w->pressed, marked after this step's resting
+     * pass -- has only the press along n; a pressed sphere's plane contact
+     * keeps |a| dt) */
+    if (w->type[b] == RBS_BODY_SPHERE && !rbs__pair_pressed(w, a, b))
         return -vn <= rbs__press_threshold(aa, ab, n, w->def.dt);
-    if (w->type[b] == RBS_BODY_PLANE && w->pressed[a]) {
-        double thr = rbs__resting_threshold(aa, ab, n, w->def.dt), side = v3_len(aa) * w->def.dt;
-        return -vn <= (side > thr ? side : thr); /* (rbs__pressed_plane) */
-    }
-    return -vn <= rbs__resting_threshold(aa, ab, n, w->def.dt);
+    thr = rbs__resting_threshold(aa, ab, n, w->def.dt);
+    if (w->type[b] == RBS_BODY_PLANE)
+        thr = rbs__pressed_threshold(w, a, aa, thr, w->def.dt);
+    return -vn <= thr;
 }
 
 /* Take away (sign -1) or give back (+1) the part of the step's force kick
@@ -428,7 +420,6 @@ static int inside_ball(const rbs_world *w, uint32_t i)
     return v3_len(v3_sub(v3_load(&w->pos[3 * i]), c)) + w->radius[i] <= w->bp_reach[k];
 }
 
-
 /* After an impact of a and b re-aimed them: queue every impact of theirs on
  * their new paths, from the neighbour list when list_ok, else the grid. */
 static void retest(search_ctx *ctx, uint32_t a, uint32_t b, int list_ok)
@@ -554,7 +545,7 @@ static void collide_now(rbs_world *w, uint32_t a, uint32_t b, double dt, rbs_ste
     rbs__contact_set(w, &c, dist, gap);
     rbs__contact_finish(w, &c, dt);
     rbs__pressed_plane(w, &c, dt);
-    if (w->type[b] == RBS_BODY_SPHERE && !pair_loaded(w, a, b)) {
+    if (w->type[b] == RBS_BODY_SPHERE && !rbs__pair_pressed(w, a, b)) {
         v3 aa, ab, t;
         rbs__accelerations_all(w, a, &aa, &t);
         rbs__accelerations_all(w, b, &ab, &t);

@@ -636,6 +636,9 @@ int rbs__pair_pressed(const rbs_world *w, uint32_t a, uint32_t b);
  * times dt as its resting threshold: its neighbours press it against walls
  * whatever their direction, as in a pile (contact.c). */
 void rbs__pressed_plane(const rbs_world *w, rbs__contact *c, double dt);
+/* That rule on a plane contact's threshold thr of sphere i, whose
+ * acceleration is a: thr, or |a| dt if larger and i is pressed. */
+double rbs__pressed_threshold(const rbs_world *w, uint32_t i, v3 a, double thr, double dt);
 void rbs__solve_resting(rbs_world *w, rbs_step_info *info);
 /* Rolling and spinning resistance at contact i, Jn > 0 (solver.c); returns
  * the square of the velocity change it made, 0 if none. */
