@@ -77,6 +77,25 @@ double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c)
  * generous: mass ratios up to about 1.6e6 at the default 20. */
 #define RBS__COLLISION_SWEEPS 100u
 
+int rbs__rounding_approach(const rbs_world *w, const rbs__contact *c, double vn)
+{
+    const double dt = w->def.dt;
+    double scale = 0.0;
+    uint32_t k;
+    if (!(-vn * dt <= 1e-6 * rbs__contact_slop(w, c)))
+        return 0;
+    for (k = 0; k < 2; ++k) {
+        const uint32_t i = k ? c->b : c->a;
+        v3 a, t;
+        if (w->type[i] != RBS_BODY_SPHERE || w->fixed[i])
+            continue;
+        rbs__accelerations_all(w, i, &a, &t);
+        scale += v3_len(v3_load(&w->vel[3 * i])) + w->radius[i] * v3_len(v3_load(&w->avel[3 * i])) +
+                 v3_len(a) * dt;
+    }
+    return -vn <= 0x1p-40 * scale;
+}
+
 static void collision_sweeps(rbs_world *w, rbs_step_info *info)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps * RBS__COLLISION_SWEEPS;
@@ -107,12 +126,7 @@ static void collision_sweeps(rbs_world *w, rbs_step_info *info)
                 continue;
             }
             vn = v3_dot(rbs__rel_velocity(w, c), c->n);
-            /* (an approach that would close less than a millionth of the
-             * slop in a frame is rounding -- a settled pile's balls met
-             * the walls at 1e-22 m/s, ten "impacts" a frame that paused a
-             * run with pause_on_collision every frame; a probe of session
-             * 43 -- and is left to the resting pass) */
-            if (!(vn < -c->thr) || vn >= 0.0 || -vn * w->def.dt <= 1e-6 * rbs__contact_slop(w, c))
+            if (!(vn < -c->thr) || vn >= 0.0 || rbs__rounding_approach(w, c, vn))
                 continue;
             rbs__collide(w, c, vn);
             if (c->jn == 0.0 && info)

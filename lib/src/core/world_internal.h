@@ -616,6 +616,15 @@ static inline void rbs__apply_impulse(rbs_world *w, uint32_t i, v3 r, v3 j)
 void rbs__solve_collisions(rbs_world *w, rbs_step_info *info);
 void rbs__collide(rbs_world *w, const rbs__contact *c, double vn);
 double rbs__normal_velocity(const rbs_world *w, const rbs__contact *c);
+/* Whether contact c's approach at normal velocity vn (< 0) is rounding,
+ * left to the resting pass: it closes less than a millionth of the slop in
+ * a frame and is below 2^-40 of the bodies' own speeds (|v|, r |omega|, and
+ * |a| dt, what a frame of their forces builds).  A settled pile's balls met
+ * the walls at 1e-22 m/s, ten "impacts" a frame (a probe of session 43);
+ * the millionth of the slop alone also took a 1e-8 m/s approach at dt =
+ * 1e-6 s, in zero gravity, as rounding: the ball stopped at the wall with
+ * e = 1 (euler) or flew into it (event; a probe of session 45). */
+int rbs__rounding_approach(const rbs_world *w, const rbs__contact *c, double vn);
 void rbs__contact_finish(rbs_world *w, rbs__contact *c, double dt);
 /* Material-pair row, levers, gap and flags of contact c (a, b, n set) whose centres are dist
  * apart (a sphere pair; unused for a plane) and whose surfaces gap. */
