@@ -1747,6 +1747,12 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
         fprintf(out, "sweeps: %llu of %llu steps had a contact pass stop at max_sweeps with "
                      "its impulses not converged (raise simulation.max_sweeps)\n",
                 (unsigned long long)info->sweep_limited, (unsigned long long)steps);
+    if (info->rounded_steps > 0)
+        fprintf(out, "rounding: %llu of %llu steps moved a sphere by less than a thousandth "
+                     "of its radius where its coordinates round by more than 1 %% of that move: "
+                     "its slow motion there is partly lost (far from the origin, or dt very "
+                     "small; move the scene nearer the origin or lengthen dt)\n",
+                (unsigned long long)info->rounded_steps, (unsigned long long)steps);
     fprintf(out, "wall time %.3f s, %.0f steps/s\n", info->wall_time,
             info->wall_time > 0 ? (double)steps / info->wall_time : 0.0);
     fprintf(out, "energy: %.9g J at the start, %.9g J at the end (drift %+.3g J",

@@ -682,6 +682,60 @@ static void fast_impact_near_the_origin_is_not_far(void **state)
         }
 }
 
+/* Slow motion far from the origin: a move under a thousandth of the
+ * radius a frame is not refused (a bounce passes through such moves at its
+ * top), but where rounding changes it by more than 1 % (and by more than
+ * 1e-9 of the radius) the step is counted in rbs_world_rounded_steps.  A
+ * 0.1 m ball at 0.05 m/s (5e-5 m a frame) froze at 1e12 m (steps of 1.2e-4
+ * m) and came out 0.8 % short at 1e10 m (1.9e-6 m), both unreported (a
+ * probe of session 45): every step of those is counted now, with every
+ * method.  Not counted: the same at 1e6 m (rounding 1.2e-10 m, 2e-4 % of
+ * the move), and a ball bouncing on a floor near the origin or at 1e6 m
+ * (its top's slow moves lose at most 6e-11 m, under 1e-9 of the radius),
+ * nor a ball resting on a floor. */
+static void slow_far_motion_counted(void **state)
+{
+    int m;
+    (void)state;
+    for (m = 0; m < RBS_METHOD_COUNT; ++m) {
+        static const struct { double off, v, gz; int counted; } cs[] = {
+            {1e12, 0.05, 0.0, 1}, {1e10, 0.05, 0.0, 1}, {1e6, 0.05, 0.0, 0},
+            {0.0, 0.0, -9.81, 0}, {1e6, 0.0, -9.81, 0}, {0.0, -1e-3, -9.81, 0}};
+        size_t k;
+        for (k = 0; k < sizeof cs / sizeof cs[0]; ++k) {
+            rbs_world *w = new_world((rbs_method)m, cs[k].gz, 0);
+            char what[96];
+            int i;
+            uint64_t counted;
+            if (!w)
+                continue;
+            snprintf(what, sizeof what, "%s at %g m, v %g, g %g", rbs_method_name((rbs_method)m), cs[k].off,
+                     cs[k].v, cs[k].gz);
+            if (cs[k].gz != 0.0) {
+                rbs_plane_def p;
+                rbs_plane_def_init(&p);
+                p.point = V(0, 0, cs[k].off);
+                CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+                /* resting (v 0) or dropped from 5 cm (v < 0: e = 1, bounces) */
+                (void)add_ball(w, 0.1, 1.0, V(0, 0, cs[k].off + (cs[k].v < 0.0 ? 0.15 : 0.1)), V(0, 0, 0),
+                               V(0, 0, 0));
+            } else {
+                (void)add_ball(w, 0.1, 1.0, V(cs[k].off, 0, 0), V(cs[k].v, 0, 0), V(0, 0, 0));
+            }
+            for (i = 0; i < 1000; ++i) {
+                rbs_status st = rbs_world_step(w, NULL);
+                if (st != RBS_OK)
+                    fail_msg("%s: step %d: %s", what, i + 1, rbs_world_last_error(w));
+            }
+            counted = rbs_world_rounded_steps(w);
+            if (cs[k].counted ? counted != 1000 : counted != 0)
+                fail_msg("%s: %llu of 1000 steps counted", what, (unsigned long long)counted);
+            rbs_world_destroy(w);
+        }
+    }
+    assert_true(rbs_world_rounded_steps(NULL) == 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -695,6 +749,7 @@ int main(void)
         cmocka_unit_test(far_motion_refused_where_it_would_be_rounding),
         cmocka_unit_test(tiny_and_huge_directions),
         cmocka_unit_test(fast_impact_near_the_origin_is_not_far),
+        cmocka_unit_test(slow_far_motion_counted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

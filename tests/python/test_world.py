@@ -613,3 +613,21 @@ def test_run_counts_jams_and_sweep_limits():
     assert info.floor_hit_steps == 20 and info.sweep_limited == 20
     info = rattle(1.0).run(20)
     assert info.floor_hit_steps == 0 and info.sweep_limited == 0
+
+
+def test_slow_motion_lost_to_rounding_is_counted():
+    """A 0.1 m ball at 0.05 m/s 1e12 m from the origin moves 5e-5 m a
+    frame, where coordinates round in steps of 1.2e-4 m: it does not move,
+    and every step says so (World.rounded_steps, RunInfo.rounded_steps); at
+    the origin none does.  A run counts its own steps."""
+    def far(x):
+        w = rbsim.World(dt=0.001, gravity=(0, 0, 0))
+        w.add_sphere("b", radius=0.1, mass=1.0, position=(x, 0, 0), velocity=(0.05, 0, 0))
+        return w
+    w = far(1e12)
+    w.step(10)
+    assert w.rounded_steps == 10
+    info = w.run(20)
+    assert info.rounded_steps == 20 and w.rounded_steps == 30
+    w = far(0.0)
+    assert w.run(20).rounded_steps == 0 and w.rounded_steps == 0

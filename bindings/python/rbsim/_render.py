@@ -126,6 +126,9 @@ class RunInfo:
     #: steps with a contact pass at max_sweeps (:attr:`StepInfo.sweep_limit`
     #: > 0): impulses not converged
     sweep_limited: int = 0
+    #: steps in which slow motion was partly lost to the rounding of
+    #: coordinates (:attr:`World.rounded_steps`)
+    rounded_steps: int = 0
 
 
 class StopRun(Exception):
@@ -613,7 +616,7 @@ def _run_info(s: Any) -> RunInfo:
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
                    float(s.energy_last), float(s.wall_time), int(s.work_limited),
-                   int(s.floor_hit_steps), int(s.sweep_limited))
+                   int(s.floor_hit_steps), int(s.sweep_limited), int(s.rounded_steps))
 
 
 def start_world(world: World, steps: Optional[int] = None,

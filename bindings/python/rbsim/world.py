@@ -1275,6 +1275,15 @@ class World(_Handle):
         """Steps taken since creation."""
         return int(self._value(lib.rbs_world_step_count))
 
+    @property
+    def rounded_steps(self) -> int:
+        """Steps since creation or loading in which the rounding of a
+        sphere's coordinates lost more than 1 % of a move slower than a
+        thousandth of its radius (far from the origin, or a tiny dt: its
+        slow motion there is partly lost; faster moves rounded so are
+        refused with :class:`NumericError`).  See rbs_world_rounded_steps."""
+        return int(self._value(lib.rbs_world_rounded_steps))
+
     def _def(self) -> Any:
         out = ffi.new("rbs_world_def *")
         lib.rbs_world_def_init_sized(out, ffi.sizeof("rbs_world_def"))

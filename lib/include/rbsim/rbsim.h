@@ -542,6 +542,14 @@ RBS_API rbs_status rbs_world_step(rbs_world *world, rbs_step_info *info);
 RBS_API double rbs_world_time(const rbs_world *world);
 /** Steps taken since creation (or the checkpoint's count). */
 RBS_API uint64_t rbs_world_step_count(const rbs_world *world);
+/** Steps, since creation or loading (not kept in checkpoints), in which the
+ * rounding of a sphere's coordinates changed its move by more than 1 % (and
+ * by more than 1e-9 of its radius) where the move was under a thousandth
+ * of its radius: far from the origin or at a tiny dt, that slow motion is
+ * partly lost (0.05 m/s at 1e12 m froze).  Faster moves rounded so are
+ * refused (RBS_E_NUMERIC).  0 for a NULL world.  Not thread-safe against
+ * rbs_world_step. */
+RBS_API uint64_t rbs_world_rounded_steps(const rbs_world *world);
 /** Change the step size, s (finite, > 0) for the steps from now on; the
  * time elapsed so far is kept. */
 RBS_API rbs_status rbs_world_set_dt(rbs_world *world, double dt);

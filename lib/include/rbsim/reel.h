@@ -338,6 +338,10 @@ typedef struct rbs_run_info {
                                    max_sweeps (rbs_step_info.sweep_limit >
                                    0: impulses not converged), all steps so
                                    far */
+    uint64_t rounded_steps;   /**< steps in which slow motion was partly
+                                   lost to the rounding of coordinates
+                                   (rbs_world_rounded_steps: far from the
+                                   origin, or a tiny dt), all steps so far */
 } rbs_run_info;
 
 /** A run: owns a reel, the renderer instances and two threads.  Opaque. */

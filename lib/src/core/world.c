@@ -1449,6 +1449,11 @@ uint64_t rbs_world_step_count(const rbs_world *w)
     return (w == NULL || w->magic != WORLD_MAGIC) ? 0 : w->step_count;
 }
 
+uint64_t rbs_world_rounded_steps(const rbs_world *w)
+{
+    return (w == NULL || w->magic != WORLD_MAGIC) ? 0 : w->rounded_steps;
+}
+
 rbs_status rbs_world_set_dt(rbs_world *w, double dt)
 {
     char nb[32]; /* (a number for a message) */

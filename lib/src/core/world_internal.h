@@ -136,6 +136,7 @@ struct rbs_world {
     char error[RBS__ERROR_MAX];
 
     uint64_t step_count;
+    uint64_t rounded_steps; /* steps with slow motion partly lost to rounding (step.c) */
     double time_base;   /* simulated time at step step_base, s: the time is
                            time_base + (step_count - step_base) dt, so that
                            rbs_world_set_dt changes only the steps after it */

@@ -88,6 +88,8 @@ struct rbs_projector {
     char error[ERROR_MAX];
     uint64_t captured, drawn, frame_drawn, substeps, rollbacks, collisions, work_limited;
     uint64_t floor_hit_steps, sweep_limited;
+    uint64_t rounded_base;  /* the world's rbs_world_rounded_steps at the start */
+    uint64_t rounded_steps; /* ... since, as of the last frame captured */
     uint64_t frame_made; /* number of the last frame captured */
     double time_drawn, energy_initial, energy_last;
     double t_start, t_end;
@@ -503,6 +505,7 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     p->work_limited += info->work_limit != 0;
     p->floor_hit_steps += info->floor_hits != 0;
     p->sweep_limited += info->sweep_limit != 0;
+    p->rounded_steps = rbs_world_rounded_steps(p->world) - p->rounded_base;
     pthread_mutex_unlock(&p->mu);
 
     slot->paused = paused;
@@ -953,6 +956,7 @@ rbs_status rbs_projector_start(rbs_projector *p)
         p->frame_drawn = p->first_frame;
         p->frame_made = p->first_frame;
         p->time_drawn = rbs_world_time(p->world);
+        p->rounded_base = rbs_world_rounded_steps(p->world);
         if (p->def.start_paused)
             p->paused = 1;
         p->t_start = rbs__now();
@@ -1042,6 +1046,7 @@ static void status_locked(rbs_projector *p, rbs_run_info *info)
     info->work_limited = p->work_limited;
     info->floor_hit_steps = p->floor_hit_steps;
     info->sweep_limited = p->sweep_limited;
+    info->rounded_steps = p->rounded_steps;
     info->energy_initial = p->energy_initial;
     info->energy_last = p->energy_last;
     if (p->started)
