@@ -65,6 +65,20 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
                                last frame's normal impulse can stop: only
                                kinetic friction acts this frame
                                (rbs__friction_cap; only where mu_s > mu_k) */
+#define RBS__CH_WARM 24u    /* it came in with a normal impulse (the last
+                               frame's load): its relax rows over-relax
+                               (RBS__SOFT_OVER) */
+
+/* The relax rows of a contact that came in loaded take RBS__SOFT_OVER times
+ * the rigid row's impulse (successive over-relaxation): one relax pass a
+ * sub-step, the only pass that takes energy out of the slow modes of a
+ * chain of contacts, reaches those modes less the longer the chain, while
+ * the solve's soft rows build their force there only through the
+ * accumulated impulse, (1 + a) passes behind; a single column of more than
+ * about 21 balls rocked without end (docs/methods.md, "soft", session 45).
+ * A new contact (an impact) keeps the rigid row, and the fixed point of a
+ * resting load (vn = 0) is the same. */
+#define RBS__SOFT_OVER 1.5
 
 /* The passes of a frame (step_soft.c). */
 enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_REPORT };

@@ -304,6 +304,8 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     }
     if (m != NULL) {
         v3 ft = in->friction ? v3_mad(m->t, n, -v3_dot(m->t, n)) : v3_make(0, 0, 0);
+        if (m->n > 0.0)
+            k->flags |= 1u << (RBS__CH_WARM + l);
         if (in->h == 0.0) {
             /* (the forces, until h is known) */
             k->jn[l] = m->n;

@@ -14,7 +14,9 @@
  *     touching, solve     -mass_scale (vn + max(push, -most)) mn
  *                         - impulse_scale jn        soft: pushes the overlap
  *                                                   beyond the slop out
- *     touching, relax     -vn mn                    rigid
+ *     touching, relax     -vn mn                    rigid (times RBS__SOFT_OVER
+ *                                                   for a lane that came in
+ *                                                   loaded)
  *     restitution         -(vn + e v0) mn           leave at e times v0
  *   (s the separation now, gap + n . (d_a - d_b); a guard's s is taken
  *   RBS__GUARD_DEPTH of the smaller radius deeper), accumulated as jn >= 0;
@@ -218,6 +220,9 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
                            wd_mul(wd_set(k->impulse_scale), jn0));
         } else {
             touch = wd_mul(wd_neg(vn), mn);
+            if (flags >> RBS__CH_WARM & 15u)
+                /* (a lane that came in loaded over-relaxes: RBS__SOFT_OVER) */
+                touch = wd_sel(wm_from_bits(flags >> RBS__CH_WARM), wd_mul(touch, wd_set(RBS__SOFT_OVER)), touch);
         }
         dj = wd_sel(wm_gt(s, zero), apart, touch);
     }
@@ -324,7 +329,8 @@ static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__s
                     ((f >> RBS__CH_BOUNCE >> l & 1u) << RBS__CH_BOUNCE) |
                     ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
                     ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE) |
-                    ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP);
+                    ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP) |
+                    ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM);
         if (stage < 0) {
             warm_chunk(k, &one, plane);
             continue;

@@ -18,7 +18,9 @@
  *                                    Coulomb friction)
  *     x += v h                      (positions)
  *     relax, without bias           (one pass: rigid rows, which take back
- *                                    the velocity the push gave)
+ *                                    the velocity the push gave; over-
+ *                                    relaxed for a contact that came in
+ *                                    loaded: soft.h, RBS__SOFT_OVER)
  *   restitution                     (contacts that were approaching faster
  *                                    than their resting threshold at the
  *                                    frame's start leave at e times that,
@@ -145,7 +147,8 @@ static inline double guard_depth(const soft_pass *sp, double slop)
  * slop and push limit (most: m/s).  Apart (s > 0) it may close the gap
  * within the sub-step and no more; touching, the solve's soft row pushes
  * out the overlap beyond the slop and the relax's rigid row stops the
- * approach; a guard's s is taken guard_depth deeper.  In the frame's last
+ * approach (RBS__SOFT_OVER times that for a contact that came in loaded,
+ * RBS__WARM); a guard's s is taken guard_depth deeper.  In the frame's last
  * relax (last != 0) a pair still apart by
  * more than the slop that took no impulse in the frame -- an impact due
  * after the frame's end -- takes no new impulse (it may only give some
@@ -169,7 +172,7 @@ static inline double normal_change(const soft_pass *sp, const rbs__contact *c, i
         return last && dj > 0.0 && s > slop && !(c->flags & RBS__TOUCHED) ? 0.0 : dj;
     }
     if (stage != SOLVE)
-        return -vn * c->thr;
+        return c->flags & RBS__WARM ? -vn * c->thr * RBS__SOFT_OVER : -vn * c->thr;
     over = s + slop < 0.0 ? s + slop : 0.0;
     push = sp->bias_rate * over;
     if (push < -most) {
@@ -951,7 +954,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         const rbs__pair *p = rbs__contact_pair(w, c);
         const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
         c->bias = v3_dot(relative_velocity(&sp, c), c->n);
-        c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE);
+        c->flags &= ~(RBS__TOUCHED | RBS__BOUNCE | RBS__WARM);
         if (rbs__contact_e(w, c) > 0.0 && c->bias < -c->thr)
             c->flags |= RBS__BOUNCE;
         c->thr = 1.0 / c->kn; /* (its test is taken: from here the effective mass) */
@@ -966,6 +969,8 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;
         }
+        if (m != NULL && m->n > 0.0)
+            c->flags |= RBS__WARM;
         if (m != NULL)
             warm_for_h(c, p, sp.friction, m->n, v3_mad(m->t, c->n, -v3_dot(m->t, c->n)), h);
     }

@@ -72,6 +72,9 @@ typedef struct rbs__contact {
                             close (rbs__detect_swept's second pass); its rows
                             let it overlap by RBS__GUARD_DEPTH of the smaller
                             radius before they act */
+#define RBS__WARM 128u   /* soft step: it came in with a normal impulse (the
+                            last frame's load); its relax rows over-relax
+                            (soft.h, RBS__SOFT_OVER) */
 #define RBS__GUARD_DEPTH 0.5 /* of the smaller radius (of the smallest sphere
                                  for the kicks detection takes) */
 
