@@ -1747,6 +1747,32 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
         fprintf(out, "sweeps: %llu of %llu steps had a contact pass stop at max_sweeps with "
                      "its impulses not converged (raise simulation.max_sweeps)\n",
                 (unsigned long long)info->sweep_limited, (unsigned long long)steps);
+    if (world != NULL && info->max_overlap > 0.0) {
+        /* (1 % of the smallest sphere's radius: the soft step sinks a
+         * load by load / (m_eff omega^2), which a huge load makes deep --
+         * a ball under g = 1e8 m/s^2 ended 25 radii under the floor with
+         * no word of it; a probe of session 45) */
+        double rmin = 0.0;
+        uint32_t slot;
+        rbs_world_def d;
+        rbs_world_def_init(&d);
+        if (rbs_world_get_def(world, &d) == RBS_OK)
+            for (slot = 0; slot < d.max_bodies; slot++) {
+                rbs_body_id id;
+                rbs_body_state bs;
+                if (rbs_world_body_at(world, slot, &id) == RBS_OK &&
+                    rbs_body_get_state(world, id, &bs) == RBS_OK && bs.type == RBS_BODY_SPHERE &&
+                    (rmin == 0.0 || bs.radius < rmin))
+                    rmin = bs.radius;
+            }
+        if (rmin > 0.0 && info->max_overlap > 0.01 * rmin)
+            fprintf(out, "overlap: the deepest at a step's end was %.3g m, %.3g %% of the "
+                         "smallest radius (%.3g m): bodies sank into each other or into a "
+                         "plane (the soft method sinks a load by load / (m_eff omega^2), "
+                         "which falls with dt^2; --stats' max_overlap shows when; shorten "
+                         "dt)\n",
+                    info->max_overlap, 100.0 * info->max_overlap / rmin, rmin);
+    }
     if (info->rounded_steps > 0)
         fprintf(out, "rounding: %llu of %llu steps moved a sphere by less than a thousandth "
                      "of its radius where its coordinates round by more than 1 %% of that move: "

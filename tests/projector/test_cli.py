@@ -482,6 +482,37 @@ class CliTests(Base):
         self.assertNotIn("overlap:", r.stdout)
         self.assertNotIn("sweeps:", r.stdout)
 
+    def test_deep_sink_and_lost_motion_are_reported(self):
+        """The soft step sinks a load by load / (m_eff omega^2): a ball at
+        rest on a floor under g = 1e8 m/s^2 (dt = 1 ms) ended 2.4 m, 25
+        radii, under it, and the summary said nothing but the energy's
+        drift; a ball at 0.05 m/s 1e12 m from the origin did not move, and
+        nothing said so (a probe of session 45).  Now the summary names the
+        deepest overlap beyond 1 % of the smallest radius, and the steps
+        whose slow motion rounding lost; at g = 9.81 and at the origin
+        neither line."""
+        sim = {"steps": 200, "dt": 0.001, "gravity": [0, 0, -1e8], "method": "soft"}
+        mats = [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.5, "restitution": 0}]
+        ball = {"name": "b", "type": "sphere", "radius": 0.1, "mass": 1, "position": [0, 0, 0.1]}
+        floor = {"name": "f", "type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}
+        r = self.rbsim("run", self.scene("sink.json", bodies=[ball, floor], simulation=sim,
+                                         materials=mats))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("overlap: the deepest at a step's end was", r.stdout)
+        self.assertIn("of the smallest radius (0.1 m)", r.stdout)
+        r = self.rbsim("run", self.scene("rest.json", bodies=[ball, floor],
+                                         simulation=dict(sim, gravity=[0, 0, -9.81]),
+                                         materials=mats))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("overlap:", r.stdout)
+        self.assertNotIn("rounding:", r.stdout)
+        far = dict(ball, position=[1e12, 0, 0], velocity=[0.05, 0, 0])
+        r = self.rbsim("run", self.scene("far.json", bodies=[far],
+                                         simulation=dict(sim, gravity=[0, 0, 0], method="euler")))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("rounding: 200 of 200 steps moved a sphere by less than a thousandth",
+                      r.stdout)
+
     def setting_binds_checkpoint(self, key, made, other, bad, message):
         """A soft scene's simulation.KEY reaches the world: a checkpoint
         made with KEY = made does not resume with KEY = other, and resumes

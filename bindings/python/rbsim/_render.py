@@ -129,6 +129,8 @@ class RunInfo:
     #: steps in which slow motion was partly lost to the rounding of
     #: coordinates (:attr:`World.rounded_steps`)
     rounded_steps: int = 0
+    #: the deepest overlap at the end of any step, m (StepInfo.max_overlap)
+    max_overlap: float = 0.0
 
 
 class StopRun(Exception):
@@ -616,7 +618,8 @@ def _run_info(s: Any) -> RunInfo:
                    float(s.time), int(s.dropped), int(s.substeps),
                    int(s.rollbacks), int(s.collisions), float(s.energy_initial),
                    float(s.energy_last), float(s.wall_time), int(s.work_limited),
-                   int(s.floor_hit_steps), int(s.sweep_limited), int(s.rounded_steps))
+                   int(s.floor_hit_steps), int(s.sweep_limited), int(s.rounded_steps),
+                   float(s.max_overlap))
 
 
 def start_world(world: World, steps: Optional[int] = None,

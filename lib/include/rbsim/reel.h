@@ -342,6 +342,9 @@ typedef struct rbs_run_info {
                                    lost to the rounding of coordinates
                                    (rbs_world_rounded_steps: far from the
                                    origin, or a tiny dt), all steps so far */
+    double max_overlap;       /**< the deepest overlap at the end of any
+                                   step so far (rbs_step_info.max_overlap),
+                                   m */
 } rbs_run_info;
 
 /** A run: owns a reel, the renderer instances and two threads.  Opaque. */

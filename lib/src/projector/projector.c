@@ -90,6 +90,7 @@ struct rbs_projector {
     uint64_t floor_hit_steps, sweep_limited;
     uint64_t rounded_base;  /* the world's rbs_world_rounded_steps at the start */
     uint64_t rounded_steps; /* ... since, as of the last frame captured */
+    double max_overlap;     /* the deepest step-end overlap so far, m */
     uint64_t frame_made; /* number of the last frame captured */
     double time_drawn, energy_initial, energy_last;
     double t_start, t_end;
@@ -506,6 +507,8 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
     p->floor_hit_steps += info->floor_hits != 0;
     p->sweep_limited += info->sweep_limit != 0;
     p->rounded_steps = rbs_world_rounded_steps(p->world) - p->rounded_base;
+    if (info->max_overlap > p->max_overlap)
+        p->max_overlap = info->max_overlap;
     pthread_mutex_unlock(&p->mu);
 
     slot->paused = paused;
@@ -1047,6 +1050,7 @@ static void status_locked(rbs_projector *p, rbs_run_info *info)
     info->floor_hit_steps = p->floor_hit_steps;
     info->sweep_limited = p->sweep_limited;
     info->rounded_steps = p->rounded_steps;
+    info->max_overlap = p->max_overlap;
     info->energy_initial = p->energy_initial;
     info->energy_last = p->energy_last;
     if (p->started)
