@@ -101,9 +101,11 @@ rbs_status rbsf_dump_bind(rbsf_dump_bound *bound, const rbs_renderer_class *dump
 size_t rbsf_format_double(char *buf, size_t size, double x);
 
 /** Check that an output file could be created at path without creating it:
- * its folder exists and is writable (or is one missing folder inside a
- * writable one, created when the file is opened), and the path is not a
- * folder.  "-" (the
+ * the path is not a folder; an existing file is writable; a new file's
+ * folder exists and takes a file (a temporary one is made and removed
+ * again), or is one missing folder inside such a folder (created when the
+ * file is opened).  A path through a file ("base.json/x.csv") or more than
+ * one missing folder is refused, the message naming the part.  "-" (the
  * standard output) is fine.  Returns RBS_OK or RBS_E_IO with a message. */
 rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen);
 

@@ -284,6 +284,85 @@ const char *rbsf_shown_path(const char *path, char *buf, size_t size)
     return buf;
 }
 
+/* Whether a file can be made in the folder dir (strlen(dir) + 15 bytes
+ * of room after it): a temporary file is made and removed again, which
+ * proves what access() cannot (root may "write" in /proc and /sys, where
+ * nothing can be created).  Says why not in err. */
+static int can_create_in(char *dir, const char *shown, char *err,
+                         size_t errlen)
+{
+    char shown_dir[160];
+    size_t len = strlen(dir);
+    int fd, e;
+    strcpy(dir + len, "/.rbsim-XXXXXX");
+    fd = mkstemp(dir);
+    e = errno;
+    if (fd >= 0) {
+        close(fd);
+        unlink(dir);
+    }
+    dir[len] = '\0';
+    if (fd < 0) {
+        snprintf(err, errlen, "cannot create '%s' in '%s': %s", shown,
+                 rbsf_shown_path(dir, shown_dir, sizeof shown_dir),
+                 strerror(e));
+        return 0;
+    }
+    return 1;
+}
+
+/* Why the folder dir, which is not one, cannot hold a new file, in err: the
+ * deepest part of it that exists is not a folder (base.json/x.csv,
+ * /dev/null/x.csv), or more than its last part is missing (more likely a
+ * typo).  Returns 1 when dir is just one missing folder inside a folder
+ * where one can be made (it is made when the file is opened).  dir is
+ * changed (its parts taken off) and needs 15 bytes of room after it. */
+static int one_missing_folder(char *dir, const char *shown, char *err,
+                              size_t errlen)
+{
+    struct stat sb;
+    char shown_dir[160], shown_missing[160];
+    int depth = 0;
+    rbsf_shown_path(dir, shown_missing, sizeof shown_missing);
+    /* Walk up to the deepest part that exists. */
+    while (stat(dir, &sb) != 0) {
+        char *up = strrchr(dir, '/');
+        if (errno != ENOENT && errno != ENOTDIR) {
+            snprintf(err, errlen, "cannot create '%s': '%s': %s", shown,
+                     rbsf_shown_path(dir, shown_dir, sizeof shown_dir),
+                     strerror(errno));
+            return 0;
+        }
+        while (up != NULL && up > dir && up[-1] == '/')
+            up--;
+        if (up == NULL)
+            strcpy(dir, ".");
+        else
+            up[up == dir] = '\0'; /* ("/x" goes up to "/") */
+        depth++;
+    }
+    if (!S_ISDIR(sb.st_mode)) {
+        snprintf(err, errlen, "cannot create '%s': '%s' is not a folder",
+                 shown, rbsf_shown_path(dir, shown_dir, sizeof shown_dir));
+        return 0;
+    }
+    if (depth > 1) {
+        snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist "
+                              "(one missing folder is made, not more)",
+                 shown, shown_missing);
+        return 0;
+    }
+    if (access(dir, W_OK) != 0) {
+        snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist "
+                              "and cannot be made in '%s': %s",
+                 shown, shown_missing,
+                 rbsf_shown_path(dir, shown_dir, sizeof shown_dir),
+                 strerror(errno));
+        return 0;
+    }
+    return can_create_in(dir, shown, err, errlen);
+}
+
 rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
 {
     struct stat sb;
@@ -324,10 +403,11 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
         snprintf(err, errlen, "cannot create '%s': %s", shown, strerror(errno));
         return RBS_E_IO;
     }
-    /* The file does not exist yet: its folder must. */
+    /* The file does not exist yet: its folder must (room for the probe's
+     * "/.rbsim-XXXXXX" after it). */
     slash = strrchr(path, '/');
     n = slash == NULL ? 1 : (slash == path ? 1 : (size_t)(slash - path));
-    dir = malloc(n + 1);
+    dir = malloc(n + 16);
     if (dir == NULL) {
         snprintf(err, errlen, "out of memory");
         return RBS_E_MEMORY;
@@ -338,30 +418,20 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen)
         memcpy(dir, path, n);
         dir[n] = '\0';
     }
-    ok = stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode);
-    if (!ok) {
-        /* One missing folder (the scenes' "out/") is created when the run
-         * starts, if its own parent is a writable folder; a deeper missing
-         * path is more likely a typo and is refused. */
-        char *up = strrchr(dir, '/');
-        const char *parent = ".";
-        if (up != NULL && up != dir) {
-            *up = '\0';
-            parent = dir;
-        } else if (up == dir) {
-            parent = "/";
-        }
-        ok = stat(parent, &sb) == 0 && S_ISDIR(sb.st_mode) && access(parent, W_OK) == 0;
-        if (up != NULL && up != dir)
-            *up = '/';
+    if (stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        ok = access(dir, W_OK) == 0;
         if (!ok)
-            snprintf(err, errlen, "cannot create '%s': folder '%s' does not exist",
-                     shown, rbsf_shown_path(dir, shown_dir, sizeof shown_dir));
-    } else if (access(dir, W_OK) != 0) {
-        int e = errno;
-        snprintf(err, errlen, "cannot create '%s' in '%s': %s", shown,
-                 rbsf_shown_path(dir, shown_dir, sizeof shown_dir), strerror(e));
-        ok = 0;
+            snprintf(err, errlen, "cannot create '%s' in '%s': %s", shown,
+                     rbsf_shown_path(dir, shown_dir, sizeof shown_dir),
+                     strerror(errno));
+        else
+            ok = can_create_in(dir, shown, err, errlen);
+    } else {
+        /* One missing folder (the scenes' "out/") is made when the run
+         * starts, if its own parent is a writable folder; a deeper missing
+         * path is more likely a typo, and a file on the way (base.json/x.csv,
+         * /dev/null/x.csv) can never hold one: both are refused. */
+        ok = one_missing_folder(dir, shown, err, errlen);
     }
     free(dir);
     return ok ? RBS_OK : RBS_E_IO;

@@ -638,6 +638,35 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 3)
         self.assertIn("nowhere", r.stdout)
 
+    def test_output_under_a_file_is_refused_by_check(self):
+        # "rbsim check" passed a renderer path whose folder is a file
+        # ("base.json/x.jsonl", "/dev/null/x.csv": taken for one missing
+        # folder, its grandparent checked) or a folder where nothing can be
+        # made (/proc, where root passes access()), which "rbsim run" then
+        # refused (exit 3, "Not a directory").  Both refuse it now, naming
+        # the entry and the part that is not a folder.
+        with open(self.path("base.json"), "w") as f:
+            f.write("{}")
+        for path, msg in (("base.json/x.jsonl", "'base.json' is not a folder"),
+                          ("base.json/a/x.jsonl", "'base.json' is not a folder"),
+                          ("/dev/null/x.csv", "'/dev/null' is not a folder"),
+                          ("/proc/x.csv", "cannot create '/proc/x.csv' in '/proc'")):
+            s = self.scene(renderers=[{"type": "stats", "path": "ok.csv"},
+                                      {"type": "json", "path": path}])
+            r = self.rbsim("check", s)
+            self.assertEqual(r.returncode, 3, (path, r.stdout))
+            self.assertIn("renderers[1] (json): cannot create '%s'" % path,
+                          r.stdout)
+            self.assertIn(msg, r.stdout)
+            r = self.rbsim("run", s)
+            self.assertEqual(r.returncode, 3, (path, r.stderr))
+            self.assertIn(msg, r.stderr)
+            self.assertFalse(os.path.exists(self.path("ok.csv")))
+            r = self.rbsim("run", self.scene(), "--csv", path)
+            self.assertEqual(r.returncode, 2, (path, r.stderr))
+            self.assertIn("--csv: cannot create '%s'" % path, r.stderr)
+            self.assertIn(msg, r.stderr)
+
     def test_scene_renderers_and_every(self):
         s = self.scene(renderers=[{"type": "csv", "path": "all.csv"},
                                   {"type": "csv", "path": "some.csv",
