@@ -52,7 +52,10 @@ static const char run_text[] =
     "frames in rbsim-demo/png/ when built with SDL) and checks the run against\n"
     "exact answers (first impact at sqrt(2h/g), rolling at 5/7 v0), which hold\n"
     "for its own steps, dt, method and slop: those options need a SCENE.\n"
-    "\n"
+    "\n";
+
+/* (run's help in two strings: C99 promises string literals of 4095 bytes) */
+static const char run_options_text[] =
     "options (they override the scene):\n"
     "  --steps N     steps to take, 0 to 2^53: frames 0..N at t = k dt\n"
     "                (0: frame 0 only, as \"steps\": 0 in a scene)\n"
@@ -72,7 +75,9 @@ static const char run_text[] =
     "                --resume at frame K: the frames above K)\n"
     "  --every K     keep frames 0, K, 2K, ... (and the last) in --csv, --json\n"
     "                and --png, K from 1 to 2147483647 (2^31 - 1, as the\n"
-    "                scene's \"every\"; a resumed run keeps the same numbers)\n"
+    "                scene's \"every\"; a resumed run keeps the same numbers,\n"
+    "                and a run with --checkpoint keeps its last frame only\n"
+    "                if a multiple of K: the resumed run goes on from it)\n"
     "  --realtime    show frame k at k dt of wall time (default: as fast as\n"
     "                possible)\n"
     "  --speed X     real-time factor for --realtime (default 1; only with it)\n"
@@ -170,6 +175,7 @@ int rbsf_help(FILE *out, const char *command)
     if (strcmp(command, "run") == 0) {
         char list[2048];
         fputs(run_text, out);
+        fputs(run_options_text, out);
         rbsf_command_help(list, sizeof list);
         fputs(list, out);
         fputs("End of input (a pipe, /dev/null) does not stop the run (a "

@@ -2108,6 +2108,7 @@ int rbsf_run_main(int argc, char **argv)
     rbs_projector_def_init(&def);
     def.steps = target - start_frame;
     def.skip_first_frame = o.resume != NULL; /* the earlier run wrote it */
+    def.continued = o.checkpoint != NULL; /* --every: the next part keeps K */
     if (o.checkpoint) {
         ckpt.name = o.checkpoint;
         ckpt.path = ckpt_target;

@@ -134,6 +134,41 @@ class ProjectorTests(CkptBase):
                          csv_body(read(self.path("b.csv"))),
                          read(self.path("full.csv")))
 
+    def test_every_k_checkpoint_off_a_multiple(self):
+        # A part stopped at a frame that is not a multiple of K: the first
+        # part kept that frame as its last (--every 3 --steps 5 wrote
+        # 0 3 5, the resumed part 6 9 10), so the parts joined had a frame
+        # 5 the whole run (0 3 6 9 10) has not.  A run that saves a
+        # checkpoint keeps K for its last frame too: the next part goes on
+        # from it.  Also the scene's own "every" and --json.
+        s = self.scene()
+        r = self.rbsim("run", s, "--steps", "10", "--every", "3", "--csv",
+                       "full.csv", "--json", "full.jsonl", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--steps", "5", "--every", "3",
+                       "--checkpoint", "ck.bin", "--csv", "a.csv", "--json",
+                       "a.jsonl", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(
+            [int(x.split(b",")[0]) for x in
+             csv_body(read(self.path("a.csv"))).splitlines()][::BODIES],
+            [0, 3])
+        r = self.rbsim("run", s, "--steps", "10", "--every", "3",
+                       "--resume", "ck.bin", "--csv", "b.csv", "--json",
+                       "b.jsonl", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(read(self.path("a.csv")) +
+                         csv_body(read(self.path("b.csv"))),
+                         read(self.path("full.csv")))
+        self.assertEqual(read(self.path("a.jsonl")) + read(self.path("b.jsonl")),
+                         read(self.path("full.jsonl")))
+        # Without --checkpoint the run's last frame is kept, as before.
+        r = self.rbsim("run", s, "--steps", "5", "--every", "3", "--csv",
+                       "c.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(csv_body(read(self.path("c.csv"))).splitlines()[-1]
+                        .startswith(b"5,"))
+
     def test_sigint_then_resume(self):
         # Interrupted at some frame k: the CSV ends at k, the checkpoint is
         # at k, and resuming gives the rest byte for byte.

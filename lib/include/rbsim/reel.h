@@ -287,6 +287,13 @@ typedef struct rbs_projector_def {
      * checkpoint whose frame an earlier run wrote; the first frame drawn is
      * then the next one.  Default 0 (it is drawn). */
     int32_t skip_first_frame;
+    /** Nonzero: the run is one part of a longer one, continued from its end
+     * (a checkpoint saved at its last frame; the next part sets
+     * skip_first_frame), so a recorder with every K > 1 keeps the last frame
+     * -- also an interrupted run's -- only if its number is a multiple of
+     * K, as the whole run would: the parts joined are the whole run's
+     * frames.  Default 0: the last frame is always kept. */
+    int32_t continued;
 } rbs_projector_def;
 
 /** Fill a projector definition with defaults.  Prefer the macro. */

@@ -216,6 +216,7 @@ void rbs_projector_def_init_sized(rbs_projector_def *def, size_t def_size)
     d.after_step = NULL;
     d.after_step_context = NULL;
     d.skip_first_frame = 0;
+    d.continued = 0;
     memcpy(def, &d, d.struct_size);
 }
 
@@ -637,10 +638,13 @@ static void serve_command(rbs_projector *p)
     pthread_mutex_unlock(&p->mu);
 }
 
-/* Whether recorder r leaves frame f out (its every K). */
-static int every_skips(const renderer *r, const rbs_frame *f, uint64_t first)
+/* Whether recorder r leaves frame f out (its every K; the last frame is
+ * kept unless the run is continued from it). */
+static int every_skips(const rbs_projector *p, const renderer *r,
+                       const rbs_frame *f, uint64_t first)
 {
-    return !r->live && !f->last && f->number != first && f->number % r->every != 0;
+    return !r->live && (!f->last || p->def.continued) && f->number != first &&
+           f->number % r->every != 0;
 }
 
 /* Draw one frame on the renderers that keep it.  Returns 0 or -1 (failed). */
@@ -678,7 +682,7 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
             continue; /* recorders never get a frame twice */
         if (r->live && !live_ok)
             continue;
-        if (!repeat && every_skips(r, f, first))
+        if (!repeat && every_skips(p, r, f, first))
             continue;
         if (draw_one(p, r, f) != 0)
             return -1;
@@ -696,8 +700,9 @@ static int draw_tail(rbs_projector *p, uint64_t first)
 {
     rbs_frame f;
     uint32_t i;
-    if (p->tail.last)
-        return 0; /* (the run ended: every recorder had it) */
+    if (p->tail.last || p->def.continued)
+        return 0; /* (the run ended: every recorder had it; or its next part
+                   * goes on from here) */
     f = p->tail;
     f.bodies = p->tail_bodies;
     if (rbs_frame_capture(p->world, &f, p->max_bodies) != RBS_OK || f.number != p->tail.number)
@@ -705,7 +710,7 @@ static int draw_tail(rbs_projector *p, uint64_t first)
     f.stats.step = p->tail.stats.step;
     for (i = 0; i < p->count; i++) {
         renderer *r = &p->renderers[i];
-        if (!every_skips(r, &p->tail, first))
+        if (!every_skips(p, r, &p->tail, first))
             continue;
         f.last = 1;
         if (draw_one(p, r, &f) != 0)
