@@ -214,8 +214,18 @@ def test_ranges_echo_the_value_exactly():
             (dict(mass=-1.23456789), "mass: must be > 0, got -1.23456789"),
             (dict(density=-1e-300), "density: must be >= 0 (0: from mass), got -1e-300")):
         assert _message(w.add_sphere, position=(5, 5, 5), **kw) == pre + text
-    assert w.add_sphere(position=(5, 5, 5), radius=0.5, mass=-1.0,
-                        density=1.0).mass > 0  # (mass is not used with a density)
+    n_before = len(w.all_bodies())
+    # Both mass and density: a scene refuses them ("Give exactly one"); the
+    # binding took them, using density (mass 8.3776 for radius 1, density
+    # 2, even with mass=-1).
+    for m, dens in ((-1.0, 2.0), (1.0, 2.0), (1.0, 0.0)):
+        assert _message(w.add_sphere, position=(5, 5, 5), radius=1.0, mass=m,
+                        density=dens) == pre + (
+            "mass and density: give one of them, not both (got mass=%r, "
+            "density=%r), as in a scene" % (m, dens))
+    assert len(w.all_bodies()) == n_before
+    assert w.add_sphere(position=(5, 5, 5), radius=1.0,
+                        density=2.0).mass == pytest.approx(8 / 3 * math.pi, rel=1e-15)
     assert _message(w.run, 1, realtime=True, speed=-1e-300) == (
         pre + "speed: must be > 0, got -1e-300")
 

@@ -1023,8 +1023,10 @@ class World(_Handle):
         Args:
             name: optional unique name (< 64 bytes).
             radius: m, > 0 (default 0.1).
-            mass: kg, > 0 (default 1); ignored if density > 0.
-            density: kg/m^3 (default 0: use mass).
+            mass: kg, > 0 (default 1).
+            density: kg/m^3, >= 0 (default 0: use mass); mass = density
+                4/3 pi r^3.  Give mass or density, not both (as a scene:
+                InvalidError).
             position, velocity, angular_velocity: m, m/s, rad/s (world).
             orientation: quaternion [w, x, y, z], normalised on add.
             inertia: "solid" (default), "hollow", or principal moments
@@ -1037,7 +1039,8 @@ class World(_Handle):
                 angular_velocity must then be zero.
 
         Raises:
-            InvalidError: a value out of range, a velocity for a fixed
+            InvalidError: a value out of range, both mass and density
+                given, a velocity for a fixed
                 sphere, or an energy at the start beyond 1e300 J
                 (message from the library).
             CapacityError: max_bodies reached (the world is unchanged).
@@ -1052,13 +1055,15 @@ class World(_Handle):
         # (the library's ranges, checked here to echo the value exactly)
         if radius is not None:
             d.radius = _check.real_in(radius, "radius", 0.0, open_low=True)
+        if mass is not None and density is not None:
+            # (the C def has a default mass, so only here is "both" seen)
+            raise _e.error_class(-1)(
+                "mass and density: give one of them, not both (got mass=%r, "
+                "density=%r), as in a scene" % (mass, density))
         if density is not None:
             d.density = _check.real_in(density, "density", 0.0, note=" (0: from mass)")
         if mass is not None:
-            x = _check.real(mass, "mass")
-            if d.density == 0.0:  # (else mass is not used)
-                x = _check.real_in(mass, "mass", 0.0, open_low=True)
-            d.mass = x
+            d.mass = _check.real_in(mass, "mass", 0.0, open_low=True)
         for key, value in (("position", position), ("velocity", velocity),
                            ("angular_velocity", angular_velocity),
                            ("center_of_mass", center_of_mass),
