@@ -115,7 +115,8 @@ static const char run_options_text[] =
     "the run ends; a rejected run writes nothing.  A value that is an option\n"
     "name (--csv --quiet) is refused: write ./--quiet for such a file.\n"
     "\n"
-    "While it runs, type commands on standard input:\n";
+    "While it runs, type commands on standard input (unless it is the scene\n"
+    "or the --resume checkpoint):\n";
 
 static const char check_text[] =
     "usage: rbsim check SCENE\n"

@@ -652,6 +652,35 @@ static const char *scene_file(const rbs_scene *scene, const char *path,
     return NULL;
 }
 
+/* Whether path names the file standard input is: /dev/stdin and its other
+ * names, or the same device and inode as descriptor 0 (a file redirected
+ * with "<"). */
+static int is_stdin(const char *path)
+{
+    struct stat a, b;
+    if (path == NULL)
+        return 0;
+    if (strcmp(path, "/dev/stdin") == 0 || strcmp(path, "/dev/fd/0") == 0 ||
+        strcmp(path, "/proc/self/fd/0") == 0)
+        return 1;
+    return fstat(STDIN_FILENO, &a) == 0 && stat(path, &b) == 0 &&
+           a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+/* What the run read from standard input ("scene", "checkpoint"), so that
+ * its bytes are not taken for command lines too; NULL if neither. */
+static const char *stdin_taken(const rbs_scene *scene, const char *resume)
+{
+    const char *f;
+    uint32_t i;
+    if (is_stdin(resume))
+        return "checkpoint";
+    for (i = 0; scene != NULL && (f = rbs_scene_source(scene, i)) != NULL; i++)
+        if (is_stdin(f))
+            return "scene";
+    return NULL;
+}
+
 /* "'s file 'F'" for a scene file after the first, "" for the scene's
  * own: the end of a "would overwrite the scene" message. */
 static void scene_file_note(char *buf, size_t n, const char *f, uint32_t k)
@@ -1839,6 +1868,7 @@ int rbsf_run_main(int argc, char **argv)
     rbsf_signals signals;
     rbsf_dump_bound dumps[3]; /* csv, json, stats: signals.stopper ends them */
     rbsf_input input;
+    const char *taken;
     pthread_mutex_t reply_lock = PTHREAD_MUTEX_INITIALIZER;
     FILE *talk = stdout;
     rbs_run_info info;
@@ -2122,6 +2152,14 @@ int rbsf_run_main(int argc, char **argv)
     def.policy = o.realtime ? RBS_REEL_LATEST_ONLY : RBS_REEL_LOSSLESS;
     def.speed = o.speed;
     def.start_paused = o.paused;
+    taken = stdin_taken(scene, o.resume);
+    if (taken != NULL && o.paused) {
+        /* No command could resume it. */
+        def.start_paused = 0;
+        if (!o.quiet)
+            fprintf(stderr, "rbsim: note: --paused is ignored: standard "
+                            "input is the %s, not commands\n", taken);
+    }
     def.pause_on_collision = rbs_scene_pause_on_collision(scene);
     if (def.pause_on_collision && !isatty(STDIN_FILENO)) {
         /* Only a person at a terminal can resume such pauses. */
@@ -2169,8 +2207,15 @@ int rbsf_run_main(int argc, char **argv)
         code = RBSF_EXIT_RUN;
         goto out;
     }
-    if (rbsf_input_start(&input, STDIN_FILENO, projector, talk, &reply_lock) !=
-        0)
+    if (taken != NULL) {
+        /* (its bytes would be read again as commands: "unknown command" a
+         * line, or a binary checkpoint) */
+        memset(&input, 0, sizeof input);
+        if (!o.quiet)
+            fprintf(stderr, "rbsim: note: standard input is the %s: no "
+                            "commands are read from it\n", taken);
+    } else if (rbsf_input_start(&input, STDIN_FILENO, projector, talk,
+                                &reply_lock) != 0)
         memset(&input, 0, sizeof input); /* no commands, the run goes on */
 
     /* 6. Wait, with a progress bar on a terminal for long runs. */

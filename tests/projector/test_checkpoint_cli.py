@@ -169,6 +169,40 @@ class ProjectorTests(CkptBase):
         self.assertTrue(csv_body(read(self.path("c.csv"))).splitlines()[-1]
                         .startswith(b"5,"))
 
+    def test_stdin_as_scene_or_checkpoint_is_not_read_as_commands(self):
+        # "run /dev/stdin < scene.json" read the scene's lines again as
+        # commands ("unknown command" and the command list a line), and
+        # "--resume /dev/stdin < ck.bin" fed the checkpoint's bytes to the
+        # command reader.  Standard input that is the scene or the
+        # checkpoint (its names or the same file) is not read for commands.
+        s = self.scene()
+        r = self.rbsim("run", s, "--steps", "100", "--checkpoint", "ck.bin",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        cases = [(["/dev/stdin"], s, "scene"),
+                 (["/dev/fd/0"], s, "scene"),
+                 ([s], s, "scene"),
+                 ([s, "--resume", "/dev/stdin"], self.path("ck.bin"),
+                  "checkpoint"),
+                 ([s, "--resume", "ck.bin"], self.path("ck.bin"),
+                  "checkpoint")]
+        for args, fed, what in cases:
+            with open(fed, "rb") as f:
+                r = self.rbsim("run", *args, "--steps", "300", "--realtime",
+                               "--speed", "2", "--paused", stdin=f)
+            out = r.stdout + r.stderr
+            self.assertEqual(r.returncode, 0, (args, out))
+            self.assertFalse("unknown command" in out, args)
+            self.assertIn("note: standard input is the %s: no commands are "
+                          "read from it" % what, r.stderr, args)
+            self.assertIn("note: --paused is ignored", r.stderr, args)
+        # Another file on standard input is still read for commands.
+        with open(self.path("cmds"), "w") as f:
+            f.write("frobnicate\n")
+        with open(self.path("cmds"), "rb") as f:
+            r = self.rbsim("run", s, "--steps", "300", "--realtime", stdin=f)
+        self.assertIn("unknown command", r.stdout + r.stderr)
+
     def test_sigint_then_resume(self):
         # Interrupted at some frame k: the CSV ends at k, the checkpoint is
         # at k, and resuming gives the rest byte for byte.
