@@ -203,6 +203,30 @@ class ProjectorTests(CkptBase):
             r = self.rbsim("run", s, "--steps", "300", "--realtime", stdin=f)
         self.assertIn("unknown command", r.stdout + r.stderr)
 
+    def test_resume_from_a_pipe(self):
+        # "cat ck.bin | rbsim run SCENE --resume /dev/stdin" failed: exit 3,
+        # "input/output error: /dev/stdin: cannot read" (the load seeked to
+        # find the size).  A pipe is read to its end.
+        s = self.scene()
+        full_csv, full_json = self.uninterrupted(s, 300)
+        r = self.rbsim("run", s, "--steps", "100", "--checkpoint", "ck.bin",
+                       "--csv", "a.csv", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = subprocess.run([RBSIM, "run", s, "--steps", "300", "--resume",
+                            "/dev/stdin", "--csv", "b.csv"],
+                           input=read(self.path("ck.bin")), cwd=self.dir,
+                           capture_output=True, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(b"resumed: /dev/stdin at frame 100", r.stdout)
+        self.assertEqual(read(self.path("a.csv")) +
+                         csv_body(read(self.path("b.csv"))), full_csv)
+        # a truncated stream says so, with its length
+        r = subprocess.run([RBSIM, "run", s, "--resume", "/dev/stdin"],
+                           input=read(self.path("ck.bin"))[:100],
+                           cwd=self.dir, capture_output=True, timeout=120)
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn(b"truncated: 100 bytes", r.stderr)
+
     def test_sigint_then_resume(self):
         # Interrupted at some frame k: the CSV ends at k, the checkpoint is
         # at k, and resuming gives the rest byte for byte.

@@ -702,8 +702,10 @@ RBS_API rbs_status rbs_world_save(const rbs_world *world, const char *path);
 RBS_API rbs_status rbs_world_save_v2(const rbs_world *world, const char *path, char *message,
                                      size_t message_size);
 
-/** Load a world saved by rbs_world_save().  On error *out is NULL and, when
- * message is not NULL, the reason is written there. */
+/** Load a world saved by rbs_world_save().  path may be a pipe or FIFO
+ * (/dev/stdin): the file is read to its end without seeking.  On error *out
+ * is NULL and, when message is not NULL, the reason ("PATH: truncated: ...",
+ * a read error with the system's reason) is written there. */
 RBS_API rbs_status rbs_world_load(const char *path, rbs_world **out, char *message,
                                   size_t message_size);
 

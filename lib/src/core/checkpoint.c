@@ -23,6 +23,7 @@
  */
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -418,23 +419,58 @@ rbs_status rbs_world_load(const char *path, rbs_world **out, char *message, size
             goto done;
         }
     }
-    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        snprintf(msg, sizeof msg, "%s: cannot read", path);
-        st = RBS_E_IO;
-        goto done;
-    }
-    buf = (unsigned char *)malloc(n > 0 ? (size_t)n : 1u);
-    if (buf == NULL) {
-        fclose(f);
-        st = RBS_E_MEMORY;
-        goto done;
-    }
-    if (n > 0 && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        fclose(f);
-        snprintf(msg, sizeof msg, "%s: read error", path);
-        st = RBS_E_IO;
-        goto done;
+    /* Read to the end without seeking, so a pipe or FIFO does as a file
+     * (cat ck.bin | ... /dev/stdin); the buffer grows as bytes come, and
+     * reading stops 64 KiB past the size the header gives (room to count
+     * trailing bytes), or after a header that is not a checkpoint's:
+     * /dev/zero would never end. */
+    {
+        size_t cap = 0, limit = SIZE_MAX;
+        n = 0;
+        for (;;) {
+            size_t want, got;
+            if ((size_t)n >= limit)
+                break;
+            if ((size_t)n == cap) {
+                size_t grow = cap < 65536 ? 65536 : cap;
+                unsigned char *more;
+                if (cap > (size_t)LONG_MAX - grow ||
+                    (more = (unsigned char *)realloc(buf, cap + grow)) == NULL) {
+                    fclose(f);
+                    snprintf(msg, sizeof msg, "%s: out of memory after %ld bytes", path, n);
+                    st = RBS_E_MEMORY;
+                    goto done;
+                }
+                buf = more;
+                cap += grow;
+            }
+            want = cap - (size_t)n;
+            if (limit - (size_t)n < want)
+                want = limit - (size_t)n;
+            got = fread(buf + n, 1, want, f);
+            n += (long)got;
+            if (limit == SIZE_MAX && (size_t)n >= sizeof(header)) {
+                header h;
+                const size_t body = sizeof h + sizeof(rbs_world_def) + sizeof(counters) +
+                                    sizeof(uint64_t);
+                memcpy(&h, buf, sizeof h);
+                limit = memcmp(h.magic, ckpt_magic, sizeof h.magic) != 0 ||
+                                h.arrays > (uint64_t)(SIZE_MAX - body - 65536)
+                            ? (size_t)n /* (not one: ckpt_check says why) */
+                            : body + (size_t)h.arrays + 65536;
+            }
+            if (got < want) {
+                if (ferror(f)) {
+                    int e = errno;
+                    fclose(f);
+                    snprintf(msg, sizeof msg, "%s: read error after %ld bytes: %s", path, n,
+                             strerror(e));
+                    st = RBS_E_IO;
+                    goto done;
+                }
+                break; /* end of file */
+            }
+        }
     }
     fclose(f);
     {
