@@ -556,6 +556,23 @@ static void sphere_energy_at_the_start_is_bounded(void **state)
     s.angular_velocity.z = 1e153; /* trace 3 * 0.004 kg m^2: 6e303 J */
     assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
     assert_non_null(strstr(rbs_world_last_error(w), "rotational energy (angular_velocity)"));
+    /* and its momenta (a sphere at 1e300 m moving at 1e100 m/s failed the
+     * first frame's momentum; 1e305 kg at 1 mm/s has 5e298 J) */
+    rbs_sphere_def_init(&s);
+    s.position.x = 1e300;
+    s.position.y = 1e300;
+    s.velocity.x = 1e100;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere angular momentum r x m v about the origin (position, velocity) at "
+                        "the start is inf kg m^2/s, beyond 1e300 kg m^2/s (the world's angular "
+                        "momentum would overflow)");
+    rbs_sphere_def_init(&s);
+    s.mass = 1e305;
+    s.velocity.x = 1e-3;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "sphere momentum m v (velocity, mass) at the "
+                                                    "start is 1e+302 kg m/s"));
     rbs_sphere_def_init(&s);
     s.force.x = 1e200;
     s.position.x = 1e101;

@@ -702,6 +702,32 @@ static void numerical_failure_stops_the_run(void **state)
     fx_done(&fx);
 }
 
+/* A momentum that overflows at the first frame: the message said only
+ * "frame capture at t = 0 s failed: momentum: numerical failure (NaN,
+ * infinity or overflow)"; it names the sphere and the term now (the
+ * setters take any finite value, so the start checks do not see it). */
+static void momentum_failure_names_the_body(void **state)
+{
+    fixture fx;
+    rbs_body_id id;
+    rbs_vec3 far = {1e300, 1e300, 1}, fast = {1e100, 0, 0};
+    const char *msg;
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    CHECK_OK(rbs_world_find_body(fx.w, "ball0", &id));
+    CHECK_OK(rbs_body_set_position(fx.w, id, far));
+    CHECK_OK(rbs_body_set_velocity(fx.w, id, fast));
+    fx.def.steps = 10;
+    CHECK_OK(fx_create(&fx));
+    assert_int_equal(rbs_projector_run(fx.p), RBS_E_NUMERIC);
+    msg = rbs_projector_last_error(fx.p);
+    print_message("%s\n", msg);
+    assert_non_null(strstr(msg, "frame capture at t = 0 s failed: momentum: "));
+    assert_non_null(strstr(msg, "(\"ball0\"): its angular momentum r x m v about the "
+                                "origin overflows (|r| = 1.41421e+300 m, |m v| = "));
+    fx_done(&fx);
+}
+
 /* Real time, the simulation a reel ahead: pause holds the display at once
  * on the frame the reply names; step N shows N more; a step past the end
  * saturates (no wrap-around); recorders get every frame once, in order. */
@@ -1440,6 +1466,7 @@ int main(void)
         cmocka_unit_test(foreign_codes_of_every_call_are_renderer_errors),
         cmocka_unit_test(failing_finish_is_reported),
         cmocka_unit_test(numerical_failure_stops_the_run),
+        cmocka_unit_test(momentum_failure_names_the_body),
         cmocka_unit_test(commands_steer_the_run),
         cmocka_unit_test(renderer_control_quits),
         cmocka_unit_test(after_step_sees_every_frame),

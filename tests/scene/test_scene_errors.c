@@ -211,6 +211,17 @@ static const bad_case cases[] = {
       E("[3, 0, 1.1]", 1, 0,
         "bodies[3].position: the potential energy in gravity at the start is inf J, beyond "
         "1e300 J (the world's energy would overflow)")}},
+    /* the momentum and angular momentum about the origin at the start too:
+     * a sphere at 1e300 m moving at 1e100 m/s passed the check and failed
+     * the first frame ("momentum: numerical failure") */
+    {"bad/momentum_overflow.json", RBS_E_SCENE,
+     {E("[1e100", 1, 0,
+        "bodies[0].velocity: the angular momentum r x m v about the origin (position and "
+        "velocity) at the start is inf kg m^2/s, beyond 1e300 kg m^2/s (the world's angular "
+        "momentum would overflow)"),
+      E("[0.001", 1, 0,
+        "bodies[1].velocity: the momentum m v at the start is 1e+302 kg m/s, beyond 1e300 "
+        "kg m/s (the world's momentum would overflow)")}},
     /* with mutual gravity, each pair's potential at the start too (a pair of
      * fixed spheres, c and d, is left out, as the world's energy leaves it) */
     {"bad/mutual_gravity_potential_overflow.json", RBS_E_SCENE,

@@ -1041,7 +1041,8 @@ class World(_Handle):
         Raises:
             InvalidError: a value out of range, both mass and density
                 given, a velocity for a fixed
-                sphere, or an energy at the start beyond 1e300 J
+                sphere, or an energy at the start beyond 1e300 J (or a
+                momentum beyond 1e300 kg m/s, kg m^2/s)
                 (message from the library).
             CapacityError: max_bodies reached (the world is unchanged).
         """

@@ -438,7 +438,9 @@ RBS_API rbs_status rbs_world_pair_at(const rbs_world *world, uint32_t index,
  * (scenes/FORMAT.md, "Limits of a sphere"): moments of inertia and their
  * inverses finite and nonzero, and for a movable sphere 1 / mass finite and
  * each energy at the start (kinetic, rotational, potential in gravity and
- * of its force) at most 1e300 J, so that rbs_world_energy() sums stay
+ * of its force) at most 1e300 J, and its momentum m v, angular momentum
+ * about the origin r x m v and spin (at most trace(I) |w|) at most 1e300 in
+ * SI units, so that rbs_world_energy() and rbs_world_momentum() sums stay
  * finite (the setters take any finite value).  RBS_E_CAPACITY leaves the
  * world unchanged. */
 RBS_API rbs_status rbs_world_add_sphere(rbs_world *world,

@@ -973,7 +973,8 @@ static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
 }
 
 int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
-                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f, double e[4])
+                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f,
+                       double e[RBS__SPHERE_LIMITS])
 {
     quat qq = {q.w, q.x, q.y, q.z};
     v3 vv = v3_make(v.x, v.y, v.z), ww = v3_make(w.x, w.y, w.z), gg = v3_make(g.x, g.y, g.z);
@@ -984,7 +985,14 @@ int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_ve
     e[1] = 0.5 * trace * v3_dot(ww, ww);
     e[2] = fabs(g_is_force ? gx : mass * gx);
     e[3] = fabs(v3_dot(v3_make(f.x, f.y, f.z), x));
-    for (k = 0; k < 4; ++k)
+    {
+        /* (lengths by hypot: each part may be near 1e300, its square not) */
+        v3 mv = v3_scale(vv, mass), l = v3_cross(x, mv);
+        e[4] = hypot(hypot(mv.x, mv.y), mv.z);
+        e[5] = hypot(hypot(l.x, l.y), l.z);
+        e[6] = trace * hypot(hypot(ww.x, ww.y), ww.z);
+    }
+    for (k = 0; k < RBS__SPHERE_LIMITS; ++k)
         if (!(e[k] <= RBS__ENERGY_MAX))
             return k;
     return -1;
@@ -1122,10 +1130,18 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         /* a movable sphere's 1 / mass, and its energies (so that the world's
          * sums stay finite: FORMAT.md, "Limits of a sphere", the scene's
          * rule too) */
-        static const char *const what[4] = {
+        static const char *const what[RBS__SPHERE_LIMITS] = {
             "kinetic energy m v^2 / 2 (velocity)", "rotational energy (angular_velocity)",
-            "potential energy in gravity (position, mass)", "potential energy of its force (force)"};
-        double e[4];
+            "potential energy in gravity (position, mass)", "potential energy of its force (force)",
+            "momentum m v (velocity, mass)",
+            "angular momentum r x m v about the origin (position, velocity)",
+            "spin angular momentum, at most trace(I) |w| (angular_velocity)"};
+        static const char *const unit[RBS__SPHERE_LIMITS] = {
+            "J", "J", "J", "J", "kg m/s", "kg m^2/s", "kg m^2/s"};
+        static const char *const sum[RBS__SPHERE_LIMITS] = {
+            "energy", "energy", "energy", "energy", "momentum", "angular momentum",
+            "angular momentum"};
+        double e[RBS__SPHERE_LIMITS];
         rbs_vec3 g = w->def.gravity;
         rbs_quat qp = {q.w, q.x, q.y, q.z};
         if (!isfinite(1.0 / mass))
@@ -1134,8 +1150,8 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         k = rbs__sphere_energy(mass, I[0] + I[4] + I[8], d.velocity, d.angular_velocity, d.position, qp,
                                d.center_of_mass, g, w->def.gravity_mode == RBS_GRAVITY_FORCE, d.force, e);
         if (k >= 0)
-            FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g J, beyond 1e300 J (the world's energy "
-                 "would overflow)", what[k], e[k]);
+            FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g %s, beyond 1e300 %s (the world's %s "
+                 "would overflow)", what[k], e[k], unit[k], unit[k], sum[k]);
     }
     if (w->def.mutual_gravity) {
         /* its potential energy of mutual gravity with each sphere there,
@@ -1626,6 +1642,40 @@ rbs_status rbs_world_momentum(const rbs_world *w, rbs_vec3 *linear, rbs_vec3 *an
     if (!v3_finite(P) || !v3_finite(L))
         return RBS_E_NUMERIC; /* huge but finite states overflowed the sums */
     return RBS_OK;
+}
+
+void rbs__momentum_failure(const rbs_world *w, char *buf, size_t n)
+{
+    v3 P = v3_make(0, 0, 0), L = v3_make(0, 0, 0);
+    uint32_t i;
+    buf[0] = '\0';
+    for (i = 0; i < w->slots; ++i) {
+        v3 p, x, l, spin;
+        if (!rbs__body_moves(w, i))
+            continue;
+        p = v3_scale(v3_load(&w->vel[3 * i]), w->mass[i]);
+        x = rbs__body_com(w, i);
+        l = v3_cross(x, p);
+        spin = rbs__inertia_times(w, i, q_load(&w->orient[4 * i]), v3_load(&w->avel[3 * i]));
+        if (!v3_finite(p) || !v3_finite(l) || !v3_finite(spin) || !v3_finite(v3_add(l, spin))) {
+            const char *what = !v3_finite(p)      ? "its momentum m v"
+                               : !v3_finite(l)    ? "its angular momentum r x m v about the origin"
+                               : !v3_finite(spin) ? "its spin angular momentum I w"
+                                                  : "its angular momentum r x m v + I w";
+            snprintf(buf, n, "sphere %u (\"%s\"): %s overflows (|r| = %g m, |m v| = %g kg m/s, "
+                     "|w| = %g rad/s)", (unsigned)i, w->name[i], what,
+                     hypot(hypot(x.x, x.y), x.z), hypot(hypot(p.x, p.y), p.z),
+                     hypot(hypot(w->avel[3 * i], w->avel[3 * i + 1]), w->avel[3 * i + 2]));
+            return;
+        }
+        P = v3_add(P, p);
+        L = v3_add(L, v3_add(l, spin));
+        if (!v3_finite(P) || !v3_finite(L)) {
+            snprintf(buf, n, "the world's %s overflows when sphere %u (\"%s\") is added to it",
+                     !v3_finite(P) ? "momentum" : "angular momentum", (unsigned)i, w->name[i]);
+            return;
+        }
+    }
 }
 
 rbs_status rbs_world_usage(const rbs_world *w, rbs_usage *out)

@@ -715,20 +715,34 @@ char *rbs__link_target(const char *path);
  * text (scene_json.c, scene_text.c) are checked with it. */
 size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
 
-/* Largest size of each of a movable sphere's energies at the start, J: four
- * terms for each of 2^24 bodies then sum to less than DBL_MAX. */
+/* Largest size of each of a movable sphere's energies at the start, J (and
+ * of its momenta, in their units): seven terms for each of 2^24 bodies then
+ * sum to less than DBL_MAX. */
 #define RBS__ENERGY_MAX 1e300
 
-/* A movable sphere's energies at the start into e[4], J: e[0] kinetic
- * m |v|^2 / 2, e[1] rotational (a bound: |w|^2 trace / 2, trace that of the
- * inertia about the centre of mass), e[2] potential in gravity g (m g.x, or
- * g.x when g is a force) and e[3] potential of its force f (f.x), x the
- * centre of mass in the world, p + q c q* (q a unit quaternion, c the
- * offset in the body frame).  Returns the index of the first whose size is
- * beyond RBS__ENERGY_MAX (a NaN is), or -1.  The one rule of
- * rbs_world_add_sphere and the scene's check (which names the key). */
+/* The terms rbs__sphere_energy bounds. */
+#define RBS__SPHERE_LIMITS 7
+
+/* A movable sphere's energies and momenta at the start into
+ * e[RBS__SPHERE_LIMITS]: e[0] kinetic energy m |v|^2 / 2, e[1] rotational
+ * (a bound: |w|^2 trace / 2, trace that of the inertia about the centre of
+ * mass), e[2] potential in gravity g (m g.x, or g.x when g is a force),
+ * e[3] potential of its force f (f.x), J; e[4] momentum |m v|, kg m/s;
+ * e[5] angular momentum about the origin |x × m v|, and e[6] its spin
+ * part (a bound: trace |w|), kg m^2/s; x the centre of mass in the world,
+ * p + q c q* (q a unit quaternion, c the offset in the body frame).
+ * Returns the index of the first whose size is beyond RBS__ENERGY_MAX (a
+ * NaN is), or -1.  The one rule of rbs_world_add_sphere and the scene's
+ * check (which names the key). */
 int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
-                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f, double e[4]);
+                       rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f,
+                       double e[RBS__SPHERE_LIMITS]);
+
+/* Which body's momentum, or which sum, overflows in rbs_world_momentum,
+ * said in buf (n bytes), e.g. "sphere 0 (\"ball\"): its angular momentum
+ * r x m v overflows (|r| = 1.41e+300 m, |m v| = 1e+100 kg m/s)"; "" if
+ * none does. */
+void rbs__momentum_failure(const rbs_world *w, char *buf, size_t n);
 
 /* Forces: body i's linear acceleration (gravity, and its applied force over
  * its mass) and its applied torque; zero for a body that does not move.

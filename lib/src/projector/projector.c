@@ -479,7 +479,12 @@ static int publish(rbs_projector *p, const rbs_step_info *info, int last)
             rbs_world_energy(p->world, &e) != RBS_OK           ? "energy: "
             : rbs_world_momentum(p->world, &lin, &ang) != RBS_OK ? "momentum: "
                                                                  : "";
-        char tb[40];
+        char tb[40], body[200];
+        if (what[0] == 'm') {
+            /* which body's momentum overflowed, and what */
+            rbs__momentum_failure(p->world, body, sizeof body);
+            why = body;
+        }
         fail(p, st, "frame capture at t = %s s failed: %s%s%s%s",
              rbs__shortest(tb, rbs_world_time(p->world)), what, rbs_status_string(st),
              why && why[0] ? ": " : "", why ? why : "");

@@ -1075,11 +1075,20 @@ static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body
                                 double mass, double trace)
 {
     const rbs_scene *s = v->scene;
-    double e[4];
-    static const char *const keys[4] = {"velocity", "angular_velocity", "position", "force"};
-    static const char *const what[4] = {
+    double e[RBS__SPHERE_LIMITS];
+    static const char *const keys[RBS__SPHERE_LIMITS] = {
+        "velocity", "angular_velocity", "position", "force", "velocity", "velocity",
+        "angular_velocity"};
+    static const char *const what[RBS__SPHERE_LIMITS] = {
         "the kinetic energy m v^2 / 2", "the rotational energy",
-        "the potential energy in gravity", "the potential energy of its force"};
+        "the potential energy in gravity", "the potential energy of its force",
+        "the momentum m v", "the angular momentum r x m v about the origin (position and velocity)",
+        "the spin angular momentum, at most trace(I) |w|"};
+    static const char *const unit[RBS__SPHERE_LIMITS] = {
+        "J", "J", "J", "J", "kg m/s", "kg m^2/s", "kg m^2/s"};
+    static const char *const sum[RBS__SPHERE_LIMITS] = {
+        "energy", "energy", "energy", "energy", "momentum", "angular momentum",
+        "angular momentum"};
     int k = rbs__sphere_energy(mass, trace, b->velocity, b->angular_velocity, b->position,
                                b->orientation, b->center_of_mass, s->gravity,
                                s->gravity_mode == RBS_GRAVITY_FORCE, b->force, e);
@@ -1087,8 +1096,8 @@ static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body
         const cJSON *at = member(obj, keys[k]) != NULL ? member(obj, keys[k]) : obj;
         size_t saved = push_key(v, keys[k]);
         err(v, loc_value(v, at),
-            "%s at the start is %g J, beyond 1e300 J (the world's energy would overflow)",
-            what[k], e[k]);
+            "%s at the start is %g %s, beyond 1e300 %s (the world's %s would overflow)",
+            what[k], e[k], unit[k], unit[k], sum[k]);
         pop(v, saved);
     }
 }
