@@ -1278,8 +1278,13 @@ static int check_checkpoint_path(const char *path, const char *target,
         return RBSF_EXIT_USAGE;
     }
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+        /* (unlike an output's one missing folder, made only once the run
+         * has started: a checkpoint is also saved when it is stopped) */
         fprintf(stderr, "rbsim run: --checkpoint '%s': folder '%s' does not "
-                        "exist\n", path, dir);
+                        "exist%s\n", path, dir,
+                stat(dir, &sb) == 0 ? " (it is not a folder)"
+                                    : " (a checkpoint's folder is not made: "
+                                      "make it first)");
         return RBSF_EXIT_USAGE;
     }
     if (access(dir, W_OK | X_OK) != 0) {

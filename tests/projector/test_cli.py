@@ -1360,6 +1360,32 @@ class CliTests(Base):
         self.assertEqual(outs[0], outs[1])
         self.assertEqual(outs[0], outs[2])
 
+    def test_missing_folders_are_named(self):
+        # convert into two missing folders said only "No such file or
+        # directory"; it names the folder now (one missing folder is made,
+        # as for --csv, whose missing folder the run makes); --checkpoint
+        # says its folder is not made.
+        s = self.scene()
+        r = self.rbsim("convert", s, "nz/a/b.json")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("cannot write 'nz/a/b.json': folder 'nz/a' does not "
+                      "exist (a save makes one missing folder, not more)",
+                      r.stderr)
+        r = self.rbsim("convert", s, "scene.json/b.json")
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertIn("'scene.json' is not a folder", r.stderr)
+        self.assertFalse(os.path.exists(self.path("nz")))
+        r = self.rbsim("convert", s, "nz/b.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", s, "--steps", "2", "--csv", "nx/a.csv",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(os.path.isfile(self.path("nx/a.csv")))
+        r = self.rbsim("run", s, "--steps", "2", "--checkpoint", "ny/ck.bin")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("folder 'ny' does not exist (a checkpoint's folder is "
+                      "not made: make it first)", r.stderr)
+
     def test_convert_never_writes_over_its_input(self):
         # Onto the scene itself, or onto a file a text scene reads (its
         # materials.txt), convert refuses and leaves the input whole (it
@@ -1436,10 +1462,12 @@ class CliTests(Base):
                     self.assertEqual(os.listdir(mnt), [])
                 finally:
                     subprocess.run(["umount", mnt], check=True)
-        # an OS reason, not "input/output error"
+        # a reason that names the folder, not "input/output error" (nor
+        # only the OS's "No such file or directory")
         r = self.rbsim("convert", s, self.path("no/such/dir/x.json"))
         self.assertEqual(r.returncode, 4)
-        self.assertIn("No such file or directory", r.stderr)
+        self.assertIn("/no/such/dir' does not exist (a save makes one missing "
+                      "folder, not more)", r.stderr)
 
     def test_scene_through_a_pipe(self):
         # A scene read through a pipe, /dev/stdin or a FIFO named without

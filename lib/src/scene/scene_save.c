@@ -42,6 +42,56 @@ static rbs_status report(save_report *r, rbs_status st, const char *path, const 
     return st;
 }
 
+/* Why a file at path could not be made when open() said e (ENOENT or
+ * ENOTDIR), in why (n bytes): the part of its folder that is not a folder,
+ * or the folder that does not exist (a save makes one missing folder, not
+ * more).  Else the system's reason. */
+static void folder_reason(const char *path, int e, char *why, size_t n)
+{
+    const char *slash = strrchr(path, '/');
+    char *dir;
+    struct stat sb;
+    size_t d;
+    int depth = 0;
+    snprintf(why, n, "%s", strerror(e));
+    if ((e != ENOENT && e != ENOTDIR) || slash == NULL || slash == path)
+        return;
+    d = (size_t)(slash - path);
+    if ((dir = malloc(d + 1)) == NULL)
+        return;
+    memcpy(dir, path, d);
+    dir[d] = '\0';
+    while (stat(dir, &sb) != 0) {
+        char *up = strrchr(dir, '/');
+        if (errno != ENOENT && errno != ENOTDIR) {
+            free(dir);
+            return;
+        }
+        if (up == NULL)
+            strcpy(dir, "."); /* (dir holds at least one byte and its NUL) */
+        else
+            up[up == dir] = '\0'; /* ("/x" goes up to "/") */
+        depth++;
+    }
+    if (!S_ISDIR(sb.st_mode)) {
+        snprintf(why, n, "'%s' is not a folder", dir);
+    } else if (depth > 0) {
+        char *missing = malloc(d + 1);
+        if (missing != NULL) {
+            memcpy(missing, path, d);
+            missing[d] = '\0';
+            if (depth > 1)
+                snprintf(why, n, "folder '%s' does not exist (a save makes one missing "
+                                 "folder, not more)", missing);
+            else
+                snprintf(why, n, "folder '%s' does not exist and could not be made in "
+                                 "'%s'", missing, dir);
+            free(missing);
+        }
+    }
+    free(dir);
+}
+
 /* Whether the file at `file` (stat'ed) is one scene s was read from. */
 static int read_from(const rbs_scene *s, const struct stat *file)
 {
@@ -115,10 +165,11 @@ static rbs_status stage_open(staged *o, const rbs_scene *s, const char *path, sa
         }
     }
     if (fd < 0) {
-        int e = errno;
+        char why[400];
+        folder_reason(o->path, errno, why, sizeof why);
         free(o->tmp);
         o->tmp = NULL;
-        return report(r, RBS_E_IO, o->path, strerror(e));
+        return report(r, RBS_E_IO, o->path, why);
     }
     if (have) {
         (void)fchmod(fd, file.st_mode & 07777); /* the replaced file's permissions */
