@@ -43,6 +43,15 @@ static const bad_case cases[] = {
      {E("", 1, 0,
         "expected a value (object, array, string, number, true, false or null), got "
         "byte 0x00")}},
+    /* a UTF-16 file was "got byte 0xff" (JSON) or "NUL byte" (text) */
+    {"bad/utf16.json", RBS_E_SCENE,
+     {E("", 1, 0,
+        "the file is UTF-16 (it starts with the byte-order mark FF FE): scene files are "
+        "UTF-8; save it as UTF-8")}},
+    {"bad/text_utf16/config.txt", RBS_E_SCENE,
+     {E("", 1, 0,
+        "the file is UTF-16 (it starts with the byte-order mark FE FF): scene files are "
+        "UTF-8; save it as UTF-8")}},
     {"bad/too_deep.json", RBS_E_SCENE,
      {E("[[[", 64, 0,
         "description[0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0][0]"

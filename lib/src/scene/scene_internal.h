@@ -195,6 +195,23 @@ const rbs__pos *rbs__posmap_get(const rbs__posmap *map, const cJSON *item);
 /* scene_json.c: JSON text -> tree + positions */
 /** Parse JSON text into *tree with positions for every item (file index
  * file).  On a syntax error records it and returns nonzero. */
+/* "FF FE" or "FE FF" when text starts with a UTF-16 (or UTF-32 LE)
+ * byte-order mark, which neither format takes (the message says to save
+ * the file as UTF-8); NULL otherwise. */
+static inline const char *rbs__utf16_bom(const char *text, size_t len)
+{
+    const unsigned char *u = (const unsigned char *)text;
+    if (len >= 2 && u[0] == 0xFF && u[1] == 0xFE)
+        return "FF FE";
+    if (len >= 2 && u[0] == 0xFE && u[1] == 0xFF)
+        return "FE FF";
+    return NULL;
+}
+
+/* The message for such a file. */
+#define RBS__UTF16_MESSAGE \
+    "the file is UTF-16 (it starts with the byte-order mark %s): scene files are UTF-8; save it as UTF-8"
+
 int rbs__json_parse(rbs_scene *scene, const rbs__src *src, int32_t file,
                     rbs__posmap *map, cJSON **tree);
 

@@ -580,6 +580,13 @@ static cJSON *scan_value(json_scan *sc, int depth, int has_key, size_t key_off)
 static cJSON *scan_document(json_scan *sc)
 {
     cJSON *root;
+    const char *bom = rbs__utf16_bom(sc->s, sc->len);
+    if (bom != NULL) {
+        char msg[160];
+        snprintf(msg, sizeof msg, RBS__UTF16_MESSAGE, bom);
+        scan_fail(sc, 0, msg);
+        return NULL;
+    }
     /* a UTF-8 byte order mark is skipped */
     if (sc->len >= 3 && memcmp(sc->s, "\xEF\xBB\xBF", 3) == 0) {
         sc->i = 3;

@@ -644,7 +644,13 @@ static void check_binary(tctx *t)
 {
     const rbs__src *src = &t->srcs[t->file];
     const char *z = memchr(src->text, '\0', src->len);
+    const char *bom = rbs__utf16_bom(src->text, src->len);
     size_t i = 0;
+    if (bom != NULL) {
+        rbs__scene_error(t->scene, tloc(t, 0), "", RBS__UTF16_MESSAGE, bom);
+        t->failed = 2;
+        return;
+    }
     if (z != NULL) {
         rbs__scene_error(t->scene, tloc(t, (size_t)(z - src->text)), "",
                          "NUL byte: this is not a text file");
