@@ -409,6 +409,21 @@ static const bad_case cases[] = {
           "bodies[0]: missing required key \"radius\" (m, > 0)"),
       EIN("bad/text_unknown_key/objects.txt", "radus", 1, 0,
           "bodies[0].radus: unknown key in a sphere (did you mean \"radius\"?)")}},
+    /* comma lists: an empty element was dropped ("0,,0, -9.81" a 3-vector),
+     * and "list=1,b" was [1, "b"] */
+    {"bad/text_comma_lists/config.txt", RBS_E_SCENE,
+     {E(",,0, -9.81", 1, 1,
+        "element 2 of a comma list is empty (nothing between two commas): give its value "
+        "or remove the comma"),
+      E(",2,3", 1, 0,
+        "element 2 of a comma list is empty (nothing between two commas): give its value "
+        "or remove the comma"),
+      E(",0,0", 1, 0,
+        "element 1 of a comma list is empty (a comma before the first value): give its "
+        "value or remove the comma"),
+      E("b\n", 1, 0,
+        "\"b\" in \"list=1,b\" is not a number: a value with commas is an array of "
+        "numbers (give other values by index, list[1]=...)")}},
     {"bad/text_bad_material_row/config.txt", RBS_E_SCENE,
      {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
           "expected 4 to 7 columns: material_a material_b static kinetic [restitution "

@@ -98,13 +98,28 @@ static int tokenize(tctx *t, size_t begin, size_t end, int commas, ttok *toks,
 {
     const char *s = t->srcs[t->file].text;
     size_t i = begin;
-    int n = 0;
+    int n = 0, open = 1; /* (open: no word since the start or the last comma) */
     while (i < end) {
         size_t start;
-        if (is_blank(s[i]) || (commas && s[i] == ',')) {
+        if (commas && s[i] == ',') {
+            if (open) {
+                /* "1,,2" or ",1" was taken as two elements, silently */
+                rbs__scene_error(t->scene, tloc(t, i), "",
+                                 "element %d of a comma list is empty (%s): give its "
+                                 "value or remove the comma",
+                                 n + 1, n == 0 ? "a comma before the first value"
+                                               : "nothing between two commas");
+                return -1;
+            }
+            open = 1;
             i++;
             continue;
         }
+        if (is_blank(s[i])) {
+            i++;
+            continue;
+        }
+        open = 0;
         if (s[i] == '#' && !is_color_at(s, i, end)) {
             break;
         }
@@ -580,6 +595,23 @@ static void kv_list(tctx *t, size_t i, size_t end, cJSON *obj)
                 rbs__scene_error(t->scene, tloc(t, vstart), "",
                                  "missing value after \"%.*s=\"", (int)key_len, s + key_off);
                 continue;
+            }
+            if (comma) {
+                /* a value with commas is an array of numbers (FORMAT.md):
+                 * "a=1,b" was [1, "b"] */
+                int k;
+                for (k = 0; k < n; k++)
+                    if (toks[k].quoted || !number_grammar(s + toks[k].off, toks[k].len))
+                        break;
+                if (k < n) {
+                    rbs__scene_error(t->scene, tloc(t, toks[k].off), "",
+                                     "\"%.*s\" in \"%.*s\" is not a number: a value with "
+                                     "commas is an array of numbers (give other values by "
+                                     "index, %.*s[%d]=...)",
+                                     (int)toks[k].len, s + toks[k].off, (int)(vend - key_off),
+                                     s + key_off, (int)key_len, s + key_off, k);
+                    continue;
+                }
             }
             if (n == 1 && !comma) {
                 value = tok_value(t, s, toks[0].off, toks[0].len, toks[0].quoted, 1,
