@@ -87,7 +87,7 @@ def test_overrides(write_scene):
     w = rbsim.load(path, steps=7, dt=0.0005, method="euler")
     assert w.dt == 0.0005 and w.method == "euler"
     assert w.run().steps == 7
-    with pytest.raises(rbsim.SceneError, match="method"):
+    with pytest.raises(rbsim.InvalidError, match="^invalid argument: method: unknown"):
         rbsim.load(path, method="nope")
     with pytest.raises(rbsim.InvalidError, match="dt"):
         rbsim.load(path, dt=0.0)
@@ -101,15 +101,28 @@ def test_overrides(write_scene):
 
 def test_slop_override(write_scene):
     """slop= sets the world's slop (as --slop and simulation.slop do); out of
-    (0, 0.1) it is a SceneError naming --slop, a non-number a type error."""
+    (0, 0.1) it is an InvalidError naming slop, as Python names it (it was
+    a SceneError "command line: --slop: ..."), a non-number a type error."""
     import json
     path = write_scene(bounce_scene(steps=10))
     assert rbsim.load(path).settings["slop"] == 1e-6
     assert rbsim.load(path, slop=0.005).settings["slop"] == 0.005
     assert rbsim.parse_json(json.dumps(bounce_scene()), "inline", slop=0.02).settings["slop"] == 0.02
     for bad in (0.0, 0.1, -1e-3):
-        with pytest.raises(rbsim.SceneError, match="--slop"):
+        with pytest.raises(rbsim.InvalidError) as info:
             rbsim.load(path, slop=bad)
+        assert str(info.value).startswith(
+            "invalid argument: slop: must be in (0, 0.1) (a fraction of the smaller "
+            "radius), got ")
+        assert "--slop" not in str(info.value)
+        with pytest.raises(rbsim.InvalidError, match="^invalid argument: slop: "):
+            rbsim.parse_json(json.dumps(bounce_scene()), slop=bad)
+    for bad in ("", "leapfrog"):
+        with pytest.raises(rbsim.InvalidError) as info:
+            rbsim.parse_json(json.dumps(bounce_scene()), method=bad)
+        assert str(info.value) == (
+            'invalid argument: method: unknown method "%s"; expected euler, selective, '
+            'event, verlet, rk4, adaptive, soft or auto' % bad)
     with pytest.raises(rbsim.ArgumentTypeError, match="slop"):
         rbsim.load(path, slop="loose")
 

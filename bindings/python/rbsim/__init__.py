@@ -63,12 +63,22 @@ def _raise_scene(status: int, scene: Any, name: str) -> None:
     raise error_class(status)(detail)
 
 
+def _raise_override(status: int, scene: Any, name: str) -> None:
+    """An override the library refused: an InvalidError in the argument's
+    own name ("slop: must be ...", as dt= and steps= are checked here), not
+    the command line's ("command line: --slop: ...")."""
+    for issue in _scene_issues(scene):
+        if issue.path in ("--slop", "--method", "--dt", "--steps"):
+            raise error_class(lib.RBS_E_INVALID)("%s: %s" % (issue.path[2:], issue.message))
+    _raise_scene(status, scene, name)
+
+
 def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float],
                 method: Optional[str], slop: Optional[float] = None) -> World:
     if slop is not None:
         status = lib.rbs_scene_override_slop(scene, _check.real(slop, "slop"))
         if status != lib.RBS_OK:
-            _raise_scene(status, scene, name)
+            _raise_override(status, scene, name)
     if steps is not None or dt is not None or method is not None:
         # (steps=0: frame 0 only, as --steps 0 and "steps": 0; the C
         # override's 0 keeps the scene's, so the world is told below)
@@ -79,7 +89,7 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
         raw = None if method is None else _check.text(method, "method")
         status = lib.rbs_scene_override(scene, n, step, raw if raw is not None else ffi.NULL)
         if status != lib.RBS_OK:
-            _raise_scene(status, scene, name)
+            _raise_override(status, scene, name)
     d = ffi.new("rbs_world_def *")
     status = lib.rbs_scene_world_def(scene, d)
     if status != lib.RBS_OK:
@@ -129,6 +139,8 @@ def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
         SceneError: the scene was rejected; ``.file``, ``.line``,
             ``.column``, ``.message`` describe the first error and
             ``.errors`` lists all of them.
+        InvalidError: an override out of its range, named as the argument
+            ("slop: must be in (0, 0.1) ...", "method: unknown method ...").
         IoError: the file cannot be read.
     """
     raw = _check.path(path, "path")
