@@ -289,7 +289,25 @@ def test_start_with_commands():
     assert info.drawn == 1001
     with pytest.raises(rbsim.ClosedError):
         run.command("pause")
+    # status() after wait() is the final snapshot (it raised ClosedError)
+    assert run.status() == info and run.status().state == "done"
     w.step()
+
+
+def test_status_after_a_failed_run_is_its_final_state():
+    # A run whose renderer failed: wait() raises, status() then says how it
+    # ended (it raised ClosedError).
+    w = make_world()
+
+    def bad(frame):
+        if frame.number == 3:
+            raise ValueError("boom")
+
+    run = w.start(10, renderers=[bad])
+    with pytest.raises(ValueError):
+        run.wait()
+    info = run.status()
+    assert info.state == "done" and info.drawn == 3
 
 
 def test_frame_step_info():

@@ -291,6 +291,8 @@ class Run(_Handle):
                  pause_on_collision: bool, reel_capacity: Optional[int],
                  endless: bool) -> None:
         self._error: Optional[BaseException] = None
+        # the RunInfo taken as the run was closed: status() after wait()
+        self._final: Optional[RunInfo] = None
         self._stopped = False
         # the thread inside one of this run's renderer callbacks (draw,
         # finish), None between them: see _refuse_from_renderer
@@ -440,8 +442,13 @@ class Run(_Handle):
             self._unuse()
 
     def status(self) -> RunInfo:
-        """A snapshot of the run (also after it ended, until wait())."""
+        """A snapshot of the run (also after it ended); after wait(), the
+        final one (the RunInfo wait() returned, or the state of a run that
+        failed, its ``result`` the error)."""
         out = ffi.new("rbs_run_info *")
+        with self._cond:
+            if self._projector == ffi.NULL and self._final is not None:
+                return self._final
         projector = self._use()
         try:
             status = lib.rbs_projector_status_sized(projector, out,
@@ -489,10 +496,14 @@ class Run(_Handle):
         except BaseException:
             lib.rbs_projector_command(self._projector, b"quit", ffi.NULL, 0)
             lib.rbs_projector_wait(self._projector)
-            self._close_projector()
+            try:
+                self._final = self.status()
+            finally:
+                self._close_projector()
             raise
         status = lib.rbs_projector_wait(self._projector)
         info = self.status()
+        self._final = info
         detail = _text(lib.rbs_projector_last_error(self._projector))
         self._close_projector()
         if self._error is not None:
