@@ -603,6 +603,70 @@ static void elastic_bounce_never_gains_energy(void **state)
     rbs_world_destroy(w);
 }
 
+/* |v|, m/s. */
+static double speed(rbs_vec3 v) { return sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
+/* A frictionless ball in a narrow V-groove: two planes whose normals are
+ * tilted th from vertical, walls 0.1 and 1 degree off vertical (th = 89.9,
+ * 89 degrees), the ball set at rest touching both -- an equilibrium, each
+ * wall holding m g / (2 cos th), 286 and 29 times its weight.  Its two
+ * rows, one after the other, cannot hold it (the mode in which it sinks
+ * into both is 1 / (2 cos^2 th) times heavier than either row's mass), and
+ * the warm-started soft rows gained energy: at 0.1 degrees it rattled at
+ * up to 1.0 m/s after 20 s, 0.3 J gained, at 1 degree for good at 0.06 m/s.
+ * Solved as one block (soft_rows.h, row_wedge) it sinks as a ball on a
+ * floor: each wall's overlap beyond the slop is cos th g / omega^2, the
+ * ball g / omega^2 lower, plus the slop r 1e-6 / cos th, which the steady
+ * state gives to rounding (1e-9 of the sink, 5.8e-5 m at 0.1 degrees, and
+ * the ball's speed under 1e-12 m/s over the last 10 s, at rest to rounding).
+ * Dropped 5 cm into the groove it never has more energy than at the start
+ * (1e-9 J: rounding of 0.5 J of potential energy per 5 cm) and comes to
+ * rest as well; the restitution pass, its rows one after the other, meets
+ * the impact plastically. */
+static void ball_in_a_narrow_wedge_settles(void **state)
+{
+    const double tilt[2] = {89.9, 89.0}, r = 0.1, dt = 1e-3;
+    int i, drop;
+    (void)state;
+    for (drop = 0; drop < 2; ++drop)
+        for (i = 0; i < 2; ++i) {
+            rbs_world *w = soft_world(4, dt, -G, 0.5, 3);
+            rbs_material_id m = material(w, "m", 0.0, 0.0, 0.5);
+            const double th = tilt[i] * PI_ / 180.0, c = cos(th), om = soft_omega(dt, 3);
+            const double z0 = r / c, sink = 1e-6 * r / c + G / (om * om);
+            rbs_plane_def p;
+            rbs_body_id b, id;
+            rbs_energy e0, e;
+            double vmax = 0.0;
+            int k;
+            rbs_plane_def_init(&p);
+            p.material = m;
+            p.normal.x = sin(th);
+            p.normal.z = c;
+            CHECK_OK(rbs_world_add_plane(w, &p, &id));
+            p.normal.x = -sin(th);
+            CHECK_OK(rbs_world_add_plane(w, &p, &id));
+            b = ball(w, r, 1.0, 0, 0, z0 + 0.05 * drop, 0, 0, 0, m);
+            CHECK_OK(rbs_world_energy(w, &e0));
+            for (k = 0; k < 20000; ++k) {
+                rbs_body_state s;
+                step_n(w, 1);
+                CHECK_OK(rbs_world_energy(w, &e));
+                if (e.total > e0.total + 1e-9)
+                    fail_msg("tilt %g, drop %d, step %d: energy %.17g above the start's %.17g", tilt[i], drop, k,
+                             e.total, e0.total);
+                s = state_of(w, b);
+                if (k >= 10000 && speed(s.velocity) > vmax)
+                    vmax = speed(s.velocity);
+            }
+            if (vmax > 1e-12)
+                fail_msg("tilt %g, drop %d: still moving at %.3g m/s in the last 10 s", tilt[i], drop, vmax);
+            ASSERT_NEAR(z0 - state_of(w, b).position.z, sink, 1e-9 * sink);
+            ASSERT_NEAR(state_of(w, b).position.x, 0.0, 1e-12);
+            rbs_world_destroy(w);
+        }
+}
+
 /* A solid sphere launched sliding at v0 with mu_k rolls from t = 2 v0 /
  * (7 mu g) at 5/7 v0.  Kinetic friction is a constant deceleration, which
  * Euler integrates exactly on the sub-steps, and the switch is a stick
@@ -1391,6 +1455,7 @@ int main(void)
         cmocka_unit_test(oblique_bounce_follows_the_impact_law),
         cmocka_unit_test(bouncing_ball_apexes),
         cmocka_unit_test(elastic_bounce_never_gains_energy),
+        cmocka_unit_test(ball_in_a_narrow_wedge_settles),
         cmocka_unit_test(sliding_sphere_starts_rolling),
         cmocka_unit_test(incline_rolls_or_slides),
         cmocka_unit_test(rolling_resistance_decelerates),

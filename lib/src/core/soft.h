@@ -61,6 +61,11 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
 #define RBS__CH_PLANE 12u   /* body b is a plane: only a moves */
 #define RBS__CH_SERIAL 16u  /* one bit: the lanes may share bodies, and are
                                taken one after the other */
+#define RBS__CH_WEDGE 17u   /* one bit, with RBS__CH_SERIAL: lanes 0-1 and
+                               2-3 are each a wedge, a sphere's contacts
+                               with two planes whose normals are nearly
+                               opposed, solved together (soft_rows.h,
+                               row_wedge) */
 #define RBS__CH_SLIP 20u    /* it came in slipping more than mu_k times its
                                last frame's normal impulse can stop: only
                                kinetic friction acts this frame
@@ -79,6 +84,16 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
  * A new contact (an impact) keeps the rigid row, and the fixed point of a
  * resting load (vn = 0) is the same. */
 #define RBS__SOFT_OVER 1.5
+
+/* A sphere's contacts with two planes are a wedge when their normals' dot
+ * product is below this (the planes more than about 154 degrees apart: a
+ * groove whose walls are within 13 degrees of parallel).  Their rows alone,
+ * one after the other, cannot hold the sphere: the mode in which it sinks
+ * into both is 1 / (1 + n1.n2) times heavier than either row's effective
+ * mass, each pass moves it by a fraction 1 + n1.n2 of what it needs, and
+ * the soft rows' warm-started impulses then follow its depth with a lag,
+ * a spring that gains energy (soft_rows.h, row_wedge). */
+#define RBS__WEDGE_COS (-0.9)
 
 /* The passes of a frame (step_soft.c). */
 enum { RBS__SOFT_SOLVE, RBS__SOFT_RELAX, RBS__SOFT_RESTITUTION, RBS__SOFT_RELAX_REPORT };

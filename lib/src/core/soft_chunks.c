@@ -15,7 +15,8 @@
  * by contact.  A contact that fits no open chunk and finds none free (a
  * body in contact with more than RBS__OPEN_CHUNKS others in a row: a large
  * sphere under many small ones) goes into a serial chunk, whose lanes are
- * taken one after the other.  The order is a function of the contacts
+ * taken one after the other; so do a wedge's two contacts, a pair of lanes
+ * in a chunk of wedges (rbs__chunker_wedge), solved together.  The order is a function of the contacts
  * alone: results are deterministic.
  */
 #include <string.h>
@@ -62,6 +63,7 @@ void rbs__chunker_start(rbs__chunker *ch, rbs__chunk *chunk, uint32_t cap, uint1
     ch->used = 0;
     ch->member = member;
     ch->serial = UINT32_MAX;
+    ch->wedges = UINT32_MAX;
     ch->open_mask[0] = ch->open_mask[1] = 0;
 }
 
@@ -73,6 +75,7 @@ void rbs__chunker_finish(rbs__chunker *ch)
             if (ch->open_mask[kind] >> k & 1u)
                 rbs__chunker_close(ch, kind, k);
     ch->serial = UINT32_MAX;
+    ch->wedges = UINT32_MAX;
 }
 
 rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind, uint32_t *lane)
@@ -104,5 +107,24 @@ rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind
     c->b[*lane] = b;
     if (kind)
         c->flags |= 1u << (RBS__CH_PLANE + *lane);
+    return c;
+}
+
+rbs__chunk *rbs__chunker_wedge(rbs__chunker *ch, uint32_t a, uint32_t b, uint32_t *lane)
+{
+    rbs__chunk *c;
+    /* (a wedge's first contact finds the open chunk's count even: a new
+     * chunk when it is full) */
+    if (ch->wedges == UINT32_MAX || ch->chunk[ch->wedges].count == RBS__LANES) {
+        c = chunk_new(ch, 1u << RBS__CH_SERIAL | 1u << RBS__CH_WEDGE);
+        if (c == NULL)
+            return NULL;
+        ch->wedges = (uint32_t)(c - ch->chunk);
+    }
+    c = &ch->chunk[ch->wedges];
+    *lane = c->count++;
+    c->a[*lane] = a;
+    c->b[*lane] = b;
+    c->flags |= 1u << (RBS__CH_PLANE + *lane);
     return c;
 }

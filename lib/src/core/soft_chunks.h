@@ -9,8 +9,8 @@
 
 #define RBS__OPEN_CHUNKS 8 /* chunks of one kind open at a time (a byte of bits a body) */
 /* The most chunks of a group of n contacts: full ones, and part-full the
- * open chunks of both kinds and a serial one. */
-#define RBS__GROUP_CHUNKS(n) (((n) + 3u) / 4u + 2u * RBS__OPEN_CHUNKS + 1u)
+ * open chunks of both kinds, a serial one and a wedges' one. */
+#define RBS__GROUP_CHUNKS(n) (((n) + 3u) / 4u + 2u * RBS__OPEN_CHUNKS + 2u)
 
 typedef struct rbs__chunker {
     rbs__chunk *chunk;                    /* the group's chunks, in order */
@@ -19,6 +19,7 @@ typedef struct rbs__chunker {
                                              planes [1] */
     unsigned open_mask[2];                /* bit k: open[kind][k] is open */
     uint32_t serial;                      /* the open serial chunk (UINT32_MAX: none) */
+    uint32_t wedges;                      /* the open wedges' chunk (UINT32_MAX: none) */
     uint16_t *member;                     /* per slot: bit k (pairs) or 8 + k
                                              (planes), open chunk k holds it
                                              (all zero between frames) */
@@ -30,6 +31,11 @@ void rbs__chunker_start(rbs__chunker *ch, rbs__chunk *chunk, uint32_t cap, uint1
 /* rbs__chunker_place when no open chunk of the kind can take the contact:
  * a new chunk, or the serial one (soft_chunks.c). */
 rbs__chunk *rbs__chunker_open(rbs__chunker *ch, uint32_t a, uint32_t b, int kind, uint32_t *lane);
+/* The chunk and lane (*lane) of one of the two plane contacts of sphere a
+ * that make a wedge (RBS__CH_WEDGE), b the plane: the two, placed one after
+ * the other, take lanes 0-1 or 2-3 of a wedges' chunk; NULL when the chunks
+ * are full (soft_chunks.c). */
+rbs__chunk *rbs__chunker_wedge(rbs__chunker *ch, uint32_t a, uint32_t b, uint32_t *lane);
 /* Close open chunk k of kind (its bodies are free of it; soft_chunks.c). */
 void rbs__chunker_close(rbs__chunker *ch, int kind, int k);
 

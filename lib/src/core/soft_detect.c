@@ -241,13 +241,14 @@ static void warm_index(rbs_world *w)
 /* A contact into a lane of the emitter's group: sphere a and body b (plane:
  * a plane) -- slots, and the records ra, rb of the frame (soft_rank; a
  * plane has none) -- of material-pair row `row`, the unit normal n from b to a, the
- * gap along it and b's lever, and whether it is a guard -- with what its
+ * gap along it and b's lever, whether it is a guard, and whether it is one
+ * of a wedge's two plane contacts (placed as a pair: rbs__chunker_wedge) -- with what its
  * rows read: its pair's row (the rows make the effective masses from the
  * records), its approach speed at the frame's start (restitution's target
  * e v0, and whether it bounces: faster than its resting threshold) and the
  * last frame's impulses for the warm start. */
 static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, uint32_t a, uint32_t b, int plane,
-                      uint32_t row, v3 n, double gap, double lb, int guard)
+                      uint32_t row, v3 n, double gap, double lb, int guard, int wedge)
 {
     rbs_world *w = d->w;
     const rbs__soft_in *in = d->in;
@@ -258,7 +259,7 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     double bias;
     v3 u, rv;
     uint32_t l;
-    rbs__chunk *k = rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
+    rbs__chunk *k = wedge ? rbs__chunker_wedge(&em->ch, ra, b, &l) : rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
     if (k == NULL) {
         /* (the message is set by the step's thread, after the pass) */
         em->status = RBS_E_CAPACITY;
@@ -326,7 +327,7 @@ static void lane_of_contact(const detect *d, emitter *em, const rbs__contact *c)
     const rbs_world *w = d->w;
     const int plane = w->type[c->b] == RBS_BODY_PLANE;
     lane_fill(d, em, w->soft_rank[w->item[c->a]], plane ? 0u : w->soft_rank[w->item[c->b]], c->a, c->b, plane, c->row,
-              c->n, c->gap, c->lb, (c->flags & RBS__GUARD) != 0);
+              c->n, c->gap, c->lb, (c->flags & RBS__GUARD) != 0, 0);
 }
 
 /* ------------------------------------------------------------------------- */
@@ -548,6 +549,37 @@ static inline int plane_is_contact(const detect *d, uint32_t a, uint32_t p, doub
     return *gap <= w->def.slop * ra + d->in->margin[a];
 }
 
+/* Sphere a (record x) in contact with two planes or more (bits: the first
+ * pass's, as in the leaf): the first two, in the planes' order, whose
+ * normals make a wedge (n1.n2 < RBS__WEDGE_COS), emitted as one into a
+ * wedges' chunk, and their indices into *wq, *wr (else both UINT32_MAX).
+ * A pile's spheres against a box's floor and walls meet none (their
+ * normals are square). */
+static void wedge_planes(const detect *d, emitter *em, uint32_t x, uint32_t a, unsigned bits, uint32_t *wq,
+                         uint32_t *wr)
+{
+    const rbs_world *w = d->w;
+    uint32_t q, r;
+    double gq, gr;
+    for (q = 0; q < w->plane_count; ++q) {
+        const uint32_t pq = w->planes[q];
+        if ((q < 8 && !(bits >> q & 1u)) || !plane_is_contact(d, a, pq, &gq))
+            continue;
+        for (r = q + 1; r < w->plane_count; ++r) {
+            const uint32_t pr = w->planes[r];
+            if ((r < 8 && !(bits >> r & 1u)) ||
+                !(v3_dot(v3_load(&w->normal[3 * pq]), v3_load(&w->normal[3 * pr])) < RBS__WEDGE_COS) ||
+                !plane_is_contact(d, a, pr, &gr))
+                continue;
+            lane_fill(d, em, x, 0u, a, pq, 1, rbs__pair_row(w, a, pq), v3_load(&w->normal[3 * pq]), gq, 0.0, 0, 1);
+            lane_fill(d, em, x, 0u, a, pr, 1, rbs__pair_row(w, a, pr), v3_load(&w->normal[3 * pr]), gr, 0.0, 0, 1);
+            *wq = q;
+            *wr = r;
+            return;
+        }
+    }
+}
+
 /* The first pass over slab s's records: each group's count; each sphere's
  * planes in contact, as bits in soft_planes (0xFF for all: more than 8
  * planes are tested again); and the candidate pairs that are contacts in
@@ -627,7 +659,7 @@ static void emit_pair(const detect *d, emitter *em, uint32_t k)
     }
     /* (apart: the normal of the touch on the straight paths) */
     rbs__pair_touch(w, a, b, dv, dist, d->in->dt, 1, &n, &gap, &lb);
-    lane_fill(d, em, ra, rb, a, b, 0, rbs__pair_row(w, a, b), n, gap, lb, 0);
+    lane_fill(d, em, ra, rb, a, b, 0, rbs__pair_row(w, a, b), n, gap, lb, 0, 0);
 }
 
 /* The second pass: items [begin, end) of emit_group, each a group's
@@ -661,14 +693,18 @@ static void pass_emit(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             for (x = g->slab_first[s]; x < g->slab_first[s + 1] && em->status == RBS_OK; ++x) {
                 const uint32_t i = w->soft_order[x], a = w->spheres[i];
                 const unsigned bits = w->soft_planes[x];
+                uint32_t wq = UINT32_MAX, wr = UINT32_MAX;
                 double gap;
+                if (bits & (bits - 1u))
+                    /* two planes or more: a wedge's pair first (wedge_planes) */
+                    wedge_planes(d, em, x, a, bits, &wq, &wr);
                 for (q = 0; bits != 0 && q < w->plane_count; ++q) {
                     const uint32_t pl = w->planes[q];
                     /* (the first pass's bit says; the test gives the gap) */
-                    if ((q < 8 && !(bits >> q & 1u)) || !plane_is_contact(d, a, pl, &gap))
+                    if (q == wq || q == wr || (q < 8 && !(bits >> q & 1u)) || !plane_is_contact(d, a, pl, &gap))
                         continue;
                     lane_fill(d, em, x, 0u, a, pl, 1, rbs__pair_row(w, a, pl), v3_load(&w->normal[3 * pl]), gap,
-                              0.0, 0);
+                              0.0, 0, 0);
                 }
                 for (; at < d->listed[s] && w->vl_pair[2 * list[at]] == i; ++at)
                     emit_pair(d, em, list[at]);
