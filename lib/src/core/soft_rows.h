@@ -301,62 +301,59 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, lb, plane);
 }
 
-/* Lane l of a serial chunk c alone, in a chunk of its own (lane 0; the
- * others unused). */
-static ROW_INLINE void row_lane(const rbs__soft_rows *k, rbs__chunk *c, uint32_t l, int stage, rbs__soft_report *report)
-{
-    rbs__chunk one;
-    unsigned bit = 1u << l, f = c->flags;
-    int plane = (f >> RBS__CH_PLANE & bit) != 0;
-    memset(&one, 0, sizeof one);
-    one.a[0] = c->a[l];
-    one.b[0] = c->b[l];
-    one.nx[0] = c->nx[l];
-    one.ny[0] = c->ny[l];
-    one.nz[0] = c->nz[l];
-    one.lb[0] = c->lb[l];
-    one.gap[0] = c->gap[l];
-    one.jn[0] = c->jn[l];
-    one.jx[0] = c->jx[l];
-    one.jy[0] = c->jy[l];
-    one.jz[0] = c->jz[l];
-    one.row[0] = c->row[l];
-    one.eb[0] = c->eb[l];
-    one.count = 1;
-    one.flags = ((f >> RBS__CH_TOUCHED >> l & 1u) << RBS__CH_TOUCHED) |
-                ((f >> RBS__CH_BOUNCE >> l & 1u) << RBS__CH_BOUNCE) |
-                ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
-                ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE) |
-                ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP) |
-                ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM);
-    if (stage < 0) {
-        warm_chunk(k, &one, plane);
-        return;
-    }
-    if (stage == RBS__SOFT_RESTITUTION && !((one.flags >> RBS__CH_TOUCHED) & (one.flags >> RBS__CH_BOUNCE) & 1u))
-        return;
-    if (plane)
-        row_chunk(k, &one, stage, 1, 1u, report);
-    else
-        row_chunk(k, &one, stage, 0, 1u, report);
-    c->jn[l] = one.jn[0];
-    c->jx[l] = one.jx[0];
-    c->jy[l] = one.jy[0];
-    c->jz[l] = one.jz[0];
-    c->flags |= (one.flags >> RBS__CH_TOUCHED & 1u) << (RBS__CH_TOUCHED + l);
-}
-
-/* The lanes of a serial chunk one after the other, each alone. */
-static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__soft_report *report)
+/* Lanes [first, end) of a serial chunk one after the other, each alone in
+ * a chunk of its own (lane 0; the others unused). */
+static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, uint32_t first, uint32_t end, int stage,
+                      rbs__soft_report *report)
 {
     uint32_t l;
-    for (l = 0; l < c->count; ++l)
-        row_lane(k, c, l, stage, report);
+    for (l = first; l < end; ++l) {
+        rbs__chunk one;
+        unsigned bit = 1u << l, f = c->flags;
+        int plane = (f >> RBS__CH_PLANE & bit) != 0;
+        memset(&one, 0, sizeof one);
+        one.a[0] = c->a[l];
+        one.b[0] = c->b[l];
+        one.nx[0] = c->nx[l];
+        one.ny[0] = c->ny[l];
+        one.nz[0] = c->nz[l];
+        one.lb[0] = c->lb[l];
+        one.gap[0] = c->gap[l];
+        one.jn[0] = c->jn[l];
+        one.jx[0] = c->jx[l];
+        one.jy[0] = c->jy[l];
+        one.jz[0] = c->jz[l];
+        one.row[0] = c->row[l];
+        one.eb[0] = c->eb[l];
+        one.count = 1;
+        one.flags = ((f >> RBS__CH_TOUCHED >> l & 1u) << RBS__CH_TOUCHED) |
+                    ((f >> RBS__CH_BOUNCE >> l & 1u) << RBS__CH_BOUNCE) |
+                    ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
+                    ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE) |
+                    ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP) |
+                    ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM);
+        if (stage < 0) {
+            warm_chunk(k, &one, plane);
+            continue;
+        }
+        if (stage == RBS__SOFT_RESTITUTION &&
+            !((one.flags >> RBS__CH_TOUCHED) & (one.flags >> RBS__CH_BOUNCE) & 1u))
+            continue;
+        if (plane)
+            row_chunk(k, &one, stage, 1, 1u, report);
+        else
+            row_chunk(k, &one, stage, 0, 1u, report);
+        c->jn[l] = one.jn[0];
+        c->jx[l] = one.jx[0];
+        c->jy[l] = one.jy[0];
+        c->jz[l] = one.jz[0];
+        c->flags |= (one.flags >> RBS__CH_TOUCHED & 1u) << (RBS__CH_TOUCHED + l);
+    }
 }
 
 /* The wedges of chunk c (RBS__CH_WEDGE: lanes l, l + 1 are the contacts of
  * one sphere with two planes whose normals n1, n2 are nearly opposed) in a
- * SOLVE or RELAX pass (the warm start and restitution take the lanes one
+ * SOLVE, RELAX or RESTITUTION pass (the warm start takes the lanes one
  * after the other, as any serial chunk's).  One after the other, the two
  * rows cannot hold the sphere: the mode in which it sinks into both (the
  * impulses j1 = j2) has an effective mass 1 / (1 + n1.n2) times either
@@ -371,8 +368,10 @@ static void row_serial(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__s
  * pair's matrix K = (1/m) [1 d; d 1], d = n1.n2 (the levers lie along the
  * normals: no turning): each lane's row is an equation on (K dj)_i --
  * apart, -(vn + s / h); touching, rigid (relax) -vn, or soft (solve)
- * -mass_scale (vn + push) - impulse_scale (K j)_i -- which for one row
- * alone is row_chunk's; a lane whose impulse would go below 0 (or, in the
+ * -mass_scale (vn + push) - impulse_scale (K j)_i; restitution, when both
+ * lanes bounce, -(vn + e v0) -- which for one row alone is row_chunk's
+ * (one after the other, the restitution rows met an impact into the wedge
+ * plastically); a lane whose impulse would go below 0 (or, in the
  * frame's last relax, an impact due after the frame that would take one)
  * lets go, and the other takes its own row after it.  With friction, or a
  * fixed sphere, the rows one after the other, as before.  At rest the
@@ -411,16 +410,26 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
         den = im * (1.0 - d * d);
         if (!block || !(den > 0.0)) {
             /* (with friction, or a fixed sphere: the rows one after the other) */
-            row_lane(k, c, l, stage, report);
-            row_lane(k, c, l + 1u, stage, report);
+            row_lanes(k, c, l, l + 2u, stage, report);
+            continue;
+        }
+        if (stage == RBS__SOFT_RESTITUTION &&
+            !(c->flags >> (RBS__CH_TOUCHED + l) & c->flags >> (RBS__CH_BOUNCE + l) &
+              c->flags >> (RBS__CH_TOUCHED + l + 1u) & c->flags >> (RBS__CH_BOUNCE + l + 1u) & 1u)) {
+            /* (a lane that does not bounce keeps its impulse: the other's
+             * row alone) */
+            row_lanes(k, c, l, l + 2u, stage, report);
             continue;
         }
         /* each lane's row as an equation on K dj: apart, close the gap
          * within the sub-step, -(vn + s / h); touching, rigid (relax) -vn,
          * or soft (solve) -mass_scale (vn + push) - impulse_scale (K j)_i,
-         * the push and its limit as row_chunk makes them */
+         * the push and its limit as row_chunk makes them; restitution,
+         * leave at e times the frame-start approach, -(vn + e v0) */
         for (i = 0; i < 2u; ++i) {
-            if (s[i] > 0.0) {
+            if (stage == RBS__SOFT_RESTITUTION) {
+                rhs[i] = -(vn[i] + c->eb[l + i]);
+            } else if (s[i] > 0.0) {
                 rhs[i] = -(vn[i] + s[i] * k->inv_h);
             } else if (stage == RBS__SOFT_SOLVE) {
                 const double over = s[i] + slop < 0.0 ? s[i] + slop : 0.0;
@@ -455,6 +464,8 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
             rec[RBS__REC_V] += n[i][0] * dn * im;
             rec[RBS__REC_V + 1] += n[i][1] * dn * im;
             rec[RBS__REC_V + 2] += n[i][2] * dn * im;
+            if (stage == RBS__SOFT_RESTITUTION)
+                report->restituted += j != jn[i];
             c->jn[x] = j;
             if (j > 0.0)
                 c->flags |= 1u << (RBS__CH_TOUCHED + x);
@@ -497,10 +508,10 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
         }
 #endif
         if (f >> RBS__CH_SERIAL & 1u) {
-            if (f >> RBS__CH_WEDGE & 1u && stage >= 0 && stage != RBS__SOFT_RESTITUTION)
+            if (f >> RBS__CH_WEDGE & 1u && stage >= 0)
                 row_wedge(k, c, stage, report);
             else
-                row_serial(k, c, stage, report);
+                row_lanes(k, c, 0, c->count, stage, report);
             continue;
         }
         if (stage < 0) {
