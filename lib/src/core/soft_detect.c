@@ -242,7 +242,8 @@ static void warm_index(rbs_world *w)
  * a plane) -- slots, and the records ra, rb of the frame (soft_rank; a
  * plane has none) -- of material-pair row `row`, the unit normal n from b to a, the
  * gap along it and b's lever, whether it is a guard, and whether it is one
- * of a wedge's two plane contacts (placed as a pair: rbs__chunker_wedge) -- with what its
+ * of a wedge's two plane contacts (placed as a pair: rbs__chunker_wedge) --
+ * with what its
  * rows read: its pair's row (the rows make the effective masses from the
  * records), its approach speed at the frame's start (restitution's target
  * e v0, and whether it bounces: faster than its resting threshold) and the
@@ -259,7 +260,8 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
     double bias;
     v3 u, rv;
     uint32_t l;
-    rbs__chunk *k = wedge ? rbs__chunker_wedge(&em->ch, ra, b, &l) : rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
+    rbs__chunk *k = wedge ? rbs__chunker_wedge(&em->ch, ra, b, &l)
+                          : rbs__chunker_place(&em->ch, ra, plane ? b : rb, plane, &l);
     if (k == NULL) {
         /* (the message is set by the step's thread, after the pass) */
         em->status = RBS_E_CAPACITY;

@@ -390,9 +390,9 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
         double n[2][3], vn[2], s[2], rhs[2], dj[2], jn[2], d, den;
         int wait[2], bad[2];
         uint32_t i;
-        const int block = im > 0.0 && !(k->friction && (k->pair[c->row[l]].mu_s > 0.0 || k->pair[c->row[l]].mu_k > 0.0 ||
-                                                        k->pair[c->row[l + 1u]].mu_s > 0.0 ||
-                                                        k->pair[c->row[l + 1u]].mu_k > 0.0));
+        const rbs__pair *p0 = &k->pair[c->row[l]], *p1 = &k->pair[c->row[l + 1u]];
+        const int block = im > 0.0 && !(k->friction && (p0->mu_s > 0.0 || p0->mu_k > 0.0 || p1->mu_s > 0.0 ||
+                                                        p1->mu_k > 0.0));
         for (i = 0; i < 2u; ++i) {
             const uint32_t x = l + i;
             n[i][0] = c->nx[x];
