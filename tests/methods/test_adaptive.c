@@ -450,7 +450,16 @@ static void create_in_and_numeric_failure(void **state)
  * apart at e = 1 gains no energy beyond the slop's share of the potential
  * (1e-6 J): selective gained 0.18 J of its 6 J, its late kicks leaving the
  * attraction's part of the step's kick in.  (verlet gains 1.6e-3 J in that
- * drop, before and after: docs/physics.md.) */
+ * drop, before and after: docs/physics.md.)  rk4's drift under a force
+ * that grows as the pair closes is h^2 (a1 - a4) / 12 more than the
+ * trapezoid of its start and end velocities (a1, a4 its first and last
+ * stages' accelerations): 4.2e-9 m a step outwards here (a = 100 m/s^2,
+ * da/dx = 2a/d = 1000 s^-2, h = 1 ms), which the contact, held at its slop
+ * since session 46 (speculative contacts for verlet, rk4 and adaptive),
+ * takes back with an approach of that over h, 4.2e-6 m/s at the frames'
+ * ends while the gap stays put (third order in h); before, the gap grew by
+ * it to the slop, the contact dropped out and a rollback closed it.
+ * Bound for rk4 and adaptive 1e-5 m/s, for the others 1e-9 m/s. */
 static rbs_world *attracted_pair(rbs_method m, double sep, rbs_body_id *a, rbs_body_id *b)
 {
     rbs_world_def d;
@@ -488,7 +497,8 @@ static void attracted_pair_rests_and_gains_nothing(void **state)
             if (!(fabs(gap) <= 2e-7)) /* (measured: 3e-15 euler, 1.04e-7 rk4) */
                 fail_msg("%s: step %d: gap %.3g m, beyond the slop", rbs_method_name(ms[k]), i + 1, gap);
         }
-        ASSERT_NEAR(sb.velocity.x - sa.velocity.x, 0.0, 1e-9);
+        ASSERT_NEAR(sb.velocity.x - sa.velocity.x, 0.0,
+                    ms[k] == RBS_METHOD_RK4 || ms[k] == RBS_METHOD_ADAPTIVE ? 1e-5 : 1e-9);
         rbs_world_destroy(w);
         if (ms[k] != RBS_METHOD_VERLET) {
             rbs_energy e0, e;

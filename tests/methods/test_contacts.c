@@ -441,6 +441,70 @@ static void slow_impact_on_a_dome(void **state)
     }
 }
 
+/* A solid ball (r = 0.1 m, 1 kg) starts at the top of a fixed sphere (R =
+ * 1 m) rolling at v0 = 5 cm/s, mu_s = 0.5, mu_k = 0.2, e = 0.  Exact (the
+ * equations of motion in theta, L = R + r, k = 2/5: rolling while
+ * m g sin(theta) k / (1 + k) <= mu_s N, N = m g cos(theta) - m L
+ * thetadot^2; then sliding, m L thetaddot = m g sin(theta) - mu_k N,
+ * I omegadot = mu_k N r; leaving where N = 0; then free flight; RK4 at
+ * 1e-6 s, converged to 2e-7): it slips at 1.74588 s, leaves at 1.83358 s
+ * and at 2.134 s is at x = 1.342861, z = -0.378298 m, omega_y = 20.71310
+ * rad/s.  verlet, rk4 and adaptive took touching contacts only: their drift
+ * left the ball v^2 h^2 / (2 L) above the dome each sub-step, past the
+ * slop, and the sub-steps until it fell back flew without friction, so it
+ * slipped at 0.48 rad where rolling needed a third of the static cone, and
+ * kinetic friction (below what rolling needs) kept it sliding: 2.7e-2 m
+ * and -1.5 rad/s off at dt = 1e-4 s, not converging (a probe of session
+ * 46).  Now every rollback method converges at first order (at 1, 0.1 and
+ * 0.01 ms: euler 1.8e-4, 1.6e-5, 3.6e-6 m; verlet, rk4 and adaptive 5.2e-5,
+ * 7.7e-6, 1.4e-6 m and 3.4e-3, 6.0e-4, 6e-6 rad/s).  Bounds at dt = 1e-4
+ * s: 5e-5 m and 2.5e-3 rad/s, about three times the largest measured (1.6e-5
+ * m, 9.1e-4 rad/s: the slip starts within a sub-step of the exact time, and
+ * the spin-ups rolling and sliding differ by 11 rad/s^2, 1.1e-3 rad/s a
+ * sub-step). */
+static void ball_rolling_off_a_dome(void **state)
+{
+    const double R = 1.0, r = 0.1, L = R + r, v0 = 0.05, dt = 1e-4;
+    const double x_end = 1.342861, z_end = -0.378298, wy_end = 20.71310; /* at 2.134 s */
+    size_t k;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_world *w = world_for(all_methods[k], 4, dt, -9.81, 0.0);
+        rbs_material_id m;
+        rbs_sphere_def d;
+        rbs_body_state s;
+        rbs_body_id b;
+        if (w == NULL)
+            continue;
+        m = material(w, "m", 0.5, 0.2, 0.0);
+        rbs_sphere_def_init(&d);
+        d.radius = R;
+        d.fixed = 1;
+        d.material = m;
+        CHECK_OK(rbs_world_add_sphere(w, &d, NULL));
+        rbs_sphere_def_init(&d);
+        d.radius = r;
+        d.mass = 1.0;
+        d.position.z = L;
+        d.velocity.x = v0;
+        d.angular_velocity.y = v0 / r;
+        d.material = m;
+        CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+        if (!run(w, 21340)) {
+            rbs_world_destroy(w);
+            continue; /* (event refuses spheres pressed together) */
+        }
+        s = state_of(w, b);
+        print_message("%s: x %.6f, z %.6f m, wy %.5f rad/s (exact %.6f, %.6f, %.5f)\n",
+                      rbs_method_name(all_methods[k]), s.position.x, s.position.z, s.angular_velocity.y, x_end,
+                      z_end, wy_end);
+        ASSERT_NEAR(s.position.x, x_end, 5e-5);
+        ASSERT_NEAR(s.position.z, z_end, 5e-5);
+        ASSERT_NEAR(s.angular_velocity.y, wy_end, 2.5e-3);
+        rbs_world_destroy(w);
+    }
+}
+
 /* A ball rolling at u = 1 mm/s into an equal ball resting 0.5 mm away, mu
  * = 0.5 everywhere (solid spheres, I = 2/5 m r^2), e = 1 and 0.5.  The
  * impact: normal impulse J = (1 + e) m u / 2; the contact points slip
@@ -858,6 +922,7 @@ int main(void)
         cmocka_unit_test(pair_sliding_round_each_other),
         cmocka_unit_test(rolling_into_a_resting_ball),
         cmocka_unit_test(slow_impact_on_a_dome),
+        cmocka_unit_test(ball_rolling_off_a_dome),
         cmocka_unit_test(bouncing_apexes),
         cmocka_unit_test(held_by_rolling_resistance),
     };

@@ -6,8 +6,8 @@
  * whose gap is at most the slop touch (a contact); an overlap deeper than the
  * slop that was not there at the start of the sub-step makes it roll back.
  *
- * Speculative contacts (for euler and selective, whose resting pass takes
- * them): a pair apart by more than the slop but by at most its creep reach
+ * Speculative contacts (for the rollback methods, whose resting pass takes
+ * them; verlet's and rk4's reach is rbs__trapezoid_reach's): a pair apart by more than the slop but by at most its creep reach
  * thr * dt -- the distance an approach slower than the resting threshold
  * closes in one step -- is a contact too, with a positive gap.  The
  * collision pass leaves it alone (it does not touch), and so does the

@@ -8,8 +8,11 @@
  * One frame (dt) is covered by sub-steps h = dt / 2^k.  Each sub-step:
  *   detect contacts; resolve collisions; v += a h, w += I^-1 (tau - w x Iw) h;
  *   resolve resting contacts; x += v h, q = exp(w h) q.
- * Euler's contacts include speculative ones (contact.c): pairs a resting
- * approach can close within the step; verlet and rk4 take touching ones.
+ * The contacts include speculative ones (contact.c): pairs a resting
+ * approach can close within the step -- for every method of this loop
+ * (verlet and rk4 took touching ones only before session 46, and a ball
+ * rolling over a fixed sphere drifted off it past the slop and flew
+ * sub-steps without friction; rbs__trapezoid_reach sets their reach).
  * If an overlap deeper than the slop appears (swept for sphere pairs), the
  * sub-step is undone and retried with h/2 (the seed's rollback) -- or with
  * the straight-line time of first touch when that is earlier -- down to the

@@ -20,7 +20,8 @@
  * the frame step stays inside RK4's stability region (m = 1 otherwise).
  *
  * Contacts, as in Verlet: one resting pass per sub-step, on the RK4 end
- * velocities; what it changes moves positions by half of it over the
+ * velocities, speculative contacts included (rbs__trapezoid_reach); what
+ * it changes moves positions by half of it over the
  * sub-step (the trapezoid), and orientations by exp(dw h / 2); the other
  * half of a sphere pair's impulse acts along the pair's end normal
  * (rbs__turn_second_halves).  With
@@ -135,6 +136,7 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
     int s;
 
     /* Start of the sub-step. */
+    rbs__trapezoid_reach(w, h);
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
@@ -220,5 +222,5 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, rbs__rk4_advance, 0, 1, w->def.dt);
+    return rbs__step_rollback(w, info, rbs__rk4_advance, 1, 1, w->def.dt);
 }

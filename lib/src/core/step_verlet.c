@@ -24,7 +24,8 @@
  * exp(dw h/2).
  *
  * Contacts: one resting pass per sub-step, on the end velocities, as in
- * Euler; its velocity change moves positions by half of it over the
+ * Euler, speculative contacts included with the reach the trapezoid drift
+ * needs (rbs__trapezoid_reach); its velocity change moves positions by half of it over the
  * sub-step (the trapezoid of the start and end velocities), and the other
  * half of a sphere pair's impulse acts along the pair's end normal
  * (rbs__turn_second_halves).  With constant
@@ -96,6 +97,7 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
 
     /* Forces at the start; predicted end velocities; spinning bodies'
      * rotation over the whole sub-step. */
+    rbs__trapezoid_reach(w, h);
     if (w->plan.mutual)
         rbs__mutual_gravity_start(w);
     for (k = 0; k < w->sphere_count; ++k) {
@@ -166,5 +168,5 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_verlet(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, verlet_advance, 0, 1, w->def.dt);
+    return rbs__step_rollback(w, info, verlet_advance, 1, 1, w->def.dt);
 }

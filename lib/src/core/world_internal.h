@@ -36,12 +36,15 @@ typedef struct rbs__contact {
                       point (minus the centre of mass offset R c when off;
                       rbs__contact_rb); a's is la = -r_a (rbs__contact_la),
                       looked up rather than kept, for a 128-byte contact */
-    double gap;    /* signed distance between surfaces, m (< 0: overlap) */
+    double gap;    /* signed distance between surfaces, m (< 0: overlap);
+                      verlet and rk4 replace a speculative contact's by the
+                      slop plus its reach (rbs__trapezoid_reach) */
     double thr;    /* approach speed below which the contact is resting, m/s
                       (the soft step takes its test at the frame's start and
                       then keeps the effective mass 1 / kn here, kg) */
     double bias;   /* speculative contact (gap > slop): the approach speed
-                      the resting pass allows, (gap - slop) / h, or -1 when
+                      the resting pass allows, (gap - slop) / h (gap as
+                      above), or -1 when
                       the pair approaches as an impact (left to the
                       method's rollback); 0 for a touching contact */
     double kn;     /* n . K n : inverse effective mass along n */
@@ -659,6 +662,11 @@ double rbs__resist_row(rbs_world *w, uint32_t i);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
+/* verlet's and rk4's speculative contacts: each one's gap becomes the
+ * reach the resting pass may let its end velocity close in the sub-step of
+ * h seconds, given the trapezoid drift (solver.c); call on the sub-step's
+ * start velocities, after the collision pass. */
+void rbs__trapezoid_reach(rbs_world *w, double h);
 /* verlet's and rk4's drift moves positions by half of a resting pass's
  * impulses: after it, the other half of each sphere pair's impulse is
  * turned onto the pair's end normal (solver.c). */
