@@ -455,7 +455,7 @@ static void create_in_and_numeric_failure(void **state)
  * trapezoid of its start and end velocities (a1, a4 its first and last
  * stages' accelerations): 4.2e-9 m a step outwards here (a = 100 m/s^2,
  * da/dx = 2a/d = 1000 s^-2, h = 1 ms), which the contact, held at its slop
- * since session 46 (speculative contacts for verlet, rk4 and adaptive),
+ * since session 45 (speculative contacts for verlet, rk4 and adaptive),
  * takes back with an approach of that over h, 4.2e-6 m/s at the frames'
  * ends while the gap stays put (third order in h); before, the gap grew by
  * it to the slop, the contact dropped out and a rollback closed it.

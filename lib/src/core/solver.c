@@ -912,11 +912,11 @@ static uint32_t pass_sweeps(rbs_world *w, int friction, int fast, double scale, 
  * normal impulse with it (+-2 % for a ball rolling over a fixed sphere at
  * dt = 1e-5 s, which then slipped 1 ms early); euler's B = e/h damps by
  * 0.71 a sub-step and leaves the contact 2c above the slop.  Without
- * speculative contacts (before session 46) the ball rolling over the
+ * speculative contacts (before session 45) the ball rolling over the
  * sphere drifted v^2 h^2 / (2 L) off it a sub-step, past the slop, and the
  * sub-steps until it fell back flew without friction: it slipped at 0.48
  * rad, where rolling needed a third of the static cone (a probe of
- * session 46). */
+ * session 45). */
 void rbs__trapezoid_reach(rbs_world *w, double h)
 {
     uint32_t i;

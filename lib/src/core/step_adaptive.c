@@ -612,7 +612,7 @@ static int resting_contact(rbs_world *w)
          * plus the ball's), more than the slop at dt = 1 ms, and the ODE
          * then flew the ball without friction to its next touch, a third of
          * the frame: it slipped where rolling needed a third of the static
-         * cone (a probe of session 46). */
+         * cone (a probe of session 45). */
         if ((c->flags & RBS__APART) &&
             (c->bias < 0.0 || rbs__warm_find(w, rbs__warm_key(w, c), &at) == NULL))
             continue;

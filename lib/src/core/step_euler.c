@@ -10,7 +10,7 @@
  *   resolve resting contacts; x += v h, q = exp(w h) q.
  * The contacts include speculative ones (contact.c): pairs a resting
  * approach can close within the step -- for every method of this loop
- * (verlet and rk4 took touching ones only before session 46, and a ball
+ * (verlet and rk4 took touching ones only before session 45, and a ball
  * rolling over a fixed sphere drifted off it past the slop and flew
  * sub-steps without friction; rbs__trapezoid_reach sets their reach).
  * If an overlap deeper than the slop appears (swept for sphere pairs), the
