@@ -131,8 +131,8 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
                                  rbs__soft_report *report)
 {
     rbs__wd xa[12], xb[12], nx, ny, nz, la, lb, ux, uy, uz, rvx, rvy, rvz, vn, im, mn, jn0, jn1, dj, t, dn, jx, jy, jz;
-    rbs__wd jtx, jty, jtz;
-    rbs__wm act;
+    rbs__wd jtx, jty, jtz, curved = wd_zero();
+    rbs__wm act, fixed = wm_from_bits(0u);
     double *ra[RBS__LANES], *rb[RBS__LANES], za[RBS__REC], zb[RBS__REC];
     const rbs__wd zero = wd_zero();
     unsigned flags = c->flags;
@@ -145,6 +145,29 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     nz = wd_load(c->nz);
     la = wd_neg(xa[BR]);
     lb = plane ? wd_zero() : wd_load(c->lb);
+    if (!plane) {
+        /* a lane against a fixed sphere: the normal and separation of now
+         * (curved), from the centres' offset at detection (L + gap) n plus
+         * the displacements (docs/methods.md, "soft") */
+        fixed = wm_and(wm_or(wm_le(xa[BIM], zero), wm_le(xb[BIM], zero)), wm_from_bits(active));
+        if (wm_bits(fixed)) {
+            /* (touching at detection: n is the line of the centres) */
+            rbs__wd rm = wd_sel(wm_lt(xa[BR], xb[BR]), xa[BR], xb[BR]);
+            fixed = wm_and(fixed, wm_le(wd_load(c->gap), wd_mul(wd_set(k->slop), rm)));
+        }
+        if (wm_bits(fixed)) {
+            rbs__wd len = wd_add(xa[BR], xb[BR]), reach = wd_add(len, wd_load(c->gap));
+            rbs__wd px = wd_add(wd_mul(reach, nx), wd_sub(xa[BD], xb[BD]));
+            rbs__wd py = wd_add(wd_mul(reach, ny), wd_sub(xa[BD + 1], xb[BD + 1]));
+            rbs__wd pz = wd_add(wd_mul(reach, nz), wd_sub(xa[BD + 2], xb[BD + 2]));
+            rbs__wd dist = wd_sqrt(wd_dot3(px, py, pz, px, py, pz));
+            fixed = wm_and(fixed, wm_gt(dist, zero));
+            nx = wd_sel(fixed, wd_div(px, dist), nx);
+            ny = wd_sel(fixed, wd_div(py, dist), ny);
+            nz = wd_sel(fixed, wd_div(pz, dist), nz);
+            curved = wd_sub(dist, len);
+        }
+    }
 
     /* rv = v_a - v_b + (la w_a - lb w_b) x n, and its normal part */
     if (plane) {
@@ -184,6 +207,8 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
         } else {
             s = wd_add(wd_load(c->gap), wd_dot3(nx, ny, nz, wd_sub(xa[BD], xb[BD]), wd_sub(xa[BD + 1], xb[BD + 1]),
                                                 wd_sub(xa[BD + 2], xb[BD + 2])));
+            if (wm_bits(fixed))
+                s = wd_sel(fixed, curved, s);
         }
         if (stage == RBS__SOFT_RELAX_REPORT) {
             /* (the frame's positions are final: the report of its end) */

@@ -111,11 +111,39 @@ static v3 displacement(const soft_pass *sp, uint32_t i)
     return v3_sub(v3_load(&w->pos[3 * i]), v3_load(&w->step_save[RBS__SAVE_STRIDE * i]));
 }
 
+/* Whether c is a centred sphere's contact with a fixed sphere that touched
+ * at detection (its n the line of the centres): its rows take the normal
+ * and separation of now (docs/methods.md, "soft"). */
+static int turns(const soft_pass *sp, const rbs__contact *c)
+{
+    const rbs_world *w = sp->w;
+    return w->type[c->b] == RBS_BODY_SPHERE && !(c->flags & RBS__OFF) &&
+           (w->inv_mass[c->a] == 0.0 || w->inv_mass[c->b] == 0.0) && c->gap <= rbs__contact_slop(w, c);
+}
+
 /* A contact's separation now, m: its gap at detection plus the motion of
- * its bodies along n. */
+ * its bodies along n; against a fixed sphere (turns), the distance of the
+ * centres less the radii. */
 static double separation(const soft_pass *sp, const rbs__contact *c)
 {
+    if (turns(sp, c)) {
+        const rbs_world *w = sp->w;
+        return v3_len(v3_sub(v3_load(&w->pos[3 * c->a]), v3_load(&w->pos[3 * c->b]))) - w->radius[c->a] -
+               w->radius[c->b];
+    }
     return c->gap + v3_dot(c->n, v3_sub(displacement(sp, c->a), displacement(sp, c->b)));
+}
+
+/* Turn c's normal to the line of the centres now, when it turns. */
+static void turn(const soft_pass *sp, rbs__contact *c)
+{
+    if (turns(sp, c)) {
+        const rbs_world *w = sp->w;
+        v3 d = v3_sub(v3_load(&w->pos[3 * c->a]), v3_load(&w->pos[3 * c->b]));
+        double l = v3_len(d);
+        if (l > 0.0)
+            c->n = v3_scale(d, 1.0 / l);
+    }
 }
 
 static inline v3 relative_velocity(const soft_pass *sp, const rbs__contact *c)
@@ -280,7 +308,9 @@ static void pass(soft_pass *sp, int stage)
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
-        v3 rv = relative_velocity(sp, c), j;
+        v3 rv, j;
+        turn(sp, c);
+        rv = relative_velocity(sp, c);
         double vn = v3_dot(rv, c->n), jn, dj;
         if (stage == RESTITUTION) {
             if (!bounces(c))
