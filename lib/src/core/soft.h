@@ -66,6 +66,9 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
                                with two planes whose normals are nearly
                                opposed, solved together (soft_rows.h,
                                row_wedge) */
+#define RBS__CH_FIXED 18u   /* one bit: some lane's pair has a fixed sphere,
+                               whose rows turn (soft_rows.h, row_chunk):
+                               the other chunks skip that test */
 #define RBS__CH_SLIP 20u    /* it came in slipping more than mu_k times its
                                last frame's normal impulse can stop: only
                                kinetic friction acts this frame

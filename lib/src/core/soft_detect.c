@@ -286,6 +286,8 @@ static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, ui
         k->flags |= 1u << (RBS__CH_BOUNCE + l);
     if (guard)
         k->flags |= 1u << (RBS__CH_GUARD + l);
+    if (!plane && (w->fixed[a] || w->fixed[b]))
+        k->flags |= 1u << RBS__CH_FIXED;
     if (in->h == 0.0) {
         /* def.soft_tolerance: how deep it can go within the frame, of its slop */
         double close = -bias * in->dt, rb = plane ? -la : w->radius[b];

@@ -145,7 +145,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     nz = wd_load(c->nz);
     la = wd_neg(xa[BR]);
     lb = plane ? wd_zero() : wd_load(c->lb);
-    if (!plane) {
+    if (!plane && (flags >> RBS__CH_FIXED & 1u)) {
         /* a lane against a fixed sphere: the normal and separation of now
          * (curved), from the centres' offset at detection (L + gap) n plus
          * the displacements (docs/methods.md, "soft") */
@@ -356,7 +356,7 @@ static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, uint32_t first, ui
                     ((f >> RBS__CH_GUARD >> l & 1u) << RBS__CH_GUARD) |
                     ((f >> RBS__CH_PLANE >> l & 1u) << RBS__CH_PLANE) |
                     ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP) |
-                    ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM);
+                    ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM) | (f & 1u << RBS__CH_FIXED);
         if (stage < 0) {
             warm_chunk(k, &one, plane);
             continue;
