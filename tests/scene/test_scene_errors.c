@@ -497,6 +497,12 @@ static const bad_case cases[] = {
         "a carriage return (\\r) not followed by a line feed: lines end in \\n or \\r\\n (a "
         "file with carriage returns alone, old Mac line endings, reads as one line; convert "
         "it, e.g. tr '\\r' '\\n')")}},
+    /* ... also as the file's last byte (it passed; a probe of session 45) */
+    {"bad/text_cr_at_end/config.txt", RBS_E_SCENE,
+     {E("\r", 1, 0,
+        "a carriage return (\\r) not followed by a line feed: lines end in \\n or \\r\\n (a "
+        "file with carriage returns alone, old Mac line endings, reads as one line; convert "
+        "it, e.g. tr '\\r' '\\n')")}},
     {"bad/text_bad_values/config.txt", RBS_E_SCENE,
      {E("abc", 1, 0,
         "simulation.steps: must be a non-negative integer (at most 2^53), got \"abc\""),

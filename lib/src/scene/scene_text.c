@@ -703,7 +703,9 @@ static void check_binary(tctx *t)
     /* a line ends in "\n" or "\r\n": a carriage return alone (a file with
      * the old Mac line endings) would make the file one line */
     for (i = 0; i < src->len; i++) {
-        if (src->text[i] == '\r' && i + 1 < src->len && src->text[i + 1] != '\n') {
+        /* (also the file's last byte: "steps = 1\r" at the end passed; a
+         * probe of session 45) */
+        if (src->text[i] == '\r' && (i + 1 >= src->len || src->text[i + 1] != '\n')) {
             rbs__scene_error(t->scene, tloc(t, i), "",
                              "a carriage return (\\r) not followed by a line feed: lines end "
                              "in \\n or \\r\\n (a file with carriage returns alone, old "
