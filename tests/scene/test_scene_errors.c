@@ -761,6 +761,14 @@ static void test_override(void **state)
                                 "(9007199254740992 * 1e+300)");
     rbs_scene_free(scene);
 
+    /* dt alone makes it: named --dt (it said --steps; a probe of session 45) */
+    assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
+                     RBS_OK);
+    assert_int_equal(rbs_scene_override(scene, 0, 1e306, NULL), RBS_E_SCENE);
+    assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+    assert_non_null(strstr(e.text, "command line: --dt: steps * dt overflows"));
+    rbs_scene_free(scene);
+
     /* 2^53 + 1 is refused, not rounded to 2^53 */
     assert_int_equal(rbs_scene_load("../../scenes/bouncing_sphere.json", RBS_SCENE_AUTO, &scene),
                      RBS_OK);

@@ -712,7 +712,9 @@ static rbs_status scene_override(rbs_scene *scene, uint64_t steps, double dt,
         rbs__scene_error(scene, none, "--steps", "must be at most 2^53, got %llu",
                          (unsigned long long)new_steps);
     } else if (!isfinite((double)new_steps * new_dt)) {
-        rbs__scene_error(scene, none, "--steps",
+        /* (named by the override that made it: --dt 1e306 alone was
+         * blamed on --steps; a probe of session 45) */
+        rbs__scene_error(scene, none, steps != 0 ? "--steps" : "--dt",
                          "steps * dt overflows (%llu * %g)",
                          (unsigned long long)new_steps, new_dt);
     }
