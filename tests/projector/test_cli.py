@@ -1537,6 +1537,11 @@ class CliTests(Base):
             self.assertTrue(l.endswith("ok"), l)
         self.assertIn("sqrt(2h/g)", r.stdout)
         self.assertIn("5/7 v0", r.stdout)
+        # rolling is compared in the speed and in spin x radius, each
+        # printed to 6 digits equal to 5/7 of 2 m/s (session 45: the spin
+        # was printed, not compared)
+        self.assertIn("rolling speed of \"slider\" 1.428571 m/s, spin x radius 1.428571 m/s",
+                      r.stdout)
         for key in ("steps/s", "sub-steps", "rollbacks", "collisions",
                     "wall time", "drift"):
             self.assertIn(key, r.stdout)

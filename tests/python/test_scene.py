@@ -97,6 +97,11 @@ def test_overrides(write_scene):
     assert w0.run().steps == 0 and w0.time == 0.0
     with pytest.raises(rbsim.InvalidError, match="steps"):
         rbsim.load(path, steps=-1)
+    # the range named is the real one, 2^53 (it said 2^64 - 1; session 45)
+    with pytest.raises(rbsim.InvalidError, match=r"\[0, 9007199254740992\]"):
+        rbsim.load(path, steps=-1)
+    with pytest.raises(rbsim.InvalidError, match="steps"):
+        rbsim.load(path, steps=2 ** 53 + 2)
 
 
 def test_slop_override(write_scene):

@@ -82,7 +82,8 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
     if steps is not None or dt is not None or method is not None:
         # (steps=0: frame 0 only, as --steps 0 and "steps": 0; the C
         # override's 0 keeps the scene's, so the world is told below)
-        n = 0 if steps is None else _check.u64(steps, "steps", 0)
+        # (a scene's steps are at most 2^53, as the C override says)
+        n = 0 if steps is None else _check.integer(steps, "steps", 0, 2 ** 53)
         step = 0.0
         if dt is not None:
             step = _check.real_in(dt, "dt", 0.0, open_low=True)
