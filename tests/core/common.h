@@ -116,6 +116,29 @@ static inline void step_n(rbs_world *w, int n)
                      #a, a_, b_, t_, fabs(a_ - b_));                            \
     } while (0)
 
+/* The dome of the rolling-off tests: a fixed sphere of radius R at the
+ * origin and a solid 1 kg ball of radius r on its top, rolling along x at
+ * v0 (spin v0 / r about y), both of material m; returns the ball. */
+static inline rbs_body_id ball_on_a_dome(rbs_world *w, rbs_material_id m, double R, double r, double v0)
+{
+    rbs_sphere_def d;
+    rbs_body_id b;
+    rbs_sphere_def_init(&d);
+    d.radius = R;
+    d.fixed = 1;
+    d.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &d, NULL));
+    rbs_sphere_def_init(&d);
+    d.radius = r;
+    d.mass = 1.0;
+    d.position.z = R + r;
+    d.velocity.x = v0;
+    d.angular_velocity.y = v0 / r;
+    d.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+    return b;
+}
+
 /* The incline scene: a plane through the origin at angle th (normal
  * (-sin th, 0, cos th)) whose material has mu_s = mu_k = mu, and a solid
  * 1 kg ball of radius r set on it at rest; returns the ball. */
