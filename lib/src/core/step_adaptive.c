@@ -628,7 +628,7 @@ static int resting_contact(rbs_world *w)
  * there: a ball dropped at dt = 0.5 s bounced where rk4 stops it). */
 static rbs_status finish_with_rk4(rbs_world *w, rbs_step_info *info, double remaining)
 {
-    return rbs__step_rollback(w, info, rbs__rk4_advance, 1, 0, remaining); /* mid-frame */
+    return rbs__step_rollback(w, info, rbs__rk4_advance, 0, remaining); /* mid-frame */
 }
 
 rbs_status rbs__step_adaptive(rbs_world *w, rbs_step_info *info)

@@ -152,7 +152,7 @@ static void euler_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, euler_advance, 1, 1, w->def.dt);
+    return rbs__step_rollback(w, info, euler_advance, 1, w->def.dt);
 }
 
 /* Push a sub-step's overlap apart where the cap refused its rollback, and
@@ -227,7 +227,7 @@ static void separate_capped(rbs_world *w)
 }
 
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
-                              int speculative, int at_step_start, double span)
+                              int at_step_start, double span)
 {
     const double dt = w->def.dt;
     const uint32_t K = w->def.max_halvings;
@@ -264,7 +264,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
             save = w->step_save;
         else
             rbs__save_state(w, save);
-        st = rbs__detect(w, dt, speculative);
+        st = rbs__detect(w, dt, 1);
         if (st != RBS_OK)
             return st;
         rbs__solve_collisions(w, info);
@@ -303,7 +303,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
                 info->resting = resting;
                 info->rollbacks++;
                 advance(w, f * h, info);
-                st = rbs__detect(w, dt, speculative);
+                st = rbs__detect(w, dt, 1);
                 if (st != RBS_OK)
                     return st;
                 rbs__solve_collisions(w, info);

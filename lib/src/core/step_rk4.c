@@ -222,5 +222,5 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_rk4(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, rbs__rk4_advance, 1, 1, w->def.dt);
+    return rbs__step_rollback(w, info, rbs__rk4_advance, 1, w->def.dt);
 }

@@ -168,5 +168,5 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
 
 rbs_status rbs__step_verlet(rbs_world *w, rbs_step_info *info)
 {
-    return rbs__step_rollback(w, info, verlet_advance, 1, 1, w->def.dt);
+    return rbs__step_rollback(w, info, verlet_advance, 1, w->def.dt);
 }

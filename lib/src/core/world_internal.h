@@ -792,7 +792,9 @@ rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad);
 
 /* The shared rollback loop and Euler's pieces (step_euler.c).  An advance
  * function moves velocities and positions over one sub-step of h seconds,
- * after the collision pass; it may run the resting pass.  at_step_start:
+ * after the collision pass; it may run the resting pass.  Every sub-step
+ * detects speculative contacts too (all of the loop's methods take them
+ * since session 45).  at_step_start:
  * the world is as rbs_world_step saved it in step_save (a whole frame),
  * which then serves as the first sub-steps' save instead of a copy.  span:
  * the time the sub-steps cover, s (def.dt for a frame; adaptive's rest of
@@ -800,7 +802,7 @@ rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad);
  * whatever the span. */
 typedef void (*rbs__advance_fn)(rbs_world *w, double h, rbs_step_info *info);
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
-                              int speculative, int at_step_start, double span);
+                              int at_step_start, double span);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
  * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
  * isotropic body), and within the step's budget (max_substeps * 256 in all).
