@@ -508,7 +508,7 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
  * a row its header, normal, gap, impulses), which the processor's own
  * stream detection follows poorly; at 10^5 spheres, where the chunks no
  * longer fit the caches, this took a settled stack 0.92x the time, at
- * 1,000 1.00x (farm-bench, docs/methods.md). */
+ * 1,000 1.00x (paired whole-process timings, docs/methods.md). */
 #define RBS__AHEAD 4
 
 /* One pass over the chunks [begin, end) in stage (stage < 0: the warm
