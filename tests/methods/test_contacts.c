@@ -648,6 +648,80 @@ static void pyramid_beside_a_wall_stays(void **state)
     }
 }
 
+/* Bodies held through nearly parallel normals stay at rest: a 1 kg ball of
+ * r = 0.1 m in a V-groove whose walls are 0.1 and 1 degree off vertical
+ * (e = 0.5, no friction), and a 1 kg ball of R = 10 m in the shallow cup of
+ * three (and of four) fixed balls of r = 0.1 m, 0.2 m from its axis (the
+ * contacts 1.1 degrees off vertical; no friction and mu = 1).  The exact
+ * answer is that nothing moves.  The rows one at a time move such a mode
+ * by (1 + n1.n2) or 3/2 sin^2 a of what it needs a sweep: in 2 s the ball
+ * sank 1 cm into the 0.1 degree groove (0.1 J lost, up to 0.03 m/s) and
+ * the big ball rattled in its cup at up to 4 mm/s (5.8e-5 m) -- every rigid
+ * method, max_sweeps 20 (a probe of session 47; solver.c, blocks).  Bound:
+ * 1e-9 m/s and 1e-9 m (the blocks leave 1e-13 m/s and 1e-18 m: rounding
+ * of the impulses that carry g dt). */
+static void held_through_parallel_normals(void **state)
+{
+    const double r = 0.1, R = 10.0, d = 0.2, pi = 3.14159265358979323846;
+    const double degs[] = {0.1, 1.0};
+    size_t k, i;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        for (i = 0; i < 6; ++i) {
+            rbs_world *w = world_for(all_methods[k], 8, 1e-3, -9.81, 0.5);
+            rbs_material_id m;
+            rbs_body_id b;
+            rbs_body_state s;
+            rbs_vec3 x0;
+            int n;
+            if (w == NULL)
+                break;
+            m = material(w, "m", i >= 4 ? 1.0 : 0.0, i >= 4 ? 1.0 : 0.0, 0.5);
+            if (i < 2) {
+                /* the groove: walls through the origin, normals (+-cos t, 0, sin t) */
+                const double t = degs[i] * pi / 180.0;
+                int sgn;
+                for (sgn = -1; sgn <= 1; sgn += 2) {
+                    rbs_plane_def p;
+                    rbs_plane_def_init(&p);
+                    p.normal.x = sgn * cos(t);
+                    p.normal.z = sin(t);
+                    p.material = m;
+                    CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+                }
+                b = ball(w, r, 1.0, 0, 0, r / sin(t), 0, 0, 0, m);
+            } else {
+                /* the cup: three or four fixed balls on a circle of radius d */
+                const int legs = i == 3 || i == 5 ? 4 : 3;
+                for (n = 0; n < legs; ++n) {
+                    rbs_sphere_def f;
+                    rbs_sphere_def_init(&f);
+                    f.radius = r;
+                    f.fixed = 1;
+                    f.position.x = d * cos(2.0 * pi * n / legs);
+                    f.position.y = d * sin(2.0 * pi * n / legs);
+                    f.material = m;
+                    CHECK_OK(rbs_world_add_sphere(w, &f, NULL));
+                }
+                b = ball(w, R, 1.0, 0, 0, sqrt((R + r) * (R + r) - d * d), 0, 0, 0, m);
+            }
+            x0 = state_of(w, b).position;
+            if (!run(w, 2000)) { /* (event: a body on two planes, or pressed) */
+                rbs_world_destroy(w);
+                break;
+            }
+            s = state_of(w, b);
+            if (!(fabs(s.velocity.x) < 1e-9 && fabs(s.velocity.y) < 1e-9 && fabs(s.velocity.z) < 1e-9))
+                fail_msg("%s, scene %zu: v = (%g, %g, %g) m/s", rbs_method_name(all_methods[k]), i,
+                         s.velocity.x, s.velocity.y, s.velocity.z);
+            ASSERT_NEAR(s.position.x, x0.x, 1e-9);
+            ASSERT_NEAR(s.position.y, x0.y, 1e-9);
+            ASSERT_NEAR(s.position.z, x0.z, 1e-9);
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* Two balls (m = 1 kg, r = 0.05 m) held together by their mutual gravity
  * (G = 1: 100 m/s^2 at contact, five times the 20 m/s^2 their turn needs)
  * slide round each other at 1 m/s, frictionless: the forces are central,
@@ -906,6 +980,7 @@ int main(void)
         cmocka_unit_test(slowest_approach_in_zero_gravity),
         cmocka_unit_test(wedge_settles),
         cmocka_unit_test(pyramid_beside_a_wall_stays),
+        cmocka_unit_test(held_through_parallel_normals),
         cmocka_unit_test(pair_sliding_round_each_other),
         cmocka_unit_test(rolling_into_a_resting_ball),
         cmocka_unit_test(slow_impact_on_a_dome),

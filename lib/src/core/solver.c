@@ -871,17 +871,200 @@ static void pass_undo(rbs_world *w)
     }
 }
 
-/* Gauss-Seidel sweeps until converged or max_sweeps; the sweeps taken. */
-static uint32_t pass_sweeps(rbs_world *w, int friction, int fast, double scale, int *any,
-                            uint32_t max_sweeps)
+/* Blocks.  A sphere held by static bodies (planes, fixed spheres) through
+ * nearly parallel or opposite normals -- a V-groove whose walls are within
+ * a few degrees of parallel, a big ball in the shallow cup of three small
+ * fixed ones -- is a mode that the rows one at a time hardly move: the
+ * Delassus block of its rows is (1/m) [s_i s_j n_i . n_j], whose small
+ * eigenvalues (1 + n_1 . n_2 for a wedge, 3/2 sin^2 a for a cup of three
+ * contacts a off the vertical) set how much of what it needs a sweep
+ * gives.  max_sweeps (20) left a 10 m ball on three fixed 0.1 m balls 0.2
+ * m from its axis (a = 1.1 deg) rattling at up to 4 mm/s for good, and a
+ * ball in a V-groove with walls 0.1 deg off vertical sank 1 cm into it in
+ * 2 s, 0.1 J lost, moving at up to 0.03 m/s (euler, verlet, rk4,
+ * adaptive, selective; a probe of session 47).  Such a sphere's rows
+ * against static bodies -- 2 to BLOCK_MAX of them, a pair of normals with
+ * |n_i . n_j| > BLOCK_COS, centred mass so that the levers are along n --
+ * are solved as one linear complementarity problem at the start of every
+ * sweep: the one step of blocked Gauss-Seidel (as resist_block's, and the
+ * soft step's wedge rows, docs/methods.md) that solves them exactly with
+ * the rest of the world held, by trying the sets of active rows (K_SS x =
+ * -q_S, x >= 0, the others not approaching: Cottle, Pang & Stone, The
+ * Linear Complementarity Problem, 1992, ch. 1).  The rows one at a time
+ * then find them solved, and do friction.  The blocks are found once a
+ * pass: w->shock_order (scratch until shock propagation) holds a list of
+ * each sphere's static rows, next[] over the contacts and the first row of
+ * each block after max_contacts. */
+#define BLOCK_MAX 4
+#define BLOCK_COS 0.9
+
+/* The moving body of contact c when it is the only one and its mass is
+ * centred (else UINT32_MAX), s its sign in the contact (+1: c->a). */
+static uint32_t block_body(const rbs_world *w, const rbs__contact *c, double *s)
 {
-    uint32_t sweep;
+    const int ma = w->inv_mass[c->a] != 0.0, mb = w->inv_mass[c->b] != 0.0;
+    if (c->bias < 0.0 || (c->flags & RBS__OFF) || ma == mb)
+        return UINT32_MAX;
+    *s = ma ? 1.0 : -1.0;
+    return ma ? c->a : c->b;
+}
+
+/* Find the blocks; their count. */
+static uint32_t find_blocks(rbs_world *w)
+{
+    uint32_t *next = w->shock_order, *head = w->shock_order + w->def.max_contacts;
+    uint32_t i, k, n = 0;
+    double s;
+    int any = 0;
+    for (i = 0; i < w->contact_count && !any; ++i)
+        any = block_body(w, &w->contact[i], &s) != UINT32_MAX;
+    if (!any)
+        return 0;
+    for (k = 0; k < w->slots; ++k)
+        head[k] = UINT32_MAX;
+    for (i = w->contact_count; i-- > 0;) {
+        const uint32_t x = block_body(w, &w->contact[i], &s);
+        if (x != UINT32_MAX) {
+            next[i] = head[x];
+            head[x] = i;
+        }
+    }
+    /* (head[n] is written after head[k] is read, n <= k) */
+    for (k = 0; k < w->slots; ++k) {
+        uint32_t a, b, rows = 0, ill = 0;
+        for (a = head[k]; a != UINT32_MAX; a = next[a]) {
+            rows++;
+            for (b = next[a]; b != UINT32_MAX; b = next[b])
+                if (fabs(v3_dot(w->contact[a].n, w->contact[b].n)) > BLOCK_COS)
+                    ill = 1;
+        }
+        if (ill && rows <= BLOCK_MAX)
+            head[n++] = head[k];
+    }
+    return n;
+}
+
+/* Solve the rows of the block that starts at contact first (see above):
+ * the accumulated normal impulses of the LCP's solution, applied; the
+ * square of the largest velocity change into *change, as the sweeps
+ * measure it.  Nothing changes when no set of active rows passes (a
+ * singular set, or rounding at a border): the rows one at a time then. */
+static void solve_block(rbs_world *w, uint32_t first, double *change)
+{
+    const uint32_t *next = w->shock_order;
+    rbs__contact *c[BLOCK_MAX] = {NULL};
+    double sg[BLOCK_MAX] = {0}, k[BLOCK_MAX][BLOCK_MAX], q[BLOCK_MAX], x[BLOCK_MAX], qmax = 0.0;
+    uint32_t i, j, n = 0, mask, at;
+    for (at = first; at != UINT32_MAX && n < BLOCK_MAX; at = next[at]) {
+        c[n] = &w->contact[at];
+        (void)block_body(w, c[n], &sg[n]);
+        n++;
+    }
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < n; ++j)
+            k[i][j] = i == j ? c[i]->kn : c[i]->kn * sg[i] * sg[j] * v3_dot(c[i]->n, c[j]->n);
+    /* q: each row's approach beyond its bias with the block's impulses
+     * taken out */
+    for (i = 0; i < n; ++i) {
+        q[i] = v3_dot(rbs__rel_velocity(w, c[i]), c[i]->n) + c[i]->bias;
+        for (j = 0; j < n; ++j)
+            q[i] -= k[i][j] * c[j]->jn;
+        if (fabs(q[i]) > qmax)
+            qmax = fabs(q[i]);
+    }
+    /* the sets of active rows, the largest first */
+    for (mask = (1u << n) - 1; mask > 0; --mask) {
+        double a[BLOCK_MAX][BLOCK_MAX + 1];
+        uint32_t idx[BLOCK_MAX], m = 0, r, col;
+        int ok = 1;
+        for (i = 0; i < n; ++i)
+            if (mask & (1u << i))
+                idx[m++] = i;
+        for (r = 0; r < m; ++r) {
+            for (col = 0; col < m; ++col)
+                a[r][col] = k[idx[r]][idx[col]];
+            a[r][m] = -q[idx[r]];
+        }
+        /* Gaussian elimination with partial pivoting; a pivot below 1e-9
+         * of the diagonal is a set of dependent rows */
+        for (col = 0; col < m && ok; ++col) {
+            uint32_t piv = col;
+            for (r = col + 1; r < m; ++r)
+                if (fabs(a[r][col]) > fabs(a[piv][col]))
+                    piv = r;
+            if (!(fabs(a[piv][col]) > 1e-9 * c[idx[col]]->kn)) {
+                ok = 0;
+                break;
+            }
+            if (piv != col)
+                for (r = 0; r <= m; ++r) {
+                    const double t = a[col][r];
+                    a[col][r] = a[piv][r];
+                    a[piv][r] = t;
+                }
+            for (r = col + 1; r < m; ++r) {
+                const double f = a[r][col] / a[col][col];
+                uint32_t e;
+                for (e = col; e <= m; ++e)
+                    a[r][e] -= f * a[col][e];
+            }
+        }
+        if (!ok)
+            continue;
+        for (i = 0; i < n; ++i)
+            x[i] = 0.0;
+        for (r = m; r-- > 0;) {
+            double v = a[r][m];
+            for (col = r + 1; col < m; ++col)
+                v -= a[r][col] * x[idx[col]];
+            x[idx[r]] = v / a[r][r];
+            if (!(x[idx[r]] >= 0.0))
+                ok = 0;
+        }
+        /* the rows left out must not approach (to rounding of the pass) */
+        for (i = 0; i < n && ok; ++i) {
+            double v = q[i];
+            if (mask & (1u << i))
+                continue;
+            for (j = 0; j < n; ++j)
+                v += k[i][j] * x[j];
+            if (v < -1e-12 * qmax)
+                ok = 0;
+        }
+        if (!ok)
+            continue;
+        for (i = 0; i < n; ++i) {
+            const double d = x[i] - c[i]->jn;
+            if (d == 0.0)
+                continue;
+            rbs__apply_pair(w, c[i], v3_scale(c[i]->n, d));
+            c[i]->jn = x[i];
+            if (d * d * c[i]->kn * c[i]->kn > *change)
+                *change = d * d * c[i]->kn * c[i]->kn;
+        }
+        return;
+    }
+}
+
+/* Gauss-Seidel sweeps until converged or max_sweeps; the sweeps taken. */
+static uint32_t pass_sweeps(rbs_world *w, int friction, int fast, uint32_t blocks, double scale,
+                            int *any, uint32_t max_sweeps)
+{
+    const uint32_t *block = w->shock_order + w->def.max_contacts;
+    uint32_t sweep, k;
     if (fast)
         gather_scatter(w, gather_body);
     for (sweep = 0; sweep < max_sweeps; ++sweep) {
-        double change, total; /* largest velocity change, m/s; sum of Jn */
+        double change, total, moved = 0.0; /* largest velocity change, m/s; sum of Jn */
+        for (k = 0; k < blocks; ++k) /* (never with fast: see the caller) */
+            solve_block(w, block[k], &moved);
         if (fast ? sweep_fast(w, friction, &change, &total) : sweep_generic(w, friction, &change, &total))
             *any = 1;
+        if (moved > 0.0) {
+            *any = 1;
+            if (sqrt(moved) > change)
+                change = sqrt(moved); /* (moved held its square) */
+        }
         /* converged when no contact's velocity changed by more than 1e-9 of
          * the scale of the pass: the first sweep's largest change or the
          * speed one step of gravity builds, whichever is larger */
@@ -933,7 +1116,7 @@ void rbs__trapezoid_reach(rbs_world *w, double h)
 
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
 {
-    uint32_t sweep, i, max_sweeps = w->def.max_sweeps, at = 0;
+    uint32_t sweep, i, max_sweeps = w->def.max_sweeps, at = 0, blocks;
     int friction = w->plan.friction, any = 0, warmed = 0, fast;
     double scale = sqrt(w->def.gravity.x * w->def.gravity.x + w->def.gravity.y * w->def.gravity.y +
                         w->def.gravity.z * w->def.gravity.z) * w->def.dt;
@@ -973,8 +1156,10 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
         }
     }
     /* (a pruning decision: with def.prune off every pass takes the generic
-     * sweep, which test_prune compares bit for bit) */
-    fast = w->def.prune && w->contact_count > 0 && fast_eligible(w, friction);
+     * sweep, which test_prune compares bit for bit; so does a pass with
+     * blocks, whose solve reads the bodies' own arrays) */
+    blocks = find_blocks(w);
+    fast = w->def.prune && w->contact_count > 0 && blocks == 0 && fast_eligible(w, friction);
     /* A pass with no contact warm (a world's first step among bodies at
      * rest in contact; not a group that comes to rest while others in the
      * world are warm -- the pass is the world's) may take
@@ -988,7 +1173,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
      * m/s.  Passes after it have their warm start and max_sweeps. */
     if (!warmed && h > 0.0)
         max_sweeps *= RBS__COLLISION_SWEEPS;
-    sweep = pass_sweeps(w, friction, fast, scale, &any, max_sweeps);
+    sweep = pass_sweeps(w, friction, fast, blocks, scale, &any, max_sweeps);
     if (warmed && sweep == max_sweeps && pass_kinetic(w) > ke0 * (1.0 + 1e-9)) {
         /* A warm start that the sweeps could not bring to the solution may
          * leave energy it put in: the impulses that held last sub-step,
@@ -1000,7 +1185,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
          * light ball in a box's corner took 0.16 J in a frame, and was
          * flung 1400 m high in 3 s (a probe of session 40). */
         pass_undo(w);
-        sweep = pass_sweeps(w, friction, fast, scale, &any, max_sweeps);
+        sweep = pass_sweeps(w, friction, fast, blocks, scale, &any, max_sweeps);
     }
     if (info && any) {
         for (i = 0; i < w->contact_count; ++i)
