@@ -722,6 +722,52 @@ static void held_through_parallel_normals(void **state)
     }
 }
 
+/* A solid ball (1 kg, r = 0.1 m) launched at v0 = 1 m/s along a V-groove
+ * whose walls are t off vertical (normals (+-cos t, 0, sin t)), mu = 0.5,
+ * no spin.  Both contacts slip at v + r w s (s = sin t, w its spin about
+ * x); friction F at each slows it by 2F/m and spins it by 2 r F s / I, so
+ * the slip stops when v = v0 5 s^2 / (2 + 5 s^2), whatever F, and it rolls
+ * on at that speed (on a circle of radius r s).  t = 0.1, 2 and 20 degrees:
+ * 7.615e-6, 3.0353e-3 and 0.22625 m/s.  Bound: 1e-3 of the answer plus
+ * 1e-9 m/s (a step's friction lands the stick within mu g dt / s of the
+ * exact time; the rows then hold it).  The 0.1 and 2 degree grooves are
+ * the blocks' (solver.c): a ball's load there is 1 / (2 s) times its
+ * weight on each wall. */
+static void sliding_in_a_groove(void **state)
+{
+    const double r = 0.1, v0 = 1.0, pi = 3.14159265358979323846;
+    const double degs[] = {0.1, 2.0, 20.0};
+    size_t k, i;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        for (i = 0; i < sizeof degs / sizeof degs[0]; ++i) {
+            const double t = degs[i] * pi / 180.0, s = sin(t), v = v0 * 5.0 * s * s / (2.0 + 5.0 * s * s);
+            rbs_world *w = world_for(all_methods[k], 4, 1e-3, -9.81, 0.5);
+            rbs_material_id m;
+            rbs_body_id b;
+            int sgn;
+            if (w == NULL)
+                break;
+            m = material(w, "m", 0.5, 0.5, 0.5);
+            for (sgn = -1; sgn <= 1; sgn += 2) {
+                rbs_plane_def p;
+                rbs_plane_def_init(&p);
+                p.normal.x = sgn * cos(t);
+                p.normal.z = s;
+                p.material = m;
+                CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            }
+            b = ball(w, r, 1.0, 0, 0, r / s, 0, v0, 0, m);
+            if (!run(w, 1000)) { /* (event: a body on two planes) */
+                rbs_world_destroy(w);
+                break;
+            }
+            ASSERT_NEAR(state_of(w, b).velocity.y, v, 1e-3 * v + 1e-9);
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* Two balls (m = 1 kg, r = 0.05 m) held together by their mutual gravity
  * (G = 1: 100 m/s^2 at contact, five times the 20 m/s^2 their turn needs)
  * slide round each other at 1 m/s, frictionless: the forces are central,
@@ -981,6 +1027,7 @@ int main(void)
         cmocka_unit_test(wedge_settles),
         cmocka_unit_test(pyramid_beside_a_wall_stays),
         cmocka_unit_test(held_through_parallel_normals),
+        cmocka_unit_test(sliding_in_a_groove),
         cmocka_unit_test(pair_sliding_round_each_other),
         cmocka_unit_test(rolling_into_a_resting_ball),
         cmocka_unit_test(slow_impact_on_a_dome),
