@@ -75,7 +75,7 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
      * nothing: an unused row with rolling resistance took the soft step
      * off its gathered layout, first order in free fall, and refused the
      * scene to event; a probe of session 40) */
-    p.gather = !w->def.mutual_gravity && rbs__row_in_use(w, 1) < 0;
+    p.gather = rbs__row_in_use(w, 1) < 0;
     p.friction = rbs__row_in_use(w, 0) >= 0;
     for (i = 0; i < w->sphere_count; ++i) {
         uint32_t s = w->spheres[i];
@@ -106,7 +106,13 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     p.consecutive = w->sphere_count > 0;
     for (i = 0; i < w->sphere_count && p.consecutive; ++i)
         p.consecutive = w->spheres[i] == w->spheres[0] + i;
-    p.mutual = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
+    p.mutual = p.mutual_acts = w->def.mutual_gravity != 0 && moving >= 1 && w->sphere_count >= 2;
+    /* (mutual gravity that cannot act -- one sphere, or none moving --
+     * does not take the soft step off its gathered layout: it changed a
+     * lone bouncing ball's bits, and event refused the scene; a probe of
+     * session 47) */
+    if (p.mutual_acts)
+        p.gather = 0;
     p.method = w->def.method;
     if (p.method == RBS_METHOD_AUTO)
         p.method = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity ? RBS_METHOD_SOFT

@@ -148,7 +148,7 @@ static rbs_status check_scope(rbs_world *w)
 {
     uint32_t k;
     int32_t row;
-    if (w->def.mutual_gravity)
+    if (w->plan.mutual_acts) /* (on, but with nothing to act on, it is not in the scene) */
         return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
             "method \"event\": mutual gravity is not a constant force; use \"adaptive\"");
     /* (only a row some contact can take: one on no body's materials is

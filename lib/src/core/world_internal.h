@@ -111,6 +111,9 @@ typedef struct rbs__plan {
     int friction;     /* some pair has friction or resistance */
     int sphere_pairs; /* two or more spheres, at least one moving */
     int mutual;       /* mutual gravity */
+    int mutual_acts;  /* mutual gravity is on and can act: a moving sphere
+                         and another sphere (from the bodies alone, never
+                         pruned; the soft layout and event's scope read it) */
     double min_radius; /* smallest sphere radius (0 if none), m */
     int applied;       /* some moving sphere has an applied force or torque
                           (not a stage: never set by pruning off) */
@@ -118,7 +121,8 @@ typedef struct rbs__plan {
                           never pruned: the same with pruning off) */
     int gather;        /* the soft step may gather body records: every sphere
                           centred and isotropic, no pair with rolling or
-                          spinning resistance, no mutual gravity (from the
+                          spinning resistance, no mutual gravity that can
+                          act (mutual_acts; from the
                           bodies alone, never pruned: a pruned and a full
                           pipeline take the same layout, bit for bit) */
     int uneven;        /* some moving sphere is anisotropic or has its centre
