@@ -883,19 +883,22 @@ static void pass_undo(rbs_world *w)
  * ball in a V-groove with walls 0.1 deg off vertical sank 1 cm into it in
  * 2 s, 0.1 J lost, moving at up to 0.03 m/s (euler, verlet, rk4,
  * adaptive, selective; a probe of session 47).  Such a sphere's rows
- * against static bodies -- 2 to BLOCK_MAX of them, a pair of normals with
- * |n_i . n_j| > BLOCK_COS, centred mass so that the levers are along n --
- * are solved as one linear complementarity problem at the start of every
+ * against static bodies -- 2 to BLOCK_MAX of them (a cup of up to eight),
+ * a pair of normals with |n_i . n_j| > BLOCK_COS, a centred mass so that
+ * the levers are along n -- are solved as one linear complementarity
+ * problem at the start of every
  * sweep: the one step of blocked Gauss-Seidel (as resist_block's, and the
  * soft step's wedge rows, docs/methods.md) that solves them exactly with
  * the rest of the world held, by trying the sets of active rows (K_SS x =
- * -q_S, x >= 0, the others not approaching: Cottle, Pang & Stone, The
+ * -q_S, x >= 0, the others not approaching; at most 3 active, the rank of
+ * the block: Cottle, Pang & Stone, The
  * Linear Complementarity Problem, 1992, ch. 1).  The rows one at a time
  * then find them solved, and do friction.  The blocks are found once a
  * pass: w->shock_order (scratch until shock propagation) holds a list of
  * each sphere's static rows, next[] over the contacts and the first row of
  * each block after max_contacts. */
-#define BLOCK_MAX 4
+#define BLOCK_MAX 8
+#define BLOCK_RANK 3 /* (rows of one centred sphere against static bodies: 3-D normals) */
 #define BLOCK_COS 0.9
 
 /* The moving body of contact c when it is the only one and its mass is
@@ -980,6 +983,8 @@ static void solve_block(rbs_world *w, uint32_t first, double *change)
         for (i = 0; i < n; ++i)
             if (mask & (1u << i))
                 idx[m++] = i;
+        if (m > BLOCK_RANK)
+            continue; /* (K = (1/m) [n_i . n_j] has rank 3 at most: singular) */
         for (r = 0; r < m; ++r) {
             for (col = 0; col < m; ++col)
                 a[r][col] = k[idx[r]][idx[col]];
