@@ -658,7 +658,7 @@ static void pyramid_beside_a_wall_stays(void **state)
  * by (1 + n1.n2) or 3/2 sin^2 a of what it needs a sweep: in 2 s the ball
  * sank 1 cm into the 0.1 degree groove (0.1 J lost, up to 0.03 m/s) and
  * the big ball rattled in its cup at up to 4 mm/s (5.8e-5 m) -- every rigid
- * method, max_sweeps 20 (a probe of session 47; solver.c, blocks).  Bound:
+ * method, max_sweeps 20 (a probe of session 46; solver.c, blocks).  Bound:
  * 1e-9 m/s and 1e-9 m (the blocks leave 1e-13 m/s and 1e-18 m: rounding
  * of the impulses that carry g dt). */
 static void held_through_parallel_normals(void **state)

@@ -337,7 +337,7 @@ static void unused_rows_change_nothing(void **state)
  * the scene either: a lone ball bouncing on the floor steps bit for bit as
  * with it off, for every method.  It took the soft step off its gathered
  * layout (other bits) and made event refuse the scene ("mutual gravity is
- * not a constant force"; a probe of session 47).  With two spheres it
+ * not a constant force"; a probe of session 46).  With two spheres it
  * acts, and event refuses. */
 static void idle_mutual_gravity_changes_nothing(void **state)
 {

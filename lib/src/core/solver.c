@@ -882,7 +882,7 @@ static void pass_undo(rbs_world *w)
  * m from its axis (a = 1.1 deg) rattling at up to 4 mm/s for good, and a
  * ball in a V-groove with walls 0.1 deg off vertical sank 1 cm into it in
  * 2 s, 0.1 J lost, moving at up to 0.03 m/s (euler, verlet, rk4,
- * adaptive, selective; a probe of session 47).  Such a sphere's rows
+ * adaptive, selective; a probe of session 46).  Such a sphere's rows
  * against static bodies -- 2 to BLOCK_MAX of them (a cup of up to eight),
  * a pair of normals with |n_i . n_j| > BLOCK_COS, a centred mass so that
  * the levers are along n -- are solved as one linear complementarity

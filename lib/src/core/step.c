@@ -110,7 +110,7 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     /* (mutual gravity that cannot act -- one sphere, or none moving --
      * does not take the soft step off its gathered layout: it changed a
      * lone bouncing ball's bits, and event refused the scene; a probe of
-     * session 47) */
+     * session 46) */
     if (p.mutual_acts)
         p.gather = 0;
     p.method = w->def.method;
