@@ -49,8 +49,12 @@
  * 128 bytes (jslip: kinetic friction for a contact that came in slipping);
  * 12 has the pressed marks (a byte a slot: spheres loaded by other moving
  * spheres) and their resting thresholds, the impact floor and the strict
- * work cap, so an 11 file would resume on other physics. */
-#define CKPT_VERSION 12u
+ * work cap, so an 11 file would resume on other physics; 13 has the
+ * resistance records' impact share (rbs__resist.impact: the soft step's
+ * rolling and spinning rows take no impact as load), and the resting pass
+ * takes an unloaded contact's friction back, so a 12 file would resume on
+ * other physics too. */
+#define CKPT_VERSION 13u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

@@ -212,6 +212,7 @@ static void resist_init(rbs_world *w, const rbs__contact *c, double radius)
         r->radius = radius;
         r->jroll = v3_make(0, 0, 0);
         r->jspin = 0.0;
+        r->impact = 0.0;
     }
 }
 

@@ -89,6 +89,12 @@ typedef struct rbs__resist {
     double radius; /* lever for rolling resistance, m */
     v3 jroll;      /* accumulated rolling and spinning impulses */
     double jspin;
+    double impact; /* soft step: the normal impulse of the frame's impact --
+                      m_eff times the approach at the frame's start, when
+                      faster than its resting threshold, plus the
+                      restitution's -- not yet taken by a sub-step, N s: no
+                      load for the resistance rows (rbs__soft's
+                      resist_loaded) */
 } rbs__resist;
 
 /* A material-pair row. */
