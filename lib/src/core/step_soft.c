@@ -1042,8 +1042,10 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         rbs__integrate_positions(w, h);
         sp.last = s == n - 1;
         pass(&sp, RELAX);
-        for (i = 0; i < w->contact_count; ++i) {
-            /* what of the impact this sub-step's normal impulse took */
+        for (i = 0; s + 1 < n && i < w->contact_count; ++i) {
+            /* what of the impact this sub-step's normal impulse took (not
+             * after the last: the restitution pass goes on with its
+             * accumulated impulse, the impact it held included) */
             const rbs__pair *p = rbs__contact_pair(w, &w->contact[i]);
             if (p->rolling > 0.0 || p->spinning > 0.0) {
                 rbs__resist *rs = &w->contact_resist[i];
