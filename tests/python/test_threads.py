@@ -231,7 +231,7 @@ _RUN_NOT_WAITED = r"""
 import time, rbsim
 w = rbsim.World()
 w.add_sphere(position=(0, 0, 1))
-w.run_kept = w.start(10, [lambda f: None])  # (a cycle: the world holds its run)
+w._run_kept = w.start(10, [lambda f: None])  # (a cycle: the world holds its run)
 time.sleep(0.3)
 try:
     w.step()

@@ -114,6 +114,29 @@ def test_dt_method_and_tolerance_are_settable():
     assert w.dt == 0.0005 and w.tolerance == 1e-6
 
 
+def test_only_the_settable_settings_can_be_set():
+    """world.slop = 1e-3 (or restitution, max_sweeps, a typo such as
+    world.mehtod = "rk4", or world.step = 5 over a method) made a plain
+    Python attribute the simulation never read: the run went on with the
+    old value and nothing said so (a probe of session 47).  It is an
+    AttributeError naming the settable ones, and the world is unchanged."""
+    w = make_world()
+    before = w.settings
+    with pytest.raises(AttributeError, match=r"'slop' \(it is fixed when the world is "
+                       r"made: World\(slop=\.\.\.\).*settable: dt, method, threads, tolerance"):
+        w.slop = 1e-3
+    for name, value in [("restitution", 1.0), ("max_sweeps", 5), ("mehtod", "rk4"),
+                        ("step", 5), ("energy", 0.0)]:
+        with pytest.raises(AttributeError, match="World has no settable attribute %r" % name):
+            setattr(w, name, value)
+    with pytest.raises(AttributeError, match="gravity"):
+        w.gravity = (0, 0, 1)
+    assert w.settings == before and callable(w.step) and not hasattr(w, "mehtod")
+    w.description = "mine"  # the scene's attributes stay the caller's to set
+    w.dt = 0.002
+    assert w.description == "mine" and w.settings["dt"] == 0.002
+
+
 def test_auto_method_follows_the_bodies():
     """The default method "auto" takes "euler" below 64 moving spheres and
     "soft" from 64 on; method_in_use says which, and the state after 50
@@ -520,10 +543,12 @@ def test_repr_never_raises(monkeypatch):
     raising (it raised InvalidError: a probe of session 41)."""
     w = make_world()
 
-    def broken():
+    def broken(self):
         raise rbsim.InvalidError("rbs_world_state")
-    monkeypatch.setattr(w, "all_bodies", broken)
+    # (on the class: a World takes no attributes of its own, not even a mock)
+    monkeypatch.setattr(rbsim.World, "all_bodies", broken)
     assert repr(w) == "World(<invalid argument: rbs_world_state>)"
+    monkeypatch.undo()
     w2 = make_world()
     w2.close()
     assert repr(w2.bodies) == "BodyMap(<closed or interrupted: world is closed>)"

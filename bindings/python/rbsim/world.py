@@ -19,6 +19,7 @@ Design notes
 
 from __future__ import annotations
 
+import inspect
 import sys
 import threading
 import time
@@ -702,6 +703,25 @@ class World(_Handle):
         self._init_fields()
         self._create(d)
         return self
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        # A public name is set only through a property (dt, method,
+        # tolerance, threads: their setters check the value) or is one of the
+        # two scene attributes.  Any other (world.slop = 1e-3, a typo such
+        # as world.mehtod = "rk4", world.step = 5) made a Python attribute
+        # that the simulation never read: a silent no-op.
+        if (not name.startswith("_") and name not in ("description", "scene_renderers")
+                and not isinstance(getattr(type(self), name, None), property)):
+            settable = sorted(k for k, v in vars(World).items()
+                              if isinstance(v, property) and v.fset is not None)
+            hint = ""
+            if name in inspect.signature(World.__init__).parameters:
+                hint = (" (it is fixed when the world is made: World(%s=...), or "
+                        "rbsim.load(...) from a scene)" % name)
+            raise AttributeError(
+                "World has no settable attribute %r%s; settable: %s"
+                % (name, hint, ", ".join(settable)))
+        object.__setattr__(self, name, value)
 
     def close(self) -> None:
         """Destroy the C world.  State arrays taken before stay readable
