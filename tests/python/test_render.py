@@ -278,6 +278,13 @@ def test_start_with_commands():
     while not run.status().paused:
         run.finished(0.01)
     assert run.status().captured == 1  # paused after frame 0
+    # run.paused = False and run.speed = 2 made Python attributes the
+    # projector never read, a silent no-op (a probe of session 47)
+    for name, value in [("paused", False), ("speed", 2.0)]:
+        with pytest.raises(AttributeError, match=r"Run has no settable attribute %r: "
+                           r"steer a run with command" % name):
+            setattr(run, name, value)
+    assert run.status().paused and run.status().captured == 1
     run.command("step 4")
     while run.status().captured < 5:
         run.finished(0.01)

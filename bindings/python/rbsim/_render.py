@@ -328,6 +328,17 @@ class Run(_Handle):
             raise
         _LIVE_RUNS.add(self)
 
+    def __setattr__(self, name: str, value: Any) -> None:
+        # A Run has no settable attribute: run.speed = 2 or run.paused =
+        # False made a plain Python attribute the projector never read (a
+        # silent no-op, a probe of session 47).  Commands steer a run.
+        if not name.startswith("_"):
+            raise AttributeError(
+                "Run has no settable attribute %r: steer a run with command(...) "
+                "(\"pause\", \"resume\", \"step N\", \"speed X\", \"quit\"); "
+                "status() reads its state" % name)
+        object.__setattr__(self, name, value)
+
     def _make(self, steps: int, realtime: bool, speed: float, start_paused: bool,
               pause_on_collision: bool, reel_capacity: Optional[int],
               endless: bool) -> None:
