@@ -931,6 +931,31 @@ static void destroy_while_running(void **state)
     fx_done(&fx);
 }
 
+/* "status" of an endless run names no last frame (it read "frame 11584 of
+ * 0": the steps an endless run ignores), and "status 3" is refused (the
+ * argument was ignored, where quit, pause and resume refuse theirs): a
+ * probe of session 47. */
+static void status_of_an_endless_run_and_its_argument(void **state)
+{
+    fixture fx;
+    char reply[512];
+    (void)state;
+    fx_init(&fx, "rec", NULL);
+    fx.def.endless = 1;
+    fx.def.steps = 0;
+    CHECK_OK(fx_create(&fx));
+    CHECK_OK(rbs_projector_start(fx.p));
+    CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
+    assert_non_null(strstr(reply, " (endless run), t = "));
+    assert_null(strstr(reply, " of 0,"));
+    assert_int_equal(rbs_projector_command(fx.p, "status 3", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_string_equal(reply, "status takes no argument");
+    CHECK_OK(rbs_projector_command(fx.p, "quit", NULL, 0));
+    assert_int_equal(rbs_projector_wait(fx.p), RBS_E_CLOSED);
+    fx_done(&fx);
+}
+
 /* One run of a world at a time: a second projector on the same world cannot
  * start while the first runs (both started, two simulation threads stepped
  * the world at once: a data race, and frames of a world stepped twice as
@@ -1476,6 +1501,7 @@ int main(void)
         cmocka_unit_test(stopped_run_keeps_its_last_frame_under_every),
         cmocka_unit_test(resumed_world_keeps_frame_numbers),
         cmocka_unit_test(destroy_while_running),
+        cmocka_unit_test(status_of_an_endless_run_and_its_argument),
         cmocka_unit_test(one_run_of_a_world_at_a_time),
         cmocka_unit_test(two_starts_at_once_one_runs),
         cmocka_unit_test(realtime_paces_frames),

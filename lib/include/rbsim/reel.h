@@ -396,7 +396,8 @@ RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
  * "0,5"), "quit" (stop after the frame being made, which is still
  * published, so the world ends at the last frame published; frames already
  * in the reel are still drawn and every output finished), "status" (a
- * one-line summary).
+ * one-line summary: "frame K of N, ..." or, endless, "frame K (endless
+ * run), ...").  "quit", "pause", "resume" and "status" take no argument.
  * Any other line is offered to each renderer's command hook: on the renderer
  * thread while it runs (this call waits for the answer, unless it comes from
  * the renderer thread itself), directly otherwise.  A reply (one line, no

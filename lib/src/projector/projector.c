@@ -1290,8 +1290,13 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
     if (strcmp(word, "status") == 0) {
         /* the frame shown, and how far the simulation has gone when it is
          * ahead (the counters are the simulation's, to its last frame) */
-        char ahead[96] = "", capped[64] = "";
+        char ahead[96] = "", capped[64] = "", of[40];
         uint64_t made;
+        if (*rest) {
+            /* (an argument was ignored: "status 3" answered as "status") */
+            reply_to(reply, reply_size, "status takes no argument");
+            return RBS_E_INVALID;
+        }
         pthread_mutex_lock(&p->mu);
         status_locked(p, &info);
         made = p->frame_made;
@@ -1302,12 +1307,17 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
         if (info.work_limited > 0)
             snprintf(capped, sizeof capped, ", %llu steps at the work cap",
                      (unsigned long long)info.work_limited);
+        /* the last frame's number; an endless run has none (it read "frame
+         * 11584 of 0": its steps are ignored) */
+        if (info.endless)
+            snprintf(of, sizeof of, " (endless run)");
+        else
+            snprintf(of, sizeof of, " of %llu",
+                     (unsigned long long)(p->first_frame + info.steps));
         reply_to(reply, reply_size,
-                 "frame %llu of %llu, t = %.6g s, %s%s, speed %g, "
+                 "frame %llu%s, t = %.6g s, %s%s, speed %g, "
                  "%llu collisions, %llu sub-steps, %llu rollbacks%s%s",
-                 (unsigned long long)info.frame,
-                 (unsigned long long)(p->first_frame + info.steps), /* (the last frame's number) */
-                 info.time,
+                 (unsigned long long)info.frame, of, info.time,
                  info.state == RBS_RUN_READY   ? "not started"
                  : info.state == RBS_RUN_DONE  ? "done"
                  : info.paused                 ? "paused"
