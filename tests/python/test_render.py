@@ -285,6 +285,8 @@ def test_start_with_commands():
                            r"steer a run with command" % name):
             setattr(run, name, value)
     assert run.status().paused and run.status().captured == 1
+    with pytest.raises(rbsim.InvalidError, match=r"timeout: must be >= 0 seconds, got -1"):
+        run.finished(-1)  # (it was taken as 0, silently)
     run.command("step 4")
     while run.status().captured < 5:
         run.finished(0.01)

@@ -437,10 +437,12 @@ class Run(_Handle):
         return text
 
     def finished(self, timeout: float = 0.0) -> bool:
-        """Wait up to timeout seconds for the run to end; True if it has.
-        From the run's own renderer only ``finished(0)`` is allowed (it is
-        False there): a wait would last the whole timeout for nothing."""
-        t = _check.real(timeout, "timeout")
+        """Wait up to timeout seconds (>= 0; 0: just look) for the run to
+        end; True if it has.  From the run's own renderer only
+        ``finished(0)`` is allowed (it is False there): a wait would last the
+        whole timeout for nothing."""
+        # (a negative timeout was taken as 0, silently: finished(-1) looked)
+        t = _check.real_in(timeout, "timeout", 0.0, note=" seconds")
         if t > 0:
             self._refuse_from_renderer("finished(%r)" % t)
         try:
