@@ -161,7 +161,12 @@ def test_stop_run_ends_cleanly():
         if frame.number == 25:
             raise rbsim.StopRun
 
-    info = w.run(endless=True, steps=0, renderers=[until])
+    # (steps with endless=True were ignored, silently: a probe of session 47)
+    with pytest.raises(rbsim.InvalidError, match=r"steps: 10 with endless=True, which "
+                       r"runs until quit or StopRun and would ignore it"):
+        w.run(10, endless=True, renderers=[until])
+    assert seen == [] and w.step_count == 0
+    info = w.run(endless=True, renderers=[until])
     # That renderer gets no frame after StopRun; frames already made still
     # go through the reel (to other renderers) before the run ends.
     assert seen == list(range(26))

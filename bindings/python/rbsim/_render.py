@@ -661,7 +661,13 @@ def start_world(world: World, steps: Optional[int] = None,
             "run()/start() (world.scene_renderers lists them)"
             % ", ".join(str(r.get("type")) for r in world.scene_renderers),
             UserWarning, stacklevel=_stacklevel)
-    if steps is None and endless is True:
+    if endless is True:
+        if steps is not None:
+            # (it was ignored, silently: run(10, endless=True) ran on past
+            # step 10, until quit or StopRun)
+            raise _e.error_class(lib.RBS_E_INVALID)(
+                "steps: %r with endless=True, which runs until quit or StopRun and "
+                "would ignore it: pass one of them" % (steps,))
         steps = 0  # not used: the run goes on until quit
     if steps is None:
         steps = world._scene_steps

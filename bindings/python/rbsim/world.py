@@ -1258,8 +1258,9 @@ class World(_Handle):
             realtime: pace frame k at k dt / speed of wall time.
             speed: real-time factor (> 0).
             reel_capacity: frames in the reel (>= 2).
-            endless: ignore steps and run until a renderer raises
-                :class:`StopRun` (or "quit").  The world then ends at the
+            endless: run until a renderer raises :class:`StopRun` (or
+                "quit"); steps must then be None (a steps given with it is
+                an InvalidError, not ignored).  The world then ends at the
                 last frame made (``RunInfo.frame``), which the simulation,
                 running ahead of the renderers, may have made after the
                 frame that raised it; every other renderer gets it.
