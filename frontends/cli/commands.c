@@ -25,7 +25,7 @@ static rbs_status cmd_camera(rbs_projector *projector, const char *line,
                              char *reply, size_t reply_size);
 
 static const rbsf_command commands[] = {
-    {"help", "", "list these commands", cmd_help},
+    {"help", "[COMMAND]", "list these commands (or COMMAND's line)", cmd_help},
     {"quit", "", "stop the run; every output is finished up to the last frame",
      cmd_forward},
     {"pause", "", "hold the display on the frame shown (named in the reply); "
@@ -69,12 +69,44 @@ void rbsf_command_help(char *out, size_t size)
     }
 }
 
+/* "help" lists every command; "help CMD" gives CMD's line (the argument
+ * was ignored: "help quit" and "help nosuch" listed them all). */
 static rbs_status cmd_help(rbs_projector *projector, const char *line,
                            char *reply, size_t reply_size)
 {
-    size_t n;
+    size_t n, i, len = 0;
+    const char *arg = line;
     (void)projector;
-    (void)line;
+    while (*arg == ' ' || *arg == '\t')
+        arg++;
+    arg += strlen("help");
+    while (*arg == ' ' || *arg == '\t')
+        arg++;
+    while (arg[len] && arg[len] != ' ' && arg[len] != '\t' && arg[len] != '\r' &&
+           arg[len] != '\n')
+        len++;
+    if (len > 0) {
+        const char *after = arg + len;
+        while (*after == ' ' || *after == '\t' || *after == '\r' || *after == '\n')
+            after++;
+        for (i = 0; i < COMMAND_COUNT && *after == '\0'; i++) {
+            char head[48];
+            if (strlen(commands[i].name) != len ||
+                strncmp(commands[i].name, arg, len) != 0)
+                continue;
+            snprintf(head, sizeof head, "%s%s%s", commands[i].name,
+                     commands[i].args[0] ? " " : "", commands[i].args);
+            snprintf(reply, reply_size, "  %-20s %s\n", head, commands[i].help);
+            return RBS_OK;
+        }
+        n = (size_t)snprintf(reply, reply_size,
+                             "help: %s '%.*s'; commands:\n",
+                             *after ? "expected one command, got" : "unknown command",
+                             *after ? (int)strcspn(arg, "\r\n") : (int)len, arg);
+        if (n < reply_size)
+            rbsf_command_help(reply + n, reply_size - n);
+        return RBS_E_INVALID;
+    }
     n = (size_t)snprintf(reply, reply_size, "commands:\n");
     if (n < reply_size)
         rbsf_command_help(reply + n, reply_size - n);

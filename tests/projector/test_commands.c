@@ -113,6 +113,27 @@ static void help_lists_every_command(void **state)
     }
 }
 
+/* "help CMD" gives that command's line; an unknown CMD, or two, is
+ * refused with the list (the argument was ignored: "help nosuch" listed
+ * every command as "help" does; a probe of session 47). */
+static void help_with_a_command_gives_its_line(void **state)
+{
+    fixture *f = *state;
+    char reply[4096];
+    assert_int_equal(rbsf_command_run(f->projector, " help  step ", reply, sizeof reply),
+                     RBS_OK);
+    assert_string_equal(reply, "  step [N]             show N more frames (default 1; at most "
+                               "to the last), then stay paused\n");
+    assert_int_equal(rbsf_command_run(f->projector, "help nosuch", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_true(strncmp(reply, "help: unknown command 'nosuch'; commands:\n", 42) == 0);
+    assert_non_null(strstr(reply, "\n  quit"));
+    assert_int_equal(rbsf_command_run(f->projector, "help quit pause", reply, sizeof reply),
+                     RBS_E_INVALID);
+    assert_true(strncmp(reply, "help: expected one command, got 'quit pause'; commands:\n",
+                        56) == 0);
+}
+
 static void unknown_command_answers_with_the_list(void **state)
 {
     fixture *f = *state;
@@ -239,6 +260,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(help_lists_every_command, setup, teardown),
+        cmocka_unit_test_setup_teardown(help_with_a_command_gives_its_line, setup,
+                                        teardown),
         cmocka_unit_test_setup_teardown(unknown_command_answers_with_the_list,
                                         setup, teardown),
         cmocka_unit_test_setup_teardown(projector_commands_reach_the_projector,
