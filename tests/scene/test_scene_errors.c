@@ -367,6 +367,15 @@ static const bad_case cases[] = {
     {"bad/camera_mount_unknown.json", RBS_E_SCENE,
      {E("\"bal\"", 1, 0,
         "renderers[0].camera.mount: no sphere named \"bal\" (did you mean \"ball\"?)")}},
+    /* position and target of a mounted camera were refused only by the sdl
+     * renderer's check, at the renderer entry (a probe of session 47) */
+    {"bad/camera_mounted_position.json", RBS_E_SCENE,
+     {E("\"position\": [1", 1, 0,
+        "renderers[0].views[0].position: not used by a mounted camera (it looks at the body "
+        "from \"offset\")"),
+      E("\"target\"", 1, 0,
+        "renderers[0].views[1].target: not used by a mounted camera (it looks at the body "
+        "from \"offset\")")}},
     {"bad/camera_and_views.json", RBS_E_SCENE,
      {E("\"views\"", 1, 0, "renderers[0].views: give either \"camera\" or \"views\", not both")}},
     {"bad/camera_path_time_decreasing.json", RBS_E_SCENE,

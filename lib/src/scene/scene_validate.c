@@ -2167,6 +2167,20 @@ static void check_camera(vctx *v, const cJSON *cam)
             "\"offset\" needs \"mount\" (a sphere's name)");
         pop(v, saved);
     }
+    if (mode == 1) {
+        /* (passed here and was refused by the sdl renderer's own check, at
+         * the renderer entry: "renderers[0] (sdl): views[0].position") */
+        static const char *const unused[] = {"position", "target"};
+        size_t i;
+        for (i = 0; i < 2; i++) {
+            if ((c = member(cam, unused[i])) != NULL) {
+                saved = push_key(v, unused[i]);
+                err(v, loc_key(v, c), "not used by a mounted camera (it looks at the body "
+                    "from \"offset\")");
+                pop(v, saved);
+            }
+        }
+    }
     if ((c = member(cam, "position")) != NULL) {
         saved = push_key(v, "position");
         pos_ok = get_cam_vec3(v, c, &pos) == 0;
