@@ -692,6 +692,44 @@ static void test_error_limit(void **state)
     free(text);
 }
 
+/* A camera path of more than 100000 keyframes is refused by the scene at
+ * the path (it passed, and the sdl renderer refused it at the entry's
+ * column: "renderers[0] (sdl): camera.path: at most 100000 keys"; a probe
+ * of session 47); 100000 pass. */
+static void test_camera_path_keyframe_limit(void **state)
+{
+    static const char head[] =
+        "{\"simulation\": {\"steps\": 1}, \"bodies\": [{\"name\": \"b\", \"type\": "
+        "\"sphere\", \"radius\": 0.1, \"mass\": 1, \"position\": [0, 0, 1]}],\n"
+        "\"renderers\": [{\"type\": \"sdl\", \"path\": \"p\", \"camera\": {\"path\": [";
+    int counts[2] = {100000, 100001}, k;
+    (void)state;
+    for (k = 0; k < 2; k++) {
+        char *text = malloc(sizeof head + (size_t)counts[k] * 64 + 16);
+        size_t n = 0;
+        int i;
+        rbs_scene *scene = NULL;
+        rbs_scene_error e;
+        assert_non_null(text);
+        n += (size_t)sprintf(text + n, "%s", head);
+        for (i = 0; i < counts[k]; i++)
+            n += (size_t)sprintf(text + n, "%s{\"t\": %d, \"position\": [3, -3, 2], "
+                                 "\"target\": [0, 0, 0]}", i ? "," : "", i);
+        n += (size_t)sprintf(text + n, "]}}]}");
+        if (k == 0) {
+            assert_int_equal(rbs_scene_parse_json(text, n, "k", &scene), RBS_OK);
+        } else {
+            assert_int_equal(rbs_scene_parse_json(text, n, "k", &scene), RBS_E_SCENE);
+            assert_int_equal(rbs_scene_error_count(scene), 1);
+            assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
+            assert_string_equal(e.text, "k:2:63: renderers[0].camera.path: at most 100000 "
+                                        "keyframes, got 100001");
+        }
+        rbs_scene_free(scene);
+        free(text);
+    }
+}
+
 /* Command-line overrides are validated like the file's values. */
 static void test_override(void **state)
 {
@@ -1325,6 +1363,7 @@ int main(void)
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers), cmocka_unit_test(test_renderer_numbers_exact),
         cmocka_unit_test(test_names_beyond_ascii),
         cmocka_unit_test(test_camera_path_errors_at_the_keyframe),
+        cmocka_unit_test(test_camera_path_keyframe_limit),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
         cmocka_unit_test(test_event_scope_agrees_with_the_step),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),

@@ -37,6 +37,8 @@
 #define RBS__SCENE_SLOP_MAX 0.1
 #define RBS__SCENE_SLOP_RANGE "must be in (0, 0.1) (a fraction of the smaller radius)"
 #define RBS__SCENE_SWEEPS_MAX 100000
+/* Keyframes of a camera's "path" (the sdl renderer's limit too). */
+#define RBS__SCENE_CAMERA_KEYS_MAX 100000
 /* The world's largest max_contacts (rbs_world_def_validate). */
 #define RBS__SCENE_CONTACTS_MAX 67108864u /* 2^26 */
 /* The largest max_substeps (the field's: the world takes any >= 1). */

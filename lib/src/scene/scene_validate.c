@@ -2310,6 +2310,11 @@ static void check_camera(vctx *v, const cJSON *cam)
             double last_t = -INFINITY;
             if (cJSON_GetArraySize(c) == 0) {
                 err(v, loc_value(v, c), "must have at least one keyframe");
+            } else if (cJSON_GetArraySize(c) > RBS__SCENE_CAMERA_KEYS_MAX) {
+                /* (the sdl renderer's limit: the scene passed and the renderer
+                 * refused it, at the entry's column) */
+                err(v, loc_value(v, c), "at most %d keyframes, got %d",
+                    RBS__SCENE_CAMERA_KEYS_MAX, cJSON_GetArraySize(c));
             }
             for (kf = c->child; kf != NULL; kf = kf->next, i++) {
                 size_t s2 = push_index(v, i), s3;
