@@ -341,18 +341,34 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out)
                 (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
 }
 
-/* Load a scene file or the demonstration; on failure print why. */
-static int load_scene(const char *path, rbs_scene **out)
+/* Load a scene file or the demonstration; on failure print why.  The
+ * reading may block (a FIFO with no writer, a pipe whose writer stalls): it
+ * is done in a slot of the signal thread's stopper, so that SIGINT, SIGTERM
+ * or SIGHUP end it (they were taken and the read went on waiting: only
+ * SIGKILL ended `rbsim run FIFO`).  -1 on failure, or 128 + the signal
+ * when a signal stopped it (said on stderr). */
+static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
 {
     rbs_status st;
+    int slot, sig;
     *out = NULL;
+    slot = rbsf_stopper_enter(&signals->stopper);
     if (path != NULL)
         st = rbs_scene_load(path, RBS_SCENE_AUTO, out);
     else
         st = rbs_scene_parse_json(rbsf_demo_scene, strlen(rbsf_demo_scene),
                                   "(built-in demonstration)", out);
+    rbsf_stopper_leave(&signals->stopper, slot);
     if (st == RBS_OK)
         return 0;
+    if ((sig = rbsf_signals_caught(signals)) != 0) {
+        fprintf(stderr, "rbsim: stopped by %s before the run started: while "
+                        "reading the scene '%s'\n",
+                rbsf_signal_name(sig), path ? path : "(built-in demonstration)");
+        rbs_scene_free(*out);
+        *out = NULL;
+        return 128 + sig;
+    }
     if (*out != NULL && rbs_scene_error_count(*out) > 0)
         rbsf_print_scene_errors(*out, stderr);
     else
@@ -1900,8 +1916,9 @@ int rbsf_run_main(int argc, char **argv)
     }
 
     /* 1. The scene and the command line's overrides. */
-    if (load_scene(o.scene, &scene) != 0) {
-        code = RBSF_EXIT_SCENE;
+    if ((code = load_scene(o.scene, &scene, &signals)) != 0) {
+        if (code < 0)
+            code = RBSF_EXIT_SCENE;
         goto out;
     }
     if (o.steps || o.dt > 0 || o.method) { /* steps 0: no override */
@@ -1937,7 +1954,16 @@ int rbsf_run_main(int argc, char **argv)
     if (o.resume) {
         rbs_world *ck = NULL;
         char msg[512] = "";
+        int slot = rbsf_stopper_enter(&signals.stopper); /* (as load_scene) */
         st = rbs_world_load(o.resume, &ck, msg, sizeof msg);
+        rbsf_stopper_leave(&signals.stopper, slot);
+        if (st != RBS_OK && (sig = rbsf_signals_caught(&signals)) != 0) {
+            fprintf(stderr, "rbsim: stopped by %s before the run started: while "
+                            "reading the checkpoint '%s'\n",
+                    rbsf_signal_name(sig), o.resume);
+            code = 128 + sig;
+            goto out;
+        }
         if (st != RBS_OK) {
             fprintf(stderr, "rbsim run: --resume '%s': cannot load the "
                             "checkpoint: %s%s%s\n",

@@ -78,6 +78,17 @@ int rbsf_stopper_init(rbsf_stopper *s);
 int rbsf_stopper_stop(rbsf_stopper *s, int signo, double grace);
 /** Free a stopper no output uses any more. */
 void rbsf_stopper_destroy(rbsf_stopper *s);
+/** Put the calling thread in a slot of the stopper for a call of its own
+ * that may block (reading a scene or a checkpoint from a FIFO or a pipe), as
+ * the outputs do for their open() and write(): rbsf_stopper_stop then sends
+ * it the signal, and the blocked call fails with EINTR.  Returns the slot to
+ * give rbsf_stopper_leave, or -1 (no slot free, or s NULL: the call cannot
+ * be ended).  Thread-safe. */
+int rbsf_stopper_enter(rbsf_stopper *s);
+/** Leave the slot rbsf_stopper_enter gave (-1: nothing to do). */
+void rbsf_stopper_leave(rbsf_stopper *s, int slot);
+/** Nonzero once rbsf_stopper_stop was called. */
+int rbsf_stopper_stopped(rbsf_stopper *s);
 
 /** A dump type whose outputs a stopper can end: register &bound->cls.  It
  * must outlive the registry and every projector using it. */

@@ -91,3 +91,18 @@ int rbsf__stopper_stopped(rbsf_stopper *s)
     pthread_mutex_unlock(&s->lock);
     return stopped;
 }
+
+int rbsf_stopper_enter(rbsf_stopper *s)
+{
+    return rbsf__stopper_enter(s);
+}
+
+void rbsf_stopper_leave(rbsf_stopper *s, int slot)
+{
+    rbsf__stopper_leave(s, slot);
+}
+
+int rbsf_stopper_stopped(rbsf_stopper *s)
+{
+    return rbsf__stopper_stopped(s);
+}

@@ -1877,6 +1877,33 @@ class FaultTests(Base):
             self.assertEqual(sorted(os.listdir(self.dir)),
                              ["ff", "old.csv", "scene.json"])
 
+    def test_signal_stops_reading_a_scene_or_checkpoint_that_blocks(self):
+        # The scene (or the --resume checkpoint) is a FIFO no one writes, or
+        # a pipe whose writer stalls: the main thread blocked in open() or
+        # read() while the signal thread took the signal, and only SIGKILL
+        # ended the run (a probe of session 47).  Exit 128 + the signal,
+        # the reading named; nothing written.
+        s = self.scene()
+        os.mkfifo(self.path("ff"))
+        cases = [(["run", "ff"], "reading the scene 'ff'", None),
+                 (["run", s, "--resume", "ff"], "reading the checkpoint 'ff'", None),
+                 (["run", "/dev/stdin"], "reading the scene '/dev/stdin'", subprocess.PIPE)]
+        for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+            for args, what, stdin in cases:
+                p = subprocess.Popen([RBSIM] + args + ["--steps", "2", "--quiet",
+                                                       "--csv", "a.csv"],
+                                     cwd=self.dir, stdin=stdin,
+                                     stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+                if stdin is not None:
+                    p.stdin.write('{"simulation": ')  # (and then nothing)
+                    p.stdin.flush()
+                out, err = self._stop_blocked(p, sig)
+                self.assertEqual(p.returncode, code, err)
+                self.assertEqual(err, "rbsim: stopped by %s before the run started: "
+                                      "while %s\n" % (sig.name, what))
+                self.assertEqual(sorted(os.listdir(self.dir)), ["ff", "scene.json"])
+
     def test_signal_stops_a_stalled_pipe_reader(self):
         # Standard output is a pipe whose reader stopped reading (here: never
         # reads): write() blocks once the pipe is full.  SIGTERM/SIGINT stop
