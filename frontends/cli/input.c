@@ -87,8 +87,19 @@ static void *input_main(void *arg)
             continue;
         if (n <= 0) {
             /* End of input: the run goes on by itself.  A run paused now
-             * could never be resumed, so resume it. */
+             * could never be resumed, so resume it.  A read error (standard
+             * input a folder, EISDIR; EIO) ends the commands too, and says
+             * so: it was taken for an end of input without a word. */
             rbs_run_info info;
+            const char *why = n < 0 ? strerror(errno) : NULL;
+            if (why != NULL) {
+                pthread_mutex_lock(in->reply_lock);
+                fprintf(in->reply, "rbsim: note: standard input: cannot read "
+                                   "commands: %s; the run goes on without them\n",
+                        why);
+                fflush(in->reply);
+                pthread_mutex_unlock(in->reply_lock);
+            }
             /* A last line without its newline is still a line, as a shell
              * takes it (printf 'quit' | rbsim run ...): answer it first,
              * so a "pause" there is resumed just below like any other. */
@@ -101,8 +112,9 @@ static void *input_main(void *arg)
                 /* (a run quitting ends by itself: nothing to resume) */
                 rbs_projector_command(in->projector, "resume", NULL, 0);
                 pthread_mutex_lock(in->reply_lock);
-                fprintf(in->reply, "end of input: resumed (no command could "
-                                   "resume the run later)\n");
+                fprintf(in->reply, "%s: resumed (no command could "
+                                   "resume the run later)\n",
+                        why != NULL ? "no input" : "end of input");
                 fflush(in->reply);
                 pthread_mutex_unlock(in->reply_lock);
             }

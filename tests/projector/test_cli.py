@@ -1153,6 +1153,19 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("end of input: resumed", r.stdout)
         self.assertEqual(self.assert_whole_frames(self.path("a.csv")), 301)
+        # standard input that cannot be read (a folder: EISDIR) was taken
+        # for an end of input without a word (a probe of session 47)
+        folder = os.open(self.dir, os.O_RDONLY)
+        try:
+            r = self.rbsim("run", s, "--paused", "--csv", "c.csv", stdin=folder,
+                           timeout=60)
+        finally:
+            os.close(folder)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("rbsim: note: standard input: cannot read commands: Is a "
+                      "directory; the run goes on without them\nno input: resumed "
+                      "(no command could resume the run later)\n", r.stdout)
+        self.assertEqual(self.assert_whole_frames(self.path("c.csv")), 301)
         sim = dict(SCENE["simulation"], pause_on_collision=True)
         s = self.scene("poc.json", simulation=sim)
         r = self.rbsim("run", s, "--csv", "b.csv", timeout=60)
