@@ -1145,6 +1145,24 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(self.assert_whole_frames(self.path("b.csv")), 401)
 
+    def test_a_reel_too_large_says_its_size_and_the_way_out(self):
+        # --reel 1048576 (the largest allowed) for 50 bodies under a 1 GB
+        # address space: "out of memory or buffer too small" named neither
+        # the size nor what to change (a probe of session 47).
+        bodies = [dict(SCENE["bodies"][1], name="b%d" % i,
+                       position=[3.0 * i, 0, 1]) for i in range(49)]
+        s = self.scene("many.json", bodies=[SCENE["bodies"][0]] + bodies)
+
+        def limit():
+            resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+        r = self.rbsim("run", s, "--steps", "2", "--reel", "1048576", "--quiet",
+                       "--csv", "a.csv", preexec_fn=limit)
+        self.assertEqual(r.returncode, 4, r.stderr)
+        self.assertRegex(r.stderr, r"cannot make a reel of 1048576 frames of 50 bodies "
+                                   r"\([0-9.e+]+ MB\): out of memory; a reel of fewer "
+                                   r"frames \(reel_capacity\) needs less")
+        self.assertFalse(os.path.exists(self.path("a.csv")))
+
     def test_no_input_never_leaves_the_run_paused(self):
         # --paused, or pauses on collisions, with nothing on stdin: the run
         # must still complete by itself.

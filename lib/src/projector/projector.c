@@ -424,9 +424,18 @@ rbs_status rbs_projector_create(rbs_world *world,
         policy = RBS_REEL_LOSSLESS;
     st = rbs_reel_create(p->def.reel_capacity, p->max_bodies, policy, &p->reel);
     if (st != RBS_OK) {
-        set_error(p, st, "cannot make a reel of %lu frames of %lu bodies: %s",
+        /* (the size and the way out: "out of memory or buffer too small"
+         * alone left a user of the largest reel_capacity guessing) */
+        double bytes = (double)p->def.reel_capacity *
+                       ((double)sizeof(rbs_frame) +
+                        (double)p->max_bodies * (double)sizeof(rbs_frame_body));
+        set_error(p, st, "cannot make a reel of %lu frames of %lu bodies (%.3g MB): %s%s",
                   (unsigned long)p->def.reel_capacity,
-                  (unsigned long)p->max_bodies, rbs_status_string(st));
+                  (unsigned long)p->max_bodies, bytes / 1e6,
+                  st == RBS_E_MEMORY ? "out of memory" : rbs_status_string(st),
+                  st == RBS_E_MEMORY || st == RBS_E_CAPACITY
+                      ? "; a reel of fewer frames (reel_capacity) needs less"
+                      : "");
         return st;
     }
     if (p->live_count > 0) {
