@@ -376,6 +376,14 @@ static const bad_case cases[] = {
       E("\"target\"", 1, 0,
         "renderers[0].views[1].target: not used by a mounted camera (it looks at the body "
         "from \"offset\")")}},
+    /* a path through its target between keyframes passed, and the sdl
+     * renderer stopped the run at the frame where they met (a probe of
+     * session 47); one that passes 0.5 mm beside it is fine */
+    {"bad/camera_path_through_target.json", RBS_E_SCENE,
+     {E("\"target\": [1, 0.001, 1]", 1, 10,
+        "renderers[0].camera.path[2].target: between keyframes 1 and 2 the position passes "
+        "through the target (at t = 2 s, where the camera would have no view); add a "
+        "keyframe that goes around it")}},
     {"bad/camera_and_views.json", RBS_E_SCENE,
      {E("\"views\"", 1, 0, "renderers[0].views: give either \"camera\" or \"views\", not both")}},
     {"bad/camera_path_time_decreasing.json", RBS_E_SCENE,

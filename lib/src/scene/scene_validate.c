@@ -2127,6 +2127,38 @@ static int aim_kind(rbs_vec3 pos, rbs_vec3 target, rbs_vec3 up)
     return lx > kCamUpSine * ld * lu ? 0 : 3;
 }
 
+/* Whether target - position, linear from d0 to d1 as s goes from 0 to 1 (a
+ * path between two keyframes), comes within rounding of zero: the position
+ * passes through the target.  *at: that s.  (The closest s is where the
+ * derivative of |d0 + s (d1 - d0)|^2 vanishes; "within rounding" is 1e-12
+ * of the longer end, far above the interpolation's rounding, so every frame
+ * time that lands on the meeting is caught.)  The vectors are scaled by
+ * their largest coordinate first: squares of 1e100 m overflow. */
+static int path_meets_target(rbs_vec3 d0, rbs_vec3 d1, double *at)
+{
+    double m = fmax(fmax(fmax(fabs(d0.x), fabs(d0.y)), fmax(fabs(d0.z), fabs(d1.x))),
+                    fmax(fabs(d1.y), fabs(d1.z)));
+    rbs_vec3 a, e, c;
+    double ee, s, lc, la, lb;
+    if (!(m > 0) || !isfinite(m))
+        return 0;
+    a.x = d0.x / m; a.y = d0.y / m; a.z = d0.z / m;
+    e.x = d1.x / m - a.x; e.y = d1.y / m - a.y; e.z = d1.z / m - a.z;
+    ee = e.x * e.x + e.y * e.y + e.z * e.z;
+    if (!(ee > 0))
+        return 0;
+    s = -(a.x * e.x + a.y * e.y + a.z * e.z) / ee;
+    if (!(s > 0 && s < 1))
+        return 0; /* (closest at a keyframe: checked there) */
+    c.x = a.x + s * e.x; c.y = a.y + s * e.y; c.z = a.z + s * e.z;
+    lc = sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+    la = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    lb = sqrt((a.x + e.x) * (a.x + e.x) + (a.y + e.y) * (a.y + e.y) +
+              (a.z + e.z) * (a.z + e.z));
+    *at = s;
+    return lc <= 1e-12 * fmax(la, lb);
+}
+
 static void check_camera(vctx *v, const cJSON *cam)
 {
     const cJSON *c;
@@ -2308,6 +2340,13 @@ static void check_camera(vctx *v, const cJSON *cam)
             const cJSON *kf;
             size_t i = 0;
             double last_t = -INFINITY;
+            /* the previous keyframe's target - position and time, when all
+             * were read: the segment to this one must not pass through its
+             * target (the sdl renderer stopped the run there, at the frame
+             * where position met target: "closer than 1e-100 m") */
+            rbs_vec3 prev_d = {0, 0, 0};
+            double prev_t = 0.0, this_t = 0.0;
+            int prev_ok = 0, t_ok;
             if (cJSON_GetArraySize(c) == 0) {
                 err(v, loc_value(v, c), "must have at least one keyframe");
             } else if (cJSON_GetArraySize(c) > RBS__SCENE_CAMERA_KEYS_MAX) {
@@ -2319,12 +2358,17 @@ static void check_camera(vctx *v, const cJSON *cam)
             for (kf = c->child; kf != NULL; kf = kf->next, i++) {
                 size_t s2 = push_index(v, i), s3;
                 const cJSON *e;
+                int seg_ok = prev_ok; /* (cleared unless this keyframe is whole) */
+                t_ok = 0;
+                prev_ok = 0;
                 if (require_object(v, kf, "a camera keyframe") == 0) {
                     check_keys(v, kf, path_keys, 3, "a camera keyframe");
                     if ((e = member(kf, "t")) != NULL) {
                         double t;
                         s3 = push_key(v, "t");
                         if (get_ranged(v, e, R_NONNEG, &t) == 0) {
+                            t_ok = t > last_t;
+                            this_t = t;
                             if (!(t > last_t)) {
                                 char g[64];
                                 got(v, e, g, sizeof g);
@@ -2364,6 +2408,21 @@ static void check_camera(vctx *v, const cJSON *cam)
                                     err(v, loc_value(v, e), "the view from the keyframe's position "
                                         "to %s is along the camera's up; choose another target, "
                                         "position or up", g);
+                            }
+                            if (kpos_ok && ktarget_ok && t_ok) {
+                                const rbs_vec3 d = {ktarget.x - kpos.x, ktarget.y - kpos.y,
+                                                    ktarget.z - kpos.z};
+                                double at;
+                                if (seg_ok && path_meets_target(prev_d, d, &at))
+                                    err(v, loc_value(v, e),
+                                        "between keyframes %lu and %lu the position passes "
+                                        "through the target (at t = %.9g s, where the camera "
+                                        "would have no view); add a keyframe that goes around it",
+                                        (unsigned long)(i - 1), (unsigned long)i,
+                                        prev_t + at * (this_t - prev_t));
+                                prev_d = d;
+                                prev_t = this_t;
+                                prev_ok = 1;
                             }
                             pop(v, s3);
                         } else {
