@@ -250,6 +250,30 @@ static void test_text_features(void **state)
     rbs_scene_free(sj);
 }
 
+/* A bare description ends at a comment, as every line does (FORMAT.md said
+ * "the rest of the line as written": a probe of session 47); quoted, the
+ * '#' is kept. */
+static void test_text_description_ends_at_a_comment(void **state)
+{
+    static const char *const lines[2] = {"description = ball #3 rolls\n",
+                                         "description = \"ball #3 rolls\"\n"};
+    static const char *const want[2] = {"ball", "ball #3 rolls"};
+    char path[512];
+    int k;
+    (void)state;
+    tmp(path, sizeof path, "config.txt");
+    for (k = 0; k < 2; k++) {
+        rbs_scene *s = NULL;
+        FILE *f = fopen(path, "w");
+        assert_non_null(f);
+        fprintf(f, "%ssteps = 1\nobjects = /dev/null\n", lines[k]);
+        assert_int_equal(fclose(f), 0);
+        assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &s), RBS_OK);
+        assert_string_equal(rbs_scene_description(s), want[k]);
+        rbs_scene_free(s);
+    }
+}
+
 /* Values the loader changes are changed once: a quaternion or normal that is
  * not unit is normalised on load, and then stays exactly as it is. */
 static void test_normalised_once(void **state)
@@ -443,6 +467,7 @@ int main(void)
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
         cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
         cmocka_unit_test(test_save_is_all_or_nothing), cmocka_unit_test(test_negative_zero),
+        cmocka_unit_test(test_text_description_ends_at_a_comment),
     };
     if (enter_test_dir() != 0) {
         return 1;
