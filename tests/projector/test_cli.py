@@ -1148,7 +1148,7 @@ class CliTests(Base):
     def test_a_reel_too_large_says_its_size_and_the_way_out(self):
         # --reel 1048576 (the largest allowed) for 50 bodies under a 1 GB
         # address space: "out of memory or buffer too small" named neither
-        # the size nor what to change (a probe of session 47).
+        # the size nor what to change (a probe of session 46).
         with open(shutil.which(RBSIM) or RBSIM, "rb") as f:
             if b"__asan_init" in f.read():
                 self.skipTest("AddressSanitizer reserves its shadow memory beyond "
@@ -1176,7 +1176,7 @@ class CliTests(Base):
         self.assertIn("end of input: resumed", r.stdout)
         self.assertEqual(self.assert_whole_frames(self.path("a.csv")), 301)
         # standard input that cannot be read (a folder: EISDIR) was taken
-        # for an end of input without a word (a probe of session 47)
+        # for an end of input without a word (a probe of session 46)
         folder = os.open(self.dir, os.O_RDONLY)
         try:
             r = self.rbsim("run", s, "--paused", "--csv", "c.csv", stdin=folder,
@@ -1916,7 +1916,7 @@ class FaultTests(Base):
         # The scene (or the --resume checkpoint) is a FIFO no one writes, or
         # a pipe whose writer stalls: the main thread blocked in open() or
         # read() while the signal thread took the signal, and only SIGKILL
-        # ended the run (a probe of session 47).  Exit 128 + the signal,
+        # ended the run (a probe of session 46).  Exit 128 + the signal,
         # the reading named; nothing written.
         s = self.scene()
         os.mkfifo(self.path("ff"))

@@ -115,7 +115,7 @@ static void help_lists_every_command(void **state)
 
 /* "help CMD" gives that command's line; an unknown CMD, or two, is
  * refused with the list (the argument was ignored: "help nosuch" listed
- * every command as "help" does; a probe of session 47). */
+ * every command as "help" does; a probe of session 46). */
 static void help_with_a_command_gives_its_line(void **state)
 {
     fixture *f = *state;

@@ -934,7 +934,7 @@ static void destroy_while_running(void **state)
 /* "status" of an endless run names no last frame (it read "frame 11584 of
  * 0": the steps an endless run ignores), and "status 3" is refused (the
  * argument was ignored, where quit, pause and resume refuse theirs): a
- * probe of session 47. */
+ * probe of session 46. */
 static void status_of_an_endless_run_and_its_argument(void **state)
 {
     fixture fx;

@@ -161,7 +161,7 @@ def test_stop_run_ends_cleanly():
         if frame.number == 25:
             raise rbsim.StopRun
 
-    # (steps with endless=True were ignored, silently: a probe of session 47)
+    # (steps with endless=True were ignored, silently: a probe of session 46)
     with pytest.raises(rbsim.InvalidError, match=r"steps: 10 with endless=True, which "
                        r"runs until quit or StopRun and would ignore it"):
         w.run(10, endless=True, renderers=[until])
@@ -284,7 +284,7 @@ def test_start_with_commands():
         run.finished(0.01)
     assert run.status().captured == 1  # paused after frame 0
     # run.paused = False and run.speed = 2 made Python attributes the
-    # projector never read, a silent no-op (a probe of session 47)
+    # projector never read, a silent no-op (a probe of session 46)
     for name, value in [("paused", False), ("speed", 2.0)]:
         with pytest.raises(AttributeError, match=r"Run has no settable attribute %r: "
                            r"steer a run with command" % name):

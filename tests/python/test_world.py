@@ -118,7 +118,7 @@ def test_only_the_settable_settings_can_be_set():
     """world.slop = 1e-3 (or restitution, max_sweeps, a typo such as
     world.mehtod = "rk4", or world.step = 5 over a method) made a plain
     Python attribute the simulation never read: the run went on with the
-    old value and nothing said so (a probe of session 47).  It is an
+    old value and nothing said so (a probe of session 46).  It is an
     AttributeError naming the settable ones, and the world is unchanged."""
     w = make_world()
     before = w.settings

@@ -368,7 +368,7 @@ static const bad_case cases[] = {
      {E("\"bal\"", 1, 0,
         "renderers[0].camera.mount: no sphere named \"bal\" (did you mean \"ball\"?)")}},
     /* position and target of a mounted camera were refused only by the sdl
-     * renderer's check, at the renderer entry (a probe of session 47) */
+     * renderer's check, at the renderer entry (a probe of session 46) */
     {"bad/camera_mounted_position.json", RBS_E_SCENE,
      {E("\"position\": [1", 1, 0,
         "renderers[0].views[0].position: not used by a mounted camera (it looks at the body "
@@ -378,7 +378,7 @@ static const bad_case cases[] = {
         "from \"offset\")")}},
     /* a path through its target between keyframes passed, and the sdl
      * renderer stopped the run at the frame where they met (a probe of
-     * session 47); one that passes 0.5 mm beside it is fine */
+     * session 46); one that passes 0.5 mm beside it is fine */
     {"bad/camera_path_through_target.json", RBS_E_SCENE,
      {E("\"target\": [1, 0.001, 1]", 1, 10,
         "renderers[0].camera.path[2].target: between keyframes 1 and 2 the position passes "
@@ -703,7 +703,7 @@ static void test_error_limit(void **state)
 /* A camera path of more than 100000 keyframes is refused by the scene at
  * the path (it passed, and the sdl renderer refused it at the entry's
  * column: "renderers[0] (sdl): camera.path: at most 100000 keys"; a probe
- * of session 47); 100000 pass. */
+ * of session 46); 100000 pass. */
 static void test_camera_path_keyframe_limit(void **state)
 {
     static const char head[] =

@@ -251,7 +251,7 @@ static void test_text_features(void **state)
 }
 
 /* A bare description ends at a comment, as every line does (FORMAT.md said
- * "the rest of the line as written": a probe of session 47); quoted, the
+ * "the rest of the line as written": a probe of session 46); quoted, the
  * '#' is kept. */
 static void test_text_description_ends_at_a_comment(void **state)
 {

@@ -331,7 +331,7 @@ class Run(_Handle):
     def __setattr__(self, name: str, value: Any) -> None:
         # A Run has no settable attribute: run.speed = 2 or run.paused =
         # False made a plain Python attribute the projector never read (a
-        # silent no-op, a probe of session 47).  Commands steer a run.
+        # silent no-op, a probe of session 46).  Commands steer a run.
         if not name.startswith("_"):
             raise AttributeError(
                 "Run has no settable attribute %r: steer a run with command(...) "
