@@ -483,7 +483,8 @@ class World(_Handle):
         gravity_mode: "acceleration" (default) or "force".
         restitution: fallback coefficient of restitution in [0, 1].
         method: one of :data:`METHODS` (default "auto": "soft" from
-                64 moving spheres on without mutual gravity, else "euler";
+                64 moving spheres on without mutual gravity and with
+                their masses within a ratio of 1e4, else "euler";
                 see :attr:`World.method_in_use`).
         tolerance: the adaptive method's error tolerance (>= 1e-15).
         slop: allowed overlap relative to the smaller radius of a pair,

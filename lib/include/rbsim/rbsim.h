@@ -134,7 +134,9 @@ typedef enum rbs_method {
                                    restitution pass (piles; docs/methods.md) */
     RBS_METHOD_AUTO = 7,      /**< (default) chosen at each step from the world:
                                    RBS_METHOD_SOFT when at least
-                                   RBS_METHOD_AUTO_SOFT_BODIES spheres move and
+                                   RBS_METHOD_AUTO_SOFT_BODIES spheres move,
+                                   their masses within a ratio of
+                                   RBS_METHOD_AUTO_SOFT_MASS_RATIO, and
                                    there is no mutual gravity, else
                                    RBS_METHOD_EULER -- bit for bit the method
                                    chosen (rbs_world_method_in_use) */
@@ -147,6 +149,13 @@ typedef enum rbs_method {
  * from it on Euler's global rollback costs 4x to 50x the soft step on a pile
  * (docs/methods.md, "auto"). */
 #define RBS_METHOD_AUTO_SOFT_BODIES 64
+/** ... and only while the moving spheres' largest mass is at most this many
+ * times their smallest: soft sinks a contact by its load over
+ * m_eff omega^2, so a heavy ball crushes a light one (1e9 kg on 1 kg) and a
+ * heavy-on-light pair settles only to about this ratio at the default
+ * sub-steps; beyond it RBS_METHOD_AUTO keeps RBS_METHOD_EULER, which holds
+ * such stacks (docs/methods.md, "auto"). */
+#define RBS_METHOD_AUTO_SOFT_MASS_RATIO 10000
 
 /** Name of a method ("euler", ...), or NULL when out of range. */
 RBS_API const char *rbs_method_name(rbs_method method);

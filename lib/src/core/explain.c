@@ -112,6 +112,10 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
                 (unsigned)moving, (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);
         else if (w->def.mutual_gravity)
             put(&t, "  auto: euler, since there is mutual gravity\n");
+        else if (moving >= RBS_METHOD_AUTO_SOFT_BODIES)
+            put(&t, "  auto: euler, since the moving spheres' masses span a ratio of %.3g (soft only within "
+                    "%g: it sinks a heavy sphere into a light one by its load)\n",
+                p.mass_ratio, (double)RBS_METHOD_AUTO_SOFT_MASS_RATIO);
         else
             put(&t, "  auto: euler, since %u sphere%s move%s (soft from %u on)\n", (unsigned)moving,
                 moving == 1 ? "" : "s", moving == 1 ? "s" : "", (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);

@@ -121,6 +121,9 @@ typedef struct rbs__plan {
                          and another sphere (from the bodies alone, never
                          pruned; the soft layout and event's scope read it) */
     double min_radius; /* smallest sphere radius (0 if none), m */
+    double mass_ratio; /* the moving spheres' largest mass over their
+                          smallest (1 with none; from the bodies alone,
+                          never pruned): RBS_METHOD_AUTO's second test */
     int applied;       /* some moving sphere has an applied force or torque
                           (not a stage: never set by pruning off) */
     rbs_method method; /* the method a step takes (RBS_METHOD_AUTO resolved;
