@@ -811,18 +811,38 @@ static void destroy(void *instance)
 /* command                                                                   */
 /* ------------------------------------------------------------------------- */
 
-/* Parse exactly n numbers after the command word; 0 on success. */
-static int numbers(const char *s, double *out, int n)
+/* Parse exactly n numbers after the command word by the rule the
+ * projector's "speed" uses: each a whole word strtod reads in the "C" locale,
+ * decimal only (not "0x2", "inf", "nan", "1,5"), finite and in range.
+ * Returns 0 on success, -1 when the count of words is not n, and 1 when a
+ * word is not such a number: *bad and *bad_len then name it.  (strtod took
+ * "zoom 0x2" as 2 and "orbit inf 0" as infinity: a probe of session 46.) */
+static int numbers(const char *s, double *out, int n, const char **bad, int *bad_len)
 {
     int i;
-    char *end;
-    for (i = 0; i < n; i++) {
-        out[i] = strtod(s, &end);
-        if (end == s) return -1;
-        s = end;
+    for (i = 0;; i++) {
+        const char *w;
+        char word[64], *end;
+        size_t len;
+        double x;
+        while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+        if (*s == '\0') return i == n ? 0 : -1;
+        w = s;
+        while (*s != '\0' && *s != ' ' && *s != '\t' && *s != '\r' && *s != '\n') s++;
+        len = (size_t)(s - w);
+        if (i >= n) return -1;
+        *bad = w;
+        *bad_len = len > 200 ? 200 : (int)len;
+        if (len >= sizeof word) return 1;
+        memcpy(word, w, len);
+        word[len] = '\0';
+        errno = 0;
+        x = strtod(word, &end);
+        if (end == word || *end != '\0' || errno != 0 || !isfinite(x) ||
+            strpbrk(word, "xXpP") != NULL)
+            return 1;
+        out[i] = x;
     }
-    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
-    return *s == '\0' ? 0 : -1;
 }
 
 static rbs_status command(void *instance, const char *line, char *out, size_t outlen)
@@ -834,6 +854,8 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
     char word[16], reply[400];
     size_t n = 0;
     double a[2] = {0.0, 0.0};
+    const char *bad = "";
+    int bad_len = 0, got = 0;
     rbs_status st;
     rbsf__camera *cam;
     if (r == NULL || line == NULL) return RBS_E_INVALID;
@@ -849,11 +871,11 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
     /* Check the arguments first, then act on the camera under the lock it
      * shares with the window thread. */
     if (strcmp(word, "orbit") == 0 || strcmp(word, "pan") == 0) {
-        if (numbers(line, a, 2) != 0) goto bad_usage;
+        if ((got = numbers(line, a, 2, &bad, &bad_len)) != 0) goto bad_usage;
     } else if (strcmp(word, "zoom") == 0 || strcmp(word, "view") == 0) {
-        if (numbers(line, a, 1) != 0) goto bad_usage;
+        if ((got = numbers(line, a, 1, &bad, &bad_len)) != 0) goto bad_usage;
     } else if (strcmp(word, "reset") == 0 || strcmp(word, "camera") == 0) {
-        if (numbers(line, a, 0) != 0) goto bad_usage;
+        if ((got = numbers(line, a, 0, &bad, &bad_len)) != 0) goto bad_usage;
     } else {
         return RBS_E_NOT_FOUND;
     }
@@ -881,6 +903,14 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
 
 bad_usage:
     if (out != NULL && outlen > 0) {
+        if (got == 1)
+            snprintf(out, outlen, "%s: expected a decimal number, got '%.*s'; ",
+                     word, bad_len, bad);
+        else
+            out[0] = '\0';
+        n = strlen(out);
+        out += n;
+        outlen -= n;
         if (strcmp(word, "view") == 0)
             snprintf(out, outlen, "usage: view N (0..%u)", r->views - 1);
         else if (strcmp(word, "orbit") == 0)

@@ -93,7 +93,8 @@ static void commands_read_c_numbers(void **state)
     assert_int_equal(cls->command(inst, "zoom 1.5", out, sizeof out), RBS_OK);
     assert_string_equal(out, "view 0: zoom: distance 5 m -> 3.33 m");
     assert_int_equal(cls->command(inst, "zoom 1,5", out, sizeof out), RBS_E_INVALID);
-    assert_string_equal(out, "usage: zoom FACTOR (> 0, 2 = twice as close)");
+    assert_string_equal(out, "zoom: expected a decimal number, got '1,5'; "
+                             "usage: zoom FACTOR (> 0, 2 = twice as close)");
     assert_int_equal(cls->command(inst, "pan 0.5 0.25", out, sizeof out), RBS_OK);
     assert_string_equal(out, "view 0: pan: target (0, 0.5, 1.25) m");
     cls->destroy(inst);

@@ -592,6 +592,27 @@ static void test_commands(void **state)
     assert_non_null(strstr(out, "usage: orbit"));
     assert_int_equal(cls->command(inst, "zoom 0", out, sizeof out), RBS_E_INVALID);
     assert_int_equal(cls->command(inst, "zoom x", out, sizeof out), RBS_E_INVALID);
+    /* Numbers by speed's rule: decimal, finite; the reply names the command
+     * and the word (strtod took "zoom 0x2" as 2: a probe of session 46). */
+    {
+        static const char *const words[][2] = {
+            {"zoom 0x2", "zoom: expected a decimal number, got '0x2'; usage: zoom"},
+            {"orbit inf 0", "orbit: expected a decimal number, got 'inf'; usage: orbit"},
+            {"orbit 0 nan", "orbit: expected a decimal number, got 'nan'; usage: orbit"},
+            {"pan 1 infinity", "pan: expected a decimal number, got 'infinity'; usage: pan"},
+            {"pan 0x1p3 0", "pan: expected a decimal number, got '0x1p3'; usage: pan"},
+            {"zoom 1e999", "zoom: expected a decimal number, got '1e999'; usage: zoom"},
+            {"view 0x0", "view: expected a decimal number, got '0x0'; usage: view N"},
+            {"zoom 2x", "zoom: expected a decimal number, got '2x'; usage: zoom"}};
+        size_t k;
+        for (k = 0; k < sizeof words / sizeof words[0]; k++) {
+            assert_int_equal(cls->command(inst, words[k][0], out, sizeof out),
+                             RBS_E_INVALID);
+            if (strncmp(out, words[k][1], strlen(words[k][1])) != 0)
+                fail_msg("'%s' replied '%s'", words[k][0], out);
+        }
+        assert_int_equal(cls->command(inst, "zoom 1e0", out, sizeof out), RBS_OK);
+    }
     assert_int_equal(cls->command(inst, "pan 1 2 3", out, sizeof out), RBS_E_INVALID);
     assert_int_equal(cls->command(inst, "view 1", out, sizeof out), RBS_E_INVALID);
     assert_int_equal(cls->command(inst, "status", out, sizeof out), RBS_E_NOT_FOUND);
