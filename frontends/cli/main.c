@@ -269,6 +269,11 @@ static int check_main(int argc, char **argv)
     const char *path;
     int code = file_args("check", check_text, argc, argv, &path, 1);
     uint32_t i, n;
+#ifdef RBSF_HAVE_SDL
+    /* (the sdl check places its cameras at the world's start) */
+    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture};
+    rbs_renderer_class sdl_cls;
+#endif
 
     if (code != 0)
         return code;
@@ -295,7 +300,8 @@ static int check_main(int argc, char **argv)
     rbs_renderer_register(registry, rbsf_json_class());
     rbs_renderer_register(registry, rbsf_stats_class());
 #ifdef RBSF_HAVE_SDL
-    rbs_renderer_register(registry, rbsf_sdl_class());
+    sdl_cls = rbsf_sdl_class_with(&sdl_api);
+    rbs_renderer_register(registry, &sdl_cls);
 #endif
     n = rbs_scene_renderer_count(scene);
     for (i = 0; i < n; i++) {

@@ -1881,6 +1881,11 @@ int rbsf_run_main(int argc, char **argv)
     rbs_projector *projector = NULL;
     rbs_pool *pool = NULL;
     rbs_renderer_class demo_class;
+#ifdef RBSF_HAVE_SDL
+    /* (the sdl check places its cameras at the world's start) */
+    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture};
+    rbs_renderer_class sdl_cls;
+#endif
     rbsf_demo_results demo_results;
     rbs_renderer_config configs[RBS_RENDERERS_MAX];
     output outs[RBS_RENDERERS_MAX];
@@ -2027,7 +2032,8 @@ int rbsf_run_main(int argc, char **argv)
         goto out;
     }
 #ifdef RBSF_HAVE_SDL
-    if (rbs_renderer_register(registry, rbsf_sdl_class()) != RBS_OK) {
+    sdl_cls = rbsf_sdl_class_with(&sdl_api);
+    if (rbs_renderer_register(registry, &sdl_cls) != RBS_OK) {
         fprintf(stderr, "rbsim: cannot register the sdl renderer\n");
         code = RBSF_EXIT_RUN;
         goto out;

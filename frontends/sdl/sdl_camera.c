@@ -196,6 +196,12 @@ rbs_status rbsf__camera_resolve(rbsf__camera *camera, const rbs_frame *frame,
     return RBS_OK;
 }
 
+int rbsf__camera_from_box(const rbsf__camera_def *def)
+{
+    return def->mode != RBSF__CAMERA_MOUNTED && def->path_count == 0 &&
+           !(def->has_position && def->has_target);
+}
+
 /* Position and target on a path at time t (linear, clamped). */
 static void path_at(const rbsf__camera_def *def, double t, rbs_vec3 *position,
                     rbs_vec3 *target)
@@ -304,10 +310,19 @@ rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,
                 camera->has_last_right ? &camera->last_right : NULL, &out->fwd,
                 &out->right, &out->up);
     if (why != NULL) {
-        snprintf(err, errlen, "%s at frame %llu (from the %s)", why,
-                 (unsigned long long)frame->number,
-                 def->mode == RBSF__CAMERA_MOUNTED ? "mounted body and offset"
-                 : def->path_count > 0 ? "path" : "camera's place");
+        /* A camera placed from the spheres' bounding box says so, and how to
+         * place it instead (it said "from the camera's place", which the
+         * scene never gave: a probe of session 46). */
+        if (rbsf__camera_from_box(def) || camera->track)
+            snprintf(err, errlen, "%s at frame %llu (the %s camera, placed from "
+                     "the spheres' bounding box: give the view a \"position\" "
+                     "and a \"target\")", why, (unsigned long long)frame->number,
+                     camera->track ? "default" : "view's");
+        else
+            snprintf(err, errlen, "%s at frame %llu (from the %s)", why,
+                     (unsigned long long)frame->number,
+                     def->mode == RBSF__CAMERA_MOUNTED ? "mounted body and offset"
+                     : def->path_count > 0 ? "path" : "camera's place");
         return RBS_E_INVALID;
     }
     out->eye = position;

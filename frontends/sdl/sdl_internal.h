@@ -137,6 +137,11 @@ void rbsf__camera_init(rbsf__camera *camera, const rbsf__camera_def *def,
 rbs_status rbsf__camera_resolve(rbsf__camera *camera, const rbs_frame *frame,
                                 char *err, size_t errlen);
 
+/** Nonzero if the camera's position or target is placed from the spheres'
+ * bounding box at the first frame (a fixed or free camera, no path, without
+ * both "position" and "target"). */
+int rbsf__camera_from_box(const rbsf__camera_def *def);
+
 /** The view for a frame (path interpolation, mounted body); resolves first.
  * Returns RBS_E_INVALID (message in err) if the camera cannot be placed. */
 rbs_status rbsf__camera_view(rbsf__camera *camera, const rbs_frame *frame,

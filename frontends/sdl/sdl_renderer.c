@@ -399,18 +399,60 @@ static rbs_status prepare(sdl_instance *r, const rbs_renderer_config *config,
     return RBS_OK;
 }
 
+/* Place each camera that is placed from the spheres' bounding box as the
+ * first frame, the world's start, will place it, and refuse one with no
+ * usable view (spheres near +-1e100 m put it beyond 1e100 m) before the run,
+ * naming the key.  (The run started and stopped at frame 0 with exit 4, and
+ * "rbsim check" passed the scene: a probe of session 46.) */
+static rbs_status cameras_fit(const sdl_instance *r, const rbsf_sdl_world_api *api,
+                              const rbs_world *world, char *err, size_t errlen)
+{
+    rbs_state_view sv;
+    rbs_frame frame;
+    rbsf__camera cam;
+    rbsf__view view;
+    char why[400], msg[440];
+    uint32_t v, cap;
+    rbs_status st = RBS_OK;
+    /* (without the library's functions, or a world, the first frame checks) */
+    if (api == NULL || api->state == NULL || api->capture == NULL || world == NULL)
+        return RBS_OK;
+    if ((st = api->state(world, &sv)) != RBS_OK)
+        return say(err, errlen, st, "cannot read the world's start");
+    cap = sv.slots > 0 ? sv.slots : 1;
+    memset(&frame, 0, sizeof frame);
+    frame.bodies = (rbs_frame_body *)calloc(cap, sizeof *frame.bodies);
+    if (frame.bodies == NULL) return say(err, errlen, RBS_E_MEMORY, "out of memory");
+    if ((st = api->capture(world, &frame, cap)) != RBS_OK) {
+        free(frame.bodies);
+        return say(err, errlen, st, "cannot read the world's start");
+    }
+    for (v = 0; v < r->cfg.view_count && st == RBS_OK; v++) {
+        const rbsf__camera_def *def = &r->cfg.cameras[v];
+        if (!rbsf__camera_from_box(def)) continue;
+        rbsf__camera_init(&cam, def, !r->cfg.camera_given);
+        if (rbsf__camera_view(&cam, &frame, r->cfg.width, r->cfg.height, &view, why,
+                              sizeof why) != RBS_OK) {
+            snprintf(msg, sizeof msg, "view %u: %s", v, why);
+            st = say(err, errlen, RBS_E_INVALID, msg);
+        }
+    }
+    free(frame.bodies);
+    return st;
+}
+
 static rbs_status check(void *context, const rbs_renderer_config *config,
                         const rbs_world *world, char *err, size_t errlen)
 {
     sdl_instance *r;
     rbs_status st;
-    (void)context;
-    (void)world;
     if (config == NULL)
         return say(err, errlen, RBS_E_INVALID, "config: NULL");
     r = (sdl_instance *)calloc(1, sizeof *r);
     if (r == NULL) return say(err, errlen, RBS_E_MEMORY, "out of memory");
     st = prepare(r, config, err, errlen);
+    if (st == RBS_OK)
+        st = cameras_fit(r, (const rbsf_sdl_world_api *)context, world, err, errlen);
     destroy(r);
     return st;
 }
@@ -1003,3 +1045,10 @@ static const rbs_renderer_class kSdlClass = {
 };
 
 const rbs_renderer_class *rbsf_sdl_class(void) { return &kSdlClass; }
+
+rbs_renderer_class rbsf_sdl_class_with(rbsf_sdl_world_api *api)
+{
+    rbs_renderer_class c = kSdlClass;
+    c.context = api;
+    return c;
+}

@@ -23,6 +23,23 @@ extern "C" {
  * it never initialises SDL video when no display is there. */
 const rbs_renderer_class *rbsf_sdl_class(void);
 
+/** What the "sdl" renderer's check needs of the library to place its
+ * cameras at the world's start (the renderer calls no library function
+ * itself): rbs_world_state and rbs_frame_capture. */
+typedef struct rbsf_sdl_world_api {
+    rbs_status (*state)(const rbs_world *world, rbs_state_view *out);
+    rbs_status (*capture)(const rbs_world *world, rbs_frame *frame,
+                          uint32_t bodies_capacity);
+} rbsf_sdl_world_api;
+
+/** rbsf_sdl_class() with api as its context (borrowed: it must outlive the
+ * registry the class is registered in).  Its check then also refuses, before
+ * the run, a camera placed from the spheres' bounding box that has no usable
+ * view at the world's start ("view 0: position: not finite or beyond 1e100 m
+ * at frame 0 (the default camera, ...)"); without it that stops the run at
+ * its first frame. */
+rbs_renderer_class rbsf_sdl_class_with(rbsf_sdl_world_api *api);
+
 #ifdef __cplusplus
 }
 #endif

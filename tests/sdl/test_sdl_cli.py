@@ -320,6 +320,47 @@ class PngPathChecks(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("two sdl outputs both write 'cam1'", r.stderr)
 
+    def test_far_spheres_default_camera(self):
+        # Spheres near +-1e100 m put the default camera (placed from their
+        # bounding box) beyond 1e100 m: the run started and stopped at frame
+        # 0 (exit 4, "position: not finite or beyond 1e100 m ... (from the
+        # camera's place)") and check passed it (a probe of session 46).  Now
+        # run and check refuse it before the run, say it is the default
+        # camera and what to give instead; nothing is written.
+        s = dict(SCENE, simulation={"steps": 2, "dt": 0.01, "gravity": [0, 0, 0]})
+        s["bodies"] = [
+            {"name": "a", "type": "sphere", "radius": 1, "mass": 1,
+             "position": [1e100, 0, 0]},
+            {"name": "b", "type": "sphere", "radius": 1, "mass": 1,
+             "position": [-1e100, 0, 0]}]
+        advice = ("view 0: position: not finite or beyond 1e100 m at frame 0 "
+                  "(the default camera, placed from the spheres' bounding "
+                  "box: give the view a \"position\" and a \"target\")")
+        for renderers, code, extra in (
+                ([{"type": "sdl", "path": "pics", "window": False}], 3, []),
+                (None, 2, ["--png", "pics"])):
+            s.pop("renderers", None)
+            if renderers is not None:
+                s["renderers"] = renderers
+            with open(os.path.join(self.dir, "far.json"), "w") as f:
+                json.dump(s, f)
+            r = self.rbsim("run", "far.json", "--quiet", *extra)
+            self.assertEqual(r.returncode, code, r.stderr)
+            self.assertIn(advice, r.stderr)
+            self.assertNotIn("pics", os.listdir(self.dir))
+            if renderers is not None:
+                r = self.rbsim("check", "far.json")
+                self.assertEqual(r.returncode, 3, r.stdout)
+                self.assertIn("renderers[0] (sdl): " + advice, r.stdout)
+        # given a position and a target, the same spheres run
+        s["renderers"] = [{"type": "sdl", "path": "pics", "window": False,
+                           "camera": {"position": [0, -10, 0],
+                                      "target": [0, 0, 0]}}]
+        with open(os.path.join(self.dir, "far.json"), "w") as f:
+            json.dump(s, f)
+        r = self.rbsim("run", "far.json", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+
 
 if __name__ == "__main__":
     loader = unittest.defaultTestLoader
