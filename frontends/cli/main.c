@@ -495,28 +495,19 @@ static int convert_main(int argc, char **argv)
 
 /* A closed standard descriptor would be reused by the next open(): an
  * output file would become "standard input".  Put /dev/null at a closed
- * standard input or error, and at a closed standard output the write end of
- * a pipe with no reader, so that what the command prints there fails
- * (EPIPE, with SIGPIPE ignored) and is reported as lost, as on a full disk,
- * rather than vanishing into /dev/null. */
+ * standard input or error, and at a closed standard output /dev/null opened
+ * for reading only, so that what the command prints there fails with EBADF
+ * ("Bad file descriptor": the descriptor was closed) and is reported as
+ * lost, as on a full disk, rather than vanishing into /dev/null.  (It was
+ * the write end of a pipe with no reader, and the message said "Broken
+ * pipe" for a descriptor the user had closed: a probe of session 46.) */
 static void guard_standard_fds(void)
 {
     int fd;
     for (fd = 0; fd <= 2; fd++) {
-        int p[2];
         if (fcntl(fd, F_GETFD) != -1)
             continue;
-        if (fd == 1 && pipe(p) == 0) {
-            /* (fd 0 is open by now: the pipe takes 1 and another) */
-            if (dup2(p[1], 1) != 1)
-                break;
-            if (p[0] != 1)
-                close(p[0]);
-            if (p[1] != 1)
-                close(p[1]);
-            continue;
-        }
-        if (open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY) != fd)
+        if (open("/dev/null", fd == 2 ? O_WRONLY : O_RDONLY) != fd)
             break;
     }
 }

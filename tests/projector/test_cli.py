@@ -1658,7 +1658,18 @@ class FaultTests(Base):
                            timeout=120,
                            preexec_fn=lambda: os.close(1))
         self.assertEqual(r.returncode, 4)
-        self.assertIn("standard output was lost", r.stderr)
+        # it says the descriptor is closed (it said "Broken pipe", from the
+        # pipe with no reader put there: a probe of session 46)
+        self.assertEqual(r.stderr, "rbsim: what it printed on the standard "
+                         "output was lost: Bad file descriptor\n")
+        for dump in ("--csv", "--json", "--stats"):
+            r = subprocess.run([RBSIM, "run", s, dump, "-"],
+                               stdin=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True, cwd=self.dir, timeout=120,
+                               preexec_fn=lambda: os.close(1))
+            self.assertEqual(r.returncode, 4, dump)
+            self.assertIn("write to '-' failed: Bad file descriptor", r.stderr, dump)
+            self.assertNotIn("Broken pipe", r.stderr, dump)
         # a failing command keeps its own code, and is told: check's errors
         # go to the standard output, so nothing at all was said
         with open("/dev/full", "w") as full:
