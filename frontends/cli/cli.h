@@ -105,6 +105,9 @@ int rbsf_help(FILE *out, const char *command);
  * fails knows the reason (errno), so a command that flushes calls this and
  * not fflush. */
 int rbsf_flush_stdout(void);
+/** The path to read a scene argument from: "/dev/stdin" for "-" (standard
+ * input, as most tools take it), else the argument itself. */
+const char *rbsf_scene_arg(const char *arg);
 /** The stepping methods the library knows, as "euler, selective, ... or
  * soft" (from rbs_method_name, so a new method is named in every message);
  * cut short if it does not fit in size bytes. */

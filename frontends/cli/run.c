@@ -169,12 +169,12 @@ static int parse_run_args(int argc, char **argv, run_options *o)
             if (o->scene != NULL)
                 return usage_error("one scene at most, got '%s' and '%s'",
                                    o->scene, a);
-            o->scene = a;
+            o->scene = rbsf_scene_arg(a);
             continue;
         }
         if (strcmp(a, "--") == 0) {
             if (i + 1 < argc && o->scene == NULL)
-                o->scene = argv[++i];
+                o->scene = rbsf_scene_arg(argv[++i]);
             if (i + 1 < argc)
                 return usage_error("unexpected argument '%s'%s", argv[i + 1], "");
             break;

@@ -1544,8 +1544,9 @@ class CliTests(Base):
         self.assertEqual(p.returncode, 0, out + err)
         with open(self.path("fifo.csv"), "rb") as f:
             self.assertEqual(f.read(), want)
-        # a config.txt through a pipe: its files are looked for beside
-        # /dev/stdin, and the error says so
+        # a config.txt through a pipe: its files are looked for in the
+        # current folder (they were looked for in /dev: a probe of session
+        # 46), and the error says so
         os.mkdir(self.path("txt"))
         r = self.rbsim("convert", s, self.path("txt/config.txt"))
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -1553,8 +1554,12 @@ class CliTests(Base):
             config = f.read()
         r = self.rbsim("check", "/dev/stdin", stdin=None, input=config)
         self.assertEqual(r.returncode, 3)
-        self.assertIn("'/dev/stdin' is a pipe or device: the file names in it "
-                      "are looked for beside that path", r.stdout)
+        self.assertIn("'/dev/stdin' is a descriptor: the file names in it "
+                      "are looked for in the current folder", r.stdout)
+        r = subprocess.run([RBSIM, "check", "/dev/stdin"], input=config,
+                           capture_output=True, text=True, timeout=120,
+                           cwd=self.path("txt"))
+        self.assertEqual(r.returncode, 0, r.stdout)
         # a stream without end is refused at the size limit
         with open("/dev/zero", "rb") as zero:
             r = self.rbsim("check", "/dev/stdin", stdin=zero, timeout=60)
@@ -1608,6 +1613,43 @@ class CliTests(Base):
                           % args[0].split("=")[0], r.stderr)
             self.assertEqual(r.stdout, "")
         self.assertEqual(os.listdir(self.dir), [])
+
+    def test_dash_is_standard_input(self):
+        # "-" for the scene is standard input, as for most tools ("rbsim run
+        # -" said "cannot open '-'": a probe of session 46), taken as
+        # /dev/stdin: the format is told from the bytes (JSON or text), and
+        # no commands are read from it.
+        s = self.scene()
+        want = self.rbsim("run", s, "--csv", "-", "--quiet")
+        self.assertEqual(want.returncode, 0, want.stderr)
+        with open(s) as f:
+            text = f.read()
+        r = self.rbsim("run", "-", "--csv", "-", stdin=None, input=text)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout, want.stdout)
+        self.assertIn("standard input is the scene: no commands", r.stderr)
+        # a text scene through the pipe too
+        self.assertEqual(self.rbsim("convert", s, "scene.txt").returncode, 0)
+        with open(self.path("scene.txt")) as f:
+            r = self.rbsim("run", "-", "--csv", "-", "--quiet", stdin=f)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout, want.stdout)
+        for cmd in ("check", "explain"):
+            r = self.rbsim(cmd, "-", stdin=None, input=text)
+            self.assertEqual(r.returncode, 0, (cmd, r.stdout, r.stderr))
+            self.assertIn("/dev/stdin", r.stdout)
+        r = self.rbsim("check", "-", stdin=None, input="{\"bodies\": 3}")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("/dev/stdin:1:", r.stdout)
+        r = self.rbsim("convert", "-", "back.json", stdin=None, input=text)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", "back.json", "--csv", "-", "--quiet")
+        self.assertEqual(r.stdout, want.stdout)
+        # OUT '-' is refused, naming why (it said "cannot tell the format")
+        r = self.rbsim("convert", s, "-")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("OUT '-': the converted scene cannot go to standard "
+                      "output", r.stderr)
 
 
 class FaultTests(Base):

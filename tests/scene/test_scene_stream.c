@@ -214,19 +214,20 @@ static void test_text_from_pipe(void **state)
     assert_string_equal(got, want);
     assert_true(got_hash == want_hash);
 
-    /* /dev/fd/N: the names resolve in /dev/fd, and the error says why */
+    /* /dev/fd/N: the names resolve in the current folder (they did in
+     * /dev/fd: a probe of session 46), and the error says why */
     w.fifo = NULL;
     w.written = 0;
     assert_int_equal(load_from_pipe(&w, dev, sizeof dev, &scene), RBS_E_IO);
     assert_int_equal(rbs_scene_error_get(scene, 0, &e), RBS_OK);
     assert_string_equal(e.message,
-                        "cannot open '/dev/fd/materials.txt': No such file or directory");
+                        "cannot open 'materials.txt': No such file or directory");
     assert_int_equal(e.line, 16); /* "materials = materials.txt" */
     assert_int_equal(rbs_scene_error_get(scene, 1, &e), RBS_OK);
     snprintf(path, sizeof path,
-             "'%s' is a pipe or device: the file names in it are looked for "
-             "beside that path; name the files by absolute paths, or load the "
-             "config.txt file itself",
+             "'%s' is a descriptor: the file names in it are looked for in "
+             "the current folder; run from the scene's folder, name the files "
+             "by absolute paths, or load the config.txt file itself",
              dev);
     assert_string_equal(e.message, path);
     assert_int_equal(e.line, 16);

@@ -910,13 +910,24 @@ static void load_objects(tctx *t, cJSON *bodies)
     }
 }
 
-/* Resolve a file named in config.txt against config.txt's folder. */
+/* Whether path names a descriptor rather than a file in a folder. */
+static int is_descriptor(const char *path)
+{
+    return strcmp(path, "/dev/stdin") == 0 || strncmp(path, "/dev/fd/", 8) == 0 ||
+           strncmp(path, "/proc/self/fd/", 14) == 0;
+}
+
+/* Resolve a file named in config.txt against config.txt's folder; for a
+ * config.txt read from a descriptor (/dev/stdin, /dev/fd/N, /proc/self/fd/N:
+ * "rbsim run -" reads /dev/stdin) against the current folder, where the
+ * user's files are (it looked for "/dev/materials.txt": a probe of session
+ * 46). */
 static char *beside(const char *config, const char *name)
 {
     const char *slash = strrchr(config, '/');
     size_t d = slash != NULL ? (size_t)(slash - config) + 1 : 0, n = strlen(name);
     char *out;
-    if (name[0] == '/') {
+    if (name[0] == '/' || is_descriptor(config)) {
         d = 0;
     }
     out = malloc(d + n + 1);
@@ -963,13 +974,21 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
     st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len, NULL);
     if (st == RBS_E_IO && t->stream && relative && access(path, F_OK) != 0) {
         /* A config given through a pipe works when its relative names lie
-         * beside the pipe's own path (a FIFO in the scene's folder); through
-         * /dev/stdin or /dev/fd/N they cannot, so say why. */
-        rbs__scene_error(t->scene, tloc(t, line_off), "",
-                         "'%s' is a pipe or device: the file names in it are looked "
-                         "for beside that path; name the files by absolute paths, or "
-                         "load the config.txt file itself",
-                         config);
+         * beside the pipe's own path (a FIFO in the scene's folder), or,
+         * through /dev/stdin or /dev/fd/N, in the current folder: say why. */
+        if (is_descriptor(config))
+            rbs__scene_error(t->scene, tloc(t, line_off), "",
+                             "'%s' is a descriptor: the file names in it are looked "
+                             "for in the current folder; run from the scene's folder, "
+                             "name the files by absolute paths, or load the config.txt "
+                             "file itself",
+                             config);
+        else
+            rbs__scene_error(t->scene, tloc(t, line_off), "",
+                             "'%s' is a pipe or device: the file names in it are looked "
+                             "for beside that path; name the files by absolute paths, or "
+                             "load the config.txt file itself",
+                             config);
     }
     free(path);
     if (st != RBS_OK) {
