@@ -297,11 +297,15 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         } else if (strcmp(name, "--checkpoint") == 0) {
             o->checkpoint = value;
         } else if (strcmp(name, "--resume") == 0) {
-            o->resume = value;
+            o->resume = rbsf_scene_arg(value); /* "-": standard input too */
         } else {
             o->png = value;
         }
     }
+    if (o->resume != NULL && o->scene != NULL && strcmp(o->resume, "/dev/stdin") == 0 &&
+        strcmp(o->scene, "/dev/stdin") == 0)
+        return usage_error("the scene and --resume cannot both be standard "
+                           "input ('%s')%s", "-", "");
     if (o->checkpoint_every && !o->checkpoint)
         return usage_error("--checkpoint-every needs --checkpoint FILE%s%s", "",
                            "");

@@ -1645,6 +1645,44 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         r = self.rbsim("run", "back.json", "--csv", "-", "--quiet")
         self.assertEqual(r.stdout, want.stdout)
+        # nothing on standard input (or a blank file not named *.json): said
+        # so, where it said 'missing "objects = FILE"'
+        for kw in ({}, {"stdin": None, "input": " \n"}):
+            r = self.rbsim("run", "-", **kw)
+            self.assertEqual(r.returncode, 3, r.stderr)
+            self.assertEqual(r.stderr, "/dev/stdin:1:1: empty input: expected a "
+                             "scene (a JSON object, or the lines of a "
+                             "config.txt)\n")
+        with open(self.path("blank.txt"), "w") as f:
+            f.write(" \n\n")
+        r = self.rbsim("check", "blank.txt")
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("blank.txt:1:1: empty input: expected a scene", r.stdout)
+        # a config.txt redirected from a file: its files come from the
+        # current folder, and the error says so
+        os.mkdir(self.path("elsewhere"))
+        with open(self.path("scene.txt")) as f:
+            r = subprocess.run([RBSIM, "check", "-"], stdin=f,
+                               capture_output=True, text=True, timeout=120,
+                               cwd=self.path("elsewhere"))
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("'/dev/stdin' is a descriptor: the file names in it are "
+                      "looked for in the current folder", r.stdout)
+        # --resume - reads the checkpoint from standard input; not both
+        r = self.rbsim("run", s, "--steps", "3", "--checkpoint", "ck.bin",
+                       "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.path("ck.bin"), "rb") as f:
+            r = subprocess.run([RBSIM, "run", s, "--resume", "-", "--csv", "-",
+                                "--quiet"], stdin=f, capture_output=True,
+                               cwd=self.dir, timeout=120)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(want.stdout.endswith(
+            r.stdout.decode().split("\n", 1)[1]))
+        r = self.rbsim("run", "-", "--resume", "-", stdin=None, input=text)
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("the scene and --resume cannot both be standard input",
+                      r.stderr)
         # OUT '-' is refused, naming why (it said "cannot tell the format")
         r = self.rbsim("convert", s, "-")
         self.assertEqual(r.returncode, 2)

@@ -366,6 +366,16 @@ static int ends_with(const char *s, const char *suffix)
 /* The first byte after blanks (and a UTF-8 byte order mark) is '{': a JSON
  * scene, whatever its name.  A text scene's first line is a comment or
  * "key = value". */
+/* Whether text holds nothing but blanks (and a UTF-8 byte order mark). */
+static int is_blank(const char *text, size_t len)
+{
+    size_t i = len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (i < len &&
+           (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
+        i++;
+    return i == len;
+}
+
 static int starts_like_json(const char *text, size_t len)
 {
     size_t i = 0;
@@ -425,7 +435,18 @@ static rbs_status scene_load(const char *path, rbs_scene_format format, rbs_scen
     }
     scene->file_read[0] = 1;
     status = rbs__read_file(scene, path, at, &text, &len, &stream);
-    if (status == RBS_OK) {
+    if (status == RBS_OK && format == RBS_SCENE_AUTO && is_blank(text, len) &&
+        !ends_with(path, ".json") && !ends_with(path, ".JSON")) {
+        /* Nothing to tell the format by (an empty pipe, a closed standard
+         * input: "rbsim run -" with nothing piped): say so, where it said
+         * "missing objects = FILE" as for a config.txt without that line (a
+         * probe of session 46). */
+        rbs__loc first = {0, 1, 1};
+        rbs__scene_error(scene, first, "",
+                         "empty input: expected a scene (a JSON object, or the "
+                         "lines of a config.txt)");
+        free(text);
+    } else if (status == RBS_OK) {
         if (format == RBS_SCENE_AUTO) {
             format = ends_with(path, ".json") || ends_with(path, ".JSON") ||
                              starts_like_json(text, len)

@@ -972,7 +972,8 @@ static rbs_status load_sub(tctx *t, const char *config, const cJSON *name_item,
     }
     t->scene->file_read[file] = 1;
     st = rbs__read_file(t->scene, path, tloc(t, line_off), &texts[file], &len, NULL);
-    if (st == RBS_E_IO && t->stream && relative && access(path, F_OK) != 0) {
+    if (st == RBS_E_IO && (t->stream || is_descriptor(config)) && relative &&
+        access(path, F_OK) != 0) {
         /* A config given through a pipe works when its relative names lie
          * beside the pipe's own path (a FIFO in the scene's folder), or,
          * through /dev/stdin or /dev/fd/N, in the current folder: say why. */
