@@ -134,7 +134,8 @@ static const char explain_text[] =
     "method and its sub-steps, and each stage in or out with the reason.\n"
     "--method M explains the scene with another method (euler, selective,\n"
     "event, verlet, rk4, adaptive, soft, auto; for auto it says which one it\n"
-    "takes and why).  Exit 0, 2 (usage) or 3 (scene error).\n";
+    "takes and why; one the scene cannot take is a usage error, as in run).\n"
+    "Exit 0, 2 (usage) or 3 (scene error).\n";
 
 static const char convert_text[] =
     "usage: rbsim convert IN OUT\n"
@@ -403,11 +404,21 @@ static int explain_main(int argc, char **argv)
         return RBSF_EXIT_USAGE;
     }
     st = rbs_scene_load(path, RBS_SCENE_AUTO, &scene);
-    if (st == RBS_OK && method != NULL)
-        st = rbs_scene_override(scene, 0, 0.0, method);
     if (st != RBS_OK) {
         print_load_errors(scene, path, st);
         code = RBSF_EXIT_SCENE;
+        goto out;
+    }
+    /* A --method the scene cannot take ("event" with rolling resistance) is
+     * the option's fault, as in run: on stderr, exit 2 (it was exit 3 on
+     * stdout, as a scene error: a probe of session 46). */
+    if (method != NULL && (st = rbs_scene_override(scene, 0, 0.0, method)) != RBS_OK) {
+        if (rbs_scene_error_count(scene) > 0)
+            rbsf_print_scene_errors(scene, stderr);
+        else
+            fprintf(stderr, "rbsim explain: cannot apply --method: %s\n",
+                    rbs_status_string(st));
+        code = RBSF_EXIT_USAGE;
         goto out;
     }
     st = rbs_scene_build(scene, &world);
