@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* A macro's value as a string literal (the help texts quote the library's
@@ -140,9 +141,10 @@ static const char explain_text[] =
 static const char convert_text[] =
     "usage: rbsim convert IN OUT\n"
     "\n"
-    "Read the scene IN (either format) and write it to OUT: JSON when OUT ends\n"
-    "in .json, the config.txt format (with materials.txt and objects.txt\n"
-    "beside it) when OUT ends in .txt.  Every file is written to a temporary\n"
+    "Read the scene IN (either format; - is standard input) and write it to\n"
+    "OUT: JSON when OUT ends in .json (or .JSON), the config.txt format (with\n"
+    "materials.txt and objects.txt beside it) when OUT ends in .txt; OUT - is\n"
+    "refused (no file to rename into place).  Every file is written to a temporary\n"
     "and renamed into place only when all are complete: a failed convert\n"
     "leaves what was there and names the file that failed and why.  A folder,\n"
     "device or FIFO is never replaced, nor a file IN was read from (IN itself,\n"
@@ -474,15 +476,26 @@ static int convert_main(int argc, char **argv)
                 "standard output; name a file (*.json or a config.txt path)\n");
         return RBSF_EXIT_USAGE;
     }
-    if (ends_with(files[1], ".json"))
+    /* (".JSON" too, as the loader reads it; a folder is named as such, and
+     * its config.txt offered: a probe of session 46 got "cannot tell the
+     * format of 'out'" for an existing folder and of 'x.JSON') */
+    if (ends_with(files[1], ".json") || ends_with(files[1], ".JSON"))
         format = RBS_SCENE_JSON;
     else if (ends_with(files[1], ".txt"))
         format = RBS_SCENE_TEXT;
     else {
-        fprintf(stderr,
-                "rbsim convert: cannot tell the format of '%s': name it *.json "
-                "or a config.txt path\n",
-                files[1]);
+        struct stat sb;
+        if (stat(files[1], &sb) == 0 && S_ISDIR(sb.st_mode))
+            fprintf(stderr,
+                    "rbsim convert: OUT '%s' is a folder: name '%s%sconfig.txt' "
+                    "for the config.txt format, or a *.json file\n",
+                    files[1], files[1],
+                    ends_with(files[1], "/") ? "" : "/");
+        else
+            fprintf(stderr,
+                    "rbsim convert: cannot tell the format of '%s': name it "
+                    "*.json or a config.txt path\n",
+                    files[1]);
         return RBSF_EXIT_USAGE;
     }
     st = rbs_scene_load(files[0], RBS_SCENE_AUTO, &scene);

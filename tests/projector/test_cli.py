@@ -1379,10 +1379,24 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         r = self.rbsim("check", self.path("txt/config.txt"))
         self.assertEqual(r.returncode, 0, r.stdout)
+        # its objects file given for the scene says what it seems to be (it
+        # said only "expected key = value": a probe of session 46)
+        r = self.rbsim("check", self.path("txt/objects.txt"))
+        self.assertEqual(r.returncode, 3)
+        self.assertIn("(a body line: this looks like an objects file; give the "
+                      "config.txt that names it)", r.stdout)
         r = self.rbsim("convert", self.path("txt/config.txt"),
                        self.path("back.json"))
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(self.rbsim("convert", s, "x.yaml").returncode, 2)
+        # ".JSON" as the loader reads it; a folder named as such (both said
+        # "cannot tell the format": a probe of session 46)
+        self.assertEqual(self.rbsim("convert", s, "up.JSON").returncode, 0)
+        r = self.rbsim("convert", s, "txt")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr, "rbsim convert: OUT 'txt' is a folder: name "
+                         "'txt/config.txt' for the config.txt format, or a "
+                         "*.json file\n")
         self.assertEqual(self.rbsim("convert", s).returncode, 2)
         self.assertEqual(self.rbsim("convert", self.path("nope.json"),
                                     "o.json").returncode, 3)

@@ -1028,7 +1028,7 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
     rbs__loc none = {0, 0, 0};
     rbs_status st = RBS_OK, st2;
     int32_t k;
-    int config_unreadable;
+    int config_unreadable, body_hinted = 0;
     memset(srcs, 0, sizeof srcs);
     memset(&map, 0, sizeof map);
     memset(&t, 0, sizeof t);
@@ -1085,9 +1085,20 @@ rbs_status rbs__text_load(rbs_scene *scene, const char *path, char *text, size_t
             i++;
         }
         if (i >= e || s[i] != '=') {
+            /* A body line ("sphere NAME") says what the file seems to be: an
+             * objects file given where its config.txt belongs (a probe of
+             * session 46: "rbsim check pile/objects.txt" said only "expected
+             * key = value" for every line). */
+            int body = !body_hinted &&
+                       ((key_len == 6 && strncmp(s + key_off, "sphere", 6) == 0) ||
+                        (key_len == 5 && strncmp(s + key_off, "plane", 5) == 0));
+            body_hinted |= body; /* (once) */
             rbs__scene_error(scene, tloc(&t, key_off), "",
-                             "expected \"key = value\", got \"%.*s\"",
-                             (int)((e - key_off) < 40 ? (e - key_off) : 40), s + key_off);
+                             "expected \"key = value\", got \"%.*s\"%s",
+                             (int)((e - key_off) < 40 ? (e - key_off) : 40), s + key_off,
+                             body ? " (a body line: this looks like an objects file; "
+                                    "give the config.txt that names it)"
+                                  : "");
             continue;
         }
         if (key_len == 0) {
