@@ -391,13 +391,25 @@ static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
  * a file it was replaced by rename (what stdout held before, and what came
  * after, lost), failed on a pipe, and escaped the one-output-on-stdout
  * rule. */
+/* fstat of standard output, -1 when it cannot be written: a closed one is
+ * /dev/null opened for reading (main.c), which is no file an output should
+ * be taken for ("--csv /dev/null" with stdout closed was written as "-" and
+ * failed: a probe of session 46). */
+static int stdout_stat(struct stat *b)
+{
+    int fl = fcntl(STDOUT_FILENO, F_GETFL);
+    if (fl == -1 || (fl & O_ACCMODE) == O_RDONLY)
+        return -1;
+    return fstat(STDOUT_FILENO, b);
+}
+
 static int is_stdout(const char *type, const char *path)
 {
     struct stat a, b;
     if (path == NULL || strcmp(path, "-") == 0 ||
         (strcmp(type, "csv") && strcmp(type, "json") && strcmp(type, "stats")))
         return 0;
-    return stat(path, &a) == 0 && fstat(STDOUT_FILENO, &b) == 0 && a.st_dev == b.st_dev &&
+    return stat(path, &a) == 0 && stdout_stat(&b) == 0 && a.st_dev == b.st_dev &&
            a.st_ino == b.st_ino;
 }
 
@@ -1338,7 +1350,7 @@ static int check_checkpoint_path(const char *path, const char *target,
                         "scene%s\n", path, note);
         return RBSF_EXIT_USAGE;
     }
-    if (stat(target, &sb) == 0 && fstat(STDOUT_FILENO, &so) == 0 &&
+    if (stat(target, &sb) == 0 && stdout_stat(&so) == 0 &&
         sb.st_dev == so.st_dev && sb.st_ino == so.st_ino) {
         char use[64];
         snprintf(use, sizeof use, "%s", quiet ? "" : " (the summary goes there)");

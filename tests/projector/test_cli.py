@@ -1766,6 +1766,12 @@ class FaultTests(Base):
             self.assertEqual(r.returncode, 4, dump)
             self.assertIn("write to '-' failed: Bad file descriptor", r.stderr, dump)
             self.assertNotIn("Broken pipe", r.stderr, dump)
+        # ... and /dev/null at the closed descriptor is not taken for "-"
+        r = subprocess.run([RBSIM, "run", s, "--csv", "/dev/null", "--quiet"],
+                           stdin=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                           text=True, cwd=self.dir, timeout=120,
+                           preexec_fn=lambda: os.close(1))
+        self.assertEqual((r.returncode, r.stderr), (0, ""))
         # a failing command keeps its own code, and is told: check's errors
         # go to the standard output, so nothing at all was said
         with open("/dev/full", "w") as full:
