@@ -711,8 +711,12 @@ class World(_Handle):
         # two scene attributes.  Any other (world.slop = 1e-3, a typo such
         # as world.mehtod = "rk4", world.step = 5) made a Python attribute
         # that the simulation never read: a silent no-op.
+        # (A read-only property -- time, gravity, settings -- is refused
+        # here too, so its message names the settable ones as well; Python's
+        # own said only "property 'time' of 'World' object has no setter".)
+        prop = getattr(type(self), name, None)
         if (not name.startswith("_") and name not in ("description", "scene_renderers")
-                and not isinstance(getattr(type(self), name, None), property)):
+                and not (isinstance(prop, property) and prop.fset is not None)):
             settable = sorted(k for k, v in vars(World).items()
                               if isinstance(v, property) and v.fset is not None)
             hint = ""
