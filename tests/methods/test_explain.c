@@ -166,7 +166,23 @@ static void soft_tolerance_is_explained(void **state)
     ASSERT_HAS(t, "springs of omega = 2 pi/(3h)\n");
     ASSERT_HAS(t, "  soft_tolerance 0.01: a frame takes fewer (halved, down to 1) while no contact can "
                   "reach an overlap of 0.01 x n/3 of its radius\n");
-    add_anisotropic(w, NULL, 1.0, (rbs_material_id){0, 0});
+    rbs_world_destroy(w);
+    /* mutual gravity switched on with a single sphere cannot act: the
+     * layout stays gathered, and the line does not blame it (it said "in
+     * gathered body records: mutual gravity: the general rows ...") */
+    d.mutual_gravity = 1;
+    CHECK_OK(rbs_world_create(&d, &w));
+    floor_plane(w, (rbs_material_id){0, 0});
+    ball(w, 0.1, 1.0, 0, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    t = explain(w);
+    ASSERT_HAS(t, "  soft_tolerance 0.01: a frame takes fewer");
+    ASSERT_HAS(t, "in   gathered body records: centred isotropic spheres");
+    /* a second moving sphere: now it acts, and takes the general layout */
+    ball(w, 0.1, 1.0, 1, 0, 1, 0, 0, 0, (rbs_material_id){0, 0});
+    t = explain(w);
+    ASSERT_HAS(t, "out  gathered body records: mutual gravity: the general rows");
+    ASSERT_HAS(t, "  soft_tolerance 0.01: not used,");
+    add_anisotropic(w, NULL, 2.0, (rbs_material_id){0, 0});
     t = explain(w);
     ASSERT_HAS(t, "  soft_tolerance 0.01: not used, every frame takes all sub-steps (this world steps "
                   "in the general layout");

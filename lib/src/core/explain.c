@@ -256,7 +256,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
             /* the soft step's layout follows the bodies alone (the plan's
              * gather; the lines below name what keeps it off) */
             stage(&t, p.gather, "gathered body records");
-            if (w->def.mutual_gravity) {
+            if (p.mutual_acts) {
+                /* (switched on with one sphere, or none moving, it keeps
+                 * the gathered layout: the line said "in" and blamed it) */
                 put(&t, "mutual gravity: the general rows on the world's arrays\n");
             } else if (odd != UINT32_MAX) {
                 body_name(&t, w, odd);
