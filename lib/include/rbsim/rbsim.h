@@ -281,9 +281,10 @@ typedef struct rbs_world_def {
                                    Bodies no contact touches always take
                                    soft_substeps, and so does every world the
                                    soft step takes in its general layout
-                                   (mutual gravity, rolling or spinning
-                                   resistance, an anisotropic or off-centre
-                                   sphere).  A fraction of the radius,
+                                   (mutual gravity that can act: a moving
+                                   sphere and another sphere; rolling or
+                                   spinning resistance; an anisotropic or
+                                   off-centre sphere).  A fraction of the radius,
                                    [0, 1] (docs/methods.md, "soft") */
 } rbs_world_def;
 
