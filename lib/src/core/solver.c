@@ -943,56 +943,131 @@ static void pass_undo(rbs_world *w)
  * -q_S, x >= 0, the others not approaching; at most 3 active, the rank of
  * the block: Cottle, Pang & Stone, The
  * Linear Complementarity Problem, 1992, ch. 1).  The rows one at a time
- * then find them solved, and do friction.  The blocks are found once a
- * pass: w->shock_order (scratch until shock propagation) holds a list of
- * each sphere's static rows, next[] over the contacts and the first row of
- * each block after max_contacts. */
+ * then find them solved, and do friction.  A sphere on loose balls (a 10
+ * m ball on three 0.1 m balls standing on a floor) has the same mode --
+ * it rolls over them, its normals 1.1 deg apart -- and the balls' floors
+ * hold it as the fixed cup's balls do: with only its rows in the block
+ * (their partners' masses in K, well conditioned) the floor rows gave back
+ * what the block took, and it wandered at up to 1.6 cm/s (mu = 1,
+ * max_sweeps 20; a probe of session 46).  So a sphere's rows to smaller
+ * moving spheres (the larger ball owns a row between two: see
+ * block_owner) join its block, and with them each such partner's rows to
+ * static bodies, while the block has at most BLOCK_MAX rows; K_ij is then
+ * the sum over the bodies both rows move of s_i s_j n_i . n_j / m
+ * (Delassus, levers along n), still the exact step of blocked
+ * Gauss-Seidel over those rows with the rest held, of rank 3 a moving
+ * body.  Now it stays to 2e-16 m/s.  Rows to moving partners count as ill
+ * only when nearly parallel in the same sense (a cup): a ball pressed
+ * between two is solved well one row at a time.  The blocks are found
+ * once a pass: w->shock_order (scratch until shock propagation) holds a
+ * list of each body's rows, next[] over the contacts and the first row
+ * of each block after max_contacts; ev_mode marks the bodies taken. */
 #define BLOCK_MAX 8
 #define BLOCK_RANK 3 /* (rows of one centred sphere against static bodies: 3-D normals) */
 #define BLOCK_COS 0.9
 
-/* The moving body of contact c when it is the only one and its mass is
- * centred (else UINT32_MAX), s its sign in the contact (+1: c->a). */
-static uint32_t block_body(const rbs_world *w, const rbs__contact *c, double *s)
+/* The body whose list contact c goes in (else UINT32_MAX): the moving one
+ * against a static body; between two moving ones the larger (the
+ * heavier at equal radii, then a) -- the big ball over a cup of small
+ * loose ones, whose normals to it are nearly parallel whatever the
+ * masses.  Off-centre masses are left out (their levers are not
+ * along n: the block's K below has no angular terms). */
+static uint32_t block_owner(const rbs_world *w, const rbs__contact *c)
 {
     const int ma = w->inv_mass[c->a] != 0.0, mb = w->inv_mass[c->b] != 0.0;
-    if (c->bias < 0.0 || (c->flags & RBS__OFF) || ma == mb)
+    if (c->bias < 0.0 || (c->flags & RBS__OFF) || (!ma && !mb))
         return UINT32_MAX;
-    *s = ma ? 1.0 : -1.0;
-    return ma ? c->a : c->b;
+    if (ma != mb)
+        return ma ? c->a : c->b;
+    if (w->radius[c->a] != w->radius[c->b])
+        return w->radius[c->a] > w->radius[c->b] ? c->a : c->b;
+    return w->inv_mass[c->b] < w->inv_mass[c->a] ? c->b : c->a;
 }
 
-/* Find the blocks; their count. */
+/* The other body of contact c than x. */
+static uint32_t block_other(const rbs__contact *c, uint32_t x) { return c->a == x ? c->b : c->a; }
+
+/* Whether rows c and d of body x are nearly parallel or opposite
+ * (against static bodies), or nearly parallel with the same sense (a
+ * loose partner in either: a cup of balls under x, not x pressed between
+ * two, which the rows one at a time solve well). */
+static int block_ill(const rbs_world *w, uint32_t x, const rbs__contact *c, const rbs__contact *d)
+{
+    const double dot = v3_dot(c->n, d->n);
+    if (w->inv_mass[block_other(c, x)] == 0.0 && w->inv_mass[block_other(d, x)] == 0.0)
+        return fabs(dot) > BLOCK_COS;
+    return ((c->a == x) == (d->a == x) ? dot : -dot) > BLOCK_COS;
+}
+
+/* Find the blocks; their count.  A block is a sphere's rows (static and
+ * loose partners) with two nearly parallel or opposite normals, and the
+ * rows of each loose partner to static bodies (its floor): with those
+ * held, the loose partners' rows, however well conditioned alone, give
+ * back what the sphere's rows took (the cup through the partners is as
+ * ill-conditioned as a fixed one). */
 static uint32_t find_blocks(rbs_world *w)
 {
     uint32_t *next = w->shock_order, *head = w->shock_order + w->def.max_contacts;
+    int32_t *used = w->ev_mode; /* scratch: a body whose rows went into a block */
     uint32_t i, k, n = 0;
-    double s;
     int any = 0;
     for (i = 0; i < w->contact_count && !any; ++i)
-        any = block_body(w, &w->contact[i], &s) != UINT32_MAX;
+        any = block_owner(w, &w->contact[i]) != UINT32_MAX;
     if (!any)
         return 0;
-    for (k = 0; k < w->slots; ++k)
+    for (k = 0; k < w->slots; ++k) {
         head[k] = UINT32_MAX;
+        used[k] = 0;
+    }
     for (i = w->contact_count; i-- > 0;) {
-        const uint32_t x = block_body(w, &w->contact[i], &s);
+        const uint32_t x = block_owner(w, &w->contact[i]);
         if (x != UINT32_MAX) {
             next[i] = head[x];
             head[x] = i;
         }
     }
-    /* (head[n] is written after head[k] is read, n <= k) */
+    /* (head[n] is written after head[k] is read, n <= k; a partner's list,
+     * taken into an earlier body's block, is spliced out of head[] through
+     * used[]) */
     for (k = 0; k < w->slots; ++k) {
-        uint32_t a, b, rows = 0, ill = 0;
+        uint32_t a, b, rows = 0, ill = 0, tail = UINT32_MAX, first;
+        if (used[k] || head[k] == UINT32_MAX)
+            continue;
         for (a = head[k]; a != UINT32_MAX; a = next[a]) {
             rows++;
+            tail = a;
             for (b = next[a]; b != UINT32_MAX; b = next[b])
-                if (fabs(v3_dot(w->contact[a].n, w->contact[b].n)) > BLOCK_COS)
+                if (block_ill(w, k, &w->contact[a], &w->contact[b]))
                     ill = 1;
         }
-        if (ill && rows <= BLOCK_MAX)
-            head[n++] = head[k];
+        if (!ill || rows > BLOCK_MAX)
+            continue;
+        first = head[k];
+        used[k] = 1;
+        /* the loose partners' rows to static bodies, while they fit */
+        for (a = first; a != UINT32_MAX; a = next[a]) {
+            const uint32_t p = block_other(&w->contact[a], k);
+            uint32_t extra = 0, e;
+            if (w->inv_mass[p] == 0.0 || used[p] || w->type[p] != RBS_BODY_SPHERE)
+                continue;
+            for (e = head[p]; e != UINT32_MAX; e = next[e])
+                if (w->inv_mass[block_other(&w->contact[e], p)] == 0.0)
+                    extra++;
+            if (extra == 0 || rows + extra > BLOCK_MAX)
+                continue;
+            used[p] = 1;
+            rows += extra;
+            for (e = head[p]; e != UINT32_MAX;) {
+                const uint32_t after = next[e];
+                if (w->inv_mass[block_other(&w->contact[e], p)] == 0.0) {
+                    next[tail] = e;
+                    next[e] = UINT32_MAX;
+                    tail = e;
+                }
+                e = after;
+            }
+        }
+        head[n++] = first;
     }
     return n;
 }
@@ -1006,16 +1081,44 @@ static void solve_block(rbs_world *w, uint32_t first, double *change)
 {
     const uint32_t *next = w->shock_order;
     rbs__contact *c[BLOCK_MAX] = {NULL};
-    double sg[BLOCK_MAX] = {0}, k[BLOCK_MAX][BLOCK_MAX], q[BLOCK_MAX], x[BLOCK_MAX], qmax = 0.0;
+    double k[BLOCK_MAX][BLOCK_MAX], q[BLOCK_MAX], x[BLOCK_MAX], qmax = 0.0;
     uint32_t i, j, n = 0, mask, at;
-    for (at = first; at != UINT32_MAX && n < BLOCK_MAX; at = next[at]) {
-        c[n] = &w->contact[at];
-        (void)block_body(w, c[n], &sg[n]);
-        n++;
+    int e2;
+    uint32_t body[2 * BLOCK_MAX], bodies = 0, b;
+    for (at = first; at != UINT32_MAX && n < BLOCK_MAX; at = next[at])
+        c[n++] = &w->contact[at];
+    /* K_ij = sum over the bodies both rows move of s_i s_j n_i . n_j / m
+     * (s: +1 for the row's a, -1 for its b; levers along n; a row with one
+     * moving body has its kn for 1/m), its diagonal the rows' kn */
+    for (i = 0; i < n; ++i) {
+        for (j = 0; j < n; ++j) {
+            double kk = 0.0;
+            int e, f;
+            if (i == j) {
+                k[i][j] = c[i]->kn;
+                continue;
+            }
+            for (e = 0; e < 2; ++e)
+                for (f = 0; f < 2; ++f) {
+                    const uint32_t xb = e ? c[i]->b : c[i]->a;
+                    const double im = w->inv_mass[c[i]->a] != 0.0 && w->inv_mass[c[i]->b] != 0.0
+                                          ? w->inv_mass[xb]
+                                          : c[i]->kn;
+                    if (xb == (f ? c[j]->b : c[j]->a) && w->inv_mass[xb] != 0.0)
+                        kk += e == f ? im : -im;
+                }
+            k[i][j] = kk * v3_dot(c[i]->n, c[j]->n);
+        }
+        for (e2 = 0; e2 < 2; ++e2) {
+            const uint32_t xb = e2 ? c[i]->b : c[i]->a;
+            if (w->inv_mass[xb] == 0.0)
+                continue;
+            for (b = 0; b < bodies && body[b] != xb; ++b)
+                ;
+            if (b == bodies)
+                body[bodies++] = xb;
+        }
     }
-    for (i = 0; i < n; ++i)
-        for (j = 0; j < n; ++j)
-            k[i][j] = i == j ? c[i]->kn : c[i]->kn * sg[i] * sg[j] * v3_dot(c[i]->n, c[j]->n);
     /* q: each row's approach beyond its bias with the block's impulses
      * taken out */
     for (i = 0; i < n; ++i) {
@@ -1033,8 +1136,8 @@ static void solve_block(rbs_world *w, uint32_t first, double *change)
         for (i = 0; i < n; ++i)
             if (mask & (1u << i))
                 idx[m++] = i;
-        if (m > BLOCK_RANK)
-            continue; /* (K = (1/m) [n_i . n_j] has rank 3 at most: singular) */
+        if (m > BLOCK_RANK * bodies)
+            continue; /* (K has rank 3 a moving body at most: singular) */
         for (r = 0; r < m; ++r) {
             for (col = 0; col < m; ++col)
                 a[r][col] = k[idx[r]][idx[col]];
