@@ -732,47 +732,63 @@ static void held_through_parallel_normals(void **state)
  * to 1.6 cm/s, 0.7 mm in 2 s (euler; verlet, rk4 alike; max_sweeps 20).
  * Its block (solver.c) now takes the small balls' floors in: a 1 kg ball
  * stays to 2e-16 m/s, a 1000 kg one to 1.2e-8 m/s (every pass at
- * max_sweeps: the light balls' friction rows).  Bounds: 1e-9 m/s and m
- * (1 kg), 1e-7 m/s and 1e-8 m (1000 kg): far below the old drift, above
- * what the unconverged friction of the heavy case leaves. */
+ * max_sweeps: the light balls' friction rows).  Case 2: two such 1 kg
+ * triads 30 m apart, a ball of the second made before the first triad
+ * and the floor last (the blocks' lists in slot order: a first version
+ * read the second triad's ball's rows from where the first block's start
+ * had been written, and the second big ball moved at 1.9 cm/s).  Bounds:
+ * 1e-9 m/s and m (1 kg), 1e-7 m/s and 1e-8 m (1000 kg): far below the old
+ * drift, above what the unconverged friction of the heavy case leaves. */
 static void held_on_loose_balls(void **state)
 {
-    const double r = 0.1, R = 10.0, d = 0.2, pi = 3.14159265358979323846, masses[] = {1.0, 1000.0};
+    const double r = 0.1, R = 10.0, d = 0.2, pi = 3.14159265358979323846, masses[] = {1.0, 1000.0, 1.0};
     size_t k, i;
     (void)state;
     for (k = 0; k < N_METHODS; ++k) {
-        for (i = 0; i < 2; ++i) {
-            rbs_world *w = world_for(all_methods[k], 10, 1e-3, -9.81, 0.0);
-            const double bound = i == 0 ? 1e-9 : 1e-7, xbound = i == 0 ? 1e-9 : 1e-8;
+        for (i = 0; i < 3; ++i) {
+            rbs_world *w = world_for(all_methods[k], 12, 1e-3, -9.81, 0.0);
+            const double bound = i == 1 ? 1e-7 : 1e-9, xbound = i == 1 ? 1e-8 : 1e-9;
+            const int triads = i == 2 ? 2 : 1;
             rbs_material_id m;
-            rbs_body_id b, small[3];
-            rbs_body_state s;
-            rbs_vec3 x0;
-            int n;
+            rbs_body_id big[2], small[6];
+            rbs_vec3 x0[2];
+            int n, t;
             if (w == NULL)
                 break;
             m = material(w, "m", 1.0, 1.0, 0.0);
-            floor_plane(w, m);
-            for (n = 0; n < 3; ++n)
-                small[n] = ball(w, r, 1.0, d * cos(2.0 * pi * n / 3), d * sin(2.0 * pi * n / 3), r, 0, 0, 0, m);
-            b = ball(w, R, masses[i], 0, 0, r + sqrt((R + r) * (R + r) - d * d), 0, 0, 0, m);
-            x0 = state_of(w, b).position;
+            if (triads == 1)
+                floor_plane(w, m);
+            else /* (the second triad's first ball made first) */
+                small[3] = ball(w, r, 1.0, 30.0 + d, 0, r, 0, 0, 0, m);
+            for (t = 0; t < triads; ++t) {
+                const double x = 30.0 * t;
+                for (n = t; n < 3; ++n)
+                    small[3 * t + n] =
+                        ball(w, r, 1.0, x + d * cos(2.0 * pi * n / 3), d * sin(2.0 * pi * n / 3), r, 0, 0, 0, m);
+                big[t] = ball(w, R, masses[i], x, 0, r + sqrt((R + r) * (R + r) - d * d), 0, 0, 0, m);
+                x0[t] = state_of(w, big[t]).position;
+            }
+            if (triads == 2)
+                floor_plane(w, m);
             if (!run(w, 2000)) { /* (event: a body pressed) */
                 rbs_world_destroy(w);
                 break;
             }
-            s = state_of(w, b);
-            if (!(fabs(s.velocity.x) < bound && fabs(s.velocity.y) < bound && fabs(s.velocity.z) < bound))
-                fail_msg("%s, %g kg: v = (%g, %g, %g) m/s", rbs_method_name(all_methods[k]), masses[i],
-                         s.velocity.x, s.velocity.y, s.velocity.z);
-            ASSERT_NEAR(s.position.x, x0.x, xbound);
-            ASSERT_NEAR(s.position.y, x0.y, xbound);
-            ASSERT_NEAR(s.position.z, x0.z, xbound);
-            for (n = 0; n < 3; ++n) {
-                s = state_of(w, small[n]);
+            for (t = 0; t < triads; ++t) {
+                rbs_body_state s = state_of(w, big[t]);
                 if (!(fabs(s.velocity.x) < bound && fabs(s.velocity.y) < bound && fabs(s.velocity.z) < bound))
-                    fail_msg("%s, %g kg: small ball %d: v = (%g, %g, %g) m/s", rbs_method_name(all_methods[k]),
-                             masses[i], n, s.velocity.x, s.velocity.y, s.velocity.z);
+                    fail_msg("%s, case %zu, ball %d: v = (%g, %g, %g) m/s", rbs_method_name(all_methods[k]), i, t,
+                             s.velocity.x, s.velocity.y, s.velocity.z);
+                ASSERT_NEAR(s.position.x, x0[t].x, xbound);
+                ASSERT_NEAR(s.position.y, x0[t].y, xbound);
+                ASSERT_NEAR(s.position.z, x0[t].z, xbound);
+                for (n = 0; n < 3; ++n) {
+                    s = state_of(w, small[3 * t + n]);
+                    if (!(fabs(s.velocity.x) < bound && fabs(s.velocity.y) < bound && fabs(s.velocity.z) < bound))
+                        fail_msg("%s, case %zu: small ball %d: v = (%g, %g, %g) m/s",
+                                 rbs_method_name(all_methods[k]), i, 3 * t + n, s.velocity.x, s.velocity.y,
+                                 s.velocity.z);
+                }
             }
             rbs_world_destroy(w);
         }

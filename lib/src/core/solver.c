@@ -1026,9 +1026,9 @@ static uint32_t find_blocks(rbs_world *w)
             head[x] = i;
         }
     }
-    /* (head[n] is written after head[k] is read, n <= k; a partner's list,
-     * taken into an earlier body's block, is spliced out of head[] through
-     * used[]) */
+    /* (used[]: 2 for a block's body, 1 for a partner whose static rows
+     * went into one; the blocks' first rows are gathered after, as head[]
+     * holds every partner's list until then) */
     for (k = 0; k < w->slots; ++k) {
         uint32_t a, b, rows = 0, ill = 0, tail = UINT32_MAX, first;
         if (used[k] || head[k] == UINT32_MAX)
@@ -1043,7 +1043,7 @@ static uint32_t find_blocks(rbs_world *w)
         if (!ill || rows > BLOCK_MAX)
             continue;
         first = head[k];
-        used[k] = 1;
+        used[k] = 2;
         /* the loose partners' rows to static bodies, while they fit */
         for (a = first; a != UINT32_MAX; a = next[a]) {
             const uint32_t p = block_other(&w->contact[a], k);
@@ -1067,8 +1067,10 @@ static uint32_t find_blocks(rbs_world *w)
                 e = after;
             }
         }
-        head[n++] = first;
     }
+    for (k = 0; k < w->slots; ++k) /* (head[n] is written after head[k] is read, n <= k) */
+        if (used[k] == 2)
+            head[n++] = head[k];
     return n;
 }
 
