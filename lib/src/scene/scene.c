@@ -667,7 +667,7 @@ static void event_override(rbs_scene *scene)
     unsigned char *refused;
     uint32_t i;
     int n;
-    if (scene->mutual_gravity) {
+    if (scene->mutual_gravity && rbs__scene_mutual_acts(scene)) {
         rbs__scene_error(scene, none, "--method",
                          "method \"event\" does not support mutual gravity "
                          "(simulation.mutual_gravity; not a constant force); use \"adaptive\"");

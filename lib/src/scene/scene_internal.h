@@ -242,6 +242,10 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree,
  * with an off-centre mass (2) or anisotropic inertia (1), else 0. */
 int rbs__event_rows(const rbs_scene *scene, unsigned char *refused);
 int rbs__event_sphere_refused(const rbs_scene *scene, uint32_t i);
+/* Whether the scene's mutual gravity can act: a moving sphere and another
+ * sphere (the world plan's mutual_acts; switched on with one sphere, or none
+ * moving, it is not in the scene, and event takes the world). */
+int rbs__scene_mutual_acts(const rbs_scene *scene);
 
 /** Whether word is a key of a sphere or a plane, or close enough to one to
  * be its misspelling (objects.txt tells a mistyped body line from a key). */
