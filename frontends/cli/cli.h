@@ -95,6 +95,11 @@ int rbsf_check_scene_outputs(const rbs_scene *scene);
 /** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */
 void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
+/** Apply the command line's steps, dt and method to a scene
+ * (rbs_scene_override); 0, or RBSF_EXIT_USAGE with the reason on stderr
+ * (`what`: how the message names the options, e.g. "rbsim run: cannot
+ * apply the options") -- the options' fault, as a bad option is. */
+int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const char *method, const char *what);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 

@@ -417,15 +417,9 @@ static int explain_main(int argc, char **argv)
     /* A --method the scene cannot take ("event" with rolling resistance) is
      * the option's fault, as in run: on stderr, exit 2 (it was exit 3 on
      * stdout, as a scene error: a probe of session 46). */
-    if (method != NULL && (st = rbs_scene_override(scene, 0, 0.0, method)) != RBS_OK) {
-        if (rbs_scene_error_count(scene) > 0)
-            rbsf_print_scene_errors(scene, stderr);
-        else
-            fprintf(stderr, "rbsim explain: cannot apply --method: %s\n",
-                    rbs_status_string(st));
-        code = RBSF_EXIT_USAGE;
+    if (method != NULL &&
+        (code = rbsf_override_options(scene, 0, 0.0, method, "rbsim explain: cannot apply --method")) != 0)
         goto out;
-    }
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
         printf("%s: cannot build the world: %s%s%s\n", path,

@@ -345,6 +345,18 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out)
                 (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
 }
 
+int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const char *method, const char *what)
+{
+    const rbs_status st = rbs_scene_override(scene, steps, dt, method);
+    if (st == RBS_OK)
+        return 0;
+    if (rbs_scene_error_count(scene) > 0)
+        rbsf_print_scene_errors(scene, stderr);
+    else
+        fprintf(stderr, "%s: %s\n", what, rbs_status_string(st));
+    return RBSF_EXIT_USAGE;
+}
+
 /* Load a scene file or the demonstration; on failure print why.  The
  * reading may block (a FIFO with no writer, a pipe whose writer stalls): it
  * is done in a slot of the signal thread's stopper, so that SIGINT, SIGTERM
@@ -1942,18 +1954,9 @@ int rbsf_run_main(int argc, char **argv)
             code = RBSF_EXIT_SCENE;
         goto out;
     }
-    if (o.steps || o.dt > 0 || o.method) { /* steps 0: no override */
-        st = rbs_scene_override(scene, o.steps, o.dt, o.method);
-        if (st != RBS_OK) {
-            if (rbs_scene_error_count(scene) > 0)
-                rbsf_print_scene_errors(scene, stderr);
-            else
-                fprintf(stderr, "rbsim run: cannot apply the options: %s\n",
-                        rbs_status_string(st));
-            code = RBSF_EXIT_USAGE;
-            goto out;
-        }
-    }
+    if ((o.steps || o.dt > 0 || o.method) && /* steps 0: no override */
+        (code = rbsf_override_options(scene, o.steps, o.dt, o.method, "rbsim run: cannot apply the options")) != 0)
+        goto out;
     if (o.slop > 0 && rbs_scene_override_slop(scene, o.slop) != RBS_OK) {
         rbsf_print_scene_errors(scene, stderr);
         code = RBSF_EXIT_USAGE;
