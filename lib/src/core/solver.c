@@ -472,6 +472,43 @@ double rbs__resist_row(rbs_world *w, uint32_t i)
     return 0.0;
 }
 
+/* Solve the m equations of the augmented rows a -- row r's coefficients
+ * a[r * stride + 0 .. m - 1], its right-hand side a[r * stride + m] -- by
+ * Gaussian elimination with partial pivoting, into y[0 .. m - 1]; 0 (y
+ * unset) when a pivot is not above tiny[k] in size (column k's; 0 with
+ * tiny NULL): dependent rows.  The small blocks' one solver (resist_block,
+ * solve_block). */
+static int dense_solve(double *a, int m, int stride, const double *tiny, double *y)
+{
+    int k, r, q;
+    for (k = 0; k < m; ++k) {
+        int piv = k;
+        for (r = k + 1; r < m; ++r)
+            if (fabs(a[r * stride + k]) > fabs(a[piv * stride + k]))
+                piv = r;
+        if (!(fabs(a[piv * stride + k]) > (tiny != NULL ? tiny[k] : 0.0)))
+            return 0;
+        if (piv != k)
+            for (q = k; q <= m; ++q) {
+                const double t = a[k * stride + q];
+                a[k * stride + q] = a[piv * stride + q];
+                a[piv * stride + q] = t;
+            }
+        for (r = k + 1; r < m; ++r) {
+            const double f = a[r * stride + k] / a[k * stride + k];
+            for (q = k; q <= m; ++q)
+                a[r * stride + q] -= f * a[k * stride + q];
+        }
+    }
+    for (k = m - 1; k >= 0; --k) {
+        double v = a[k * stride + m];
+        for (q = k + 1; q < m; ++q)
+            v -= a[k * stride + q] * y[q];
+        y[k] = v / a[k * stride + k];
+    }
+    return 1;
+}
+
 /* Friction, rolling and spinning resistance of one contact (contact i: its
  * pair has friction and some resistance, Jn > 0) solved as one block: the
  * tangential impulse and the angular impulses that together stop the slip
@@ -502,7 +539,7 @@ static int resist_block(rbs_world *w, uint32_t i, const rbs__pair *p, double *ch
     const int moves_a = w->inv_mass[c->a] != 0.0, moves_b = w->inv_mass[c->b] != 0.0;
     const v3 ra = rbs__contact_ra(w, c), rb = rbs__contact_rb(w, c);
     v3 dir[5], dv[5], dw[5], rv, wrel, t1, t2, dj = {0, 0, 0}, dl = {0, 0, 0};
-    int ang[5], m = 0, r, k, q;
+    int ang[5], m = 0, r, k;
     double kk[5][6], x[5], lim, lever, d2;
     /* a basis of the tangent plane: t1 normal to n and to n's smallest axis */
     {
@@ -553,31 +590,8 @@ static int resist_block(rbs_world *w, uint32_t i, const rbs__pair *p, double *ch
             kk[r][k] = v3_dot(dir[r], ang[r] ? dw[k] : dv[k]);
         kk[r][m] = -v3_dot(dir[r], ang[r] ? wrel : rv);
     }
-    for (k = 0; k < m; ++k) {
-        int piv = k;
-        for (r = k + 1; r < m; ++r)
-            if (fabs(kk[r][k]) > fabs(kk[piv][k]))
-                piv = r;
-        if (!(fabs(kk[piv][k]) > 0.0))
-            return 0;
-        if (piv != k)
-            for (q = k; q <= m; ++q) {
-                double s = kk[k][q];
-                kk[k][q] = kk[piv][q];
-                kk[piv][q] = s;
-            }
-        for (r = k + 1; r < m; ++r) {
-            double f = kk[r][k] / kk[k][k];
-            for (q = k; q <= m; ++q)
-                kk[r][q] -= f * kk[k][q];
-        }
-    }
-    for (k = m - 1; k >= 0; --k) {
-        double s = kk[k][m];
-        for (q = k + 1; q < m; ++q)
-            s -= kk[k][q] * x[q];
-        x[k] = s / kk[k][k];
-    }
+    if (!dense_solve(&kk[0][0], m, 6, NULL, x))
+        return 0;
     /* the block's impulses, taken only within every bound */
     dj = v3_add(v3_scale(t1, x[0]), v3_scale(t2, x[1]));
     {
@@ -963,7 +977,7 @@ static void pass_undo(rbs_world *w)
  * list of each body's rows, next[] over the contacts and the first row
  * of each block after max_contacts; ev_mode marks the bodies taken. */
 #define BLOCK_MAX 8
-#define BLOCK_RANK 3 /* (rows of one centred sphere against static bodies: 3-D normals) */
+#define BLOCK_RANK 3 /* (the rows a centred moving body takes part in span 3-D normals) */
 #define BLOCK_COS 0.9
 
 /* The body whose list contact c goes in (else UINT32_MAX): the moving one
@@ -1130,9 +1144,10 @@ static void solve_block(rbs_world *w, uint32_t first, double *change)
         if (fabs(q[i]) > qmax)
             qmax = fabs(q[i]);
     }
-    /* the sets of active rows, the largest first */
+    /* the sets of active rows, all of them first, then down in the mask's
+     * order: the first that passes is taken */
     for (mask = (1u << n) - 1; mask > 0; --mask) {
-        double a[BLOCK_MAX][BLOCK_MAX + 1];
+        double a[BLOCK_MAX][BLOCK_MAX + 1], tiny[BLOCK_MAX], y[BLOCK_MAX];
         uint32_t idx[BLOCK_MAX], m = 0, r, col;
         int ok = 1;
         for (i = 0; i < n; ++i)
@@ -1144,41 +1159,15 @@ static void solve_block(rbs_world *w, uint32_t first, double *change)
             for (col = 0; col < m; ++col)
                 a[r][col] = k[idx[r]][idx[col]];
             a[r][m] = -q[idx[r]];
+            tiny[r] = 1e-9 * c[idx[r]]->kn; /* (below it: a set of dependent rows) */
         }
-        /* Gaussian elimination with partial pivoting; a pivot below 1e-9
-         * of the diagonal is a set of dependent rows */
-        for (col = 0; col < m && ok; ++col) {
-            uint32_t piv = col;
-            for (r = col + 1; r < m; ++r)
-                if (fabs(a[r][col]) > fabs(a[piv][col]))
-                    piv = r;
-            if (!(fabs(a[piv][col]) > 1e-9 * c[idx[col]]->kn)) {
-                ok = 0;
-                break;
-            }
-            if (piv != col)
-                for (r = 0; r <= m; ++r) {
-                    const double t = a[col][r];
-                    a[col][r] = a[piv][r];
-                    a[piv][r] = t;
-                }
-            for (r = col + 1; r < m; ++r) {
-                const double f = a[r][col] / a[col][col];
-                uint32_t e;
-                for (e = col; e <= m; ++e)
-                    a[r][e] -= f * a[col][e];
-            }
-        }
-        if (!ok)
+        if (!dense_solve(&a[0][0], (int)m, BLOCK_MAX + 1, tiny, y))
             continue;
         for (i = 0; i < n; ++i)
             x[i] = 0.0;
-        for (r = m; r-- > 0;) {
-            double v = a[r][m];
-            for (col = r + 1; col < m; ++col)
-                v -= a[r][col] * x[idx[col]];
-            x[idx[r]] = v / a[r][r];
-            if (!(x[idx[r]] >= 0.0))
+        for (r = 0; r < m; ++r) {
+            x[idx[r]] = y[r];
+            if (!(y[r] >= 0.0))
                 ok = 0;
         }
         /* the rows left out must not approach (to rounding of the pass) */
