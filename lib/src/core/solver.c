@@ -848,15 +848,8 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
             any = 1;
         }
         total += c->jn;
-        if (friction && c->jn == 0.0 && (c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
-            /* release_unloaded's friction part (no resistance here) */
-            v3 dj = v3_scale(c->jt, -1.0);
-            j = push ? v3_add(j, dj) : dj;
-            push = 1;
-            c->jt = v3_make(0, 0, 0);
-            if (v3_dot(dj, dj) * c->kn * c->kn > change)
-                change = v3_dot(dj, dj) * c->kn * c->kn;
-        }
+        if (friction && c->jn == 0.0) /* (its friction part: fast_eligible, no resistance) */
+            push = release_unloaded(w, i, p, &j, push, &change);
         if (friction && c->jn != 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             v3 vt = v3_mad(rv, c->n, -vn); /* the slip before the normal impulse (see sweep_generic) */
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
