@@ -350,22 +350,30 @@ static void pass(soft_pass *sp, int stage)
         jn = c->jn;
         if (sp->friction && p->rolling > 0.0 && jn > 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             friction_and_rolling(w, c, p, i, j);
-            continue;
-        }
-        if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) && (jn > 0.0 || c->jt.x != 0.0 ||
-                                                                 c->jt.y != 0.0 || c->jt.z != 0.0)) {
-            /* the slip after the normal impulse (levers need not lie along n) */
-            v3 cand;
+        } else {
+            if (sp->friction && (p->mu_s > 0.0 || p->mu_k > 0.0) &&
+                (jn > 0.0 || c->jt.x != 0.0 || c->jt.y != 0.0 || c->jt.z != 0.0)) {
+                /* the slip after the normal impulse (levers need not lie along n) */
+                v3 cand;
+                rbs__apply_pair(w, c, j);
+                rbs__kt kt;
+                v3 stick = rbs__stick_impulse_kt(w, c, rbs__slip(w, c), &kt);
+                cand = rbs__cone(w, c, p, stick, &kt);
+                j = v3_sub(cand, c->jt);
+                c->jt = cand;
+            }
             rbs__apply_pair(w, c, j);
-            rbs__kt kt;
-            v3 stick = rbs__stick_impulse_kt(w, c, rbs__slip(w, c), &kt);
-            cand = rbs__cone(w, c, p, stick, &kt);
-            j = v3_sub(cand, c->jt);
-            c->jt = cand;
+            if (sp->friction && jn > 0.0 && (p->rolling > 0.0 || p->spinning > 0.0))
+                resist_loaded(w, c, i);
         }
-        rbs__apply_pair(w, c, j);
-        if (sp->friction && jn > 0.0 && (p->rolling > 0.0 || p->spinning > 0.0))
-            resist_loaded(w, c, i);
+        if (stage == RELAX && !sp->last && (p->rolling > 0.0 || p->spinning > 0.0)) {
+            /* what of the impact this sub-step's normal impulse took, once
+             * its rows are done (not after the last relax: the restitution
+             * pass goes on with its accumulated impulse, the impact it held
+             * included) */
+            rbs__resist *rs = &w->contact_resist[i];
+            rs->impact = rs->impact > jn ? rs->impact - jn : 0.0;
+        }
     }
 }
 
@@ -1042,16 +1050,6 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         rbs__integrate_positions(w, h);
         sp.last = s == n - 1;
         pass(&sp, RELAX);
-        for (i = 0; s + 1 < n && i < w->contact_count; ++i) {
-            /* what of the impact this sub-step's normal impulse took (not
-             * after the last: the restitution pass goes on with its
-             * accumulated impulse, the impact it held included) */
-            const rbs__pair *p = rbs__contact_pair(w, &w->contact[i]);
-            if (p->rolling > 0.0 || p->spinning > 0.0) {
-                rbs__resist *rs = &w->contact_resist[i];
-                rs->impact = rs->impact > w->contact[i].jn ? rs->impact - w->contact[i].jn : 0.0;
-            }
-        }
     }
     pass(&sp, RESTITUTION);
     info->substeps = n;
