@@ -972,6 +972,16 @@ static rbs_status body_done(rbs_world *w, uint32_t s, rbs_body_id *out)
     return RBS_OK;
 }
 
+const char *rbs__sphere_limit_unit(int k)
+{
+    return k < 4 ? "J" : k == 4 ? "kg m/s" : "kg m^2/s";
+}
+
+const char *rbs__sphere_limit_sum(int k)
+{
+    return k < 4 ? "energy" : k == 4 ? "momentum" : "angular momentum";
+}
+
 int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
                        rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f,
                        double e[RBS__SPHERE_LIMITS])
@@ -1136,11 +1146,6 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
             "momentum m v (velocity, mass)",
             "angular momentum r x m v about the origin (position, velocity)",
             "spin angular momentum, at most trace(I) |w| (angular_velocity)"};
-        static const char *const unit[RBS__SPHERE_LIMITS] = {
-            "J", "J", "J", "J", "kg m/s", "kg m^2/s", "kg m^2/s"};
-        static const char *const sum[RBS__SPHERE_LIMITS] = {
-            "energy", "energy", "energy", "energy", "momentum", "angular momentum",
-            "angular momentum"};
         double e[RBS__SPHERE_LIMITS];
         rbs_vec3 g = w->def.gravity;
         rbs_quat qp = {q.w, q.x, q.y, q.z};
@@ -1151,7 +1156,8 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
                                d.center_of_mass, g, w->def.gravity_mode == RBS_GRAVITY_FORCE, d.force, e);
         if (k >= 0)
             FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g %s, beyond 1e300 %s (the world's %s "
-                 "would overflow)", what[k], e[k], unit[k], unit[k], sum[k]);
+                 "would overflow)", what[k], e[k], rbs__sphere_limit_unit(k), rbs__sphere_limit_unit(k),
+                 rbs__sphere_limit_sum(k));
     }
     if (w->def.mutual_gravity) {
         /* its potential energy of mutual gravity with each sphere there,

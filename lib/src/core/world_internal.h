@@ -758,6 +758,11 @@ size_t rbs__utf8_seq(const char *text, size_t len, size_t i);
 int rbs__sphere_energy(double mass, double trace, rbs_vec3 v, rbs_vec3 w, rbs_vec3 p, rbs_quat q,
                        rbs_vec3 c, rbs_vec3 g, int g_is_force, rbs_vec3 f,
                        double e[RBS__SPHERE_LIMITS]);
+/* Term k's unit ("J", "kg m/s", "kg m^2/s") and the world's sum it would
+ * overflow ("energy", "momentum", "angular momentum"), for the messages of
+ * both. */
+const char *rbs__sphere_limit_unit(int k);
+const char *rbs__sphere_limit_sum(int k);
 
 /* Which body's momentum, or which sum, overflows in rbs_world_momentum,
  * said in buf (n bytes), e.g. "sphere 0 (\"ball\"): its angular momentum

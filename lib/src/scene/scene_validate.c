@@ -1084,11 +1084,6 @@ static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body
         "the potential energy in gravity", "the potential energy of its force",
         "the momentum m v", "the angular momentum r x m v about the origin (position and velocity)",
         "the spin angular momentum, at most trace(I) |w|"};
-    static const char *const unit[RBS__SPHERE_LIMITS] = {
-        "J", "J", "J", "J", "kg m/s", "kg m^2/s", "kg m^2/s"};
-    static const char *const sum[RBS__SPHERE_LIMITS] = {
-        "energy", "energy", "energy", "energy", "momentum", "angular momentum",
-        "angular momentum"};
     int k = rbs__sphere_energy(mass, trace, b->velocity, b->angular_velocity, b->position,
                                b->orientation, b->center_of_mass, s->gravity,
                                s->gravity_mode == RBS_GRAVITY_FORCE, b->force, e);
@@ -1097,7 +1092,8 @@ static void check_sphere_energy(vctx *v, const cJSON *obj, const rbs__scene_body
         size_t saved = push_key(v, keys[k]);
         err(v, loc_value(v, at),
             "%s at the start is %g %s, beyond 1e300 %s (the world's %s would overflow)",
-            what[k], e[k], unit[k], unit[k], sum[k]);
+            what[k], e[k], rbs__sphere_limit_unit(k), rbs__sphere_limit_unit(k),
+            rbs__sphere_limit_sum(k));
         pop(v, saved);
     }
 }
