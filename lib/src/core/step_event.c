@@ -333,8 +333,14 @@ static rbs_status classify(rbs_world *w, double dt)
              * a resting one with mu = 0.5 left it sliding for 58 us, its
              * friction pressing the pair that whole time against a whole
              * frame's worth: refused, though they part; a probe of
-             * session 43) */
-            if (rel_an < 0.0 && vn <= -rel_an * fmin(lasts, accel_lasts(w, b, dt))) {
+             * session 43).  A relative acceleration within rounding of
+             * the two accelerations (1e-12 of them, as the slip's test in
+             * classify) is none: two balls rolling together down an
+             * incline, each at 5/7 g_t whatever its size, were refused as
+             * a stack or not by the sign of that rounding, by which of
+             * them was ahead (a probe of session 47) */
+            if (rel_an < -1e-12 * (v3_len(a) + v3_len(ab)) &&
+                vn <= -rel_an * fmin(lasts, accel_lasts(w, b, dt))) {
                 char tb[40];
                 return (rbs_status)rbs__world_set_error(w, RBS_E_UNSUPPORTED,
                     "method \"event\": spheres %u and %u are pressed together at t = %s (a stack or "
