@@ -911,6 +911,68 @@ static void denormal(rbs_method m, xres *r)
     rbs_world_destroy(w);
 }
 
+/* Slips and turnings too small to square.  A ball on the floor spinning at
+ * w0 = 1e-200 rad/s about y, not moving: its contact slips at r w0 =
+ * 1e-201 m/s, whose square (1e-402) is 0 in double precision.  Exact (solid
+ * ball; friction stops the slip in the first step: mu m g dt is 1e197 times
+ * the impulse needed): it rolls at w = 2/7 w0, v = 2/7 r w0 along x.  A
+ * second world: a ball rolling at v0 = r w0 with rolling resistance 0.01:
+ * exact, it stops in the first step (the resistance's deceleration, 5/7 mu_r
+ * g, takes 7e-202 m/s in 1e-20 s).  Measured: the larger of |w / w0 - 2/7|
+ * and |v / (r w0) - 2/7| of the first, |v| / v0 of the second, after 100
+ * steps.  Bound: 1e-12 (a few roundings a step, 100 steps: 4 100 EPS =
+ * 9e-14, with room).  Every method but event left the slip alone (ratios 1
+ * and 0), soft the rolling too (|v| / v0 = 1): the lengths were taken from
+ * squares, 0 below 1e-162; with the length taken, 1 / length overflowed for
+ * a subnormal one (soft: NaN at 1e-300 rad/s). */
+static void tiny_slip(rbs_method m, xres *r)
+{
+    const double w0 = 1e-200, rad = 0.1, two7 = 2.0 / 7.0;
+    int part;
+    r->bound = 1e-12;
+    r->value = 0.0;
+    /* (event has no rolling resistance: the first world only) */
+    for (part = 0; part < (m == RBS_METHOD_EVENT ? 1 : 2) && !r->failed && !r->skipped; ++part) {
+        rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.0);
+        rbs_sphere_def s;
+        rbs_body_id b = {0, 0};
+        rbs_material_id mat = {0, 0};
+        rbs_pair_def p;
+        if (!w)
+            return;
+        rbs_world_add_material(w, "m", &mat);
+        rbs_pair_def_init(&p);
+        p.a = mat;
+        p.b = mat;
+        p.static_friction = 0.5;
+        p.kinetic_friction = 0.3;
+        p.restitution = 0.0;
+        p.rolling = part == 1 ? 0.01 : 0.0;
+        if (bad(r, w, rbs_world_set_pair(w, &p), "set_pair")) {
+            rbs_world_destroy(w);
+            return;
+        }
+        xplane(w, mat, 0, 0, 0, 0, 0, 1);
+        rbs_sphere_def_init(&s);
+        s.radius = rad;
+        s.mass = 1.0;
+        s.position.z = rad;
+        s.angular_velocity.y = w0;
+        s.velocity.x = part == 1 ? rad * w0 : 0.0;
+        s.material = mat;
+        rbs_world_add_sphere(w, &s, &b);
+        if (xsteps(r, w, 100, NULL) == 0) {
+            rbs_body_state st = xstate(w, b);
+            double e = fabs(st.velocity.x / (rad * w0) - (part == 1 ? 0.0 : two7));
+            if (part == 0 && fabs(st.angular_velocity.y / w0 - two7) > e)
+                e = fabs(st.angular_velocity.y / w0 - two7);
+            if (!(e <= r->value))
+                r->value = e;
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 /* ------------------------------------------------------------------------- */
 /* The table                                                                 */
 /* ------------------------------------------------------------------------- */
@@ -965,6 +1027,8 @@ static const xcase cases[] = {
      "the default 3 sub-steps): coincident balls take about 67 frames"},
     {"denormal_speed", "displacement (m) of a resting ball nudged at 1e-310 m/s; a ball drifting at 1e-310 m/s must keep that speed exactly and be within 1000 subnormal steps of v T",
      "1e-7 m (slop)", "drifting ball's |x - v T| / 4.9e-324", 0, denormal, 0, NULL},
+    {"tiny_slip_1e-201", "largest relative error, 100 steps: w / w0 and v / (r w0) against 2/7 of a ball spinning at 1e-200 rad/s on the floor (slip 1e-201 m/s, its square 0); v / v0 against 0 of one rolling at 1e-201 m/s, rolling resistance 0.01",
+     "1e-12 (4 EPS a step)", NULL, 0, tiny_slip, 0, NULL},
     {"euler_drift_1e5", "largest |E - E0| / (m g^2 dt t/2) over 1e5 steps (100 s) of an elastic bouncing ball",
      "1.01 (Euler's first-order energy loss, m g^2 dt t/2)", "largest |E - E0|/E0", 0, euler_drift, 0, NULL},
     {"long_bounce_1e7", "largest |E - E0|/E0 over 1e7 steps (1e4 s) of an elastic bouncing ball",

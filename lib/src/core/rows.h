@@ -73,7 +73,7 @@ typedef struct rbs__kt {
  * K_tt into *kt when kt is given and the plane is not isotropic. */
 static inline v3 rbs__stick_impulse_kt(const rbs_world *w, const rbs__contact *c, v3 vt, rbs__kt *kt)
 {
-    double s = v3_len(vt), k11, k12, k21, k22, det, j1, j2;
+    double s = v3_len_small(vt), k11, k12, k21, k22, det, j1, j2; /* (v3_len is 0 below 1e-162 m/s) */
     v3 t1, t2, kt1, kt2;
     if (kt)
         kt->set = 0;
@@ -81,7 +81,7 @@ static inline v3 rbs__stick_impulse_kt(const rbs_world *w, const rbs__contact *c
         return v3_make(0, 0, 0);
     if (c->kt_inv > 0.0)
         return v3_scale(vt, -c->kt_inv); /* isotropic tangent plane */
-    t1 = v3_scale(vt, 1.0 / s);
+    t1 = v3_unit_small(vt, s);
     t2 = v3_cross(c->n, t1);
     kt1 = rbs__k_apply(w, c, t1);
     kt2 = rbs__k_apply(w, c, t2);

@@ -301,7 +301,9 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
         vtx = wd_sub(rvx, wd_mul(nx, vn));
         vty = wd_sub(rvy, wd_mul(ny, vn));
         vtz = wd_sub(rvz, wd_mul(nz, vn));
-        stick = wm_gt(wd_dot3(vtx, vty, vtz, vtx, vty, vtz), zero);
+        /* a slip to stop: vt not 0 (|vt|^2 > 0 missed slips under 1e-162 m/s,
+         * whose square is 0) */
+        stick = wm_or(wm_or(wm_ne(vtx, zero), wm_ne(vty, zero)), wm_ne(vtz, zero));
         cx = wd_add(jtx, wd_sel(stick, wd_mul(vtx, mt), zero));
         cy = wd_add(jty, wd_sel(stick, wd_mul(vty, mt), zero));
         cz = wd_add(jtz, wd_sel(stick, wd_mul(vtz, mt), zero));

@@ -438,9 +438,9 @@ double rbs__resist_row(rbs_world *w, uint32_t i)
     v3 wrel = v3_sub(v3_load(&w->avel[3 * c->a]), v3_load(&w->avel[3 * c->b]));
     double ws = v3_dot(wrel, c->n);
     v3 wr = v3_mad(wrel, c->n, -ws), ia, ib, dl = v3_make(0, 0, 0);
-    double lr = v3_len(wr);
+    double lr = v3_len_small(wr); /* (v3_len is 0 below 1e-162 rad/s: no resistance) */
     if (p->rolling > 0.0 && lr > 0.0) {
-        v3 u = v3_scale(wr, 1.0 / lr), cand;
+        v3 u = v3_unit_small(wr, lr), cand;
         double k = 0.0, lim = p->rolling * rs->radius * c->jn, l;
         rbs__body_inv_inertia_world(w, c->a, u, &ia);
         rbs__body_inv_inertia_world(w, c->b, u, &ib);
@@ -853,9 +853,9 @@ static int sweep_fast(rbs_world *w, int friction, double *change_out, double *to
         if (friction && c->jn != 0.0 && (p->mu_s > 0.0 || p->mu_k > 0.0)) {
             v3 vt = v3_mad(rv, c->n, -vn); /* the slip before the normal impulse (see sweep_generic) */
             if (vt.x != 0.0 || vt.y != 0.0 || vt.z != 0.0) {
-                /* stick_impulse's isotropic case: -vt / kt, 0 if |vt| is 0
-                 * (sqrt(x) > 0 exactly when x > 0: no square root needed) */
-                v3 stick = v3_dot(vt, vt) > 0.0 ? v3_scale(vt, -c->kt_inv) : v3_make(0, 0, 0);
+                /* stick_impulse's isotropic case: -vt / kt (vt is not 0; its
+                 * square is 0 below 1e-162 m/s, which left such a slip alone) */
+                v3 stick = v3_scale(vt, -c->kt_inv);
                 v3 cand = rbs__cone(w, c, p, stick, NULL), dj = v3_sub(cand, c->jt);
                 j = push ? v3_add(j, dj) : dj;
                 push = 1;

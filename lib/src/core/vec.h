@@ -25,6 +25,25 @@ static inline v3 v3_cross(v3 a, v3 b)
     return v3_make(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 static inline double v3_len(v3 a) { return sqrt(v3_dot(a, a)); }
+/* |a| also where its square underflows (|a| under about 1e-154; below 1e-162
+ * the square is 0): a scaled by 2^600 and back, exact powers of two; the
+ * same bits as v3_len from 1e-150 up. */
+static inline double v3_len_small(v3 a)
+{
+    const double s = v3_len(a);
+    if (s >= 1e-150 || (a.x == 0.0 && a.y == 0.0 && a.z == 0.0))
+        return s;
+    return v3_len(v3_scale(a, 0x1p600)) * 0x1p-600;
+}
+/* a / len for len = v3_len_small(a) > 0, also where 1 / len would
+ * overflow (len subnormal); the same bits as a scaled by 1 / len from
+ * 1e-150 up. */
+static inline v3 v3_unit_small(v3 a, double len)
+{
+    if (len >= 1e-150)
+        return v3_scale(a, 1.0 / len);
+    return v3_scale(v3_scale(a, 0x1p600), 1.0 / (len * 0x1p600));
+}
 static inline int v3_finite(v3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 /* Quaternion [w x y z] stored as 4 doubles. */
