@@ -175,7 +175,6 @@ void rbs__restore_state(rbs_world *w, const double *save)
 }
 
 #define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
-#define SPIN_STABLE_ROUNDS 32 /* fixed-point rounds of rbs__spin_stable's turn, at most */
 
 int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact, int *stable)
 {
@@ -230,13 +229,13 @@ void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, q
     for (k = 0; k < n; ++k) {
         /* half the torque's impulse, the turn by the middle's angular
          * velocity, the other half.  The fixed point is iterated to
-         * convergence (1e-14), not for euler's two rounds: at 0.3 rad a
-         * part two rounds left the turn unsymmetric, and the top of
+         * convergence (1e-14), as euler's is since session 47: at 0.3 rad
+         * a part two rounds left the turn unsymmetric, and the top of
          * tests/methods/test_work_cap.c lost half its energy over 1e6
          * parts, ending about its axis of most inertia.  (A part too long
          * to converge still keeps |L|.) */
         L = v3_mad(L, tau, 0.5 * hs);
-        wm = rbs__midpoint_spin(w, i, qq, L, wm, hs, SPIN_STABLE_ROUNDS, 1e-28);
+        wm = rbs__midpoint_spin(w, i, qq, L, wm, hs, RBS__SPIN_ROUNDS, RBS__SPIN_TOL2);
         if (wm.x != 0.0 || wm.y != 0.0 || wm.z != 0.0)
             qq = q_normalize(q_mul(q_from_rotation(wm, hs), qq));
         sum = v3_add(sum, wm);

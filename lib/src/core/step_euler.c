@@ -113,15 +113,19 @@ void rbs__integrate_positions(rbs_world *w, double h)
         L = om;
         if (spin && !w->isotropic[i]) {
             /* The turn by the angular velocity of the sub-step's middle
-             * (two fixed-point rounds of wm = I(q_mid)^-1 L, q_mid =
-             * exp(wm h/2) q), not of its start: the start's (Lie-Euler)
-             * keeps |L| but not the energy, which grew exponentially -- a
-             * free symmetric top spun at 5 rad/s gained 22 % in 200 s at
-             * dt = 1 ms and ended turning about its axis of least inertia
-             * (a probe of session 40).  The midpoint rule is symmetric in
-             * time, so the energy only oscillates, by O(h^2). */
+             * (the fixed point wm = I(q_mid)^-1 L, q_mid = exp(wm h/2) q,
+             * iterated to convergence), not of its start: the start's
+             * (Lie-Euler) keeps |L| but not the energy, which grew
+             * exponentially -- a free symmetric top spun at 5 rad/s gained
+             * 22 % in 200 s at dt = 1 ms and ended turning about its axis
+             * of least inertia (a probe of session 40).  The midpoint rule
+             * is symmetric in time, so the energy only oscillates, by
+             * O(h^2) -- once converged: two rounds (before session 47)
+             * left it unsymmetric, and the energy fell steadily, a top at
+             * 1e3 rad/s losing 56 % in 0.5 s at dt = 1 ms
+             * (test_order.c, euler_spin_energy_does_not_drift). */
             L = m3_mul_world(&w->inertia[9 * i], q, om);
-            om = rbs__midpoint_spin(w, i, q, L, om, h, 2, 0.0);
+            om = rbs__midpoint_spin(w, i, q, L, om, h, RBS__SPIN_ROUNDS, RBS__SPIN_TOL2);
         }
         if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
             v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->pos[3 * i]), v, h));
