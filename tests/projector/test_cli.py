@@ -1446,18 +1446,51 @@ class CliTests(Base):
         s = self.scene()
         with open(s) as f:
             before = f.read()
-        r = self.rbsim("convert", s, s)
-        self.assertEqual(r.returncode, 4, r.stderr)
-        self.assertIn("a file this scene was read from", r.stderr)
+        # It is refused up front as a usage error (exit 2) naming both files,
+        # through any spelling of the path, a symbolic link, or standard
+        # input redirected from OUT; an invalid IN too (it ran the save and
+        # exited 4 "cannot write": a probe of session 47).
+        link = self.path("link.json")
+        os.symlink(s, link)
+        spellings = [s, os.path.join(self.dir, ".", os.path.basename(s)),
+                     os.path.join(self.dir, "..", os.path.basename(self.dir),
+                                  os.path.basename(s)), link]
+        for out in spellings:
+            r = self.rbsim("convert", s, out)
+            self.assertEqual(r.returncode, 2, (out, r.stderr))
+            self.assertIn("rbsim convert: OUT '%s' is the file IN '%s' is "
+                          "read from" % (out, s), r.stderr)
+            self.assertNotIn("usage:", r.stderr)
+        with open(s) as stdin:
+            r = subprocess.run([RBSIM, "convert", "-", s], stdin=stdin,
+                               capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("IN '-' is read from (standard input)", r.stderr)
         with open(s) as f:
             self.assertEqual(f.read(), before)
+        bad = self.path("bad.json")
+        with open(bad, "w") as f:
+            f.write("{\n")
+        r = self.rbsim("convert", bad, bad)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        with open(bad) as f:
+            self.assertEqual(f.read(), "{\n")
         txt = self.path("t/config.txt")
         self.assertEqual(self.rbsim("convert", s, txt).returncode, 0)
         with open(self.path("t/materials.txt")) as f:
             table = f.read()
         r = self.rbsim("convert", txt, self.path("t/materials.txt"))
-        self.assertEqual(r.returncode, 4, r.stderr)
-        self.assertIn("a file this scene was read from", r.stderr)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("a file the scene IN '%s' is read from" % txt, r.stderr)
+        with open(self.path("t/materials.txt")) as f:
+            self.assertEqual(f.read(), table)
+        # a text OUT whose tables beside it are the scene's
+        other = self.path("t/other.txt")
+        shutil.copy(txt, other)
+        r = self.rbsim("convert", other, txt)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("would also write '%s'" % self.path("t/materials.txt"),
+                      r.stderr)
         with open(self.path("t/materials.txt")) as f:
             self.assertEqual(f.read(), table)
         ro = self.path("ro.json")
