@@ -361,6 +361,42 @@ class PngPathChecks(unittest.TestCase):
         r = self.rbsim("run", "far.json", "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
 
+    def test_resumed_run_checks_the_checkpoints_state(self):
+        # A resumed run places the default camera at its own first frame, so
+        # the check before the run must look at the checkpoint's spheres,
+        # not the scene's start (a leftover named in session 47): far
+        # spheres in the checkpoint are refused naming its frame, far ones
+        # only at the scene's start are not.  Positions are state, so one
+        # scene's checkpoint continues the other.
+        def write(name, x):
+            s = dict(SCENE, simulation={"steps": 3, "dt": 0.01,
+                                        "gravity": [0, 0, 0]})
+            s["bodies"] = [
+                {"name": "a", "type": "sphere", "radius": 1, "mass": 1,
+                 "position": [x, 0, 0]},
+                {"name": "b", "type": "sphere", "radius": 1, "mass": 1,
+                 "position": [-x, 0, 0]}]
+            with open(os.path.join(self.dir, name), "w") as f:
+                json.dump(s, f)
+        write("far.json", 1e100)
+        write("near.json", 2)
+        for scene, ck in (("far.json", "far.ck"), ("near.json", "near.ck")):
+            r = self.rbsim("run", scene, "--steps", "1", "--checkpoint", ck,
+                           "--quiet")
+            self.assertEqual(r.returncode, 0, r.stderr)
+        r = self.rbsim("run", "near.json", "--resume", "far.ck", "--png",
+                       "pics", "--quiet")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("view 0: position: not finite or beyond 1e100 m at "
+                      "frame 1 (the default camera", r.stderr)
+        self.assertNotIn("pics", os.listdir(self.dir))
+        r = self.rbsim("run", "far.json", "--resume", "near.ck", "--png",
+                       "pics", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(sorted(os.listdir(os.path.join(self.dir, "pics"))),
+                         ["contact_sheet.png", "frame_000002.png",
+                          "frame_000003.png"])
+
 
 if __name__ == "__main__":
     loader = unittest.defaultTestLoader
