@@ -844,6 +844,11 @@ static void commands_steer_the_run(void **state)
     CHECK_OK(rbs_projector_command(fx.p, "status", reply, sizeof reply));
     assert_non_null(strstr(reply, "frame 5 of 1000000"));
     assert_non_null(strstr(reply, "paused"));
+    /* pause when paused, resume when running: the reply says nothing
+     * changed (it said "paused at frame 5" again, and "resumed at frame K"
+     * for a run that was never paused: a probe of session 47). */
+    CHECK_OK(rbs_projector_command(fx.p, "pause", reply, sizeof reply));
+    assert_string_equal(reply, "already paused at frame 5");
 
     /* Bad arguments are refused with a reason. */
     assert_int_equal(rbs_projector_command(fx.p, "step 0", reply, sizeof reply),
@@ -880,6 +885,10 @@ static void commands_steer_the_run(void **state)
     }
     before = info.captured;
     assert_true(before > 6);
+    CHECK_OK(rbs_projector_command(fx.p, "resume", reply, sizeof reply));
+    assert_non_null(strstr(reply, "not paused: running at frame "));
+    CHECK_OK(rbs_projector_status(fx.p, &info));
+    assert_false(info.paused);
     CHECK_OK(rbs_projector_command(fx.p, "ping", reply, sizeof reply));
     assert_string_equal(reply, "pong");
     CHECK_OK(rbs_projector_command(fx.p, "quit", reply, sizeof reply));

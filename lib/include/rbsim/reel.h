@@ -397,7 +397,10 @@ RBS_API rbs_status rbs_projector_start(rbs_projector *projector);
  * published, so the world ends at the last frame published; frames already
  * in the reel are still drawn and every output finished), "status" (a
  * one-line summary: "frame K of N, ..." or, endless, "frame K (endless
- * run), ...").  "quit", "pause", "resume" and "status" take no argument.
+ * run), ...").  "quit", "pause", "resume" and "status" take no argument;
+ * "pause" when paused (no step in progress) and "resume" when running change
+ * nothing and say so ("already paused at frame K", "not paused: running at
+ * frame K"), RBS_OK.
  * Any other line is offered to each renderer's command hook: on the renderer
  * thread while it runs (this call waits for the answer, unless it comes from
  * the renderer thread itself), directly otherwise.  A reply (one line, no

@@ -1204,6 +1204,18 @@ rbs_status rbs_projector_command(rbs_projector *p, const char *line,
                      (unsigned long long)held, word);
             return RBS_E_CLOSED;
         }
+        if (!quit && p->paused == pause &&
+            (!pause || p->show_until <= p->frame_taken)) {
+            /* Nothing to change: say so, rather than "resumed at frame K"
+             * for a run that was never paused, or "paused" twice (a probe
+             * of session 47).  A pause during a step still holds it. */
+            held = p->frame_taken;
+            pthread_mutex_unlock(&p->mu);
+            reply_to(reply, reply_size, "%s at frame %llu",
+                     pause ? "already paused" : "not paused: running",
+                     (unsigned long long)held);
+            return RBS_OK;
+        }
         if (quit) {
             p->quit = 1;
         } else {
