@@ -1029,6 +1029,77 @@ int rbsf_check_scene_outputs(const rbs_scene *scene)
 
 /* ---- png folders: this run's frames only -------------------------------- */
 
+/* The frames a run from start to last keeps for an output of every K (the
+ * projector's rule, reel.h: multiples of K, the starting frame and the
+ * last; a resumed run does not write its starting frame, and a run saving a
+ * checkpoint keeps its last frame only if it is a multiple of K): does it
+ * write frame n? */
+static int run_writes_frame(uint64_t n, uint64_t start, int resumed, uint64_t last,
+                            uint32_t every, int checkpoint)
+{
+    uint64_t k = every ? every : 1;
+    if (n < start || n > last || (resumed && n == start))
+        return 0;
+    return n == start || n % k == 0 || (n == last && !checkpoint);
+}
+
+/* What is in the way of a file the sdl output (config c) will write: in its
+ * folder (or its viewK folders), an entry that is not a regular file (after
+ * links: a folder, a FIFO, a device ...) named as a frame the run writes or
+ * as the contact sheet.  The renderer leaves such names alone and its write
+ * there failed mid-run: exit 4, every output cut at that frame (a folder
+ * frame_000002.png: a probe of session 47).  RBS_OK, or RBS_E_INVALID with
+ * err naming the entry, what it is and the frame. */
+static rbs_status png_names_free(const rbs_renderer_config *c, uint64_t start,
+                                 int resumed, uint64_t last, int checkpoint,
+                                 char *err, size_t errlen)
+{
+    char dir[4200], path[4500];
+    int views, tile, sheet, v;
+    struct stat sb;
+    if (c->path == NULL || strlen(c->path) > 4096)
+        return RBS_OK; /* (the renderer's check refuses such a path) */
+    png_layout(c->json, &views, &tile, &sheet);
+    snprintf(path, sizeof path, "%s/contact_sheet.png", c->path);
+    if (sheet && stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+        snprintf(err, errlen, "'%.400s' is %s, where the run writes its contact "
+                              "sheet: move it, or name another folder",
+                 path, S_ISDIR(sb.st_mode) ? "a folder" : "not a regular file");
+        return RBS_E_INVALID;
+    }
+    for (v = 0; v < (views == 1 || tile ? 1 : views); v++) {
+        DIR *d;
+        struct dirent *e;
+        if (views == 1 || tile)
+            snprintf(dir, sizeof dir, "%s", c->path);
+        else
+            snprintf(dir, sizeof dir, "%s/view%d", c->path, v);
+        if ((d = opendir(dir)) == NULL)
+            continue; /* (no folder yet: nothing in the way) */
+        while ((e = readdir(d)) != NULL) {
+            uint64_t n;
+            if (!is_frame_png(e->d_name))
+                continue;
+            errno = 0;
+            n = strtoull(e->d_name + 6, NULL, 10);
+            if (errno != 0 ||
+                !run_writes_frame(n, start, resumed, last, c->every, checkpoint))
+                continue;
+            snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+            if (stat(path, &sb) != 0 || S_ISREG(sb.st_mode))
+                continue; /* (a file, or a link to be made: written) */
+            snprintf(err, errlen, "'%.400s' is %s, where the run writes frame "
+                                  "%llu: move it, or name another folder",
+                     path, S_ISDIR(sb.st_mode) ? "a folder" : "not a regular file",
+                     (unsigned long long)n);
+            closedir(d);
+            return RBS_E_INVALID;
+        }
+        closedir(d);
+    }
+    return RBS_OK;
+}
+
 /* What remove_stale_frames removed from one folder. */
 typedef struct stale_files {
     unsigned long count;
@@ -2154,6 +2225,9 @@ int rbsf_run_main(int argc, char **argv)
         if (cls->check == NULL)
             continue;
         st = cls->check(cls->context, &configs[i], world, err, sizeof err);
+        if (st == RBS_OK && strcmp(configs[i].type, "sdl") == 0)
+            st = png_names_free(&configs[i], start_frame, o.resume != NULL,
+                                target, o.checkpoint != NULL, err, sizeof err);
         if (st != RBS_OK) {
             if (outs[i].from_scene)
                 fprintf(stderr, "%s:%d:%d: renderers[%lu] (%s): %s\n",
