@@ -441,6 +441,16 @@ static const bad_case cases[] = {
       E("b\n", 1, 0,
         "\"b\" in \"list=1,b\" is not a number: a value with commas is an array of "
         "numbers (give other values by index, list[1]=...)")}},
+    /* a decimal comma ("0,001", German settings) is a list of two: said
+     * so (it was only "got an array of 2 elements"); "001" is no number of
+     * its own */
+    {"bad/text_decimal_comma/config.txt", RBS_E_SCENE,
+     {E("0,001", 1, 0,
+        "simulation.dt: must be a number, got an array of 2 elements (a decimal "
+        "comma? write the number with a point, e.g. 0.5: a comma separates values)"),
+      EIN("bad/text_decimal_comma/objects.txt", "0,1", 1, 0,
+          "bodies[0].radius: must be a number, got an array of 2 elements (a decimal "
+          "comma? write the number with a point, e.g. 0.5: a comma separates values)")}},
     {"bad/text_bad_material_row/config.txt", RBS_E_SCENE,
      {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
           "expected 4 to 7 columns: material_a material_b static kinetic [restitution "

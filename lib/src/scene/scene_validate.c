@@ -206,6 +206,41 @@ static void got_list(const vctx *v, const cJSON *arr, char *out, size_t n)
 
 /* ---- typed values ------------------------------------------------------- */
 
+/* Whether item is a text scene's value written as one number with a decimal
+ * comma ("dt = 0,001", "radius 0,1"), which the text format reads as a list
+ * of two: the digits, one comma and the digits again, no blank.  (German
+ * settings write numbers so; "must be a number, got an array of 2
+ * elements" alone did not say why: a probe of session 47.) */
+static int decimal_comma(const vctx *v, const cJSON *item)
+{
+    const rbs__pos *a, *b;
+    const char *t;
+    size_t i, gap;
+    /* (the part after the comma may be no number of its own: "001") */
+    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 2 ||
+        !cJSON_IsNumber(item->child))
+        return 0;
+    a = rbs__posmap_get(v->map, item->child);
+    b = rbs__posmap_get(v->map, item->child->next);
+    if (a == NULL || b == NULL || a->file != b->file || a->file < 0 ||
+        a->file >= v->src_count || a->raw_len == 0 || b->raw_len == 0 ||
+        (size_t)b->raw_off + b->raw_len > v->srcs[a->file].len)
+        return 0;
+    t = v->srcs[a->file].text;
+    gap = (size_t)a->raw_off + a->raw_len;
+    /* "0,001": the two written side by side with one comma, not in "[...]" */
+    if (gap + 1 != b->raw_off || t[gap] != ',' ||
+        (a->raw_off > 0 && t[a->raw_off - 1] == '['))
+        return 0;
+    for (i = a->raw_off; i < gap; i++)
+        if (!(t[i] >= '0' && t[i] <= '9') && !(i == a->raw_off && t[i] == '-'))
+            return 0;
+    for (i = b->raw_off; i < (size_t)b->raw_off + b->raw_len; i++)
+        if (!(t[i] >= '0' && t[i] <= '9'))
+            return 0;
+    return 1;
+}
+
 /* A finite number; reports wrong types, overflow (cJSON turns 1e999 into inf)
  * and literals that underflow to zero. */
 static int get_number(vctx *v, const cJSON *item, double *out)
@@ -214,7 +249,11 @@ static int get_number(vctx *v, const cJSON *item, double *out)
     const rbs__pos *pos;
     if (!cJSON_IsNumber(item)) {
         got(v, item, g, sizeof g);
-        err(v, loc_value(v, item), "must be a number, got %s", g);
+        err(v, loc_value(v, item), "must be a number, got %s%s", g,
+            decimal_comma(v, item) ? " (a decimal comma? write the number with "
+                                     "a point, e.g. 0.5: a comma separates "
+                                     "values)"
+                                   : "");
         return -1;
     }
     got(v, item, g, sizeof g);
