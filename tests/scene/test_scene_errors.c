@@ -450,7 +450,11 @@ static const bad_case cases[] = {
         "comma? write the number with a point, e.g. 0.5: a comma separates values)"),
       EIN("bad/text_decimal_comma/objects.txt", "0,1", 1, 0,
           "bodies[0].radius: must be a number, got an array of 2 elements (a decimal "
-          "comma? write the number with a point, e.g. 0.5: a comma separates values)")}},
+          "comma? write the number with a point, e.g. 0.5: a comma separates values)"),
+      EIN("bad/text_decimal_comma/objects.txt", "0,5", 1, 0,
+          "bodies[0].position: must be an array of 3 numbers [x, y, z], got an array "
+          "of 4 elements (a decimal comma? write the number with a point, e.g. 0.5: a "
+          "comma separates values)")}},
     {"bad/text_bad_material_row/config.txt", RBS_E_SCENE,
      {EIN("bad/text_bad_material_row/materials.txt", "rubber rubber", 1, 0,
           "expected 4 to 7 columns: material_a material_b static kinetic [restitution "

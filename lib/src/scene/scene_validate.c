@@ -206,29 +206,22 @@ static void got_list(const vctx *v, const cJSON *arr, char *out, size_t n)
 
 /* ---- typed values ------------------------------------------------------- */
 
-/* Whether item is a text scene's value written as one number with a decimal
- * comma ("dt = 0,001", "radius 0,1"), which the text format reads as a list
- * of two: the digits, one comma and the digits again, no blank.  (German
- * settings write numbers so; "must be a number, got an array of 2
- * elements" alone did not say why: a probe of session 47.) */
-static int decimal_comma(const vctx *v, const cJSON *item)
+/* Whether two values of a text scene's list are one number written with a
+ * decimal comma: the digits, one comma and the digits again, no blank. */
+static int glued(const vctx *v, const cJSON *first, const cJSON *second)
 {
-    const rbs__pos *a, *b;
+    const rbs__pos *a = rbs__posmap_get(v->map, first);
+    const rbs__pos *b = rbs__posmap_get(v->map, second);
     const char *t;
     size_t i, gap;
-    /* (the part after the comma may be no number of its own: "001") */
-    if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != 2 ||
-        !cJSON_IsNumber(item->child))
-        return 0;
-    a = rbs__posmap_get(v->map, item->child);
-    b = rbs__posmap_get(v->map, item->child->next);
-    if (a == NULL || b == NULL || a->file != b->file || a->file < 0 ||
-        a->file >= v->src_count || a->raw_len == 0 || b->raw_len == 0 ||
+    if (!cJSON_IsNumber(first) || a == NULL || b == NULL || a->file != b->file ||
+        a->file < 0 || a->file >= v->src_count || a->raw_len == 0 || b->raw_len == 0 ||
         (size_t)b->raw_off + b->raw_len > v->srcs[a->file].len)
         return 0;
     t = v->srcs[a->file].text;
     gap = (size_t)a->raw_off + a->raw_len;
-    /* "0,001": the two written side by side with one comma, not in "[...]" */
+    /* "0,001": the two written side by side with one comma, not in "[...]"
+     * (the part after the comma may be no number of its own: "001") */
     if (gap + 1 != b->raw_off || t[gap] != ',' ||
         (a->raw_off > 0 && t[a->raw_off - 1] == '['))
         return 0;
@@ -239,6 +232,22 @@ static int decimal_comma(const vctx *v, const cJSON *item)
         if (!(t[i] >= '0' && t[i] <= '9'))
             return 0;
     return 1;
+}
+
+/* Whether the array item holds a text scene's number written with a
+ * decimal comma ("dt = 0,001", "radius 0,1", "position 0,5 0 1"), which the
+ * text format reads as two values.  (German settings write numbers so;
+ * "must be a number, got an array of 2 elements" alone did not say why: a
+ * probe of session 47.) */
+static int decimal_comma(const vctx *v, const cJSON *item)
+{
+    const cJSON *e;
+    if (!cJSON_IsArray(item))
+        return 0;
+    for (e = item->child; e != NULL && e->next != NULL; e = e->next)
+        if (glued(v, e, e->next))
+            return 1;
+    return 0;
 }
 
 /* A finite number; reports wrong types, overflow (cJSON turns 1e999 into inf)
@@ -315,7 +324,11 @@ static int get_numbers(vctx *v, const cJSON *item, double *out, int n,
     int i = 0, bad = 0;
     if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != n) {
         got(v, item, g, sizeof g);
-        err(v, loc_value(v, item), "must be %s, got %s", what, g);
+        err(v, loc_value(v, item), "must be %s, got %s%s", what, g,
+            decimal_comma(v, item) ? " (a decimal comma? write the number with "
+                                     "a point, e.g. 0.5: a comma separates "
+                                     "values)"
+                                   : "");
         return -1;
     }
     for (e = item->child; e != NULL; e = e->next, i++) {
