@@ -79,6 +79,39 @@ def test_save_writes_through_a_symbolic_link(tmp_path):
     assert dangling.is_symlink()
 
 
+def test_save_never_replaces_the_scene_it_was_loaded_from(tmp_path):
+    # world.save(path) wrote the checkpoint over the scene file the world
+    # was loaded from (a probe of session 47), where rbsim run --checkpoint
+    # refuses it: now an InvalidError naming the argument, through any
+    # spelling or link, for a text scene's three files too; the file stays.
+    root = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
+    scene = tmp_path / "s.json"
+    with open(os.path.join(root, "bouncing_sphere.json"), "rb") as f:
+        text = f.read()
+    scene.write_bytes(text)
+    (tmp_path / "link.json").symlink_to(scene)
+    w = rbsim.load(str(scene))
+    for p in (scene, str(scene), tmp_path / "." / "s.json", tmp_path / "link.json"):
+        with pytest.raises(rbsim.InvalidError,
+                           match=r"^invalid argument: path: .* a file the world's scene was "
+                                 r"read from: a checkpoint there would replace the scene"):
+            w.save(p)
+    assert scene.read_bytes() == text
+    w.save(tmp_path / "ok.ckpt")  # elsewhere, as before
+    for name in ("config.txt", "materials.txt", "objects.txt"):
+        with open(os.path.join(root, "pile", name), "rb") as f:
+            (tmp_path / name).write_bytes(f.read())
+    t = rbsim.load(str(tmp_path / "config.txt"))
+    for name in ("config.txt", "materials.txt", "objects.txt"):
+        before = (tmp_path / name).read_bytes()
+        with pytest.raises(rbsim.InvalidError, match="scene was read from"):
+            t.save(tmp_path / name)
+        assert (tmp_path / name).read_bytes() == before
+    # a resumed world has no scene file: it saves over its own checkpoint
+    r = rbsim.resume(tmp_path / "ok.ckpt")
+    r.save(tmp_path / "ok.ckpt")
+
+
 def test_views_of_a_restored_world_outlive_it():
     r = rbsim.World.from_checkpoint(make_world().checkpoint())
     p = r.positions

@@ -116,6 +116,13 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
             entries.append(json.loads(ffi.string(raw).decode("utf-8", "replace"))
                            if raw != ffi.NULL else {})
     world.scene_renderers = entries
+    files = []
+    while True:
+        src = lib.rbs_scene_source(scene, len(files))
+        if src == ffi.NULL:
+            break
+        files.append(ffi.string(src))
+    world._scene_files = tuple(files)
     text = lib.rbs_scene_description(scene)
     world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
     return world

@@ -20,6 +20,7 @@ Design notes
 from __future__ import annotations
 
 import inspect
+import os
 import sys
 import threading
 import time
@@ -81,6 +82,15 @@ def _quat(q: Any) -> np.ndarray:
 
 def _set_vec3(dst: Any, v: Tuple[float, ...]) -> None:
     dst.x, dst.y, dst.z = v
+
+
+def _same_file(a: bytes, b: bytes) -> bool:
+    """Whether two paths name one existing file (after links)."""
+    try:
+        sa, sb = os.stat(a), os.stat(b)
+    except (OSError, ValueError):
+        return False
+    return (sa.st_dev, sa.st_ino) == (sb.st_dev, sb.st_ino)
 
 
 def _str(p: Any) -> str:
@@ -633,6 +643,10 @@ class World(_Handle):
         self._step_seconds: Optional[float] = None
         self._scene_steps: Optional[int] = None
         self._scene_pause_on_collision = False
+        #: the files the scene was read from (rbs_scene_source: the scene,
+        #: a text scene's materials and objects files), which save() does
+        #: not write over; () for a world not loaded from a file
+        self._scene_files: Tuple[bytes, ...] = ()
         #: the scene's description ("" for a world built in code)
         self.description = ""
         #: the scene's "renderers" entries (dicts); run() does not run them
@@ -1501,8 +1515,20 @@ class World(_Handle):
 
     def save(self, path: Any) -> None:
         """Save a checkpoint to a file atomically (a crash mid-write leaves
-        any previous file intact); restore it with :meth:`World.restore`."""
+        any previous file intact); restore it with :meth:`World.restore`.
+        A file the world's scene was read from (:func:`rbsim.load`'s file, a
+        text scene's materials and objects files; by any path or link) is
+        refused with an InvalidError, as ``rbsim run --checkpoint`` refuses
+        it: the checkpoint would replace the scene."""
         raw = _check.path(path, "path")
+        for src in self._scene_files:
+            # (it wrote the checkpoint over the scene: a probe of session 47)
+            if _same_file(raw, src):
+                raise _e.error_class(lib.RBS_E_INVALID)(
+                    "path: %r is %sa file the world's scene was read from: a "
+                    "checkpoint there would replace the scene; save elsewhere"
+                    % (os.fsdecode(raw), "" if raw == src
+                       else "%r, " % os.fsdecode(src)))
         msg = ffi.new("char[]", 600)
         w = self._acquire()
         try:
