@@ -397,14 +397,14 @@ class PngPathChecks(unittest.TestCase):
                          ["contact_sheet.png", "frame_000002.png",
                           "frame_000003.png"])
 
-    def test_a_non_file_at_a_frames_name_is_refused_before_the_run(self):
+    def test_a_folder_at_a_frames_name_is_refused_before_the_run(self):
         # The renderer leaves names that are not regular files alone, and its
         # write of that frame failed mid-run: a folder frame_000002.png gave
-        # exit 4 with the CSV cut at frame 2, a folder contact_sheet.png exit
-        # 4 after the whole run, and a FIFO blocked the run in open() (a
-        # probe of session 47).  Now refused before anything is written,
-        # naming the entry and the frame; a name the run does not write
-        # (another --every, a resumed run's first frame) is no obstacle.
+        # exit 4 with the CSV cut at frame 2, and a folder contact_sheet.png
+        # exit 4 after the whole run (a probe of session 47).  Now refused
+        # before anything is written, naming the entry and the frame; a name
+        # the run does not write (another --every) is no obstacle, and a
+        # device or link is written as before (test_a_users_link_is_left).
         self.scene()
         pics = os.path.join(self.dir, "pics")
         os.makedirs(os.path.join(pics, "frame_000002.png"))
@@ -434,8 +434,7 @@ class PngPathChecks(unittest.TestCase):
         self.assertEqual(r.returncode, 3, r.stderr)
         self.assertIn("renderers[0] (sdl): 'pics/frame_000001.png' is a "
                       "folder, where the run writes frame 1", r.stderr)
-        # the contact sheet, and a FIFO (open() for writing waited for a
-        # reader: the run hung)
+        # the contact sheet
         os.rmdir(os.path.join(pics, "frame_000001.png"))
         self.scene()
         os.makedirs(os.path.join(self.dir, "sheet", "contact_sheet.png"))
@@ -443,15 +442,8 @@ class PngPathChecks(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("'sheet/contact_sheet.png' is a folder, where the run "
                       "writes its contact sheet", r.stderr)
-        os.makedirs(os.path.join(self.dir, "fifo"))
-        os.mkfifo(os.path.join(self.dir, "fifo", "frame_000001.png"))
-        r = self.rbsim("run", "scene.json", "--png", "fifo", "--quiet")
-        self.assertEqual(r.returncode, 2, r.stderr)
-        self.assertIn("'fifo/frame_000001.png' is not a regular file, where "
-                      "the run writes frame 1", r.stderr)
-        self.assertEqual(os.listdir(os.path.join(self.dir, "fifo")),
-                         ["frame_000001.png"])
-
+        self.assertEqual(os.listdir(os.path.join(self.dir, "sheet")),
+                         ["contact_sheet.png"])
 
 if __name__ == "__main__":
     loader = unittest.defaultTestLoader
