@@ -1044,13 +1044,14 @@ static int run_writes_frame(uint64_t n, uint64_t start, int resumed, uint64_t la
 }
 
 /* What is in the way of a file the sdl output (config c) will write: in its
- * folder (or its viewK folders), a folder (after links) named as a frame
- * the run writes or as the contact sheet.  The renderer leaves such names
- * alone and its write there failed mid-run: exit 4, every output cut at
- * that frame (a folder frame_000002.png: a probe of session 47).  Devices
- * and FIFOs are written as they are (a link to /dev/null), as for any
- * output.  RBS_OK, or RBS_E_INVALID with err naming the entry and the
- * frame. */
+ * folder (or its viewK folders), a folder or a FIFO (after links) named as
+ * a frame the run writes or as the contact sheet.  The renderer leaves such
+ * names alone: its write into a folder failed mid-run (exit 4, every output
+ * cut at that frame), and its open() of a FIFO no one reads waited for a
+ * reader, which no signal ended (the sdl output is not in the stopper): a
+ * probe of session 47.  Devices are written as they are (a link to
+ * /dev/null), as for any output.  RBS_OK, or RBS_E_INVALID with err naming
+ * the entry and the frame. */
 static rbs_status png_names_free(const rbs_renderer_config *c, uint64_t start,
                                  int resumed, uint64_t last, int checkpoint,
                                  char *err, size_t errlen)
@@ -1062,10 +1063,10 @@ static rbs_status png_names_free(const rbs_renderer_config *c, uint64_t start,
         return RBS_OK; /* (the renderer's check refuses such a path) */
     png_layout(c->json, &views, &tile, &sheet);
     snprintf(path, sizeof path, "%s/contact_sheet.png", c->path);
-    if (sheet && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        snprintf(err, errlen, "'%.400s' is a folder, where the run writes its "
+    if (sheet && stat(path, &sb) == 0 && (S_ISDIR(sb.st_mode) || S_ISFIFO(sb.st_mode))) {
+        snprintf(err, errlen, "'%.400s' is a %s, where the run writes its "
                               "contact sheet: move it, or name another folder",
-                 path);
+                 path, S_ISDIR(sb.st_mode) ? "folder" : "FIFO");
         return RBS_E_INVALID;
     }
     for (v = 0; v < (views == 1 || tile ? 1 : views); v++) {
@@ -1087,11 +1088,12 @@ static rbs_status png_names_free(const rbs_renderer_config *c, uint64_t start,
                 !run_writes_frame(n, start, resumed, last, c->every, checkpoint))
                 continue;
             snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-            if (stat(path, &sb) != 0 || !S_ISDIR(sb.st_mode))
+            if (stat(path, &sb) != 0 || !(S_ISDIR(sb.st_mode) || S_ISFIFO(sb.st_mode)))
                 continue; /* (a file, a device, a link to be made: written) */
-            snprintf(err, errlen, "'%.400s' is a folder, where the run writes "
+            snprintf(err, errlen, "'%.400s' is a %s, where the run writes "
                                   "frame %llu: move it, or name another folder",
-                     path, (unsigned long long)n);
+                     path, S_ISDIR(sb.st_mode) ? "folder" : "FIFO",
+                     (unsigned long long)n);
             closedir(d);
             return RBS_E_INVALID;
         }

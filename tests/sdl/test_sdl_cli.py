@@ -397,11 +397,12 @@ class PngPathChecks(unittest.TestCase):
                          ["contact_sheet.png", "frame_000002.png",
                           "frame_000003.png"])
 
-    def test_a_folder_at_a_frames_name_is_refused_before_the_run(self):
+    def test_a_folder_or_fifo_at_a_frames_name_is_refused_before_the_run(self):
         # The renderer leaves names that are not regular files alone, and its
         # write of that frame failed mid-run: a folder frame_000002.png gave
-        # exit 4 with the CSV cut at frame 2, and a folder contact_sheet.png
-        # exit 4 after the whole run (a probe of session 47).  Now refused
+        # exit 4 with the CSV cut at frame 2, a folder contact_sheet.png
+        # exit 4 after the whole run, and a FIFO held the run for good (a
+        # probe of session 47).  Now refused
         # before anything is written, naming the entry and the frame; a name
         # the run does not write (another --every) is no obstacle, and a
         # device or link is written as before (test_a_users_link_is_left).
@@ -444,6 +445,20 @@ class PngPathChecks(unittest.TestCase):
                       "writes its contact sheet", r.stderr)
         self.assertEqual(os.listdir(os.path.join(self.dir, "sheet")),
                          ["contact_sheet.png"])
+        # a FIFO: the renderer's open() waited for a reader, and SIGINT and
+        # SIGTERM did not end the run (only SIGKILL did)
+        os.makedirs(os.path.join(self.dir, "fifo"))
+        os.mkfifo(os.path.join(self.dir, "fifo", "frame_000001.png"))
+        try:
+            r = subprocess.run([RBSIM, "run", "scene.json", "--png", "fifo",
+                                "--quiet"], cwd=self.dir,
+                               stdin=subprocess.DEVNULL, capture_output=True,
+                               text=True, timeout=30)
+        except subprocess.TimeoutExpired:
+            self.fail("the run waited on the FIFO")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("'fifo/frame_000001.png' is a FIFO, where the run "
+                      "writes frame 1", r.stderr)
 
 if __name__ == "__main__":
     loader = unittest.defaultTestLoader
