@@ -36,7 +36,8 @@ static const char usage_text[] =
     "                         config.txt format (OUT ending in .txt)\n"
     "  help [COMMAND]         this text, or a command's options (also\n"
     "                         COMMAND --help, or -h)\n"
-    "  --version              print the version\n"
+    "  --version              print the version (with --help as well, in\n"
+    "                         either order: this text)\n"
     "\n"
     "exit codes: 0 success, 2 usage error, 3 scene error, 4 run-time error\n"
     "(capacity, numerical failure, renderer failure such as a full disk or a\n"
@@ -706,6 +707,13 @@ static int asks_help(int argc, char **argv)
     return 0;
 }
 
+/* Is a an option of rbsim itself, before any command? */
+static int is_top_flag(const char *a)
+{
+    return strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0 ||
+           strcmp(a, "--version") == 0;
+}
+
 static int dispatch(int argc, char **argv)
 {
     const char *cmd;
@@ -714,6 +722,23 @@ static int dispatch(int argc, char **argv)
         return RBSF_EXIT_USAGE;
     }
     cmd = argv[1];
+    /* The top-level flags (--help, -h, --version) at the start: --help wins
+     * wherever it is among them, as in GNU tools ("rbsim --version --help"
+     * and "rbsim --help --version" print the usage); what follows them is
+     * help's COMMAND. */
+    if (is_top_flag(cmd)) {
+        int k = 1, help = 0;
+        while (k < argc && is_top_flag(argv[k])) {
+            if (strcmp(argv[k], "--version") != 0)
+                help = 1;
+            k++;
+        }
+        if (help && k > 2) {
+            argc -= k - 2;
+            argv += k - 2;
+            cmd = "--help";
+        }
+    }
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
         if (argc != 2) {
             fprintf(stderr, "rbsim --version: takes no arguments\n");

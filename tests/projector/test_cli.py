@@ -122,6 +122,27 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 2)
         self.assertIn("unknown command 'frobnicate'", r.stderr)
 
+    def test_help_wins_over_version(self):
+        # "rbsim --version --help" was refused (exit 2, "takes no
+        # arguments") and "rbsim --help --version" said "help: unknown
+        # command '--version'".  --help (or -h) wins wherever it is among
+        # the top-level flags, as in GNU tools; a COMMAND after them is
+        # help's.
+        usage = self.rbsim("help").stdout
+        for args in (["--version", "--help"], ["--help", "--version"],
+                     ["-h", "--version"], ["--version", "-h", "--version"],
+                     ["--help", "--help"]):
+            r = self.rbsim(*args)
+            self.assertEqual((r.returncode, r.stdout, r.stderr),
+                             (0, usage, ""), args)
+        r = self.rbsim("--version", "--help", "run")
+        self.assertEqual((r.returncode, r.stdout),
+                         (0, self.rbsim("help", "run").stdout))
+        r = self.rbsim("--version", "--version")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("takes no arguments", r.stderr)
+        self.assertIn("with --help as well", usage)
+
     def test_help_after_a_command(self):
         # "rbsim run --help" (or -h, for each command) was "unknown option"
         # with exit 2; only "rbsim help run" worked.  It prints exactly what
