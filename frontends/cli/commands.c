@@ -44,7 +44,7 @@ static const rbsf_command commands[] = {
     {"zoom", "FACTOR", "SDL camera distance divided by FACTOR (2: closer)",
      cmd_camera},
     {"reset", "", "put the SDL camera back where it started", cmd_camera},
-    {"view", "N", "SDL camera commands act on view N", cmd_camera},
+    {"view", "N", "SDL camera commands act on view N (digits only)", cmd_camera},
     {"camera", "", "describe the current SDL camera", cmd_camera},
 };
 

@@ -887,6 +887,32 @@ static int numbers(const char *s, double *out, int n, const char **bad, int *bad
     }
 }
 
+/* Parse exactly one view index after "view": a word of digits only (not
+ * "1.0", "-0", "+1", "1e0": a probe took "view 1.0" and "view -0" as whole
+ * numbers), its value saturated at UINT32_MAX (out of any range).  Returns
+ * 0, -1 or 1 with *bad as numbers() does. */
+static int view_index(const char *s, uint32_t *out, const char **bad, int *bad_len)
+{
+    const char *w;
+    size_t len, k;
+    uint64_t v = 0;
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+    if (*s == '\0') return -1;
+    w = s;
+    while (*s != '\0' && *s != ' ' && *s != '\t' && *s != '\r' && *s != '\n') s++;
+    len = (size_t)(s - w);
+    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
+    if (*s != '\0') return -1;
+    *bad = w;
+    *bad_len = len > 200 ? 200 : (int)len;
+    for (k = 0; k < len; k++) {
+        if (w[k] < '0' || w[k] > '9') return 1;
+        if (v <= UINT32_MAX) v = v * 10 + (uint64_t)(w[k] - '0');
+    }
+    *out = v > UINT32_MAX ? UINT32_MAX : (uint32_t)v;
+    return 0;
+}
+
 static rbs_status command(void *instance, const char *line, char *out, size_t outlen)
 {
     static const char *const usage[] = {
@@ -898,6 +924,7 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
     double a[2] = {0.0, 0.0};
     const char *bad = "";
     int bad_len = 0, got = 0;
+    uint32_t index = 0;
     rbs_status st;
     rbsf__camera *cam;
     if (r == NULL || line == NULL) return RBS_E_INVALID;
@@ -914,16 +941,18 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
      * shares with the window thread. */
     if (strcmp(word, "orbit") == 0 || strcmp(word, "pan") == 0) {
         if ((got = numbers(line, a, 2, &bad, &bad_len)) != 0) goto bad_usage;
-    } else if (strcmp(word, "zoom") == 0 || strcmp(word, "view") == 0) {
+    } else if (strcmp(word, "zoom") == 0) {
         if ((got = numbers(line, a, 1, &bad, &bad_len)) != 0) goto bad_usage;
+    } else if (strcmp(word, "view") == 0) {
+        if ((got = view_index(line, &index, &bad, &bad_len)) != 0) goto bad_usage;
     } else if (strcmp(word, "reset") == 0 || strcmp(word, "camera") == 0) {
         if ((got = numbers(line, a, 0, &bad, &bad_len)) != 0) goto bad_usage;
     } else {
         return RBS_E_NOT_FOUND;
     }
     if (strcmp(word, "view") == 0) {
-        if (!(a[0] >= 0 && a[0] < (double)r->views) || a[0] != floor(a[0])) goto bad_usage;
-        r->selected = (uint32_t)a[0];
+        if (index >= r->views) goto bad_usage;
+        r->selected = index;
         cam = &r->cameras[r->selected];
     }
     st = RBS_OK;
@@ -945,7 +974,11 @@ static rbs_status command(void *instance, const char *line, char *out, size_t ou
 
 bad_usage:
     if (out != NULL && outlen > 0) {
-        if (got == 1)
+        if (got == 1 && strcmp(word, "view") == 0)
+            snprintf(out, outlen, "view: expected a view index, a non-negative "
+                     "whole number written with digits only, got '%.*s'; ",
+                     bad_len, bad);
+        else if (got == 1)
             snprintf(out, outlen, "%s: expected a decimal number, got '%.*s'; ",
                      word, bad_len, bad);
         else

@@ -602,7 +602,20 @@ static void test_commands(void **state)
             {"pan 1 infinity", "pan: expected a decimal number, got 'infinity'; usage: pan"},
             {"pan 0x1p3 0", "pan: expected a decimal number, got '0x1p3'; usage: pan"},
             {"zoom 1e999", "zoom: expected a decimal number, got '1e999'; usage: zoom"},
-            {"view 0x0", "view: expected a decimal number, got '0x0'; usage: view N"},
+            {"view 0x0", "view: expected a view index, a non-negative whole number "
+                         "written with digits only, got '0x0'; usage: view N (0..0)"},
+            /* A view index is digits only: "view 0.0" and "view -0" were
+             * taken as view 0 (a probe of session 47). */
+            {"view 0.0", "view: expected a view index, a non-negative whole number "
+                         "written with digits only, got '0.0'; usage: view N (0..0)"},
+            {"view -0", "view: expected a view index, a non-negative whole number "
+                        "written with digits only, got '-0'; usage: view N (0..0)"},
+            {"view +0", "view: expected a view index, a non-negative whole number "
+                        "written with digits only, got '+0'; usage: view N (0..0)"},
+            {"view 0e0", "view: expected a view index, a non-negative whole number "
+                         "written with digits only, got '0e0'; usage: view N (0..0)"},
+            {"view 99999999999999999999", "usage: view N (0..0)"},
+            {"view 0 0", "usage: view N (0..0)"},
             {"zoom 2x", "zoom: expected a decimal number, got '2x'; usage: zoom"}};
         size_t k;
         for (k = 0; k < sizeof words / sizeof words[0]; k++) {
@@ -612,6 +625,8 @@ static void test_commands(void **state)
                 fail_msg("'%s' replied '%s'", words[k][0], out);
         }
         assert_int_equal(cls->command(inst, "zoom 1e0", out, sizeof out), RBS_OK);
+        assert_int_equal(cls->command(inst, "view 00", out, sizeof out), RBS_OK);
+        assert_int_equal(cls->command(inst, " view 0 ", out, sizeof out), RBS_OK);
     }
     assert_int_equal(cls->command(inst, "pan 1 2 3", out, sizeof out), RBS_E_INVALID);
     assert_int_equal(cls->command(inst, "view 1", out, sizeof out), RBS_E_INVALID);
