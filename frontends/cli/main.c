@@ -117,7 +117,8 @@ static const char run_options_text[] =
     "on stdout.  Every output is checked and made before any is written: an\n"
     "existing file is written as a temporary beside it, renamed onto it when\n"
     "the run ends; a rejected run writes nothing.  A value that is an option\n"
-    "name (--csv --quiet) is refused: write ./--quiet for such a file.\n"
+    "name (--csv --quiet) is refused: write ./--quiet for such a file.  Each\n"
+    "option is given once at most, a flag too (--paused --paused is refused).\n"
     "\n"
     "While it runs, type commands on standard input (unless it is the scene\n"
     "or the --resume checkpoint):\n";

@@ -188,14 +188,15 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         /* Flags. */
         if (strcmp(name, "--realtime") == 0 || strcmp(name, "--quiet") == 0 ||
             strcmp(name, "--paused") == 0) {
+            int *flag = name[2] == 'r' ? &o->realtime
+                        : name[2] == 'q' ? &o->quiet : &o->paused;
             if (eq)
                 return usage_error("%s takes no value%s", name, "");
-            if (name[2] == 'r')
-                o->realtime = 1;
-            else if (name[2] == 'q')
-                o->quiet = 1;
-            else
-                o->paused = 1;
+            /* Every option once, a flag as a value option ("--paused
+             * --paused" was taken; "--csv a --csv b" never was). */
+            if (*flag)
+                return usage_error("%s given twice%s", name, "");
+            *flag = 1;
             continue;
         }
         if (strcmp(name, "--steps") && strcmp(name, "--dt") &&

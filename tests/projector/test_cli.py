@@ -221,6 +221,18 @@ class CliTests(Base):
             self.assertIn(msg, r.stderr, extra)
             self.assertFalse(os.path.exists(self.path("out.csv")), extra)
 
+    def test_a_flag_given_twice_is_refused(self):
+        # "--paused --paused" (and --quiet, --realtime) was taken while a
+        # value option given twice was refused: every option once.
+        s = self.scene()
+        for flag in ("--paused", "--quiet", "--realtime"):
+            r = self.rbsim("run", s, flag, "--csv", "out.csv", flag)
+            self.assertEqual(r.returncode, 2, (flag, r.stderr))
+            self.assertIn("rbsim run: %s given twice" % flag, r.stderr)
+            self.assertFalse(os.path.exists(self.path("out.csv")), flag)
+        self.assertIn("--paused --paused is refused",
+                      " ".join(self.rbsim("help", "run").stdout.split()))
+
     def test_failed_step_says_the_time_in_its_shortest_form(self):
         # Contacts outgrow max_contacts (2) when three balls land at once:
         # exit 4, the step and its time as they read back (t = 0.1 s, not
