@@ -105,6 +105,33 @@ def test_every_out_of_range_is_refused_up_front():
     assert [f.number for f in b.frames] == [0, 3]
 
 
+def test_a_single_renderer_not_in_a_list_is_refused():
+    # renderers=print was wrapped in a list quietly; the API takes a list,
+    # so a single renderer is a TypeError naming renderers (session 47).
+    w = make_world()
+
+    class Drawer:
+        def draw(self, frame):
+            pass
+
+    for single in (print, Drawer(), lambda f: None):
+        for call in (w.run, w.start):
+            with pytest.raises(TypeError) as info:
+                call(3, renderers=single)
+            assert isinstance(info.value, rbsim.ArgumentTypeError)
+            assert str(info.value).startswith(
+                "renderers: expected a list of renderers, got a single renderer ")
+            assert "pass a list, renderers=[...]" in str(info.value)
+        with pytest.raises(TypeError) as info:
+            rbsim.Run(w, 3, single, False, 1.0, False, False, None, False)
+        assert "renderers: expected a list" in str(info.value)
+    with pytest.raises(TypeError) as info:
+        w.run(3, renderers=3)
+    assert str(info.value) == "renderers: expected a list of renderers, got int 3"
+    assert w.step_count == 0
+    w.run(3, renderers=(print,) * 0)
+
+
 def test_a_plain_callable_and_four_renderers():
     w = make_world()
     seen = [[] for _ in range(4)]

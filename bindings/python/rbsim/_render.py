@@ -313,7 +313,8 @@ class Run(_Handle):
         self._in_wait = False
         self._registry: Any = ffi.NULL
         self._result: Optional[int] = None
-        self._adapters = [_Adapter(self, r, i) for i, r in enumerate(renderers)]
+        self._adapters = [_Adapter(self, r, i)
+                          for i, r in enumerate(_renderer_list(renderers))]
         self._keep: List[Any] = []
         self._cworld = world._acquire()  # held until wait() ends
         # the run's first frame: the world as it stands, made by no step
@@ -646,6 +647,24 @@ def _run_info(s: Any) -> RunInfo:
                    float(s.max_overlap))
 
 
+def _renderer_list(renderers: Any) -> List[Any]:
+    """renderers as a list, or an ArgumentTypeError (a TypeError) naming it.
+    A single renderer (renderers=print) is refused, not wrapped: the API and
+    its docs take a list, and a renderer object that is also a sequence
+    would read as a list of renderers."""
+    if isinstance(renderers, (str, bytes)) or not isinstance(renderers, Sequence):
+        if callable(renderers) or hasattr(renderers, "draw"):
+            raise _e.ArgumentTypeError(
+                "renderers: expected a list of renderers, got a single renderer "
+                "%s: pass a list, renderers=[...]" % _check._describe(renderers))
+        raise _e.ArgumentTypeError("renderers: expected a list of renderers, got %s"
+                                   % _check._describe(renderers))
+    if len(renderers) > lib.RBS_RENDERERS_MAX:
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "renderers: at most %d, got %d" % (lib.RBS_RENDERERS_MAX, len(renderers)))
+    return list(renderers)
+
+
 def start_world(world: World, steps: Optional[int] = None,
                 renderers: Sequence[Any] = (), *, realtime: bool = False,
                 speed: float = 1.0, start_paused: bool = False,
@@ -675,15 +694,7 @@ def start_world(world: World, steps: Optional[int] = None,
             raise _e.error_class(lib.RBS_E_INVALID)(
                 "steps: required (the world was not loaded from a scene)")
     n = _check.u64(steps, "steps")
-    if isinstance(renderers, (str, bytes)) or not isinstance(renderers, Sequence):
-        if callable(renderers) or hasattr(renderers, "draw"):
-            renderers = [renderers]
-        else:
-            raise _e.ArgumentTypeError("renderers: expected a list of renderers, got %s"
-                                       % _check._describe(renderers))
-    if len(renderers) > lib.RBS_RENDERERS_MAX:
-        raise _e.error_class(lib.RBS_E_INVALID)(
-            "renderers: at most %d, got %d" % (lib.RBS_RENDERERS_MAX, len(renderers)))
+    renderers = _renderer_list(renderers)
     if pause_on_collision is None:
         pause_on_collision = world._scene_pause_on_collision
     cap = None if reel_capacity is None else _check.u32(reel_capacity, "reel_capacity", 2)
@@ -694,7 +705,7 @@ def start_world(world: World, steps: Optional[int] = None,
         raise _e.error_class(lib.RBS_E_INVALID)(
             "speed: %r sets the pace of realtime=True, and a run without it goes "
             "as fast as it can: pass realtime=True too" % speed)
-    return Run(world, n, list(renderers), realtime,
+    return Run(world, n, renderers, realtime,
                speed, _check.flag(start_paused, "start_paused"),
                _check.flag(pause_on_collision, "pause_on_collision"), cap,
                _check.flag(endless, "endless"))

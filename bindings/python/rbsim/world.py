@@ -1271,7 +1271,8 @@ class World(_Handle):
         Args:
             steps: steps to take (frames 0..steps; 0: frame 0 only); None: the scene's
                 ``simulation.steps`` for a loaded world.
-            renderers: Python renderers (at most 4): callables ``f(frame)``
+            renderers: a list of Python renderers (at most 4; a single
+                renderer, not in a list, is a TypeError): callables ``f(frame)``
                 or objects with ``draw(frame)`` and optionally ``finish()``,
                 ``close()``, ``every`` and ``live`` (see :class:`Frame`).
             realtime: pace frame k at k dt / speed of wall time.
