@@ -316,6 +316,35 @@ static void capacity_error_leaves_world_unchanged(void **state)
     s.position.z = 3;
     assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_CAPACITY);
     assert_non_null(strstr(rbs_world_last_error(w), "at most 2 bodies"));
+    /* On a full world a bad definition is still named, not the capacity:
+     * the definition is checked before a slot is taken (a probe of session
+     * 47 suspected the other order). */
+    {
+        static const char long_name[] = "a123456789b123456789c123456789d123456789"
+                                        "e123456789f123456789g1234";
+        s.name = long_name;
+        assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+        assert_non_null(strstr(rbs_world_last_error(w), "name longer than"));
+        s.name = "\xff";
+        assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+        assert_non_null(strstr(rbs_world_last_error(w), "not valid UTF-8"));
+        s.name = NULL;
+        s.radius = -1.0;
+        assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+        assert_non_null(strstr(rbs_world_last_error(w), "radius"));
+        s.radius = 0.1;
+        s.color = 0x1000000u;
+        assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+        assert_non_null(strstr(rbs_world_last_error(w), "color"));
+        s.color = 0;
+        s.position.x = NAN;
+        assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_NUMERIC);
+        s.position.x = 0;
+    }
+    rbs_plane_def_init(&p);
+    p.normal.z = 0;
+    assert_int_equal(rbs_world_add_plane(w, &p, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "normal"));
     rbs_plane_def_init(&p);
     assert_int_equal(rbs_world_add_plane(w, &p, NULL), RBS_E_CAPACITY);
     assert_int_equal(rbs_world_add_material(w, "other", &m2), RBS_E_CAPACITY);

@@ -385,6 +385,42 @@ def test_capacity():
     assert len(w.all_bodies()) == 2  # unchanged
 
 
+def test_a_full_world_names_a_bad_definition_first():
+    # On a full world a bad argument of add_sphere/add_plane is named, not
+    # the capacity: the wrapper and the library check the definition before
+    # taking a slot (a probe of session 47 suspected the other order).
+    w = rbsim.World(max_bodies=1)
+    w.add_sphere("a")
+    cases = [
+        (dict(name="a"), rbsim.InvalidError, 'sphere "a": name already used'),
+        (dict(name="b" * 64), rbsim.InvalidError, "name: must be at most 63 bytes"),
+        (dict(name="a\0b"), rbsim.InvalidError, "name: must not contain NUL"),
+        (dict(name="\udcff"), rbsim.InvalidError, "name: not valid Unicode"),
+        (dict(name=3), TypeError, "name: expected a string"),
+        (dict(radius=-1), rbsim.InvalidError, "radius: must be > 0"),
+        (dict(mass=0), rbsim.InvalidError, "mass: must be > 0"),
+        (dict(material="nosuch"), rbsim.NotFoundError, "no material named 'nosuch'"),
+        (dict(color=-1), rbsim.InvalidError, "color: must be in"),
+        (dict(texture="x"), rbsim.InvalidError, "texture: expected one of"),
+        (dict(fixed=True, velocity=(1, 0, 0)), rbsim.InvalidError,
+         "velocity must be zero for a fixed sphere"),
+        (dict(center_of_mass=(1, 0, 0)), rbsim.InvalidError, "centre of mass offset"),
+    ]
+    for kw, cls, text in cases:
+        with pytest.raises(cls) as e:
+            w.add_sphere(**kw)
+        assert text in str(e.value), (kw, str(e.value))
+    with pytest.raises(rbsim.InvalidError) as e:
+        w.add_plane("a")
+    assert 'plane "a": name already used' in str(e.value)
+    with pytest.raises(rbsim.InvalidError) as e:
+        w.add_plane(normal=(0, 0, 0))
+    assert "normal: must be a nonzero vector" in str(e.value)
+    with pytest.raises(rbsim.CapacityError):
+        w.add_sphere("b", radius=0.2)
+    assert len(w.all_bodies()) == 1
+
+
 def test_step_error_says_the_time_in_its_shortest_form():
     # A step that fails part way names the time as it reads back
     # (t = 0.301 s, not %.17g's 0.30099999999999999).  Here: contacts
