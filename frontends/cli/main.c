@@ -281,7 +281,7 @@ static int check_main(int argc, char **argv)
     uint32_t i, n;
 #ifdef RBSF_HAVE_SDL
     /* (the sdl check places its cameras at the world's start) */
-    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture};
+    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture, NULL, NULL, NULL, NULL};
     rbs_renderer_class sdl_cls;
 #endif
 

@@ -1044,13 +1044,32 @@ static int run_writes_frame(uint64_t n, uint64_t start, int resumed, uint64_t la
     return n == start || n % k == 0 || (n == last && !checkpoint);
 }
 
+#ifdef RBSF_HAVE_SDL
+/* The sdl renderer's view of the signal thread's stopper
+ * (rbsf_sdl_world_api: the renderer does not link the dumpers). */
+static int sdl_stop_enter(void *stopper)
+{
+    return rbsf_stopper_enter((rbsf_stopper *)stopper);
+}
+
+static void sdl_stop_leave(void *stopper, int slot)
+{
+    rbsf_stopper_leave((rbsf_stopper *)stopper, slot);
+}
+
+static int sdl_stop_stopped(void *stopper)
+{
+    return rbsf_stopper_stopped((rbsf_stopper *)stopper);
+}
+#endif
+
 /* What is in the way of a file the sdl output (config c) will write: in its
  * folder (or its viewK folders), a folder or a FIFO (after links) named as
  * a frame the run writes or as the contact sheet.  The renderer leaves such
  * names alone: its write into a folder failed mid-run (exit 4, every output
  * cut at that frame), and its open() of a FIFO no one reads waited for a
- * reader, which no signal ended (the sdl output is not in the stopper): a
- * probe of session 47.  Devices are written as they are (a link to
+ * reader, which no signal ended then (the sdl output is in the stopper
+ * now, which ends a FIFO made during the run): a probe of session 47.  Devices are written as they are (a link to
  * /dev/null), as for any output.  RBS_OK, or RBS_E_INVALID with err naming
  * the entry and the frame. */
 static rbs_status png_names_free(const rbs_renderer_config *c, uint64_t start,
@@ -1990,7 +2009,7 @@ int rbsf_run_main(int argc, char **argv)
     rbs_renderer_class demo_class;
 #ifdef RBSF_HAVE_SDL
     /* (the sdl check places its cameras at the world's start) */
-    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture};
+    rbsf_sdl_world_api sdl_api = {rbs_world_state, rbs_frame_capture, NULL, NULL, NULL, NULL};
     rbs_renderer_class sdl_cls;
 #endif
     rbsf_demo_results demo_results;
@@ -2130,6 +2149,12 @@ int rbsf_run_main(int argc, char **argv)
         goto out;
     }
 #ifdef RBSF_HAVE_SDL
+    /* (its PNG files' open and writes in the stopper too: a FIFO made at a
+     * frame's name during the run is given up at a signal) */
+    sdl_api.stopper = &signals.stopper;
+    sdl_api.enter = sdl_stop_enter;
+    sdl_api.leave = sdl_stop_leave;
+    sdl_api.stopped = sdl_stop_stopped;
     sdl_cls = rbsf_sdl_class_with(&sdl_api);
     if (rbs_renderer_register(registry, &sdl_cls) != RBS_OK) {
         fprintf(stderr, "rbsim: cannot register the sdl renderer\n");

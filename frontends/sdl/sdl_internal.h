@@ -262,6 +262,7 @@ void rbsf__window_destroy(rbsf__window *w);
 /* ------------------------------------------------------------------------- */
 
 struct SDL_Surface;
+struct rbsf_sdl_world_api;
 
 /** A PNG writer: SDL_image encodes into a stream of ours whose every write,
  * and the file's close, is checked (IMG_SavePNG in SDL_image 2.6.3 reports
@@ -269,12 +270,16 @@ struct SDL_Surface;
 typedef struct rbsf__png rbsf__png;
 
 /** Reserve a writer and its write buffer (about 64 KiB); NULL when out of
- * memory. */
-rbsf__png *rbsf__png_create(void);
+ * memory.  api (borrowed, may be NULL) gives the stopper its open() and
+ * write() calls are made in (sdl_renderer.h, rbsf_sdl_world_api). */
+rbsf__png *rbsf__png_create(const struct rbsf_sdl_world_api *api);
 /** Write surface as the PNG file path (created or truncated).  RBS_OK, or
  * RBS_E_IO with `cannot write "PATH": REASON` in err (the system's reason,
  * e.g. "No space left on device", "File too large") and no file left at
- * path.  Allocates nothing itself (SDL_image and libpng do inside). */
+ * path (a regular file), or RBS_E_CLOSED when the stopper ended an open()
+ * or write() that blocked (`opening "PATH" given up: ...`, `write to "PATH"
+ * given up: ...`).  Allocates nothing itself (SDL_image and libpng do
+ * inside). */
 rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char *path,
                           char *err, size_t errlen);
 /** Free a writer.  NULL ok. */

@@ -30,6 +30,7 @@
 #include <SDL_image.h>
 
 #include "sdl_internal.h"
+#include "sdl_renderer.h"
 
 /* Bytes gathered before a write(): libpng writes each chunk's header, data
  * and CRC separately, a few bytes to 8 KiB at a time. */
@@ -37,8 +38,10 @@
 
 struct rbsf__png {
     SDL_RWops rw;   /* hidden.unknown.data1 = this writer */
+    const rbsf_sdl_world_api *api; /* its stopper (may be NULL) */
     int fd;         /* the file being written, -1 between files */
     int error;      /* first errno of this file, 0 while all is well */
+    int given_up;   /* a call of this file was ended by the stopper */
     Sint64 written; /* bytes given to the file */
     size_t len;     /* bytes waiting in buf */
     unsigned char buf[RBSF_PNG_BUFFER];
@@ -51,13 +54,43 @@ static void reason(int e, char *why, size_t n)
     if (strerror_r(e, why, n) != 0) snprintf(why, n, "errno %d", e);
 }
 
-/* write() all of buf's bytes; on failure keep the first errno. */
+/* The stopper of w's api, if it has one whole: enter, leave, stopped. */
+static int stop_enter(const rbsf__png *w)
+{
+    const rbsf_sdl_world_api *a = w->api;
+    if (a == NULL || a->stopper == NULL || a->enter == NULL || a->leave == NULL ||
+        a->stopped == NULL)
+        return -1;
+    return a->enter(a->stopper);
+}
+
+static void stop_leave(const rbsf__png *w, int slot)
+{
+    if (slot >= 0) w->api->leave(w->api->stopper, slot);
+}
+
+/* An EINTR of w's call: 1 when the stopper ended it (give up), 0 to retry. */
+static int stop_given_up(rbsf__png *w)
+{
+    const rbsf_sdl_world_api *a = w->api;
+    if (a == NULL || a->stopper == NULL || a->stopped == NULL || !a->stopped(a->stopper))
+        return 0;
+    w->given_up = 1;
+    return 1;
+}
+
+/* write() all of buf's bytes; on failure keep the first errno.  Each
+ * write() is in the stopper's slot: a blocked one ended by it gives up. */
 static void drain(rbsf__png *w)
 {
     size_t done = 0;
     while (w->error == 0 && done < w->len) {
+        int slot = stop_enter(w), e;
         ssize_t n = write(w->fd, w->buf + done, w->len - done);
-        if (n < 0 && errno == EINTR) continue;
+        e = errno;
+        stop_leave(w, slot);
+        errno = e;
+        if (n < 0 && errno == EINTR && !stop_given_up(w)) continue;
         if (n <= 0) {
             w->error = n < 0 ? errno : EIO; /* 0 bytes: no errno to give */
             break;
@@ -128,10 +161,11 @@ static int SDLCALL rw_close(SDL_RWops *rw)
     return 0;
 }
 
-rbsf__png *rbsf__png_create(void)
+rbsf__png *rbsf__png_create(const rbsf_sdl_world_api *api)
 {
     rbsf__png *w = (rbsf__png *)calloc(1, sizeof *w);
     if (w == NULL) return NULL;
+    w->api = api;
     w->fd = -1;
     w->rw.size = rw_size;
     w->rw.seek = rw_seek;
@@ -156,9 +190,28 @@ rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char 
     int encoded;
     char why[160];
     w->error = 0;
+    w->given_up = 0;
     w->written = 0;
     w->len = 0;
-    w->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    /* The open in the stopper's slot: a FIFO made at the frame's name
+     * during the run waits for a reader (the check before the run refuses
+     * one there then). */
+    for (;;) {
+        int slot = stop_enter(w), e;
+        w->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+        e = errno;
+        stop_leave(w, slot);
+        if (w->fd >= 0 || e != EINTR) {
+            errno = e;
+            break;
+        }
+        if (stop_given_up(w)) {
+            if (err != NULL && errlen > 0)
+                snprintf(err, errlen, "opening \"%s\" given up: the run was stopped "
+                         "while it blocked (a FIFO no one reads?)", path);
+            return RBS_E_CLOSED;
+        }
+    }
     if (w->fd < 0) {
         reason(errno, why, sizeof why);
         if (err != NULL && errlen > 0)
@@ -187,6 +240,14 @@ rbs_status rbsf__png_save(rbsf__png *w, struct SDL_Surface *surface, const char 
         struct stat st;
         if (lstat(path, &st) == 0 && S_ISREG(st.st_mode))
             (void)unlink(path);
+    }
+    if (w->given_up) {
+        if (err != NULL && errlen > 0)
+            snprintf(err, errlen, "write to \"%s\" given up: the run was stopped "
+                     "while it blocked (%lld bytes of the PNG written)", path,
+                     (long long)w->written);
+        SDL_TLSCleanup();
+        return RBS_E_CLOSED;
     }
     if (w->error != 0)
         reason(w->error, why, sizeof why);

@@ -465,7 +465,6 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     char msg[512];
     rbs_status st;
     uint32_t v, W = 0, H = 0;
-    (void)context;
     (void)world;
     if (out == NULL) return RBS_E_INVALID;
     *out = NULL;
@@ -510,7 +509,7 @@ static rbs_status create(void *context, const rbs_renderer_config *config,
     r->depth = (double *)malloc((size_t)W * H * sizeof *r->depth);
     r->ray_x = (double *)malloc((size_t)W * sizeof *r->ray_x);
     r->ray_y = (double *)malloc((size_t)H * sizeof *r->ray_y);
-    r->png = rbsf__png_create();
+    r->png = rbsf__png_create((const rbsf_sdl_world_api *)context);
     if (r->depth == NULL || r->ray_x == NULL || r->ray_y == NULL || r->png == NULL)
         goto nomem;
 

@@ -30,6 +30,19 @@ typedef struct rbsf_sdl_world_api {
     rbs_status (*state)(const rbs_world *world, rbs_state_view *out);
     rbs_status (*capture)(const rbs_world *world, rbs_frame *frame,
                           uint32_t bodies_capacity);
+    /* Optional (appended; NULL or zero: none): a PNG file's open() and its
+     * write()s, which block on a FIFO no one reads or a pipe whose reader
+     * stopped, are each done between enter(stopper) and leave(stopper,
+     * slot), so that another thread can end them with a signal whose
+     * handler does nothing (no SA_RESTART): the call fails with EINTR.
+     * Then, if stopped(stopper) is nonzero, the file is given up (draw or
+     * finish returns RBS_E_CLOSED, naming the file); before that, EINTR is
+     * retried.  rbsim passes its signal thread's rbsf_stopper
+     * (frontends/dump/dump.h), as for the csv, json and stats outputs. */
+    void *stopper;
+    int (*enter)(void *stopper);
+    void (*leave)(void *stopper, int slot);
+    int (*stopped)(void *stopper);
 } rbsf_sdl_world_api;
 
 /** rbsf_sdl_class() with api as its context (borrowed: it must outlive the

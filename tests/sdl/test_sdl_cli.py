@@ -18,6 +18,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 RBSIM = os.environ.get("RBSIM", "rbsim")
@@ -459,6 +460,61 @@ class PngPathChecks(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("'fifo/frame_000001.png' is a FIFO, where the run "
                       "writes frame 1", r.stderr)
+
+    def test_a_signal_ends_a_png_write_that_blocks(self):
+        # A FIFO made at a frame's name during the run (after the check
+        # before it): the renderer's open() waited for a reader, and SIGINT
+        # and SIGTERM did not end the run, only SIGKILL (the csv, json and
+        # stats outputs were ended by the signal thread's stopper; a probe
+        # of session 47).  Now the PNG files' open and writes are in the
+        # same stopper: exit 128 + the signal within seconds, a note naming
+        # the file, the other outputs finished.
+        s = dict(SCENE, simulation={"steps": 300, "dt": 0.01})
+        with open(os.path.join(self.dir, "long.json"), "w") as f:
+            json.dump(s, f)
+        for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+            pics = os.path.join(self.dir, "pics_%d" % code)
+            p = subprocess.Popen([RBSIM, "run", "long.json", "--png", pics,
+                                  "--csv", "a_%d.csv" % code, "--realtime",
+                                  "--quiet"], cwd=self.dir,
+                                 stdin=subprocess.DEVNULL,
+                                 stdout=subprocess.PIPE,
+                                 stderr=subprocess.PIPE, text=True)
+            try:
+                t0 = time.time()
+                while not os.path.exists(os.path.join(pics, frame(1))):
+                    if p.poll() is not None or time.time() - t0 > 20:
+                        out, err = p.communicate()
+                        if "without SDL" in err:
+                            self.skipTest("rbsim built without SDL")
+                        self.fail("no frame 1: %s" % err)
+                    time.sleep(0.01)
+                os.mkfifo(os.path.join(pics, frame(100)))
+                while not os.path.exists(os.path.join(pics, frame(99))):
+                    self.assertIsNone(p.poll(), "ended before frame 100")
+                    self.assertLess(time.time() - t0, 60)
+                    time.sleep(0.01)
+                time.sleep(1.0)  # (blocked in open() by now)
+                self.assertIsNone(p.poll(), "ended before the signal")
+                p.send_signal(sig)
+                sent = time.time()
+                try:
+                    p.wait(timeout=5)
+                except subprocess.TimeoutExpired:
+                    self.fail("still running 5 s after %s" % sig.name)
+                self.assertLess(time.time() - sent, 5)
+            finally:
+                if p.poll() is None:
+                    p.kill()
+                out, err = p.communicate(timeout=30)
+            self.assertEqual(p.returncode, code, err)
+            self.assertIn('opening "%s" given up: the run was stopped while '
+                          'it blocked' % os.path.join(pics, frame(100)), err)
+            with open(os.path.join(self.dir, "a_%d.csv" % code)) as f:
+                text = f.read()
+            self.assertTrue(text.endswith("\n"))
+            self.assertIn("\n99,", text)
+
 
 if __name__ == "__main__":
     loader = unittest.defaultTestLoader
