@@ -1569,8 +1569,8 @@ static void spinning_ball_lands_keeping_its_spin(void **state)
  * others are fixed), to 1e-6 of it (measured 5e-7: the normals tilt as it
  * sinks).  From about 2.2 times the one-row-at-a-time passes lag on the
  * mode that sinks into all three and it rattles for good: at 3 times,
- * 0.64-0.72 mm/s (a probe; this test); the test holds that between 0.1 and 2 mm/s, so a change
- * that settles it (or makes it worse) is seen and the docs updated. */
+ * 0.64-0.72 mm/s (a probe; this test); the test holds it under 2 mm/s,
+ * so that a change making it worse is seen (one that settles it passes). */
 static void ball_on_three_fixed_balls(void **state)
 {
     static const double ratios[3] = {1.0, 2.0, 3.0};
@@ -1609,7 +1609,9 @@ static void ball_on_three_fixed_balls(void **state)
         if (i < 2) {
             assert_true(vmax < 1e-13);
         } else {
-            assert_true(vmax > 1e-4 && vmax < 2e-3);
+            /* (not promised to rest: bounded, so that worse is seen; a fix
+             * that settles it passes too, and the docs are updated) */
+            assert_true(vmax < 2e-3);
         }
         if (i == 0) {
             double sink = 1e-6 * R + load / (om * om), dx = s.position.x - d, dist;
