@@ -672,8 +672,10 @@ typedef struct rbs_usage {
 
 RBS_API rbs_status rbs_world_usage(const rbs_world *world, rbs_usage *out);
 
-/** Deterministic 64-bit hash (FNV-1a) of the full state bits; for
- * determinism tests and golden files. */
+/** Deterministic 64-bit hash (FNV-1a) of the full state bits (the step
+ * count and every slot's position, velocity, angular velocity and
+ * orientation, up to the last body); for determinism tests and golden
+ * files. */
 RBS_API uint64_t rbs_world_hash(const rbs_world *world);
 
 /* ------------------------------------------------------------------------- */

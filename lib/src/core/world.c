@@ -1712,12 +1712,20 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 uint64_t rbs_world_hash(const rbs_world *w)
 {
     uint64_t h = 14695981039346656037ull;
+    uint32_t n;
     if (w == NULL || w->magic != WORLD_MAGIC)
         return 0;
+    /* up to the last body: free slots after it (zeros, left by
+     * remove_body) are no part of the state -- a body added and removed
+     * changed the hash of a world whose bodies were the same as a fresh
+     * one's, bit for bit (a probe of session 47) */
+    n = w->slots;
+    while (n > 0 && w->type[n - 1] == RBS_BODY_NONE)
+        n--;
     h = fnv(h, &w->step_count, sizeof w->step_count);
-    h = fnv(h, w->pos, 3 * w->slots * sizeof(double));
-    h = fnv(h, w->vel, 3 * w->slots * sizeof(double));
-    h = fnv(h, w->avel, 3 * w->slots * sizeof(double));
-    h = fnv(h, w->orient, 4 * w->slots * sizeof(double));
+    h = fnv(h, w->pos, 3 * (size_t)n * sizeof(double));
+    h = fnv(h, w->vel, 3 * (size_t)n * sizeof(double));
+    h = fnv(h, w->avel, 3 * (size_t)n * sizeof(double));
+    h = fnv(h, w->orient, 4 * (size_t)n * sizeof(double));
     return h;
 }
