@@ -405,7 +405,10 @@ rbs_status rbsf__camera_orbit(rbsf__camera *camera, double dyaw, double dpitch,
     a = arm(camera, &scratch);
     d = len(*a);
     up_frame(camera->up, &e1, &e2);
-    az = atan2(dot(*a, e2), dot(*a, e1)) * 180.0 / kPi + dyaw;
+    /* (the yaw taken modulo a turn first, exactly: "orbit 1e308 0" made an
+     * azimuth whose radians overflowed, and was refused as "no usable
+     * view" -- a probe of session 46) */
+    az = atan2(dot(*a, e2), dot(*a, e1)) * 180.0 / kPi + fmod(dyaw, 360.0);
     el = asin(fmax(-1.0, fmin(1.0, dot(*a, camera->up) / d))) * 180.0 / kPi + dpitch;
     el = fmax(-kMaxElevation, fmin(kMaxElevation, el));
     v = scale(direction(camera->up, az, el), d);

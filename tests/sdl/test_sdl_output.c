@@ -580,6 +580,27 @@ static void test_commands(void **state)
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
     assert_int_equal(cls->command(inst, "orbit 30 10", out, sizeof out), RBS_OK);
     assert_non_null(strstr(out, "view 0"));
+    /* Any finite yaw is a yaw modulo a turn, any pitch stops at 89 degrees:
+     * "orbit 1e308 1e308" was refused as "no usable view" (the azimuth's
+     * radians overflowed).  1e308 is 296 degrees modulo 360 (exact: 1e308
+     * = 2^1023 * 1.112..., and 2^k mod 360 follows from 2^k mod 45 and 8),
+     * so the azimuth moves by 296 - 360 = -64 degrees, and back with
+     * -1e308; to the reply's 0.1 degree. */
+    {
+        double az0, az1, az2, want;
+        assert_non_null(strstr(out, "azimuth "));
+        az0 = strtod(strstr(out, "azimuth ") + 8, NULL);
+        assert_int_equal(cls->command(inst, "orbit 1e308 1e308", out, sizeof out), RBS_OK);
+        assert_non_null(strstr(out, "elevation 89.0 deg"));
+        az1 = strtod(strstr(out, "azimuth ") + 8, NULL);
+        want = az0 - 64.0 < -180.0 ? az0 - 64.0 + 360.0 : az0 - 64.0;
+        assert_true(fabs(az1 - want) <= 0.11);
+        assert_int_equal(cls->command(inst, "orbit -1e308 -1e308", out, sizeof out), RBS_OK);
+        assert_non_null(strstr(out, "elevation -89.0 deg"));
+        az2 = strtod(strstr(out, "azimuth ") + 8, NULL);
+        assert_true(fabs(az2 - az0) <= 0.11 || fabs(fabs(az2 - az0) - 360.0) <= 0.11);
+    }
+    assert_int_equal(cls->command(inst, "orbit 0 99", out, sizeof out), RBS_OK);
     f.frame.number = 1;
     assert_int_equal(cls->draw(inst, &f.frame, err, sizeof err), RBS_OK);
     assert_int_equal(cls->command(inst, "zoom 2", out, sizeof out), RBS_OK);
