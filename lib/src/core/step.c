@@ -207,14 +207,17 @@ static v3 inv_inertia_at(const rbs_world *w, uint32_t i, quat q, v3 L)
     return m3_mul_world(&w->inv_inertia[9 * i], q, L);
 }
 
-v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h, int rounds, double tol2)
+#define SPIN_ROUNDS 32  /* fixed-point rounds of a turn's middle, at most */
+#define SPIN_TOL2 1e-28 /* converged: a round changes wm by 1e-14 of itself */
+
+v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h)
 {
     int it;
-    for (it = 0; it < rounds; ++it) {
+    for (it = 0; it < SPIN_ROUNDS; ++it) {
         quat qm = q_normalize(q_mul(q_from_rotation(wm, 0.5 * h), q));
         v3 wn = inv_inertia_at(w, i, qm, L), d = v3_sub(wn, wm);
         wm = wn;
-        if (v3_dot(d, d) <= tol2 * v3_dot(wn, wn))
+        if (v3_dot(d, d) <= SPIN_TOL2 * v3_dot(wn, wn))
             break; /* converged */
     }
     return wm;
@@ -235,7 +238,7 @@ void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, q
          * parts, ending about its axis of most inertia.  (A part too long
          * to converge still keeps |L|.) */
         L = v3_mad(L, tau, 0.5 * hs);
-        wm = rbs__midpoint_spin(w, i, qq, L, wm, hs, RBS__SPIN_ROUNDS, RBS__SPIN_TOL2);
+        wm = rbs__midpoint_spin(w, i, qq, L, wm, hs);
         if (wm.x != 0.0 || wm.y != 0.0 || wm.z != 0.0)
             qq = q_normalize(q_mul(q_from_rotation(wm, hs), qq));
         sum = v3_add(sum, wm);

@@ -125,7 +125,7 @@ void rbs__integrate_positions(rbs_world *w, double h)
              * 1e3 rad/s losing 56 % in 0.5 s at dt = 1 ms
              * (test_order.c, euler_spin_energy_does_not_drift). */
             L = m3_mul_world(&w->inertia[9 * i], q, om);
-            om = rbs__midpoint_spin(w, i, q, L, om, h, RBS__SPIN_ROUNDS, RBS__SPIN_TOL2);
+            om = rbs__midpoint_spin(w, i, q, L, om, h);
         }
         if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
             v3_store(&w->pos[3 * i], v3_mad(v3_load(&w->pos[3 * i]), v, h));

@@ -838,13 +838,10 @@ int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exac
 void rbs__spin_stable(const rbs_world *w, uint32_t i, v3 tau, double h, int n, quat *q, v3 *om, v3 *mean);
 /* The angular velocity of a turn's middle for body i at orientation q with
  * angular momentum L over h: the fixed point wm = I(exp(wm h/2) q)^-1 L,
- * from the guess wm, at most rounds rounds, stopping early once a round
- * changes it by at most sqrt(tol2) of itself (tol2 = 0: every round that
- * changes it).  euler's turn and rbs__spin_stable's, both with
- * RBS__SPIN_ROUNDS and RBS__SPIN_TOL2. */
-#define RBS__SPIN_ROUNDS 32   /* fixed-point rounds of a turn's middle, at most */
-#define RBS__SPIN_TOL2 1e-28  /* converged: a round changes wm by 1e-14 of itself */
-v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h, int rounds, double tol2);
+ * from the guess wm, iterated to convergence (a round changing it by at
+ * most 1e-14 of itself; 32 rounds at most, step.c): euler's turn and
+ * rbs__spin_stable's. */
+v3 rbs__midpoint_spin(const rbs_world *w, uint32_t i, quat q, v3 L, v3 wm, double h);
 /* Orientation at the end of a verlet or rk4 sub-step of h after the contact
  * impulses changed the angular velocity to om.  A body whose rotation was
  * sub-stepped (spun: it ended at qe, we) takes half of the impulses' change
