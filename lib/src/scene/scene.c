@@ -363,29 +363,26 @@ static int ends_with(const char *s, const char *suffix)
     return n >= m && strcmp(s + n - m, suffix) == 0;
 }
 
-/* The first byte after blanks (and a UTF-8 byte order mark) is '{': a JSON
- * scene, whatever its name.  A text scene's first line is a comment or
- * "key = value". */
-/* Whether text holds nothing but blanks (and a UTF-8 byte order mark). */
-static int is_blank(const char *text, size_t len)
+/* The index of text's first byte after blanks (and a UTF-8 byte order
+ * mark); len if there is none. */
+static size_t skip_blanks(const char *text, size_t len)
 {
     size_t i = len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
     while (i < len &&
            (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n'))
         i++;
-    return i == len;
+    return i;
 }
 
+/* Whether text holds nothing but blanks (and a byte order mark). */
+static int is_blank(const char *text, size_t len) { return skip_blanks(text, len) == len; }
+
+/* The first byte after blanks (and a UTF-8 byte order mark) is '{': a JSON
+ * scene, whatever its name.  A text scene's first line is a comment or
+ * "key = value". */
 static int starts_like_json(const char *text, size_t len)
 {
-    size_t i = 0;
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) {
-        i = 3;
-    }
-    while (i < len &&
-           (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n')) {
-        i++;
-    }
+    const size_t i = skip_blanks(text, len);
     return i < len && text[i] == '{';
 }
 

@@ -250,6 +250,14 @@ static int decimal_comma(const vctx *v, const cJSON *item)
     return 0;
 }
 
+/* The hint a wrong value adds when decimal_comma finds one, else "". */
+static const char *comma_hint(const vctx *v, const cJSON *item)
+{
+    return decimal_comma(v, item) ? " (a decimal comma? write the number with a point, e.g. "
+                                    "0.5: a comma separates values)"
+                                  : "";
+}
+
 /* A finite number; reports wrong types, overflow (cJSON turns 1e999 into inf)
  * and literals that underflow to zero. */
 static int get_number(vctx *v, const cJSON *item, double *out)
@@ -259,10 +267,7 @@ static int get_number(vctx *v, const cJSON *item, double *out)
     if (!cJSON_IsNumber(item)) {
         got(v, item, g, sizeof g);
         err(v, loc_value(v, item), "must be a number, got %s%s", g,
-            decimal_comma(v, item) ? " (a decimal comma? write the number with "
-                                     "a point, e.g. 0.5: a comma separates "
-                                     "values)"
-                                   : "");
+            comma_hint(v, item));
         return -1;
     }
     got(v, item, g, sizeof g);
@@ -325,10 +330,7 @@ static int get_numbers(vctx *v, const cJSON *item, double *out, int n,
     if (!cJSON_IsArray(item) || cJSON_GetArraySize(item) != n) {
         got(v, item, g, sizeof g);
         err(v, loc_value(v, item), "must be %s, got %s%s", what, g,
-            decimal_comma(v, item) ? " (a decimal comma? write the number with "
-                                     "a point, e.g. 0.5: a comma separates "
-                                     "values)"
-                                   : "");
+            comma_hint(v, item));
         return -1;
     }
     for (e = item->child; e != NULL; e = e->next, i++) {
