@@ -1030,18 +1030,14 @@ int rbsf_check_scene_outputs(const rbs_scene *scene)
 
 /* ---- png folders: this run's frames only -------------------------------- */
 
-/* The frames a run from start to last keeps for an output of every K (the
- * projector's rule, reel.h: multiples of K, the starting frame and the
- * last; a resumed run does not write its starting frame, and a run saving a
- * checkpoint keeps its last frame only if it is a multiple of K): does it
- * write frame n? */
+/* The frames a run from start to last keeps for an output of every K
+ * (rbs_frame_written, reel.h: the projector's rule; a resumed run does not
+ * write its starting frame, and a run saving a checkpoint keeps its last
+ * frame only if it is a multiple of K): does it write frame n? */
 static int run_writes_frame(uint64_t n, uint64_t start, int resumed, uint64_t last,
                             uint32_t every, int checkpoint)
 {
-    uint64_t k = every ? every : 1;
-    if (n < start || n > last || (resumed && n == start))
-        return 0;
-    return n == start || n % k == 0 || (n == last && !checkpoint);
+    return n <= last && rbs_frame_written(n, every, start, resumed, n == last, checkpoint);
 }
 
 #ifdef RBSF_HAVE_SDL

@@ -463,6 +463,59 @@ static void every_k_keeps_multiples_and_the_last(void **state)
     fx_done(&fx);
 }
 
+/* rbs_frame_written, the every-K rule the projector draws by and rbsim
+ * run checks its png folders by, at its edges (expected values from the
+ * rule as reel.h states it: a multiple of K, the starting frame unless a
+ * resumed run skips it, the last unless the run is continued; nothing
+ * before the start). */
+static void frame_written_edges(void **state)
+{
+    uint64_t n;
+    (void)state;
+    /* K = 1 (and 0, which means 1): every frame from the start on */
+    for (n = 5; n <= 9; n++) {
+        assert_int_equal(rbs_frame_written(n, 1, 5, 0, 0, 0), 1);
+        assert_int_equal(rbs_frame_written(n, 0, 5, 0, 0, 0), 1);
+        assert_int_equal(rbs_frame_written(n, 1, 5, 0, n == 9, 1), 1);
+    }
+    assert_int_equal(rbs_frame_written(4, 1, 5, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(0, 1, 5, 0, 0, 0), 0);
+    /* K = 7 from frame 0: the first frame, the multiples, not the others */
+    assert_int_equal(rbs_frame_written(0, 7, 0, 0, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(1, 7, 0, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(6, 7, 0, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(7, 7, 0, 0, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(14, 7, 0, 0, 0, 0), 1);
+    /* the last frame: kept, unless the run is continued from it (then only
+     * as a multiple of K, as the whole run would keep it) */
+    assert_int_equal(rbs_frame_written(13, 7, 0, 0, 1, 0), 1);
+    assert_int_equal(rbs_frame_written(13, 7, 0, 0, 1, 1), 0);
+    assert_int_equal(rbs_frame_written(14, 7, 0, 0, 1, 1), 1);
+    /* a run from a world that has stepped (start 5, drawn): its start is
+     * kept though no multiple of 7; frames before it are not the run's */
+    assert_int_equal(rbs_frame_written(5, 7, 5, 0, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(6, 7, 5, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(0, 7, 5, 0, 0, 0), 0);
+    /* resumed (skip_first): the starting frame is not drawn, not even as a
+     * multiple of K or as the last of a run of no steps */
+    assert_int_equal(rbs_frame_written(5, 7, 5, 1, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(14, 7, 14, 1, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(14, 1, 14, 1, 1, 0), 0);
+    assert_int_equal(rbs_frame_written(15, 7, 14, 1, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(21, 7, 14, 1, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(20, 7, 14, 1, 1, 0), 1);
+    assert_int_equal(rbs_frame_written(20, 7, 14, 1, 1, 1), 0);
+    /* a run of no steps, not resumed: its one frame is first and last */
+    assert_int_equal(rbs_frame_written(3, 7, 3, 0, 1, 1), 1);
+    /* the largest K and frame numbers near 2^64 (no overflow) */
+    assert_int_equal(rbs_frame_written(2ull * RBS_EVERY_MAX, RBS_EVERY_MAX, 1, 0, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(2ull * RBS_EVERY_MAX + 1, RBS_EVERY_MAX, 1, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(UINT64_MAX, 1, 0, 0, 0, 0), 1);
+    assert_int_equal(rbs_frame_written(UINT64_MAX, 2, 0, 0, 0, 0), 0);
+    assert_int_equal(rbs_frame_written(UINT64_MAX, 2, 0, 0, 1, 0), 1);
+    assert_int_equal(rbs_frame_written(UINT64_MAX, 2, UINT64_MAX, 1, 1, 0), 0);
+}
+
 /* A caller compiled against an older, shorter rbs_renderer_config: the
  * array's stride is its struct_size. */
 typedef struct old_config {
@@ -1491,6 +1544,7 @@ int main(void)
         cmocka_unit_test(every_frame_in_order_with_exact_state),
         cmocka_unit_test(zero_steps_gives_frame_zero),
         cmocka_unit_test(every_k_keeps_multiples_and_the_last),
+        cmocka_unit_test(frame_written_edges),
         cmocka_unit_test(renderers_do_not_change_results),
         cmocka_unit_test(older_config_arrays_are_read_by_their_size),
         cmocka_unit_test(failing_check_creates_nothing),

@@ -82,6 +82,23 @@ typedef struct rbs_frame {
 RBS_API rbs_status rbs_frame_capture(const rbs_world *world, rbs_frame *frame,
                                      uint32_t bodies_capacity);
 
+/** Whether a recorder that keeps every K-th frame
+ * (rbs_renderer_config.every) writes frame `frame` (a step count) of a run
+ * that starts at frame `start` (the world's step count at start): the
+ * projector's rule, given here so that a front end can tell which files a
+ * run will write before it starts.  A frame is written if its number is a
+ * multiple of every (0 means 1, so every frame), or it is the starting
+ * frame, or it is the run's last (is_last nonzero) and the run is not
+ * continued (rbs_projector_def.continued: a part saved at its end for the
+ * next part to go on from keeps its last frame only if it is a multiple of
+ * every).  With skip_first nonzero (rbs_projector_def.skip_first_frame: a
+ * run resumed from a checkpoint) the starting frame is not drawn at all;
+ * a frame before start is not written either.  Returns 1 or 0.  A pure
+ * function of its arguments: thread-safe. */
+RBS_API int32_t rbs_frame_written(uint64_t frame, uint32_t every, uint64_t start,
+                                  int32_t skip_first, int32_t is_last,
+                                  int32_t continued);
+
 /* ------------------------------------------------------------------------- */
 /* Reel                                                                      */
 /* ------------------------------------------------------------------------- */

@@ -84,3 +84,13 @@ rbs_status rbs_frame_capture(const rbs_world *world, rbs_frame *frame,
     frame->stats.angular_momentum[2] = l.z;
     return RBS_OK;
 }
+
+int32_t rbs_frame_written(uint64_t frame, uint32_t every, uint64_t start, int32_t skip_first,
+                          int32_t is_last, int32_t continued)
+{
+    /* (a resumed run's starting frame was an earlier run's last: not drawn) */
+    if (frame < start || (skip_first && frame == start))
+        return 0;
+    return frame == start || frame % (every != 0 ? every : 1u) == 0 ||
+           (is_last && !continued);
+}

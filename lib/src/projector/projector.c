@@ -652,13 +652,13 @@ static void serve_command(rbs_projector *p)
     pthread_mutex_unlock(&p->mu);
 }
 
-/* Whether recorder r leaves frame f out (its every K; the last frame is
- * kept unless the run is continued from it). */
-static int every_skips(const rbs_projector *p, const renderer *r,
-                       const rbs_frame *f, uint64_t first)
+/* Whether recorder r leaves frame f out (its every K: rbs_frame_written,
+ * reel.h; the last frame is kept unless the run is continued from it). */
+static int every_skips(const rbs_projector *p, const renderer *r, const rbs_frame *f)
 {
-    return !r->live && (!f->last || p->def.continued) && f->number != first &&
-           f->number % r->every != 0;
+    return !r->live && !rbs_frame_written(f->number, r->every, p->first_frame,
+                                          p->def.skip_first_frame, f->last,
+                                          p->def.continued);
 }
 
 /* Draw one frame on the renderers that keep it.  Returns 0 or -1 (failed). */
@@ -686,8 +686,7 @@ static int draw_one(rbs_projector *p, renderer *r, const rbs_frame *f)
     return 0;
 }
 
-static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
-                      int live_ok, int repeat)
+static int draw_frame(rbs_projector *p, const rbs_frame *f, int live_ok, int repeat)
 {
     uint32_t i;
     for (i = 0; i < p->count; i++) {
@@ -696,7 +695,7 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
             continue; /* recorders never get a frame twice */
         if (r->live && !live_ok)
             continue;
-        if (!repeat && every_skips(p, r, f, first))
+        if (!repeat && every_skips(p, r, f))
             continue;
         if (draw_one(p, r, f) != 0)
             return -1;
@@ -710,7 +709,7 @@ static int draw_frame(rbs_projector *p, const rbs_frame *f, uint64_t first,
  * which the simulation thread, done, left at that frame (the header kept
  * when the frame was taken gives its step's counts); no frame is copied
  * while the run goes on.  0, or -1 after fail(). */
-static int draw_tail(rbs_projector *p, uint64_t first)
+static int draw_tail(rbs_projector *p)
 {
     rbs_frame f;
     uint32_t i;
@@ -724,7 +723,7 @@ static int draw_tail(rbs_projector *p, uint64_t first)
     f.stats.step = p->tail.stats.step;
     for (i = 0; i < p->count; i++) {
         renderer *r = &p->renderers[i];
-        if (!every_skips(p, r, &p->tail, first))
+        if (!every_skips(p, r, &p->tail))
             continue;
         f.last = 1;
         if (draw_one(p, r, &f) != 0)
@@ -785,8 +784,6 @@ static int pace(rbs_projector *p, const rbs_frame *f, double *base_wall,
 static void *ren_main(void *arg)
 {
     rbs_projector *p = arg;
-    /* The starting frame is always kept (unless it is not drawn at all). */
-    const uint64_t first = p->def.skip_first_frame ? UINT64_MAX : p->first_frame;
     int anchored = 0;
     double base_wall = 0, base_sim = 0, last_live = -1e300;
     uint32_t i;
@@ -815,7 +812,7 @@ static void *ren_main(void *arg)
             /* Timed out or kicked (a command is waiting). */
             if (paused && p->live_count > 0 && p->have_hold) {
                 p->hold.paused = 1;
-                if (draw_frame(p, &p->hold, first, 1, 1) != 0)
+                if (draw_frame(p, &p->hold, 1, 1) != 0)
                     break;
             }
             anchored = 0; /* re-anchor the clock after a pause */
@@ -854,7 +851,7 @@ static void *ren_main(void *arg)
                         ETIMEDOUT) {
                         pthread_mutex_unlock(&p->mu);
                         p->hold.paused = 1;
-                        failed = draw_frame(p, &p->hold, first, 1, 1) != 0;
+                        failed = draw_frame(p, &p->hold, 1, 1) != 0;
                         pthread_mutex_lock(&p->mu);
                         if (failed)
                             break;
@@ -884,7 +881,7 @@ static void *ren_main(void *arg)
             int live_ok = !late || f->last || now - last_live >= LIVE_MIN_PERIOD;
             if (live_ok && p->live_count > 0)
                 last_live = now;
-            if (draw_frame(p, f, first, live_ok, 0) != 0) {
+            if (draw_frame(p, f, live_ok, 0) != 0) {
                 rbs_reel_end_read(p->reel);
                 break;
             }
@@ -909,7 +906,7 @@ static void *ren_main(void *arg)
     }
 
     if (drained && p->have_tail)
-        (void)draw_tail(p, first);
+        (void)draw_tail(p);
 
     /* Finish every renderer (flush, close), even after a failure, so each
      * output is complete up to its last frame. */
