@@ -7,6 +7,9 @@
 #include <string.h>
 
 #include "common.h"
+#include "rbsim/scene.h"
+
+#include <unistd.h>
 
 static void version_matches_header(void **state)
 {
@@ -291,6 +294,172 @@ static snapshot snap(const rbs_world *w)
     s.hash = rbs_world_hash(w);
     CHECK_OK(rbs_world_usage(w, &s.usage));
     return s;
+}
+
+/* A scene of one sphere named name (JSON-escaped into it), with material
+ * mat, whose pair row names mat: what rbs_scene_parse_json says of it. */
+static rbs_status scene_with_names(const char *name, const char *mat, rbs_scene **out)
+{
+    char text[1024], esc[2][256];
+    const char *src[2];
+    size_t i, k;
+    int j;
+    src[0] = name;
+    src[1] = mat;
+    for (j = 0; j < 2; j++) {
+        for (i = k = 0; src[j][i] != '\0' && k + 8 < sizeof esc[j]; i++) {
+            unsigned char c = (unsigned char)src[j][i];
+            if (c == '"' || c == '\\')
+                k += (size_t)snprintf(esc[j] + k, sizeof esc[j] - k, "\\%c", c);
+            else if (c < 0x20)
+                k += (size_t)snprintf(esc[j] + k, sizeof esc[j] - k, "\\u%04x", c);
+            else
+                esc[j][k++] = (char)c;
+        }
+        esc[j][k] = '\0';
+    }
+    snprintf(text, sizeof text,
+             "{\"simulation\": {\"steps\": 1}, \"materials\": [{\"pair\": [\"%s\", \"*\"],"
+             " \"static\": 1, \"kinetic\": 0.5}], \"bodies\": [{\"name\": \"%s\", \"type\": "
+             "\"sphere\", \"radius\": 1, \"mass\": 1, \"position\": [0, 0, 0], \"material\": "
+             "\"%s\"}]}",
+             esc[1], esc[0], esc[1]);
+    return rbs_scene_parse_json(text, strlen(text), "names.json", out);
+}
+
+/* One rule for names (core/name.h): the API refuses, with RBS_E_INVALID
+ * and a message naming the character and its byte, each name a scene file
+ * refuses -- a blank, a control, '#', '"', '=', ',', an invisible or
+ * Unicode space code point, too long; a material's "" and "*" -- and
+ * accepts what a scene file accepts (a world built through the API held
+ * names no scene file could, e.g. "my ball"). */
+static void names_follow_the_scene_rule(void **state)
+{
+    static const char long_name[] = "a123456789b123456789c123456789d123456789"
+                                    "e123456789f123456789g123"; /* 64 bytes */
+    static const struct {
+        const char *name;
+        const char *fault; /* as the message names it */
+    } bad[] = {
+        {"my ball", "' ' (a space) at byte 3"},
+        {"tab\there", "0x09 (a control character) at byte 4"},
+        {"del\x7f", "0x7F (a control character) at byte 4"},
+        {"a#b", "'#' at byte 2"},
+        {"q\"x", "'\"' at byte 2"},
+        {"k=v", "'=' at byte 2"},
+        {"a,b", "',' at byte 2"},
+        {"ba\xe2\x80\x8bll", "U+200B (an invisible formatting character) at byte 3"},
+        {"ball\xe2\x80\xae", "U+202E (an invisible formatting character) at byte 5"},
+        {"ba\xc2\xa0ll", "U+00A0 (a space) at byte 3"},
+        {"\xef\xbb\xbf" "ball", "U+FEFF (an invisible formatting character) at byte 1"},
+        {"ball\xc2\x85", "U+0085 (a control character) at byte 5"},
+        {long_name, "64 bytes"},
+    };
+    static const char *const good[] = {"kugel_\xc3\xa4", "\xe7\x90\x83", "a-b_c.d(1)/*",
+                                       long_name + 1 /* 63 bytes */};
+    rbs_world_def d;
+    rbs_world *w;
+    rbs_sphere_def s;
+    rbs_plane_def p;
+    rbs_body_id id;
+    rbs_material_id m;
+    rbs_scene *scene;
+    size_t i;
+    (void)state;
+    rbs_world_def_init(&d);
+    CHECK_OK(rbs_world_create(&d, &w));
+    rbs_sphere_def_init(&s);
+    rbs_plane_def_init(&p);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *msg;
+        /* the scene file refuses it ... */
+        scene = NULL;
+        assert_int_equal(scene_with_names(bad[i].name, "m", &scene), RBS_E_SCENE);
+        rbs_scene_free(scene);
+        scene = NULL;
+        assert_int_equal(scene_with_names("b", bad[i].name, &scene), RBS_E_SCENE);
+        rbs_scene_free(scene);
+        /* ... and so does the API, for a sphere, a plane and a material,
+         * naming the fault */
+        s.name = bad[i].name;
+        assert_int_equal(rbs_world_add_sphere(w, &s, &id), RBS_E_INVALID);
+        msg = rbs_world_last_error(w);
+        if (strncmp(msg, "sphere name ", 12) != 0 || strstr(msg, bad[i].fault) == NULL)
+            fail_msg("case %lu: '%s' does not name '%s'", (unsigned long)i, msg, bad[i].fault);
+        p.name = bad[i].name;
+        assert_int_equal(rbs_world_add_plane(w, &p, &id), RBS_E_INVALID);
+        msg = rbs_world_last_error(w);
+        if (strncmp(msg, "plane name ", 11) != 0 || strstr(msg, bad[i].fault) == NULL)
+            fail_msg("case %lu: '%s' does not name '%s'", (unsigned long)i, msg, bad[i].fault);
+        assert_int_equal(rbs_world_add_material(w, bad[i].name, &m), RBS_E_INVALID);
+        msg = rbs_world_last_error(w);
+        if (strncmp(msg, "material name ", 14) != 0 || strstr(msg, bad[i].fault) == NULL)
+            fail_msg("case %lu: '%s' does not name '%s'", (unsigned long)i, msg, bad[i].fault);
+    }
+    /* a material's "" and "*" (a body's "" is no name: unnamed) */
+    assert_int_equal(rbs_world_add_material(w, "", &m), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "got 0 bytes"));
+    assert_int_equal(rbs_world_add_material(w, "*", &m), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "must not be \"*\""));
+    assert_int_equal(rbs_world_add_material(w, NULL, &m), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "NULL"));
+    /* nothing of it was added */
+    assert_int_equal(rbs_world_body_at(w, 0, &id), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_world_material_at(w, 0, &m, NULL), RBS_E_NOT_FOUND);
+    /* what scene files take, the API takes */
+    for (i = 0; i < sizeof good / sizeof good[0]; i++) {
+        rbs_body_id found;
+        scene = NULL;
+        CHECK_OK(scene_with_names(good[i], good[i], &scene));
+        rbs_scene_free(scene);
+        CHECK_OK(rbs_world_add_material(w, good[i], &m));
+        s.name = good[i];
+        s.position.x = 3.0 * (double)i;
+        CHECK_OK(rbs_world_add_sphere(w, &s, &id));
+        CHECK_OK(rbs_world_find_body(w, good[i], &found));
+        assert_memory_equal(&found, &id, sizeof id);
+    }
+    rbs_world_destroy(w);
+}
+
+/* A UTF-8 name the rule accepts goes through a save and a load in both
+ * formats (JSON and text) and names the same body and material after. */
+static void utf8_name_round_trips_through_save_and_load(void **state)
+{
+    static const char body[] = "kugel_\xc3\xa4";  /* kugel_a-umlaut */
+    static const char mat[] = "\xe7\x90\x83";      /* a CJK ideograph */
+    char dir[] = "/tmp/rbs_names_XXXXXX", path[2][128], side[2][128];
+    rbs_scene *scene = NULL, *back;
+    rbs_world *w;
+    rbs_body_id id;
+    rbs_material_id m;
+    const char *name;
+    int k;
+    (void)state;
+    assert_non_null(mkdtemp(dir));
+    snprintf(path[0], sizeof path[0], "%s/names.json", dir);
+    snprintf(path[1], sizeof path[1], "%s/config.txt", dir);
+    snprintf(side[0], sizeof side[0], "%s/materials.txt", dir);
+    snprintf(side[1], sizeof side[1], "%s/objects.txt", dir);
+    CHECK_OK(scene_with_names(body, mat, &scene));
+    for (k = 0; k < 2; k++) {
+        back = NULL;
+        CHECK_OK(rbs_scene_save(scene, path[k], k == 0 ? RBS_SCENE_JSON : RBS_SCENE_TEXT));
+        CHECK_OK(rbs_scene_load(path[k], RBS_SCENE_AUTO, &back));
+        CHECK_OK(rbs_scene_build(back, &w));
+        CHECK_OK(rbs_world_find_body(w, body, &id));
+        CHECK_OK(rbs_world_find_material(w, mat, &m));
+        CHECK_OK(rbs_world_material_at(w, 0, NULL, &name));
+        assert_string_equal(name, mat);
+        rbs_world_destroy(w);
+        rbs_scene_free(back);
+    }
+    rbs_scene_free(scene);
+    assert_int_equal(unlink(path[0]), 0);
+    assert_int_equal(unlink(path[1]), 0);
+    assert_int_equal(unlink(side[0]), 0);
+    assert_int_equal(unlink(side[1]), 0);
+    assert_int_equal(rmdir(dir), 0);
 }
 
 static void capacity_error_leaves_world_unchanged(void **state)
@@ -1003,6 +1172,8 @@ int main(void)
         cmocka_unit_test(status_strings),
         cmocka_unit_test(bad_values_are_echoed_exactly),
         cmocka_unit_test(method_names_round_trip),
+        cmocka_unit_test(names_follow_the_scene_rule),
+        cmocka_unit_test(utf8_name_round_trips_through_save_and_load),
         cmocka_unit_test(old_shorter_defs_get_defaults),
         cmocka_unit_test(uninitialised_def_is_rejected),
         cmocka_unit_test(struct_size_inside_a_field_is_rejected),

@@ -724,10 +724,10 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 0, r.stderr)
         truth = [l.split() for l in r.stdout.splitlines()]
         rows = self.read_csv(out)
-        # (what csv_truth names its bodies; "=plain", a formula to a
+        # (what csv_truth names its bodies; "+plain", a formula to a
         # spreadsheet, is written marked as text: see the next test)
-        names = ["tilted floor", "'=plain", "comma,name", 'quote"d',
-                 '\'@both,"x"']
+        names = ["tilted_floor", "'+plain", "semi;colon", "single'quote",
+                 "'@both'x"]
         self.assertEqual(len(rows), len(truth))
         self.assertEqual(len(rows), 251 * 5)
         for row, t in zip(rows, truth):
@@ -810,8 +810,8 @@ class CliTests(Base):
         # written with an apostrophe in front, and so is a name beginning
         # with one; every other name is written as it is.  Dropping one
         # leading apostrophe gives every name back.
-        # (scene names allow no '=', ',', blank or control character; the
-        # C API allows them: csv_truth's "=plain", in test_csv_bit_exact)
+        # (names allow no '=', ',', blank or control character, in scene
+        # files and through the C API alike)
         names = ["+cmd|'/C_calc'!A0", "-1+2", "@SUM(1+1)", "'quoted", "plain",
                  "mid-dle+x"]
         bodies = [{"name": n, "type": "sphere", "radius": 0.1, "mass": 1,

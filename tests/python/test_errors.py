@@ -73,6 +73,30 @@ def test_invalid_from_c_names_the_field():
         rbsim.World(max_bodies=0)
 
 
+def test_names_a_scene_file_refuses_are_invalid():
+    # One rule for names (the library's, core/name.h): what a scene file
+    # refuses the binding refuses as an InvalidError naming the character
+    # and its byte ("my ball" was accepted here, and no scene could hold it).
+    w = make_world()
+    cases = [
+        (lambda: w.add_sphere("my ball"), "sphere name", "' ' (a space) at byte 3"),
+        (lambda: w.add_plane("a#b"), "plane name", "'#' at byte 2"),
+        (lambda: w.add_material("k=v"), "material name", "'=' at byte 2"),
+        (lambda: w.add_material('q"'), "material name", "'\"' at byte 2"),
+        (lambda: w.add_sphere("tab\tx"), "sphere name",
+         "0x09 (a control character) at byte 4"),
+        (lambda: w.add_sphere("ba\u200bll"), "sphere name",
+         "U+200B (an invisible formatting character) at byte 3"),
+    ]
+    for call, who, fault in cases:
+        with pytest.raises(rbsim.InvalidError) as info:
+            call()
+        assert info.value.status == lib.RBS_E_INVALID
+        assert who in str(info.value) and fault in str(info.value), str(info.value)
+    assert sorted(w.bodies) == ["ball", "ground"]
+    assert w.add_sphere("kugel_\u00e4", position=(1, 0, 1)).name == "kugel_\u00e4"
+
+
 def test_fixed_sphere_with_a_velocity_is_invalid():
     """A fixed sphere never moves: a velocity or angular velocity given with
     it is an InvalidError from the library (it was dropped, silently), as

@@ -921,7 +921,10 @@ class World(_Handle):
     # -- materials ----------------------------------------------------------
 
     def add_material(self, name: str) -> Material:
-        """Add a named material (names are unique; < 64 bytes)."""
+        """Add a named material (names are unique; 1 to 63 bytes of UTF-8
+        under the scene files' rule: no spaces, control characters, '#',
+        '"', '=', ',' nor invisible formatting characters, and not "*";
+        else InvalidError naming the character and its byte)."""
         raw = _check.name(name, "name", material=True)
         out = ffi.new("rbs_material_id *")
         self._call(lib.rbs_world_add_material, raw, out)
@@ -1060,7 +1063,9 @@ class World(_Handle):
         """Add a sphere; None keeps the library's default.
 
         Args:
-            name: optional unique name (< 64 bytes).
+            name: optional unique name (< 64 bytes, under the scene
+                files' rule as for add_material: InvalidError naming the
+                character and its byte).
             radius: m, > 0 (default 0.1).
             mass: kg, > 0 (default 1).
             density: kg/m^3, >= 0 (default 0: use mass); mass = density

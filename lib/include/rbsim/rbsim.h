@@ -192,7 +192,13 @@ typedef enum rbs_texture {
 /* ------------------------------------------------------------------------- */
 
 /** Longest body or material name, including the terminating NUL.  Names
- * are UTF-8: a name that is not well-formed UTF-8 is RBS_E_INVALID. */
+ * follow the scene files' rule (scenes/FORMAT.md, "Names"), so that every
+ * world can be written as a scene: 1 to RBS_NAME_MAX - 1 bytes of
+ * well-formed UTF-8 without blanks or control characters, '#', '"', '=',
+ * ',', Unicode's spaces, C1 controls, line and paragraph separators or
+ * invisible formatting characters (zero-width ones, bidirectional marks,
+ * the byte order mark, ...).  Any other name is RBS_E_INVALID, the
+ * message (rbs_world_last_error) naming the character and its byte. */
 #define RBS_NAME_MAX 64
 
 /** World definition: capacities (fixed for the world's life) and settings.
@@ -295,7 +301,8 @@ RBS_API void rbs_world_def_init_sized(rbs_world_def *def, size_t def_size);
 /** Sphere definition.  Initialise with rbs_sphere_def_init(&def). */
 typedef struct rbs_sphere_def {
     uint32_t struct_size;       /**< set by the init macro */
-    const char *name;           /**< optional, copied (< RBS_NAME_MAX bytes), unique */
+    const char *name;           /**< optional (NULL or "": unnamed), copied,
+                                     unique; the rule of RBS_NAME_MAX */
     double radius;              /**< m, > 0; default 0.1 */
     double mass;                /**< kg, > 0; default 1; ignored if density > 0 */
     double density;             /**< kg/m^3; 0 (default) means use mass */
@@ -327,7 +334,8 @@ RBS_API void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size);
 /** Plane definition: a half-space whose solid side lies behind the normal. */
 typedef struct rbs_plane_def {
     uint32_t struct_size;
-    const char *name;          /**< optional, copied, unique */
+    const char *name;          /**< optional (NULL or "": unnamed), copied,
+                                    unique; the rule of RBS_NAME_MAX */
     rbs_vec3 point;            /**< a point on the plane, m */
     rbs_vec3 normal;           /**< outward normal, normalised on add; nonzero;
                                     default 0,0,1 */
@@ -421,7 +429,9 @@ RBS_API rbs_status rbs_world_get_def(const rbs_world *world, rbs_world_def *out)
 /* Materials and bodies                                                      */
 /* ------------------------------------------------------------------------- */
 
-/** Add a named material.  RBS_E_CAPACITY leaves the world unchanged. */
+/** Add a named material (name copied; the rule of RBS_NAME_MAX, and not
+ * "*", which means any material in a pair; else RBS_E_INVALID).
+ * RBS_E_CAPACITY leaves the world unchanged. */
 RBS_API rbs_status rbs_world_add_material(rbs_world *world, const char *name,
                                           rbs_material_id *out);
 /** Find a material by name; RBS_E_NOT_FOUND if absent. */

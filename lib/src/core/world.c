@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "core/name.h"
 #include "core/soft_detect.h"
 #include "core/team.h"
 
@@ -560,27 +561,29 @@ size_t rbs__utf8_seq(const char *text, size_t len, size_t i)
     return n;
 }
 
-static int name_ok(const char *name)
-{
-    size_t len, i, n;
-    if (name == NULL || (len = strlen(name)) >= RBS_NAME_MAX)
-        return 0;
-    /* UTF-8 (RFC 3629), so that names written to JSON frames and read by
-     * Python are always text */
-    for (i = 0; i < len; i += n)
-        if ((n = rbs__utf8_seq(name, len, i)) == 0)
-            return 0;
-    return 1;
-}
+/* The names scene files refuse, the API refuses (core/name.h): what of a
+ * name's rule a message says before the fault (names are written to scene
+ * files by rbs_scene_save and to JSON frames read by Python). */
+#define NAME_RULE                                                                                  \
+    "must have 1 to %d bytes of UTF-8 without spaces, control characters, '#', '\"', '=', ',' "  \
+    "or invisible formatting characters, as in a scene file"
 
 rbs_status rbs_world_add_material(rbs_world *w, const char *name, rbs_material_id *out)
 {
     rbs_material_id id;
+    rbs__name_fault fault;
+    char why[96];
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     w->error[0] = '\0';
-    if (!name_ok(name) || name[0] == '\0' || strcmp(name, "*") == 0)
-        FAIL(w, RBS_E_INVALID, "material name must be 1..%d bytes of UTF-8 and not \"*\"", RBS_NAME_MAX - 1);
+    if (name == NULL)
+        FAIL(w, RBS_E_INVALID, "material name is NULL");
+    if (rbs__name_check(name, &fault) != RBS__NAME_OK) {
+        rbs__name_fault_text(&fault, why, sizeof why);
+        FAIL(w, RBS_E_INVALID, "material name " NAME_RULE ", got %s", RBS_NAME_MAX - 1, why);
+    }
+    if (strcmp(name, "*") == 0)
+        FAIL(w, RBS_E_INVALID, "material name must not be \"*\", which means any material in a pair");
     if (rbs_world_find_material(w, name, &id) == RBS_OK)
         FAIL(w, RBS_E_INVALID, "material \"%s\" already exists", name);
     if (w->materials >= w->def.max_materials)
@@ -912,10 +915,17 @@ static void add_to_lists(rbs_world *w, uint32_t s)
 /* Checks every body kind shares: its name (kind is "sphere" or "plane"). */
 static rbs_status check_name(rbs_world *w, const char *kind, const char *name)
 {
-    if (name != NULL && strlen(name) >= RBS_NAME_MAX)
-        FAIL(w, RBS_E_INVALID, "%s name longer than %d bytes", kind, RBS_NAME_MAX - 1);
-    if (name != NULL && !name_ok(name))
-        FAIL(w, RBS_E_INVALID, "%s name is not valid UTF-8", kind);
+    rbs__name_fault fault;
+    char why[96];
+    /* (NULL and "": unnamed) */
+    if (name != NULL && name[0] != '\0' && rbs__name_check(name, &fault) != RBS__NAME_OK) {
+        rbs__name_fault_text(&fault, why, sizeof why);
+        if (fault.kind == RBS__NAME_LENGTH)
+            FAIL(w, RBS_E_INVALID, "%s name longer than %d bytes (%s)", kind, RBS_NAME_MAX - 1, why);
+        if (fault.kind == RBS__NAME_UTF8)
+            FAIL(w, RBS_E_INVALID, "%s name is not valid UTF-8: %s", kind, why);
+        FAIL(w, RBS_E_INVALID, "%s name " NAME_RULE ", got %s", kind, RBS_NAME_MAX - 1, why);
+    }
     if (name_taken(w, name))
         FAIL(w, RBS_E_INVALID, "%s \"%s\": name already used", kind, name);
     return RBS_OK;

@@ -9,6 +9,7 @@
  * start, camera mounts) run after the local checks.
  */
 #include "scene/scene_internal.h"
+#include "core/name.h"
 #include "core/world_internal.h" /* RBS__SOFT_SUBSTEPS_MAX */
 #include "rbsim/reel.h" /* RBS_EVERY_MAX */
 
@@ -92,48 +93,6 @@ static void err(vctx *v, rbs__loc at, const char *fmt, ...)
     rbs__scene_error(v->scene, at, v->path, "%s", msg);
 }
 
-/* The code point of the UTF-8 sequence at s (valid UTF-8: the scene's
- * strings were checked when read) and its length in bytes. */
-static uint32_t code_point(const unsigned char *s, size_t *len)
-{
-    if (s[0] < 0x80) {
-        *len = 1;
-        return s[0];
-    }
-    if (s[0] < 0xE0) {
-        *len = 2;
-        return (uint32_t)(s[0] & 0x1F) << 6 | (uint32_t)(s[1] & 0x3F);
-    }
-    if (s[0] < 0xF0) {
-        *len = 3;
-        return (uint32_t)(s[0] & 0x0F) << 12 | (uint32_t)(s[1] & 0x3F) << 6 | (uint32_t)(s[2] & 0x3F);
-    }
-    *len = 4;
-    return (uint32_t)(s[0] & 0x07) << 18 | (uint32_t)(s[1] & 0x3F) << 12 | (uint32_t)(s[2] & 0x3F) << 6 |
-           (uint32_t)(s[3] & 0x3F);
-}
-
-/* What a code point beyond ASCII that a name may not hold is (NULL: none):
- * C1 controls, Unicode's spaces, and the invisible formatting characters
- * (soft hyphen, zero-width ones, the bidirectional marks, embeddings,
- * overrides and isolates, which reorder the text around them on a
- * terminal: Boucher and Anderson, "Trojan Source", 2021), and the byte
- * order mark. */
-static const char *unseen_kind(uint32_t u)
-{
-    if (u >= 0x80 && u <= 0x9F)
-        return "a control character";
-    if (u == 0x2028 || u == 0x2029)
-        return "a line or paragraph separator";
-    if (u == 0xA0 || u == 0x1680 || (u >= 0x2000 && u <= 0x200A) || u == 0x202F || u == 0x205F || u == 0x3000)
-        return "a space";
-    if (u == 0xAD || u == 0x34F || u == 0x61C || u == 0x180E || (u >= 0x200B && u <= 0x200F) ||
-        (u >= 0x202A && u <= 0x202E) || (u >= 0x2060 && u <= 0x206F) || u == 0xFEFF ||
-        (u >= 0xFFF9 && u <= 0xFFFB))
-        return "an invisible formatting character";
-    return NULL;
-}
-
 /* The value as written, for "got ..." (raw number text, quoted string). */
 static void got(const vctx *v, const cJSON *item, char *out, size_t n)
 {
@@ -158,7 +117,7 @@ static void got(const vctx *v, const cJSON *item, char *out, size_t n)
         for (i = 0; s[i] != '\0' && k < 40; i++) {
             unsigned char c = (unsigned char)s[i];
             size_t len = 1;
-            if (c >= 0x80 && unseen_kind(code_point((const unsigned char *)s + i, &len)) != NULL) {
+            if (c >= 0x80 && rbs__unseen_kind(rbs__code_point((const unsigned char *)s + i, &len)) != NULL) {
                 /* (a character that would hide or reorder the message) */
                 clean[k++] = '?';
                 i += len - 1;
@@ -514,48 +473,41 @@ static int get_integer(vctx *v, const cJSON *item, double lo, double hi,
     return 0;
 }
 
-/* A body or material name: 1..RBS_NAME_MAX-1 bytes, no blanks, controls, '#',
- * '"', '=' or ','; so that it also fits the text format. */
+/* A body or material name: the rule of the world's API (core/name.h:
+ * 1..RBS_NAME_MAX-1 bytes, no blanks, controls, '#', '"', '=' or ',', so
+ * that it also fits the text format, nor invisible code points). */
 static int get_name(vctx *v, const cJSON *item, const char **out)
 {
     const char *s;
-    size_t i, n;
     char g[64];
+    rbs__name_fault fault;
     if (get_string(v, item, &s) != 0) {
         return -1;
     }
-    n = strlen(s);
     got(v, item, g, sizeof g);
-    if (n == 0 || n >= RBS_NAME_MAX) {
+    switch (rbs__name_check(s, &fault)) {
+    case RBS__NAME_OK:
+        *out = s;
+        return 0;
+    case RBS__NAME_LENGTH:
         err(v, loc_value(v, item), "a name must have 1 to %d bytes, got %s",
             RBS_NAME_MAX - 1, g);
         return -1;
+    case RBS__NAME_UNSEEN:
+        err(v, loc_value(v, item),
+            "a name must not contain spaces, control characters or invisible "
+            "formatting characters, got %s with U+%04lX (%s) at byte %lu",
+            g, (unsigned long)fault.code, fault.what, (unsigned long)fault.byte);
+        return -1;
+    default:
+        /* (RBS__NAME_UTF8 cannot be: a scene's strings were checked when
+         * read; it is refused as the ASCII faults are all the same) */
+        err(v, loc_value(v, item),
+            "a name must not contain spaces, control characters, '#', '\"', '=' "
+            "or ',', got %s",
+            g);
+        return -1;
     }
-    for (i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)s[i];
-        size_t len = 1;
-        const char *kind;
-        if (c <= 0x20 || c == 0x7f || c == '#' || c == '"' || c == '=' || c == ',') {
-            err(v, loc_value(v, item),
-                "a name must not contain spaces, control characters, '#', '\"', '=' "
-                "or ',', got %s",
-                g);
-            return -1;
-        }
-        if (c >= 0x80) {
-            uint32_t u = code_point((const unsigned char *)s + i, &len);
-            if ((kind = unseen_kind(u)) != NULL) {
-                err(v, loc_value(v, item),
-                    "a name must not contain spaces, control characters or invisible "
-                    "formatting characters, got %s with U+%04lX (%s) at byte %lu",
-                    g, (unsigned long)u, kind, (unsigned long)i + 1);
-                return -1;
-            }
-            i += len - 1;
-        }
-    }
-    *out = s;
-    return 0;
 }
 
 /* ---- objects and keys --------------------------------------------------- */
