@@ -92,11 +92,6 @@ int rbsf_run_main(int argc, char **argv);
  * (no two write one file, none overwrites a file the scene was read from),
  * as `check` makes them: 0, or an exit code with the reason on stderr. */
 int rbsf_check_scene_outputs(const rbs_scene *scene);
-/** Whether two paths name one file: the same text, an existing file reached
- * twice (device and inode: "a.json", "./a.json", a symbolic link to it,
- * "/dev/stdin" redirected from it), or a file not made yet whose folder and
- * name (after its links) agree.  1 or 0. */
-int rbsf_same_file(const char *a, const char *b);
 /** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */
 void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);

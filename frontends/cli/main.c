@@ -155,7 +155,7 @@ static const char convert_text[] =
     "device or FIFO is never replaced, nor one with no write permission; a\n"
     "symbolic link's target is written.  An OUT that is a file IN is read\n"
     "from (IN itself by any path or link, its materials.txt ...) is refused\n"
-    "before anything is read or written (exit 2).\n"
+    "before anything is written (exit 2).\n"
     "Exit 0, 2 (usage), 3 (IN is not a valid scene) or 4 (OUT could not be\n"
     "written).\n";
 
@@ -456,81 +456,6 @@ static int ends_with(const char *s, const char *suffix)
     return a >= b && strcmp(s + a - b, suffix) == 0;
 }
 
-/* The files a save of format to out writes (rbs_scene_save in scene.h):
- * out, and for the text format its materials and objects tables beside it
- * ("materials.txt" beside "config.txt", "X.materials.txt" beside "X.txt").
- * names gets up to 3 paths in bufs (each size bytes); the count, 0 if a name
- * does not fit. */
-static int save_targets(const char *out, rbs_scene_format format,
-                        char bufs[3][4096], const char *names[3])
-{
-    static const char *const tables[2] = {"materials.txt", "objects.txt"};
-    const char *slash = strrchr(out, '/');
-    const char *base = slash != NULL ? slash + 1 : out;
-    const char *dot = strrchr(base, '.');
-    int k;
-    names[0] = out;
-    if (format != RBS_SCENE_TEXT)
-        return 1;
-    for (k = 0; k < 2; k++) {
-        int n;
-        if (strcmp(base, "config.txt") == 0)
-            n = snprintf(bufs[k + 1], sizeof bufs[k + 1], "%.*s%s",
-                         (int)(base - out), out, tables[k]);
-        else
-            n = snprintf(bufs[k + 1], sizeof bufs[k + 1], "%.*s.%s",
-                         (int)(dot != NULL && dot != base ? dot - out
-                                                          : (long)strlen(out)),
-                         out, tables[k]);
-        if (n < 0 || (size_t)n >= sizeof bufs[k + 1])
-            return 0;
-        names[k + 1] = bufs[k + 1];
-    }
-    return 3;
-}
-
-/* Refuse a convert that would write over a file its scene is read from
- * (IN itself through any spelling or link, standard input redirected from
- * OUT, or a text scene's materials.txt and objects.txt) before anything is
- * written: a usage error naming both files.  (It loaded, then failed in the
- * save with exit 4, "cannot write": a probe of session 47.)  scene NULL:
- * IN alone is compared (before it is read).  0 or RBSF_EXIT_USAGE. */
-static int convert_onto_input(const rbs_scene *scene, const char *in,
-                              const char *out, rbs_scene_format format)
-{
-    char bufs[3][4096];
-    const char *names[3], *src;
-    int n = save_targets(out, format, bufs, names), k;
-    uint32_t i;
-    for (k = 0; k < n; k++)
-        for (i = 0; (src = scene != NULL ? rbs_scene_source(scene, i)
-                                         : i == 0 ? in : NULL) != NULL;
-             i++) {
-            if (!rbsf_same_file(names[k], src))
-                continue;
-            if (k == 0 && i == 0)
-                fprintf(stderr,
-                        "rbsim convert: OUT '%s' is the file IN '%s' is read "
-                        "from%s: the conversion would replace its own input; "
-                        "name another OUT\n",
-                        out, strcmp(in, "/dev/stdin") == 0 ? "-" : in,
-                        strcmp(in, "/dev/stdin") == 0 ? " (standard input)" : "");
-            else if (k == 0)
-                fprintf(stderr,
-                        "rbsim convert: OUT '%s' is '%s', a file the scene IN "
-                        "'%s' is read from; name another OUT\n",
-                        out, src, strcmp(in, "/dev/stdin") == 0 ? "-" : in);
-            else
-                fprintf(stderr,
-                        "rbsim convert: OUT '%s' would also write '%s', "
-                        "which is '%s', a file the scene IN '%s' is read "
-                        "from; name another OUT\n",
-                        out, names[k], src, strcmp(in, "/dev/stdin") == 0 ? "-" : in);
-            return RBSF_EXIT_USAGE;
-        }
-    return 0;
-}
-
 static int convert_main(int argc, char **argv)
 {
     char why[600];
@@ -573,8 +498,6 @@ static int convert_main(int argc, char **argv)
                     files[1]);
         return RBSF_EXIT_USAGE;
     }
-    if ((code = convert_onto_input(NULL, files[0], files[1], format)) != 0)
-        return code;
     st = rbs_scene_load(files[0], RBS_SCENE_AUTO, &scene);
     if (st != RBS_OK) {
         count = scene ? rbs_scene_error_count(scene) : 0;
@@ -588,11 +511,17 @@ static int convert_main(int argc, char **argv)
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
-    if ((code = convert_onto_input(scene, files[0], files[1], format)) != 0) {
-        rbs_scene_free(scene);
-        return code;
-    }
     st = rbs_scene_save_v2(scene, files[1], format, why, sizeof why);
+    if (st == RBS_E_OWN_INPUT) {
+        /* OUT (or a text OUT's table beside it) is a file IN is read from,
+         * through any spelling or link, or standard input redirected from
+         * it: the save refuses before writing anything (the library's
+         * check, scene.h), a usage error naming both files */
+        fprintf(stderr, "rbsim convert: OUT '%s' would write over its input: %s%s\n", files[1],
+                why, strcmp(files[0], "/dev/stdin") == 0 ? " (IN '-' is standard input)" : "");
+        rbs_scene_free(scene);
+        return RBSF_EXIT_USAGE;
+    }
     if (st != RBS_OK) {
         /* nothing was written: the save replaces files only when all are complete */
         if (why[0] != '\0')

@@ -679,11 +679,6 @@ static int same_file(const char *a, const char *b)
              strcmp(ka.name, kb.name) == 0));
 }
 
-int rbsf_same_file(const char *a, const char *b)
-{
-    return same_file(a, b);
-}
-
 /* The file of scene that path names, if any: one the scene was read from
  * (its own file, a text scene's materials.txt and objects.txt), which no
  * output may overwrite; k gets its index (0: the scene's own).  NULL if

@@ -30,7 +30,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 /* A status is RBS_OK or one of the listed errors. */
 static inline int fuzz_status_valid(rbs_status st)
 {
-    return st <= RBS_OK && st >= RBS_E_CORRUPT;
+    return st <= RBS_OK && st >= RBS_E_OWN_INPUT;
 }
 
 /* Steps a fuzzed world may take per input: a few, so a slow scene cannot

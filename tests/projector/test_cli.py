@@ -1479,10 +1479,12 @@ class CliTests(Base):
         s = self.scene()
         with open(s) as f:
             before = f.read()
-        # It is refused up front as a usage error (exit 2) naming both files,
-        # through any spelling of the path, a symbolic link, or standard
-        # input redirected from OUT; an invalid IN too (it ran the save and
-        # exited 4 "cannot write": a probe of session 47).
+        # The library's save refuses it (RBS_E_OWN_INPUT) before anything
+        # is written, and convert makes that a usage error (exit 2) naming
+        # OUT and the file of IN it is, through any spelling of the path, a
+        # symbolic link, or standard input redirected from OUT (it ran the
+        # save and exited 4 "cannot write": a probe of session 47; then
+        # convert checked the paths itself, apart from the library).
         link = self.path("link.json")
         os.symlink(s, link)
         spellings = [s, os.path.join(self.dir, ".", os.path.basename(s)),
@@ -1491,21 +1493,27 @@ class CliTests(Base):
         for out in spellings:
             r = self.rbsim("convert", s, out)
             self.assertEqual(r.returncode, 2, (out, r.stderr))
-            self.assertIn("rbsim convert: OUT '%s' is the file IN '%s' is "
-                          "read from" % (out, s), r.stderr)
-            self.assertNotIn("usage:", r.stderr)
+            self.assertEqual(
+                r.stderr,
+                "rbsim convert: OUT '%s' would write over its input: cannot "
+                "write '%s': %s a file this scene was read from; write "
+                "elsewhere\n" % (out, out, "it is" if out == s else "it is '%s'," % s))
         with open(s) as stdin:
             r = subprocess.run([RBSIM, "convert", "-", s], stdin=stdin,
                                capture_output=True, text=True, timeout=60)
         self.assertEqual(r.returncode, 2, r.stderr)
-        self.assertIn("IN '-' is read from (standard input)", r.stderr)
+        self.assertIn("OUT '%s' would write over its input: cannot write '%s': it "
+                      "is '/dev/stdin', a file this scene was read from; write "
+                      "elsewhere (IN '-' is standard input)" % (s, s), r.stderr)
         with open(s) as f:
             self.assertEqual(f.read(), before)
+        # an invalid IN onto itself: its scene errors (exit 3), nothing written
         bad = self.path("bad.json")
         with open(bad, "w") as f:
             f.write("{\n")
         r = self.rbsim("convert", bad, bad)
-        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("bad.json:2:1: ", r.stderr)
         with open(bad) as f:
             self.assertEqual(f.read(), "{\n")
         txt = self.path("t/config.txt")
@@ -1514,7 +1522,9 @@ class CliTests(Base):
             table = f.read()
         r = self.rbsim("convert", txt, self.path("t/materials.txt"))
         self.assertEqual(r.returncode, 2, r.stderr)
-        self.assertIn("a file the scene IN '%s' is read from" % txt, r.stderr)
+        self.assertIn("OUT '%s' would write over its input: cannot write '%s': "
+                      "it is a file this scene was read from"
+                      % ((self.path("t/materials.txt"),) * 2), r.stderr)
         with open(self.path("t/materials.txt")) as f:
             self.assertEqual(f.read(), table)
         # a text OUT whose tables beside it are the scene's
@@ -1522,8 +1532,8 @@ class CliTests(Base):
         shutil.copy(txt, other)
         r = self.rbsim("convert", other, txt)
         self.assertEqual(r.returncode, 2, r.stderr)
-        self.assertIn("would also write '%s'" % self.path("t/materials.txt"),
-                      r.stderr)
+        self.assertIn("OUT '%s' would write over its input: cannot write '%s'"
+                      % (txt, self.path("t/materials.txt")), r.stderr)
         with open(self.path("t/materials.txt")) as f:
             self.assertEqual(f.read(), table)
         ro = self.path("ro.json")

@@ -311,6 +311,82 @@ static void test_normalised_once(void **state)
 }
 
 /* Saving a rejected scene, or to a bad place, fails cleanly. */
+/* A save onto a file the scene was read from -- its own file by the same
+ * path, another spelling or a symbolic link, or a text scene's tables --
+ * is RBS_E_OWN_INPUT (it was RBS_E_IO, which rbsim convert told apart by
+ * checking the paths itself), with a message naming the target and the
+ * scene's file, and leaves every file as it was. */
+static void test_save_onto_own_input(void **state)
+{
+    char a[512], dot[512], link[512], cfg[512], mat[512], obj[512], other[512], msg[600],
+        want[1400];
+    char *before, *table;
+    size_t n, m;
+    rbs_scene *src = NULL, *scene = NULL, *text = NULL;
+    (void)state;
+    tmp(a, sizeof a, "a.json");
+    snprintf(dot, sizeof dot, "%s/./a.json", tmpdir);
+    tmp(link, sizeof link, "l.json");
+    tmp(cfg, sizeof cfg, "config.txt");
+    tmp(mat, sizeof mat, "materials.txt");
+    tmp(obj, sizeof obj, "objects.txt");
+    tmp(other, sizeof other, "other.json");
+    assert_int_equal(rbs_scene_load("issue_example.json", RBS_SCENE_AUTO, &src), RBS_OK);
+    assert_int_equal(rbs_scene_save(src, a, RBS_SCENE_JSON), RBS_OK);
+    assert_int_equal(rbs_scene_save(src, cfg, RBS_SCENE_TEXT), RBS_OK);
+    rbs_scene_free(src);
+    assert_int_equal(symlink(a, link), 0);
+    assert_int_equal(rbs_scene_load(a, RBS_SCENE_AUTO, &scene), RBS_OK);
+    before = read_all(a, &n);
+    assert_non_null(before);
+    /* the same path */
+    assert_int_equal(rbs_scene_save_v2(scene, a, RBS_SCENE_JSON, msg, sizeof msg), RBS_E_OWN_INPUT);
+    snprintf(want, sizeof want, "cannot write '%s': it is a file this scene was read from; write elsewhere", a);
+    assert_string_equal(msg, want);
+    assert_int_equal(rbs_scene_save(scene, a, RBS_SCENE_JSON), RBS_E_OWN_INPUT);
+    /* another spelling, a link: both files named */
+    assert_int_equal(rbs_scene_save_v2(scene, dot, RBS_SCENE_JSON, msg, sizeof msg), RBS_E_OWN_INPUT);
+    snprintf(want, sizeof want, "cannot write '%s': it is '%s', a file this scene was read from; write elsewhere",
+             dot, a);
+    assert_string_equal(msg, want);
+    assert_int_equal(rbs_scene_save_v2(scene, link, RBS_SCENE_JSON, msg, sizeof msg), RBS_E_OWN_INPUT);
+    snprintf(want, sizeof want, "cannot write '%s': it is '%s', a file this scene was read from; write elsewhere",
+             link, a);
+    assert_string_equal(msg, want);
+    /* a text scene saved onto its own table: refused at that table, with
+     * nothing written (config.txt, staged first, is left as it was) */
+    assert_int_equal(rbs_scene_load(cfg, RBS_SCENE_AUTO, &text), RBS_OK);
+    table = read_all(mat, &m);
+    assert_non_null(table);
+    assert_int_equal(rbs_scene_save_v2(text, mat, RBS_SCENE_JSON, msg, sizeof msg), RBS_E_OWN_INPUT);
+    snprintf(want, sizeof want, "cannot write '%s': it is a file this scene was read from; write elsewhere", mat);
+    assert_string_equal(msg, want);
+    assert_int_equal(rbs_scene_save_v2(text, cfg, RBS_SCENE_TEXT, msg, sizeof msg), RBS_E_OWN_INPUT);
+    snprintf(want, sizeof want, "cannot write '%s': it is a file this scene was read from; write elsewhere", cfg);
+    assert_string_equal(msg, want);
+    {
+        char *now = read_all(mat, &n);
+        assert_non_null(now);
+        assert_memory_equal(now, table, m);
+        free(now);
+    }
+    /* a file the scene was not read from is written as before */
+    assert_int_equal(rbs_scene_save_v2(scene, other, RBS_SCENE_JSON, msg, sizeof msg), RBS_OK);
+    assert_string_equal(msg, "");
+    {
+        char *now = read_all(a, &m);
+        assert_non_null(now);
+        assert_memory_equal(now, before, m);
+        free(now);
+    }
+    free(before);
+    free(table);
+    rbs_scene_free(scene);
+    rbs_scene_free(text);
+    assert_int_equal(unlink(link), 0);
+    assert_int_equal(unlink(other), 0);
+}
+
 static void test_save_errors(void **state)
 {
     rbs_scene *scene = NULL;
@@ -466,6 +542,7 @@ int main(void)
         cmocka_unit_test(test_issue_example),   cmocka_unit_test(test_features),
         cmocka_unit_test(test_demos),           cmocka_unit_test(test_normalised_once),
         cmocka_unit_test(test_save_errors),     cmocka_unit_test(test_text_features),
+        cmocka_unit_test(test_save_onto_own_input),
         cmocka_unit_test(test_save_is_all_or_nothing), cmocka_unit_test(test_negative_zero),
         cmocka_unit_test(test_text_description_ends_at_a_comment),
     };

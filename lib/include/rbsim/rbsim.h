@@ -60,7 +60,8 @@ extern "C" {
     X(E_RENDERER, -11, "renderer failure")                                     \
     X(E_CLOSED, -12, "closed or interrupted")                                  \
     X(E_VERSION, -13, "version mismatch")                                      \
-    X(E_CORRUPT, -14, "corrupt or foreign data")
+    X(E_CORRUPT, -14, "corrupt or foreign data")                               \
+    X(E_OWN_INPUT, -15, "the output is a file the input was read from")
 
 #define RBS_STATUS_ENUM_ITEM(name, value, text) RBS_##name = value,
 /** Status of a call: RBS_OK (0) or a negative error code. */

@@ -148,9 +148,11 @@ RBS_API const char *rbs_scene_source(const rbs_scene *scene, uint32_t i);
  * bit-identical world.  Every file is written to a temporary beside it and
  * renamed into place only when all are complete, so a failed save leaves
  * what was there; a path that names a folder, device or FIFO is refused,
- * and so is a file the scene was read from (its own file, a text scene's
- * materials.txt) and a file with no write permission; one that names a
- * symbolic link writes the link's target.  RBS_E_SCENE for
+ * and so is a file with no write permission; one that names a symbolic
+ * link writes the link's target.  A target that is a file the scene was
+ * read from (its own file, a text scene's materials.txt and objects.txt,
+ * by any path or link) is refused with RBS_E_OWN_INPUT before anything is
+ * written.  RBS_E_SCENE for
  * a scene with errors, RBS_E_IO if a file cannot be written,
  * RBS_E_UNSUPPORTED if a renderer entry has a key the text format cannot
  * spell (empty, 63 bytes or more, containing '.', '[', '=', blanks ..., or
@@ -161,7 +163,10 @@ RBS_API rbs_status rbs_scene_save(const rbs_scene *scene, const char *path,
 
 /** rbs_scene_save, and on RBS_E_IO a message ("cannot write 'PATH':
  * REASON", naming the file that failed: each file is flushed before the next
- * is written, so a full disk is named at the file that filled it), on RBS_E_UNSUPPORTED one naming
+ * is written, so a full disk is named at the file that filled it), on
+ * RBS_E_OWN_INPUT one naming the target and the scene's file it is
+ * ("cannot write 'b.json': it is 'a.json', a file this scene was read
+ * from; write elsewhere"), on RBS_E_UNSUPPORTED one naming
  * the renderer entry, its key and why the text format cannot write it, in
  * message (message_size bytes,
  * NUL-terminated; "" on success).  message may be NULL. */

@@ -92,17 +92,18 @@ static void folder_reason(const char *path, int e, char *why, size_t n)
     free(dir);
 }
 
-/* Whether the file at `file` (stat'ed) is one scene s was read from. */
-static int read_from(const rbs_scene *s, const struct stat *file)
+/* The file scene s was read from that the file at `file` (stat'ed) is, as
+ * the scene names it, or NULL if none. */
+static const char *read_from(const rbs_scene *s, const struct stat *file)
 {
     int32_t i;
     for (i = 0; i < s->file_count; i++) {
         struct stat sb;
         if (s->files[i] != NULL && stat(s->files[i], &sb) == 0 && sb.st_dev == file->st_dev &&
             sb.st_ino == file->st_ino)
-            return 1;
+            return s->files[i];
     }
-    return 0;
+    return NULL;
 }
 
 /* Open o's temporary for path; a missing parent folder (one level) is made.
@@ -123,8 +124,17 @@ static rbs_status stage_open(staged *o, const rbs_scene *s, const char *path, sa
                                : report(r, RBS_E_IO, path, "a loop of symbolic links");
     }
     if (stat(o->path, &file) == 0) {
-        if (S_ISREG(file.st_mode) && read_from(s, &file))
-            return report(r, RBS_E_IO, o->path, "it is a file this scene was read from; write elsewhere");
+        const char *src = S_ISREG(file.st_mode) ? read_from(s, &file) : NULL;
+        if (src != NULL) {
+            /* (named as the caller wrote it, and as the scene was read) */
+            char why[600];
+            if (strcmp(src, path) == 0)
+                snprintf(why, sizeof why, "it is a file this scene was read from; write elsewhere");
+            else
+                snprintf(why, sizeof why, "it is '%.500s', a file this scene was read from; write elsewhere",
+                         src);
+            return report(r, RBS_E_OWN_INPUT, path, why);
+        }
         if (S_ISREG(file.st_mode) && !(file.st_mode & 0222))
             return report(r, RBS_E_IO, o->path, "it is read-only (no write permission): not replaced");
         if (!S_ISREG(file.st_mode)) {
