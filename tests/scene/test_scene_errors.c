@@ -1045,6 +1045,61 @@ static void test_names_beyond_ascii(void **state)
     }
 }
 
+/* Text from the input echoed in an error is printed safely: a key (unknown,
+ * in the key path) or a renderer type holding ESC,
+ * DEL, a C1 control (U+009B, the one-byte CSI), a bidirectional override
+ * (U+202E) shows each such
+ * character as one '?' -- the whole error text, path and message, is
+ * printable ASCII or UTF-8 without those -- while valid UTF-8 letters
+ * (U+00E4, U+20AC) are kept.  Before, the key path and the CLI's "unknown
+ * renderer type" were written raw: "simulation.fo\x1b[31mo" recoloured the
+ * terminal. */
+static void test_echoed_text_is_escaped(void **state)
+{
+    static const struct {
+        const char *text;
+        const char *path; /* the error's key path */
+        const char *want; /* its message; NULL: not checked */
+    } cases[] = {
+        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[31mo\": 1}}", "simulation.fo?[31mo", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[2J\\u007fo\": 1}}", "simulation.fo?[2J?o", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"a\xc2\x9b" "31m\xe2\x80\xae" "b\": 1}}", "simulation.a?31m?b", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"k\xc3\xa4\xe2\x82\xac\": 1}}", "simulation.k\xc3\xa4\xe2\x82\xac", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"x\\u009b\": ", "simulation.x?", NULL},
+        {"{\"simulation\": {\"steps\": 1}, \"renderers\": [{\"type\": \"\\u001b]0;t\\u0007\", \"path\": \"p\"}]}",
+         "renderers[0].type",
+         "a name must not contain spaces, control characters, '#', '\"', '=' or ',', got \"?]0;t?\""},
+        {"{\"simulation\": {\"steps\": 1}, \"renderers\": [{\"type\": \"my\xe2\x80\xaerend\", \"path\": \"p\"}]}",
+         "renderers[0].type",
+         "a name must not contain spaces, control characters or invisible formatting characters, got "
+         "\"my?rend\" with U+202E (an invisible formatting character) at byte 3"},
+    };
+    size_t i, k;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        rbs_scene *scene = NULL;
+        rbs_scene_error e;
+        assert_int_equal(rbs_scene_parse_json(cases[i].text, strlen(cases[i].text), "e.json", &scene),
+                         RBS_E_SCENE);
+        /* (the error at that path; others, such as a missing "bodies", may come first) */
+        for (k = 0; rbs_scene_error_get(scene, k, &e) == RBS_OK; k++)
+            if (strcmp(e.path, cases[i].path) == 0)
+                break;
+        if (strcmp(e.path, cases[i].path) != 0)
+            fail_msg("case %lu: no error at '%s' (last: '%s')", (unsigned long)i, cases[i].path, e.text);
+        if (cases[i].want != NULL && strcmp(e.message, cases[i].want) != 0)
+            fail_msg("case %lu: '%s', not '%s'", (unsigned long)i, e.message, cases[i].want);
+        for (k = 0; e.text[k] != '\0'; k++) {
+            unsigned char c = (unsigned char)e.text[k];
+            if (c < 0x20 || c == 0x7f || (c == 0xc2 && (unsigned char)e.text[k + 1] < 0xa0) ||
+                (c == 0xe2 && (unsigned char)e.text[k + 1] == 0x80 && (unsigned char)e.text[k + 2] == 0xae))
+                fail_msg("case %lu: a raw control or override at byte %lu of '%s'", (unsigned long)i,
+                         (unsigned long)k, e.text);
+        }
+        rbs_scene_free(scene);
+    }
+}
+
 /* Materials: "*" rows cover missing pairs; a body without material matches
  * only "*" rows; a sphere resting on a plane (gap 0) is not an overlap. */
 static void test_material_rules(void **state)
@@ -1397,6 +1452,7 @@ int main(void)
         cmocka_unit_test(test_names_beyond_ascii),
         cmocka_unit_test(test_camera_path_errors_at_the_keyframe),
         cmocka_unit_test(test_camera_path_keyframe_limit),
+        cmocka_unit_test(test_echoed_text_is_escaped),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
         cmocka_unit_test(test_event_scope_agrees_with_the_step),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),

@@ -22,7 +22,10 @@ typedef struct rbs_scene rbs_scene;
 #define RBS_SCENE_ERRORS_MAX 50
 
 /** One error in a scene, e.g. "bad.json:12:17: bodies[3].radius: must be > 0,
- * got -0.1".  Strings are owned by the scene. */
+ * got -0.1".  Strings are owned by the scene.  path, message and text are
+ * safe to print: input text they repeat has each control character, C1
+ * control, invisible formatting character (e.g. U+202E) and byte of invalid
+ * UTF-8 replaced by one '?'. */
 typedef struct rbs_scene_error {
     const char *file;    /**< path as given */
     int32_t line;        /**< 1-based; 0 if not tied to a place */

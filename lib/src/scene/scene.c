@@ -3,6 +3,8 @@
  * world from the validated description.
  */
 #include "scene/scene_internal.h"
+#include "core/name.h"
+#include "core/world_internal.h" /* rbs__utf8_seq */
 
 #include <errno.h>
 #include <math.h>
@@ -60,10 +62,46 @@ int32_t rbs__scene_add_file(rbs_scene *scene, const char *name)
     return scene->file_count++;
 }
 
+/* Make a piece of an error message safe to print: every byte that is not
+ * printable ASCII or part of valid UTF-8 (a control character such as ESC,
+ * DEL, a stray or truncated UTF-8 byte), and every character
+ * rbs__unseen_kind() names (C1 controls, bidirectional overrides, ...),
+ * becomes '?', in place.  Keys, names and types from the input reach the
+ * messages through key paths and values; written raw they could move the
+ * cursor, recolour or reorder the terminal that shows them. */
+static void clean_for_display(char *s)
+{
+    unsigned char *in = (unsigned char *)s, *out = (unsigned char *)s;
+    size_t left = strlen(s); /* bytes from in to the end */
+    while (left > 0) {
+        unsigned char c = *in;
+        size_t len = 1, k;
+        if (c >= 0x80) {
+            /* a well-formed UTF-8 sequence (RFC 3629), whole, unless it is
+             * a character rbs__unseen_kind names */
+            len = rbs__utf8_seq((const char *)in, left, 0);
+            if (len != 0 && rbs__unseen_kind(rbs__code_point(in, &k)) == NULL) {
+                memmove(out, in, len);
+                out += len;
+                in += len;
+                left -= len;
+                continue;
+            }
+            if (len == 0)
+                len = 1; /* a stray byte: one '?' a byte */
+        }
+        /* one '?' for a control character or a character named above */
+        *out++ = c >= 0x20 && c < 0x7f ? c : '?';
+        in += len;
+        left -= len;
+    }
+    *out = '\0';
+}
+
 void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
                       const char *fmt, ...)
 {
-    char message[512], head[64];
+    char message[512], head[64], where[512];
     const char *file;
     size_t nt, nf, np, nm;
     char *buf;
@@ -86,6 +124,10 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
     } else {
         head[0] = '\0';
     }
+    snprintf(where, sizeof where, "%s", path);
+    clean_for_display(where);
+    clean_for_display(message);
+    path = where;
     nf = strlen(file);
     np = strlen(path);
     nm = strlen(message);
@@ -95,6 +137,7 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
         return; /* counted, not kept */
     }
     snprintf(buf, nt + 1, "%s%s: %s%s%s", file, head, path, np ? ": " : "", message);
+    clean_for_display(buf); /* (a file named in a config.txt; e->pub.file keeps it as given) */
     memcpy(buf + nt + 1, file, nf + 1);
     memcpy(buf + nt + 1 + nf + 1, path, np + 1);
     memcpy(buf + nt + 1 + nf + 1 + np + 1, message, nm + 1);

@@ -2579,9 +2579,13 @@ static void check_renderer(vctx *v, const cJSON *r, size_t index)
     if (type_item == NULL) {
         missing(v, r, "type", "the renderer type, e.g. \"csv\", \"json\" or \"sdl\"");
     } else {
+        /* (a name: the text format's first word, and echoed by front ends
+         * in their messages, so no blanks, controls or invisible characters) */
         saved = push_key(v, "type");
         if (get_string(v, type_item, &type) == 0 && type[0] == '\0') {
             err(v, loc_value(v, type_item), "must not be empty");
+            type = NULL;
+        } else if (type != NULL && get_name(v, type_item, &type) != 0) {
             type = NULL;
         }
         pop(v, saved);
