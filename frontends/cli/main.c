@@ -3,6 +3,7 @@
  * --version.
  */
 #include "c_locale.h"
+#include "shown.h"
 #include "cli.h"
 #include "dump.h"
 #ifdef RBSF_HAVE_SDL
@@ -244,7 +245,9 @@ static int file_args(const char *cmd, const char *help, int argc, char **argv,
             continue;
         }
         if (options && a[0] == '-' && a[1] != '\0') {
-            fprintf(stderr, "rbsim %s: unknown option '%s'\n%s", cmd, a, help);
+            char shown[256];
+            fprintf(stderr, "rbsim %s: unknown option '%s'\n%s", cmd,
+                    rbsf__shown(a, shown, sizeof shown), help);
             return RBSF_EXIT_USAGE;
         }
         if (a[0] == '\0') {
@@ -253,8 +256,10 @@ static int file_args(const char *cmd, const char *help, int argc, char **argv,
             return RBSF_EXIT_USAGE;
         }
         if (got == want) {
+            char shown[256];
             fprintf(stderr, "rbsim %s: unexpected argument '%s' (expected %s)\n%s",
-                    cmd, a, want == 1 ? "one scene file" : "IN and OUT", help);
+                    cmd, rbsf__shown(a, shown, sizeof shown),
+                    want == 1 ? "one scene file" : "IN and OUT", help);
             return RBSF_EXIT_USAGE;
         }
         files[got] = got == 0 ? rbsf_scene_arg(a) : a;
@@ -383,24 +388,27 @@ static int explain_main(int argc, char **argv)
                 return RBSF_EXIT_USAGE;
             }
             if (rbs_method_from_name(v, &m) != RBS_OK) {
-                char list[256];
+                char list[256], shown[256];
                 rbsf_method_list(list, sizeof list);
                 fprintf(stderr, "rbsim explain: --method: unknown method '%s'; "
-                                "expected %s\n", v, list);
+                                "expected %s\n", rbsf__shown(v, shown, sizeof shown), list);
                 return RBSF_EXIT_USAGE;
             }
             method = v;
         } else if (a[0] == '-' && a[1] != '\0') {
-            fprintf(stderr, "rbsim explain: unknown option '%s'\n%s", a,
-                    explain_text);
+            char shown[256];
+            fprintf(stderr, "rbsim explain: unknown option '%s'\n%s",
+                    rbsf__shown(a, shown, sizeof shown), explain_text);
             return RBSF_EXIT_USAGE;
         } else if (a[0] == '\0') {
             fprintf(stderr, "rbsim explain: argument %d is an empty string, "
                             "not a file name\n%s", i + 1, explain_text);
             return RBSF_EXIT_USAGE;
         } else if (path != NULL) {
+            char shown[256];
             fprintf(stderr, "rbsim explain: unexpected argument '%s' (expected "
-                            "one scene file)\n%s", a, explain_text);
+                            "one scene file)\n%s", rbsf__shown(a, shown, sizeof shown),
+                    explain_text);
             return RBSF_EXIT_USAGE;
         } else {
             path = rbsf_scene_arg(a);
@@ -692,8 +700,9 @@ static int dispatch(int argc, char **argv)
             return RBSF_EXIT_USAGE;
         }
         if (rbsf_help(stdout, argc == 3 ? argv[2] : NULL) != 0) {
-            fprintf(stderr, "rbsim help: unknown command '%s'\n%s", argv[2],
-                    usage_text);
+            char shown[256];
+            fprintf(stderr, "rbsim help: unknown command '%s'\n%s",
+                    rbsf__shown(argv[2], shown, sizeof shown), usage_text);
             return RBSF_EXIT_USAGE;
         }
         return RBSF_EXIT_OK;
@@ -710,6 +719,10 @@ static int dispatch(int argc, char **argv)
         return convert_main(argc - 2, argv + 2);
     if (strcmp(cmd, "explain") == 0)
         return explain_main(argc - 2, argv + 2);
-    fprintf(stderr, "rbsim: unknown command '%s'\n%s", cmd, usage_text);
+    {
+        char shown[256];
+        fprintf(stderr, "rbsim: unknown command '%s'\n%s",
+                rbsf__shown(cmd, shown, sizeof shown), usage_text);
+    }
     return RBSF_EXIT_USAGE;
 }

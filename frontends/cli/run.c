@@ -5,6 +5,7 @@
  * (Ctrl-C, SIGTERM, SIGHUP), and print a summary.
  */
 #include "cli.h"
+#include "shown.h"
 #include "demo.h"
 #include "dump.h"
 #ifdef RBSF_HAVE_SDL
@@ -73,10 +74,12 @@ typedef struct output {
 
 /* ---- argument parsing --------------------------------------------------- */
 
+/* (a and b repeat the command line: shown safely, shown.h) */
 static int usage_error(const char *fmt, const char *a, const char *b)
 {
+    char sa[256], sb[256];
     fprintf(stderr, "rbsim run: ");
-    fprintf(stderr, fmt, a, b);
+    fprintf(stderr, fmt, rbsf__shown(a, sa, sizeof sa), rbsf__shown(b, sb, sizeof sb));
     fprintf(stderr, "\ntry 'rbsim help run'\n");
     return RBSF_EXIT_USAGE;
 }
@@ -232,10 +235,12 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         else if (i + 1 < argc && !is_run_option(argv[i + 1]))
             value = argv[++i];
         else if (i + 1 < argc) {
+            char shown[256];
+            rbsf__shown(argv[i + 1], shown, sizeof shown);
             fprintf(stderr, "rbsim run: %s needs a value, got the option '%s' "
                             "(a file of that name: write ./%s or %s=%s)\n"
                             "try 'rbsim help run'\n",
-                    name, argv[i + 1], argv[i + 1], name, argv[i + 1]);
+                    name, shown, shown, name, shown);
             return RBSF_EXIT_USAGE;
         }
         else

@@ -283,6 +283,38 @@ class CliTests(Base):
         r = self.rbsim("check", "--", "-odd.json")
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
 
+    def test_arguments_echoed_safely(self):
+        # An unknown option, command, method or value was repeated raw: an
+        # ESC in it ("--bogus\x1b[2J") cleared the terminal that showed the
+        # error.  Each control character, C1 control (U+009B), bidirectional
+        # override (U+202E) and byte of invalid UTF-8 shows as one '?';
+        # letters beyond ASCII stay.  Exit 2 as for any usage error.
+        s = self.scene().encode()
+        esc, c1, rlo, bad = b"\x1b", "\u009b".encode(), "\u202e".encode(), b"\xff"
+        for args, want in (
+                ([b"run", s, b"--bogus" + esc + b"[2J"], b"unknown option '--bogus?[2J'"),
+                ([b"run", s, b"--method=" + c1 + b"2J"], b"unknown method '?2J'"),
+                ([b"run", s, b"--dt", b"1" + rlo + bad], b"got '1??'"),
+                ([b"run", s, b"--steps", "\u00fc".encode()], "got '\u00fc'".encode()),
+                ([b"ru" + esc + b"n"], b"rbsim: unknown command 'ru?n'"),
+                ([b"help", b"x" + esc], b"rbsim help: unknown command 'x?'"),
+                ([b"check", s, b"x" + esc], b"unexpected argument 'x?'"),
+                ([b"convert", b"--f" + esc, s, b"o.json"], b"unknown option '--f?'"),
+                ([b"explain", s, b"--method", b"x" + esc], b"unknown method 'x?'"),
+                ([b"explain", s, b"-" + rlo], b"unknown option '-?'"),
+                ([b"run", s, b"--csv", b"--x" + esc], None)):
+            r = subprocess.run([RBSIM.encode()] + args, capture_output=True,
+                               cwd=self.dir, timeout=60,
+                               stdin=subprocess.DEVNULL)
+            if want is None:
+                # (a value: a file of that name is written, as asked)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                continue
+            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertIn(want, r.stderr, args)
+            for raw in (esc, c1, rlo, bad):
+                self.assertNotIn(raw, r.stderr, args)
+
     def test_long_paths_keep_the_reason(self):
         # A path past PATH_MAX was echoed whole into a 512-byte message, cut
         # off mid-path with no reason.  The path is shown shortened (its
