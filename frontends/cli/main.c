@@ -347,9 +347,12 @@ static int check_main(int argc, char **argv)
         c.column = r.column;
         st = cls->check(cls->context, &c, world, err, sizeof err);
         if (st != RBS_OK) {
-            printf("%s:%d:%d: renderers[%lu] (%s): %s\n", r.file, (int)r.line,
-                   (int)r.column, (unsigned long)i, r.type,
-                   err[0] ? err : rbs_status_string(st));
+            /* (the message repeats the entry's path: shown safely) */
+            rbsf__puts_shown(stdout, r.file);
+            printf(":%d:%d: renderers[%lu] (%s): ", (int)r.line, (int)r.column,
+                   (unsigned long)i, r.type);
+            rbsf__puts_shown(stdout, err[0] ? err : rbs_status_string(st));
+            putchar('\n');
             code = RBSF_EXIT_SCENE;
         }
     }

@@ -1959,14 +1959,17 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
         fprintf(out, ", %+.3g %%", 100.0 * drift / fabs(info->energy_initial));
     fprintf(out, ")\n");
     for (i = 0; i < n; i++)
-        if (outs[i].config.path != NULL)
-            fprintf(out, "output: %s %s\n", outs[i].config.type,
-                    outs[i].config.path);
+        if (outs[i].config.path != NULL) {
+            fprintf(out, "output: %s ", outs[i].config.type);
+            rbsf__puts_shown(out, outs[i].config.path);
+            fputc('\n', out);
+        }
 }
 
 /* Print "rbsim: PREFIXmsg".  The projector's messages name the files the
  * renderers wrote: for an existing output that is a temporary beside it,
- * gone once renamed or removed, so each is named by its output instead. */
+ * gone once renamed or removed, so each is named by its output instead.
+ * Paths are shown safely (shown.h). */
 static void print_run_error(const char *prefix, const char *msg,
                             const output *outs, uint32_t n)
 {
@@ -1979,13 +1982,16 @@ static void print_run_error(const char *prefix, const char *msg,
             if (o->work != NULL && o->target != NULL &&
                 strcmp(o->work, o->target) != 0 &&
                 strncmp(msg, o->work, strlen(o->work)) == 0) {
-                fputs(o->config.path, stderr);
+                rbsf__puts_shown(stderr, o->config.path);
                 len = strlen(o->work);
             }
         }
         if (len == 0) {
-            fputc(*msg, stderr);
-            len = 1;
+            /* one character (a UTF-8 sequence whole) */
+            uint32_t u;
+            len = rbsf__utf8_at((const unsigned char *)msg, &u);
+            len = len == 0 ? 1 : len;
+            rbsf__put_shown(stderr, msg, len);
         }
         msg += len;
     }
@@ -2083,9 +2089,12 @@ int rbsf_run_main(int argc, char **argv)
             goto out;
         }
         if (st != RBS_OK) {
-            fprintf(stderr, "rbsim run: --resume '%s': cannot load the "
-                            "checkpoint: %s%s%s\n",
-                    o.resume, rbs_status_string(st), msg[0] ? ": " : "", msg);
+            fprintf(stderr, "rbsim run: --resume '");
+            rbsf__puts_shown(stderr, o.resume);
+            fprintf(stderr, "': cannot load the checkpoint: %s%s", rbs_status_string(st),
+                    msg[0] ? ": " : "");
+            rbsf__puts_shown(stderr, msg);
+            fputc('\n', stderr);
             code = RBSF_EXIT_SCENE;
             goto out;
         }
@@ -2253,16 +2262,17 @@ int rbsf_run_main(int argc, char **argv)
             st = png_names_free(&configs[i], start_frame, o.resume != NULL,
                                 target, o.checkpoint != NULL, err, sizeof err);
         if (st != RBS_OK) {
-            if (outs[i].from_scene)
-                fprintf(stderr, "%s:%d:%d: renderers[%lu] (%s): %s\n",
-                        configs[i].file, (int)configs[i].line,
-                        (int)configs[i].column, (unsigned long)i,
-                        configs[i].type, err[0] ? err : rbs_status_string(st));
-            else
-                fprintf(stderr, "rbsim run: --%s: %s\n",
-                        strcmp(configs[i].type, "sdl") == 0 ? "png"
-                                                            : configs[i].type,
-                        err[0] ? err : rbs_status_string(st));
+            /* (err repeats the path: shown safely) */
+            if (outs[i].from_scene) {
+                rbsf__puts_shown(stderr, configs[i].file);
+                fprintf(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
+                        (int)configs[i].column, (unsigned long)i, configs[i].type);
+            } else {
+                fprintf(stderr, "rbsim run: --%s: ",
+                        strcmp(configs[i].type, "sdl") == 0 ? "png" : configs[i].type);
+            }
+            rbsf__puts_shown(stderr, err[0] ? err : rbs_status_string(st));
+            fputc('\n', stderr);
             code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
             goto out;
         }
@@ -2277,12 +2287,16 @@ int rbsf_run_main(int argc, char **argv)
             (strcmp(type, "csv") && strcmp(type, "json") && strcmp(type, "stats")))
             continue;
         if (stage_output(&outs[i], err, sizeof err) != 0) {
-            if (outs[i].from_scene)
-                fprintf(stderr, "%s:%d:%d: renderers[%lu] (%s): %s\n",
-                        configs[i].file, (int)configs[i].line,
-                        (int)configs[i].column, (unsigned long)i, type, err);
-            else
-                fprintf(stderr, "rbsim run: --%s: %s\n", type, err);
+            /* (err repeats the path: shown safely) */
+            if (outs[i].from_scene) {
+                rbsf__puts_shown(stderr, configs[i].file);
+                fprintf(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
+                        (int)configs[i].column, (unsigned long)i, type);
+            } else {
+                fprintf(stderr, "rbsim run: --%s: ", type);
+            }
+            rbsf__puts_shown(stderr, err);
+            fputc('\n', stderr);
             code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
             goto out;
         }
@@ -2415,7 +2429,9 @@ int rbsf_run_main(int argc, char **argv)
         (!ckpt.saved || ckpt.saved_at != rbs_world_step_count(world))) {
         char err[600];
         if (save_checkpoint(&ckpt, world, err, sizeof err) != RBS_OK) {
-            fprintf(stderr, "rbsim: error: %s\n", err);
+            fprintf(stderr, "rbsim: error: ");
+            rbsf__puts_shown(stderr, err);
+            fputc('\n', stderr);
             code = RBSF_EXIT_RUN;
         }
     }
@@ -2452,12 +2468,16 @@ int rbsf_run_main(int argc, char **argv)
         summary(talk, o.scene ? o.scene : "built-in demonstration", &info,
                 outs, n_out, start_frame, start_time, wd.max_substeps, world,
                 o.resume != NULL ? 0 : 1);
-        if (o.resume)
-            fprintf(talk, "resumed: %s at frame %llu\n", o.resume,
-                    (unsigned long long)start_frame);
-        if (ckpt.saved)
-            fprintf(talk, "checkpoint: %s at frame %llu\n", ckpt.name,
-                    (unsigned long long)ckpt.saved_at);
+        if (o.resume) {
+            fprintf(talk, "resumed: ");
+            rbsf__puts_shown(talk, o.resume);
+            fprintf(talk, " at frame %llu\n", (unsigned long long)start_frame);
+        }
+        if (ckpt.saved) {
+            fprintf(talk, "checkpoint: ");
+            rbsf__puts_shown(talk, ckpt.name);
+            fprintf(talk, " at frame %llu\n", (unsigned long long)ckpt.saved_at);
+        }
 
     }
     if (demo && st == RBS_OK) {

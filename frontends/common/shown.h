@@ -17,6 +17,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 /** The length of the well-formed UTF-8 sequence at s (RFC 3629: no
@@ -88,6 +89,31 @@ static inline const char *rbsf__shown(const char *s, char *buf, size_t n)
     }
     buf[k] = '\0';
     return buf;
+}
+
+/** Write s[0 .. len) to f by the rules of rbsf__shown, whole (a sequence
+ * cut off at len counts as invalid). */
+static inline void rbsf__put_shown(FILE *f, const char *s, size_t len)
+{
+    const unsigned char *in = (const unsigned char *)s;
+    size_t i = 0;
+    while (i < len) {
+        uint32_t u = 0;
+        size_t n = rbsf__utf8_at(in + i, &u);
+        if (n == 0 || i + n > len || rbsf__acts_on_terminal(u)) {
+            fputc('?', f);
+            i += n == 0 || i + n > len ? 1 : n;
+        } else {
+            fwrite(in + i, 1, n, f);
+            i += n;
+        }
+    }
+}
+
+/** rbsf__put_shown of a whole string. */
+static inline void rbsf__puts_shown(FILE *f, const char *s)
+{
+    rbsf__put_shown(f, s, strlen(s));
 }
 
 #endif

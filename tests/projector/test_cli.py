@@ -315,6 +315,37 @@ class CliTests(Base):
             for raw in (esc, c1, rlo, bad):
                 self.assertNotIn(raw, r.stderr, args)
 
+    def test_paths_echoed_safely(self):
+        # A renderer's path from the scene ("no\u001b[7mdir/x/y.csv") was
+        # repeated raw in "cannot create ...", by check and by run, and an
+        # output, checkpoint or resumed path in the run's summary: each ESC
+        # now shows as '?' (exit 3 for the scene's path, as before).
+        esc = "\x1b"
+        s = self.scene(renderers=[{"type": "csv", "path": "no%s[7mdir/x/y.csv" % esc}])
+        for cmd in ("check", "run"):
+            r = subprocess.run([RBSIM, cmd, s], capture_output=True, cwd=self.dir,
+                               timeout=60, stdin=subprocess.DEVNULL)
+            self.assertEqual(r.returncode, 3, (cmd, r.stderr))
+            said = r.stdout + r.stderr
+            self.assertIn(b"cannot create 'no?[7mdir/x/y.csv'", said, cmd)
+            self.assertNotIn(esc.encode(), said, cmd)
+        s = self.scene()
+        os.mkdir(self.path("o"))
+        r = subprocess.run([RBSIM, "run", s, "--csv", "o/a%s.csv" % esc, "--checkpoint",
+                            "o/c%s" % esc], capture_output=True, cwd=self.dir,
+                           timeout=60, stdin=subprocess.DEVNULL)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(b"output: csv o/a?.csv", r.stdout + r.stderr)
+        self.assertIn(b"checkpoint: o/c? at frame", r.stdout + r.stderr)
+        self.assertNotIn(esc.encode(), r.stdout + r.stderr)
+        self.assertTrue(os.path.exists(self.path("o/a%s.csv" % esc)))  # the file as named
+        r = subprocess.run([RBSIM, "run", s, "--resume", "o/c%s" % esc, "--steps", "400"],
+                           capture_output=True, cwd=self.dir, timeout=60,
+                           stdin=subprocess.DEVNULL)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn(b"resumed: o/c? at frame", r.stdout + r.stderr)
+        self.assertNotIn(esc.encode(), r.stdout + r.stderr)
+
     def test_long_paths_keep_the_reason(self):
         # A path past PATH_MAX was echoed whole into a 512-byte message, cut
         # off mid-path with no reason.  The path is shown shortened (its
