@@ -110,7 +110,10 @@ static void report(rbs_method m, const char *what, double err, double bound)
  * Kinetic friction mu g decelerates it and spins it forward at
  * 5 mu g / (2 r) until v = r w, at t1 = 2 (v0 + r w0) / (7 mu g); then it
  * rolls at (5 v0 - 2 r w0) / 7 and covers v0 t1 - mu g t1^2 / 2 while
- * sliding (12 v0^2 / (49 mu g) without spin).  Run 2 s.
+ * sliding (12 v0^2 / (49 mu g) without spin).  Run 3 s, for w0 = 0, 10
+ * and 200 rad/s: at 200 (r w0 = 4 v0) the ball stops while still slipping
+ * and comes back at -15/7 m/s (t1 = 2.43 s) -- friction must act through
+ * v = 0, where only the slip, not the speed, vanishes.
  * (test_contacts.c's sliding_then_rolling checks the time and speed
  * without spin; new here: the backspin and the distance.)
  * Bounds: velocity and spin 1e-12 relative (constant accelerations and one
@@ -118,7 +121,7 @@ static void report(rbs_method m, const char *what, double err, double bound)
  * slip speed over the step containing t1 (mu g dt . dt). */
 static void slide_case(rbs_method m, double w0)
 {
-    const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3, T = 2.0;
+    const double v0 = 5.0, mu = 0.3, r = 0.1, dt = 1e-3, T = 3.0;
     const double a = mu * G, t1 = 2.0 * (v0 + r * w0) / (7.0 * a);
     const double vf = (5.0 * v0 - 2.0 * r * w0) / 7.0;
     const double x_exact = v0 * t1 - 0.5 * a * t1 * t1 + vf * (T - t1);
@@ -162,6 +165,7 @@ static void sliding_ball_rolls_at_five_sevenths(void **state)
     for (i = 0; i < N_METHODS; ++i) {
         slide_case(all_methods[i], 0.0);
         slide_case(all_methods[i], 10.0);
+        slide_case(all_methods[i], 200.0);
     }
 }
 
