@@ -6,6 +6,7 @@
  * newline at end of input is answered as a whole line.
  */
 #include "cli.h"
+#include "shown.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -24,22 +25,40 @@ static void say(rbsf_input *in, const char *text)
 }
 
 /* Answer the command line of n bytes (its newline gone).  A control
- * character -- a NUL, an escape sequence -- refuses it whole, naming the
- * byte: a NUL would cut the command short, and a reply that echoes an
- * escape sequence would drive the terminal.  A trailing CR (a line ended
+ * character -- a NUL, an escape sequence, a C1 control -- a bidirectional
+ * override or invalid UTF-8 refuses it whole, naming the byte: a NUL would
+ * cut the command short, and a reply that echoes an escape sequence would
+ * drive the terminal.  A trailing CR (a line ended
  * by CR LF) and tabs are taken as they would be typed. */
 static void answer(rbsf_input *in, char *line, size_t n)
 {
     char reply[REPLY_BYTES];
-    size_t i;
+    size_t i, len;
     if (n > 0 && line[n - 1] == '\r')
         line[--n] = '\0';
-    for (i = 0; i < n; i++) {
+    for (i = 0; i < n; i += len) {
         unsigned char c = (unsigned char)line[i];
+        uint32_t u;
+        len = rbsf__utf8_at((const unsigned char *)line + i, &u);
         if ((c < 0x20 && c != '\t') || c == 0x7f) {
             snprintf(reply, sizeof reply,
                      "a command must not hold control characters (byte 0x%02x at %lu): ignored\n", c,
                      (unsigned long)i + 1);
+            say(in, reply);
+            return;
+        }
+        if (len == 0) {
+            snprintf(reply, sizeof reply, "a command must be UTF-8 (byte 0x%02x at %lu): ignored\n", c,
+                     (unsigned long)i + 1);
+            say(in, reply);
+            return;
+        }
+        if (len > 1 && rbsf__acts_on_terminal(u)) {
+            /* (a C1 control or a bidirectional override, shown.h) */
+            snprintf(reply, sizeof reply,
+                     "a command must not hold control or invisible formatting characters "
+                     "(U+%04lX at byte %lu): ignored\n",
+                     (unsigned long)u, (unsigned long)i + 1);
             say(in, reply);
             return;
         }

@@ -1320,7 +1320,8 @@ class CliTests(Base):
         # a NUL or an escape sequence is refused naming the byte (a NUL cut
         # it short -- "status\\0junk" ran status -- and the unknown-command
         # reply echoed escapes raw, driving the terminal); CR LF ends a
-        # line as LF does.  (The probe of session 38.)
+        # line as LF does.  (The probe of session 38; C1 controls, overrides
+        # and invalid UTF-8 since session 49.)
         s = self.scene()
         p = subprocess.Popen([RBSIM, "run", s, "--paused", "--steps", "1000",
                               "--csv", "o.csv"], cwd=self.dir,
@@ -1329,6 +1330,7 @@ class CliTests(Base):
         try:
             out, err = p.communicate(
                 b"x" * 10000 + b"\nstatus\x00junk\n\x1b]0;title\x07\n"
+                b"fo\xc2\x9bo\nhelp x\xe2\x80\xaey\nspeed \xff\n"
                 b"status\r\nquit\n", timeout=60)
         finally:
             if p.poll() is None:
@@ -1338,7 +1340,14 @@ class CliTests(Base):
         self.assertEqual(out.count("line too long"), 1, out)
         self.assertIn("control characters (byte 0x00 at 7): ignored", out)
         self.assertIn("control characters (byte 0x1b at 1): ignored", out)
+        # a C1 control (U+009B, a one-character ESC [) and a bidirectional
+        # override were echoed raw by "unknown command", invalid UTF-8 too
+        self.assertIn("characters (U+009B at byte 3): ignored", out)
+        self.assertIn("characters (U+202E at byte 7): ignored", out)
+        self.assertIn("a command must be UTF-8 (byte 0xff at 7): ignored", out)
         self.assertNotIn("\x1b", out)
+        self.assertNotIn("\u009b", out)
+        self.assertNotIn("\u202e", out)
         self.assertEqual(out.count("frame 0 of 1000"), 1, out)  # the one status
         self.assertIn("stopped at frame", out)
 
