@@ -1,9 +1,10 @@
 /*
  * test_mechanics.c - textbook answers, run under every method.
  *
- * The core's physics tests (tests/core/test_physics.c) check most of these
- * scenes under the default world's method; here each scene runs under auto
- * and each named method, and is compared with its exact answer from
+ * What test_contacts.c already checks under every method (head-on impacts,
+ * the time and speed of a sliding ball's roll, inclines, bouncing apexes)
+ * is not repeated; these scenes run under auto and each named method and
+ * are compared with their exact answers from
  * rigid-body mechanics (Goldstein, Classical Mechanics, ch. 5; any text on
  * the impact of spheres, e.g. Goldsmith, Impact, 1960, ch. 2).  Each scene
  * prints its measured error beside its bound, so a run shows the margins.
