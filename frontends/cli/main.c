@@ -246,18 +246,18 @@ static int file_args(const char *cmd, const char *help, int argc, char **argv,
         }
         if (options && a[0] == '-' && a[1] != '\0') {
             char shown[256];
-            fprintf(stderr, "rbsim %s: unknown option '%s'\n%s", cmd,
+            rbsf__tell(stderr, "rbsim %s: unknown option '%s'\n%s", cmd,
                     rbsf__shown(a, shown, sizeof shown), help);
             return RBSF_EXIT_USAGE;
         }
         if (a[0] == '\0') {
-            fprintf(stderr, "rbsim %s: argument %d is an empty string, not a "
+            rbsf__tell(stderr, "rbsim %s: argument %d is an empty string, not a "
                             "file name\n%s", cmd, i + 1, help);
             return RBSF_EXIT_USAGE;
         }
         if (got == want) {
             char shown[256];
-            fprintf(stderr, "rbsim %s: unexpected argument '%s' (expected %s)\n%s",
+            rbsf__tell(stderr, "rbsim %s: unexpected argument '%s' (expected %s)\n%s",
                     cmd, rbsf__shown(a, shown, sizeof shown),
                     want == 1 ? "one scene file" : "IN and OUT", help);
             return RBSF_EXIT_USAGE;
@@ -266,7 +266,7 @@ static int file_args(const char *cmd, const char *help, int argc, char **argv,
         got++;
     }
     if (got < want) {
-        fprintf(stderr, "rbsim %s: expected %s\n%s", cmd,
+        rbsf__tell(stderr, "rbsim %s: expected %s\n%s", cmd,
                 want == 1 ? "one scene file"
                           : got == 0 ? "IN and OUT" : "OUT after IN",
                 help);
@@ -386,30 +386,30 @@ static int explain_main(int argc, char **argv)
             const char *v =
                 a[8] == '=' ? a + 9 : (i + 1 < argc ? argv[++i] : NULL);
             if (method != NULL || v == NULL) {
-                fprintf(stderr, "rbsim explain: --method %s\n%s",
+                rbsf__tell(stderr, "rbsim explain: --method %s\n%s",
                         method ? "given twice" : "needs a value", explain_text);
                 return RBSF_EXIT_USAGE;
             }
             if (rbs_method_from_name(v, &m) != RBS_OK) {
                 char list[256], shown[256];
                 rbsf_method_list(list, sizeof list);
-                fprintf(stderr, "rbsim explain: --method: unknown method '%s'; "
+                rbsf__tell(stderr, "rbsim explain: --method: unknown method '%s'; "
                                 "expected %s\n", rbsf__shown(v, shown, sizeof shown), list);
                 return RBSF_EXIT_USAGE;
             }
             method = v;
         } else if (a[0] == '-' && a[1] != '\0') {
             char shown[256];
-            fprintf(stderr, "rbsim explain: unknown option '%s'\n%s",
+            rbsf__tell(stderr, "rbsim explain: unknown option '%s'\n%s",
                     rbsf__shown(a, shown, sizeof shown), explain_text);
             return RBSF_EXIT_USAGE;
         } else if (a[0] == '\0') {
-            fprintf(stderr, "rbsim explain: argument %d is an empty string, "
+            rbsf__tell(stderr, "rbsim explain: argument %d is an empty string, "
                             "not a file name\n%s", i + 1, explain_text);
             return RBSF_EXIT_USAGE;
         } else if (path != NULL) {
             char shown[256];
-            fprintf(stderr, "rbsim explain: unexpected argument '%s' (expected "
+            rbsf__tell(stderr, "rbsim explain: unexpected argument '%s' (expected "
                             "one scene file)\n%s", rbsf__shown(a, shown, sizeof shown),
                     explain_text);
             return RBSF_EXIT_USAGE;
@@ -418,7 +418,7 @@ static int explain_main(int argc, char **argv)
         }
     }
     if (path == NULL) {
-        fprintf(stderr, "rbsim explain: expected one scene file\n%s",
+        rbsf__tell(stderr, "rbsim explain: expected one scene file\n%s",
                 explain_text);
         return RBSF_EXIT_USAGE;
     }
@@ -447,7 +447,7 @@ static int explain_main(int argc, char **argv)
     text = needed > 0 ? malloc(needed) : NULL;
     if (text == NULL ||
         (st = rbs_world_explain(world, text, needed, NULL)) != RBS_OK) {
-        fprintf(stderr, "rbsim explain: %s: cannot describe the pipeline: %s\n",
+        rbsf__tell(stderr, "rbsim explain: %s: cannot describe the pipeline: %s\n",
                 path, text == NULL ? "out of memory" : rbs_status_string(st));
         code = RBSF_EXIT_RUN;
         goto out;
@@ -482,7 +482,7 @@ static int convert_main(int argc, char **argv)
     if (strcmp(files[1], "-") == 0) {
         /* (the save writes a temporary file beside OUT, then renames it, and
          * a config.txt may be several files: none of it can be a stream) */
-        fprintf(stderr,
+        rbsf__tell(stderr,
                 "rbsim convert: OUT '-': the converted scene cannot go to "
                 "standard output; name a file (*.json or a config.txt path)\n");
         return RBSF_EXIT_USAGE;
@@ -497,13 +497,13 @@ static int convert_main(int argc, char **argv)
     else {
         struct stat sb;
         if (stat(files[1], &sb) == 0 && S_ISDIR(sb.st_mode))
-            fprintf(stderr,
+            rbsf__tell(stderr,
                     "rbsim convert: OUT '%s' is a folder: name '%s%sconfig.txt' "
                     "for the config.txt format, or a *.json file\n",
                     files[1], files[1],
                     ends_with(files[1], "/") ? "" : "/");
         else
-            fprintf(stderr,
+            rbsf__tell(stderr,
                     "rbsim convert: cannot tell the format of '%s': name it "
                     "*.json or a config.txt path\n",
                     files[1]);
@@ -515,10 +515,10 @@ static int convert_main(int argc, char **argv)
         for (k = 0; k < count && k < RBS_SCENE_ERRORS_MAX; k++) {
             rbs_scene_error e;
             if (rbs_scene_error_get(scene, k, &e) == RBS_OK)
-                fprintf(stderr, "%s\n", e.text);
+                rbsf__tell(stderr, "%s\n", e.text);
         }
         if (count == 0)
-            fprintf(stderr, "%s: %s\n", files[0], rbs_status_string(st));
+            rbsf__tell(stderr, "%s: %s\n", files[0], rbs_status_string(st));
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
@@ -528,7 +528,7 @@ static int convert_main(int argc, char **argv)
          * through any spelling or link, or standard input redirected from
          * it: the save refuses before writing anything (the library's
          * check, scene.h), a usage error naming both files */
-        fprintf(stderr, "rbsim convert: OUT '%s' would write over its input: %s%s\n", files[1],
+        rbsf__tell(stderr, "rbsim convert: OUT '%s' would write over its input: %s%s\n", files[1],
                 why, strcmp(files[0], "/dev/stdin") == 0 ? " (IN '-' is standard input)" : "");
         rbs_scene_free(scene);
         return RBSF_EXIT_USAGE;
@@ -536,9 +536,9 @@ static int convert_main(int argc, char **argv)
     if (st != RBS_OK) {
         /* nothing was written: the save replaces files only when all are complete */
         if (why[0] != '\0')
-            fprintf(stderr, "rbsim convert: %s\n", why);
+            rbsf__tell(stderr, "rbsim convert: %s\n", why);
         else
-            fprintf(stderr, "rbsim convert: cannot write '%s': %s\n", files[1],
+            rbsf__tell(stderr, "rbsim convert: cannot write '%s': %s\n", files[1],
                     rbs_status_string(st));
         rbs_scene_free(scene);
         return RBSF_EXIT_RUN;
@@ -570,7 +570,7 @@ static void guard_standard_fds(void)
  * with the reason (errno e; 0 if unknown). */
 static void say_stdout_lost(int e)
 {
-    fprintf(stderr, "rbsim: what it printed on the standard output was lost%s%s\n",
+    rbsf__tell(stderr, "rbsim: what it printed on the standard output was lost%s%s\n",
             e ? ": " : "", e ? strerror(e) : "");
 }
 
@@ -682,12 +682,12 @@ static int dispatch(int argc, char **argv)
     }
     if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "version") == 0) {
         if (argc != 2) {
-            fprintf(stderr, "rbsim --version: takes no arguments\n");
+            rbsf__tell(stderr, "rbsim --version: takes no arguments\n");
             return RBSF_EXIT_USAGE;
         }
         printf("rbsim %s (library %s)\n", RBS_VERSION_STRING, rbs_version());
         if (rbs_version_number() / 10000 != RBS_VERSION_NUMBER / 10000) {
-            fprintf(stderr, "rbsim: library version %s does not match this "
+            rbsf__tell(stderr, "rbsim: library version %s does not match this "
                             "program's %s\n",
                     rbs_version(), RBS_VERSION_STRING);
             return RBSF_EXIT_RUN;
@@ -699,12 +699,12 @@ static int dispatch(int argc, char **argv)
         if (argc == 3 && asks_help(1, argv + 2)) /* help --help */
             return rbsf_help(stdout, "help") == 0 ? RBSF_EXIT_OK : RBSF_EXIT_USAGE;
         if (argc > 3) {
-            fprintf(stderr, "rbsim help: one command at most\n");
+            rbsf__tell(stderr, "rbsim help: one command at most\n");
             return RBSF_EXIT_USAGE;
         }
         if (rbsf_help(stdout, argc == 3 ? argv[2] : NULL) != 0) {
             char shown[256];
-            fprintf(stderr, "rbsim help: unknown command '%s'\n%s",
+            rbsf__tell(stderr, "rbsim help: unknown command '%s'\n%s",
                     rbsf__shown(argv[2], shown, sizeof shown), usage_text);
             return RBSF_EXIT_USAGE;
         }
@@ -724,7 +724,7 @@ static int dispatch(int argc, char **argv)
         return explain_main(argc - 2, argv + 2);
     {
         char shown[256];
-        fprintf(stderr, "rbsim: unknown command '%s'\n%s",
+        rbsf__tell(stderr, "rbsim: unknown command '%s'\n%s",
                 rbsf__shown(cmd, shown, sizeof shown), usage_text);
     }
     return RBSF_EXIT_USAGE;

@@ -78,9 +78,9 @@ typedef struct output {
 static int usage_error(const char *fmt, const char *a, const char *b)
 {
     char sa[256], sb[256];
-    fprintf(stderr, "rbsim run: ");
-    fprintf(stderr, fmt, rbsf__shown(a, sa, sizeof sa), rbsf__shown(b, sb, sizeof sb));
-    fprintf(stderr, "\ntry 'rbsim help run'\n");
+    rbsf__tell(stderr, "rbsim run: ");
+    rbsf__tell(stderr, fmt, rbsf__shown(a, sa, sizeof sa), rbsf__shown(b, sb, sizeof sb));
+    rbsf__tell(stderr, "\ntry 'rbsim help run'\n");
     return RBSF_EXIT_USAGE;
 }
 
@@ -237,7 +237,7 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         else if (i + 1 < argc) {
             char shown[256];
             rbsf__shown(argv[i + 1], shown, sizeof shown);
-            fprintf(stderr, "rbsim run: %s needs a value, got the option '%s' "
+            rbsf__tell(stderr, "rbsim run: %s needs a value, got the option '%s' "
                             "(a file of that name: write ./%s or %s=%s)\n"
                             "try 'rbsim help run'\n",
                     name, shown, shown, name, shown);
@@ -359,7 +359,7 @@ int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const cha
     if (rbs_scene_error_count(scene) > 0)
         rbsf_print_scene_errors(scene, stderr);
     else
-        fprintf(stderr, "%s: %s\n", what, rbs_status_string(st));
+        rbsf__tell(stderr, "%s: %s\n", what, rbs_status_string(st));
     return RBSF_EXIT_USAGE;
 }
 
@@ -384,7 +384,7 @@ static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
     if (st == RBS_OK)
         return 0;
     if ((sig = rbsf_signals_caught(signals)) != 0) {
-        fprintf(stderr, "rbsim: stopped by %s before the run started: while "
+        rbsf__tell(stderr, "rbsim: stopped by %s before the run started: while "
                         "reading the scene '%s'\n",
                 rbsf_signal_name(sig), path ? path : "(built-in demonstration)");
         rbs_scene_free(*out);
@@ -394,7 +394,7 @@ static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
     if (*out != NULL && rbs_scene_error_count(*out) > 0)
         rbsf_print_scene_errors(*out, stderr);
     else
-        fprintf(stderr, "rbsim: %s: %s\n", path ? path : "demonstration",
+        rbsf__tell(stderr, "rbsim: %s: %s\n", path ? path : "demonstration",
                 rbs_status_string(st));
     rbs_scene_free(*out);
     *out = NULL;
@@ -457,7 +457,7 @@ static int add_output(output *outs, uint32_t *n, const char *type,
 {
     output *o;
     if (*n == RBS_RENDERERS_MAX) {
-        fprintf(stderr,
+        rbsf__tell(stderr,
                 "rbsim run: too many outputs: at most %d renderers can be "
                 "attached (the scene's and --csv/--json/--stats/--png "
                 "together)\n",
@@ -479,7 +479,7 @@ static int add_output(output *outs, uint32_t *n, const char *type,
     o->config.json = o->owned_json;
     o->config.file = "(command line)";
     if ((path && !o->owned_path) || !o->owned_json) {
-        fprintf(stderr, "rbsim: out of memory\n");
+        rbsf__tell(stderr, "rbsim: out of memory\n");
         return RBSF_EXIT_RUN;
     }
     return 0;
@@ -498,7 +498,7 @@ static int add_scene_outputs(const rbs_scene *scene, output *outs, uint32_t *n)
         if (rbs_scene_renderer_get(scene, i, &r) != RBS_OK)
             continue;
         if (*n == RBS_RENDERERS_MAX) {
-            fprintf(stderr, "%s:%d:%d: too many renderers (at most %d)\n",
+            rbsf__tell(stderr, "%s:%d:%d: too many renderers (at most %d)\n",
                     r.file, (int)r.line, (int)r.column, RBS_RENDERERS_MAX);
             return RBSF_EXIT_SCENE;
         }
@@ -553,12 +553,12 @@ static int make_demo_dir(const char *path)
     if (errno == EEXIST && stat(path, &sb) == 0 && S_ISDIR(sb.st_mode))
         return 0;
     if (errno == EEXIST)
-        fprintf(stderr, "rbsim run: the demonstration writes its outputs in "
+        rbsf__tell(stderr, "rbsim run: the demonstration writes its outputs in "
                         "the folder '%s', and '%s' here is not a folder: move "
                         "it, or run the demonstration in another folder\n",
                 path, path);
     else
-        fprintf(stderr, "rbsim run: the demonstration cannot create its "
+        rbsf__tell(stderr, "rbsim run: the demonstration cannot create its "
                         "output folder '%s': %s (run it in a folder you can "
                         "write in)\n",
                 path, strerror(errno));
@@ -881,11 +881,11 @@ static int png_folder_writes(const char *dir, const char *json,
 static void distinct_prefix(const output *o, const char *who)
 {
     if (o->from_scene)
-        fprintf(stderr, "%s:%d:%d: renderers[%lu].path: ", o->config.file,
+        rbsf__tell(stderr, "%s:%d:%d: renderers[%lu].path: ", o->config.file,
                 (int)o->config.line, (int)o->config.column,
                 (unsigned long)o->scene_index);
     else
-        fprintf(stderr, "%s: ", who);
+        rbsf__tell(stderr, "%s: ", who);
 }
 
 /* Does the sdl output folder dir run through file, a file output's path (or
@@ -937,7 +937,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
         if (a != NULL && strcmp(a, "-") == 0) {
             if (on_stdout != NULL) {
                 distinct_prefix(&outs[i], who);
-                fprintf(stderr, "%s both write "
+                rbsf__tell(stderr, "%s both write "
                                 "to standard output ('-'): at most one "
                                 "output may\n",
                         two_outputs(on_stdout->config.type,
@@ -954,7 +954,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
             continue;
         if (resume != NULL && same_file(a, resume)) {
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the %s output '%s' would overwrite the "
+            rbsf__tell(stderr, "the %s output '%s' would overwrite the "
                             "--resume checkpoint '%s'\n",
                     outs[i].config.type, a, resume);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
@@ -963,7 +963,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
             char note[4200];
             scene_file_note(note, sizeof note, f, k);
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the %s output '%s' would overwrite the "
+            rbsf__tell(stderr, "the %s output '%s' would overwrite the "
                             "scene%s\n", outs[i].config.type, a, note);
             return outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
         }
@@ -976,7 +976,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
                 !(kind = png_folder_writes(b, outs[j].config.json, a, &what)))
                 continue;
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the %s output '%s' is a %s the sdl "
+            rbsf__tell(stderr, "the %s output '%s' is a %s the sdl "
                             "output %s in its folder '%s' (%s): give it "
                             "another name\n",
                     outs[i].config.type, a, kind == 2 ? "folder" : "file",
@@ -989,7 +989,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
             if (b == NULL || strcmp(b, "-") == 0 || !same_file(a, b))
                 continue;
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "%s both write '%s'\n",
+            rbsf__tell(stderr, "%s both write '%s'\n",
                     two_outputs(outs[j].config.type, outs[i].config.type,
                                 both, sizeof both),
                     a);
@@ -1004,7 +1004,7 @@ static int check_distinct(const output *outs, uint32_t n, const rbs_scene *scene
                 !folder_runs_through(a, b, part, sizeof part))
                 continue;
             distinct_prefix(&outs[i], who);
-            fprintf(stderr, "the sdl output's folder '%s' runs through "
+            rbsf__tell(stderr, "the sdl output's folder '%s' runs through "
                             "'%s', which the %s output '%s' writes as a file: "
                             "give one of them another name\n",
                     a, part, outs[j].config.type, b);
@@ -1152,7 +1152,7 @@ static int remove_stale_in(const char *dir, uint64_t first, const rbs_scene *sce
             (resume != NULL && same_file(path, resume)))
             continue;
         if (unlink(path) != 0) {
-            fprintf(stderr, "rbsim: error: cannot remove '%s', a frame an "
+            rbsf__tell(stderr, "rbsim: error: cannot remove '%s', a frame an "
                             "earlier run left in the png folder: %s\n",
                     path, strerror(errno));
             failed = 1;
@@ -1196,7 +1196,7 @@ static int remove_stale_frames(const output *o, uint64_t first, const rbs_scene 
             scene_file(scene, path, NULL) == NULL &&
             !(resume != NULL && same_file(path, resume))) {
             if (unlink(path) != 0) {
-                fprintf(stderr, "rbsim: error: cannot remove '%s', the contact "
+                rbsf__tell(stderr, "rbsim: error: cannot remove '%s', the contact "
                                 "sheet of an earlier run: %s\n",
                         path, strerror(errno));
                 return -1;
@@ -1221,7 +1221,7 @@ static int remove_stale_frames(const output *o, uint64_t first, const rbs_scene 
         else if (n > 1)
             snprintf(frames, sizeof frames, "frames %llu to %llu",
                      (unsigned long long)gone.lo, (unsigned long long)gone.hi);
-        fprintf(stderr, "rbsim: note: removed %lu file%s an earlier run left in "
+        rbsf__tell(stderr, "rbsim: note: removed %lu file%s an earlier run left in "
                         "the png folder '%s' (%s%s%s), so that it holds this "
                         "run's files only\n",
                 gone.count, gone.count == 1 ? "" : "s", dir, frames,
@@ -1332,7 +1332,7 @@ static int commit_staged(output *outs, uint32_t n)
     for (i = 0; i < n; i++) {
         output *o = &outs[i];
         if (o->temporary && rename(o->work, o->target) != 0) {
-            fprintf(stderr, "rbsim: error: cannot replace '%s' (the run's %s "
+            rbsf__tell(stderr, "rbsim: error: cannot replace '%s' (the run's %s "
                             "output is in '%s'): %s\n",
                     o->config.path, o->config.type, o->work, strerror(errno));
             failed = 1;
@@ -1394,12 +1394,12 @@ static int check_checkpoint_path(const char *path, const char *target,
     const char *f;
     int fd;
     if (stat(target, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': not a regular file\n",
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': not a regular file\n",
                 path);
         return RBSF_EXIT_USAGE;
     }
     if (len >= sizeof dir || strlen(target) + 32 >= sizeof tmp) {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': path too long\n", path);
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': path too long\n", path);
         return RBSF_EXIT_USAGE;
     }
     if (slash == NULL)
@@ -1411,14 +1411,14 @@ static int check_checkpoint_path(const char *path, const char *target,
         dir[len] = '\0';
     }
     if (slash != NULL && slash[1] == '\0') {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': a file name is needed, "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': a file name is needed, "
                         "not a folder\n", path);
         return RBSF_EXIT_USAGE;
     }
     if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
         /* (unlike an output's one missing folder, made only once the run
          * has started: a checkpoint is also saved when it is stopped) */
-        fprintf(stderr, "rbsim run: --checkpoint '%s': folder '%s' does not "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': folder '%s' does not "
                         "exist%s\n", path, dir,
                 stat(dir, &sb) == 0 ? " (it is not a folder)"
                                     : " (a checkpoint's folder is not made: "
@@ -1426,7 +1426,7 @@ static int check_checkpoint_path(const char *path, const char *target,
         return RBSF_EXIT_USAGE;
     }
     if (access(dir, W_OK | X_OK) != 0) {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot write in folder "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': cannot write in folder "
                         "'%s': %s\n", path, dir, strerror(errno));
         return RBSF_EXIT_USAGE;
     }
@@ -1434,7 +1434,7 @@ static int check_checkpoint_path(const char *path, const char *target,
      * Opened without truncating it. */
     fd = open(target, O_WRONLY | O_NOCTTY);
     if (fd < 0 && errno != ENOENT) {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot write it: %s\n",
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': cannot write it: %s\n",
                 path, strerror(errno));
         return RBSF_EXIT_USAGE;
     }
@@ -1443,7 +1443,7 @@ static int check_checkpoint_path(const char *path, const char *target,
     snprintf(tmp, sizeof tmp, "%s.tmp%ld", target, (long)getpid());
     fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0644);
     if (fd < 0) {
-        fprintf(stderr, "rbsim run: --checkpoint '%s': cannot create a file "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s': cannot create a file "
                         "in folder '%s': %s\n", path, dir, strerror(errno));
         return RBSF_EXIT_USAGE;
     }
@@ -1452,7 +1452,7 @@ static int check_checkpoint_path(const char *path, const char *target,
     if ((f = scene_file(scene, target, &k)) != NULL) {
         char note[4200];
         scene_file_note(note, sizeof note, f, k);
-        fprintf(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s' would overwrite the "
                         "scene%s\n", path, note);
         return RBSF_EXIT_USAGE;
     }
@@ -1465,7 +1465,7 @@ static int check_checkpoint_path(const char *path, const char *target,
                 strcmp(outs[i].config.type, "sdl") != 0)
                 snprintf(use, sizeof use, " (the %s output '-' goes there)",
                          outs[i].config.type);
-        fprintf(stderr, "rbsim run: --checkpoint '%s' is the file standard "
+        rbsf__tell(stderr, "rbsim run: --checkpoint '%s' is the file standard "
                         "output is redirected to%s: give it another name\n",
                 path, use);
         return RBSF_EXIT_USAGE;
@@ -1475,13 +1475,13 @@ static int check_checkpoint_path(const char *path, const char *target,
         const char *what = NULL;
         int kind;
         if (a != NULL && strcmp(a, "-") != 0 && same_file(a, target)) {
-            fprintf(stderr, "rbsim run: --checkpoint '%s' is also the %s "
+            rbsf__tell(stderr, "rbsim run: --checkpoint '%s' is also the %s "
                             "output\n", path, outs[i].config.type);
             return RBSF_EXIT_USAGE;
         }
         if (a != NULL && strcmp(outs[i].config.type, "sdl") == 0 &&
             (kind = png_folder_writes(a, outs[i].config.json, target, &what))) {
-            fprintf(stderr, "rbsim run: --checkpoint '%s' is a %s the sdl "
+            rbsf__tell(stderr, "rbsim run: --checkpoint '%s' is a %s the sdl "
                             "output %s in its folder '%s' (%s): give it "
                             "another name\n", path,
                     kind == 2 ? "folder" : "file",
@@ -1493,7 +1493,7 @@ static int check_checkpoint_path(const char *path, const char *target,
             char part[4096];
             if (folder_runs_through(a, path, part, sizeof part) ||
                 folder_runs_through(a, target, part, sizeof part)) {
-                fprintf(stderr, "rbsim run: --checkpoint '%s': the sdl "
+                rbsf__tell(stderr, "rbsim run: --checkpoint '%s': the sdl "
                                 "output's folder '%s' runs through '%s', "
                                 "which the checkpoint is: give one of them "
                                 "another name\n", path, a, part);
@@ -1973,7 +1973,7 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
 static void print_run_error(const char *prefix, const char *msg,
                             const output *outs, uint32_t n)
 {
-    fprintf(stderr, "rbsim: %s", prefix);
+    rbsf__tell(stderr, "rbsim: %s", prefix);
     while (*msg != '\0') {
         uint32_t i;
         size_t len = 0;
@@ -2044,7 +2044,7 @@ int rbsf_run_main(int argc, char **argv)
     /* Signals are taken by their own thread; block them before any thread
      * starts so every thread inherits the mask. */
     if (rbsf_signals_start(&signals) != 0) {
-        fprintf(stderr, "rbsim: cannot start the signal thread\n");
+        rbsf__tell(stderr, "rbsim: cannot start the signal thread\n");
         return RBSF_EXIT_RUN;
     }
 
@@ -2066,7 +2066,7 @@ int rbsf_run_main(int argc, char **argv)
     if (st != RBS_OK) {
         if (rbs_scene_error_count(scene) > 0)
             rbsf_print_scene_errors(scene, stderr);
-        fprintf(stderr, "rbsim: %s: cannot build the world: %s%s%s\n",
+        rbsf__tell(stderr, "rbsim: %s: cannot build the world: %s%s%s\n",
                 o.scene ? o.scene : "demonstration", rbs_status_string(st),
                 world ? ": " : "", world ? rbs_world_last_error(world) : "");
         code = RBSF_EXIT_SCENE;
@@ -2082,16 +2082,16 @@ int rbsf_run_main(int argc, char **argv)
         st = rbs_world_load(o.resume, &ck, msg, sizeof msg);
         rbsf_stopper_leave(&signals.stopper, slot);
         if (st != RBS_OK && (sig = rbsf_signals_caught(&signals)) != 0) {
-            fprintf(stderr, "rbsim: stopped by %s before the run started: while "
+            rbsf__tell(stderr, "rbsim: stopped by %s before the run started: while "
                             "reading the checkpoint '%s'\n",
                     rbsf_signal_name(sig), o.resume);
             code = 128 + sig;
             goto out;
         }
         if (st != RBS_OK) {
-            fprintf(stderr, "rbsim run: --resume '");
+            rbsf__tell(stderr, "rbsim run: --resume '");
             rbsf__puts_shown(stderr, o.resume);
-            fprintf(stderr, "': cannot load the checkpoint: %s%s", rbs_status_string(st),
+            rbsf__tell(stderr, "': cannot load the checkpoint: %s%s", rbs_status_string(st),
                     msg[0] ? ": " : "");
             rbsf__puts_shown(stderr, msg);
             fputc('\n', stderr);
@@ -2099,7 +2099,7 @@ int rbsf_run_main(int argc, char **argv)
             goto out;
         }
         if (checkpoint_matches(world, ck, msg, sizeof msg) != 0) {
-            fprintf(stderr, "rbsim run: --resume '%s': the checkpoint does not "
+            rbsf__tell(stderr, "rbsim run: --resume '%s': the checkpoint does not "
                             "continue the scene '%s': %s\n",
                     o.resume, o.scene, msg);
             rbs_world_destroy(ck);
@@ -2122,7 +2122,7 @@ int rbsf_run_main(int argc, char **argv)
         if (st == RBS_OK)
             st = rbs_world_set_workers(world, &workers);
         if (st != RBS_OK) {
-            fprintf(stderr, "rbsim run: --threads %lu: cannot lend the world "
+            rbsf__tell(stderr, "rbsim run: --threads %lu: cannot lend the world "
                             "threads: %s\n",
                     (unsigned long)o.threads, rbs_status_string(st));
             code = RBSF_EXIT_RUN;
@@ -2132,7 +2132,7 @@ int rbsf_run_main(int argc, char **argv)
     /* --steps 0 (frame 0 only) needs no override: 0 steps always fit. */
     target = o.steps_given && o.steps == 0 ? 0 : rbs_scene_steps(scene);
     if (o.resume && start_frame >= target) {
-        fprintf(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
+        rbsf__tell(stderr, "rbsim run: --resume '%s': the checkpoint is at step "
                         "%llu and the run ends at step %llu: nothing to run "
                         "(give --steps N with N > %llu)\n",
                 o.resume, (unsigned long long)start_frame,
@@ -2149,7 +2149,7 @@ int rbsf_run_main(int argc, char **argv)
         rbs_renderer_register(registry, &dumps[0].cls) != RBS_OK ||
         rbs_renderer_register(registry, &dumps[1].cls) != RBS_OK ||
         rbs_renderer_register(registry, &dumps[2].cls) != RBS_OK) {
-        fprintf(stderr, "rbsim: cannot set up the renderer types\n");
+        rbsf__tell(stderr, "rbsim: cannot set up the renderer types\n");
         code = RBSF_EXIT_RUN;
         goto out;
     }
@@ -2162,7 +2162,7 @@ int rbsf_run_main(int argc, char **argv)
     sdl_api.stopped = sdl_stop_stopped;
     sdl_cls = rbsf_sdl_class_with(&sdl_api);
     if (rbs_renderer_register(registry, &sdl_cls) != RBS_OK) {
-        fprintf(stderr, "rbsim: cannot register the sdl renderer\n");
+        rbsf__tell(stderr, "rbsim: cannot register the sdl renderer\n");
         code = RBSF_EXIT_RUN;
         goto out;
     }
@@ -2170,7 +2170,7 @@ int rbsf_run_main(int argc, char **argv)
     if (demo) {
         rbsf_demo_check_class(&demo_class, &demo_results);
         if (rbs_renderer_register(registry, &demo_class) != RBS_OK) {
-            fprintf(stderr, "rbsim: cannot register the demonstration check\n");
+            rbsf__tell(stderr, "rbsim: cannot register the demonstration check\n");
             code = RBSF_EXIT_RUN;
             goto out;
         }
@@ -2204,7 +2204,7 @@ int rbsf_run_main(int argc, char **argv)
         goto out;
 #ifndef RBSF_HAVE_SDL
     if (o.png) {
-        fprintf(stderr, "rbsim run: --png: this rbsim was built without SDL\n");
+        rbsf__tell(stderr, "rbsim run: --png: this rbsim was built without SDL\n");
         code = RBSF_EXIT_USAGE;
         goto out;
     }
@@ -2223,7 +2223,7 @@ int rbsf_run_main(int argc, char **argv)
     if (o.checkpoint) {
         ckpt_target = resolve_links(o.checkpoint);
         if (ckpt_target == NULL) {
-            fprintf(stderr, "rbsim run: --checkpoint '%s': %s\n", o.checkpoint,
+            rbsf__tell(stderr, "rbsim run: --checkpoint '%s': %s\n", o.checkpoint,
                     strerror(errno));
             code = RBSF_EXIT_USAGE;
             goto out;
@@ -2244,7 +2244,7 @@ int rbsf_run_main(int argc, char **argv)
         char err[512] = "";
         if (rbs_renderer_find(registry, configs[i].type, &cls) != RBS_OK) {
             if (outs[i].from_scene)
-                fprintf(stderr, "%s:%d:%d: renderers[%lu]: unknown renderer "
+                rbsf__tell(stderr, "%s:%d:%d: renderers[%lu]: unknown renderer "
                                 "type \"%s\"%s\n",
                         configs[i].file, (int)configs[i].line,
                         (int)configs[i].column, (unsigned long)i,
@@ -2265,10 +2265,10 @@ int rbsf_run_main(int argc, char **argv)
             /* (err repeats the path: shown safely) */
             if (outs[i].from_scene) {
                 rbsf__puts_shown(stderr, configs[i].file);
-                fprintf(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
+                rbsf__tell(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
                         (int)configs[i].column, (unsigned long)i, configs[i].type);
             } else {
-                fprintf(stderr, "rbsim run: --%s: ",
+                rbsf__tell(stderr, "rbsim run: --%s: ",
                         strcmp(configs[i].type, "sdl") == 0 ? "png" : configs[i].type);
             }
             rbsf__puts_shown(stderr, err[0] ? err : rbs_status_string(st));
@@ -2290,10 +2290,10 @@ int rbsf_run_main(int argc, char **argv)
             /* (err repeats the path: shown safely) */
             if (outs[i].from_scene) {
                 rbsf__puts_shown(stderr, configs[i].file);
-                fprintf(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
+                rbsf__tell(stderr, ":%d:%d: renderers[%lu] (%s): ", (int)configs[i].line,
                         (int)configs[i].column, (unsigned long)i, type);
             } else {
-                fprintf(stderr, "rbsim run: --%s: ", type);
+                rbsf__tell(stderr, "rbsim run: --%s: ", type);
             }
             rbsf__puts_shown(stderr, err);
             fputc('\n', stderr);
@@ -2330,7 +2330,7 @@ int rbsf_run_main(int argc, char **argv)
         /* No command could resume it. */
         def.start_paused = 0;
         if (!o.quiet)
-            fprintf(stderr, "rbsim: note: --paused is ignored: standard "
+            rbsf__tell(stderr, "rbsim: note: --paused is ignored: standard "
                             "input is the %s, not commands\n", taken);
     }
     def.pause_on_collision = rbs_scene_pause_on_collision(scene);
@@ -2338,7 +2338,7 @@ int rbsf_run_main(int argc, char **argv)
         /* Only a person at a terminal can resume such pauses. */
         def.pause_on_collision = 0;
         if (!o.quiet)
-            fprintf(stderr, "rbsim: note: simulation.pause_on_collision is "
+            rbsf__tell(stderr, "rbsim: note: simulation.pause_on_collision is "
                             "ignored: standard input is not a terminal\n");
     }
     st = rbs_projector_create(world, registry, configs, n_out, &def, &projector);
@@ -2385,7 +2385,7 @@ int rbsf_run_main(int argc, char **argv)
          * line, or a binary checkpoint) */
         memset(&input, 0, sizeof input);
         if (!o.quiet)
-            fprintf(stderr, "rbsim: note: standard input is the %s: no "
+            rbsf__tell(stderr, "rbsim: note: standard input is the %s: no "
                             "commands are read from it\n", taken);
     } else if (rbsf_input_start(&input, STDIN_FILENO, projector, talk,
                                 &reply_lock) != 0)
@@ -2429,7 +2429,7 @@ int rbsf_run_main(int argc, char **argv)
         (!ckpt.saved || ckpt.saved_at != rbs_world_step_count(world))) {
         char err[600];
         if (save_checkpoint(&ckpt, world, err, sizeof err) != RBS_OK) {
-            fprintf(stderr, "rbsim: error: ");
+            rbsf__tell(stderr, "rbsim: error: ");
             rbsf__puts_shown(stderr, err);
             fputc('\n', stderr);
             code = RBSF_EXIT_RUN;

@@ -15,6 +15,7 @@
 #ifndef RBSF_SHOWN_H
 #define RBSF_SHOWN_H
 
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -65,25 +66,27 @@ static inline int rbsf__acts_on_terminal(uint32_t u)
            (u >= 0xFFF9 && u <= 0xFFFB);
 }
 
-/** s as it may be shown, into buf (n > 4 bytes): each character that acts
- * on a terminal and each byte of invalid UTF-8 as one '?'; cut with "..."
- * if longer than buf holds.  Returns buf. */
+/** s as it may be shown, into buf (n > 4 bytes; buf may be s itself): each
+ * character that acts on a terminal and each byte of invalid UTF-8 as one
+ * '?'; cut with "..." if longer than buf holds.  Returns buf. */
 static inline const char *rbsf__shown(const char *s, char *buf, size_t n)
 {
     const unsigned char *in = (const unsigned char *)s;
-    size_t k = 0;
+    size_t k = 0, cut = 0; /* cut: the last character end with room for "..." */
     while (*in != '\0') {
         uint32_t u = 0;
         size_t len = rbsf__utf8_at(in, &u);
         size_t out = len == 0 || rbsf__acts_on_terminal(u) ? 1 : len;
-        if (k + out + 4 > n) {
-            memcpy(buf + k, "...", 4);
+        if (k + 4 <= n)
+            cut = k;
+        if (k + out + 1 > n) {
+            memcpy(buf + cut, "...", 4);
             return buf;
         }
         if (out == 1 && (len != 1 || rbsf__acts_on_terminal(u)))
             buf[k] = '?';
         else
-            memcpy(buf + k, in, out);
+            memmove(buf + k, in, out); /* (buf may be s: never ahead of it) */
         k += out;
         in += len == 0 ? 1 : len;
     }
@@ -114,6 +117,36 @@ static inline void rbsf__put_shown(FILE *f, const char *s, size_t len)
 static inline void rbsf__puts_shown(FILE *f, const char *s)
 {
     rbsf__put_shown(f, s, strlen(s));
+}
+
+/** A message to f, printf-style, shown safely: its line breaks and tabs
+ * kept, every other character that acts on a terminal (as in the paths it
+ * names) and each byte of invalid UTF-8 as '?'; cut with "..." past 16 KiB
+ * (four paths of PATH_MAX). */
+#ifdef __GNUC__
+__attribute__((format(printf, 2, 3)))
+#endif
+static inline void rbsf__tell(FILE *f, const char *fmt, ...)
+{
+    char text[16384];
+    const char *s = text, *line;
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return;
+    if ((size_t)n >= sizeof text)
+        memcpy(text + sizeof text - 5, "...\n", 5);
+    while (*s != '\0') {
+        size_t len = strcspn(s, "\n\t");
+        line = s;
+        rbsf__put_shown(f, line, len);
+        s += len;
+        if (*s != '\0')
+            fputc(*s++, f);
+    }
 }
 
 #endif

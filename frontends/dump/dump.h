@@ -122,7 +122,9 @@ rbs_status rbsf_check_output_file(const char *path, char *err, size_t errlen);
 
 /** path as a message shows it, in buf (size bytes, at least 16): whole if it
  * fits, else its start and its end around "..." -- a message cut at the end
- * of its buffer lost its reason along with the path's end.  Returns buf. */
+ * of its buffer lost its reason along with the path's end -- with each
+ * control character, C1 control, invisible formatting character and byte of
+ * invalid UTF-8 as '?' (frontends/common/shown.h).  Returns buf. */
 const char *rbsf_shown_path(const char *path, char *buf, size_t size);
 
 #ifdef __cplusplus

@@ -4,6 +4,7 @@
  */
 #include "dump_internal.h"
 #include "c_locale.h"
+#include "shown.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -275,13 +276,15 @@ const char *rbsf_shown_path(const char *path, char *buf, size_t size)
     size_t n = strlen(path), half = (size - 4) / 2;
     if (n < size) {
         memcpy(buf, path, n + 1);
-        return buf;
+    } else {
+        memcpy(buf, path, half);
+        memcpy(buf + half, "...", 3);
+        memcpy(buf + half + 3, path + n - half, half);
+        buf[2 * half + 3] = '\0';
     }
-    memcpy(buf, path, half);
-    memcpy(buf + half, "...", 3);
-    memcpy(buf + half + 3, path + n - half, half);
-    buf[2 * half + 3] = '\0';
-    return buf;
+    /* (a control character or an override in the path as '?', shown.h; a
+     * character cut at "..." too) */
+    return rbsf__shown(buf, buf, size);
 }
 
 /* Whether a file can be made in the folder dir (strlen(dir) + 15 bytes

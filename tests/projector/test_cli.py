@@ -318,8 +318,9 @@ class CliTests(Base):
     def test_paths_echoed_safely(self):
         # A renderer's path from the scene ("no\u001b[7mdir/x/y.csv") was
         # repeated raw in "cannot create ...", by check and by run, and an
-        # output, checkpoint or resumed path in the run's summary: each ESC
-        # now shows as '?' (exit 3 for the scene's path, as before).
+        # output, checkpoint or resumed path in the run's summary and the
+        # command's other messages: each ESC now shows as '?' (exit 3 for
+        # the scene's path, as before).
         esc = "\x1b"
         s = self.scene(renderers=[{"type": "csv", "path": "no%s[7mdir/x/y.csv" % esc}])
         for cmd in ("check", "run"):
@@ -339,6 +340,17 @@ class CliTests(Base):
         self.assertIn(b"checkpoint: o/c? at frame", r.stdout + r.stderr)
         self.assertNotIn(esc.encode(), r.stdout + r.stderr)
         self.assertTrue(os.path.exists(self.path("o/a%s.csv" % esc)))  # the file as named
+        # the command line's paths in its other messages, e.g. two outputs
+        # onto one file, a missing folder, a checkpoint that is a folder
+        for args, want in ((["--csv", "o/b%s.csv" % esc, "--json", "./o/b%s.csv" % esc],
+                            b"both write './o/b?.csv'"),
+                           (["--csv", "x%s/y/z.csv" % esc], b"cannot create 'x?/y/z.csv'"),
+                           (["--checkpoint", "o"], b"--checkpoint 'o'")):
+            r = subprocess.run([RBSIM, "run", s] + args, capture_output=True,
+                               cwd=self.dir, timeout=60, stdin=subprocess.DEVNULL)
+            self.assertNotEqual(r.returncode, 0, args)
+            self.assertIn(want, r.stderr, args)
+            self.assertNotIn(esc.encode(), r.stderr, args)
         r = subprocess.run([RBSIM, "run", s, "--resume", "o/c%s" % esc, "--steps", "400"],
                            capture_output=True, cwd=self.dir, timeout=60,
                            stdin=subprocess.DEVNULL)
