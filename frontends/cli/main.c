@@ -226,7 +226,7 @@ static void print_load_errors(const rbs_scene *scene, const char *path,
     if (scene != NULL && rbs_scene_error_count(scene) > 0)
         rbsf_print_scene_errors(scene, stdout);
     else
-        printf("%s: %s\n", path, rbs_status_string(st));
+        rbsf__tell(stdout, "%s: %s\n", path, rbs_status_string(st));
 }
 
 /* A command's file arguments (check: SCENE; convert: IN OUT) into files:
@@ -300,7 +300,7 @@ static int check_main(int argc, char **argv)
     }
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
-        printf("%s: cannot build the world: %s%s%s\n", path,
+        rbsf__tell(stdout, "%s: cannot build the world: %s%s%s\n", path,
                rbs_status_string(st), world ? ": " : "",
                world ? rbs_world_last_error(world) : "");
         code = RBSF_EXIT_SCENE;
@@ -327,7 +327,7 @@ static int check_main(int argc, char **argv)
         if (rbs_scene_renderer_get(scene, i, &r) != RBS_OK)
             continue;
         if (rbs_renderer_find(registry, r.type, &cls) != RBS_OK) {
-            printf("%s:%d:%d: renderers[%lu].type: unknown renderer type "
+            rbsf__tell(stdout, "%s:%d:%d: renderers[%lu].type: unknown renderer type "
                    "\"%s\"%s\n",
                    r.file, (int)r.line, (int)r.column, (unsigned long)i, r.type,
                    strcmp(r.type, "sdl") == 0
@@ -359,7 +359,7 @@ static int check_main(int argc, char **argv)
     if (code == RBSF_EXIT_OK)
         code = rbsf_check_scene_outputs(scene); /* (as run checks them) */
     if (code == RBSF_EXIT_OK)
-        printf("%s: ok (%llu steps, %lu renderer%s)\n", path,
+        rbsf__tell(stdout, "%s: ok (%llu steps, %lu renderer%s)\n", path,
                (unsigned long long)rbs_scene_steps(scene), (unsigned long)n,
                n == 1 ? "" : "s");
 out:
@@ -436,7 +436,7 @@ static int explain_main(int argc, char **argv)
         goto out;
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
-        printf("%s: cannot build the world: %s%s%s\n", path,
+        rbsf__tell(stdout, "%s: cannot build the world: %s%s%s\n", path,
                rbs_status_string(st), world ? ": " : "",
                world ? rbs_world_last_error(world) : "");
         code = RBSF_EXIT_SCENE;
@@ -452,7 +452,8 @@ static int explain_main(int argc, char **argv)
         code = RBSF_EXIT_RUN;
         goto out;
     }
-    printf("scene: %s\n%s", path, text);
+    rbsf__tell(stdout, "scene: %s\n", path);
+    fputs(text, stdout); /* (whole, however long; the names in it are checked) */
     code = rbsf_flush_stdout();
 out:
     free(text);

@@ -1884,7 +1884,7 @@ static void summary(FILE *out, const char *scene_name, const rbs_run_info *info,
     if (made > drawn && world != NULL && rbs_world_get_def(world, &wd) == RBS_OK)
         made_time = (double)made * wd.dt; /* (the captured frames': a step the stop
                                              cut short is in the world, not here) */
-    fprintf(out, "scene: %s\n", scene_name);
+    rbsf__tell(out, "scene: %s\n", scene_name);
     fprintf(out, "simulated %.6g s: %llu steps (%llu sub-steps, %llu rollbacks), "
                  "%llu collisions\n",
             made_time, (unsigned long long)steps,
