@@ -351,6 +351,17 @@ class CliTests(Base):
             self.assertNotEqual(r.returncode, 0, args)
             self.assertIn(want, r.stderr, args)
             self.assertNotIn(esc.encode(), r.stderr, args)
+        # the scene's own path on the standard output
+        odd = self.path("s%s.json" % esc)
+        shutil.copy(s, odd)
+        for cmd, want in (("check", b"s?.json: ok"), ("explain", b"scene: s?.json"),
+                          ("run", b"scene: s?.json")):
+            r = subprocess.run([RBSIM, cmd, "s%s.json" % esc], capture_output=True,
+                               cwd=self.dir, timeout=60, stdin=subprocess.DEVNULL)
+            self.assertEqual(r.returncode, 0, (cmd, r.stderr))
+            self.assertIn(want, r.stdout + r.stderr, cmd)
+            self.assertNotIn(esc.encode(), r.stdout + r.stderr, cmd)
+        os.remove(odd)
         r = subprocess.run([RBSIM, "run", s, "--resume", "o/c%s" % esc, "--steps", "400"],
                            capture_output=True, cwd=self.dir, timeout=60,
                            stdin=subprocess.DEVNULL)
