@@ -37,31 +37,36 @@ static void answer(rbsf_input *in, char *line, size_t n)
     if (n > 0 && line[n - 1] == '\r')
         line[--n] = '\0';
     for (i = 0; i < n; i += len) {
-        unsigned char c = (unsigned char)line[i];
-        uint32_t u;
-        len = rbsf__utf8_at((const unsigned char *)line + i, &u);
-        if ((c < 0x20 && c != '\t') || c == 0x7f) {
+        const unsigned char *b = (const unsigned char *)line + i;
+        const unsigned char c = b[0];
+        unsigned long u;
+        size_t k;
+        if (rbs_text_shown_len(line + i, n - i, &len) > 0 || c == '\t')
+            continue;
+        if (c < 0x80) {
             snprintf(reply, sizeof reply,
                      "a command must not hold control characters (byte 0x%02x at %lu): ignored\n", c,
                      (unsigned long)i + 1);
             say(in, reply);
             return;
         }
-        if (len == 0) {
+        if (len == 1) {
             snprintf(reply, sizeof reply, "a command must be UTF-8 (byte 0x%02x at %lu): ignored\n", c,
                      (unsigned long)i + 1);
             say(in, reply);
             return;
         }
-        if (len > 1 && rbsf__acts_on_terminal(u)) {
-            /* (a C1 control or a bidirectional override, shown.h) */
-            snprintf(reply, sizeof reply,
-                     "a command must not hold control or invisible formatting characters "
-                     "(U+%04lX at byte %lu): ignored\n",
-                     (unsigned long)u, (unsigned long)i + 1);
-            say(in, reply);
-            return;
-        }
+        /* a well-formed sequence the library does not show (rbsim.h): its
+         * code point, for the reply */
+        u = (unsigned long)(c & (0x7F >> len));
+        for (k = 1; k < len; k++)
+            u = u << 6 | (unsigned long)(b[k] & 0x3F);
+        snprintf(reply, sizeof reply,
+                 "a command must not hold control, space or invisible formatting characters "
+                 "(U+%04lX at byte %lu): ignored\n",
+                 u, (unsigned long)i + 1);
+        say(in, reply);
+        return;
     }
     rbsf_command_run(in->projector, line, reply, sizeof reply);
     if (reply[0] == '\0')

@@ -1988,9 +1988,7 @@ static void print_run_error(const char *prefix, const char *msg,
         }
         if (len == 0) {
             /* one character (a UTF-8 sequence whole) */
-            uint32_t u;
-            len = rbsf__utf8_at((const unsigned char *)msg, &u);
-            len = len == 0 ? 1 : len;
+            (void)rbs_text_shown_len(msg, strlen(msg), &len);
             rbsf__put_shown(stderr, msg, len);
         }
         msg += len;

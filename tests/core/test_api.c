@@ -333,6 +333,50 @@ static rbs_status scene_with_names(const char *name, const char *mat, rbs_scene 
  * Unicode space code point, too long; a material's "" and "*" -- and
  * accepts what a scene file accepts (a world built through the API held
  * names no scene file could, e.g. "my ball"). */
+/* rbs_text_shown_len, character by character, against the rule rbsim.h
+ * states (RFC 3629 for well-formed UTF-8; the code points by their Unicode
+ * names). */
+static void text_shown_len_follows_its_rule(void **state)
+{
+    static const struct {
+        const char *text;
+        size_t len, shown, skip;
+    } cases[] = {
+        {"a", 1, 1, 1},
+        {" ", 1, 1, 1},              /* the ASCII space shows */
+        {"~", 1, 1, 1},
+        {"\x1b[2J", 4, 0, 1},        /* ESC */
+        {"\t", 1, 0, 1},             /* a control, however harmless */
+        {"\x7f", 1, 0, 1},           /* DEL */
+        {"\xc3\xa9", 2, 2, 2},       /* U+00E9 e acute */
+        {"\xe2\x82\xac", 3, 3, 3},   /* U+20AC euro sign */
+        {"\xf0\x9f\x8e\xb1", 4, 4, 4}, /* U+1F3B1 billiards */
+        {"\xc2\x9b", 2, 0, 2},       /* U+009B, a C1 control (CSI) */
+        {"\xc2\xa0", 2, 0, 2},       /* U+00A0 no-break space */
+        {"\xe3\x80\x80", 3, 0, 3},   /* U+3000 ideographic space */
+        {"\xe2\x80\xa8", 3, 0, 3},   /* U+2028 line separator */
+        {"\xe2\x80\x8b", 3, 0, 3},   /* U+200B zero width space */
+        {"\xe2\x80\xae", 3, 0, 3},   /* U+202E right-to-left override */
+        {"\xe2\x81\xa6", 3, 0, 3},   /* U+2066 left-to-right isolate */
+        {"\xef\xbb\xbf", 3, 0, 3},   /* U+FEFF byte order mark */
+        {"\xff", 1, 0, 1},           /* starts no sequence */
+        {"\xc0\xaf", 2, 0, 1},       /* overlong '/' */
+        {"\xed\xa0\x80", 3, 0, 1},   /* a surrogate, U+D800 */
+        {"\xf4\x90\x80\x80", 4, 0, 1}, /* beyond U+10FFFF */
+        {"\xe2\x82\xac", 2, 0, 1},   /* cut off by len */
+        {"\xc3\xa9", 0, 0, 0},       /* nothing */
+    };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        size_t skip = 99, shown = rbs_text_shown_len(cases[k].text, cases[k].len, &skip);
+        if (shown != cases[k].shown || skip != cases[k].skip)
+            fail_msg("case %zu: shown %zu skip %zu, expected %zu and %zu", k, shown, skip, cases[k].shown,
+                     cases[k].skip);
+    }
+    assert_int_equal(rbs_text_shown_len("ab", 2, NULL), 1); /* skip may be NULL */
+}
+
 static void names_follow_the_scene_rule(void **state)
 {
     static const char long_name[] = "a123456789b123456789c123456789d123456789"
@@ -1172,6 +1216,7 @@ int main(void)
         cmocka_unit_test(status_strings),
         cmocka_unit_test(bad_values_are_echoed_exactly),
         cmocka_unit_test(method_names_round_trip),
+        cmocka_unit_test(text_shown_len_follows_its_rule),
         cmocka_unit_test(names_follow_the_scene_rule),
         cmocka_unit_test(utf8_name_round_trips_through_save_and_load),
         cmocka_unit_test(old_shorter_defs_get_defaults),

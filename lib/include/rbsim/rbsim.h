@@ -73,6 +73,19 @@ typedef enum rbs_status {
 
 /** Short English text for a status code; never NULL, static storage. */
 RBS_API const char *rbs_status_string(rbs_status status);
+
+/** How much of text[0 .. len) a front end may write to a terminal as it is:
+ * the length in bytes (1 to 4) of the character at text[0] if it is
+ * well-formed UTF-8 (RFC 3629) that shows as itself, else 0 -- an ASCII
+ * control or DEL, a C1 control, a Unicode space other than ' ', a line or
+ * paragraph separator, an invisible formatting character (zero-width ones,
+ * the bidirectional marks, overrides and isolates, the byte order mark), or
+ * a byte that starts no well-formed sequence within len.  *skip (if not
+ * NULL) gets the bytes that character or byte takes (1 to 4; 0 when len is
+ * 0), for the caller to show as one '?'.  The library's scene errors show
+ * the text they quote by this rule, and names (RBS_NAME_MAX) may hold only
+ * characters it shows.  Pure; thread-safe. */
+RBS_API size_t rbs_text_shown_len(const char *text, size_t len, size_t *skip);
 /** The code's name without prefix ("E_CAPACITY"); never NULL, static storage. */
 RBS_API const char *rbs_status_name(rbs_status status);
 

@@ -44,6 +44,23 @@ const char *rbs__unseen_kind(uint32_t u)
     return NULL;
 }
 
+size_t rbs_text_shown_len(const char *text, size_t len, size_t *skip)
+{
+    const unsigned char c = len > 0 ? (unsigned char)text[0] : 0;
+    size_t n, k;
+    if (len == 0) {
+        if (skip != NULL)
+            *skip = 0;
+        return 0;
+    }
+    n = c < 0x80 ? 1 : rbs__utf8_seq(text, len, 0);
+    if (skip != NULL)
+        *skip = n > 0 ? n : 1;
+    if (n == 0 || c < 0x20 || c == 0x7f)
+        return 0;
+    return c < 0x80 || rbs__unseen_kind(rbs__code_point((const unsigned char *)text, &k)) == NULL ? n : 0;
+}
+
 rbs__name_kind rbs__name_check(const char *name, rbs__name_fault *fault)
 {
     size_t n = strlen(name), i, len;

@@ -3,8 +3,6 @@
  * world from the validated description.
  */
 #include "scene/scene_internal.h"
-#include "core/name.h"
-#include "core/world_internal.h" /* rbs__utf8_seq */
 
 #include <errno.h>
 #include <math.h>
@@ -62,38 +60,25 @@ int32_t rbs__scene_add_file(rbs_scene *scene, const char *name)
     return scene->file_count++;
 }
 
-/* Make a piece of an error message safe to print: every byte that is not
- * printable ASCII or part of valid UTF-8 (a control character such as ESC,
- * DEL, a stray or truncated UTF-8 byte), and every character
- * rbs__unseen_kind() names (C1 controls, bidirectional overrides, ...),
- * becomes '?', in place.  Keys, names and types from the input reach the
+/* Make a piece of an error message safe to print, in place: each character
+ * rbs_text_shown_len() does not show (a control such as ESC, DEL, a C1
+ * control, a bidirectional override, ...) and each byte of invalid UTF-8
+ * becomes one '?'.  Keys, names and types from the input reach the
  * messages through key paths and values; written raw they could move the
  * cursor, recolour or reorder the terminal that shows them. */
 static void clean_for_display(char *s)
 {
-    unsigned char *in = (unsigned char *)s, *out = (unsigned char *)s;
+    char *in = s, *out = s;
     size_t left = strlen(s); /* bytes from in to the end */
     while (left > 0) {
-        unsigned char c = *in;
-        size_t len = 1, k;
-        if (c >= 0x80) {
-            /* a well-formed UTF-8 sequence (RFC 3629), whole, unless it is
-             * a character rbs__unseen_kind names */
-            len = rbs__utf8_seq((const char *)in, left, 0);
-            if (len != 0 && rbs__unseen_kind(rbs__code_point(in, &k)) == NULL) {
-                memmove(out, in, len);
-                out += len;
-                in += len;
-                left -= len;
-                continue;
-            }
-            if (len == 0)
-                len = 1; /* a stray byte: one '?' a byte */
-        }
-        /* one '?' for a control character or a character named above */
-        *out++ = c >= 0x20 && c < 0x7f ? c : '?';
-        in += len;
-        left -= len;
+        size_t skip, n = rbs_text_shown_len(in, left, &skip);
+        if (n > 0)
+            memmove(out, in, n); /* (never ahead of in) */
+        else
+            *out = '?';
+        out += n > 0 ? n : 1;
+        in += skip;
+        left -= skip;
     }
     *out = '\0';
 }
