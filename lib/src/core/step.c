@@ -176,6 +176,22 @@ void rbs__restore_state(rbs_world *w, const double *save)
 
 #define SPIN_MAX_ANGLE 0.25 /* rad per rotation sub-step */
 
+double rbs__spin_reach(const rbs_world *w, uint32_t i, quat q, v3 om, v3 tau, double h)
+{
+    double n;
+    if (w->isotropic[i])
+        n = w->iso_inv_inertia[i];
+    else {
+        const double *m = &w->inv_inertia[9 * i];
+        double r0 = fabs(m[0]) + fabs(m[1]) + fabs(m[2]), r1 = fabs(m[3]) + fabs(m[4]) + fabs(m[5]),
+               r2 = fabs(m[6]) + fabs(m[7]) + fabs(m[8]);
+        n = r0 > r1 ? r0 : r1;
+        n = n > r2 ? n : r2;
+    }
+    return (v3_len(rbs__inertia_times(w, i, q, om)) + v3_len(tau) * h) * n * h;
+}
+
+
 int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact, int *stable)
 {
     double m;

@@ -595,7 +595,7 @@ rbs_status rbs__step_selective(rbs_world *w, rbs_step_info *info)
     rbs__solve_collisions(w, info);
     rbs__integrate_velocities(w, dt);
     rbs__solve_resting_warm(w, info, dt);
-    rbs__integrate_positions(w, dt);
+    rbs__integrate_positions(w, dt, info);
     contacts = rbs__touching(w);
     rbs__warm_sort(w); /* (in key order for rbs__pair_pressed) */
     rbs__mark_pressed(w);

@@ -1075,7 +1075,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
         rbs__integrate_velocities(w, h);
         warm_start(&sp);
         pass(&sp, SOLVE);
-        rbs__integrate_positions(w, h);
+        rbs__integrate_positions(w, h, info);
         sp.last = s == n - 1;
         pass(&sp, RELAX);
     }

@@ -22,7 +22,7 @@
  * (a fixed point, converged), the other half kick.  The turn is symmetric
  * (time-reversible) and keeps L exactly without torque, so the energy
  * L.I(q)^-1 L / 2 oscillates at O((|w| hs)^2) and does not drift, and the
- * count m comes from |L| / I_min (spin_reach), which a torque-free body
+ * count m comes from |L| / I_min (rbs__spin_reach), which a torque-free body
  * keeps: a count that followed w broke the symmetry from part to part
  * (reversible methods and their loss under state-dependent step sizes:
  * Hairer, Lubich & Wanner, ch. V and VIII).
@@ -63,34 +63,13 @@ enum {
 
 
 
-/* An upper bound on the angle body i turns through over h (rad) from
- * orientation q and angular velocity om under the world-frame torque tau:
- * |w| <= |L| |I^-1| with L = I(q) w, |L| growing by at most |tau| h, and
- * |I^-1| bounded by its largest row sum (a constant of the body).  Torque-
- * free, it depends on |L| alone, an invariant, so the part count stays the
- * same from step to step. */
-static double spin_reach(const rbs_world *w, uint32_t i, quat q, v3 om, v3 tau, double h)
-{
-    double n;
-    if (w->isotropic[i])
-        n = w->iso_inv_inertia[i];
-    else {
-        const double *m = &w->inv_inertia[9 * i];
-        double r0 = fabs(m[0]) + fabs(m[1]) + fabs(m[2]), r1 = fabs(m[3]) + fabs(m[4]) + fabs(m[5]),
-               r2 = fabs(m[6]) + fabs(m[7]) + fabs(m[8]);
-        n = r0 > r1 ? r0 : r1;
-        n = n > r2 ? n : r2;
-    }
-    return (v3_len(rbs__inertia_times(w, i, q, om)) + v3_len(tau) * h) * n * h;
-}
-
 /* (q, w) of body i over h in parts of at most 1/4 rad, each turned as
  * euler turns (see the top); the end state into S. */
 static void spin_verlet(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, double h, double *S)
 {
     quat q = q_load(&S[S_Q0]);
     v3 om = v3_load(&S[S_W0]);
-    double reach = spin_reach(w, i, q, om, tau, h);
+    double reach = rbs__spin_reach(w, i, q, om, tau, h);
     int m, stable;
     /* (a torque-free isotropic body does not come here: its w is constant
      * and verlet_advance's one rotation is exact; past the step's budget,

@@ -821,8 +821,16 @@ rbs_status rbs__numeric_error(rbs_world *w, uint32_t bad);
 typedef void (*rbs__advance_fn)(rbs_world *w, double h, rbs_step_info *info);
 rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn advance,
                               int at_step_start, double span);
+/* An upper bound on the angle (rad) body i turns through over h from
+ * orientation q and angular velocity om (world axes, rad/s) under the
+ * world-frame torque tau (N m): |w| <= |L| |I^-1| with L = I(q) w, |L|
+ * growing by at most |tau| h, and |I^-1| bounded by its largest row sum (a
+ * constant of the body).  Torque-free it depends on |L| alone, an
+ * invariant, so a part count taken from it stays the same from step to step
+ * (verlet's and euler's rotation parts). */
+double rbs__spin_reach(const rbs_world *w, uint32_t i, quat q, v3 om, v3 tau, double h);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
- * rk4): about reach / 0.25, 1 when the rotation is exact in one (torque-free
+ * rk4, and euler's turns past 1/2 rad): about reach / 0.25, 1 when the rotation is exact in one (torque-free
  * isotropic body), and within the step's budget (max_substeps * 256 in all).
  * Past the budget *stable is set, info->work_limit too, and the count is
  * the parts (the budget's rest, at least 1) to take with rbs__spin_stable. */
@@ -875,7 +883,9 @@ void rbs__mutual_gravity(rbs_world *w);         /* fills w->acc */
  * velocities changed since: the same numbers), else computed. */
 void rbs__mutual_gravity_start(rbs_world *w);
 void rbs__integrate_velocities(rbs_world *w, double h);
-void rbs__integrate_positions(rbs_world *w, double h);
+/* x += v h; the turn of step_euler.c (past 1/2 rad in parts, counted from
+ * the step's rotation budget; info->work_limit when it is spent). */
+void rbs__integrate_positions(rbs_world *w, double h, rbs_step_info *info);
 
 /* Methods: one entry point each (step_<method>.c). */
 rbs_status rbs__step_euler(rbs_world *w, rbs_step_info *info);
