@@ -874,6 +874,76 @@ static void ball_dropped_into_a_dimple_settles_within_the_slop(void **state)
     rbs_world_destroy(w);
 }
 
+/* A 10 kg ball (r = 0.1 m) dropped 1 cm onto a 4 x 4 bed of touching
+ * 0.1 kg balls (r = 0.05 m) on a floor between four walls that hold it
+ * exactly (mu_s = 0.5, mu_k = 0.3, e = 0.5, euler), centred over the bed's
+ * middle four.  Exact: once the impact has died away the heap is static
+ * (there is a static solution: with the walls the bed's balls are held
+ * by their neighbours, the heavy ball's push a share tan(phi / 2) = 0.25
+ * of the normal force at most on any contact, phi = 28.1 deg its contacts'
+ * angle from the vertical, inside mu_s) and every speed is 0.  Bounds, from
+ * 5 s (settled) to 15 s: every speed within 1e-9 g dt (9.8e-12 m/s), what
+ * a warm pass's convergence test (1e-9 of one step of gravity) lets
+ * through; every body within 10 s x that (9.8e-11 m) of where it was at
+ * 5 s; the ball's height within 5e-8 + 5e-8 / cos(phi) = 1.07e-7 m of its
+ * geometric rest (each contact resting with |gap| <= the slop, 1e-6 x
+ * 0.05 m, on the floor and on the ball).  Measured: 8.6e-15 m/s, 3e-17 m,
+ * 4.0e-9 m.  Before session 49 the warm passes took max_sweeps (20)
+ * whatever the masses; Gauss-Seidel with a mass ratio of 100 needs about
+ * 100 times that, and the bed settled rattling at up to 3.3e-3 m/s for
+ * good, every pass at the limit, 5 rollbacks a step. */
+static void heavy_ball_dropped_on_a_walled_bed_comes_to_rest(void **state)
+{
+    const double r = 0.05, R = 0.1, L = 8.0 * r, slop = 1e-6 * r, g_dt = 9.81 * 1e-3;
+    const double hd = sqrt(2.0) * r, vz = sqrt((R + r) * (R + r) - hd * hd), z_eq = r + vz;
+    const rbs_vec3 normals[4] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+    const rbs_vec3 points[4] = {{0, 0, 0}, {L, 0, 0}, {0, 0, 0}, {0, L, 0}};
+    rbs_world *w = make_world(32, 1e-3, -9.81, 0.5);
+    rbs_material_id mat = material(w, "m", 0.5, 0.3, 0.5);
+    rbs_body_id b[17];
+    rbs_body_state s5[17];
+    double vmax = 0.0, moved = 0.0, ez = 0.0;
+    int i, j, f;
+    (void)state;
+    floor_plane(w, mat);
+    for (i = 0; i < 4; ++i) {
+        rbs_plane_def p;
+        rbs_body_id id;
+        rbs_plane_def_init(&p);
+        p.point = points[i];
+        p.normal = normals[i];
+        p.material = mat;
+        CHECK_OK(rbs_world_add_plane(w, &p, &id));
+    }
+    for (i = 0; i < 4; ++i)
+        for (j = 0; j < 4; ++j)
+            b[4 * i + j] = ball(w, r, 0.1, r + 2.0 * r * i, r + 2.0 * r * j, r, 0, 0, 0, mat);
+    b[16] = ball(w, R, 10.0, 0.5 * L, 0.5 * L, z_eq + 0.01, 0, 0, 0, mat);
+    step_n(w, 5000);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    for (i = 0; i < 17; ++i)
+        s5[i] = state_of(w, b[i]);
+    for (f = 0; f < 10000; ++f) {
+        CHECK_OK(rbs_world_step(w, NULL));
+        for (i = 0; i < 17; ++i) {
+            rbs_body_state st = state_of(w, b[i]);
+            vmax = fmax(vmax, sqrt(st.velocity.x * st.velocity.x + st.velocity.y * st.velocity.y +
+                                   st.velocity.z * st.velocity.z));
+            moved = fmax(moved, fmax(fabs(st.position.x - s5[i].position.x),
+                                     fmax(fabs(st.position.y - s5[i].position.y),
+                                          fabs(st.position.z - s5[i].position.z))));
+            if (i == 16)
+                ez = fmax(ez, fabs(st.position.z - z_eq));
+        }
+    }
+    print_message("heavy ball on a walled bed, 5-15 s: speed %.3g m/s, moved %.3g m, height %.3g m off\n", vmax,
+                  moved, ez);
+    assert_true(vmax <= 1e-9 * g_dt);
+    assert_true(moved <= 10.0 * 1e-9 * g_dt);
+    assert_true(ez <= slop + slop * (R + r) / vz);
+    rbs_world_destroy(w);
+}
+
 /* A free symmetric top (moments 0.01, 0.01, 0.015 kg m^2, no gravity) spun
  * at (1, 0.3, 5) rad/s: exact (Landau & Lifshitz, Mechanics, sec. 33),
  * |L| and the energy are constant and the symmetry axis keeps its angle to
@@ -1349,6 +1419,7 @@ int main(void)
         cmocka_unit_test(ball_on_two_balls_holds_by_friction),
         cmocka_unit_test(ball_in_a_dimple_stays_put),
         cmocka_unit_test(ball_dropped_into_a_dimple_settles_within_the_slop),
+        cmocka_unit_test(heavy_ball_dropped_on_a_walled_bed_comes_to_rest),
         cmocka_unit_test(free_symmetric_top_keeps_energy),
         cmocka_unit_test(chained_overlap_is_separated),
         cmocka_unit_test(reported_overlap_is_the_states),
