@@ -1221,6 +1221,37 @@ static uint32_t pass_sweeps(rbs_world *w, int friction, int fast, uint32_t block
     return sweep;
 }
 
+/* The approach speed along the start's normal n at a sub-step's end that
+ * keeps the distance d of contact c's sphere centres under the trapezoid
+ * drift while they move across n, m/s: h |u|^2 / d, u their predicted
+ * mid-sub-step relative velocity across n (start velocity plus half a
+ * sub-step of the smooth forces).  (x' = x + h m with m = (v + v')/2 keeps
+ * |x'| = |x| = d when n . m = -h |m|^2 / (2 d); with n . v = 0 at the
+ * start, n . v' = -h |m|^2 / d.)  0 against a plane, which does not
+ * curve. */
+static double path_bend(const rbs_world *w, const rbs__contact *c, double h)
+{
+    v3 u = v3_make(0, 0, 0), d, a, tau;
+    int e;
+    double len;
+    if (w->type[c->b] != RBS_BODY_SPHERE || !(h > 0.0))
+        return 0.0;
+    for (e = 0; e < 2; ++e) {
+        const uint32_t i = e ? c->b : c->a;
+        v3 v = v3_load(&w->vel[3 * i]), arm = v3_sub(v3_load(&w->pos[3 * i]), rbs__body_com(w, i));
+        v = v3_add(v, v3_cross(v3_load(&w->avel[3 * i]), arm)); /* the centre's */
+        rbs__accelerations_all(w, i, &a, &tau);
+        v = v3_mad(v, a, 0.5 * h);
+        u = e ? v3_sub(u, v) : v;
+    }
+    d = v3_sub(v3_load(&w->pos[3 * c->a]), v3_load(&w->pos[3 * c->b]));
+    len = v3_len(d);
+    if (!(len > 0.0))
+        return 0.0;
+    u = v3_mad(u, c->n, -v3_dot(u, c->n));
+    return h * v3_dot(u, u) / len;
+}
+
 /* The resting pass lets a speculative contact approach at (gap - slop) / h
  * at the sub-step's end, which closes it to the slop when the drift is by
  * the end velocity (euler).  verlet and rk4 drift by the mean of the start
@@ -1242,17 +1273,29 @@ static uint32_t pass_sweeps(rbs_world *w, int friction, int fast, uint32_t block
  * sphere drifted v^2 h^2 / (2 L) off it a sub-step, past the slop, and the
  * sub-steps until it fell back flew without friction: it slipped at 0.48
  * rad, where rolling needed a third of the static cone (a probe of
- * session 45). */
+ * session 45).  Between two spheres the centres' path bends (path_bend):
+ * a touching pair may approach at the bend's speed (its bias), and a
+ * speculative pair's B takes it too.  Held to a zero approach along the
+ * start's normal, a 1 kg ball sliding over a 1 g ball wedged in a box's
+ * corner parted at v^2 h / d every sub-step, and the drift turned that
+ * impulse's excess into lift: 2.8e-6 J gained in 80 steps at max_sweeps
+ * 2000 (verlet; test_physics.c, converged_wedge_gains_no_energy; a probe
+ * of session 49), 2.0e-8 J with the bend. */
 void rbs__trapezoid_reach(rbs_world *w, double h)
 {
     uint32_t i;
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const double slop = rbs__contact_slop(w, c);
-        double reach;
-        if (!(c->flags & RBS__APART) || c->bias < 0.0)
-            continue; /* touching, or an impact on its way */
-        reach = 2.0 * (c->gap - slop) + 0.75 * rbs__normal_velocity(w, c) * h;
+        double reach, bend;
+        if (c->bias < 0.0)
+            continue; /* an impact on its way */
+        bend = path_bend(w, c, h);
+        if (!(c->flags & RBS__APART)) {
+            c->bias = bend; /* touching: it may close what the bend opens */
+            continue;
+        }
+        reach = 2.0 * (c->gap - slop) + (0.75 * rbs__normal_velocity(w, c) + bend) * h;
         c->gap = slop + (reach > 0.0 ? reach : 0.0);
     }
 }
@@ -1274,8 +1317,9 @@ void rbs__trapezoid_reach(rbs_world *w, double h)
  * ratio under 2) keep max_sweeps, bit for bit.  Euler only: verlet's
  * passes, so converged, let a 1 kg ball wedged on a 1 g ball in a box's
  * corner (test_physics.c, wedged_balls_gain_no_energy) gain 2.8e-6 J, over
- * that test's bound of two slops' lift (2e-6 J), as they do at max_sweeps
- * 2000 without this (a probe of session 49; not yet understood). */
+ * that test's bound of two slops' lift (2e-6 J), as they did at max_sweeps
+ * 2000 without this (a probe of session 49; the cause, found since, was
+ * the sphere pair's path bend, rbs__trapezoid_reach). */
 static uint32_t warm_sweeps_factor(const rbs_world *w)
 {
     const double r = w->plan.mass_ratio;

@@ -46,7 +46,9 @@ typedef struct rbs__contact {
                       the resting pass allows, (gap - slop) / h (gap as
                       above), or -1 when
                       the pair approaches as an impact (left to the
-                      method's rollback); 0 for a touching contact */
+                      method's rollback); 0 for a touching contact
+                      (verlet and rk4: the approach its path's bend
+                      needs between two spheres, rbs__trapezoid_reach) */
     double kn;     /* n . K n : inverse effective mass along n */
     double kt_inv; /* 1 / (t . K t), the same for every tangent t when K is
                       isotropic in the tangent plane (centred isotropic
@@ -677,8 +679,9 @@ double rbs__resist_row(rbs_world *w, uint32_t i);
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
 /* verlet's and rk4's speculative contacts: each one's gap becomes the
  * reach the resting pass may let its end velocity close in the sub-step of
- * h seconds, given the trapezoid drift (solver.c); call on the sub-step's
- * start velocities, after the collision pass. */
+ * h seconds, given the trapezoid drift, and a touching sphere pair's bias
+ * the approach the bend of its path needs (solver.c); call on the
+ * sub-step's start velocities, after the collision pass. */
 void rbs__trapezoid_reach(rbs_world *w, double h);
 /* verlet's and rk4's drift moves positions by half of a resting pass's
  * impulses: after it, the other half of each sphere pair's impulse is
