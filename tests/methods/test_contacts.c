@@ -456,8 +456,9 @@ static void slow_impact_on_a_dome(void **state)
  * kinetic friction (below what rolling needs) kept it sliding: 2.7e-2 m
  * and -1.5 rad/s off at dt = 1e-4 s, not converging (a probe of session
  * 45).  Now every rollback method converges at first order (at 1, 0.1 and
- * 0.01 ms: euler 1.8e-4, 1.6e-5, 3.6e-6 m; verlet, rk4 and adaptive 5.2e-5,
- * 7.7e-6, 1.4e-6 m and 3.4e-3, 6.0e-4, 6e-6 rad/s).  Bounds at dt = 1e-4
+ * 0.01 ms: euler 1.8e-4, 1.6e-5, 3.6e-6 m; verlet, rk4 and adaptive 5.7e-5,
+ * 9.2e-6, 4.5e-7 m and 3.6e-3, 6.0e-4, 3.1e-6 rad/s since session 49's
+ * path bend, rbs__trapezoid_reach).  Bounds at dt = 1e-4
  * s: 5e-5 m and 2.5e-3 rad/s, about three times the largest measured (1.6e-5
  * m, 9.1e-4 rad/s: the slip starts within a sub-step of the exact time, and
  * the spin-ups rolling and sliding differ by 11 rad/s^2, 1.1e-3 rad/s a
