@@ -253,9 +253,10 @@ typedef struct rbs_world_def {
                                    which an elastic impact through a chain
                                    of touching bodies needs, and for the
                                    impacts a body takes in a selective
-                                   step; euler's warm resting passes take it
-                                   times the moving spheres' mass ratio,
-                                   its whole part, 1 to 100 times) and
+                                   step; the warm resting passes of euler,
+                                   verlet, rk4 and adaptive take it times
+                                   the moving spheres' mass ratio, its
+                                   whole part, 1 to 100 times) and
                                    separation iterations; default 20 */
     int32_t mutual_gravity;   /**< nonzero: Newtonian attraction between bodies */
     double gravity_constant;  /**< G, m^3 kg^-1 s^-2; default 6.674e-11;

@@ -1314,16 +1314,21 @@ void rbs__trapezoid_reach(rbs_world *w, double h)
  * every pass at the limit and 5 rollbacks a step (a probe of session 49,
  * as reported at max_sweeps 20, at rest with 2000); with 100 x 20 sweeps
  * on the passes that need them it rests to 1e-14 m/s.  Equal masses (a
- * ratio under 2) keep max_sweeps, bit for bit.  Euler only: verlet's
- * passes, so converged, let a 1 kg ball wedged on a 1 g ball in a box's
- * corner (test_physics.c, wedged_balls_gain_no_energy) gain 2.8e-6 J, over
- * that test's bound of two slops' lift (2e-6 J), as they did at max_sweeps
- * 2000 without this (a probe of session 49; the cause, found since, was
- * the sphere pair's path bend, rbs__trapezoid_reach). */
+ * ratio under 2) keep max_sweeps, bit for bit.  verlet, rk4 and adaptive
+ * take it too since the sphere pair's path bend (rbs__trapezoid_reach):
+ * before it their passes, so converged, let a 1 kg ball wedged on a 1 g
+ * ball in a box's corner (test_physics.c, wedged_balls_gain_no_energy)
+ * gain 2.8e-6 J, over that test's bound of two slops' lift (2e-6 J); at
+ * max_sweeps 20 without this it rattled for good (1.7 to 2.6 mm/s after
+ * 2 s), and now rests to 5e-12 m/s (test wedge_comes_to_rest; a probe of
+ * session 49). */
 static uint32_t warm_sweeps_factor(const rbs_world *w)
 {
     const double r = w->plan.mass_ratio;
-    if (w->plan.method != RBS_METHOD_EULER || !(r >= 2.0))
+    const rbs_method m = w->plan.method;
+    /* (selective keeps max_sweeps: not measured there) */
+    if (!(m == RBS_METHOD_EULER || m == RBS_METHOD_VERLET || m == RBS_METHOD_RK4 || m == RBS_METHOD_ADAPTIVE) ||
+        !(r >= 2.0))
         return 1;
     return r < (double)RBS__COLLISION_SWEEPS ? (uint32_t)r : RBS__COLLISION_SWEEPS;
 }
