@@ -1061,11 +1061,16 @@ static void test_echoed_text_is_escaped(void **state)
         const char *path; /* the error's key path */
         const char *want; /* its message; NULL: not checked */
     } cases[] = {
-        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[31mo\": 1}}", "simulation.fo?[31mo", NULL},
-        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[2J\\u007fo\": 1}}", "simulation.fo?[2J?o", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[31mo\": 1}}", "simulation.\"fo?[31mo\"", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"fo\\u001b[2J\\u007fo\": 1}}", "simulation.\"fo?[2J?o\"", NULL},
         {"{\"simulation\": {\"steps\": 1, \"a\xc2\x9b" "31m\xe2\x80\xae" "b\": 1}}", "simulation.a?31m?b", NULL},
         {"{\"simulation\": {\"steps\": 1, \"k\xc3\xa4\xe2\x82\xac\": 1}}", "simulation.k\xc3\xa4\xe2\x82\xac", NULL},
         {"{\"simulation\": {\"steps\": 1, \"x\\u009b\": ", "simulation.x?", NULL},
+        /* keys the path could not tell apart are quoted */
+        {"{\"simulation\": {\"steps\": 1, \"\": 1}}", "simulation.\"\"", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"d.t\": 1}}", "simulation.\"d.t\"", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"d t\": 1}}", "simulation.\"d t\"", NULL},
+        {"{\"simulation\": {\"steps\": 1, \"a[0]\": 1}}", "simulation.\"a[0]\"", NULL},
         {"{\"simulation\": {\"steps\": 1}, \"renderers\": [{\"type\": \"\\u001b]0;t\\u0007\", \"path\": \"p\"}]}",
          "renderers[0].type",
          "a name must not contain spaces, control characters, '#', '\"', '=' or ',', got \"?]0;t?\""},

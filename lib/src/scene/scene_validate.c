@@ -47,7 +47,11 @@ static rbs__loc loc_key(const vctx *v, const cJSON *item) { return loc_at(v, ite
 static size_t push_key(vctx *v, const char *key)
 {
     size_t saved = v->path_len;
-    int k = snprintf(v->path + v->path_len, sizeof v->path - v->path_len, "%s%s",
+    /* a key the path could not tell apart -- empty, or holding '.', '[',
+     * ']', '"' or a blank -- is written in quotes: simulation."" and
+     * simulation."a.b", not simulation. and simulation.a.b */
+    const int quote = key[0] == '\0' || strpbrk(key, ".[]\" \t\r\n") != NULL;
+    int k = snprintf(v->path + v->path_len, sizeof v->path - v->path_len, quote ? "%s\"%s\"" : "%s%s",
                      v->path_len ? "." : "", key);
     if (k > 0) {
         v->path_len += (size_t)k;
