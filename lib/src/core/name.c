@@ -1,6 +1,8 @@
 /*
  * name.c - the one rule for body and material names (name.h), used by the
- * world's API and by the scene validator alike.
+ * world's API and by the scene validator alike, and the display rule it
+ * rests on (rbs_text_shown_len, rbsim.h), used by the scene errors and the
+ * front ends.
  */
 #include "core/name.h"
 
@@ -10,7 +12,9 @@
 #include "core/world_internal.h" /* rbs__utf8_seq */
 #include "rbsim/rbsim.h"         /* RBS_NAME_MAX */
 
-uint32_t rbs__code_point(const unsigned char *s, size_t *len)
+/* The code point of the well-formed UTF-8 sequence at s and its length in
+ * bytes (*len). */
+static uint32_t code_point(const unsigned char *s, size_t *len)
 {
     if (s[0] < 0x80) {
         *len = 1;
@@ -29,7 +33,14 @@ uint32_t rbs__code_point(const unsigned char *s, size_t *len)
            (uint32_t)(s[3] & 0x3F);
 }
 
-const char *rbs__unseen_kind(uint32_t u)
+/* What a code point beyond ASCII that a name may not hold, and a terminal
+ * is not shown, is (static text; NULL: a name may hold it): C1 controls,
+ * Unicode's spaces, line and paragraph separators, and the invisible
+ * formatting characters (soft hyphen, zero-width ones, the bidirectional
+ * marks, embeddings, overrides and isolates, which reorder the text around
+ * them on a terminal: Boucher and Anderson, "Trojan Source", 2021), and the
+ * byte order mark. */
+static const char *unseen_kind(uint32_t u)
 {
     if (u >= 0x80 && u <= 0x9F)
         return "a control character";
@@ -58,7 +69,7 @@ size_t rbs_text_shown_len(const char *text, size_t len, size_t *skip)
         *skip = n > 0 ? n : 1;
     if (n == 0 || c < 0x20 || c == 0x7f)
         return 0;
-    return c < 0x80 || rbs__unseen_kind(rbs__code_point((const unsigned char *)text, &k)) == NULL ? n : 0;
+    return c < 0x80 || unseen_kind(code_point((const unsigned char *)text, &k)) == NULL ? n : 0;
 }
 
 rbs__name_kind rbs__name_check(const char *name, rbs__name_fault *fault)
@@ -80,8 +91,8 @@ rbs__name_kind rbs__name_check(const char *name, rbs__name_fault *fault)
         }
         if (c >= 0x80) {
             size_t k;
-            fault->code = rbs__code_point((const unsigned char *)name + i, &k);
-            if ((fault->what = rbs__unseen_kind(fault->code)) != NULL)
+            fault->code = code_point((const unsigned char *)name + i, &k);
+            if ((fault->what = unseen_kind(fault->code)) != NULL)
                 return fault->kind = RBS__NAME_UNSEEN;
         }
     }

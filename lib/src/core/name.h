@@ -17,7 +17,7 @@ typedef enum rbs__name_kind {
     RBS__NAME_LENGTH = 1,  /* not 1 .. RBS_NAME_MAX - 1 bytes */
     RBS__NAME_UTF8 = 2,    /* a byte that starts no well-formed UTF-8 sequence */
     RBS__NAME_ASCII = 3,   /* a blank, an ASCII control, '#', '"', '=' or ',' */
-    RBS__NAME_UNSEEN = 4   /* a code point beyond ASCII that rbs__unseen_kind names */
+    RBS__NAME_UNSEEN = 4   /* a code point beyond ASCII that rbs_text_shown_len does not show */
 } rbs__name_kind;
 
 /* The first fault of a name: its kind, where (byte, 1-based; for LENGTH the
@@ -35,7 +35,8 @@ typedef struct rbs__name_fault {
 /* Check name (NUL-terminated, not NULL) against the rule: 1 to
  * RBS_NAME_MAX - 1 bytes of well-formed UTF-8 (RFC 3629) without blanks or
  * controls (bytes 0x01-0x20 and 0x7F), '#', '"', '=' or ',' (so that it
- * fits the text scene format too), nor a code point rbs__unseen_kind names.
+ * fits the text scene format too), nor a code point beyond ASCII that
+ * rbs_text_shown_len (rbsim.h) does not show.
  * (A material's "*", the scene files' "any material", is its callers'.)
  * Returns fault->kind; *fault is filled either way.  Pure: thread-safe. */
 rbs__name_kind rbs__name_check(const char *name, rbs__name_fault *fault);
@@ -44,17 +45,5 @@ rbs__name_kind rbs__name_check(const char *name, rbs__name_fault *fault);
  * at byte 3", "70 bytes": the fault for a message, in out (n bytes,
  * NUL-terminated; "" for RBS__NAME_OK). */
 void rbs__name_fault_text(const rbs__name_fault *fault, char *out, size_t n);
-
-/* The code point of the well-formed UTF-8 sequence at s and its length in
- * bytes (*len). */
-uint32_t rbs__code_point(const unsigned char *s, size_t *len);
-
-/* What a code point beyond ASCII that a name may not hold is (static text;
- * NULL: a name may hold it): C1 controls, Unicode's spaces, line and
- * paragraph separators, and the invisible formatting characters (soft
- * hyphen, zero-width ones, the bidirectional marks, embeddings, overrides
- * and isolates, which reorder the text around them on a terminal: Boucher
- * and Anderson, "Trojan Source", 2021), and the byte order mark. */
-const char *rbs__unseen_kind(uint32_t u);
 
 #endif /* RBS_CORE_NAME_H */

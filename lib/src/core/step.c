@@ -191,7 +191,6 @@ double rbs__spin_reach(const rbs_world *w, uint32_t i, quat q, v3 om, v3 tau, do
     return (v3_len(rbs__inertia_times(w, i, q, om)) + v3_len(tau) * h) * n * h;
 }
 
-
 int rbs__spin_substeps(rbs_world *w, rbs_step_info *info, double reach, int exact, int *stable)
 {
     double m;

@@ -43,7 +43,6 @@
  * sub-step (no reuse across sub-steps: contacts, rollback and setters move
  * bodies in between).
  */
-#include <math.h>
 #include <string.h>
 
 #include "core/world_internal.h"

@@ -114,22 +114,17 @@ static void got(const vctx *v, const cJSON *item, char *out, size_t n)
         snprintf(out, n, "%.17g", item->valuedouble);
     } else if (cJSON_IsString(item)) {
         /* (as JSON writes it: a quote or backslash escaped, so that the
-         * value's end is plain -- "\"q", not ""q" -- a control character '?') */
+         * value's end is plain -- "\"q", not ""q"; a control or invisible
+         * character shows as '?' in the message, by rbs__scene_error's
+         * rule, rbs_text_shown_len) */
         char clean[48];
         size_t i, k = 0;
         const char *s = item->valuestring;
         for (i = 0; s[i] != '\0' && k < 40; i++) {
-            unsigned char c = (unsigned char)s[i];
-            size_t len = 1;
-            if (c >= 0x80 && rbs__unseen_kind(rbs__code_point((const unsigned char *)s + i, &len)) != NULL) {
-                /* (a character that would hide or reorder the message) */
-                clean[k++] = '?';
-                i += len - 1;
-                continue;
-            }
+            const char c = s[i];
             if (c == '"' || c == '\\')
                 clean[k++] = '\\';
-            clean[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+            clean[k++] = c;
         }
         clean[k] = '\0';
         snprintf(out, n, "\"%s\"%s", clean, s[i] != '\0' ? "..." : "");
