@@ -413,6 +413,218 @@ static void ball_rests_far_from_the_origin(void **state)
     }
 }
 
+/* ---- a small ball on a big one, dropped together ---------------------------- */
+
+/* A big ball (M = 1 kg, R = 0.2 m) with a small one (m, r = 0.05 m) resting
+ * on its top, dropped together from a gap h = 1 m onto a floor, e = 1
+ * everywhere, frictionless.  Both reach the floor at v = sqrt(2 g h).  The
+ * methods resolve simultaneous impacts pair by pair (docs/physics.md,
+ * "Simultaneous impacts are resolved pair by pair"): the floor reverses
+ * the big ball, which then meets the small one at 2 v, and the 1-D impact
+ * law sends the small ball up at u_s = (3 M - m) / (M + m) v and the big
+ * one at u_B = (M - 3 m) / (M + m) v (the textbook's "about 3 v" for
+ * m << M; Kerwin, Am. J. Phys. 40, 1972).  That is the limit of a gap
+ * between the balls going to zero, and what a real pair does when the big
+ * ball's contact with the floor is much shorter than the balls' own.  A
+ * simultaneous model (every contact aiming at e times its own approach
+ * before the impact: the pair's is 0) would send both up together at v.
+ * Measured: the launch speeds from the state 0.3 s after the impact,
+ * |u| = sqrt(v^2 + 2 g (z - z_c)) (exact for free flight; z_c the centre
+ * at the impact, the big ball's bounces on the floor keep it), for
+ * m = 0.01 and 0.1 kg (u_B < 0: the big ball bounces off the floor again).
+ * Bounds: the exact integrators (event, verlet, rk4, adaptive) reach the
+ * floor within the slop, 1e-6 R, of the touch, which changes the speeds
+ * by at most g slop / v and the launch height by the slop: 1e-6 relative.
+ * Euler (euler, selective, auto) reaches the floor g dt / 2 slow (its fall
+ * loses g^2 dt^2 of v^2 + 2 g z a step), which the impacts pass on times
+ * (3 M - m) / (M + m) < 3, and loses g^2 dt t / (2 u) of u in flight t:
+ * 1.5 g dt + g^2 dt t / (2 u).  soft is excluded from the law: it cannot
+ * pass an impulse through touching bodies (docs/methods.md, soft, "What
+ * it does not do"; it gives neither answer, 8.75 and 8.08 m/s); checked:
+ * the small ball leaves no faster than the sequential law and no slower
+ * than the simultaneous one, and the energy is not gained. */
+static void stacked_drop_case(rbs_method m, double ms)
+{
+    const double M = 1.0, R = 0.2, r = 0.05, h = 1.0, dt = 1e-3, t_after = 0.3;
+    const double v = sqrt(2.0 * G * h), us = (3.0 * M - ms) / (M + ms) * v, uB = fabs(M - 3.0 * ms) / (M + ms) * v;
+    const double ti = sqrt(2.0 * h / G);
+    rbs_world *w = mworld(m, dt, -G, 1.0);
+    rbs_material_id mat = material(w, "m", 0.0, 0.0, 1.0);
+    rbs_body_id big, small;
+    rbs_energy e0, e1;
+    floor_plane(w, mat);
+    big = ball(w, R, M, 0, 0, R + h, 0, 0, 0, mat);
+    small = ball(w, r, ms, 0, 0, 2.0 * R + r + h, 0, 0, 0, mat);
+    CHECK_OK(rbs_world_energy(w, &e0));
+    if (msteps(w, m, (int)((ti + t_after) / dt)) == 0) {
+        rbs_body_state sb = state_of(w, big), ss = state_of(w, small);
+        double ls = sqrt(ss.velocity.z * ss.velocity.z + 2.0 * G * (ss.position.z - (2.0 * R + r)));
+        double lb = sqrt(sb.velocity.z * sb.velocity.z + 2.0 * G * (sb.position.z - R));
+        CHECK_OK(rbs_world_energy(w, &e1));
+        if (m == RBS_METHOD_SOFT) {
+            report(m, "stacked drop: small <= sequential", fmax(ls - us, 0.0), 0.0);
+            report(m, "  small >= simultaneous", fmax(v - ls, 0.0), 0.0);
+            report(m, "  energy not gained (J)", fmax(e1.total - e0.total, 0.0), 1e-9 * e0.total);
+        } else {
+            double lag = euler_lag(m, dt) > 0.0;
+            double bs = lag ? 1.5 * G * dt + G * G * dt * t_after / (2.0 * us) : 1e-6 * us;
+            double bb = lag ? 1.5 * G * dt + G * G * dt * t_after / (2.0 * uB) : 1e-6 * us;
+            report(m, "stacked drop: small (3M-m)/(M+m) v", fabs(ls - us), bs);
+            report(m, "  big |M-3m|/(M+m) v", fabs(lb - uB), bb);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+static void stacked_drop_follows_sequential_impacts(void **state)
+{
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        stacked_drop_case(all_methods[i], 0.01);
+        stacked_drop_case(all_methods[i], 0.1);
+    }
+}
+
+/* ---- Newton's cradles of 3 to 5, one and two strikers -------------------- */
+
+/* n equal balls (1 kg, r = 0.1 m) in a line, no gravity, e = 1,
+ * frictionless; the first k (1 or 2) move at 1 m/s into the others, all
+ * touching or spaced 1e-4 m.  Sequential impacts (docs/physics.md) give
+ * the textbook answer: k balls leave at 1 m/s from the far end, the rest
+ * stay at rest (Herrmann & Seitz, Am. J. Phys. 50, 1982; exact for the
+ * spaced line, where the impacts are separate).  (test_contacts.c's
+ * newtons_cradle checks five touching balls with one striker.)  Bound: the
+ * n (n - k) impulses' rounding, 1e-12 m/s.  soft is excluded: it cannot
+ * pass an impulse down a chain (docs/methods.md, soft, "What it does not
+ * do"); checked for it: momentum kept (no other force acts) and energy not
+ * gained. */
+static void cradle_case(rbs_method m, int n, int k, double gap)
+{
+    rbs_world *w = mworld(m, 1e-3, 0.0, 1.0);
+    rbs_body_id b[5];
+    rbs_energy e0, e1;
+    int j;
+    for (j = 0; j < n; ++j)
+        b[j] = ball(w, 0.1, 1.0, (0.2 + gap) * j - (j < k ? 0.3 : 0.0), 0, 0, j < k ? 1.0 : 0.0, 0, 0,
+                    (rbs_material_id){0, 0});
+    CHECK_OK(rbs_world_energy(w, &e0));
+    if (msteps(w, m, 1000) == 0) {
+        double err = 0.0, p = 0.0;
+        char what[64];
+        for (j = 0; j < n; ++j) {
+            double vx = state_of(w, b[j]).velocity.x;
+            err = fmax(err, fabs(vx - (j >= n - k ? 1.0 : 0.0)));
+            p += vx;
+        }
+        CHECK_OK(rbs_world_energy(w, &e1));
+        if (m == RBS_METHOD_SOFT) {
+            snprintf(what, sizeof what, "cradle %d, %d in, gap %g: momentum", n, k, gap);
+            report(m, what, fabs(p - k), 1e-12);
+            report(m, "  energy not gained (J)", fmax(e1.total - e0.total, 0.0), 1e-12);
+        } else {
+            snprintf(what, sizeof what, "cradle %d, %d in, gap %g", n, k, gap);
+            report(m, what, err, 1e-12);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+static void cradles_pass_one_and_two_strikers(void **state)
+{
+    size_t i;
+    int n;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        for (n = 3; n <= 5; ++n) {
+            cradle_case(all_methods[i], n, 1, 0.0);
+            cradle_case(all_methods[i], n, 1, 1e-4);
+            cradle_case(all_methods[i], n, 2, 0.0);
+            cradle_case(all_methods[i], n, 2, 1e-4);
+        }
+    }
+}
+
+/* ---- a spinning projectile ----------------------------------------------- */
+
+/* A ball (r = 0.1 m, 1 kg) launched from a frictionless floor (e = 0) at
+ * (3, 0, 4) m/s spinning at (5, -7, 11) rad/s: no air, so the spin is
+ * untouched (an isotropic torque-free sphere: every method turns it by the
+ * exact rotation, and a frictionless contact has no lever on it), the
+ * orientation turns by |w| t about w (1e-15 a step of rounding), the
+ * apex is r + vz^2 / (2 g), the flight lasts T = 2 vz / g and the range is
+ * 3 T; after landing (e = 0) it slides on at 3 m/s.  Bounds: spin 0
+ * (nothing may change it); apex from the frames about it,
+ * z + vz^2 / (2 g) (exact in free flight), exact for the constant
+ * acceleration methods (1e-12), Euler's v^2 + 2 g z loses g^2 h^2 a step
+ * h: g h t / 2 for the frame after the apex, t <= vz / g + dt; the landing found in the frame holding T, for Euler
+ * up to one step h early (its flight is 2 vz / g - h: the lag g h t / 2
+ * closes the gap early), soft up to a frame late ("may bounce a frame
+ * late"); after landing, x = 3 t to rounding, z = r (soft: its sink). */
+static void spinning_projectile_keeps_its_spin(void **state)
+{
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        const double r = 0.1, dt = 1e-3, vx = 3.0, vz = 4.0, T = 2.0 * vz / G, Tend = 1.2;
+        const double om[3] = {5.0, -7.0, 11.0}, wn = sqrt(25.0 + 49.0 + 121.0);
+        const double apex = r + vz * vz / (2.0 * G);
+        rbs_world *w = mworld(m, dt, -G, 0.0);
+        rbs_material_id mat = material(w, "m", 0.0, 0.0, 0.0);
+        rbs_sphere_def d;
+        rbs_body_id b;
+        double prev_vz = vz, apex_err = -1.0, t_land = -1.0, werr = 0.0, qerr = 0.0;
+        int k, n = (int)(Tend / dt + 0.5), failed = 0;
+        floor_plane(w, mat);
+        rbs_sphere_def_init(&d);
+        d.radius = r;
+        d.mass = 1.0;
+        d.position.z = r;
+        d.velocity.x = vx;
+        d.velocity.z = vz;
+        d.angular_velocity = (rbs_vec3){om[0], om[1], om[2]};
+        d.material = mat;
+        CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+        for (k = 1; k <= n && !failed; ++k) {
+            rbs_body_state s;
+            double t = k * dt, ang = wn * t, qe[4];
+            failed = msteps(w, m, 1);
+            if (failed)
+                break;
+            s = state_of(w, b);
+            if (prev_vz > 0.0 && s.velocity.z <= 0.0)
+                apex_err = fabs(s.position.z + s.velocity.z * s.velocity.z / (2.0 * G) - apex);
+            if (t_land < 0.0 && prev_vz < 0.0 && s.velocity.z >= 0.0)
+                t_land = t;
+            prev_vz = s.velocity.z;
+            werr = fmax(werr, fabs(s.angular_velocity.x - om[0]) + fabs(s.angular_velocity.y - om[1]) +
+                                  fabs(s.angular_velocity.z - om[2]));
+            qe[0] = cos(ang / 2.0);
+            qe[1] = sin(ang / 2.0) * om[0] / wn;
+            qe[2] = sin(ang / 2.0) * om[1] / wn;
+            qe[3] = sin(ang / 2.0) * om[2] / wn;
+            qerr = fmax(qerr, fmax(fmax(fabs(s.orientation.w - qe[0]), fabs(s.orientation.x - qe[1])),
+                                   fmax(fabs(s.orientation.y - qe[2]), fabs(s.orientation.z - qe[3]))));
+        }
+        if (!failed) {
+            rbs_body_state s = state_of(w, b);
+            double lag = euler_lag(m, dt), early = lag > 0.0 ? 2.0 * lag : 0.0;
+            double late = m == RBS_METHOD_SOFT ? 2.0 * dt : dt;
+            report(m, "projectile: spin unchanged", werr, 0.0);
+            report(m, "  orientation exp(w t)", qerr, 1e-15 * n);
+            report(m, "  apex r + vz^2/2g", apex_err, G * lag * (vz / G + dt) + 1e-12);
+            report(m, "  landing frame - T (early)", fmax(T - t_land, 0.0), early);
+            report(m, "  landing frame - T (late)", fmax(t_land - T, 0.0), late);
+            report(m, "  range: x = 3 t after landing", fabs(s.position.x - vx * Tend), 1e-12);
+            report(m, "  at rest on the floor: |vz|", fabs(s.velocity.z), m == RBS_METHOD_SOFT ? 1e-9 : 0.0);
+            report(m, "  height", fabs(s.position.z - r),
+                   m == RBS_METHOD_SOFT ? 1e-6 * r + soft_sink(G, dt) * (1.0 + 1e-3) : 1e-6 * r);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -422,6 +634,9 @@ int main(void)
         cmocka_unit_test(ball_between_walls_keeps_its_period),
         cmocka_unit_test(constant_torque_spins_up_linearly),
         cmocka_unit_test(ball_rests_far_from_the_origin),
+        cmocka_unit_test(stacked_drop_follows_sequential_impacts),
+        cmocka_unit_test(cradles_pass_one_and_two_strikers),
+        cmocka_unit_test(spinning_projectile_keeps_its_spin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
