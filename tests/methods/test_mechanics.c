@@ -825,6 +825,77 @@ static void rolling_ball_into_a_wall(void **state)
     }
 }
 
+/* The same ball rolling on a floor (mu_s = mu_k = mu, e = 0.5 for both
+ * planes) under gravity at 2 m/s into the wall, touching it at
+ * tc = 0.2003 s: the wall's friction lifts it (vz' = J / m > 0), so the
+ * floor's contact opens in the impact and takes no impulse, and the
+ * answer is the wall's alone: vx' = -e v, w_y' = w_y - R J / I, and
+ * vz = J / m - g (t - tc) in the frame after.  mu = 0.3 sticks
+ * (J = 2/7 m v), 0.1 slides (J = mu (1 + e) m v).  Bounds: vx and w_y an
+ * impulse's rounding, 1e-12 of v; vz that plus g times the touch's time
+ * error (touch_error / v; soft's frame late is in t - tc already: it
+ * bounces at the frame's end, so 1e-12 as well -- measured exact).
+ * selective takes the frame's Euler step first and strikes with velocities
+ * that carry the gravity of the frame's part after the touch, which the
+ * floor no longer supports: the slip the wall stops is off by up to g dt,
+ * so J by m g dt / 3.5, w_y by R m g dt / (3.5 I) and vz by g dt (first
+ * order: 0.049 rad/s of 5.71 at dt = 1 ms, 4.9e-3 at 0.1 ms, 4.9e-4 at
+ * 0.01 ms, touching 0.3 dt into a frame; a probe of session 50).  soft
+ * likewise: its impacts take the frame's velocities, gravity and the
+ * floor's support included ("restitution at the frame's end",
+ * docs/methods.md), and its w_y is off by the whole R m g dt / (3.5 I). */
+static void rolling_ball_on_a_floor_into_a_wall(void **state)
+{
+    const double R = 0.1, e = 0.5, v = 2.0, dt = 1e-3, I = 0.4 * R * R, x0 = 0.9 - 0.2003 * v;
+    size_t i;
+    int c;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        for (c = 0; c < 2; ++c) {
+            const double mu = c == 0 ? 0.3 : 0.1, jn = (1.0 + e) * v, stop = v / 3.5;
+            const double jt = stop <= mu * jn ? stop : mu * jn, tc = (0.9 - x0) / v;
+            rbs_world *w = mworld(m, dt, -G, e);
+            rbs_material_id mat = material(w, "m", mu, mu, e);
+            rbs_plane_def p;
+            rbs_sphere_def d;
+            rbs_body_id b;
+            rbs_body_state s;
+            int k, failed = 0;
+            floor_plane(w, mat);
+            rbs_plane_def_init(&p);
+            p.point.x = 1.0;
+            p.normal = (rbs_vec3){-1.0, 0.0, 0.0};
+            p.material = mat;
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            rbs_sphere_def_init(&d);
+            d.radius = R;
+            d.mass = 1.0;
+            d.position = (rbs_vec3){x0, 0.0, R};
+            d.velocity.x = v;
+            d.angular_velocity.y = v / R;
+            d.material = mat;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+            for (k = 1; k <= 400 && !failed; ++k) {
+                failed = msteps(w, m, 1);
+                s = state_of(w, b);
+                if (s.velocity.x < 0.0)
+                    break;
+            }
+            if (!failed) {
+                const double tau = k * dt - tc, terr = touch_error(m, v, v, dt, 1e-6 * R) / v;
+                const double sel = m == RBS_METHOD_SELECTIVE || m == RBS_METHOD_SOFT ? 1.0 : 0.0;
+                report(m, mu == 0.3 ? "rolling into a wall on a floor: sticks" : "rolling into a wall on a floor: slides",
+                       fabs(s.velocity.x + e * v), 1e-12 * v);
+                report(m, "  vz = J/m - g (t - tc)", fabs(s.velocity.z - (jt - G * tau)), 1e-12 * v + G * terr + sel * G * dt);
+                report(m, "  w_y' = v/R - R J / I", fabs(s.angular_velocity.y - (v / R - R * jt / I)),
+                       1e-12 * v / R + sel * R * G * dt / (3.5 * I));
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* ---- an incline at the rolling threshold ------------------------------------ */
 
 /* A ball (r = 0.1 m, 1 kg) from rest on a 30-degree incline (normal
@@ -917,6 +988,7 @@ int main(void)
         cmocka_unit_test(spinning_projectile_keeps_its_spin),
         cmocka_unit_test(bouncing_ball_comes_to_rest),
         cmocka_unit_test(rolling_ball_into_a_wall),
+        cmocka_unit_test(rolling_ball_on_a_floor_into_a_wall),
         cmocka_unit_test(incline_at_the_rolling_threshold),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
