@@ -896,6 +896,65 @@ static void rolling_ball_on_a_floor_into_a_wall(void **state)
     }
 }
 
+/* ---- sliding up an incline, rolling back --------------------------------- */
+
+/* A ball (r = 0.1 m, 1 kg) launched without spin at v0 = 3 m/s up a
+ * 20-degree incline, mu_s = mu_k = 0.2 (tan th = 0.364 <= 3.5 mu: it can
+ * roll).  It slides up, friction down the slope: a = -g (sin th + mu cos th),
+ * spin growing at 5 mu g cos th / (2 r), until v = r w at t1 = v0 /
+ * (g sin th + 7/2 mu g cos th); then it rolls up at -5/7 g sin th, stops at
+ * t2 and rolls back down (static friction, the same 2/7 m g sin th, holds
+ * through v = 0).  Its angular momentum about the contact line, m r v +
+ * I w, changes only by gravity's torque, -m g r sin th, whatever friction
+ * does, so once rolling v(T) = 5/7 (v0 - g sin th T) -- exact for every
+ * method whatever step the switch falls in (bound 1e-12 of v0, the
+ * constant accelerations' and the stick impulse's rounding).  Position:
+ * the two parabolas; Euler's sum of end-of-step speeds lags by
+ * h/2 (v(T) - v0) (euler_lag; measured 2.2259e-3 m of the bound's
+ * 2.2307e-3 at dt = 1 ms) plus the kink's h^2 (a1 - a2); the switch found
+ * within a step adds the slip over it, mu g cos th dt^2 (as the level
+ * floor's, above).  soft: its speeds exact too (measured), the sink of its
+ * contact, slop + g cos th / omega^2, under the height. */
+static void sliding_up_an_incline_rolls_back(void **state)
+{
+    const double r = 0.1, v0 = 3.0, mu = 0.2, th = 20.0 * PI_ / 180.0, dt = 1e-3, T = 1.5;
+    const double sn = sin(th), cs = cos(th), a1 = G * (sn + mu * cs), a2 = 5.0 / 7.0 * G * sn;
+    const double t1 = v0 / (G * sn + 3.5 * mu * G * cs), v1 = v0 - a1 * t1;
+    const double s_exact = v0 * t1 - a1 * t1 * t1 / 2.0 + v1 * (T - t1) - a2 * (T - t1) * (T - t1) / 2.0;
+    const double vT = 5.0 / 7.0 * (v0 - G * sn * T);
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        const int soft = m == RBS_METHOD_SOFT;
+        rbs_world *w = mworld(m, dt, -G, 0.0);
+        rbs_material_id mat = material(w, "m", mu, mu, 0.0);
+        rbs_plane_def p;
+        rbs_body_id b;
+        rbs_plane_def_init(&p);
+        /* rising along +x: the normal (-sin, 0, cos), up the slope (cos, 0, sin) */
+        p.normal = (rbs_vec3){-sn, 0.0, cs};
+        p.material = mat;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        b = ball(w, r, 1.0, -r * sn, 0.0, r * cs, v0 * cs, 0.0, v0 * sn, mat);
+        if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+            rbs_body_state st = state_of(w, b);
+            double up = (st.position.x + r * sn) * cs + (st.position.z - r * cs) * sn;
+            double normal = -(st.position.x + r * sn) * sn + (st.position.z - r * cs) * cs;
+            double v_up = st.velocity.x * cs + st.velocity.z * sn, v_n = -st.velocity.x * sn + st.velocity.z * cs;
+            double sink = soft ? 1e-6 * r + G * cs * dt * dt / (4.0 * PI_ * PI_) : 0.0;
+            double xb = euler_lag(m, dt) * fabs(vT - v0) + (a1 - a2) * dt * dt + mu * G * cs * dt * dt + 1e-12;
+            report(m, "up the incline: v(T) = 5/7 (v0 - g sin T)", fabs(v_up - vT) + fabs(v_n) + fabs(st.velocity.y),
+                   1e-12 * v0);
+            /* (rolling up the slope along +x turns about +y) */
+            report(m, "  rolling: r w = v", fabs(r * st.angular_velocity.y - v_up), 1e-12 * v0);
+            report(m, "  distance, two parabolas", fabs(up - s_exact), xb);
+            report(m, "  height over the plane", fabs(normal + sink), soft ? 1e-9 : 1e-12);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 /* ---- an incline at the rolling threshold ------------------------------------ */
 
 /* A ball (r = 0.1 m, 1 kg) from rest on a 30-degree incline (normal
@@ -990,6 +1049,7 @@ int main(void)
         cmocka_unit_test(rolling_ball_into_a_wall),
         cmocka_unit_test(rolling_ball_on_a_floor_into_a_wall),
         cmocka_unit_test(incline_at_the_rolling_threshold),
+        cmocka_unit_test(sliding_up_an_incline_rolls_back),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
