@@ -885,9 +885,10 @@ static void rolling_ball_on_a_floor_into_a_wall(void **state)
             if (!failed) {
                 const double tau = k * dt - tc, terr = touch_error(m, v, v, dt, 1e-6 * R) / v;
                 const double sel = m == RBS_METHOD_SELECTIVE || m == RBS_METHOD_SOFT ? 1.0 : 0.0;
-                report(m, mu == 0.3 ? "rolling into a wall on a floor: sticks" : "rolling into a wall on a floor: slides",
+                report(m, mu == 0.3 ? "wall, on a floor: sticks" : "wall, on a floor: slides",
                        fabs(s.velocity.x + e * v), 1e-12 * v);
-                report(m, "  vz = J/m - g (t - tc)", fabs(s.velocity.z - (jt - G * tau)), 1e-12 * v + G * terr + sel * G * dt);
+                report(m, "  vz = J/m - g (t - tc)", fabs(s.velocity.z - (jt - G * tau)),
+                       1e-12 * v + G * terr + sel * G * dt);
                 report(m, "  w_y' = v/R - R J / I", fabs(s.angular_velocity.y - (v / R - R * jt / I)),
                        1e-12 * v / R + sel * R * G * dt / (3.5 * I));
             }
