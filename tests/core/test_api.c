@@ -537,10 +537,12 @@ static void capacity_error_leaves_world_unchanged(void **state)
                                         "e123456789f123456789g1234";
         s.name = long_name;
         assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
-        assert_non_null(strstr(rbs_world_last_error(w), "name longer than"));
+        assert_non_null(strstr(rbs_world_last_error(w), "sphere name must have 1 to 63 bytes"));
+        assert_non_null(strstr(rbs_world_last_error(w), "got 65 bytes"));
         s.name = "\xff";
         assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
-        assert_non_null(strstr(rbs_world_last_error(w), "not valid UTF-8"));
+        assert_non_null(strstr(rbs_world_last_error(w), "sphere name must have 1 to 63 bytes of UTF-8"));
+        assert_non_null(strstr(rbs_world_last_error(w), "got byte 0xff at byte 1, which starts no UTF-8"));
         s.name = NULL;
         s.radius = -1.0;
         assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);

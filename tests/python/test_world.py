@@ -393,7 +393,7 @@ def test_a_full_world_names_a_bad_definition_first():
     w.add_sphere("a")
     cases = [
         (dict(name="a"), rbsim.InvalidError, 'sphere "a": name already used'),
-        (dict(name="b" * 64), rbsim.InvalidError, "name: must be at most 63 bytes"),
+        (dict(name="b" * 64), rbsim.InvalidError, "sphere name must have 1 to 63 bytes"),
         (dict(name="a\0b"), rbsim.InvalidError, "name: must not contain NUL"),
         (dict(name="\udcff"), rbsim.InvalidError, "name: not valid Unicode"),
         (dict(name=3), TypeError, "name: expected a string"),

@@ -2,7 +2,10 @@
 
 Wrong types raise :class:`ArgumentTypeError` (a TypeError), NaN and infinity
 raise :class:`NumericError`, out-of-range integers :class:`InvalidError`;
-every message names the argument.
+every message names the argument.  Names of bodies and materials are the
+library's to judge (one rule, core/name.h, whose message names the
+character and its byte): here only what C cannot be given is refused (not a
+str, a NUL, a lone surrogate).
 """
 
 from __future__ import annotations
@@ -139,25 +142,6 @@ def text(value: Any, what: str, optional: bool = False) -> Optional[bytes]:
     except UnicodeEncodeError as exc:
         raise _e.error_class(-1)("%s: not valid Unicode text: a lone surrogate %r at "
                                  "position %d" % (what, value[exc.start], exc.start)) from None
-
-
-_NAME_MAX = 64  # RBS_NAME_MAX: a name is at most 63 bytes of UTF-8
-
-
-def name(value: Any, what: str, material: bool = False) -> bytes:
-    """text() of a body's or material's name, shorter than RBS_NAME_MAX
-    bytes (a material's also not "" nor "*"): checked here so that the
-    message names the argument and echoes the value (the library's said
-    "sphere name longer than 63 bytes")."""
-    raw = text(value, what)
-    assert raw is not None
-    if len(raw) >= _NAME_MAX:
-        raise _e.error_class(-1)("%s: must be at most %d bytes of UTF-8, got %d bytes (%s)"
-                                 % (what, _NAME_MAX - 1, len(raw), _describe(value)))
-    if material and raw in (b"", b"*"):
-        raise _e.error_class(-1)("%s: a material's name must not be empty nor \"*\" (which "
-                                 "means any material), got %r" % (what, value))
-    return raw
 
 
 def numbers_text(values: Tuple[float, ...]) -> str:

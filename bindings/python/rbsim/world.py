@@ -459,6 +459,15 @@ class BodyMap(_Handle, Mapping[str, Body]):
     def __getitem__(self, name: str) -> Body:
         return self._world.body(name)
 
+    def __contains__(self, name: object) -> bool:
+        # a str no body can be named ("", one holding a NUL) is not in the
+        # map (Mapping's own raised the InvalidError of body("a\0"))
+        if isinstance(name, str) and (not name or "\0" in name):
+            self._world._acquire()  # (a closed world still says so)
+            self._world._lock.release()
+            return False
+        return super().__contains__(name)
+
     def __iter__(self) -> Iterator[str]:
         return iter([b.name for b in self._world.all_bodies() if b.name])
 
@@ -925,7 +934,8 @@ class World(_Handle):
         under the scene files' rule: no spaces, control characters, '#',
         '"', '=', ',' nor invisible formatting characters, and not "*";
         else InvalidError naming the character and its byte)."""
-        raw = _check.name(name, "name", material=True)
+        # (the library judges the name, and its message says why: one rule)
+        raw = _check.text(name, "name")
         out = ffi.new("rbs_material_id *")
         self._call(lib.rbs_world_add_material, raw, out)
         return Material(self, out, name)
@@ -1063,9 +1073,11 @@ class World(_Handle):
         """Add a sphere; None keeps the library's default.
 
         Args:
-            name: optional unique name (< 64 bytes, under the scene
-                files' rule as for add_material: InvalidError naming the
-                character and its byte).
+            name: optional unique name (None or "": unnamed), under the
+                scene files' rule as for add_material (InvalidError with
+                the library's message, naming the character and its
+                byte).  An unnamed body is kept by save() and
+                checkpoint(), but is not in :attr:`bodies`.
             radius: m, > 0 (default 0.1).
             mass: kg, > 0 (default 1).
             density: kg/m^3, >= 0 (default 0: use mass); mass = density
@@ -1094,7 +1106,7 @@ class World(_Handle):
         lib.rbs_sphere_def_init_sized(d, ffi.sizeof("rbs_sphere_def"))
         keep = []
         if name is not None:
-            raw = _check.name(name, "name")
+            raw = _check.text(name, "name")
             keep.append(ffi.new("char[]", raw))
             d.name = keep[-1]
         # (the library's ranges, checked here to echo the value exactly)
@@ -1152,7 +1164,7 @@ class World(_Handle):
         lib.rbs_plane_def_init_sized(d, ffi.sizeof("rbs_plane_def"))
         keep = []
         if name is not None:
-            keep.append(ffi.new("char[]", _check.name(name, "name")))
+            keep.append(ffi.new("char[]", _check.text(name, "name")))
             d.name = keep[-1]
         if point is not None:
             _set_vec3(d.point, _check.vector(point, "point"))
@@ -1176,8 +1188,15 @@ class World(_Handle):
         self._call(lib.rbs_world_remove_body, cid[0])
 
     def body(self, name: str) -> Body:
-        """The body of that name (NotFoundError, a KeyError, if none)."""
+        """The body of that name (NotFoundError, a KeyError, if none; ""
+        names no body: unnamed ones are in :meth:`all_bodies`)."""
         raw = _check.text(name, "name")
+        if not raw:
+            # (C's RBS_E_INVALID for "" read "invalid argument: no body
+            # named ''", and `"" in world.bodies` raised it: a probe of
+            # session 50)
+            raise _e.error_class(lib.RBS_E_NOT_FOUND)(
+                "no body named '' (unnamed bodies have no name to find: see all_bodies())")
         out = ffi.new("rbs_body_id *")
         self._query("no body named %r" % name, lib.rbs_world_find_body, raw, out)
         return Body(self, out)

@@ -207,7 +207,10 @@ typedef enum rbs_texture {
 
 /** Longest body or material name, including the terminating NUL.  Names
  * follow the scene files' rule (scenes/FORMAT.md, "Names"), so that every
- * world can be written as a scene: 1 to RBS_NAME_MAX - 1 bytes of
+ * name a world holds could be written in a scene file (no function writes
+ * a world as a scene: rbs_scene_save writes a scene read from files, whose
+ * bodies all have names; a body added unnamed through this API is kept, as
+ * "", by checkpoints, rbs_world_save): 1 to RBS_NAME_MAX - 1 bytes of
  * well-formed UTF-8 without blanks or control characters, '#', '"', '=',
  * ',', Unicode's spaces, C1 controls, line and paragraph separators or
  * invisible formatting characters (zero-width ones, bidirectional marks,
@@ -489,7 +492,9 @@ RBS_API rbs_status rbs_world_add_plane(rbs_world *world,
                                        rbs_body_id *out);
 /** Remove a body; its id and slot's old ids become stale. */
 RBS_API rbs_status rbs_world_remove_body(rbs_world *world, rbs_body_id id);
-/** Find a body by name. */
+/** Find a body by name: RBS_E_NOT_FOUND if no body has it, RBS_E_INVALID
+ * for NULL or "" (no name: an unnamed body is found by its slot,
+ * rbs_world_body_at). */
 RBS_API rbs_status rbs_world_find_body(const rbs_world *world, const char *name,
                                        rbs_body_id *out);
 /** Id of the body in a slot, or RBS_E_NOT_FOUND if the slot is free. */

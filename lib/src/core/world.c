@@ -919,11 +919,9 @@ static rbs_status check_name(rbs_world *w, const char *kind, const char *name)
     char why[96];
     /* (NULL and "": unnamed) */
     if (name != NULL && name[0] != '\0' && rbs__name_check(name, &fault) != RBS__NAME_OK) {
+        /* (one message for every fault, as a material's: "got 64 bytes",
+         * "got byte 0xff at byte 1, which starts no UTF-8 sequence") */
         rbs__name_fault_text(&fault, why, sizeof why);
-        if (fault.kind == RBS__NAME_LENGTH)
-            FAIL(w, RBS_E_INVALID, "%s name longer than %d bytes (%s)", kind, RBS_NAME_MAX - 1, why);
-        if (fault.kind == RBS__NAME_UTF8)
-            FAIL(w, RBS_E_INVALID, "%s name is not valid UTF-8: %s", kind, why);
         FAIL(w, RBS_E_INVALID, "%s name " NAME_RULE ", got %s", kind, RBS_NAME_MAX - 1, why);
     }
     if (name_taken(w, name))
