@@ -1821,12 +1821,16 @@ static int checkpoint_matches(const rbs_world *scene_world,
         if (!ha && !hb)
             continue;
         if (ha != hb || sa.type != sb.type || strcmp(sa.name, sb.name) != 0) {
-            snprintf(why, n, "body slot %lu: the scene has %s%s%s%s, the "
-                             "checkpoint %s%s%s%s",
-                     (unsigned long)slot, ha ? type_name(sa.type) : "none",
-                     ha ? " '" : "", ha ? sa.name : "", ha ? "'" : "",
-                     hb ? type_name(sb.type) : "none", hb ? " '" : "",
-                     hb ? sb.name : "", hb ? "'" : "");
+            /* (a body the API added without a name, which no scene can
+             * hold, is "an unnamed sphere": it read "sphere ''") */
+            int ua = ha && sa.name[0] == '\0', ub = hb && sb.name[0] == '\0';
+            snprintf(why, n, "body slot %lu: the scene has %s%s%s%s%s, the "
+                             "checkpoint %s%s%s%s%s",
+                     (unsigned long)slot, ua ? "an unnamed " : "",
+                     ha ? type_name(sa.type) : "none", ha && !ua ? " '" : "",
+                     ha ? sa.name : "", ha && !ua ? "'" : "", ub ? "an unnamed " : "",
+                     hb ? type_name(sb.type) : "none", hb && !ub ? " '" : "",
+                     hb ? sb.name : "", hb && !ub ? "'" : "");
             return -1;
         }
         if (body_matches(scene_world, ck, &sa, &sb, why, n) != 0)

@@ -47,6 +47,27 @@ static void resume_is_bit_identical(void **state)
     assert_true(rbs_world_hash(a) == rbs_world_hash(b));
     assert_int_equal(rbs_world_step_count(b), 700);
     CHECK_OK(rbs_world_find_body(b, "spinner", &id));
+    /* Bodies added without a name (the floor and the five balls: the API
+     * takes NULL, which no scene file can hold) come back unnamed, each in
+     * its slot, and "" finds none of them (RBS_NAME_MAX, scenes/FORMAT.md
+     * "Names"). */
+    {
+        uint32_t slot, unnamed = 0;
+        for (slot = 0; slot < 7; slot++) {
+            rbs_body_id ia, ib;
+            rbs_body_state sa, sb;
+            CHECK_OK(rbs_world_body_at(a, slot, &ia));
+            CHECK_OK(rbs_world_body_at(b, slot, &ib));
+            CHECK_OK(rbs_body_get_state(a, ia, &sa));
+            CHECK_OK(rbs_body_get_state(b, ib, &sb));
+            assert_string_equal(sa.name, sb.name);
+            assert_int_equal(sa.type, sb.type);
+            unnamed += sb.name[0] == '\0';
+        }
+        assert_int_equal(unnamed, 6);
+        assert_int_equal(rbs_world_body_at(b, 7, &id), RBS_E_NOT_FOUND);
+        assert_int_equal(rbs_world_find_body(b, "", &id), RBS_E_INVALID);
+    }
     step_n(a, 800);
     step_n(b, 800);
     assert_true(rbs_world_hash(a) == rbs_world_hash(b));

@@ -223,3 +223,45 @@ def test_resume_a_checkpoint_of_the_command(tmp_path):
     resumed.step(300)
     w.step(300)
     assert resumed.hash() == w.hash()
+
+
+def test_an_unnamed_body_round_trips_and_a_scene_resume_names_it(write_scene, tmp_path):
+    # A body added without a name (None or "": no scene file can hold one)
+    # is kept by save() and checkpoint(), unnamed, in its slot; a scene
+    # cannot be resumed from that checkpoint, and the command says which
+    # slot and why ("an unnamed sphere"; it read "sphere ''": a probe of
+    # session 50).
+    import subprocess
+    from test_cli_agreement import cli_path
+    scene = {"format": 1, "simulation": {"dt": 0.001, "steps": 100},
+             "materials": [{"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3}],
+             "bodies": [{"name": "a", "type": "sphere", "radius": 0.1, "mass": 1,
+                         "position": [0, 0, 1]},
+                        {"name": "floor", "type": "plane", "point": [0, 0, 0],
+                         "normal": [0, 0, 1]}]}
+    path = write_scene(scene)
+    w = rbsim.load(path)
+    settings = dict(w.settings)
+    del settings["gravity_mode"]
+    u = rbsim.World(**settings)
+    u.set_material("*", "*", static=0.5, kinetic=0.3)
+    u.add_sphere(radius=0.1, mass=1, position=(0, 0, 1))
+    u.add_plane("floor", point=(0, 0, 0), normal=(0, 0, 1))
+    u.step(10)
+    u.save(tmp_path / "u.ck")
+    r = rbsim.resume(tmp_path / "u.ck")
+    assert [b.name for b in r.all_bodies()] == ["", "floor"]
+    assert r.hash() == u.hash() and list(r.bodies) == ["floor"]
+    out = subprocess.run([str(cli_path()), "run", str(path), "--resume", str(tmp_path / "u.ck"),
+                          "--quiet"], cwd=tmp_path, stdin=subprocess.DEVNULL,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 3, out.stderr
+    assert ("body slot 0: the scene has sphere 'a', the checkpoint an unnamed sphere"
+            in out.stderr), out.stderr
+    # the scene's own world, saved, resumes (the refusal is the name's)
+    w.step(10)
+    w.save(tmp_path / "n.ck")
+    out = subprocess.run([str(cli_path()), "run", str(path), "--resume", str(tmp_path / "n.ck"),
+                          "--quiet"], cwd=tmp_path, stdin=subprocess.DEVNULL,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
