@@ -95,6 +95,10 @@ int rbsf_check_scene_outputs(const rbs_scene *scene);
 /** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */
 void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
+/** Print a scene's warnings (rbs_scene_warning_get), one per line as
+ * "FILE:LINE:COL: PATH: warning: MESSAGE", at most RBS_SCENE_ERRORS_MAX
+ * then how many more (nothing when it has none). */
+void rbsf_print_scene_warnings(const rbs_scene *scene, FILE *out);
 /** Apply the command line's steps, dt and method to a scene
  * (rbs_scene_override); 0, or RBSF_EXIT_USAGE with the reason on stderr
  * (`what`: how the message names the options, e.g. "rbsim run: cannot

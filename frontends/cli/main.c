@@ -130,7 +130,9 @@ static const char check_text[] =
     "Validate SCENE: the file, the world it builds and its renderer entries\n"
     "(including that their output folders exist); - reads it from standard\n"
     "input.  Prints every error as file:line:column: key: message.  Exit 0 if\n"
-    "valid, 3 if not.\n";
+    "valid, 3 if not.  A warning (file:line:column: key: warning: message;\n"
+    "a material named in a materials row that no body has) does not make a\n"
+    "scene invalid: exit 0.\n";
 
 static const char explain_text[] =
     "usage: rbsim explain SCENE [--method M]\n"
@@ -298,6 +300,7 @@ static int check_main(int argc, char **argv)
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
+    rbsf_print_scene_warnings(scene, stdout); /* (a valid scene: exit 0 still) */
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
         rbsf__tell(stdout, "%s: cannot build the world: %s%s%s\n", path,
@@ -428,6 +431,7 @@ static int explain_main(int argc, char **argv)
         code = RBSF_EXIT_SCENE;
         goto out;
     }
+    rbsf_print_scene_warnings(scene, stderr); /* (stdout is the pipeline) */
     /* A --method the scene cannot take ("event" with rolling resistance) is
      * the option's fault, as in run: on stderr, exit 2 (it was exit 3 on
      * stdout, as a scene error: a probe of session 46). */
@@ -523,6 +527,7 @@ static int convert_main(int argc, char **argv)
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }
+    rbsf_print_scene_warnings(scene, stderr); /* (written as read) */
     st = rbs_scene_save_v2(scene, files[1], format, why, sizeof why);
     if (st == RBS_E_OWN_INPUT) {
         /* OUT (or a text OUT's table beside it) is a file IN is read from,

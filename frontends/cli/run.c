@@ -351,6 +351,23 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out)
                 (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
 }
 
+void rbsf_print_scene_warnings(const rbs_scene *scene, FILE *out)
+{
+    uint32_t i, n = rbs_scene_warning_count(scene);
+    for (i = 0; i < n && i < RBS_SCENE_ERRORS_MAX; i++) {
+        rbs_scene_error e;
+        size_t at;
+        if (rbs_scene_warning_get(scene, i, &e) != RBS_OK)
+            continue;
+        /* "FILE:LINE:COL: PATH: warning: MESSAGE" (text ends in message) */
+        at = strlen(e.text) - strlen(e.message);
+        fprintf(out, "%.*swarning: %s\n", (int)at, e.text, e.message);
+    }
+    if (n > RBS_SCENE_ERRORS_MAX)
+        fprintf(out, "... and %lu more warnings\n",
+                (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
+}
+
 int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const char *method, const char *what)
 {
     const rbs_status st = rbs_scene_override(scene, steps, dt, method);
@@ -381,8 +398,10 @@ static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
         st = rbs_scene_parse_json(rbsf_demo_scene, strlen(rbsf_demo_scene),
                                   "(built-in demonstration)", out);
     rbsf_stopper_leave(&signals->stopper, slot);
-    if (st == RBS_OK)
+    if (st == RBS_OK) {
+        rbsf_print_scene_warnings(*out, stderr); /* (even with --quiet) */
         return 0;
+    }
     if ((sig = rbsf_signals_caught(signals)) != 0) {
         rbsf__tell(stderr, "rbsim: stopped by %s before the run started: while "
                         "reading the scene '%s'\n",

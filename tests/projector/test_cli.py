@@ -402,6 +402,45 @@ class CliTests(Base):
             r = self.rbsim("run", s, "--steps", "2", "--quiet", *extra)
             self.assertEqual(r.returncode, 0, (extra, r.stderr))
 
+    def test_a_material_on_no_body_is_a_warning(self):
+        # A row naming a material no body has ("stel", a typo of "steel")
+        # applies to no contact, and the "*" row took the ball's contacts:
+        # `check` said "ok" (a probe of session 50).  Now check (stdout),
+        # run, explain and convert (stderr) print the library's warning at
+        # the row, as "FILE:LINE:COLUMN: PATH: warning: MESSAGE", and the
+        # scene still loads and runs (exit 0, as scenes/FORMAT.md has it);
+        # a text scene's warning names its materials.txt line.
+        mats = [{"pair": ["steel", "*"], "static": 0.9, "kinetic": 0.8},
+                {"pair": ["stel", "*"], "static": 0.1, "kinetic": 0.1},
+                {"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3}]
+        bodies = json.loads(json.dumps(SCENE["bodies"]))
+        bodies[1]["material"] = "steel"
+        p = self.scene(materials=mats, bodies=bodies)
+        with open(p) as f:
+            lines = f.read().split("\n")
+        line = next(i for i, t in enumerate(lines) if '"stel"' in t) + 1
+        column = lines[line - 1].index('"stel"') + 1
+        want = ("scene.json:%d:%d: materials[1].pair[0]: warning: material \"stel\" is on no "
+                "body, so this row applies to no contact (did you mean \"steel\"?)\n"
+                % (line, column))
+        r = self.rbsim("check", "scene.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stdout, want + "scene.json: ok (300 steps, 0 renderers)\n")
+        r = self.rbsim("run", "scene.json", "--steps", "2", "--quiet")
+        self.assertEqual((r.returncode, r.stderr), (0, want))
+        r = self.rbsim("explain", "scene.json")
+        self.assertEqual((r.returncode, r.stderr), (0, want))
+        self.assertNotIn("warning", r.stdout)
+        r = self.rbsim("convert", "scene.json", "t/config.txt")
+        self.assertEqual((r.returncode, r.stderr), (0, want))
+        r = self.rbsim("check", "t/config.txt")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("t/materials.txt:3:1: materials[1].pair[0]: warning: material \"stel\"",
+                      r.stdout)
+        # every material on a body: nothing to say
+        r = self.rbsim("check", self.scene("fine.json"))
+        self.assertEqual(r.stdout, "%s: ok (300 steps, 0 renderers)\n" % self.path("fine.json"))
+
     def test_check_refuses_what_run_refuses(self):
         # The scene's own renderer entries: two names for one file, or an
         # output onto the scene itself, are refused by `check` as by `run`

@@ -1,8 +1,10 @@
 """Loading scenes: rbsim.load (JSON and the seed's text format),
 rbsim.parse_json, overrides, and scene errors with their places."""
 
+import json
 import os
 import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -214,3 +216,33 @@ def test_max_substeps_from_json_and_config_txt(write_scene, tmp_path):
                            match=r"simulation\.max_substeps: must be an integer from 1 to "
                                  r"4294967295 \(2\^32 - 1\), got"):
             rbsim.load(write_scene(scene))
+
+
+def test_a_material_on_no_body_warns(write_scene):
+    # A row naming a material no body has ("stel", a typo of "steel") left
+    # the ball to the "*" row without a word (a probe of session 50): load()
+    # now warns with the library's text, a rbsim.SceneWarning (a
+    # UserWarning) pointing at the caller, and builds the world all the same.
+    scene = bounce_scene()
+    scene["materials"] = [{"pair": ["steel", "*"], "static": 0.9, "kinetic": 0.8},
+                          {"pair": ["stel", "*"], "static": 0.1, "kinetic": 0.1},
+                          {"pair": ["*", "*"], "static": 0.5, "kinetic": 0.3}]
+    scene["bodies"][0]["material"] = "steel"
+    path = write_scene(scene)
+    with pytest.warns(rbsim.SceneWarning) as caught:
+        w = rbsim.load(path)
+    assert len(caught) == 1
+    text = str(caught[0].message)
+    assert text.startswith(str(path) + ":") and text.endswith(
+        ': materials[1].pair[0]: material "stel" is on no body, so this row applies to no '
+        'contact (did you mean "steel"?)'), text
+    assert caught[0].filename == __file__
+    assert issubclass(rbsim.SceneWarning, UserWarning) and "SceneWarning" in rbsim.__all__
+    assert [m.name for m in w.materials()] == ["steel", "stel"]
+    with pytest.warns(rbsim.SceneWarning):
+        rbsim.parse_json(json.dumps(scene))
+    # every material on a body: no warning
+    scene["materials"].pop(1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        rbsim.load(write_scene(scene, "fine.json"))

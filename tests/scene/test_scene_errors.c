@@ -1105,6 +1105,79 @@ static void test_echoed_text_is_escaped(void **state)
     }
 }
 
+/* A material named in a "materials" row that no body has: the scene loads
+ * and builds (a material exists by being named in a row), with a warning
+ * at the material's first row, once, suggesting the closest material a
+ * body has.  The typo "stel" beside "steel" left the ball on the "*" row
+ * (mu 0.5, not the steel/rubber row's 0.9) and `rbsim check` said "ok"
+ * (a probe of session 50).  A scene whose every material is on a body,
+ * and a scene with errors, warn of nothing else. */
+static void test_unused_material_warns(void **state)
+{
+    static const char typo[] =
+        "{\"format\": 1, \"simulation\": {\"steps\": 1},\n"
+        " \"materials\": [{\"pair\": [\"steel\", \"rubber\"], \"static\": 0.9, \"kinetic\": 0.8},\n"
+        "  {\"pair\": [\"stel\", \"rubber\"], \"static\": 0.1, \"kinetic\": 0.1},\n"
+        "  {\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3},\n"
+        "  {\"pair\": [\"stel\", \"glass\"], \"static\": 0.5, \"kinetic\": 0.3}],\n"
+        " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 0.1, \"mass\": 1,"
+        " \"position\": [0, 0, 1], \"material\": \"steel\"},\n"
+        "  {\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1],"
+        " \"material\": \"rubber\"}]}\n";
+    rbs_scene *scene = NULL;
+    rbs_world *world = NULL;
+    rbs_scene_error e;
+    (void)state;
+    assert_int_equal(rbs_scene_parse_json(typo, strlen(typo), "typo.json", &scene), RBS_OK);
+    assert_int_equal(rbs_scene_error_count(scene), 0);
+    assert_int_equal(rbs_scene_warning_count(scene), 2);
+    assert_int_equal(rbs_scene_warning_get(scene, 0, &e), RBS_OK);
+    assert_string_equal(e.text, "typo.json:3:13: materials[1].pair[0]: material \"stel\" is on "
+                                "no body, so this row applies to no contact (did you mean "
+                                "\"steel\"?)");
+    assert_string_equal(e.file, "typo.json");
+    assert_string_equal(e.path, "materials[1].pair[0]");
+    assert_int_equal(e.line, 3);
+    assert_int_equal(e.column, 13);
+    /* "stel" once (its first row); "glass", with nothing close on a body */
+    assert_int_equal(rbs_scene_warning_get(scene, 1, &e), RBS_OK);
+    assert_string_equal(e.text, "typo.json:5:21: materials[3].pair[1]: material \"glass\" is on "
+                                "no body, so this row applies to no contact");
+    assert_int_equal(rbs_scene_warning_get(scene, 2, &e), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_scene_warning_get(scene, 0, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_scene_warning_get(NULL, 0, &e), RBS_E_INVALID);
+    assert_int_equal(rbs_scene_warning_count(NULL), 0);
+    /* a warning does not stop the world */
+    assert_int_equal(rbs_scene_build(scene, &world), RBS_OK);
+    rbs_world_destroy(world);
+    rbs_scene_free(scene);
+    /* every material on a body: no warning (the demonstration scenes too) */
+    {
+        static const char fine[] =
+            "{\"format\": 1, \"simulation\": {\"steps\": 1},"
+            " \"materials\": [{\"pair\": [\"steel\", \"rubber\"], \"static\": 0.9, \"kinetic\": 0.8},"
+            " {\"pair\": [\"*\", \"*\"], \"static\": 0.5, \"kinetic\": 0.3}],"
+            " \"bodies\": [{\"name\": \"ball\", \"type\": \"sphere\", \"radius\": 0.1, \"mass\": 1,"
+            " \"position\": [0, 0, 1], \"material\": \"steel\"},"
+            " {\"name\": \"floor\", \"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 0, 1],"
+            " \"material\": \"rubber\"}]}";
+        char path[64];
+        size_t k;
+        scene = NULL;
+        assert_int_equal(rbs_scene_parse_json(fine, strlen(fine), "fine.json", &scene), RBS_OK);
+        assert_int_equal(rbs_scene_warning_count(scene), 0);
+        rbs_scene_free(scene);
+        for (k = 0; k < DEMO_COUNT; k++) {
+            snprintf(path, sizeof path, "../../scenes/%s.json", demo_names[k]);
+            scene = NULL;
+            assert_int_equal(rbs_scene_load(path, RBS_SCENE_AUTO, &scene), RBS_OK);
+            if (rbs_scene_warning_count(scene) != 0)
+                fail_msg("%s warns", path);
+            rbs_scene_free(scene);
+        }
+    }
+}
+
 /* Materials: "*" rows cover missing pairs; a body without material matches
  * only "*" rows; a sphere resting on a plane (gap 0) is not an overlap. */
 static void test_material_rules(void **state)
@@ -1459,6 +1532,7 @@ int main(void)
         cmocka_unit_test(test_camera_path_keyframe_limit),
         cmocka_unit_test(test_echoed_text_is_escaped),
         cmocka_unit_test(test_material_rules), cmocka_unit_test(test_slop),
+        cmocka_unit_test(test_unused_material_warns),
         cmocka_unit_test(test_event_scope_agrees_with_the_step),
         cmocka_unit_test(test_overlap_far_apart), cmocka_unit_test(test_huge_and_tiny_directions),
     };

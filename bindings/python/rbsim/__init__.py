@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from typing import Any, List, Optional, Union
 
 from . import _check
@@ -125,7 +126,22 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
     world._scene_files = tuple(files)
     text = lib.rbs_scene_description(scene)
     world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
+    # The scene's warnings (rbs_scene_warning_get: a material named in a
+    # row that no body has), as the rbsim command prints them; the world is
+    # built all the same.  stacklevel 3: the caller of load()/parse_json().
+    warning = ffi.new("rbs_scene_error *")
+    for i in range(lib.rbs_scene_warning_count(scene)):
+        if lib.rbs_scene_warning_get(scene, i, warning) == lib.RBS_OK:
+            warnings.warn(ffi.string(warning.text).decode("utf-8", "replace"),
+                          SceneWarning, stacklevel=3)
     return world
+
+
+class SceneWarning(UserWarning):
+    """A scene that loads, with something that is likely a mistake (a
+    material named in a "materials" row that no body has: the row applies
+    to no contact).  The message is the library's, "FILE:LINE:COLUMN: PATH:
+    MESSAGE"."""
 
 
 def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
@@ -214,5 +230,5 @@ def version() -> str:
 __all__ = ["World", "Body", "BodyMap", "BodyState", "Material", "StepInfo",
            "Energy", "Momentum", "Usage", "Frame", "Run", "RunInfo", "StopRun", "METHODS",
            "load", "parse_json", "resume", "version", "Error", "SceneError", "SceneIssue",
-           "BusyError", "DeadlockError", "ArgumentTypeError", "error_class"] + sorted(
+           "SceneWarning", "BusyError", "DeadlockError", "ArgumentTypeError", "error_class"] + sorted(
                n for n in _e.GENERATED if n not in _e.SHADOWING)

@@ -79,6 +79,21 @@ RBS_API uint32_t rbs_scene_error_count(const rbs_scene *scene);
 RBS_API rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i,
                                        rbs_scene_error *out);
 
+/** Number of warnings found: what a scene may say but is likely a mistake,
+ * each kept as an rbs_scene_error is (place, key path, message; at most
+ * RBS_SCENE_ERRORS_MAX kept, all counted).  Warnings do not stop a scene
+ * building its world.  Today one kind: a material named in a "materials"
+ * row that no body has ("materials[1].pair[0]: material \"stel\" is on no
+ * body, so this row applies to no contact (did you mean \"steel\"?)"), the
+ * typo that would leave the bodies' contacts to a "*" row unnoticed; once
+ * a material, at its first row.  0 for NULL. */
+RBS_API uint32_t rbs_scene_warning_count(const rbs_scene *scene);
+/** The i-th kept warning, in file order, as rbs_scene_error_get gives
+ * errors (the strings live as long as the scene, safe to print);
+ * RBS_E_NOT_FOUND past the kept ones. */
+RBS_API rbs_status rbs_scene_warning_get(const rbs_scene *scene, uint32_t i,
+                                         rbs_scene_error *out);
+
 /** The world definition the scene asks for: settings from "simulation",
  * capacities that fit the scene exactly (max_bodies, max_materials and
  * max_pairs its counts, each at least 1; max_contacts the scene's or

@@ -83,22 +83,20 @@ static void clean_for_display(char *s)
     *out = '\0';
 }
 
-void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
-                      const char *fmt, ...)
+/* Record an error or a warning in list (kept, counted). */
+static void record(rbs_scene *scene, rbs__scene_err *list, uint32_t *kept, uint32_t *count,
+                   rbs__loc at, const char *path, const char *fmt, va_list ap)
 {
     char message[512], head[64], where[512];
     const char *file;
     size_t nt, nf, np, nm;
     char *buf;
     rbs__scene_err *e;
-    va_list ap;
-    scene->error_count++;
-    if (scene->error_kept >= RBS_SCENE_ERRORS_MAX) {
+    (*count)++;
+    if (*kept >= RBS_SCENE_ERRORS_MAX) {
         return;
     }
-    va_start(ap, fmt);
     rbs__vsnprintf_c(message, sizeof message, fmt, ap);
-    va_end(ap);
     if (path == NULL) {
         path = "";
     }
@@ -126,7 +124,7 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
     memcpy(buf + nt + 1, file, nf + 1);
     memcpy(buf + nt + 1 + nf + 1, path, np + 1);
     memcpy(buf + nt + 1 + nf + 1 + np + 1, message, nm + 1);
-    e = &scene->errors[scene->error_kept++];
+    e = &list[(*kept)++];
     e->buf = buf;
     e->file = at.file;
     e->pub.text = buf;
@@ -135,6 +133,25 @@ void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
     e->pub.message = buf + nt + 1 + nf + 1 + np + 1;
     e->pub.line = at.line;
     e->pub.column = at.column;
+}
+
+void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
+                      const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    record(scene, scene->errors, &scene->error_kept, &scene->error_count, at, path, fmt, ap);
+    va_end(ap);
+}
+
+void rbs__scene_warning(rbs_scene *scene, rbs__loc at, const char *path,
+                        const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    record(scene, scene->warnings, &scene->warning_kept, &scene->warning_count, at, path, fmt,
+           ap);
+    va_end(ap);
 }
 
 static int error_before(const rbs__scene_err *a, const rbs__scene_err *b)
@@ -500,6 +517,9 @@ void rbs_scene_free(rbs_scene *scene)
     for (i = 0; i < scene->error_kept; i++) {
         free(scene->errors[i].buf);
     }
+    for (i = 0; i < scene->warning_kept; i++) {
+        free(scene->warnings[i].buf);
+    }
     for (f = 0; f < scene->file_count; f++) {
         free(scene->files[f]);
     }
@@ -528,6 +548,23 @@ rbs_status rbs_scene_error_get(const rbs_scene *scene, uint32_t i, rbs_scene_err
         return RBS_E_NOT_FOUND;
     }
     *out = scene->errors[i].pub;
+    return RBS_OK;
+}
+
+uint32_t rbs_scene_warning_count(const rbs_scene *scene)
+{
+    return scene != NULL ? scene->warning_count : 0;
+}
+
+rbs_status rbs_scene_warning_get(const rbs_scene *scene, uint32_t i, rbs_scene_error *out)
+{
+    if (scene == NULL || out == NULL) {
+        return RBS_E_INVALID;
+    }
+    if (i >= scene->warning_kept) {
+        return RBS_E_NOT_FOUND;
+    }
+    *out = scene->warnings[i].pub;
     return RBS_OK;
 }
 

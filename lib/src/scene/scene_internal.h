@@ -126,6 +126,10 @@ struct rbs_scene {
     rbs__scene_err errors[RBS_SCENE_ERRORS_MAX];
     uint32_t error_kept;
     uint32_t error_count;
+    /* warnings (rbs_scene_warning_get): kept and counted as the errors */
+    rbs__scene_err warnings[RBS_SCENE_ERRORS_MAX];
+    uint32_t warning_kept;
+    uint32_t warning_count;
     /* files, for messages */
     char *files[RBS__SCENE_FILES_MAX];
     int32_t file_count;
@@ -171,6 +175,14 @@ int32_t rbs__scene_add_file(rbs_scene *scene, const char *name);
  * at.line == 0: no place. */
 void rbs__scene_error(rbs_scene *scene, rbs__loc at, const char *path,
                       const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+/** Record a warning: what the scene allows but is likely a mistake (as
+ * rbs__scene_error; it does not stop the scene building a world). */
+void rbs__scene_warning(rbs_scene *scene, rbs__loc at, const char *path,
+                        const char *fmt, ...)
 #ifdef __GNUC__
     __attribute__((format(printf, 4, 5)))
 #endif

@@ -1624,6 +1624,77 @@ static void check_pairs(vctx *v)
     free(other);
 }
 
+/* A material named in a "materials" row that no body has: the row applies
+ * to no contact.  Allowed (scenes/FORMAT.md: a material exists by being
+ * named in a row), but a typo ("stel" beside "steel") leaves the bodies'
+ * contacts to a "*" row without a word: a warning at the material's first
+ * row, suggesting the closest material a body has. */
+static void warn_unused_materials(vctx *v, const cJSON *mats)
+{
+    rbs_scene *s = v->scene;
+    uint32_t m = s->material_count, i, k, nused = 0;
+    unsigned char *used;
+    const char **names;
+    const cJSON *row;
+    size_t r = 0;
+    if (m == 0 || !cJSON_IsArray(mats)) {
+        return;
+    }
+    used = calloc(m, 1);
+    names = calloc(m, sizeof *names);
+    if (used == NULL || names == NULL) {
+        rbs__loc none = {0, 0, 0};
+        free(used);
+        free(names);
+        /* (not an error: the scene is valid; but not silence either) */
+        rbs__scene_warning(s, none, "materials",
+                           "out of memory: not checked for materials on no body");
+        return;
+    }
+    for (i = 0; i < s->body_count; i++) {
+        if (s->bodies[i].material >= 0 && (uint32_t)s->bodies[i].material < m) {
+            used[s->bodies[i].material] = 1;
+        }
+    }
+    for (k = 0; k < m; k++) {
+        if (used[k]) {
+            names[nused++] = s->materials[k];
+        }
+    }
+    for (row = mats->child; row != NULL; row = row->next, r++) {
+        const cJSON *pair = cJSON_IsObject(row) ? member(row, "pair") : NULL;
+        const cJSON *e;
+        size_t j = 0;
+        if (!cJSON_IsArray(pair) || cJSON_GetArraySize(pair) != 2) {
+            continue;
+        }
+        for (e = pair->child; e != NULL; e = e->next, j++) {
+            int32_t idx;
+            if (!cJSON_IsString(e) || (idx = material_find(s, e->valuestring)) < 0 ||
+                used[idx]) {
+                continue;
+            }
+            {
+                const char *hint = rbs__suggest(e->valuestring, names, nused);
+                size_t saved = v->path_len;
+                push_key(v, "materials");
+                push_index(v, r);
+                push_key(v, "pair");
+                push_index(v, j);
+                rbs__scene_warning(s, loc_value(v, e), v->path,
+                                   "material \"%s\" is on no body, so this row applies to no "
+                                   "contact%s%s%s",
+                                   e->valuestring, hint ? " (did you mean \"" : "",
+                                   hint ? hint : "", hint ? "\"?)" : "");
+                pop(v, saved);
+            }
+            used[idx] = 1; /* (once a material) */
+        }
+    }
+    free(used);
+    free(names);
+}
+
 /* ---- the "event" method's scope ------------------------------------------ */
 
 /* The row the world takes for materials a and b (-1 = none; a material
@@ -2867,6 +2938,9 @@ void rbs__scene_validate(rbs_scene *scene, const cJSON *tree, const rbs__posmap 
     check_mutual_potential(&v);
     if (materials_ok) {
         check_pairs(&v);
+    }
+    if ((c = member(tree, "materials")) != NULL && member(tree, "bodies") != NULL) {
+        warn_unused_materials(&v, c);
     }
     check_event_scope(&v, tree, body_items, materials_ok);
     free(body_items);
