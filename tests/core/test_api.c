@@ -377,6 +377,45 @@ static void text_shown_len_follows_its_rule(void **state)
     assert_int_equal(rbs_text_shown_len("ab", 2, NULL), 1); /* skip may be NULL */
 }
 
+/* A sphere's inertia and density refused for what they are: principal
+ * moments each finite whose sum (the trace the world takes) overflows
+ * read "must be finite and > 0", and a density whose mass overflows read
+ * "sphere mass must be finite and > 0, got inf" though no mass was given
+ * (a probe of session 50).  The limits themselves are unchanged: 5e307
+ * three times sums to 1.5e308, finite, and is taken. */
+static void sphere_inertia_and_density_messages_name_the_cause(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, 0.0, 0.5);
+    rbs_sphere_def s;
+    (void)state;
+    rbs_sphere_def_init(&s);
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = s.inertia.y = s.inertia.z = 6e307;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere principal moments must have a finite sum (the world takes the "
+                        "inertia's trace), got (6e+307, 6e+307, 6e+307) kg m^2");
+    s.inertia.y = -1.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere principal moments must be finite and > 0, got (6e+307, -1, "
+                        "6e+307) kg m^2");
+    s.inertia.x = s.inertia.y = s.inertia.z = 5e307;
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    rbs_sphere_def_init(&s);
+    s.position.x = 5.0;
+    s.density = 1e308;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere mass from density 1e+308 kg/m^3 and radius 0.1 m (density * 4/3 "
+                        "pi r^3) overflows a double");
+    s.density = 4.9406564584124654e-324; /* (the least double: its mass rounds to 0) */
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "density 5e-324 kg/m^3"));
+    assert_non_null(strstr(rbs_world_last_error(w), "underflows a double"));
+    rbs_world_destroy(w);
+}
+
 static void names_follow_the_scene_rule(void **state)
 {
     static const char long_name[] = "a123456789b123456789c123456789d123456789"
@@ -1244,6 +1283,7 @@ int main(void)
         cmocka_unit_test(state_view_is_zero_copy),
         cmocka_unit_test(null_arguments_never_crash),
         cmocka_unit_test(overflow_in_step_keeps_last_good_state),
+        cmocka_unit_test(sphere_inertia_and_density_messages_name_the_cause),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -693,6 +693,15 @@ def test_messages_name_the_argument_and_echo_the_value():
          "inertia: principal moments must be >= 2.2250738585072014e-308 kg m^2"),
         (lambda: w.add_sphere(inertia=[1, 1, 3]),
          "inertia: principal moments must satisfy the triangle inequality"),
+        # (each finite, their sum not: the library said "must be finite and
+        # > 0"; and a density's overflowing mass was "sphere mass must be
+        # finite and > 0, got inf": a probe of session 50)
+        (lambda: w.add_sphere(inertia=[6e307, 6e307, 6e307]),
+         "inertia: principal moments must have a finite sum (the world takes the inertia's "
+         "trace), got (6e+307, 6e+307, 6e+307)"),
+        (lambda: w.add_sphere(density=1e308),
+         "sphere mass from density 1e+308 kg/m^3 and radius 0.1 m (density * 4/3 pi r^3) "
+         "overflows a double"),
         (lambda: w.add_sphere(orientation=(0, 0, 0, 0)),
          "orientation: must be a nonzero quaternion [w, x, y, z], got (0, 0, 0, 0)"),
         (lambda: setattr(w.bodies["ball"], "orientation", (0, 0, 0.0, 0)),

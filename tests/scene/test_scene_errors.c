@@ -146,6 +146,13 @@ static const bad_case cases[] = {
         "<= the sum of the other two), got [0.001, 0.001, 0.003]")}},
     /* the moments as written: %g showed 2.0000000001 as 2, and the three as
      * if they met the inequality */
+    /* each moment finite, their sum (the trace the world takes) not: it
+     * read "the moments of inertia (mass 1 kg, radius 0.1 m) underflow or
+     * overflow a double" (a probe of session 50) */
+    {"bad/inertia_sum_overflow.json", RBS_E_SCENE,
+     {E("[6e307", 1, 0,
+        "bodies[0].inertia: principal moments must have a finite sum (the world takes the "
+        "inertia's trace), got [6e307, 6e307, 6e307]")}},
     {"bad/inertia_triangle_narrow.json", RBS_E_SCENE,
      {E("[1, 1", 1, 0,
         "bodies[0].inertia: principal moments must satisfy the triangle inequality (each "

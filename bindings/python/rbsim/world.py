@@ -20,6 +20,7 @@ Design notes
 from __future__ import annotations
 
 import inspect
+import math
 import os
 import sys
 import threading
@@ -1636,6 +1637,11 @@ def _principal_moments(value: Any) -> Tuple[float, ...]:
             "inertia: principal moments must be >= %r kg m^2 (the smallest normal double: "
             "their inverses must be finite), got %s" % (_DBL_MIN, _check.numbers_text(v)))
     a, b, c = v
+    if not math.isfinite(a + b + c):
+        # (the library's message read "must be finite and > 0" of finite ones)
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "inertia: principal moments must have a finite sum (the world takes the "
+            "inertia's trace), got %s" % _check.numbers_text(v))
     if a + b < c or b + c < a or a + c < b:
         raise _e.error_class(lib.RBS_E_INVALID)(
             "inertia: principal moments must satisfy the triangle inequality (each <= the "

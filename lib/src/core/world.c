@@ -1063,6 +1063,12 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         if (!(d.density > 0.0) || !isfinite(d.density))
             FAIL(w, RBS_E_INVALID, "sphere density must be finite and > 0, got %s", rbs__shortest(nb, d.density));
         mass = d.density * (4.0 / 3.0) * RBS__PI * d.radius * d.radius * d.radius;
+        /* (named by what was given: it read "sphere mass must be finite and
+         * > 0, got inf" for a density the caller gave, no mass) */
+        if (!(mass > 0.0) || !isfinite(mass))
+            FAIL(w, RBS_E_INVALID, "sphere mass from density %s kg/m^3 and radius %s m (density * 4/3 pi r^3) %s a double",
+                 rbs__shortest(nb, d.density), rbs__shortest(nb2, d.radius),
+                 isfinite(mass) ? "underflows" : "overflows");
     } else {
         mass = d.mass;
     }
@@ -1105,8 +1111,16 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         break;
     case RBS_INERTIA_PRINCIPAL:
         I[0] = d.inertia.x; I[4] = d.inertia.y; I[8] = d.inertia.z;
-        if (!(I[0] > 0.0 && I[4] > 0.0 && I[8] > 0.0) || !isfinite(I[0] + I[4] + I[8]))
-            FAIL(w, RBS_E_INVALID, "sphere principal moments must be finite and > 0");
+        if (!(I[0] > 0.0 && I[4] > 0.0 && I[8] > 0.0) || !isfinite(I[0]) || !isfinite(I[4]) ||
+            !isfinite(I[8]))
+            FAIL(w, RBS_E_INVALID, "sphere principal moments must be finite and > 0, got (%s, %s, %s) kg m^2",
+                 rbs__shortest(nb, I[0]), rbs__shortest(nb2, I[4]), rbs__shortest(nb3, I[8]));
+        /* (each finite, their sum not: it read "must be finite and > 0") */
+        if (!isfinite(I[0] + I[4] + I[8]))
+            FAIL(w, RBS_E_INVALID,
+                 "sphere principal moments must have a finite sum (the world takes the "
+                 "inertia's trace), got (%s, %s, %s) kg m^2",
+                 rbs__shortest(nb, I[0]), rbs__shortest(nb2, I[4]), rbs__shortest(nb3, I[8]));
         if (I[0] + I[4] < I[8] || I[4] + I[8] < I[0] || I[0] + I[8] < I[4])
             FAIL(w, RBS_E_INVALID, "sphere principal moments violate the triangle inequality");
         break;

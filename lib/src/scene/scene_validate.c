@@ -1027,7 +1027,9 @@ static double scaled_len(double *a, int n)
  * mass (parallel-axis rule) must be positive definite and, scaled by its mean
  * moment, invertible with a finite inverse.  Returns 0 if it is, 1 if the
  * moments underflow or overflow a double, 2 if the centre of mass is too far
- * from the centre for them.  *trace gets the trace about the centre of mass. */
+ * from the centre for them, 3 if principal moments are each finite but
+ * their sum (the trace) overflows.  *trace gets the trace about the centre
+ * of mass. */
 static int sphere_inertia(const rbs__scene_body *b, double mass, double *trace)
 {
     double I[9], In[9], sc, c[3], c2, det, cof[3];
@@ -1051,6 +1053,10 @@ static int sphere_inertia(const rbs__scene_body *b, double mass, double *trace)
         }
     }
     *trace = I[0] + I[4] + I[8]; /* (as rbs_world_add_sphere sums it) */
+    if (b->inertia_kind == RBS_INERTIA_PRINCIPAL && !isfinite(*trace) &&
+        isfinite(I[0]) && isfinite(I[4]) && isfinite(I[8])) {
+        return 3; /* (each moment finite, their sum not) */
+    }
     sc = *trace / 3.0;
     if (!(sc > 0.0) || !isfinite(sc)) {
         return c2 > 0.0 && isfinite(sc) ? 2 : 1;
@@ -1123,6 +1129,19 @@ static void check_sphere_limits(vctx *v, const cJSON *obj, const rbs__scene_body
         return;
     }
     r = sphere_inertia(b, mass, &trace);
+    if (r == 3) {
+        /* (it read "the moments of inertia (mass 1 kg, radius 0.1 m)
+         * underflow or overflow a double" of [6e307, 6e307, 6e307]) */
+        char g[256];
+        saved = push_key(v, ikey);
+        got_list(v, member(obj, ikey), g, sizeof g);
+        err(v, loc_value(v, member(obj, ikey)),
+            "principal moments must have a finite sum (the world takes the inertia's "
+            "trace), got %s",
+            g);
+        pop(v, saved);
+        return;
+    }
     if (r == 1) {
         const cJSON *at = member(obj, ikey) != NULL ? member(obj, ikey) : obj;
         saved = push_key(v, ikey);
