@@ -153,6 +153,21 @@ def test_names_are_judged_by_the_library_alone():
     assert w.add_sphere("", position=(3, 0, 1)).name == ""
 
 
+def test_a_body_material_star_is_refused():
+    # add_sphere(material="*") / add_plane(material="*") took "*" (any
+    # material, in a pair) as no material, silently, where a scene refuses
+    # a body's "material": "*" (a probe of session 50).
+    w = make_world()
+    for add in (w.add_sphere, w.add_plane):
+        with pytest.raises(rbsim.InvalidError, match=r'material: "\*" is not a material: it '
+                           r"stands for any material in a pair \(set_material\)"):
+            add("x", material="*")
+    assert sorted(w.bodies) == ["ball", "ground"]
+    # None is no material; "*" keeps its meaning in a pair
+    assert w.add_sphere("y", material=None, position=(1, 0, 1)).name == "y"
+    w.set_material("*", "*", static=0.4, kinetic=0.2)
+
+
 def test_an_empty_name_finds_no_body():
     # "" names no body: body("") raised InvalidError ("invalid argument: no
     # body named ''", C's RBS_E_INVALID for ""), so `"" in world.bodies`

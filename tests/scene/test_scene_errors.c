@@ -153,6 +153,13 @@ static const bad_case cases[] = {
      {E("[6e307", 1, 0,
         "bodies[0].inertia: principal moments must have a finite sum (the world takes the "
         "inertia's trace), got [6e307, 6e307, 6e307]")}},
+    /* a body's material "*": it read 'undefined material "*"; materials are
+     * the names used in "materials" pairs', which "*" is (session 50) */
+    {"bad/body_material_star.json", RBS_E_SCENE,
+     {E("\"*\", \"position", 1, 0,
+        "bodies[0].material: \"*\" is not a material: it stands for any material in a "
+        "\"materials\" pair; give a material named there, or leave \"material\" out for "
+        "none")}},
     {"bad/inertia_triangle_narrow.json", RBS_E_SCENE,
      {E("[1, 1", 1, 0,
         "bodies[0].inertia: principal moments must satisfy the triangle inequality (each "

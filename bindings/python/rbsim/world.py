@@ -988,8 +988,15 @@ class World(_Handle):
             self._lock.release()
         return out
 
-    def _cmaterial(self, m: Union[Material, str, None], what: str) -> Any:
+    def _cmaterial(self, m: Union[Material, str, None], what: str,
+                   any_ok: bool = True) -> Any:
         out = ffi.new("rbs_material_id *")
+        if isinstance(m, str) and m == "*" and not any_ok:
+            # (a body's material="*" was taken as no material, silently; a
+            # scene refuses it: a probe of session 50)
+            raise _e.error_class(lib.RBS_E_INVALID)(
+                "%s: \"*\" is not a material: it stands for any material in a pair "
+                "(set_material); give a Material or its name, or None for none" % what)
         if m is None or (isinstance(m, str) and m == "*"):
             return out  # null: "*", any material (the owner; use out[0])
         if isinstance(m, str):
@@ -1140,7 +1147,7 @@ class World(_Handle):
                 d.inertia_kind = _INERTIA["principal"]
                 _set_vec3(d.inertia, _principal_moments(inertia))
         if material is not None:
-            mat = self._cmaterial(material, "material")
+            mat = self._cmaterial(material, "material", any_ok=False)
             d.material = mat[0]
         if color is not None:
             d.color = _check.integer(color, "color", 0, 0xFFFFFF)
@@ -1173,7 +1180,7 @@ class World(_Handle):
             _set_vec3(d.normal, _check.nonzero(_check.vector(normal, "normal"), "normal",
                                                "vector (the plane's outward normal)"))
         if material is not None:
-            mat = self._cmaterial(material, "material")
+            mat = self._cmaterial(material, "material", any_ok=False)
             d.material = mat[0]
         if color is not None:
             d.color = _check.integer(color, "color", 0, 0xFFFFFF)

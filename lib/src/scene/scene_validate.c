@@ -1493,7 +1493,13 @@ static void check_bodies(vctx *v, const cJSON *bodies, const cJSON ***items_out)
                 b->material = material_find(s, nm);
                 if (b->material < 0) {
                     const char *hint = rbs__suggest(nm, mat_names, s->material_count);
-                    if (hint != NULL) {
+                    if (strcmp(nm, "*") == 0) {
+                        /* (as the API refuses it: a body's material is one) */
+                        err(v, loc_value(v, c),
+                            "\"*\" is not a material: it stands for any material in a "
+                            "\"materials\" pair; give a material named there, or leave "
+                            "\"material\" out for none");
+                    } else if (hint != NULL) {
                         err(v, loc_value(v, c),
                             "undefined material \"%s\" (did you mean \"%s\"?)", nm, hint);
                     } else {
