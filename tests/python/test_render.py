@@ -199,6 +199,25 @@ def test_stop_run_ends_cleanly():
     assert seen == list(range(26))
     assert info.endless and info.quit and info.state == "done"
     assert info.frame >= 25 and w.step_count >= info.frame
+    # endless given as 1 or numpy's True is the flag too: with steps it was
+    # not refused (the check read "endless is True") and the run went on
+    # past them; without, "steps: required" (a probe of session 50)
+    def five(frame):
+        # (stops any run after 5 frames: a regression fails, never hangs)
+        seen.append(frame.number)
+        if len(seen) == 6:
+            raise rbsim.StopRun
+
+    for flag in (1, np.True_):
+        seen.clear()
+        with pytest.raises(rbsim.InvalidError, match=r"steps: 10 with endless=True"):
+            w.run(10, endless=flag, renderers=[five])
+    seen.clear()
+    start = w.step_count
+    info = w.run(endless=np.True_, renderers=[five])
+    assert info.endless and info.quit and seen[:6] == list(range(start, start + 6))
+    with pytest.raises(rbsim.ArgumentTypeError, match="endless: expected True or False"):
+        w.run(endless=2)
 
 
 def test_stop_run_others_get_every_frame_made():

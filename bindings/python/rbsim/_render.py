@@ -680,7 +680,11 @@ def start_world(world: World, steps: Optional[int] = None,
             "run()/start() (world.scene_renderers lists them)"
             % ", ".join(str(r.get("type")) for r in world.scene_renderers),
             UserWarning, stacklevel=_stacklevel)
-    if endless is True:
+    # (checked first: endless=1 or numpy's True passed the flag check at the
+    # end but not "is True" here, so run(5, endless=np.True_) ran on past 5,
+    # and run(endless=1) said "steps: required": a probe of session 50)
+    endless = _check.flag(endless, "endless")
+    if endless:
         if steps is not None:
             # (it was ignored, silently: run(10, endless=True) ran on past
             # step 10, until quit or StopRun)
@@ -708,7 +712,7 @@ def start_world(world: World, steps: Optional[int] = None,
     return Run(world, n, renderers, realtime,
                speed, _check.flag(start_paused, "start_paused"),
                _check.flag(pause_on_collision, "pause_on_collision"), cap,
-               _check.flag(endless, "endless"))
+               endless)
 
 
 def run_world(world: World, steps: Optional[int] = None,
