@@ -171,12 +171,14 @@ static void damaged_checkpoints_are_rejected(void **state)
      * contacts of 136 bytes, 6 without soft_tolerance, 7 without the soft
      * step's slabs, chunks and team, 8 without the warm table's index, 10's
      * contacts of 120 bytes, 11 without the pressed marks, 12 without the
-     * resistance records' impact share) or, 9, stepped by the soft step's
-     * earlier model */
+     * resistance records' impact share, 13 without the warm table's save)
+     * or, 9, stepped by the soft step's earlier model */
     {
         unsigned char current = buf[8];
-        assert_int_equal(current, 13);
-        buf[8] = 14;
+        assert_int_equal(current, 14);
+        buf[8] = 15;
+        assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
+        buf[8] = 13;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);
         buf[8] = 12;
         assert_int_equal(rbs_world_create_from_checkpoint(buf, n, &b), RBS_E_VERSION);

@@ -53,8 +53,9 @@
  * resistance records' impact share (rbs__resist.impact: the soft step's
  * rolling and spinning rows take no impact as load), and the resting pass
  * takes an unloaded contact's friction back, so a 12 file would resume on
- * other physics too. */
-#define CKPT_VERSION 13u
+ * other physics too; 14 has a second warm-start table (warm_save: the
+ * table at a step's start, which a failed step puts back). */
+#define CKPT_VERSION 14u
 static const char ckpt_magic[8] = {'R', 'B', 'S', 'C', 'K', 'P', 'T', '\0'};
 
 typedef struct header {

@@ -326,6 +326,7 @@ size_t rbs__world_layout(rbs_world *w, const rbs_world_def *d, unsigned char *ba
         size_t W = C; /* an entry for every contact (solver.c) */
         x->warm_size = (uint32_t)W;
         x->warm = carve(base, &at, W * sizeof(rbs__warm));
+        x->warm_save = carve(base, &at, W * sizeof(rbs__warm));
         x->warm_at = carve(base, &at, 2 * B * sizeof(uint32_t));
     }
     x->solver_body = carve(base, &at, RBS__SOLVER_STRIDE * B * sizeof(double));

@@ -239,6 +239,9 @@ struct rbs_world {
     double *solver_body;                  /* RBS__SOLVER_STRIDE per slot: the resting
                                              pass's compact copy of v, w, 1/m, 1/I
                                              (solver.c) */
+    rbs__warm *warm_save;                 /* max_contacts: the table as a step of a
+                                             rollback method found it, put back
+                                             if the step fails (rbs_world_step) */
     uint32_t warm_size;                   /* max_contacts */
     uint32_t warm_used;                   /* entries the last warm pass stored (0: none) */
     int warm_ranked;                      /* the table is in the soft step's
