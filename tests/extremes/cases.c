@@ -974,6 +974,291 @@ static void tiny_slip(rbs_method m, xres *r)
 }
 
 /* ------------------------------------------------------------------------- */
+/* Scale, speed and spin                                                     */
+/* ------------------------------------------------------------------------- */
+
+/* A small scene (a ball dropped spinning onto a floor with friction, e =
+ * 0.5, rolling into a second ball; a third sliding onto an incline) run
+ * with lengths times L, masses times M and times times T (dt, velocities,
+ * gravity and spin scaled to match), 3000 steps: scene(...) writes the
+ * three balls' positions / L and velocities T / L, 18 numbers; *impacts
+ * the impacts resolved.  out[0] is NAN on failure (r says why). */
+static void scaled_scene(rbs_method m, xres *r, double L, double M, double T, double out[18], uint32_t *impacts)
+{
+    rbs_world *w = xworld(r, m, 8, 1e-3 * T, -G * L / (T * T), 0.5);
+    rbs_material_id mat;
+    rbs_body_id b[3];
+    rbs_step_info sum;
+    int k;
+    out[0] = NAN;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.4, 0.3, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    xplane(w, mat, 2 * L, 0, 0, -0.6, 0, 0.8);
+    b[0] = xball(w, 0.1 * L, 1.0 * M, 0, 0, 0.5 * L, 0.5 * L / T, 0, 0, mat);
+    b[1] = xball(w, 0.05 * L, 0.3 * M, 0.8 * L, 0.01 * L, 0.05 * L, 0, 0, 0, mat);
+    b[2] = xball(w, 0.08 * L, 2.0 * M, 1.0 * L, -0.3 * L, 0.3 * L, 1.0 * L / T, 0.2 * L / T, 0, mat);
+    {
+        rbs_vec3 spin = {0, 30.0 / T, 0};
+        if (bad(r, w, rbs_body_set_angular_velocity(w, b[0], spin), "set_angular_velocity")) {
+            rbs_world_destroy(w);
+            return;
+        }
+    }
+    memset(&sum, 0, sizeof sum);
+    if (xsteps(r, w, 3000, &sum) == 0) {
+        for (k = 0; k < 3; ++k) {
+            rbs_body_state s = xstate(w, b[k]);
+            out[6 * k + 0] = s.position.x / L;
+            out[6 * k + 1] = s.position.y / L;
+            out[6 * k + 2] = s.position.z / L;
+            out[6 * k + 3] = s.velocity.x * T / L;
+            out[6 * k + 4] = s.velocity.y * T / L;
+            out[6 * k + 5] = s.velocity.z * T / L;
+        }
+        *impacts = sum.colliding;
+    }
+    rbs_world_destroy(w);
+}
+
+/* Dimensional analysis: a scene scaled by L, M, T must give the answers
+ * scaled by L, M, T.  With L, M, T powers of two every scaled input is the
+ * original's bits times a power of two, and so is every sum, product,
+ * quotient and square root a scale-covariant computation makes of them
+ * (binary floating point rounds x 2^k as it rounds x, while nothing
+ * overflows or goes subnormal: the extremes here, energies of M L^2 / T^2
+ * = 2^+-270 and the slop's 1e-6 x 0.05 x 2^-60 m, stay normal), so the
+ * scaled run must match the original to the bit.  An absolute threshold
+ * anywhere -- a speed below 1e-9 m/s taken as rest, a gap of 1e-12 m as
+ * touching -- shows as a difference.  Scales: lengths 2^-60 (a 0.1 m ball
+ * becomes 9e-20 m) to 2^60, masses 2^-150 to 2^150, times 2^-30 to 2^30,
+ * and mixed.  Measured: the largest difference of the 18 scaled-back
+ * numbers (m, m/s of the original scene) over the scalings.  Bound: 0 (the
+ * same bits).  Extra: the impacts resolved in the original run (the scene
+ * must exercise contacts: at least 20, else the case fails). */
+static void scaled_pow2(rbs_method m, xres *r)
+{
+    static const double S[][3] = {{0x1p-60, 0x1p-150, 1.0}, {0x1p60, 0x1p150, 1.0}, {1.0, 1.0, 0x1p-30},
+                                  {1.0, 1.0, 0x1p30}, {0x1p-40, 0x1p-100, 0x1p-20}, {0x1p40, 0x1p-100, 0x1p20},
+                                  {0x1p-60, 0x1p150, 0x1p-30}};
+    double ref[18], out[18];
+    uint32_t impacts = 0, other = 0;
+    size_t s;
+    int k;
+    r->bound = 0.0;
+    r->value = 0.0;
+    scaled_scene(m, r, 1.0, 1.0, 1.0, ref, &impacts);
+    if (isnan(ref[0]))
+        return;
+    r->extra = impacts;
+    if (impacts < 20) {
+        r->failed = 1;
+        note(r, "the scene resolved %u impacts (< 20): it no longer tests contacts", (unsigned)impacts);
+        return;
+    }
+    for (s = 0; s < sizeof S / sizeof S[0]; ++s) {
+        scaled_scene(m, r, S[s][0], S[s][1], S[s][2], out, &other);
+        if (isnan(out[0]))
+            return;
+        for (k = 0; k < 18; ++k) {
+            double d = fabs(out[k] - ref[k]);
+            if (!(d <= r->value)) {
+                r->value = d;
+                note(r, "worst at L = %g, M = %g, T = %g (number %d)", S[s][0], S[s][1], S[s][2], k);
+            }
+        }
+    }
+}
+
+/* A ball (r = 0.1 m, 1 kg, solid) set on the floor spinning at w0 = 1e6
+ * rad/s about y, not moving; g = 1e4 m/s^2, mu_s = mu_k = 0.5, e = 0.
+ * Exact (Coulomb friction on a solid sphere: the slip r w - v falls at
+ * mu g (1 + 5/2)): it slides for t1 = 2 r w0 / (7 mu g) = 5.714 s, then
+ * rolls at v = 2/7 r w0 = 28,571 m/s with w = 2/7 w0, having slid 8.2e4 m.
+ * Run t1 + 0.2 s.  Measured: the larger of |v / (2/7 r w0) - 1| and
+ * |w / (2/7 w0) - 1|.  Bound: 4 n EPS, n the sub-steps of the slide (the
+ * friction impulses of n sub-steps summed, one rounding each; soft: 3 a
+ * frame), 1.5e-11 for soft and 5.1e-12 for the others.  Extra: the ball's
+ * |z - r|, m (it must stay on the floor: the slop, soft's sink g / omega^2
+ * besides). */
+static void spin_to_roll(rbs_method m, xres *r)
+{
+    const double rad = 0.1, w0 = 1e6, g = 1e4, mu = 0.5, dt = 1e-3, two7 = 2.0 / 7.0;
+    const double t1 = 2.0 * rad * w0 / (7.0 * mu * g);
+    const long n = (long)ceil(t1 / dt);
+    rbs_world *w = xworld(r, m, 4, dt, -g, 0.0);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_vec3 spin = {0, w0, 0};
+    if (!w)
+        return;
+    mat = xmaterial(w, mu, mu, 0.0);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, rad, 1.0, 0, 0, rad, 0, 0, 0, mat);
+    if (bad(r, w, rbs_body_set_angular_velocity(w, b, spin), "set_angular_velocity")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    r->bound = 4.0 * (double)n * (m == RBS_METHOD_SOFT ? SOFT_N : 1.0) * EPS;
+    if (xsteps(r, w, n + 200, NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        double ev = fabs(s.velocity.x / (two7 * rad * w0) - 1.0), ew = fabs(s.angular_velocity.y / (two7 * w0) - 1.0);
+        double sink = 1e-7 + (m == RBS_METHOD_SOFT ? soft_sink(dt, g) * (1.0 + 1e-6) : 0.0);
+        r->value = maxd(ev, ew);
+        r->extra = fabs(s.position.z - rad);
+        if (!(r->extra <= sink)) {
+            r->failed = 1;
+            note(r, "the ball left the floor's surface by %.3g m (bound %.3g m)", r->extra, sink);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+/* A ball (r = 0.1 m) at 1e5 m/s between two walls 2 m apart (its centre
+ * between x = -0.9 and 0.9), e = 1, no gravity, 100 steps of 1 ms: it
+ * crosses the box 55.6 times a frame, 5,556 impacts in all.  Exact: x(t)
+ * the triangle wave of period 3.6 m / v, |v| constant (a plane's elastic
+ * impact reverses the normal velocity exactly; a change of the speed fails
+ * the case).  Measured: |x - x(t)|, m, at 0.1 s.  Bound: each impact found
+ * within dt / 2^30 (the rollback floor), v dt / 2^30 = 9.3e-8 m of path,
+ * for each of the 5,556 impacts: 5.2e-4 m (and 1e-9 m of rounding).
+ * Extra: the impacts resolved. */
+static double triangle(double x0, double v, double t)
+{
+    const double span = 1.8;
+    double u = fmod(x0 + 0.9 + v * t, 2.0 * span);
+    if (u < 0.0)
+        u += 2.0 * span;
+    return (u <= span ? u : 2.0 * span - u) - 0.9;
+}
+
+static void box_1e5(rbs_method m, xres *r)
+{
+    const double v = 1e5, dt = 1e-3, x0 = 0.0123;
+    const double impacts = floor((x0 + 0.9 + v * 100 * dt) / 1.8);
+    rbs_world *w = xworld(r, m, 4, dt, 0.0, 1.0);
+    rbs_body_id b;
+    rbs_step_info sum;
+    if (!w)
+        return;
+    xplane(w, (rbs_material_id){0, 0}, -1, 0, 0, 1, 0, 0);
+    xplane(w, (rbs_material_id){0, 0}, 1, 0, 0, -1, 0, 0);
+    b = xball(w, 0.1, 1.0, x0, 0, 0, v, 0, 0, (rbs_material_id){0, 0});
+    r->bound = impacts * v * dt * 0x1p-30 + 1e-9;
+    memset(&sum, 0, sizeof sum);
+    if (xsteps(r, w, 100, &sum) == 0) {
+        rbs_body_state s = xstate(w, b);
+        r->value = fabs(s.position.x - triangle(x0, v, rbs_world_time(w)));
+        r->extra = sum.colliding;
+        if (!(fabs(fabs(s.velocity.x) - v) <= 1e-12 * v)) {
+            r->failed = 1;
+            note(r, "speed %.17g m/s, not %g: an elastic wall changed it", fabs(s.velocity.x), v);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
+/* Degenerate geometry                                                       */
+/* ------------------------------------------------------------------------- */
+
+/* A ball placed with its centre on the floor plane (half of it inside),
+ * at rest, under gravity.  rbsim.h promises that a body moved into overlap
+ * is separated by the next step.  Measured: its overlap with the floor
+ * after 10 steps, m.  Bound: the slop 1e-7 m. */
+static void plane_through_centre(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    rbs_body_id b;
+    if (!w)
+        return;
+    xplane(w, (rbs_material_id){0, 0}, 0, 0, 0, 0, 0, 1);
+    b = xball(w, 0.1, 1.0, 0, 0, 0, 0, 0, 0, (rbs_material_id){0, 0});
+    r->bound = 1e-7;
+    if (xsteps(r, w, 10, NULL) == 0)
+        r->value = maxd(0.0, 0.1 - xstate(w, b).position.z);
+    rbs_world_destroy(w);
+}
+
+/* A ball in the corner of three planes (x = 0, y = 0, z = 0), gravity
+ * 9.81 m/s^2 along (-1, -1, -1) / sqrt 3, mu 0.5 / 0.3: set touching all
+ * three, and a second dropped from (0.5, 0.5, 0.5) m with e = 0.5.
+ * Exact: both rest at (r, r, r).  Measured: the larger distance from
+ * (r, r, r) after 5 s, m.  Bound: the slop along each normal, sqrt 3 x
+ * 1e-7 m (soft: its sink g / omega^2 along the diagonal besides). */
+static void corner_3_planes(rbs_method m, xres *r)
+{
+    const double rad = 0.1, gc = -G / sqrt(3.0);
+    int part;
+    r->bound = sqrt(3.0) * 1e-7 * (1.0 + 1e-9);
+    if (m == RBS_METHOD_SOFT)
+        r->bound += soft_sink(1e-3, G) * (1.0 + 1e-6);
+    r->value = 0.0;
+    for (part = 0; part < 2 && !r->failed && !r->skipped; ++part) {
+        rbs_world_def d;
+        rbs_world *w = NULL;
+        rbs_material_id mat;
+        rbs_body_id b;
+        rbs_world_def_init(&d);
+        d.max_bodies = 4;
+        d.gravity.x = d.gravity.y = d.gravity.z = gc;
+        d.restitution = 0.5;
+        if (bad(r, NULL, rbs_world_create(&d, &w), "create"))
+            return;
+        if (bad(r, w, rbs_world_set_method(w, m, 0.0), "set_method")) {
+            rbs_world_destroy(w);
+            return;
+        }
+        mat = xmaterial(w, 0.5, 0.3, 0.5);
+        xplane(w, mat, 0, 0, 0, 1, 0, 0);
+        xplane(w, mat, 0, 0, 0, 0, 1, 0);
+        xplane(w, mat, 0, 0, 0, 0, 0, 1);
+        b = part == 0 ? xball(w, rad, 1.0, rad, rad, rad, 0, 0, 0, mat) : xball(w, rad, 1.0, 0.5, 0.5, 0.5, 0, 0, 0, mat);
+        if (xsteps(r, w, 5000, NULL) == 0) {
+            rbs_body_state s = xstate(w, b);
+            rbs_vec3 c = {rad, rad, rad};
+            r->value = maxd(r->value, vdist(s.position, c));
+        }
+        rbs_world_destroy(w);
+    }
+}
+
+/* A ball between two parallel planes exactly a diameter apart (z = 0 and
+ * z = 2r, a wedge of 0 degrees), touching both, sliding along x at v0 = 1
+ * m/s with friction 0.5 / 0.3 on both, g = 9.81 m/s^2 down.  Exact: the
+ * upper plane carries no load, so the ball comes to roll as on a floor,
+ * at v = 5/7 v0 and w = v / r, after 2 v0 / (7 mu_k g) = 0.097 s, and stays
+ * at z = r.  Measured: the larger of |v / (5/7 v0) - 1| and
+ * |r w / (5/7 v0) - 1| after 2 s.  Bound: 1e-12 (100 sliding steps of a
+ * few roundings: 4 x 100 x 3 EPS = 2.7e-13, with room).  A |z - r| beyond
+ * the slop (soft: and its sink) fails the case. */
+static void slot_2r(rbs_method m, xres *r)
+{
+    const double rad = 0.1, v0 = 1.0, vr = 5.0 / 7.0 * v0;
+    rbs_world *w = xworld(r, m, 4, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.3, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    xplane(w, mat, 0, 0, 2 * rad, 0, 0, -1);
+    b = xball(w, rad, 1.0, 0, 0, rad, v0, 0, 0, mat);
+    r->bound = 1e-12;
+    if (xsteps(r, w, 2000, NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        double off = 1e-7 + (m == RBS_METHOD_SOFT ? soft_sink(1e-3, G) * (1.0 + 1e-6) : 0.0);
+        r->value = maxd(fabs(s.velocity.x / vr - 1.0), fabs(rad * s.angular_velocity.y / vr - 1.0));
+        if (!(fabs(s.position.z - rad) <= off)) {
+            r->failed = 1;
+            note(r, "|z - r| = %.3g m (bound %.3g m)", fabs(s.position.z - rad), off);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
 /* The table                                                                 */
 /* ------------------------------------------------------------------------- */
 
@@ -1040,6 +1325,23 @@ static const xcase cases[] = {
      "approach speed of the frame's start)"},
     {"long_rest_1e7", "displacement (m) of a ball resting on the floor for 1e7 steps (1e4 s)",
      "1e-7 m (slop)", NULL, 1, long_rest, 0, NULL},
+    {"scaled_pow2", "largest difference (m, m/s) of a bounce/roll/impact/incline scene and the same scene with lengths x 2^-60..2^60, masses x 2^-150..2^150, times x 2^-30..2^30, scaled back",
+     "0 (powers of two scale every double exactly)", "impacts resolved (at least 20)", 0, scaled_pow2, 0, NULL},
+    {"spin_1e6_to_roll", "largest relative error of v against 2/7 r w0 and w against 2/7 w0: a ball set spinning at 1e6 rad/s on the floor, g = 1e4, mu 0.5",
+     "4 n EPS (n sub-steps of the 5.7 s slide)", "|z - r|, m", 0, spin_to_roll, 0, NULL},
+    {"box_1e5_m_per_s", "|x - exact| (m) of a ball at 1e5 m/s between two walls 2 m apart, e = 1, 0.1 s (5556 impacts)",
+     "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9", "impacts resolved", 0, box_1e5, M(RBS_METHOD_SOFT),
+     "soft meets one wall a frame (it detects once a frame); a ball crossing the box 55 times a frame sinks "
+     "deeper into the wall each frame from about 2e4 m/s (11 crossings a frame): at 1e5 m/s it is 5 m into "
+     "it after 100 frames, outside the box (step info's max_overlap says so)"},
+    {"plane_through_centre", "overlap (m) with the floor 10 steps after a ball is placed with its centre on it",
+     "1e-7 m (slop; rbsim.h: the next step separates)", NULL, 0, plane_through_centre, M(RBS_METHOD_SOFT),
+     "soft pushes overlap out over frames, at most 1 % of the radius a sub-step (3 % a frame): a radius "
+     "deep takes about 33 frames"},
+    {"corner_3_planes", "largest distance (m) from (r, r, r) after 5 s of a ball set in the corner of three planes and one dropped into it, gravity along the diagonal",
+     "sqrt 3 x 1e-7 m (slop along each normal)", NULL, 0, corner_3_planes, 0, NULL},
+    {"slot_2r", "largest relative error of v and r w against 5/7 v0 after 2 s: a ball sliding at 1 m/s between two planes a diameter apart, friction on both",
+     "1e-12 (a few roundings a sliding step)", NULL, 0, slot_2r, 0, NULL},
 };
 
 const xcase *xcases(uint32_t *n)
