@@ -1123,7 +1123,17 @@ static void spin_to_roll(rbs_method m, xres *r)
  * the case).  Measured: |x - x(t)|, m, at 0.1 s.  Bound: each impact found
  * within dt / 2^30 (the rollback floor), v dt / 2^30 = 9.3e-8 m of path,
  * for each of the 5,556 impacts: 5.2e-4 m (and 1e-9 m of rounding).
- * Extra: the impacts resolved. */
+ * Extra: the impacts resolved.
+ *
+ * soft: a known defect, held to its present error (7.12 m) so that it can
+ * only shrink.  soft detects once a frame and meets one wall a frame (at
+ * most one impact a frame is documented), but from about 1.2e4 m/s (7
+ * crossings a frame) the ball also ends frames inside a wall -- 0.08 m deep
+ * at 1.2e4, 0.32 m at 3e4, none at 3.5e4-6e4, 2 m at 7e4 -- and at 1e5 m/s
+ * it is 1.15 m into the right wall after the first frame and 5 m after 100,
+ * outside the box for good, though docs/methods.md says nothing tunnels
+ * (a probe of session 50; the step's max_overlap reports the depth, the
+ * status is OK).  Cause not found. */
 static double triangle(double x0, double v, double t)
 {
     const double span = 1.8;
@@ -1145,7 +1155,7 @@ static void box_1e5(rbs_method m, xres *r)
     xplane(w, (rbs_material_id){0, 0}, -1, 0, 0, 1, 0, 0);
     xplane(w, (rbs_material_id){0, 0}, 1, 0, 0, -1, 0, 0);
     b = xball(w, 0.1, 1.0, x0, 0, 0, v, 0, 0, (rbs_material_id){0, 0});
-    r->bound = impacts * v * dt * 0x1p-30 + 1e-9;
+    r->bound = m == RBS_METHOD_SOFT ? 7.2 : impacts * v * dt * 0x1p-30 + 1e-9;
     memset(&sum, 0, sizeof sum);
     if (xsteps(r, w, 100, &sum) == 0) {
         rbs_body_state s = xstate(w, b);
@@ -1330,10 +1340,8 @@ static const xcase cases[] = {
     {"spin_1e6_to_roll", "largest relative error of v against 2/7 r w0 and w against 2/7 w0: a ball set spinning at 1e6 rad/s on the floor, g = 1e4, mu 0.5",
      "4 n EPS (n sub-steps of the 5.7 s slide)", "|z - r|, m", 0, spin_to_roll, 0, NULL},
     {"box_1e5_m_per_s", "|x - exact| (m) of a ball at 1e5 m/s between two walls 2 m apart, e = 1, 0.1 s (5556 impacts)",
-     "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9", "impacts resolved", 0, box_1e5, M(RBS_METHOD_SOFT),
-     "soft meets one wall a frame (it detects once a frame); a ball crossing the box 55 times a frame sinks "
-     "deeper into the wall each frame from about 2e4 m/s (11 crossings a frame): at 1e5 m/s it is 5 m into "
-     "it after 100 frames, outside the box (step info's max_overlap says so)"},
+     "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9; soft 7.2 m, its present error: a defect, it "
+     "leaves the box (cases.c)", "impacts resolved", 0, box_1e5, 0, NULL},
     {"plane_through_centre", "overlap (m) with the floor 10 steps after a ball is placed with its centre on it",
      "1e-7 m (slop; rbsim.h: the next step separates)", NULL, 0, plane_through_centre, M(RBS_METHOD_SOFT),
      "soft pushes overlap out over frames, at most 1 % of the radius a sub-step (3 % a frame): a radius "
