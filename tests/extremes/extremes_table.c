@@ -124,8 +124,13 @@ int main(int argc, char **argv)
                 printf("  - %s: %s\n", rbs_method_name((rbs_method)m), r->note);
             }
         }
-        if (c->not_promised && c->why_not)
+        /* (under the case's own heading: one without other notes had its
+         * reason printed under the case before it) */
+        if (c->not_promised && c->why_not) {
+            if (!any++)
+                printf("- `%s`:\n", c->id);
             printf("  - not promised where marked: %s\n", c->why_not);
+        }
     }
     printf("\n## Other guards\n\n"
            "- Bad values (`tests/extremes/test_badvalues.c`, suites extremes and fault): for every method, NaN\n"
