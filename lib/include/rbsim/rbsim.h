@@ -579,9 +579,9 @@ typedef struct rbs_step_info {
 /** Advance the world by dt (one frame).  Sub-steps are internal: afterwards
  * the world is at time (step_count) * dt.  On error the world stays at its
  * last good state -- the bodies and what the next step reads of the last
- * (warm-start impulses, adaptive's step size) -- so stepping on after an
- * error takes the bits of a world restored from a checkpoint written before
- * the failed step.  info may be NULL.  Allocates nothing. */
+ * (warm-start impulses, adaptive's step size; the candidate pairs are found
+ * again) -- so stepping on after an error takes the bits of a world
+ * restored from a checkpoint written before the failed step.  info may be NULL.  Allocates nothing. */
 RBS_API rbs_status rbs_world_step(rbs_world *world, rbs_step_info *info);
 
 /** Simulated time, s: step count * dt, each step counted with the dt it

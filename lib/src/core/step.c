@@ -355,7 +355,7 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
     rbs_step_info local;
     rbs_status st;
     uint32_t bad, warm_used = 0;
-    int slow = 0, warm_ranked = 0, warm_indexed = 0;
+    int slow = 0, warm_saved;
     double method_state[8] = {0.0};
     if (w == NULL || w->magic != 0x72627377u)
         return RBS_E_INVALID;
@@ -399,14 +399,15 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
      * from a checkpoint written before the failed step (a probe of session
      * 50: 27 balls dropped into a box with max_contacts 27, every method but
      * soft; adaptive's next step even succeeded where the restored world's
-     * failed).  The soft step writes its table only once the frame has
-     * succeeded. */
+     * failed).  The soft step's gathered layout writes its table only once
+     * the frame is known good; its general layout stores it before this
+     * function's last check, so it is saved too. */
     w->step_saved = w->plan.method != RBS_METHOD_SOFT;
-    if (w->step_saved) {
+    if (w->step_saved)
         rbs__save_state(w, w->step_save);
+    warm_saved = w->plan.method != RBS_METHOD_SOFT || !w->plan.gather;
+    if (warm_saved) {
         warm_used = w->warm_used;
-        warm_ranked = w->warm_ranked;
-        warm_indexed = w->warm_indexed;
         memcpy(w->warm_save, w->warm, (size_t)warm_used * sizeof *w->warm);
         memcpy(method_state, w->method_state, sizeof method_state);
     }
@@ -458,14 +459,25 @@ rbs_status rbs_world_step(rbs_world *w, rbs_step_info *info)
         st = rbs__numeric_error(w, bad);
     if (st != RBS_OK) {
         /* (a step that saved nothing wrote nothing either) */
-        if (w->step_saved) {
+        if (w->step_saved)
             rbs__restore_state(w, w->step_save);
+        if (warm_saved) {
+            /* (in whatever order it was: the soft step's buckets, whose
+             * index by slot the failed step may have remade, are put in key
+             * order and indexed again when next needed, as after loading a
+             * checkpoint) */
             memcpy(w->warm, w->warm_save, (size_t)warm_used * sizeof *w->warm);
             w->warm_used = warm_used;
-            w->warm_ranked = warm_ranked;
-            w->warm_indexed = warm_indexed;
+            w->warm_ranked = 1;
+            w->warm_indexed = 0;
             memcpy(w->method_state, method_state, sizeof method_state);
         }
+        /* The candidate-pair list the failed step built (from the reaches
+         * of the state that failed: an overflowing velocity's) is dropped;
+         * the next step builds one from the restored state, which gives
+         * the bits of any list still valid (a probe of session 50: euler and
+         * selective kept such a list after an overflow and diverged) */
+        w->vl_valid = 0;
         return st;
     }
     w->rounded_steps += (uint64_t)slow;
