@@ -1133,7 +1133,13 @@ static void spin_to_roll(rbs_method m, xres *r)
  * it is 1.15 m into the right wall after the first frame and 5 m after 100,
  * outside the box for good, though docs/methods.md says nothing tunnels
  * (a probe of session 50; the step's max_overlap reports the depth, the
- * status is OK).  Cause not found. */
+ * status is OK).  One wall alone is met as documented (a frame late, then
+ * exact, at 1e4 and 1e5 m/s); it takes both walls within one frame's
+ * reach.  Suspected, not verified: the far wall's speculative row takes
+ * part of the near wall's warm-started impulse in the Gauss-Seidel pass,
+ * and the two opposed accumulated impulses are then not cancelled by the
+ * soft rows (impulse_scale > 0), leaving spurious speeds of order
+ * impulse_scale x v; soft_substeps 1 fails from 1e4 m/s, 8 from 3e4. */
 static double triangle(double x0, double v, double t)
 {
     const double span = 1.8;
