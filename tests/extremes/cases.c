@@ -1175,6 +1175,51 @@ static void box_1e5(rbs_method m, xres *r)
     rbs_world_destroy(w);
 }
 
+/* Travel far: a frictionless ball (r = 0.1 m) released on an incline of
+ * slope 3/4 (sin 0.6, cos 0.8, exact in binary to rounding), g = 1e4
+ * m/s^2, 20,000 steps of 1 ms: exact, it slides d = g sin T^2 / 2 =
+ * 1.2e6 m down the slope and stays on it.  Measured: |d / exact - 1|.
+ * Bound: semi-implicit Euler's first-order lead, x_n = a dt^2 n (n + 1)
+ * / 2, is exactly 1/n of d (euler, selective: 5e-5; soft, n = 3 x 20,000
+ * sub-steps: 1.7e-5), plus rounding; the others integrate constant
+ * acceleration exactly: 4 n EPS (one rounding at 1.2e6 m a step).  Its
+ * distance from the plane beyond the slop (soft: and its sink; and a few
+ * roundings at 1e6 m) fails the case. */
+static void incline_far(rbs_method m, xres *r)
+{
+    const double sn = 0.6, cs = 0.8, g = 1e4, dt = 1e-3, rad = 0.1;
+    const long n = 20000;
+    rbs_world *w = xworld(r, m, 4, dt, -g, 0.0);
+    rbs_body_id b;
+    if (!w)
+        return;
+    xplane(w, (rbs_material_id){0, 0}, 0, 0, 0, sn, 0, cs);
+    b = xball(w, rad, 1.0, rad * sn, 0, rad * cs, 0, 0, 0, (rbs_material_id){0, 0});
+    if (m == RBS_METHOD_EULER || m == RBS_METHOD_SELECTIVE)
+        r->bound = 1.0 / (double)n + 4.0 * (double)n * EPS;
+    else if (m == RBS_METHOD_SOFT)
+        r->bound = 1.0 / (SOFT_N * (double)n) + 4.0 * SOFT_N * (double)n * EPS;
+    else
+        r->bound = 4.0 * (double)n * EPS;
+    if (xsteps(r, w, n, NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        double T = rbs_world_time(w), exact = 0.5 * g * sn * T * T;
+        double dx = s.position.x - rad * sn, dz = s.position.z - rad * cs;
+        double d = sqrt(dx * dx + dz * dz), off = fabs(s.position.x * sn + s.position.z * cs - rad);
+        /* (the slop, soft's sink under the normal load, and a few roundings
+         * of coordinates of 1e6 m: 8 EPS (|x| + |z|) = 2e-9 m) */
+        double most = 1e-7 + (m == RBS_METHOD_SOFT ? soft_sink(dt, g * cs) * (1.0 + 1e-6) : 0.0) +
+                      8.0 * EPS * (fabs(s.position.x) + fabs(s.position.z));
+        r->value = fabs(d / exact - 1.0);
+        r->extra = off;
+        if (!(off <= most)) {
+            r->failed = 1;
+            note(r, "%.3g m off the plane (bound %.3g m)", off, most);
+        }
+    }
+    rbs_world_destroy(w);
+}
+
 /* ------------------------------------------------------------------------- */
 /* Degenerate geometry                                                       */
 /* ------------------------------------------------------------------------- */
@@ -1202,12 +1247,15 @@ static void plane_through_centre(rbs_method m, xres *r)
  * three, and a second dropped from (0.5, 0.5, 0.5) m with e = 0.5.
  * Exact: both rest at (r, r, r).  Measured: the larger distance from
  * (r, r, r) after 5 s, m.  Bound: the slop along each normal, sqrt 3 x
- * 1e-7 m (soft: its sink g / omega^2 along the diagonal besides). */
+ * 1e-7 m, and rounding (soft: its sink g / omega^2 along the diagonal
+ * besides). */
 static void corner_3_planes(rbs_method m, xres *r)
 {
     const double rad = 0.1, gc = -G / sqrt(3.0);
     int part;
-    r->bound = sqrt(3.0) * 1e-7 * (1.0 + 1e-9);
+    /* (and rounding: euler leaves the dropped ball exactly at the slop
+     * along each normal, 1.7320508e-7 m; 8 EPS of the coordinates' sum) */
+    r->bound = sqrt(3.0) * 1e-7 + 8.0 * EPS * 3.0 * rad;
     if (m == RBS_METHOD_SOFT)
         r->bound += soft_sink(1e-3, G) * (1.0 + 1e-6);
     r->value = 0.0;
@@ -1348,6 +1396,9 @@ static const xcase cases[] = {
     {"box_1e5_m_per_s", "|x - exact| (m) of a ball at 1e5 m/s between two walls 2 m apart, e = 1, 0.1 s (5556 impacts)",
      "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9; soft 7.2 m, its present error: a defect, it "
      "leaves the box (cases.c)", "impacts resolved", 0, box_1e5, 0, NULL},
+    {"incline_far_1.2e6", "|d / exact - 1| of a frictionless ball sliding 1.2e6 m down a 3:4 incline, g = 1e4, 20 s",
+     "euler, selective 1/n (first order); soft 1/(3n); others 4 n EPS", "distance from the plane, m", 0,
+     incline_far, 0, NULL},
     {"plane_through_centre", "overlap (m) with the floor 10 steps after a ball is placed with its centre on it",
      "1e-7 m (slop; rbsim.h: the next step separates)", NULL, 0, plane_through_centre, M(RBS_METHOD_SOFT),
      "soft pushes overlap out over frames, at most 1 % of the radius a sub-step (3 % a frame): a radius "
