@@ -74,8 +74,9 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
                                kinetic friction acts this frame
                                (rbs__friction_cap; only where mu_s > mu_k) */
 #define RBS__CH_WARM 24u    /* it came in with a normal impulse (the last
-                               frame's load): its relax rows over-relax
-                               (RBS__SOFT_OVER) */
+                               frame's load) and is not lone: its relax
+                               rows over-relax (RBS__SOFT_OVER; the warm
+                               start clears it on a lone lane) */
 
 /* The relax rows of a contact that came in loaded take RBS__SOFT_OVER times
  * the rigid row's impulse (successive over-relaxation): one relax pass a
@@ -85,8 +86,21 @@ typedef char rbs__chunk_is_384_bytes[sizeof(rbs__chunk) == 384 ? 1 : -1];
  * accumulated impulse, (1 + a) passes behind; a single column of more than
  * about 21 balls rocked without end (docs/methods.md, "soft", session 45).
  * A new contact (an impact) keeps the rigid row, and the fixed point of a
- * resting load (vn = 0) is the same. */
+ * resting load (vn = 0) is the same.  So does a lone contact, whose moving
+ * bodies are in no other contact that came in loaded (without
+ * RBS__LOADED_MORE in touched, soft_detect.h; a pair apart carries
+ * nothing): it is no link of a chain, one rigid row solves it exactly, and
+ * over-relaxed it overshoots -- while it sinks into its spring the relax
+ * left it rising at half its sink speed, and the next sub-step bore that
+ * much less than its load, so a ball at rest on an incline with mu_s
+ * within 0.1 % of rolling's need slipped, and with mu_k below it slid for
+ * good (docs/methods.md, "soft"; session 50). */
 #define RBS__SOFT_OVER 1.5
+
+/* A record's bits in the frame's touched (rbs__soft_in) besides bit 0 (in
+ * a contact): in a contact that came in loaded, and in more than one. */
+#define RBS__LOADED_ONE 4u
+#define RBS__LOADED_MORE 8u /* (twice RBS__LOADED_ONE: soft_detect.c, mark) */
 
 /* A sphere's contacts with two planes are a wedge when their normals' dot
  * product is below this (the planes more than about 154 degrees apart: a
@@ -116,6 +130,8 @@ typedef struct rbs__soft_rows {
                               speed that holds a contact's load, per m/s of
                               jn / m_eff; the limit is never below it */
     double guard;          /* RBS__GUARD_DEPTH */
+    const uint8_t *touched; /* per record: its contacts (rbs__soft_in); the
+                               warm start's lone lanes */
 } rbs__soft_rows;
 
 /* What a pass reports, per share of it (a cache line each). */

@@ -62,7 +62,9 @@ typedef struct rbs__soft_in {
                              (def.soft_tolerance): the warm starts are then
                              the last frame's forces, for rbs__soft_warm_h */
     int friction;
-    uint8_t *touched;     /* per slot, zero on entry: 1 for a body in a contact */
+    uint8_t *touched;     /* per slot, zero on entry: bit 0 for a body in a
+                             contact, RBS__LOADED_ONE in one that came in
+                             loaded, with RBS__LOADED_MORE in more (soft.h) */
     double *scratch;      /* per slot, RBS__LEVELS_MAX + 1 doubles (the records'
                              room, free during detection) */
 } rbs__soft_in;

@@ -125,6 +125,37 @@ static ROW_INLINE void warm_chunk(const rbs__soft_rows *k, rbs__chunk *c, int pl
     apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, wd_load(c->lb), plane);
 }
 
+/* Clear RBS__CH_WARM on c's lone lanes -- each body of the lane fixed (1/m
+ * 0), a plane, or in no other contact that came in loaded (touched without
+ * RBS__LOADED_MORE): their relax rows stay rigid (soft.h, RBS__SOFT_OVER).
+ * In the warm start, once the frame's records are made. */
+static ROW_INLINE void lone_lanes(const rbs__soft_rows *k, rbs__chunk *c)
+{
+    const unsigned f = c->flags, warm = f >> RBS__CH_WARM & 15u;
+    unsigned linked = 0; /* bit l: lane l is not lone */
+    uint32_t l;
+    if (warm == 0)
+        return;
+    for (l = 0; l < c->count; ++l) {
+        /* (a plane's lane reads a's byte twice: b is no record) */
+        const uint32_t b = f >> (RBS__CH_PLANE + l) & 1u ? c->a[l] : c->b[l];
+        linked |= ((k->touched[c->a[l]] | k->touched[b]) & RBS__LOADED_MORE) != 0 ? 1u << l : 0u;
+    }
+    if (f >> RBS__CH_FIXED & 1u) {
+        /* (a fixed sphere's own contacts do not link it: it does not move) */
+        linked = 0;
+        for (l = 0; l < c->count; ++l) {
+            const uint32_t a = c->a[l], b = c->b[l];
+            const int plane = f >> (RBS__CH_PLANE + l) & 1u;
+            linked |= (((k->touched[a] & RBS__LOADED_MORE) && k->rec[(size_t)RBS__REC * a + RBS__REC_IM] != 0.0) ||
+                       (!plane && (k->touched[b] & RBS__LOADED_MORE) &&
+                        k->rec[(size_t)RBS__REC * b + RBS__REC_IM] != 0.0))
+                      << l;
+        }
+    }
+    c->flags &= ~((warm & ~linked) << RBS__CH_WARM);
+}
+
 /* One row of each lane of c in stage; active: the lanes it may change (bit
  * l: lane l; the others keep their impulses and give nothing). */
 static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int stage, int plane, unsigned active,
@@ -534,6 +565,8 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
                 __builtin_prefetch(p + at, 1, 3); /* (for writing, kept in every cache) */
         }
 #endif
+        if (stage < 0)
+            lone_lanes(k, c);
         if (f >> RBS__CH_SERIAL & 1u) {
             if (f >> RBS__CH_WEDGE & 1u && stage >= 0)
                 row_wedge(k, c, stage, report);

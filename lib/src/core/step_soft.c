@@ -378,6 +378,14 @@ static void pass(soft_pass *sp, int stage)
     }
 }
 
+/* Whether contact c is lone: each of its bodies is fixed (or a plane), or
+ * in no other contact that came in loaded (count: each body's loaded
+ * contacts, up to 2; soft.h, RBS__SOFT_OVER). */
+static int lone(const rbs_world *w, const unsigned char *count, const rbs__contact *c)
+{
+    return (!rbs__body_moves(w, c->a) || count[c->a] == 1) && (!rbs__body_moves(w, c->b) || count[c->b] == 1);
+}
+
 /* Apply the accumulated impulses again (each sub-step starts from them). */
 static void warm_start(soft_pass *sp)
 {
@@ -943,6 +951,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     f.rows.friction = in.friction;
     f.rows.slop = w->def.slop;
     f.rows.guard = RBS__GUARD_DEPTH;
+    f.rows.touched = touched;
     rows_for_h(&f.rows, h);
     memset(f.report, 0, sizeof f.report);
 
@@ -1013,6 +1022,7 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     const uint32_t B = w->def.max_bodies;
     double *inc = w->method_scratch; /* per slot: the accelerations (6), then the margins */
     uint32_t i, at = 0, s;
+    unsigned char *count;
     rbs__soft_rows k;
     soft_pass sp;
     rbs_status st;
@@ -1034,8 +1044,13 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
     sp.restituted = 0;
 
     /* Prepare: the approach speed at the frame's start (for restitution, in
-     * c->bias), and the impulses of the last frame for the warm start. */
+     * c->bias), and the impulses of the last frame for the warm start --
+     * with RBS__WARM, the over-relaxation, for a contact that came in loaded,
+     * and then not for a lone one (soft.h, RBS__SOFT_OVER; each body's
+     * loaded contacts counted, up to 2, in fly_free's bytes). */
     rbs__warm_sort(w);
+    count = (unsigned char *)(void *)(inc + (size_t)8 * B);
+    memset(count, 0, B);
     for (i = 0; i < w->contact_count; ++i) {
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
@@ -1059,11 +1074,17 @@ rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
             w->contact_resist[i].jroll = v3_make(0, 0, 0);
             w->contact_resist[i].jspin = 0.0;
         }
-        if (m != NULL && m->n > 0.0)
+        if (m != NULL && m->n > 0.0) {
             c->flags |= RBS__WARM;
+            count[c->a] += count[c->a] < 2u;
+            count[c->b] += count[c->b] < 2u;
+        }
         if (m != NULL)
             warm_for_h(c, p, sp.friction, m->n, v3_mad(m->t, c->n, -v3_dot(m->t, c->n)), h);
     }
+    for (i = 0; i < w->contact_count; ++i)
+        if (lone(w, count, &w->contact[i]))
+            w->contact[i].flags &= ~RBS__WARM;
     rows_for_h(&k, h);
     sp.inv_h = k.inv_h;
     sp.bias_rate = k.bias_rate;

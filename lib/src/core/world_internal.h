@@ -78,8 +78,8 @@ typedef struct rbs__contact {
                             let it overlap by RBS__GUARD_DEPTH of the smaller
                             radius before they act */
 #define RBS__WARM 128u   /* soft step: it came in with a normal impulse (the
-                            last frame's load); its relax rows over-relax
-                            (soft.h, RBS__SOFT_OVER) */
+                            last frame's load) and is not lone; its relax
+                            rows over-relax (soft.h, RBS__SOFT_OVER) */
 #define RBS__GUARD_DEPTH 0.5 /* of the smaller radius (of the smallest sphere
                                  for the kicks detection takes) */
 
