@@ -11,13 +11,24 @@
  * Rotation: a body whose angular velocity cannot change (isotropic inertia,
  * no applied torque) turns by the exact rotation exp(w h), as in Euler.  A
  * body with torque or anisotropic inertia (off-centre mass included) has
- * (q, w) advanced by the same RK4 on  q' = 1/2 (0, w) q,
- * w' = I^-1 (tau - w x I w)  (world frame), q renormalised afterwards: fourth
- * order for the torque-free and torqued rigid body.  Rotation and translation
- * do not couple between contacts (forces act at the centre of mass, torques
- * do not depend on position), so (q, w) is integrated on its own, in m equal
- * RK4 sub-steps with |w| h / m <= 1/4 rad: a body spinning fast relative to
- * the frame step stays inside RK4's stability region (m = 1 otherwise).
+ * (q, L) advanced by the same RK4 on  q' = 1/2 (0, I(q)^-1 L) q,  L' = tau
+ * (world frame, L = I(q) w), q renormalised after each part, w' = I(q')^-1 L'
+ * at the end: fourth order for the torque-free and the torqued rigid body
+ * (the same ODE as w' = I^-1 (tau - w x I w), written in L), and L' = tau is
+ * integrated exactly (a torque-free body keeps L to rounding).  Rotation and
+ * translation do not couple between contacts (forces act at the centre of
+ * mass, torques do not depend on position), so (q, L) is integrated on its
+ * own, in m equal RK4 parts with |w| h / m <= 1/4 rad: m from |L| / I_min
+ * (rbs__spin_reach), as verlet's and euler's parts, which a torque-free
+ * body keeps.  (Until session 50 the parts were RK4 on (q, w) counted from
+ * (|w| + |alpha| h) h: |alpha| of a free anisotropic body grows as |w|^2,
+ * so the count grew as (|w| h)^2 -- a sphere of I = (4, 6, 9) g m^2 at
+ * 1e6 rad/s took 25.7 s for 200 steps of 1 ms (the other methods 0.7-1.1 s)
+ * and ran out of the step's rotation budget in 39 of them -- and RK4's
+ * damping of w's turn in the world frame lost L: a symmetric top at
+ * |w| dt = 1 lost 1.3e-2 of L in 10 s; tests/methods/test_free_top.c.)
+ * RK4 is not symmetric: the energy L.I(q)^-1 L / 2 still drifts, by
+ * O((|w| h / m)^6) a part.
  *
  * Contacts, as in Verlet: one resting pass per sub-step, on the RK4 end
  * velocities, speculative contacts included (rbs__trapezoid_reach); what
@@ -64,14 +75,23 @@ static quat q_dot(v3 om, quat q)
 }
 
 
-/* RK4 on q' = 1/2 (0, w) q, w' = alpha(q, w) over h for body i, in m
- * sub-steps of at most about 0.25 rad (rbs__spin_substeps).  Writes the end orientation
- * and angular velocity and the mean angular velocity over h into S. */
+/* I(q)^-1 L of body i in world axes (q of unit length). */
+static v3 spin_of(const rbs_world *w, uint32_t i, quat q, v3 L)
+{
+    if (w->isotropic[i])
+        return v3_scale(L, w->iso_inv_inertia[i]);
+    return m3_mul_world(&w->inv_inertia[9 * i], q, L);
+}
+
+/* RK4 on q' = 1/2 (0, I(q)^-1 L) q, L' = tau over h for body i, in m equal
+ * parts of at most 1/4 rad (rbs__spin_reach, rbs__spin_substeps).  Writes
+ * the end orientation and angular velocity I(q')^-1 L' and the mean
+ * angular velocity over h into S. */
 static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, double h, double *S)
 {
     quat q = q_load(&S[S_Q0]);
-    v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0);
-    double reach = (v3_len(om) + v3_len(rbs__angular_acceleration(w, i, tau, om, q)) * h) * h, hs;
+    v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0), L;
+    double hs;
     int m, k, stable;
     if (w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0) {
         /* torque-free and isotropic: w is constant; the rotation is exact */
@@ -82,7 +102,7 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
         v3_store(&S[S_WM], om);
         return;
     }
-    m = rbs__spin_substeps(w, info, reach, 0, &stable);
+    m = rbs__spin_substeps(w, info, rbs__spin_reach(w, i, q, om, tau, h), 0, &stable);
     if (stable) {
         /* the step's rotation budget is spent */
         rbs__spin_stable(w, i, tau, h, m, &q, &om, &mean);
@@ -92,27 +112,25 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
         return;
     }
     hs = h / m;
+    L = rbs__inertia_times(w, i, q, om);
     for (k = 0; k < m; ++k) {
-        v3 w1 = om, a1 = rbs__angular_acceleration(w, i, tau, w1, q);
+        const v3 Lm = v3_mad(L, tau, 0.5 * hs), Le = v3_mad(L, tau, hs);
+        v3 w1 = spin_of(w, i, q, L), w2, w3, w4;
         quat d1 = q_dot(w1, q), q2, q3, q4, d2, d3, d4;
-        v3 w2, w3, w4, a2, a3, a4;
         q2 = q_axpy(q, d1, 0.5 * hs);
-        w2 = v3_mad(om, a1, 0.5 * hs);
-        a2 = rbs__angular_acceleration(w, i, tau, w2, q_normalize(q2));
+        w2 = spin_of(w, i, q_normalize(q2), Lm);
         d2 = q_dot(w2, q2);
         q3 = q_axpy(q, d2, 0.5 * hs);
-        w3 = v3_mad(om, a2, 0.5 * hs);
-        a3 = rbs__angular_acceleration(w, i, tau, w3, q_normalize(q3));
+        w3 = spin_of(w, i, q_normalize(q3), Lm);
         d3 = q_dot(w3, q3);
         q4 = q_axpy(q, d3, hs);
-        w4 = v3_mad(om, a3, hs);
-        a4 = rbs__angular_acceleration(w, i, tau, w4, q_normalize(q4));
+        w4 = spin_of(w, i, q_normalize(q4), Le);
         d4 = q_dot(w4, q4);
         mean = v3_add(mean, v3_scale(v3_add(v3_add(w1, w4), v3_scale(v3_add(w2, w3), 2.0)), 1.0 / 6.0));
-        q = q_axpy(q, q_axpy(q_axpy(d1, d4, 1.0), q_axpy(d2, d3, 1.0), 2.0), hs / 6.0);
-        q = q_normalize(q);
-        om = v3_mad(om, v3_add(v3_add(a1, a4), v3_scale(v3_add(a2, a3), 2.0)), hs / 6.0);
+        q = q_normalize(q_axpy(q, q_axpy(q_axpy(d1, d4, 1.0), q_axpy(d2, d3, 1.0), 2.0), hs / 6.0));
+        L = Le;
     }
+    om = spin_of(w, i, q, L);
     q_store(&S[S_QE], q);
     v3_store(&S[S_WE], om);
     v3_store(&S[S_WM], v3_scale(mean, 1.0 / m));

@@ -833,7 +833,7 @@ rbs_status rbs__step_rollback(rbs_world *w, rbs_step_info *info, rbs__advance_fn
  * growing by at most |tau| h, and |I^-1| bounded by its largest row sum (a
  * constant of the body).  Torque-free it depends on |L| alone, an
  * invariant, so a part count taken from it stays the same from step to step
- * (verlet's and euler's rotation parts). */
+ * (verlet's, rk4's and euler's rotation parts). */
 double rbs__spin_reach(const rbs_world *w, uint32_t i, quat q, v3 om, v3 tau, double h);
 /* Rotation sub-steps for a body turning by reach rad over a sub-step (verlet,
  * rk4, and euler's turns past 1/2 rad): about reach / 0.25, 1 when the rotation is exact in one (torque-free
