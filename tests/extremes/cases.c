@@ -1134,12 +1134,21 @@ static void spin_to_roll(rbs_method m, xres *r)
  * outside the box for good, though docs/methods.md says nothing tunnels
  * (a probe of session 50; the step's max_overlap reports the depth, the
  * status is OK).  One wall alone is met as documented (a frame late, then
- * exact, at 1e4 and 1e5 m/s); it takes both walls within one frame's
- * reach.  Suspected, not verified: the far wall's speculative row takes
- * part of the near wall's warm-started impulse in the Gauss-Seidel pass,
- * and the two opposed accumulated impulses are then not cancelled by the
- * soft rows (impulse_scale > 0), leaving spurious speeds of order
- * impulse_scale x v; soft_substeps 1 fails from 1e4 m/s, 8 from 3e4. */
+ * exact, at 1e4 and 1e5 m/s); it takes both walls within one sub-step's
+ * reach, v h > 1.8 m (from about 6e3 m/s: 0.4 % of the radius deep at
+ * 6e3, 10 % at 1.1e4).  Traced (session 50, every row of a frame at 1.2e4
+ * m/s): the sub-step that stops the ball at wall B accumulates B's impulse
+ * m v; the next sub-step's warm start gives it back (the ball then moves
+ * at -v, away from B), and wall A's speculative row, solved before B's in
+ * the sphere's serial chunk, lets it close A's gap s only at s / h < v and
+ * takes the difference -- an impulse from a wall 1.8 m away -- before B's
+ * row can take its own back (it can only go to zero); the relax leaves the
+ * two walls squeezing, the solve's velocity carries the ball a little into
+ * B each frame, and the restitution pass aims A's row at e v0 while the
+ * ball is at B.  The next frame's warm start re-applies B's restitution
+ * impulse too (the table stores the frame's last impulses), the same
+ * mechanism from the first sub-step.  soft_substeps 1 fails from 1e4 m/s,
+ * 8 from 3e4. */
 static double triangle(double x0, double v, double t)
 {
     const double span = 1.8;
