@@ -813,6 +813,124 @@ static void fixed_sphere_refuses_a_velocity(void **state)
     rbs_world_destroy(w);
 }
 
+/* The setters apply the limits the constructor applies to the same
+ * argument (one function, world.c's sphere_limits): a value add_sphere
+ * refuses is RBS_E_INVALID, named with its value, and the world is left as
+ * it was (hash and state); the setter took it before, and the world failed
+ * later (velocity 1e308: RBS_E_NUMERIC at the third step; a probe of
+ * session 50).  Each bound is the mechanics' exact expression (m v^2 / 2,
+ * m g z, I w^2 / 2, f.x, G m1 m2 / r) against 1e300, with a margin of a
+ * factor of at least 1.02 either side, so rounding cannot decide it. */
+static void setters_apply_the_sphere_limits(void **state)
+{
+    rbs_world *w = make_world(8, 1e-3, -9.81, 0.5);
+    rbs_world_def def;
+    rbs_sphere_def s;
+    rbs_body_id a, b;
+    rbs_energy e;
+    uint64_t h;
+    rbs_vec3 v = {0, 0, 0};
+    rbs_quat q = {0.70710678118654752, 0, 0.70710678118654752, 0}; /* body x to world -z */
+    (void)state;
+    rbs_sphere_def_init(&s); /* 1 kg, r = 0.1 m: I = 0.004 kg m^2, trace 0.012 */
+    s.position.z = 1.0;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &a));
+    h = rbs_world_hash(w);
+    /* velocity: kinetic energy, 0.5 x 1e308^2 overflows */
+    v.x = 1e308;
+    assert_int_equal(rbs_body_set_velocity(w, a, v), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "set_velocity: velocity (1e+308, 0, 0) m/s: the sphere's kinetic energy m v^2 / 2 "
+                        "(velocity) would be inf J, beyond 1e300 J (the world's energy would overflow; "
+                        "rbs_world_add_sphere refuses it too)");
+    assert_true(rbs_world_hash(w) == h && state_of(w, a).velocity.x == 0.0);
+    v.x = 1.43e150; /* 1.022e300 J */
+    assert_int_equal(rbs_body_set_velocity(w, a, v), RBS_E_INVALID);
+    v.x = 1.4e150; /* 9.8e299 J: taken, as add_sphere takes it */
+    CHECK_OK(rbs_body_set_velocity(w, a, v));
+    CHECK_OK(rbs_world_energy(w, &e));
+    v.x = 0.0;
+    CHECK_OK(rbs_body_set_velocity(w, a, v));
+    /* angular velocity: 0.5 x 0.012 x (1.3e151)^2 = 1.014e300 J; 1.29e151: 9.98e299 J */
+    v.z = 1.3e151;
+    assert_int_equal(rbs_body_set_angular_velocity(w, a, v), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "set_angular_velocity: angular_velocity (0, 0, 1.3e+151) "
+                                                   "rad/s: the sphere's rotational energy"));
+    v.z = 1.29e151;
+    CHECK_OK(rbs_body_set_angular_velocity(w, a, v));
+    v.z = 0.0;
+    CHECK_OK(rbs_body_set_angular_velocity(w, a, v));
+    h = rbs_world_hash(w);
+    /* position: potential energy m g z, 9.81 x 1.04e299 = 1.02e300 J */
+    v.z = 1.04e299;
+    assert_int_equal(rbs_body_set_position(w, a, v), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "set_position: position (0, 0, 1.04e+299) m: the "
+                                                   "sphere's potential energy in gravity (position, mass) "
+                                                   "would be 1.02024e+300 J"));
+    assert_true(rbs_world_hash(w) == h && state_of(w, a).position.z == 1.0);
+    v.z = 1e299; /* 9.81e299 J */
+    CHECK_OK(rbs_body_set_position(w, a, v));
+    v.z = 1.0;
+    CHECK_OK(rbs_body_set_position(w, a, v));
+    /* force: its potential f.x, 1.02e200 N x 1e100 m */
+    v.z = 1e100;
+    CHECK_OK(rbs_body_set_position(w, a, v));
+    v.z = 1.02e200;
+    assert_int_equal(rbs_body_set_force(w, a, v), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "set_force: force (0, 0, 1.02e+200) N: the sphere's "
+                                                   "potential energy of its force (force)"));
+    v.z = 0.98e200;
+    CHECK_OK(rbs_body_set_force(w, a, v));
+    /* torque enters no limit: any finite value, as add_sphere */
+    v.z = 1e308;
+    CHECK_OK(rbs_body_set_torque(w, a, v));
+    rbs_world_destroy(w);
+
+    /* orientation moves an off-centre sphere's centre of mass: 1e301 kg
+     * with its COM 0.05 m along body x, turned to world -z, has m g z =
+     * 9.81 x 0.05 x 1e301 = 4.9e300 J */
+    w = make_world(8, 1e-3, -9.81, 0.5);
+    rbs_sphere_def_init(&s);
+    s.mass = 1e301;
+    s.center_of_mass.x = 0.05;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &a));
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_body_set_orientation(w, a, q), RBS_E_INVALID);
+    assert_non_null(strstr(rbs_world_last_error(w), "set_orientation: orientation (0.7071067811865476, 0, "
+                                                   "0.7071067811865476, 0): the sphere's potential energy "
+                                                   "in gravity"));
+    assert_true(rbs_world_hash(w) == h);
+    s.orientation = q; /* add_sphere refuses the same */
+    s.name = "b";
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    rbs_world_destroy(w);
+
+    /* mutual gravity: G m1 m2 / r with G = 1e308, 1 kg each: 1e299 J at
+     * 1e9 m, 1e308 J at 1 m */
+    rbs_world_def_init(&def);
+    def.mutual_gravity = 1;
+    def.gravity_constant = 1e308;
+    def.gravity.z = 0.0;
+    CHECK_OK(rbs_world_create(&def, &w));
+    rbs_sphere_def_init(&s);
+    CHECK_OK(rbs_world_add_sphere(w, &s, &a));
+    s.position.x = 1e9;
+    CHECK_OK(rbs_world_add_sphere(w, &s, &b));
+    v.x = 1.0; v.y = 0.0; v.z = 0.0;
+    h = rbs_world_hash(w);
+    assert_int_equal(rbs_body_set_position(w, b, v), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "set_position: position (1, 0, 0) m: the sphere's potential energy of mutual "
+                        "gravity with sphere 0 (\"\") would be 1e+308 J, beyond 1e300 J (the world's "
+                        "energy would overflow; softening bounds it; rbs_world_add_sphere refuses it too)");
+    assert_true(rbs_world_hash(w) == h);
+    /* its own slot is left out: moving a alone is no pair with itself */
+    v.x = 2.0;
+    CHECK_OK(rbs_body_set_position(w, a, v));
+    CHECK_OK(rbs_world_energy(w, &e));
+    rbs_world_destroy(w);
+}
+
 /* The limits of a sphere that FORMAT.md says the world checks when it is
  * built, as the scene does (one rule, rbs__sphere_energy): a movable
  * sphere's 1 / mass finite, and each energy at the start at most 1e300 J
@@ -1274,6 +1392,7 @@ int main(void)
         cmocka_unit_test(bad_bodies_are_rejected_with_reasons),
         cmocka_unit_test(fixed_sphere_refuses_a_velocity),
         cmocka_unit_test(sphere_energy_at_the_start_is_bounded),
+        cmocka_unit_test(setters_apply_the_sphere_limits),
         cmocka_unit_test(mutual_gravity_needs_a_positive_g),
         cmocka_unit_test(each_def_field_has_its_own_message),
         cmocka_unit_test(pair_rules),

@@ -272,7 +272,10 @@ class Body(_Handle):
     """A body of a world, by id (slot index + generation).
 
     Getters copy the state out; setters validate (finite numbers) and call
-    the library.  Using a body after it was removed raises
+    the library, which holds a sphere's value to the limits add_sphere
+    applies to the same argument (its energies and momenta at most 1e300 in
+    SI units: ``velocity = (1e308, 0, 0)`` raises the library's
+    :class:`~rbsim.InvalidError`, the world unchanged).  Using a body after it was removed raises
     :class:`~rbsim.StaleIdError`.  A Body cannot be copied or pickled (use
     it as it is, or :meth:`state` for a copy of its state).
     """

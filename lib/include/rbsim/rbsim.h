@@ -481,7 +481,8 @@ RBS_API rbs_status rbs_world_pair_at(const rbs_world *world, uint32_t index,
  * of its force) at most 1e300 J, and its momentum m v, angular momentum
  * about the origin r x m v and spin (at most trace(I) |w|) at most 1e300 in
  * SI units, so that rbs_world_energy() and rbs_world_momentum() sums stay
- * finite (the setters take any finite value).  RBS_E_CAPACITY leaves the
+ * finite (the setters apply the same limits to their argument, with
+ * mutual gravity's pair potential).  RBS_E_CAPACITY leaves the
  * world unchanged. */
 RBS_API rbs_status rbs_world_add_sphere(rbs_world *world,
                                         const rbs_sphere_def *def,
@@ -532,9 +533,24 @@ RBS_API rbs_status rbs_body_get_state(const rbs_world *world, rbs_body_id id,
 RBS_API rbs_status rbs_body_get_inertia(const rbs_world *world, rbs_body_id id,
                                         rbs_vec3 *center_of_mass, double inertia[9]);
 /** Setters: finite values only (RBS_E_NUMERIC otherwise, world unchanged);
- * RBS_E_STALE_ID for a stale id; the velocity setters refuse a body that
- * does not move (a plane or fixed sphere: RBS_E_INVALID).  Moving a body
- * into overlap is allowed; the next step separates it. */
+ * RBS_E_STALE_ID for a stale id; the velocity, force and torque setters
+ * refuse a nonzero value for a body that does not move (a plane or fixed
+ * sphere: RBS_E_INVALID).  A sphere's value is held to the limits
+ * rbs_world_add_sphere applies to the same argument (scenes/FORMAT.md,
+ * "Limits of a sphere"; one check in the library), the sphere's other
+ * values as they are now: for a movable sphere, velocity its kinetic
+ * energy, momentum m v and angular momentum r x m v; angular velocity its
+ * rotational energy and spin; position (and orientation, which moves an
+ * off-centre sphere's centre of mass) its potential energies in gravity
+ * and of its force and r x m v; force its potential f.x -- each at most
+ * 1e300 in SI units; and with mutual gravity, position and orientation the
+ * potential with each other sphere (a pair of fixed ones excepted).
+ * Torque has no limit but finite.  Beyond a limit: RBS_E_INVALID, the
+ * message (rbs_world_last_error) naming the setter, the argument, its
+ * value and the limit ("set_velocity: velocity (1e+308, 0, 0) m/s: the
+ * sphere's kinetic energy ... would be inf J, beyond 1e300 J ..."), and
+ * the world unchanged.  Moving a body into overlap is allowed; the next
+ * step separates it.  Not thread-safe against other calls on the world. */
 RBS_API rbs_status rbs_body_set_position(rbs_world *world, rbs_body_id id, rbs_vec3 p);
 RBS_API rbs_status rbs_body_set_orientation(rbs_world *world, rbs_body_id id, rbs_quat q);
 RBS_API rbs_status rbs_body_set_velocity(rbs_world *world, rbs_body_id id, rbs_vec3 v);

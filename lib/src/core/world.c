@@ -125,6 +125,36 @@ void rbs_pair_def_init_sized(rbs_pair_def *def, size_t def_size)
     def_give(def, def_size, &d, sizeof d);
 }
 
+/* The rules of the settings a world can change after it is built, one
+ * each for the def (world_def_check) and its setter (rbs_world_set_dt,
+ * rbs_world_set_method): 1 if x is taken, else 0 with the reason in msg. */
+static int dt_ok(double dt, char *msg, size_t len)
+{
+    char nb[32]; /* (a number for a message) */
+    if (dt > 0.0 && isfinite(dt))
+        return 1;
+    snprintf(msg, len, "dt must be finite and > 0, got %s", rbs__shortest(nb, dt));
+    return 0;
+}
+
+static int tolerance_ok(double tolerance, char *msg, size_t len)
+{
+    char nb[32];
+    if (tolerance >= 1e-15 && isfinite(tolerance))
+        return 1;
+    snprintf(msg, len, "tolerance must be finite and >= 1e-15 (double precision), got %s",
+             rbs__shortest(nb, tolerance));
+    return 0;
+}
+
+static int method_ok(rbs_method method, char *msg, size_t len)
+{
+    if ((int)method >= 0 && (int)method < RBS_METHOD_COUNT)
+        return 1;
+    snprintf(msg, len, "method %d is not a rbs_method", (int)method);
+    return 0;
+}
+
 /* Read and check a world def; fills *out with defaults for fields the
  * caller's header did not have. */
 static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
@@ -160,10 +190,8 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "max_contacts must be <= 67108864, got %u", (unsigned)d.max_contacts);
         return RBS_E_INVALID;
     }
-    if (!(d.dt > 0.0) || !isfinite(d.dt)) {
-        snprintf(msg, len, "dt must be finite and > 0, got %s", rbs__shortest(nb, d.dt));
+    if (!dt_ok(d.dt, msg, len))
         return RBS_E_INVALID;
-    }
     if (!isfinite(d.gravity.x) || !isfinite(d.gravity.y) || !isfinite(d.gravity.z)) {
         char nb2[32], nb3[32];
         snprintf(msg, len, "gravity must be finite, got (%s, %s, %s)", rbs__shortest(nb, d.gravity.x),
@@ -178,14 +206,8 @@ static rbs_status world_def_check(const rbs_world_def *def, rbs_world_def *out,
         snprintf(msg, len, "restitution must be in [0, 1], got %s", rbs__shortest(nb, d.restitution));
         return RBS_E_INVALID;
     }
-    if ((int)d.method < 0 || (int)d.method >= RBS_METHOD_COUNT) {
-        snprintf(msg, len, "method %d is not a rbs_method", (int)d.method);
+    if (!method_ok(d.method, msg, len) || !tolerance_ok(d.tolerance, msg, len))
         return RBS_E_INVALID;
-    }
-    if (!(d.tolerance >= 1e-15) || !isfinite(d.tolerance)) {
-        snprintf(msg, len, "tolerance must be finite and >= 1e-15 (double precision), got %s", rbs__shortest(nb, d.tolerance));
-        return RBS_E_INVALID;
-    }
     if (!(d.slop > 0.0 && d.slop < 0.1)) {
         snprintf(msg, len, "slop must be in (0, 0.1), got %s", rbs__shortest(nb, d.slop));
         return RBS_E_INVALID;
@@ -1037,6 +1059,89 @@ static int unit_quat(quat *q)
     return 1;
 }
 
+/* What a sphere's limits read: its values as add_sphere takes them, or as
+ * the world holds them with one setter's new value put in. */
+typedef struct sphere_vals {
+    double mass, trace; /* kg; trace of the inertia about the COM, kg m^2 */
+    rbs_vec3 p, v, av, c, f; /* position, velocity, angular velocity, COM offset, force */
+    rbs_quat q;              /* unit */
+    int fixed;
+} sphere_vals;
+
+/* The limits each argument of a sphere enters: bit k for
+ * rbs__sphere_energy's term k, LIM_MUTUAL for the potential of mutual
+ * gravity with each other sphere.  A setter checks the limits of its
+ * argument only (a state that stepping carried past a limit of another
+ * argument does not make every setter fail). */
+#define LIM_MUTUAL (1u << RBS__SPHERE_LIMITS)
+#define LIM_VELOCITY ((1u << 0) | (1u << 4) | (1u << 5))
+#define LIM_ANGULAR ((1u << 1) | (1u << 6))
+#define LIM_POSITION ((1u << 2) | (1u << 3) | (1u << 5) | LIM_MUTUAL) /* and orientation: both move the COM */
+#define LIM_FORCE (1u << 3)
+#define LIM_ALL (LIM_VELOCITY | LIM_ANGULAR | LIM_POSITION | LIM_FORCE)
+
+/* The one check of a sphere's limits (scenes/FORMAT.md, "Limits of a
+ * sphere"), for rbs_world_add_sphere (who NULL, self UINT32_MAX) and the
+ * setters (who the setter, given the text of the argument and its value,
+ * self the sphere's slot, left out of the mutual sums): a movable sphere's
+ * energies and momenta at most RBS__ENERGY_MAX, and with mutual gravity
+ * its potential with each other sphere (a pair of fixed ones is left out,
+ * as rbs_world_energy leaves it).  RBS_E_INVALID, the world unchanged. */
+static rbs_status sphere_limits(rbs_world *w, const sphere_vals *s, unsigned lims, const char *who,
+                                const char *given, uint32_t self)
+{
+    static const char *const what[RBS__SPHERE_LIMITS] = {
+        "kinetic energy m v^2 / 2 (velocity)", "rotational energy (angular_velocity)",
+        "potential energy in gravity (position, mass)", "potential energy of its force (force)",
+        "momentum m v (velocity, mass)",
+        "angular momentum r x m v about the origin (position, velocity)",
+        "spin angular momentum, at most trace(I) |w| (angular_velocity)"};
+    int k;
+    if (!s->fixed) {
+        double e[RBS__SPHERE_LIMITS];
+        (void)rbs__sphere_energy(s->mass, s->trace, s->v, s->av, s->p, s->q, s->c, w->def.gravity,
+                                 w->def.gravity_mode == RBS_GRAVITY_FORCE, s->f, e);
+        for (k = 0; k < RBS__SPHERE_LIMITS; ++k) {
+            if (!(lims & (1u << k)) || e[k] <= RBS__ENERGY_MAX)
+                continue;
+            if (who == NULL)
+                FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g %s, beyond 1e300 %s (the world's %s "
+                     "would overflow)", what[k], e[k], rbs__sphere_limit_unit(k), rbs__sphere_limit_unit(k),
+                     rbs__sphere_limit_sum(k));
+            FAIL(w, RBS_E_INVALID, "%s: %s: the sphere's %s would be %g %s, beyond 1e300 %s (the world's %s "
+                 "would overflow; rbs_world_add_sphere refuses it too)", who, given, what[k], e[k],
+                 rbs__sphere_limit_unit(k), rbs__sphere_limit_unit(k), rbs__sphere_limit_sum(k));
+        }
+    }
+    if (w->def.mutual_gravity && (lims & LIM_MUTUAL)) {
+        /* (G = 1e308 with 1 kg spheres 1 m apart passed here and failed at
+         * the first frame; softening bounds it) */
+        const double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
+        const quat q = {s->q.w, s->q.x, s->q.y, s->q.z};
+        const v3 com = v3_add(v3_make(s->p.x, s->p.y, s->p.z), q_rotate(q, v3_make(s->c.x, s->c.y, s->c.z)));
+        uint32_t j;
+        for (j = 0; j < w->sphere_count; ++j) {
+            const uint32_t b = w->spheres[j];
+            v3 dx;
+            double pot;
+            if (b == self || (s->fixed && w->fixed[b]))
+                continue;
+            dx = v3_sub(rbs__body_com(w, b), com);
+            pot = G * s->mass * w->mass[b] / sqrt(v3_dot(dx, dx) + eps2);
+            if (pot <= RBS__ENERGY_MAX)
+                continue;
+            if (who == NULL)
+                FAIL(w, RBS_E_INVALID, "sphere potential energy of mutual gravity with sphere %u (\"%s\") "
+                     "at the start is %g J, beyond 1e300 J (the world's energy would overflow; "
+                     "softening bounds it)", (unsigned)b, w->name[b], pot);
+            FAIL(w, RBS_E_INVALID, "%s: %s: the sphere's potential energy of mutual gravity with sphere %u "
+                 "(\"%s\") would be %g J, beyond 1e300 J (the world's energy would overflow; softening "
+                 "bounds it; rbs_world_add_sphere refuses it too)", who, given, (unsigned)b, w->name[b], pot);
+        }
+    }
+    return RBS_OK;
+}
+
 rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_body_id *out)
 {
     rbs_sphere_def d;
@@ -1159,50 +1264,22 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         FAIL(w, RBS_E_INVALID,
              "sphere: centre of mass offset %g is too far from the centre for this inertia "
              "(inertia about the COM would not be positive definite)", sqrt(c2));
-    if (!d.fixed) {
-        /* a movable sphere's 1 / mass, and its energies (so that the world's
-         * sums stay finite: FORMAT.md, "Limits of a sphere", the scene's
-         * rule too) */
-        static const char *const what[RBS__SPHERE_LIMITS] = {
-            "kinetic energy m v^2 / 2 (velocity)", "rotational energy (angular_velocity)",
-            "potential energy in gravity (position, mass)", "potential energy of its force (force)",
-            "momentum m v (velocity, mass)",
-            "angular momentum r x m v about the origin (position, velocity)",
-            "spin angular momentum, at most trace(I) |w| (angular_velocity)"};
-        double e[RBS__SPHERE_LIMITS];
-        rbs_vec3 g = w->def.gravity;
-        rbs_quat qp = {q.w, q.x, q.y, q.z};
-        if (!isfinite(1.0 / mass))
-            FAIL(w, RBS_E_INVALID, "sphere mass %s kg is too small for double precision (1 / mass "
-                 "overflows); a fixed sphere may have it", rbs__shortest(nb, mass));
-        k = rbs__sphere_energy(mass, I[0] + I[4] + I[8], d.velocity, d.angular_velocity, d.position, qp,
-                               d.center_of_mass, g, w->def.gravity_mode == RBS_GRAVITY_FORCE, d.force, e);
-        if (k >= 0)
-            FAIL(w, RBS_E_INVALID, "sphere %s at the start is %g %s, beyond 1e300 %s (the world's %s "
-                 "would overflow)", what[k], e[k], rbs__sphere_limit_unit(k), rbs__sphere_limit_unit(k),
-                 rbs__sphere_limit_sum(k));
-    }
-    if (w->def.mutual_gravity) {
-        /* its potential energy of mutual gravity with each sphere there,
-         * within the same bound (a pair of fixed spheres is left out of
-         * the sum, as rbs_world_energy leaves it; G = 1e308 with 1 kg
-         * spheres 1 m apart passed here and failed at the first frame) */
-        const double G = w->def.gravity_constant, eps2 = w->def.softening * w->def.softening;
-        const v3 com = v3_add(p, q_rotate(q, c));
-        uint32_t j;
-        for (j = 0; j < w->sphere_count; ++j) {
-            const uint32_t b = w->spheres[j];
-            v3 dx;
-            double pot;
-            if (d.fixed && w->fixed[b])
-                continue;
-            dx = v3_sub(rbs__body_com(w, b), com);
-            pot = G * mass * w->mass[b] / sqrt(v3_dot(dx, dx) + eps2);
-            if (!(pot <= 1e300))
-                FAIL(w, RBS_E_INVALID, "sphere potential energy of mutual gravity with sphere %u (\"%s\") "
-                     "at the start is %g J, beyond 1e300 J (the world's energy would overflow; "
-                     "softening bounds it)", (unsigned)b, w->name[b], pot);
-        }
+    if (!d.fixed && !isfinite(1.0 / mass))
+        FAIL(w, RBS_E_INVALID, "sphere mass %s kg is too small for double precision (1 / mass "
+             "overflows); a fixed sphere may have it", rbs__shortest(nb, mass));
+    {
+        /* a movable sphere's energies (so that the world's sums stay
+         * finite: FORMAT.md, "Limits of a sphere", the scene's rule too),
+         * and its potential of mutual gravity: the rule the setters apply */
+        sphere_vals sv;
+        sv.mass = mass;
+        sv.trace = I[0] + I[4] + I[8];
+        sv.p = d.position; sv.v = d.velocity; sv.av = d.angular_velocity;
+        sv.c = d.center_of_mass; sv.f = d.force;
+        sv.q.w = q.w; sv.q.x = q.x; sv.q.y = q.y; sv.q.z = q.z;
+        sv.fixed = d.fixed != 0;
+        if ((st = sphere_limits(w, &sv, LIM_ALL, NULL, NULL, UINT32_MAX)) != RBS_OK)
+            return st;
     }
     st = take_slot(w, "sphere", RBS_BODY_SPHERE, d.material, d.texture, d.color, d.name, &s);
     if (st != RBS_OK)
@@ -1419,12 +1496,55 @@ static rbs_status setter_check(rbs_world *w, rbs_body_id id, const double *v, in
     return RBS_OK;
 }
 
+/* A sphere's values as the world holds them now (for the setters' check
+ * of the limits, one value then replaced). */
+static void sphere_vals_of(const rbs_world *w, uint32_t s, sphere_vals *out)
+{
+    out->mass = w->mass[s];
+    out->trace = w->isotropic[s] ? 3.0 * w->iso_inertia[s]
+                                 : w->inertia[9 * s] + w->inertia[9 * s + 4] + w->inertia[9 * s + 8];
+    out->p.x = w->pos[3 * s]; out->p.y = w->pos[3 * s + 1]; out->p.z = w->pos[3 * s + 2];
+    out->v.x = w->vel[3 * s]; out->v.y = w->vel[3 * s + 1]; out->v.z = w->vel[3 * s + 2];
+    out->av.x = w->avel[3 * s]; out->av.y = w->avel[3 * s + 1]; out->av.z = w->avel[3 * s + 2];
+    out->c.x = w->com_body[3 * s]; out->c.y = w->com_body[3 * s + 1]; out->c.z = w->com_body[3 * s + 2];
+    out->f.x = w->force[3 * s]; out->f.y = w->force[3 * s + 1]; out->f.z = w->force[3 * s + 2];
+    out->q.w = w->orient[4 * s]; out->q.x = w->orient[4 * s + 1];
+    out->q.y = w->orient[4 * s + 2]; out->q.z = w->orient[4 * s + 3];
+    out->fixed = w->fixed[s] != 0;
+}
+
+/* "velocity (1e+308, 0, 0) m/s": a setter's argument and value, for its
+ * message. */
+static const char *given_text(char *buf, size_t n, const char *arg, const double *v, int count,
+                              const char *unit)
+{
+    char nb[4][32];
+    int k;
+    for (k = 0; k < count; ++k)
+        rbs__shortest(nb[k], v[k]);
+    if (count == 4)
+        snprintf(buf, n, "%s (%s, %s, %s, %s)", arg, nb[0], nb[1], nb[2], nb[3]);
+    else
+        snprintf(buf, n, "%s (%s, %s, %s) %s", arg, nb[0], nb[1], nb[2], unit);
+    return buf;
+}
+
 rbs_status rbs_body_set_position(rbs_world *w, rbs_body_id id, rbs_vec3 p)
 {
     double v[3] = {p.x, p.y, p.z};
     rbs_status st = setter_check(w, id, v, 3, "set_position");
     if (st != RBS_OK)
         return st;
+    if (w->type[id.index] == RBS_BODY_SPHERE) {
+        sphere_vals sv;
+        char given[160];
+        sphere_vals_of(w, id.index, &sv);
+        sv.p = p;
+        st = sphere_limits(w, &sv, LIM_POSITION, "set_position", given_text(given, sizeof given, "position", v, 3, "m"),
+                           id.index);
+        if (st != RBS_OK)
+            return st;
+    }
     v3_store(&w->pos[3 * id.index], v3_load(v));
     return RBS_OK;
 }
@@ -1440,11 +1560,25 @@ rbs_status rbs_body_set_orientation(rbs_world *w, rbs_body_id id, rbs_quat q)
         FAIL(w, RBS_E_INVALID, "set_orientation: quaternion must be nonzero");
     if (w->type[id.index] != RBS_BODY_SPHERE)
         FAIL(w, RBS_E_INVALID, "set_orientation: planes have no orientation");
+    {
+        /* (it moves the centre of mass of an off-centre sphere) */
+        sphere_vals sv;
+        char given[192];
+        sphere_vals_of(w, id.index, &sv);
+        sv.q.w = qq.w; sv.q.x = qq.x; sv.q.y = qq.y; sv.q.z = qq.z;
+        st = sphere_limits(w, &sv, LIM_POSITION, "set_orientation",
+                           given_text(given, sizeof given, "orientation", v, 4, ""), id.index);
+        if (st != RBS_OK)
+            return st;
+    }
     q_store(&w->orient[4 * id.index], qq);
     return RBS_OK;
 }
 
-static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *arr, const char *what)
+/* The setters of velocity, angular velocity, force and torque: arg names
+ * the argument, unit its unit, lims the limits it enters. */
+static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *arr, const char *what,
+                             const char *arg, const char *unit, unsigned lims)
 {
     double v[3] = {a.x, a.y, a.z};
     rbs_status st = setter_check(w, id, v, 3, what);
@@ -1452,6 +1586,20 @@ static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *a
         return st;
     if (!rbs__body_moves(w, id.index) && (a.x != 0.0 || a.y != 0.0 || a.z != 0.0))
         FAIL(w, RBS_E_INVALID, "%s: body does not move (plane or fixed sphere)", what);
+    if (lims != 0 && w->type[id.index] == RBS_BODY_SPHERE) {
+        sphere_vals sv;
+        char given[160];
+        sphere_vals_of(w, id.index, &sv);
+        if (arr == w->vel)
+            sv.v = a;
+        else if (arr == w->avel)
+            sv.av = a;
+        else
+            sv.f = a;
+        st = sphere_limits(w, &sv, lims, what, given_text(given, sizeof given, arg, v, 3, unit), id.index);
+        if (st != RBS_OK)
+            return st;
+    }
     v3_store(&arr[3 * id.index], v3_load(v));
     w->plan_dirty = 1;
     return RBS_OK;
@@ -1460,22 +1608,23 @@ static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *a
 rbs_status rbs_body_set_velocity(rbs_world *w, rbs_body_id id, rbs_vec3 v)
 {
     if (w == NULL) return RBS_E_INVALID;
-    return set_motion(w, id, v, w->vel, "set_velocity");
+    return set_motion(w, id, v, w->vel, "set_velocity", "velocity", "m/s", LIM_VELOCITY);
 }
 rbs_status rbs_body_set_angular_velocity(rbs_world *w, rbs_body_id id, rbs_vec3 v)
 {
     if (w == NULL) return RBS_E_INVALID;
-    return set_motion(w, id, v, w->avel, "set_angular_velocity");
+    return set_motion(w, id, v, w->avel, "set_angular_velocity", "angular_velocity", "rad/s", LIM_ANGULAR);
 }
 rbs_status rbs_body_set_force(rbs_world *w, rbs_body_id id, rbs_vec3 v)
 {
     if (w == NULL) return RBS_E_INVALID;
-    return set_motion(w, id, v, w->force, "set_force");
+    return set_motion(w, id, v, w->force, "set_force", "force", "N", LIM_FORCE);
 }
 rbs_status rbs_body_set_torque(rbs_world *w, rbs_body_id id, rbs_vec3 v)
 {
+    /* (a sphere's torque enters no limit: finite is its whole rule) */
     if (w == NULL) return RBS_E_INVALID;
-    return set_motion(w, id, v, w->torque, "set_torque");
+    return set_motion(w, id, v, w->torque, "set_torque", "torque", "N m", 0);
 }
 
 /* ------------------------------------------------------------------------- */
@@ -1501,11 +1650,11 @@ uint64_t rbs_world_rounded_steps(const rbs_world *w)
 
 rbs_status rbs_world_set_dt(rbs_world *w, double dt)
 {
-    char nb[32]; /* (a number for a message) */
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
-    if (!(dt > 0.0) || !isfinite(dt))
-        FAIL(w, RBS_E_INVALID, "dt must be finite and > 0, got %s", rbs__shortest(nb, dt));
+    w->error[0] = '\0';
+    if (!dt_ok(dt, w->error, sizeof w->error))
+        return RBS_E_INVALID;
     if (dt != w->def.dt) {
         /* the time so far stays: the new step counts from here */
         w->time_base = rbs_world_time(w);
@@ -1517,13 +1666,14 @@ rbs_status rbs_world_set_dt(rbs_world *w, double dt)
 
 rbs_status rbs_world_set_method(rbs_world *w, rbs_method method, double tolerance)
 {
-    char nb[32]; /* (a number for a message) */
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
-    if ((int)method < 0 || (int)method >= RBS_METHOD_COUNT)
-        FAIL(w, RBS_E_INVALID, "method %d is not a rbs_method", (int)method);
-    if (isnan(tolerance) || (tolerance > 0.0 && !(isfinite(tolerance) && tolerance >= 1e-15)))
-        FAIL(w, RBS_E_INVALID, "tolerance must be finite and >= 1e-15 (double precision), got %s", rbs__shortest(nb, tolerance));
+    w->error[0] = '\0';
+    if (!method_ok(method, w->error, sizeof w->error))
+        return RBS_E_INVALID;
+    /* (tolerance <= 0 keeps the current one) */
+    if ((isnan(tolerance) || tolerance > 0.0) && !tolerance_ok(tolerance, w->error, sizeof w->error))
+        return RBS_E_INVALID;
     if (method == RBS_METHOD_ADAPTIVE && rbs__adaptive_reserve(w) != RBS_OK)
         FAIL(w, RBS_E_MEMORY, "method \"adaptive\": out of memory for GSL's workspaces");
     w->def.method = method;
