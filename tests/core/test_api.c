@@ -813,6 +813,32 @@ static void fixed_sphere_refuses_a_velocity(void **state)
     rbs_world_destroy(w);
 }
 
+/* The finds share one rule: NULL is RBS_E_INVALID; a string that names no
+ * body (or material) is RBS_E_NOT_FOUND -- "" included, though an unnamed
+ * body's name reads "" and any material name must have a byte, and names
+ * no name can be ("a b").  find_body said RBS_E_INVALID for "" and
+ * find_material RBS_E_NOT_FOUND (a probe of session 50). */
+static void finds_share_one_rule(void **state)
+{
+    rbs_world *w = make_world(4, 1e-3, -9.81, 0.5);
+    rbs_sphere_def s;
+    rbs_body_id id = {7, 7};
+    rbs_material_id m = {7, 7};
+    (void)state;
+    rbs_sphere_def_init(&s); /* unnamed: its name is "" */
+    CHECK_OK(rbs_world_add_sphere(w, &s, NULL));
+    CHECK_OK(rbs_world_add_material(w, "steel", NULL));
+    assert_int_equal(rbs_world_find_body(w, "", &id), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_world_find_material(w, "", &m), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_world_find_body(w, "a b", &id), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_world_find_material(w, "a b", &m), RBS_E_NOT_FOUND);
+    assert_int_equal(rbs_world_find_body(w, NULL, &id), RBS_E_INVALID);
+    assert_int_equal(rbs_world_find_material(w, NULL, &m), RBS_E_INVALID);
+    /* nothing written when nothing is found */
+    assert_true(id.index == 7 && id.generation == 7 && m.index == 7 && m.generation == 7);
+    rbs_world_destroy(w);
+}
+
 /* The setters apply the limits the constructor applies to the same
  * argument (one function, world.c's sphere_limits): a value add_sphere
  * refuses is RBS_E_INVALID, named with its value, and the world is left as
@@ -1272,6 +1298,7 @@ static void null_arguments_never_crash(void **state)
     assert_int_equal(rbs_world_add_sphere(NULL, NULL, NULL), RBS_E_INVALID);
     assert_int_equal(rbs_world_energy(w, NULL), RBS_E_INVALID);
     assert_int_equal(rbs_world_find_body(w, NULL, NULL), RBS_E_INVALID);
+    assert_int_equal(rbs_world_find_material(w, NULL, NULL), RBS_E_INVALID);
     assert_int_equal(rbs_world_set_dt(w, 0.0), RBS_E_INVALID);
     assert_int_equal(rbs_world_set_dt(w, INFINITY), RBS_E_INVALID);
     assert_non_null(rbs_world_last_error(NULL));
@@ -1393,6 +1420,7 @@ int main(void)
         cmocka_unit_test(fixed_sphere_refuses_a_velocity),
         cmocka_unit_test(sphere_energy_at_the_start_is_bounded),
         cmocka_unit_test(setters_apply_the_sphere_limits),
+        cmocka_unit_test(finds_share_one_rule),
         cmocka_unit_test(mutual_gravity_needs_a_positive_g),
         cmocka_unit_test(each_def_field_has_its_own_message),
         cmocka_unit_test(pair_rules),

@@ -179,6 +179,17 @@ def test_an_empty_name_finds_no_body():
     assert "" not in w.bodies and "a\0b" not in w.bodies and "nosuch" not in w.bodies
     assert "ball" in w.bodies
     assert w.bodies.get("") is None
+    # one rule with materials (the library's: RBS_E_NOT_FOUND for "" from
+    # both finds; rbs_world_find_body said RBS_E_INVALID)
+    with pytest.raises(rbsim.NotFoundError, match="no material named ''"):
+        w.material("")
+    # get, [] and `in` agree on any str that names no body (get("a\0")
+    # raised InvalidError while `"a\0" in` was False: a probe of session 50)
+    for key in ("a\0", "a\0b", "\ud800", "a b", "nosuch"):
+        assert key not in w.bodies
+        assert w.bodies.get(key) is None and w.bodies.get(key, 5) == 5
+        with pytest.raises(rbsim.NotFoundError):
+            w.bodies[key]
     assert sorted(w.bodies) == ["ball", "ground"] and len(w.all_bodies()) == 3
     w.close()
     with pytest.raises(rbsim.ClosedError):

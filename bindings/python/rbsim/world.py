@@ -461,16 +461,23 @@ class BodyMap(_Handle, Mapping[str, Body]):
         self._world = world
 
     def __getitem__(self, name: str) -> Body:
+        # Any str that names no body is a KeyError (NotFoundError), so that
+        # [], get() and `in` agree (Mapping's get and `in` catch only
+        # KeyError): one the library cannot be given (a NUL, a lone
+        # surrogate) too, after a closed world has said so.  get("a\0")
+        # raised body("a\0")'s InvalidError while `"a\0" in` was False (a
+        # probe of session 50).
+        if isinstance(name, str):
+            try:
+                name.encode("utf-8")
+                bad = "\0" in name
+            except UnicodeEncodeError:
+                bad = True
+            if bad:
+                self._world._acquire()  # (a closed world still says so)
+                self._world._lock.release()
+                raise _e.error_class(lib.RBS_E_NOT_FOUND)("no body named %r" % name)
         return self._world.body(name)
-
-    def __contains__(self, name: object) -> bool:
-        # a str no body can be named ("", one holding a NUL) is not in the
-        # map (Mapping's own raised the InvalidError of body("a\0"))
-        if isinstance(name, str) and (not name or "\0" in name):
-            self._world._acquire()  # (a closed world still says so)
-            self._world._lock.release()
-            return False
-        return super().__contains__(name)
 
     def __iter__(self) -> Iterator[str]:
         return iter([b.name for b in self._world.all_bodies() if b.name])
@@ -945,7 +952,8 @@ class World(_Handle):
         return Material(self, out, name)
 
     def material(self, name: str) -> Material:
-        """The material of that name (NotFoundError if none)."""
+        """The material of that name (NotFoundError, a KeyError, if none:
+        "" too, as for :meth:`body`)."""
         raw = _check.text(name, "name")
         out = ffi.new("rbs_material_id *")
         self._query("no material named %r" % name, lib.rbs_world_find_material,
@@ -1200,16 +1208,18 @@ class World(_Handle):
 
     def body(self, name: str) -> Body:
         """The body of that name (NotFoundError, a KeyError, if none; ""
-        names no body: unnamed ones are in :meth:`all_bodies`)."""
+        names no body: unnamed ones are in :meth:`all_bodies`).  A str the
+        library cannot be given (one holding a NUL, a lone surrogate) is an
+        InvalidError here; ``world.bodies`` answers it as a name of no
+        body."""
         raw = _check.text(name, "name")
-        if not raw:
-            # (C's RBS_E_INVALID for "" read "invalid argument: no body
-            # named ''", and `"" in world.bodies` raised it: a probe of
-            # session 50)
-            raise _e.error_class(lib.RBS_E_NOT_FOUND)(
-                "no body named '' (unnamed bodies have no name to find: see all_bodies())")
         out = ffi.new("rbs_body_id *")
-        self._query("no body named %r" % name, lib.rbs_world_find_body, raw, out)
+        # (the library's status decides, "" too: rbs_world_find_body's and
+        # rbs_world_find_material's one rule, NotFoundError)
+        self._query("no body named %r%s" % (name, "" if raw else
+                                           " (unnamed bodies have no name to find: "
+                                           "see all_bodies())"),
+                    lib.rbs_world_find_body, raw, out)
         return Body(self, out)
 
     @property

@@ -454,7 +454,10 @@ RBS_API rbs_status rbs_world_get_def(const rbs_world *world, rbs_world_def *out)
  * RBS_E_CAPACITY leaves the world unchanged. */
 RBS_API rbs_status rbs_world_add_material(rbs_world *world, const char *name,
                                           rbs_material_id *out);
-/** Find a material by name; RBS_E_NOT_FOUND if absent. */
+/** Find a material by name: RBS_E_NOT_FOUND if no material has it ("" and
+ * any other string no material could be named included), RBS_E_INVALID for
+ * NULL -- the rule of rbs_world_find_body.  *out is written only when
+ * found.  Read-only. */
 RBS_API rbs_status rbs_world_find_material(const rbs_world *world,
                                            const char *name,
                                            rbs_material_id *out);
@@ -493,9 +496,12 @@ RBS_API rbs_status rbs_world_add_plane(rbs_world *world,
                                        rbs_body_id *out);
 /** Remove a body; its id and slot's old ids become stale. */
 RBS_API rbs_status rbs_world_remove_body(rbs_world *world, rbs_body_id id);
-/** Find a body by name: RBS_E_NOT_FOUND if no body has it, RBS_E_INVALID
- * for NULL or "" (no name: an unnamed body is found by its slot,
- * rbs_world_body_at). */
+/** Find a body by name: RBS_E_NOT_FOUND if no body has it -- "" included
+ * (no body is found by it: an unnamed body is found by its slot,
+ * rbs_world_body_at), as any other string no body could be named --
+ * RBS_E_INVALID for NULL only; the rule of rbs_world_find_material (a
+ * lookup of a string is answered, found or not; only a missing argument is
+ * a fault).  *out is written only when found.  Read-only. */
 RBS_API rbs_status rbs_world_find_body(const rbs_world *world, const char *name,
                                        rbs_body_id *out);
 /** Id of the body in a slot, or RBS_E_NOT_FOUND if the slot is free. */

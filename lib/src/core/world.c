@@ -1395,9 +1395,13 @@ rbs_status rbs_world_remove_body(rbs_world *w, rbs_body_id id)
 rbs_status rbs_world_find_body(const rbs_world *w, const char *name, rbs_body_id *out)
 {
     uint32_t i;
-    if (w == NULL || w->magic != WORLD_MAGIC || name == NULL || name[0] == '\0')
+    if (w == NULL || w->magic != WORLD_MAGIC || name == NULL)
         return RBS_E_INVALID;
-    if ((i = name_find(w, name)) == UINT32_MAX)
+    /* the rule of both finds: a string that names nothing -- "" (which an
+     * unnamed body has, and no body is found by) as any other no body or
+     * material may have -- is not found; it said RBS_E_INVALID for "" alone
+     * (and rbs_world_find_material RBS_E_NOT_FOUND) */
+    if (name[0] == '\0' || (i = name_find(w, name)) == UINT32_MAX)
         return RBS_E_NOT_FOUND;
     if (out) {
         out->index = i;
