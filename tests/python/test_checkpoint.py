@@ -82,7 +82,8 @@ def test_save_writes_through_a_symbolic_link(tmp_path):
 def test_save_never_replaces_the_scene_it_was_loaded_from(tmp_path):
     # world.save(path) wrote the checkpoint over the scene file the world
     # was loaded from (a probe of session 47), where rbsim run --checkpoint
-    # refuses it: now an InvalidError naming the argument, through any
+    # refuses it: now an OwnInputError (RBS_E_OWN_INPUT, -15; it was an
+    # InvalidError until session 50) naming the argument, through any
     # spelling or link, for a text scene's three files too; the file stays.
     root = os.path.join(os.path.dirname(__file__), "..", "..", "scenes")
     scene = tmp_path / "s.json"
@@ -92,8 +93,9 @@ def test_save_never_replaces_the_scene_it_was_loaded_from(tmp_path):
     (tmp_path / "link.json").symlink_to(scene)
     w = rbsim.load(str(scene))
     for p in (scene, str(scene), tmp_path / "." / "s.json", tmp_path / "link.json"):
-        with pytest.raises(rbsim.InvalidError,
-                           match=r"^invalid argument: path: .* a file the world's scene was "
+        with pytest.raises(rbsim.OwnInputError,
+                           match=r"^the output is a file the input was read from: path: .* a "
+                                 r"file the world's scene was "
                                  r"read from: a checkpoint there would replace the scene"):
             w.save(p)
     assert scene.read_bytes() == text
@@ -104,8 +106,10 @@ def test_save_never_replaces_the_scene_it_was_loaded_from(tmp_path):
     t = rbsim.load(str(tmp_path / "config.txt"))
     for name in ("config.txt", "materials.txt", "objects.txt"):
         before = (tmp_path / name).read_bytes()
-        with pytest.raises(rbsim.InvalidError, match="scene was read from"):
+        with pytest.raises(rbsim.OwnInputError, match="scene was read from") as info:
             t.save(tmp_path / name)
+        assert not isinstance(info.value, rbsim.InvalidError)
+        assert info.value.status == -15
         assert (tmp_path / name).read_bytes() == before
     # a resumed world has no scene file: it saves over its own checkpoint
     r = rbsim.resume(tmp_path / "ok.ckpt")

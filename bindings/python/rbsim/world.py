@@ -1564,13 +1564,20 @@ class World(_Handle):
         any previous file intact); restore it with :meth:`World.restore`.
         A file the world's scene was read from (:func:`rbsim.load`'s file, a
         text scene's materials and objects files; by any path or link) is
-        refused with an InvalidError, as ``rbsim run --checkpoint`` refuses
-        it: the checkpoint would replace the scene."""
+        refused with :class:`~rbsim.OwnInputError` (the library's
+        RBS_E_OWN_INPUT, which ``rbs_scene_save`` returns for a scene saved
+        onto its own files), as ``rbsim run --checkpoint`` refuses it: the
+        checkpoint would replace the scene."""
         raw = _check.path(path, "path")
         for src in self._scene_files:
-            # (it wrote the checkpoint over the scene: a probe of session 47)
+            # (it wrote the checkpoint over the scene: a probe of session 47;
+            # it raised InvalidError until session 50.)  The check is made
+            # here, not by the library: rbs_world_save writes a world, which
+            # keeps no scene, so only the binding knows the files the world
+            # was loaded from (rbs_scene_source) -- as the rbsim command
+            # checks its --checkpoint against them itself (run.c).
             if _same_file(raw, src):
-                raise _e.error_class(lib.RBS_E_INVALID)(
+                raise _e.error_class(lib.RBS_E_OWN_INPUT)(
                     "path: %r is %sa file the world's scene was read from: a "
                     "checkpoint there would replace the scene; save elsewhere"
                     % (os.fsdecode(raw), "" if raw == src
