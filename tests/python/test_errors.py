@@ -784,3 +784,38 @@ def test_messages_name_the_argument_and_echo_the_value():
     with pytest.raises(rbsim.NumericError, match=r"momentum: not finite at step 1 "
                        r"\(linear \(inf, 0, 0\) kg m/s"):
         hot.momentum()
+
+
+def test_run_steps_are_capped_at_2_53_as_a_scene_and_the_command():
+    """run()/start() take at most 2^53 steps, the cap of a scene's
+    simulation.steps and of rbsim --steps, with the scene's message
+    (run(steps=2**60) was taken: a probe of session 50); 2^53 itself is
+    taken."""
+    w = rbsim.World(max_bodies=2)
+    for bad in (2 ** 53 + 1, 2 ** 60):
+        try:
+            r = w.start(bad)
+        except rbsim.InvalidError as exc:
+            assert str(exc) == "invalid argument: steps: must be at most 2^53, got %d" % bad
+        else:
+            r.command("quit")
+            r.wait()
+            pytest.fail("start(%d) was taken" % bad)
+    r = w.start(2 ** 53)
+    r.command("quit")
+    assert r.wait().steps == 2 ** 53
+
+
+def test_an_array_of_the_wrong_shape_is_named_by_its_shape():
+    """np.zeros((2, 3)) as a position said "expected 3 numbers, got 2" (its
+    2 rows); the message names the shape (a probe of session 50)."""
+    w = rbsim.World(max_bodies=2)
+    cases = [(np.zeros((2, 3)), "(2, 3)"), (np.zeros((1, 3)), "(1, 3)"),
+             (np.zeros(4), "(4,)")]
+    for value, shape in cases:
+        with pytest.raises(rbsim.InvalidError) as info:
+            w.add_sphere(position=value)
+        assert str(info.value) == ("invalid argument: position: expected 3 numbers, got an "
+                                   "array of shape %s" % shape), str(info.value)
+    assert w.add_sphere(position=np.array([0.0, 0.0, 1.0])).position.tolist() == [0, 0, 1]
+    assert w.all_bodies()[0].position.tolist() == [0, 0, 1]

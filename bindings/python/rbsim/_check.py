@@ -23,6 +23,9 @@ from . import errors as _e
 
 _U32 = 2 ** 32
 _U64 = 2 ** 64
+#: most steps of a run: a scene's simulation.steps and the rbsim command's
+#: --steps are capped so (frames 0 .. steps at t = k dt, k exact in a double)
+STEPS_MAX = 2 ** 53
 
 
 def real(value: Any, what: str) -> float:
@@ -94,6 +97,16 @@ def u64(value: Any, what: str, low: int = 0) -> int:
     return integer(value, what, low, _U64 - 1)
 
 
+def steps(value: Any, what: str = "steps") -> int:
+    """A run's step count: an int in [0, 2^53], the cap of a scene's
+    simulation.steps and the rbsim command's --steps, with the scene's
+    message (rbs_scene_override's)."""
+    n = u64(value, what)
+    if n > STEPS_MAX:
+        raise _e.error_class(-1)("%s: must be at most 2^53, got %d" % (what, n))
+    return n
+
+
 def flag(value: Any, what: str) -> bool:
     """A bool, numpy's included, or an integer 0/1 (Python's or numpy's)."""
     if isinstance(value, (bool, np.bool_)):
@@ -114,6 +127,13 @@ def vector(value: Any, what: str, size: int = 3) -> Tuple[float, ...]:
         # which number is x
         raise _e.ArgumentTypeError("%s: expected %d numbers in order (a sequence or an "
                                    "array), got %s" % (what, size, _describe(value)))
+    shape = getattr(value, "shape", None)
+    if isinstance(shape, tuple) and len(shape) >= 1 and shape != (size,):
+        # an array is named by its shape: np.zeros((2, 3)) iterates its 2
+        # rows, and "expected 3 numbers, got 2" read as if 2 numbers were
+        # given (a probe of session 50)
+        raise _e.error_class(-1)("%s: expected %d numbers, got an array of shape %s"
+                                 % (what, size, shape))
     try:
         # (one more than needed at most: an endless iterator is not read on)
         items = list(itertools.islice(iter(value), size + 1))

@@ -697,7 +697,9 @@ def start_world(world: World, steps: Optional[int] = None,
         if steps is None:
             raise _e.error_class(lib.RBS_E_INVALID)(
                 "steps: required (the world was not loaded from a scene)")
-    n = _check.u64(steps, "steps")
+    # (at most 2^53, as a scene and the rbsim command: run(steps=2**60) was
+    # taken; a probe of session 50)
+    n = _check.steps(steps, "steps")
     renderers = _renderer_list(renderers)
     if pause_on_collision is None:
         pause_on_collision = world._scene_pause_on_collision

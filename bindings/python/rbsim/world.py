@@ -1314,7 +1314,8 @@ class World(_Handle):
         renderers on another -- and wait for the end.
 
         Args:
-            steps: steps to take (frames 0..steps; 0: frame 0 only); None: the scene's
+            steps: steps to take, 0 to 2**53 as a scene's simulation.steps and
+                ``rbsim run --steps`` (frames 0..steps; 0: frame 0 only); None: the scene's
                 ``simulation.steps`` for a loaded world.
             renderers: a list of Python renderers (at most 4; a single
                 renderer, not in a list, is a TypeError): callables ``f(frame)``
