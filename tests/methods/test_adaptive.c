@@ -419,10 +419,12 @@ static void create_in_and_numeric_failure(void **state)
     assert_true(n > 0);
     assert_int_equal(posix_memalign(&mem, 16, n), 0);
     CHECK_OK(rbs_world_create_in(mem, n, &d, &w));
-    b = ball(w, 0.1, 1.0, 0, 0, 10, 0, 0, 0, (rbs_material_id){0, 0});
+    /* (a force the setter takes -- its potential f.x is 0 at x = 0 -- whose
+     * acceleration 1e308 N / 1e-20 kg overflows; the setters refuse the
+     * velocity 1e308 m/s this used since session 50) */
+    b = ball(w, 0.1, 1e-20, 0, 0, 10, 0, 0, 0, (rbs_material_id){0, 0});
     step_n(w, 10);
-    CHECK_OK(rbs_body_set_force(w, b, (rbs_vec3){0, 0, 1e308}));
-    CHECK_OK(rbs_body_set_velocity(w, b, (rbs_vec3){0, 0, 1e308}));
+    CHECK_OK(rbs_body_set_force(w, b, (rbs_vec3){1e308, 0, 0}));
     s0 = state_of(w, b);
     st = rbs_world_step(w, NULL);
     assert_int_equal(st, RBS_E_NUMERIC);

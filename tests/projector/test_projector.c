@@ -21,6 +21,7 @@
 #include <cmocka.h>
 
 #include "rbsim/reel.h"
+#include "raw_state.h"
 
 #define CHECK_OK(call) assert_int_equal((call), RBS_OK)
 
@@ -757,8 +758,9 @@ static void numerical_failure_stops_the_run(void **state)
 
 /* A momentum that overflows at the first frame: the message said only
  * "frame capture at t = 0 s failed: momentum: numerical failure (NaN,
- * infinity or overflow)"; it names the sphere and the term now (the
- * setters take any finite value, so the start checks do not see it). */
+ * infinity or overflow)"; it names the sphere and the term now.  (The
+ * setters refuse this state since session 50, as add_sphere does, but a
+ * step can reach one: it is written directly.) */
 static void momentum_failure_names_the_body(void **state)
 {
     fixture fx;
@@ -768,8 +770,8 @@ static void momentum_failure_names_the_body(void **state)
     (void)state;
     fx_init(&fx, "rec", NULL);
     CHECK_OK(rbs_world_find_body(fx.w, "ball0", &id));
-    CHECK_OK(rbs_body_set_position(fx.w, id, far));
-    CHECK_OK(rbs_body_set_velocity(fx.w, id, fast));
+    raw_set(fx.w, id, RAW_POSITION, far);
+    raw_set(fx.w, id, RAW_VELOCITY, fast);
     fx.def.steps = 10;
     CHECK_OK(fx_create(&fx));
     assert_int_equal(rbs_projector_run(fx.p), RBS_E_NUMERIC);
