@@ -806,6 +806,19 @@ def test_run_steps_are_capped_at_2_53_as_a_scene_and_the_command():
     assert r.wait().steps == 2 ** 53
 
 
+def test_run_steps_times_dt_must_be_finite_as_in_a_scene():
+    """A run whose last frame would be at t = inf is refused before it
+    starts, as a scene's simulation.steps * dt is (World(dt=1e300)
+    .start(2**53) was taken: a probe of session 50); 1e300 * 100 is fine."""
+    w = rbsim.World(max_bodies=2, dt=1e300)
+    with pytest.raises(rbsim.InvalidError,
+                       match=r"steps \* dt overflows \(9007199254740992 \* 1e\+300 s\)"):
+        w.start(2 ** 53)
+    with pytest.raises(rbsim.InvalidError, match=r"steps \* dt overflows"):
+        w.run(2 ** 30)
+    assert w.run(100).steps == 100
+
+
 def test_an_array_of_the_wrong_shape_is_named_by_its_shape():
     """np.zeros((2, 3)) as a position said "expected 3 numbers, got 2" (its
     2 rows); the message names the shape (a probe of session 50)."""

@@ -34,6 +34,7 @@ original exception again.
 from __future__ import annotations
 
 import atexit
+import math
 import sys
 import threading
 import warnings
@@ -700,6 +701,11 @@ def start_world(world: World, steps: Optional[int] = None,
     # (at most 2^53, as a scene and the rbsim command: run(steps=2**60) was
     # taken; a probe of session 50)
     n = _check.steps(steps, "steps")
+    if not endless and not math.isfinite(float(n) * world.dt):
+        # (as a scene's check: the run's last frame would be at t = inf;
+        # World(dt=1e300).start(2**53) was taken -- a probe of session 50)
+        raise _e.error_class(lib.RBS_E_INVALID)(
+            "steps * dt overflows (%d * %r s)" % (n, world.dt))
     renderers = _renderer_list(renderers)
     if pause_on_collision is None:
         pause_on_collision = world._scene_pause_on_collision

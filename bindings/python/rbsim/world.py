@@ -1316,7 +1316,8 @@ class World(_Handle):
         Args:
             steps: steps to take, 0 to 2**53 as a scene's simulation.steps and
                 ``rbsim run --steps`` (frames 0..steps; 0: frame 0 only); None: the scene's
-                ``simulation.steps`` for a loaded world.
+                ``simulation.steps`` for a loaded world; steps * dt must be
+                finite, as in a scene.
             renderers: a list of Python renderers (at most 4; a single
                 renderer, not in a list, is a TypeError): callables ``f(frame)``
                 or objects with ``draw(frame)`` and optionally ``finish()``,
