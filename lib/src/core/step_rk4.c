@@ -53,10 +53,9 @@ enum {
     S_SX = 13,   /* sum of b_k v_k, 3 */
     S_SV = 16,   /* sum of b_k a_k, 3 */
     S_WE = 19,   /* RK4 angular velocity at the end, 3 */
-    S_WM = 22,   /* RK4 mean angular velocity over the step, 3 */
-    S_QE = 25,   /* RK4 orientation at the end, 4 */
-    S_SPIN = 29, /* 1: (q, w) integrated by RK4 */
-    S_USED = 30
+    S_QE = 22,   /* RK4 orientation at the end, 4 */
+    S_SPIN = 26, /* 1: (q, w) integrated by RK4 */
+    S_USED = 27
 };
 
 
@@ -85,12 +84,11 @@ static v3 spin_of(const rbs_world *w, uint32_t i, quat q, v3 L)
 
 /* RK4 on q' = 1/2 (0, I(q)^-1 L) q, L' = tau over h for body i, in m equal
  * parts of at most 1/4 rad (rbs__spin_reach, rbs__spin_substeps).  Writes
- * the end orientation and angular velocity I(q')^-1 L' and the mean
- * angular velocity over h into S. */
+ * the end orientation and angular velocity I(q')^-1 L' into S. */
 static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, double h, double *S)
 {
     quat q = q_load(&S[S_Q0]);
-    v3 om = v3_load(&S[S_W0]), mean = v3_make(0.0, 0.0, 0.0), L;
+    v3 om = v3_load(&S[S_W0]), L;
     double hs;
     int m, k, stable;
     if (w->isotropic[i] && tau.x == 0.0 && tau.y == 0.0 && tau.z == 0.0) {
@@ -99,16 +97,14 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
             q = q_normalize(q_mul(q_from_rotation(om, h), q));
         q_store(&S[S_QE], q);
         v3_store(&S[S_WE], om);
-        v3_store(&S[S_WM], om);
         return;
     }
     m = rbs__spin_substeps(w, info, rbs__spin_reach(w, i, q, om, tau, h), 0, &stable);
     if (stable) {
         /* the step's rotation budget is spent */
-        rbs__spin_stable(w, i, tau, h, m, &q, &om, &mean);
+        rbs__spin_stable(w, i, tau, h, m, &q, &om, NULL);
         q_store(&S[S_QE], q);
         v3_store(&S[S_WE], om);
-        v3_store(&S[S_WM], mean);
         return;
     }
     hs = h / m;
@@ -126,14 +122,12 @@ static void spin_rk4(rbs_world *w, rbs_step_info *info, uint32_t i, v3 tau, doub
         q4 = q_axpy(q, d3, hs);
         w4 = spin_of(w, i, q_normalize(q4), Le);
         d4 = q_dot(w4, q4);
-        mean = v3_add(mean, v3_scale(v3_add(v3_add(w1, w4), v3_scale(v3_add(w2, w3), 2.0)), 1.0 / 6.0));
         q = q_normalize(q_axpy(q, q_axpy(q_axpy(d1, d4, 1.0), q_axpy(d2, d3, 1.0), 2.0), hs / 6.0));
         L = Le;
     }
     om = spin_of(w, i, q, L);
     q_store(&S[S_QE], q);
     v3_store(&S[S_WE], om);
-    v3_store(&S[S_WM], v3_scale(mean, 1.0 / m));
 }
 
 /* Place body i's geometric centre so that its COM is at com for orientation q. */
