@@ -745,6 +745,25 @@ static void bad_bodies_are_rejected_with_reasons(void **state)
     rbs_sphere_def_init(&s);
     s.velocity.y = INFINITY;
     assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_NUMERIC);
+    /* named with its value (it read "sphere: position, velocities, centre
+     * of mass, force and torque must be finite", whichever it was) */
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere: velocity (0, inf, 0) m/s: every component must be finite");
+    rbs_sphere_def_init(&s);
+    s.torque.z = -INFINITY;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_NUMERIC);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere: torque (0, 0, -inf) N m: every component must be finite");
+    rbs_sphere_def_init(&s);
+    s.orientation.x = NAN;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_NUMERIC);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere: orientation (1, nan, 0, 0): every component must be finite");
+    rbs_plane_def_init(&p);
+    p.normal.x = 0.0; p.normal.y = NAN; p.normal.z = 1.0;
+    assert_int_equal(rbs_world_add_plane(w, &p, NULL), RBS_E_NUMERIC);
+    assert_string_equal(rbs_world_last_error(w),
+                        "plane: normal (0, nan, 1): every component must be finite");
     rbs_sphere_def_init(&s);
     s.inertia_kind = RBS_INERTIA_PRINCIPAL;
     s.inertia.x = 1; s.inertia.y = 1; s.inertia.z = 5;
@@ -772,11 +791,23 @@ static void bad_bodies_are_rejected_with_reasons(void **state)
     assert_int_equal(rbs_body_set_force(w, id, nanv), RBS_E_NUMERIC);
     assert_int_equal(rbs_body_set_velocity(w, id, nanv), RBS_E_NUMERIC);
     assert_true(state_of(w, id).force.x == 0.0);
+    /* the message names the argument and echoes it (it read "set_velocity:
+     * value must be finite") */
+    {
+        rbs_vec3 v = {1.5, -INFINITY, 0.0};
+        rbs_quat q = {1.0, 0.0, NAN, 0.0};
+        assert_int_equal(rbs_body_set_angular_velocity(w, id, v), RBS_E_NUMERIC);
+        assert_string_equal(rbs_world_last_error(w), "set_angular_velocity: angular_velocity (1.5, -inf, 0) "
+                                                     "rad/s: every component must be finite");
+        assert_int_equal(rbs_body_set_orientation(w, id, q), RBS_E_NUMERIC);
+        assert_string_equal(rbs_world_last_error(w),
+                            "set_orientation: orientation (1, 0, nan, 0): every component must be finite");
+    }
     rbs_world_destroy(w);
 }
 
-/* A fixed sphere never moves, so a velocity or angular velocity given with
- * it is an error, as rbs_body_set_velocity says for one added (it was
+/* A fixed sphere never moves, so a velocity, angular velocity, force or
+ * torque given with it is an error, as rbs_body_set_velocity says for one added (it was
  * stored as zero, silently); zero vectors, -0 too, are fine. */
 static void fixed_sphere_refuses_a_velocity(void **state)
 {
@@ -798,9 +829,25 @@ static void fixed_sphere_refuses_a_velocity(void **state)
     assert_string_equal(rbs_world_last_error(w),
                         "sphere angular_velocity must be zero for a fixed sphere (it never moves), "
                         "got (5, 0, 0) rad/s");
+    /* nor would a force or torque act on it (rbs_body_set_force refuses
+     * one on it; add_sphere took it, silently) */
+    rbs_sphere_def_init(&s);
+    s.fixed = 1;
+    s.force.z = -2.0;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere force must be zero for a fixed sphere (it never moves), got (0, 0, -2) N");
+    rbs_sphere_def_init(&s);
+    s.fixed = 1;
+    s.torque.y = 1e-300;
+    assert_int_equal(rbs_world_add_sphere(w, &s, NULL), RBS_E_INVALID);
+    assert_string_equal(rbs_world_last_error(w),
+                        "sphere torque must be zero for a fixed sphere (it never moves), got (0, 1e-300, 0) N m");
     rbs_sphere_def_init(&s);
     s.fixed = 1;
     s.velocity.z = -0.0;
+    s.force.x = -0.0;
+    s.torque.y = -0.0;
     CHECK_OK(rbs_world_add_sphere(w, &s, &id));
     assert_true(state_of(w, id).velocity.z == 0.0);
     /* the same sphere movable takes them */

@@ -164,15 +164,22 @@ static const bad_case cases[] = {
      {E("[1, 1", 1, 0,
         "bodies[0].inertia: principal moments must satisfy the triangle inequality (each "
         "<= the sum of the other two), got [1, 1, 2.0000000001]")}},
-    /* a fixed sphere never moves: its velocities were dropped, silently;
-     * zero ones are fine */
+    /* a fixed sphere never moves: its velocities, force and torque were
+     * dropped, silently; zero ones are fine */
     {"bad/fixed_sphere_moving.json", RBS_E_SCENE,
      {E("[1, 0, 0]", 1, 0,
         "bodies[0].velocity: a fixed sphere does not move: must be [0, 0, 0] or left out, "
         "got [1, 0, 0]"),
       E("[5, 0,", 1, 0,
         "bodies[0].angular_velocity: a fixed sphere does not move: must be [0, 0, 0] or "
-        "left out, got [5, 0, 0.0000000001]")}},
+        "left out, got [5, 0, 0.0000000001]"),
+      /* nor did its force or torque do anything: taken silently */
+      E("[0, 0, -2]", 1, 0,
+        "bodies[0].force: a fixed sphere does not move: must be [0, 0, 0] or left out, "
+        "got [0, 0, -2]"),
+      E("[0, 1e-300", 1, 0,
+        "bodies[0].torque: a fixed sphere does not move: must be [0, 0, 0] or left out, "
+        "got [0, 1e-300, 0]")}},
     {"bad/center_of_mass_outside.json", RBS_E_SCENE,
      {E("[0, 0, 0.1]", 1, 0,
         "bodies[0].center_of_mass: must lie inside the sphere: |offset| = 0.1 m, radius "

@@ -344,8 +344,9 @@ typedef struct rbs_sphere_def {
     uint32_t color;             /**< 0xRRGGBB; default 0xd03030 */
     rbs_texture texture;        /**< default stripes */
     int32_t fixed;              /**< nonzero: never moves (infinite mass);
-                                     velocity and angular_velocity must
-                                     then be zero (else RBS_E_INVALID) */
+                                     velocity, angular_velocity, force and
+                                     torque must then be zero (else
+                                     RBS_E_INVALID) */
 } rbs_sphere_def;
 
 RBS_API void rbs_sphere_def_init_sized(rbs_sphere_def *def, size_t def_size);

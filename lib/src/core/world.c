@@ -1080,6 +1080,37 @@ typedef struct sphere_vals {
 #define LIM_FORCE (1u << 3)
 #define LIM_ALL (LIM_VELOCITY | LIM_ANGULAR | LIM_POSITION | LIM_FORCE)
 
+/* "velocity (1e+308, 0, 0) m/s": an argument and its value, for a
+ * message (count 3, or 4 for a quaternion; unit "" for none). */
+static const char *given_text(char *buf, size_t n, const char *arg, const double *v, int count,
+                              const char *unit)
+{
+    char nb[4][32];
+    int k;
+    for (k = 0; k < count; ++k)
+        rbs__shortest(nb[k], v[k]);
+    if (count == 4)
+        snprintf(buf, n, "%s (%s, %s, %s, %s)", arg, nb[0], nb[1], nb[2], nb[3]);
+    else
+        snprintf(buf, n, "%s (%s, %s, %s)%s%s", arg, nb[0], nb[1], nb[2], unit[0] ? " " : "", unit);
+    return buf;
+}
+
+/* RBS_E_NUMERIC naming the argument and its value when a component of v
+ * (count 3 or 4) is not finite: "who: velocity (nan, 0, 0) m/s: every
+ * component must be finite". */
+static rbs_status finite_arg(rbs_world *w, const char *who, const char *arg, const double *v, int count,
+                             const char *unit)
+{
+    char given[192];
+    int k;
+    for (k = 0; k < count; ++k)
+        if (!isfinite(v[k]))
+            FAIL(w, RBS_E_NUMERIC, "%s: %s: every component must be finite", who,
+                 given_text(given, sizeof given, arg, v, count, unit));
+    return RBS_OK;
+}
+
 /* The one check of a sphere's limits (scenes/FORMAT.md, "Limits of a
  * sphere"), for rbs_world_add_sphere (who NULL, self UINT32_MAX) and the
  * setters (who the setter, given the text of the argument and its value,
@@ -1186,9 +1217,19 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
     c = v3_make(d.center_of_mass.x, d.center_of_mass.y, d.center_of_mass.z);
     f = v3_make(d.force.x, d.force.y, d.force.z);
     t = v3_make(d.torque.x, d.torque.y, d.torque.z);
-    if (!v3_finite(p) || !v3_finite(v) || !v3_finite(av) || !v3_finite(c) || !v3_finite(f) ||
-        !v3_finite(t))
-        FAIL(w, RBS_E_NUMERIC, "sphere: position, velocities, centre of mass, force and torque must be finite");
+    {
+        const rbs_vec3 vals[6] = {d.position, d.velocity, d.angular_velocity, d.center_of_mass, d.force,
+                                  d.torque};
+        static const char *const args[6][2] = {{"position", "m"}, {"velocity", "m/s"},
+                                                {"angular_velocity", "rad/s"}, {"center_of_mass", "m"},
+                                                {"force", "N"}, {"torque", "N m"}};
+        int k;
+        for (k = 0; k < 6; ++k) {
+            const double xyz[3] = {vals[k].x, vals[k].y, vals[k].z};
+            if ((st = finite_arg(w, "sphere", args[k][0], xyz, 3, args[k][1])) != RBS_OK)
+                return st;
+        }
+    }
     /* a fixed sphere never moves: a velocity would be dropped silently (as
      * rbs_body_set_velocity refuses it) */
     if (d.fixed && (v.x != 0.0 || v.y != 0.0 || v.z != 0.0))
@@ -1198,9 +1239,20 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
         FAIL(w, RBS_E_INVALID, "sphere angular_velocity must be zero for a fixed sphere (it never "
              "moves), got (%s, %s, %s) rad/s", rbs__shortest(nb, av.x), rbs__shortest(nb2, av.y),
              rbs__shortest(nb3, av.z));
+    /* nor would a force or torque do anything (rbs_body_set_force and
+     * rbs_body_set_torque refuse them on it) */
+    if (d.fixed && (f.x != 0.0 || f.y != 0.0 || f.z != 0.0))
+        FAIL(w, RBS_E_INVALID, "sphere force must be zero for a fixed sphere (it never moves), got "
+             "(%s, %s, %s) N", rbs__shortest(nb, f.x), rbs__shortest(nb2, f.y), rbs__shortest(nb3, f.z));
+    if (d.fixed && (t.x != 0.0 || t.y != 0.0 || t.z != 0.0))
+        FAIL(w, RBS_E_INVALID, "sphere torque must be zero for a fixed sphere (it never moves), got "
+             "(%s, %s, %s) N m", rbs__shortest(nb, t.x), rbs__shortest(nb2, t.y), rbs__shortest(nb3, t.z));
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
-    if (!isfinite(q.w) || !isfinite(q.x) || !isfinite(q.y) || !isfinite(q.z))
-        FAIL(w, RBS_E_NUMERIC, "sphere orientation must be finite");
+    {
+        const double wxyz[4] = {q.w, q.x, q.y, q.z};
+        if ((st = finite_arg(w, "sphere", "orientation", wxyz, 4, "")) != RBS_OK)
+            return st;
+    }
     if (!unit_quat(&q))
         FAIL(w, RBS_E_INVALID, "sphere orientation must be a nonzero quaternion");
     if (!(v3_len(c) < d.radius))
@@ -1330,8 +1382,12 @@ rbs_status rbs_world_add_plane(rbs_world *w, const rbs_plane_def *def, rbs_body_
         return st;
     p = v3_make(d.point.x, d.point.y, d.point.z);
     n = v3_make(d.normal.x, d.normal.y, d.normal.z);
-    if (!v3_finite(p) || !v3_finite(n))
-        FAIL(w, RBS_E_NUMERIC, "plane point and normal must be finite");
+    {
+        const double pt[3] = {p.x, p.y, p.z}, nn[3] = {n.x, n.y, n.z};
+        if ((st = finite_arg(w, "plane", "point", pt, 3, "m")) != RBS_OK ||
+            (st = finite_arg(w, "plane", "normal", nn, 3, "")) != RBS_OK)
+            return st;
+    }
     {
         /* scaled by its largest component first: a finite normal whose
          * length would overflow or underflow (1e300, 1e-200) is still a
@@ -1485,19 +1541,16 @@ rbs_status rbs_body_get_inertia(const rbs_world *w, rbs_body_id id, rbs_vec3 *ce
 }
 
 /* Common checks of the setters: valid id, finite value. */
-static rbs_status setter_check(rbs_world *w, rbs_body_id id, const double *v, int n, const char *what)
+static rbs_status setter_check(rbs_world *w, rbs_body_id id, const double *v, int n, const char *what,
+                               const char *arg, const char *unit)
 {
-    int k;
     if (w == NULL || w->magic != WORLD_MAGIC)
         return RBS_E_INVALID;
     w->error[0] = '\0';
     if (!id_valid(w, id))
         FAIL(w, RBS_E_STALE_ID, "%s: null or stale body id {%u, %u}", what, (unsigned)id.index,
              (unsigned)id.generation);
-    for (k = 0; k < n; ++k)
-        if (!isfinite(v[k]))
-            FAIL(w, RBS_E_NUMERIC, "%s: value must be finite", what);
-    return RBS_OK;
+    return finite_arg(w, what, arg, v, n, unit);
 }
 
 /* A sphere's values as the world holds them now (for the setters' check
@@ -1517,26 +1570,11 @@ static void sphere_vals_of(const rbs_world *w, uint32_t s, sphere_vals *out)
     out->fixed = w->fixed[s] != 0;
 }
 
-/* "velocity (1e+308, 0, 0) m/s": a setter's argument and value, for its
- * message. */
-static const char *given_text(char *buf, size_t n, const char *arg, const double *v, int count,
-                              const char *unit)
-{
-    char nb[4][32];
-    int k;
-    for (k = 0; k < count; ++k)
-        rbs__shortest(nb[k], v[k]);
-    if (count == 4)
-        snprintf(buf, n, "%s (%s, %s, %s, %s)", arg, nb[0], nb[1], nb[2], nb[3]);
-    else
-        snprintf(buf, n, "%s (%s, %s, %s) %s", arg, nb[0], nb[1], nb[2], unit);
-    return buf;
-}
 
 rbs_status rbs_body_set_position(rbs_world *w, rbs_body_id id, rbs_vec3 p)
 {
     double v[3] = {p.x, p.y, p.z};
-    rbs_status st = setter_check(w, id, v, 3, "set_position");
+    rbs_status st = setter_check(w, id, v, 3, "set_position", "position", "m");
     if (st != RBS_OK)
         return st;
     if (w->type[id.index] == RBS_BODY_SPHERE) {
@@ -1557,7 +1595,7 @@ rbs_status rbs_body_set_orientation(rbs_world *w, rbs_body_id id, rbs_quat q)
 {
     double v[4] = {q.w, q.x, q.y, q.z};
     quat qq = {q.w, q.x, q.y, q.z};
-    rbs_status st = setter_check(w, id, v, 4, "set_orientation");
+    rbs_status st = setter_check(w, id, v, 4, "set_orientation", "orientation", "");
     if (st != RBS_OK)
         return st;
     if (!unit_quat(&qq))
@@ -1585,7 +1623,7 @@ static rbs_status set_motion(rbs_world *w, rbs_body_id id, rbs_vec3 a, double *a
                              const char *arg, const char *unit, unsigned lims)
 {
     double v[3] = {a.x, a.y, a.z};
-    rbs_status st = setter_check(w, id, v, 3, what);
+    rbs_status st = setter_check(w, id, v, 3, what, arg, unit);
     if (st != RBS_OK)
         return st;
     if (!rbs__body_moves(w, id.index) && (a.x != 0.0 || a.y != 0.0 || a.z != 0.0))

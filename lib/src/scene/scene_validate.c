@@ -1331,12 +1331,12 @@ static void check_sphere(vctx *v, const cJSON *obj, rbs__scene_body *b)
         pop(v, saved);
     }
     if (b->fixed) {
-        /* a fixed sphere never moves: a velocity would be dropped silently
-         * (rbs_world_add_sphere refuses it too) */
-        static const char *const moving[2] = {"velocity", "angular_velocity"};
-        const rbs_vec3 *at[2] = {&b->velocity, &b->angular_velocity};
+        /* a fixed sphere never moves: a velocity, force or torque would be
+         * dropped silently (rbs_world_add_sphere refuses them too) */
+        static const char *const moving[4] = {"velocity", "angular_velocity", "force", "torque"};
+        const rbs_vec3 *at[4] = {&b->velocity, &b->angular_velocity, &b->force, &b->torque};
         int k;
-        for (k = 0; k < 2; k++) {
+        for (k = 0; k < 4; k++) {
             if ((c = member(obj, moving[k])) != NULL && !vec_len_zero(*at[k])) {
                 char g[256];
                 got_list(v, c, g, sizeof g);
