@@ -1075,6 +1075,460 @@ static void incline_at_the_rolling_threshold(void **state)
     }
 }
 
+/* ---- a ball leaves a fixed sphere ------------------------------------------- */
+
+/* A solid ball (m = 1 kg, r = 0.1 m) released at rest a hair off the top of
+ * a fixed sphere (R = 1 m): its centre at th0 = 0.01 rad from the vertical
+ * on the circle of radius L = R + r.  While the contact holds,
+ * m v^2 / L = m g cos th - N, energy gives v^2, and the ball leaves where
+ * N = 0 (the particle on a hemisphere of any mechanics text, e.g. Kleppner
+ * & Kolenkow, An Introduction to Mechanics, 1973, ch. 4; the rolling sphere
+ * in Routh, Dynamics of a System of Rigid Bodies, elementary part):
+ *   frictionless: v^2 = 2 g L (c0 - c), so c* = cos th* = 2/3 c0;
+ *   rolling (v = r w, kinetic energy 7/10 m v^2): 7/10 v^2 = g L (c0 - c),
+ *   c* = 10/17 c0, and it leaves at v*^2 = g L c* spinning at v* / r.
+ * Rolling needs friction 2/7 m g sin th, mu_s >= 2 sin th / (17 c - 10 c0),
+ * unbounded as N -> 0: with mu = 1e6 the ball slips only where c - c* <
+ * 2 sin th / (17 mu) = 1e-7, far inside the bounds below.
+ * Measured: cos th at the end of the last frame with a normal impulse
+ * (rbs_step_info.resting counts the contacts whose impulse is > 0); that
+ * the ball leaves once (no frame without an impulse before that one); and
+ * in the flight after it, which keeps both: frictionless, the horizontal
+ * speed v* c* = sqrt(g L) c*^(3/2); rolling, the spin v* / r.
+ * Bounds, first order in dt for every method (a contact's sub-steps are
+ * first order, docs/physics.md: "all five converge at first order"), in
+ * units of the frame's turn at the departure, e = s* v* dt / L
+ * (s* = sin th*):
+ *  - the true departure lies within the frame after the last impulse: e;
+ *  - semi-implicit Euler's positions lag its velocities by half a step
+ *    along the path, so N = 0 is met up to e / 2 off;
+ *  - its energy, by its modified energy H + (h / 2) p . grad V (Hairer,
+ *    Lubich & Wanner, Geometric Numerical Integration, 2006, ch. IX), is
+ *    off by at most (h / 2) m g v* s*, which moves c* by e / 3;
+ * 2 e in all.  The flight checks take what that moves: rolling,
+ * v*^2 = 10/7 g L (c0 - c), so |dv*| <= 5/7 g L dc / v*; frictionless,
+ * v* c* = sqrt(2 g L (c0 - c)) c is stationary at c* (its horizontal
+ * force N sin th vanishes there), so it is off by the energy's
+ * g dt s* c* / 2 plus the second order, half its second derivative in c
+ * times dc^2.
+ * dt = 1 and 0.1 ms; soft at 0.1 ms only: at 1 ms its rows keep the
+ * frame's tangent plane once the gap a frame comes in with is past the
+ * slop (docs/methods.md, "A contact with a fixed sphere turns"), and the
+ * ball, held on one frame of two or three from th = 0.72 rad (rolling;
+ * N = 0.4 m g there), hops off early: at th = 0.82 rad frictionless (exact
+ * 0.84) and 0.93 rolling (0.94), 1.1e-3 and 8.2e-3 m/s too fast in flight
+ * (a probe of session 51).  At 0.1 ms soft leaves where the others do, but
+ * its contact takes energy out while the ball slides over the sphere
+ * (6.9e-4 J of 10.8 by the departure, growing with the speed; 7.3e-3 J at
+ * 1 ms: first order), so its flight speed is checked one way only: not
+ * faster than v* c* (no energy gained).  event refuses a ball held on a
+ * sphere. */
+static void leave_case(rbs_method m, int rolling, double dt)
+{
+    const double R = 1.0, r = 0.1, L = R + r, th0 = 0.01, c0 = cos(th0);
+    const double cs = rolling ? 10.0 / 17.0 * c0 : 2.0 / 3.0 * c0, ss = sqrt(1.0 - cs * cs), vs = sqrt(G * L * cs);
+    const double bc = 2.0 * ss * vs * dt / L;
+    rbs_world *w = mworld(m, dt, -G, 0.0);
+    rbs_material_id mat = rolling ? material(w, "m", 1e6, 1e6, 0.0) : (rbs_material_id){0, 0};
+    rbs_sphere_def d;
+    rbs_body_id b;
+    rbs_body_state s;
+    double c_last = -2.0;
+    int k, n = (int)(4.0 / dt + 0.5), off = 0, hops = 0;
+    char what[64];
+    rbs_sphere_def_init(&d);
+    d.radius = R;
+    d.fixed = 1;
+    d.material = mat;
+    CHECK_OK(rbs_world_add_sphere(w, &d, NULL));
+    b = ball(w, r, 1.0, L * sin(th0), 0.0, L * c0, 0, 0, 0, mat);
+    for (k = 0; k < n; ++k) {
+        rbs_step_info info;
+        rbs_status st = rbs_world_step(w, &info);
+        if (st == RBS_E_UNSUPPORTED) {
+            print_message("  %-9s skipped: %s\n", rbs_method_name(m), rbs_world_last_error(w));
+            rbs_world_destroy(w);
+            return;
+        }
+        if (st != RBS_OK)
+            fail_msg("%s: step %d: %s: %s", rbs_method_name(m), k, rbs_status_name(st), rbs_world_last_error(w));
+        s = state_of(w, b);
+        if (info.resting > 0) {
+            hops += off;
+            off = 0;
+            c_last = s.position.z / sqrt(s.position.x * s.position.x + s.position.z * s.position.z);
+        } else if (c_last > -2.0) {
+            off = 1;
+            if (s.position.z < 0.0)
+                break; /* below the sphere's centre: in flight for good */
+        }
+    }
+    if (k == n)
+        fail_msg("%s: the ball did not leave the sphere in %g s", rbs_method_name(m), n * dt);
+    snprintf(what, sizeof what, "leaves a sphere %s, dt %g: cos", rolling ? "rolling" : "frictionless", dt);
+    report(m, what, fabs(c_last - cs), bc);
+    report(m, "  leaves once: hops before", hops, 0.0);
+    if (rolling) {
+        report(m, "  flight: spin r w = v*", fabs(s.angular_velocity.y * r - vs), 5.0 / 7.0 * G * L * bc / vs);
+    } else {
+        const double f2 = 1.0 / sqrt(c0 - cs) + cs / (4.0 * pow(c0 - cs, 1.5));
+        const double second = 0.5 * f2 * sqrt(2.0 * G * L) * bc * bc;
+        if (m == RBS_METHOD_SOFT)
+            report(m, "  flight: v_x <= v* c* (no gain)", fmax(s.velocity.x - vs * cs, 0.0), second + 1e-12);
+        else
+            report(m, "  flight: v_x = v* c*", fabs(s.velocity.x - vs * cs), G * dt * ss * cs / 2.0 + second);
+    }
+    rbs_world_destroy(w);
+}
+
+static void ball_leaves_a_fixed_sphere(void **state)
+{
+    size_t i;
+    int rolling;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i)
+        for (rolling = 0; rolling < 2; ++rolling) {
+            if (all_methods[i] != RBS_METHOD_SOFT)
+                leave_case(all_methods[i], rolling, 1e-3);
+            leave_case(all_methods[i], rolling, 1e-4);
+        }
+}
+
+/* ---- a rolling ball strikes a resting one ------------------------------------ */
+
+/* Billiards (r = 0.05 m, m = 0.17 kg): a cue ball rolling at v = 1 m/s along
+ * x (spin v / r about y) strikes an equal object ball at rest, e = 1 and no
+ * friction between the balls, mu = 0.2 (static = kinetic) with the cloth,
+ * at a cut angle a: the line of centres at the touch, n = (cos a, sin a, 0),
+ * is a off the cue ball's path (impact parameter 2 r sin a).  Exact
+ * (Coriolis, Theorie mathematique des effets du jeu de billard, 1835;
+ * D. G. Alciatore, The Illustrated Principles of Pool and Billiards, 2004):
+ *  - the impact (no friction between the balls; the cloth's normal, across
+ *    the impulse, takes none, so neither does its friction) swaps the
+ *    normal components: the object ball leaves at v cos a n without spin,
+ *    the cue ball keeps v_t = v sin a (sin a, -cos a) and its spin;
+ *  - each then slips on the cloth, the object ball at its velocity, the
+ *    cue ball at v_t - (v, 0) = -v cos a n.  Kinetic friction mu m g
+ *    against the slip is a constant force whose slip falls at 7/2 mu g along
+ *    a fixed direction (a centred solid sphere), so both roll from
+ *    t1 = 2 v cos a / (7 mu g) after the touch (head-on: 2 v / (7 mu g));
+ *  - the angular momentum about the contact point is kept while sliding,
+ *    so they roll on at 5/7 v cos a n (object) and 5/7 v_t + 2/7 (v, 0)
+ *    (cue): head-on (a = 0) the striker stops, keeps its spin v / r and
+ *    rolls on at 2/7 v, the struck ball at 5/7 v; a cut turns the cue
+ *    ball off its line by atan(sin a cos a / (sin^2 a + 2/5)), 33.7 degrees
+ *    at a half-ball hit (a = 30: the "30-degree rule").
+ * Cases a = 0, 30 and 60 degrees, the touch at tc = 0.1003 s, run to 1 s.
+ * Bounds:
+ *  - velocities: the impulses' rounding, 1e-12 v (they do not depend on
+ *    when the slides end), plus the normal's tilt where the method places
+ *    the touch, 2 v d / (2 r) (d = touch_error, as impact_case); soft:
+ *    mu g dt more (its impact and the cloth's
+ *    friction share the frame's passes, docs/physics.md: "a cue ball ...
+ *    1.00065 times too hard");
+ *  - the first frame in which each ball rolls again: the one holding
+ *    tc + t1, or for selective and soft up to a frame later (selective
+ *    strikes after the frame's Euler step, so the struck balls miss the
+ *    cloth's friction for the rest of that frame -- measured: a frame late
+ *    at 1 ms, on time at 0.1 ms; soft may strike a frame late);
+ *  - positions: Euler's lag of the slide, mu g t1 euler_lag, the slide
+ *    on past t1 to the frame's end, mu g dt^2, the touch error (header);
+ *    selective its missed friction, mu g dt (t1 + dt); soft a frame late,
+ *    v dt, and its velocity error over the run, mu g dt T. */
+static void cue_case(rbs_method m, double a_deg)
+{
+    const double r = 0.05, mass = 0.17, v = 1.0, mu = 0.2, dt = 1e-3, T = 1.0, tc = 0.1003;
+    const double a = a_deg * PI_ / 180.0, ca = cos(a), sa = sin(a), amu = mu * G, t1 = 2.0 * v * ca / (7.0 * amu);
+    const int soft = m == RBS_METHOD_SOFT, sel = m == RBS_METHOD_SELECTIVE;
+    /* after the impact (0) and rolling (1); object o, cue c; friction
+     * along -n on o, +n on c */
+    const double vo0[2] = {v * ca * ca, v * ca * sa}, vc0[2] = {v * sa * sa, -v * sa * ca};
+    const double vo1[2] = {5.0 / 7.0 * vo0[0], 5.0 / 7.0 * vo0[1]};
+    const double vc1[2] = {vc0[0] + 2.0 / 7.0 * v * ca * ca, vc0[1] + 2.0 / 7.0 * v * ca * sa};
+    const double pc[2] = {-2.0 * r * ca, -2.0 * r * sa}, n[2] = {ca, sa};
+    double xo[2], xc[2];
+    rbs_world *w = mworld(m, dt, -G, 1.0);
+    rbs_material_id cloth, bm;
+    rbs_pair_def p;
+    rbs_plane_def pl;
+    rbs_sphere_def d;
+    rbs_body_id ob, cb;
+    double t_roll[2] = {-1.0, -1.0};
+    int slipped[2] = {0, 0}, k, j, failed = 0;
+    for (j = 0; j < 2; ++j) {
+        xo[j] = vo0[j] * t1 - 0.5 * amu * n[j] * t1 * t1 + vo1[j] * (T - tc - t1);
+        xc[j] = pc[j] + vc0[j] * t1 + 0.5 * amu * n[j] * t1 * t1 + vc1[j] * (T - tc - t1);
+    }
+    CHECK_OK(rbs_world_add_material(w, "cloth", &cloth));
+    CHECK_OK(rbs_world_add_material(w, "ball", &bm));
+    rbs_pair_def_init(&p);
+    p.a = cloth;
+    p.b = bm;
+    p.static_friction = p.kinetic_friction = mu;
+    p.restitution = 0.0;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    p.a = bm;
+    p.static_friction = p.kinetic_friction = 0.0;
+    p.restitution = 1.0;
+    CHECK_OK(rbs_world_set_pair(w, &p));
+    rbs_plane_def_init(&pl);
+    pl.material = cloth;
+    CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+    rbs_sphere_def_init(&d);
+    d.radius = r;
+    d.mass = mass;
+    d.position = (rbs_vec3){pc[0] - v * tc, pc[1], r};
+    d.velocity.x = v;
+    d.angular_velocity.y = v / r;
+    d.material = bm;
+    CHECK_OK(rbs_world_add_sphere(w, &d, &cb));
+    ob = ball(w, r, mass, 0.0, 0.0, r, 0, 0, 0, bm);
+    for (k = 1; k <= (int)(T / dt + 0.5) && !failed; ++k) {
+        failed = msteps(w, m, 1);
+        for (j = 0; j < 2 && !failed; ++j) {
+            rbs_body_state s = state_of(w, j == 0 ? ob : cb);
+            /* the contact point's slip: v + w x (-r z) */
+            double slip = hypot(s.velocity.x - r * s.angular_velocity.y, s.velocity.y + r * s.angular_velocity.x);
+            if (slip > 1e-6 * v)
+                slipped[j] = 1;
+            else if (slipped[j] && t_roll[j] < 0.0 && slip <= 1e-12 * v)
+                t_roll[j] = k * dt;
+        }
+    }
+    if (!failed) {
+        rbs_body_state so = state_of(w, ob), sc = state_of(w, cb);
+        const double late = (sel || soft ? 2.0 : 1.0) * dt, dd = touch_error(m, v, v * ca, dt, 1e-6 * r);
+        const double xb = amu * t1 * euler_lag(m, dt) + amu * dt * dt + dd + (sel ? amu * dt * (t1 + dt) : 0.0) +
+                          (soft ? v * dt + amu * dt * T : 0.0) + 1e-12;
+        const double bv = 1e-12 * v + 2.0 * v * dd / (2.0 * r) + (soft ? amu * dt : 0.0);
+        char what[64];
+        snprintf(what, sizeof what, "cut %g deg: object rolls at 5/7 v cos a n", a_deg);
+        report(m, what, fmax(fabs(so.velocity.x - vo1[0]), fabs(so.velocity.y - vo1[1])), bv);
+        report(m, "  cue at 5/7 v_t + 2/7 v", fmax(fabs(sc.velocity.x - vc1[0]), fabs(sc.velocity.y - vc1[1])), bv);
+        report(m, "  object rolls from tc + t1: frames late", t_roll[0] - (tc + t1), late);
+        report(m, "  (early)", fmax(tc + t1 - t_roll[0], 0.0), 0.0);
+        report(m, "  cue rolls from tc + t1: frames late", t_roll[1] - (tc + t1), late);
+        report(m, "  (early)", fmax(tc + t1 - t_roll[1], 0.0), 0.0);
+        report(m, "  object's position", fmax(fabs(so.position.x - xo[0]), fabs(so.position.y - xo[1])), xb);
+        report(m, "  cue's position", fmax(fabs(sc.position.x - xc[0]), fabs(sc.position.y - xc[1])), xb);
+    }
+    rbs_world_destroy(w);
+}
+
+static void rolling_ball_strikes_a_resting_one(void **state)
+{
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        cue_case(all_methods[i], 0.0);
+        cue_case(all_methods[i], 30.0);
+        cue_case(all_methods[i], 60.0);
+    }
+}
+
+/* ---- equal masses leave at right angles ------------------------------------- */
+
+/* No gravity, frictionless, e = 1: a ball (m = 1 kg, r = 0.1 m) at v = 2 m/s
+ * along x strikes an equal ball at rest with impact parameter b = 2 r sin a.
+ * At the touch the line of centres n = (cos a, sin a) is a off the path; the
+ * impulse along n swaps the normal components: the target leaves along n
+ * at v cos a, the striker along the tangent at v sin a, at right angles
+ * (momentum v = v1 + v2 and energy v^2 = v1^2 + v2^2 give v1 . v2 = 0 for
+ * any normal: Marion & Thornton, Classical Dynamics of Particles and
+ * Systems, ch. 9, elastic collisions in the laboratory system).  a = 10, 45,
+ * 80 and 89 degrees.  Bounds: the right angle (the cosine between the
+ * velocities), rounding, 1e-12 -- it holds whatever normal the method
+ * takes; the velocities, rounding plus the normal's tilt where the method
+ * places the touch, 2 v d / (2 r) with d = touch_error at the normal
+ * approach v cos a (as impact_case). */
+static void equal_masses_leave_at_right_angles(void **state)
+{
+    const double r = 0.1, v = 2.0, dt = 1e-3, degs[4] = {10.0, 45.0, 80.0, 89.0};
+    size_t i;
+    int c;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i)
+        for (c = 0; c < 4; ++c) {
+            rbs_method m = all_methods[i];
+            const double a = degs[c] * PI_ / 180.0, ca = cos(a), sa = sin(a);
+            rbs_world *w = mworld(m, dt, 0.0, 1.0);
+            rbs_body_id s1, s2;
+            s1 = ball(w, r, 1.0, -0.5, 0.0, 0.0, v, 0, 0, (rbs_material_id){0, 0});
+            s2 = ball(w, r, 1.0, 0.0, 2.0 * r * sa, 0.0, 0, 0, 0, (rbs_material_id){0, 0});
+            if (msteps(w, m, 500) == 0) {
+                rbs_body_state a1 = state_of(w, s1), a2 = state_of(w, s2);
+                /* exact: the target along n = (ca, sa) at v ca; the striker v - that */
+                const double t2[2] = {v * ca * ca, v * ca * sa}, t1[2] = {v - t2[0], -t2[1]};
+                const double q1 = hypot(a1.velocity.x, a1.velocity.y), q2 = hypot(a2.velocity.x, a2.velocity.y);
+                const double dd = touch_error(m, v, v * ca, dt, 1e-6 * r);
+                char what[64];
+                snprintf(what, sizeof what, "equal masses, a = %g deg: cos(angle)", degs[c]);
+                report(m, what, fabs(a1.velocity.x * a2.velocity.x + a1.velocity.y * a2.velocity.y) / (q1 * q2), 1e-12);
+                report(m, "  speeds v sin a, v cos a", fmax(fabs(q1 - v * sa), fabs(q2 - v * ca)),
+                       1e-12 * v + 2.0 * v * dd / (2.0 * r));
+                report(m, "  velocities", fmax(fmax(fabs(a1.velocity.x - t1[0]), fabs(a1.velocity.y - t1[1])),
+                                               fmax(fabs(a2.velocity.x - t2[0]), fabs(a2.velocity.y - t2[1]))),
+                       1e-12 * v + 2.0 * v * dd / (2.0 * r));
+            }
+            rbs_world_destroy(w);
+        }
+}
+
+/* ---- a spinning ball bounces ----------------------------------------------- */
+
+/* A solid ball (m = 1 kg, r = 0.1 m, I = 2/5 m r^2) dropped from a gap
+ * h = 0.2 m, spinning, onto a floor with e = 0.5, mu_s = 0.9, mu_k = 0.2.
+ * It meets the floor at vn = sqrt(2 g h), its contact point slipping at
+ * u = (vx - r wy, vy + r wx); Jn = (1 + e) m vn.  Coulomb's law through the
+ * impact (Stronge, Impact Mechanics, 2000, ch. 5; Brach, Mechanical Impact
+ * Dynamics, 1991, ch. 4): while the point slips, kinetic friction mu_k dJn
+ * against the slip, whose direction stays fixed for a centred sphere of
+ * isotropic inertia (K_tt = 3.5 / m times the identity); the tangential
+ * impulse that stops the slip is m |u| / 3.5.  So if m |u| / 3.5 <=
+ * mu_k Jn the slip stops within the impact and the ball leaves rolling
+ * (it sticks: Jt = -m u / 3.5; static friction then has nothing to hold),
+ * otherwise it slides throughout, Jt = -mu_k Jn u / |u|; mu_s does not
+ * enter, as docs/physics.md ("Collisions") claims: a contact that comes in
+ * slipping more than mu_k Jn can stop takes mu = mu_k.  Then
+ * v_t' = v_t + Jt / m, w' = w + (r / I) (Jt_y, -Jt_x, 0), vz' = e vn.
+ * Cases (vx, vy, wx, wy): backspin -40 rad/s (slides, and leaves backwards
+ * at -0.594 m/s), -10 (sticks: rolls back at 2/7 r w), -25 (needs more
+ * than mu_k Jn but less than mu_s Jn: slides), a diagonal slip (0, 0.5,
+ * 15, -20: slides along u) and a rolling ball (1, 0, 0, 10: no slip, no
+ * friction).  Measured at 0.35 s, in the flight after the bounce (which
+ * keeps the horizontal velocity and the spin; the launch speed is
+ * sqrt(vz^2 + 2 g (z - r))).  Bounds: sticking and rolling, rounding,
+ * 1e-12; sliding, mu_k (1 + e) times the error of the approach speed:
+ * event 0 (rounding); verlet, rk4 and adaptive touch within the slop s of
+ * the floor, g s / vn; Euler (euler, selective, auto), whose fall keeps
+ * v^2 + 2 g z less g^2 h^2 a step h, meets it at v^2 = 2 g h - g^2 (t_n dt
+ * + x^2) (t_n <= vn / g the frames before, x <= dt the sub-step that
+ * reaches it: about g dt / 2 slow); soft's impact takes the frame's
+ * velocities, up to g dt ("restitution at the frame's end",
+ * docs/methods.md).  The spin's bound is r / I times the velocity's.  The
+ * launch speed e vn: the slop's height, g s / u, plus e times that error
+ * -- for Euler, whose flight then loses g^2 dt^2 of u^2 a frame, u less
+ * sqrt((u - e dvn)^2 - n g^2 dt^2) over the n frames after the impact. */
+static void spinning_ball_bounces_by_coulomb(void **state)
+{
+    const double r = 0.1, h = 0.2, e = 0.5, mus = 0.9, muk = 0.2, I = 0.4 * r * r, dt = 1e-3, T = 0.35;
+    const double cs[5][4] = {{0, 0, 0, -40}, {0, 0, 0, -10}, {0, 0, 0, -25}, {0, 0.5, 15, -20}, {1, 0, 0, 10}};
+    const double vn = sqrt(2.0 * G * h), jn = (1.0 + e) * vn, ti = vn / G, slop = 1e-6 * r, u1 = e * vn;
+    size_t i;
+    int c;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i)
+        for (c = 0; c < 5; ++c) {
+            rbs_method m = all_methods[i];
+            const int euler = euler_lag(m, dt) == dt / 2.0, soft = m == RBS_METHOD_SOFT;
+            const double ux = cs[c][0] - r * cs[c][3], uy = cs[c][1] + r * cs[c][2], un = hypot(ux, uy);
+            const double stop = un / 3.5, sticks = stop <= muk * jn, jt = sticks ? stop : muk * jn;
+            const double jx = un > 0.0 ? -jt * ux / un : 0.0, jy = un > 0.0 ? -jt * uy / un : 0.0;
+            const double v1[2] = {cs[c][0] + jx, cs[c][1] + jy}, w1[2] = {cs[c][2] + r / I * jy, cs[c][3] - r / I * jx};
+            const double dvn = m == RBS_METHOD_EVENT ? 0.0
+                               : euler ? vn - sqrt(vn * vn - G * G * (ti * dt + dt * dt))
+                               : soft  ? G * dt
+                                       : G * slop / vn;
+            const double nf = ceil((T - ti) / dt) + 1.0, ul = u1 - e * dvn;
+            const double bv = 1e-12 + (sticks || un == 0.0 ? 0.0 : muk * (1.0 + e) * dvn);
+            const double bu = 1e-12 + G * slop / u1 + (euler ? u1 - sqrt(ul * ul - nf * G * G * dt * dt) : e * dvn);
+            rbs_world *w = mworld(m, dt, -G, e);
+            rbs_material_id mat = material(w, "m", mus, muk, e);
+            rbs_sphere_def d;
+            rbs_body_id b;
+            floor_plane(w, mat);
+            rbs_sphere_def_init(&d);
+            d.radius = r;
+            d.mass = 1.0;
+            d.position.z = r + h;
+            d.velocity = (rbs_vec3){cs[c][0], cs[c][1], 0.0};
+            d.angular_velocity = (rbs_vec3){cs[c][2], cs[c][3], 0.0};
+            d.material = mat;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+            if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+                rbs_body_state s = state_of(w, b);
+                char what[64];
+                snprintf(what, sizeof what, "spin (%g, %g) on a floor: %s", cs[c][2], cs[c][3],
+                         un == 0.0 ? "rolls" : sticks ? "sticks" : "slides");
+                report(m, what, fmax(fabs(s.velocity.x - v1[0]), fabs(s.velocity.y - v1[1])), bv);
+                report(m, "  spin w + (r / I) z x Jt", fmax(fmax(fabs(s.angular_velocity.x - w1[0]),
+                                                                  fabs(s.angular_velocity.y - w1[1])),
+                                                             fabs(s.angular_velocity.z)),
+                       r / I * bv);
+                report(m, "  launch speed e vn", fabs(sqrt(s.velocity.z * s.velocity.z + 2.0 * G * (s.position.z - r)) - u1),
+                       bu);
+            }
+            rbs_world_destroy(w);
+        }
+}
+
+/* ---- rolling across an incline, spinning about its normal ------------------ */
+
+/* A ball (r = 0.1 m, 1 kg) on a 20-degree incline (normal n = (-sin, 0,
+ * cos), mu = 0.5) launched across the slope (along y) at v0 = 1.5 m/s,
+ * rolling (w = n x v / r), and spinning at wn = 30 rad/s about n.  Exact
+ * (a sphere on a rough inclined plane: Routh, Dynamics of a System of Rigid
+ * Bodies, advanced part): the friction F at the contact point, lever -r n,
+ * has no moment about n, so wn stays; rolling, v = r w x n, with
+ * I dw/dt = -r n x F gives F = -2/7 m g_t (g_t gravity along the plane),
+ * so the centre moves as a projectile under 5/7 g sin th down the slope,
+ * a parabola, whatever wn (for a sphere the spin about the normal does not
+ * couple).  It needs 2/7 g sin th <= mu g cos th: tan th <= 3.5 mu.  After
+ * T = 1 s: v = (5/7 g sin th T down the slope, v0 across),
+ * w = n x v / r + wn n, the distance down 5/14 g sin th T^2 plus each
+ * method's lag (euler_lag), across v0 T.  Bounds: velocities and spins
+ * 1e-11 (constant accelerations: rounding), positions 1e-12 beyond the lag
+ * (soft: its sink, slop + g cos th / omega^2, under the height, to 1e-9). */
+static void rolling_across_an_incline_with_normal_spin(void **state)
+{
+    const double r = 0.1, th = 20.0 * PI_ / 180.0, v0 = 1.5, wn = 30.0, mu = 0.5, dt = 1e-3, T = 1.0;
+    const double sn = sin(th), cs = cos(th), a = 5.0 / 7.0 * G * sn;
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        const int soft = m == RBS_METHOD_SOFT;
+        rbs_world *w = mworld(m, dt, -G, 0.0);
+        rbs_material_id mat = material(w, "m", mu, mu, 0.0);
+        rbs_plane_def p;
+        rbs_sphere_def d;
+        rbs_body_id b;
+        rbs_plane_def_init(&p);
+        p.normal = (rbs_vec3){-sn, 0.0, cs};
+        p.material = mat;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        rbs_sphere_def_init(&d);
+        d.radius = r;
+        d.mass = 1.0;
+        d.position = (rbs_vec3){-r * sn, 0.0, r * cs};
+        d.velocity.y = v0;
+        /* n x (0, v0, 0) / r = v0 / r (-cos, 0, -sin), plus wn n */
+        d.angular_velocity = (rbs_vec3){-cs * v0 / r - wn * sn, 0.0, -sn * v0 / r + wn * cs};
+        d.material = mat;
+        CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+        if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+            rbs_body_state s = state_of(w, b);
+            /* down the slope dn = (-cos, 0, -sin); n x dn = (0, -1, 0) */
+            const double along = -(s.position.x + r * sn) * cs - (s.position.z - r * cs) * sn;
+            const double normal = -(s.position.x + r * sn) * sn + (s.position.z - r * cs) * cs;
+            const double v_al = -s.velocity.x * cs - s.velocity.z * sn, v_n = -s.velocity.x * sn + s.velocity.z * cs;
+            const double w_n = -s.angular_velocity.x * sn + s.angular_velocity.z * cs;
+            const double wx = -cs * v0 / r - wn * sn, wy = -a * T / r, wz = -sn * v0 / r + wn * cs;
+            const double sink = soft ? 1e-6 * r + G * cs * dt * dt / (4.0 * PI_ * PI_) : 0.0;
+            report(m, "across an incline: v = (5/7 g sin T, v0)",
+                   fabs(v_al - a * T) + fabs(s.velocity.y - v0) + fabs(v_n), 1e-11);
+            report(m, "  spin about n kept", fabs(w_n - wn), 1e-11 / r);
+            report(m, "  rolling: w = n x v / r + wn n",
+                   fabs(s.angular_velocity.x - wx) + fabs(s.angular_velocity.y - wy) + fabs(s.angular_velocity.z - wz),
+                   1e-11 / r);
+            report(m, "  down the slope a T^2/2 + lag", fabs(along - a * T * (T / 2.0 + euler_lag(m, dt))), 1e-12);
+            report(m, "  across v0 T", fabs(s.position.y - v0 * T), 1e-12);
+            report(m, "  height over the plane", fabs(normal + sink), soft ? 1e-9 : 1e-12);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1092,6 +1546,11 @@ int main(void)
         cmocka_unit_test(rolling_ball_on_a_floor_into_a_wall),
         cmocka_unit_test(incline_at_the_rolling_threshold),
         cmocka_unit_test(sliding_up_an_incline_rolls_back),
+        cmocka_unit_test(ball_leaves_a_fixed_sphere),
+        cmocka_unit_test(rolling_ball_strikes_a_resting_one),
+        cmocka_unit_test(equal_masses_leave_at_right_angles),
+        cmocka_unit_test(spinning_ball_bounces_by_coulomb),
+        cmocka_unit_test(rolling_across_an_incline_with_normal_spin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
