@@ -1529,6 +1529,124 @@ static void rolling_across_an_incline_with_normal_spin(void **state)
     }
 }
 
+/* ---- an oblique impact with friction between spinning spheres --------------- */
+
+static void cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* No gravity: a solid sphere 1 (m1 = 2 kg, r1 = 0.15 m) at v1 = (3, 0, 0)
+ * m/s spinning at (0, 5, 20) rad/s meets sphere 2 (m2 = 0.5 kg, r2 =
+ * 0.08 m) at rest at (1, 0.12, 0.05) m spinning at (-10, 0, 0) rad/s,
+ * e = 0.8, mu_s = mu_k = mu.  At the touch (the first t with
+ * |p2 - v1 t| = r1 + r2) the contact points, r1 n and -r2 n from the
+ * centres (n from 1 to 2), move apart at u = v1 + w1 x r1 n - w2 x (-r2 n);
+ * Jn = (1 + e) (u . n) / (1/m1 + 1/m2).  A tangential impulse P (on 1,
+ * -P on 2) changes the tangential slip u_t by P (1/m1 + 1/m2 + r1^2 / I1 +
+ * r2^2 / I2) = 3.5 (1/m1 + 1/m2) P (solid spheres, r^2 / I = 5 / (2 m)),
+ * isotropic, so the slip keeps its direction (Stronge, Impact Mechanics,
+ * 2000, ch. 5 -- the two-sphere case of spinning_ball_bounces_by_coulomb's
+ * law): it stops (P = -u_t / K_t) if that is within mu Jn, else
+ * P = -mu Jn u_t / |u_t|.  Then v1 += (P - Jn n) / m1, v2 -= (P - Jn n) /
+ * m2, w1 += r1 n x P / I1, w2 += r2 n x P / I2 (the normal part has no
+ * lever).  mu = 0.1 slides (the stop needs 0.243 N s of mu Jn = 0.178),
+ * 0.3 and 0.6 stick.  Bounds after 1 s: rounding, 1e-12 of the scale
+ * s = |v1| + |w1| r1 + |w2| r2 (the fastest contact-point speed), plus the
+ * normal's tilt where the method places the touch, d / (r1 + r2)
+ * (d = touch_error), which turns the normal and the tangential impulse by
+ * at most 2 s d / (r1 + r2) (1 + mu); the spins 2.5 / r times that (an
+ * impulse error m dv turns a sphere by r m dv / I). */
+static void spinning_spheres_meet_with_friction(void **state)
+{
+    const double m1 = 2.0, r1 = 0.15, m2 = 0.5, r2 = 0.08, e = 0.8, dt = 1e-3, T = 1.0, mus[3] = {0.1, 0.3, 0.6};
+    const double v1[3] = {3.0, 0.0, 0.0}, w1[3] = {0.0, 5.0, 20.0}, p2[3] = {1.0, 0.12, 0.05}, w2[3] = {-10.0, 0.0, 0.0};
+    const double I1 = 0.4 * m1 * r1 * r1, I2 = 0.4 * m2 * r2 * r2, L = r1 + r2, Kt = 3.5 * (1.0 / m1 + 1.0 / m2);
+    const double scale = 3.0 + r1 * sqrt(425.0) + r2 * 10.0;
+    /* the touch along x at 3 m/s: (p2x - 3 t)^2 + p2y^2 + p2z^2 = L^2 */
+    const double tc = (p2[0] - sqrt(L * L - p2[1] * p2[1] - p2[2] * p2[2])) / 3.0;
+    const double n[3] = {(p2[0] - 3.0 * tc) / L, p2[1] / L, p2[2] / L};
+    double u[3], a1[3], a2[3], rn1[3], rn2[3], un = 0.0, ut[3], utn = 0.0;
+    size_t i;
+    int c, k;
+    (void)state;
+    for (k = 0; k < 3; ++k) {
+        rn1[k] = r1 * n[k];
+        rn2[k] = -r2 * n[k];
+    }
+    cross3(w1, rn1, a1);
+    cross3(w2, rn2, a2);
+    for (k = 0; k < 3; ++k) {
+        u[k] = v1[k] + a1[k] - a2[k];
+        un += u[k] * n[k];
+    }
+    for (k = 0; k < 3; ++k) {
+        ut[k] = u[k] - un * n[k];
+        utn += ut[k] * ut[k];
+    }
+    utn = sqrt(utn);
+    for (i = 0; i < N_METHODS; ++i)
+        for (c = 0; c < 3; ++c) {
+            rbs_method m = all_methods[i];
+            const double mu = mus[c], jn = (1.0 + e) * un / (1.0 / m1 + 1.0 / m2);
+            const int sticks = utn / Kt <= mu * jn;
+            double P[3], nP[3], t1[3], t2[3], V1[3], V2[3], W1[3], W2[3];
+            rbs_world *w = mworld(m, dt, 0.0, e);
+            rbs_material_id mat = material(w, "m", mu, mu, e);
+            rbs_sphere_def d;
+            rbs_body_id a, b;
+            for (k = 0; k < 3; ++k) {
+                P[k] = -(sticks ? 1.0 / Kt : mu * jn / utn) * ut[k];
+                nP[k] = -P[k];
+            }
+            cross3(rn1, P, t1);
+            cross3(rn2, nP, t2);
+            for (k = 0; k < 3; ++k) {
+                V1[k] = v1[k] + (P[k] - jn * n[k]) / m1;
+                V2[k] = -(P[k] - jn * n[k]) / m2;
+                W1[k] = w1[k] + t1[k] / I1;
+                W2[k] = w2[k] + t2[k] / I2;
+            }
+            rbs_sphere_def_init(&d);
+            d.radius = r1;
+            d.mass = m1;
+            d.velocity = (rbs_vec3){v1[0], v1[1], v1[2]};
+            d.angular_velocity = (rbs_vec3){w1[0], w1[1], w1[2]};
+            d.material = mat;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &a));
+            rbs_sphere_def_init(&d);
+            d.radius = r2;
+            d.mass = m2;
+            d.position = (rbs_vec3){p2[0], p2[1], p2[2]};
+            d.angular_velocity = (rbs_vec3){w2[0], w2[1], w2[2]};
+            d.material = mat;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+            if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+                rbs_body_state sa = state_of(w, a), sb = state_of(w, b);
+                const double ga[3] = {sa.velocity.x, sa.velocity.y, sa.velocity.z};
+                const double gb[3] = {sb.velocity.x, sb.velocity.y, sb.velocity.z};
+                const double ha[3] = {sa.angular_velocity.x, sa.angular_velocity.y, sa.angular_velocity.z};
+                const double hb[3] = {sb.angular_velocity.x, sb.angular_velocity.y, sb.angular_velocity.z};
+                const double dd = touch_error(m, 3.0, un, dt, 1e-6 * r2);
+                const double bv = 1e-12 * scale + 2.0 * scale * dd / L * (1.0 + mu);
+                double ev = 0.0, ew1 = 0.0, ew2 = 0.0;
+                char what[64];
+                for (k = 0; k < 3; ++k) {
+                    ev = fmax(ev, fmax(fabs(ga[k] - V1[k]), fabs(gb[k] - V2[k])));
+                    ew1 = fmax(ew1, fabs(ha[k] - W1[k]));
+                    ew2 = fmax(ew2, fabs(hb[k] - W2[k]));
+                }
+                snprintf(what, sizeof what, "spinning spheres, mu %g: %s", mu, sticks ? "sticks" : "slides");
+                report(m, what, ev, bv);
+                report(m, "  spin of 1", ew1, 2.5 / r1 * bv);
+                report(m, "  spin of 2", ew2, 2.5 / r2 * bv);
+            }
+            rbs_world_destroy(w);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1551,6 +1669,7 @@ int main(void)
         cmocka_unit_test(equal_masses_leave_at_right_angles),
         cmocka_unit_test(spinning_ball_bounces_by_coulomb),
         cmocka_unit_test(rolling_across_an_incline_with_normal_spin),
+        cmocka_unit_test(spinning_spheres_meet_with_friction),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
