@@ -1647,6 +1647,63 @@ static void spinning_spheres_meet_with_friction(void **state)
         }
 }
 
+/* ---- a sliding ball swerves ---------------------------------------------------- */
+
+/* A solid ball (r = 0.1 m, 1 kg) launched on a floor (mu_s = mu_k = 0.3)
+ * at v0 = (3, 0, 0) m/s spinning at w0 = (20, 10, 5) rad/s: its contact
+ * point slips at s0 = (vx - r wy, vy + r wx) = (2, 2) m/s, across its
+ * path.  Kinetic friction mu m g against the slip decelerates it at
+ * mu g and spins it so that the slip falls at 7/2 mu g along a fixed
+ * direction (a centred solid sphere), so the ball swerves on a parabola
+ * under -mu g s0 / |s0| until it rolls at t1 = 2 |s0| / (7 mu g); the spin
+ * about the normal has no lever and stays.  The angular momentum about the
+ * contact point, I w + m r z x v, is kept (friction acts there, gravity and
+ * the normal force through it), so it rolls on at
+ * v1 = 5/7 v0 + 2/7 r (w0 x z) = (2.4286, -0.5714) m/s (Coriolis 1835;
+ * the masse shot of billiards; the one-dimensional case is
+ * sliding_ball_rolls_at_five_sevenths).  Bounds as there: velocity and
+ * spin 1e-12 (constant accelerations, one stick impulse); the distance
+ * after 2 s Euler's lag a t1 euler_lag plus the slip over the stick's
+ * frame, a dt^2. */
+static void sliding_ball_swerves(void **state)
+{
+    const double r = 0.1, mu = 0.3, dt = 1e-3, T = 2.0, v0 = 3.0, w0[3] = {20.0, 10.0, 5.0};
+    const double s0[2] = {v0 - r * w0[1], r * w0[0]}, sn = hypot(s0[0], s0[1]), a = mu * G;
+    const double t1 = 2.0 * sn / (7.0 * a), v1[2] = {5.0 / 7.0 * v0 + 2.0 / 7.0 * r * w0[1], -2.0 / 7.0 * r * w0[0]};
+    const double x1[2] = {v0 * t1 - 0.5 * a * s0[0] / sn * t1 * t1 + v1[0] * (T - t1),
+                          -0.5 * a * s0[1] / sn * t1 * t1 + v1[1] * (T - t1)};
+    size_t i;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        rbs_world *w = mworld(m, dt, -G, 0.0);
+        rbs_material_id mat = material(w, "m", mu, mu, 0.0);
+        rbs_sphere_def d;
+        rbs_body_id b;
+        floor_plane(w, mat);
+        rbs_sphere_def_init(&d);
+        d.radius = r;
+        d.mass = 1.0;
+        d.position.z = r;
+        d.velocity.x = v0;
+        d.angular_velocity = (rbs_vec3){w0[0], w0[1], w0[2]};
+        d.material = mat;
+        CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+        if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+            rbs_body_state s = state_of(w, b);
+            report(m, "swerve: rolls at 5/7 v0 + 2/7 r w0 x z",
+                   fmax(fabs(s.velocity.x - v1[0]), fabs(s.velocity.y - v1[1])) + fabs(s.velocity.z), 1e-12 * v0);
+            /* rolling: w = z x v / r, and w_z kept */
+            report(m, "  spin (-vy, vx) / r, w_z kept",
+                   fabs(s.angular_velocity.x + v1[1] / r) + fabs(s.angular_velocity.y - v1[0] / r) +
+                       fabs(s.angular_velocity.z - w0[2]), 1e-12 * v0 / r);
+            report(m, "  distance on the parabola", fmax(fabs(s.position.x - x1[0]), fabs(s.position.y - x1[1])),
+                   a * t1 * euler_lag(m, dt) + a * dt * dt + 1e-12);
+        }
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1670,6 +1727,7 @@ int main(void)
         cmocka_unit_test(spinning_ball_bounces_by_coulomb),
         cmocka_unit_test(rolling_across_an_incline_with_normal_spin),
         cmocka_unit_test(spinning_spheres_meet_with_friction),
+        cmocka_unit_test(sliding_ball_swerves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
