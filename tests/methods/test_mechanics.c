@@ -1077,19 +1077,22 @@ static void incline_at_the_rolling_threshold(void **state)
 
 /* ---- a ball leaves a fixed sphere ------------------------------------------- */
 
-/* A solid ball (m = 1 kg, r = 0.1 m) released at rest a hair off the top of
- * a fixed sphere (R = 1 m): its centre at th0 = 0.01 rad from the vertical
+/* A ball (m = 1 kg, r = 0.1 m; solid, and hollow rolling) released at rest
+ * a hair off the top of a fixed sphere (R = 1 m): its centre at th0 = 0.01 rad from the vertical
  * on the circle of radius L = R + r.  While the contact holds,
  * m v^2 / L = m g cos th - N, energy gives v^2, and the ball leaves where
  * N = 0 (the particle on a hemisphere of any mechanics text, e.g. Kleppner
  * & Kolenkow, An Introduction to Mechanics, 1973, ch. 4; the rolling sphere
  * in Routh, Dynamics of a System of Rigid Bodies, elementary part):
  *   frictionless: v^2 = 2 g L (c0 - c), so c* = cos th* = 2/3 c0;
- *   rolling (v = r w, kinetic energy 7/10 m v^2): 7/10 v^2 = g L (c0 - c),
- *   c* = 10/17 c0, and it leaves at v*^2 = g L c* spinning at v* / r.
- * Rolling needs friction 2/7 m g sin th, mu_s >= 2 sin th / (17 c - 10 c0),
- * unbounded as N -> 0: with mu = 1e6 the ball slips only where c - c* <
- * 2 sin th / (17 mu) = 1e-7, far inside the bounds below.
+ *   rolling (v = r w, kinetic energy (1 + k) m v^2 / 2, k = I / (m r^2)):
+ *   (1 + k) v^2 / 2 = g L (c0 - c), c* = 2 c0 / (3 + k) -- 10/17 c0 for a
+ *   solid ball (k = 2/5), 6/11 c0 for a hollow one (k = 2/3) -- and it
+ *   leaves at v*^2 = g L c* spinning at v* / r.
+ * Rolling needs friction k / (1 + k) m g sin th over N = m g ((3 + k) c -
+ * 2 c0) / (1 + k), mu_s >= k sin th / ((3 + k) c - 2 c0), unbounded as
+ * N -> 0: with mu = 1e6 the ball slips only where c - c* < k sin th /
+ * ((3 + k) mu) (9.5e-8 solid, 1.5e-7 hollow), far inside the bounds below.
  * Measured: cos th at the end of the last frame with a normal impulse
  * (rbs_step_info.resting counts the contacts whose impulse is > 0); that
  * the ball leaves once (no frame without an impulse before that one); and
@@ -1106,9 +1109,9 @@ static void incline_at_the_rolling_threshold(void **state)
  *    Lubich & Wanner, Geometric Numerical Integration, 2006, ch. IX), is
  *    off by at most (h / 2) m g v* s*, which moves c* by e / 3;
  * 2 e in all.  The flight checks take what that moves: rolling,
- * v*^2 = 10/7 g L (c0 - c), so |dv*| <= 5/7 g L dc / v*; frictionless,
- * v* c* = sqrt(2 g L (c0 - c)) c is stationary at c* (its horizontal
- * force N sin th vanishes there), so it is off by the energy's
+ * v*^2 = 2 g L (c0 - c) / (1 + k), so |dv*| <= g L dc / ((1 + k) v*);
+ * frictionless, v* c* = sqrt(2 g L (c0 - c)) c is stationary at c* (its
+ * horizontal force N sin th vanishes there), so it is off by the energy's
  * g dt s* c* / 2 plus the second order, half its second derivative in c
  * times dc^2.
  * dt = 1 and 0.1 ms; soft at 0.1 ms only: at 1 ms its rows keep the
@@ -1125,8 +1128,8 @@ static void incline_at_the_rolling_threshold(void **state)
  * sphere. */
 static void leave_case(rbs_method m, int rolling, double dt)
 {
-    const double R = 1.0, r = 0.1, L = R + r, th0 = 0.01, c0 = cos(th0);
-    const double cs = rolling ? 10.0 / 17.0 * c0 : 2.0 / 3.0 * c0, ss = sqrt(1.0 - cs * cs), vs = sqrt(G * L * cs);
+    const double R = 1.0, r = 0.1, L = R + r, th0 = 0.01, c0 = cos(th0), k1 = rolling == 2 ? 5.0 / 3.0 : 1.4;
+    const double cs = rolling ? 2.0 * c0 / (2.0 + k1) : 2.0 / 3.0 * c0, ss = sqrt(1.0 - cs * cs), vs = sqrt(G * L * cs);
     const double bc = 2.0 * ss * vs * dt / L;
     rbs_world *w = mworld(m, dt, -G, 0.0);
     rbs_material_id mat = rolling ? material(w, "m", 1e6, 1e6, 0.0) : (rbs_material_id){0, 0};
@@ -1141,7 +1144,12 @@ static void leave_case(rbs_method m, int rolling, double dt)
     d.fixed = 1;
     d.material = mat;
     CHECK_OK(rbs_world_add_sphere(w, &d, NULL));
-    b = ball(w, r, 1.0, L * sin(th0), 0.0, L * c0, 0, 0, 0, mat);
+    rbs_sphere_def_init(&d);
+    d.radius = r;
+    d.inertia_kind = rolling == 2 ? RBS_INERTIA_HOLLOW : RBS_INERTIA_SOLID;
+    d.position = (rbs_vec3){L * sin(th0), 0.0, L * c0};
+    d.material = mat;
+    CHECK_OK(rbs_world_add_sphere(w, &d, &b));
     for (k = 0; k < n; ++k) {
         rbs_step_info info;
         rbs_status st = rbs_world_step(w, &info);
@@ -1165,11 +1173,12 @@ static void leave_case(rbs_method m, int rolling, double dt)
     }
     if (k == n)
         fail_msg("%s: the ball did not leave the sphere in %g s", rbs_method_name(m), n * dt);
-    snprintf(what, sizeof what, "leaves a sphere %s, dt %g: cos", rolling ? "rolling" : "frictionless", dt);
+    snprintf(what, sizeof what, "leaves a sphere %s, dt %g: cos",
+             rolling == 2 ? "hollow, rolling" : rolling ? "rolling" : "frictionless", dt);
     report(m, what, fabs(c_last - cs), bc);
     report(m, "  leaves once: hops before", hops, 0.0);
     if (rolling) {
-        report(m, "  flight: spin r w = v*", fabs(s.angular_velocity.y * r - vs), 5.0 / 7.0 * G * L * bc / vs);
+        report(m, "  flight: spin r w = v*", fabs(s.angular_velocity.y * r - vs), G * L * bc / (k1 * vs));
     } else {
         const double f2 = 1.0 / sqrt(c0 - cs) + cs / (4.0 * pow(c0 - cs, 1.5));
         const double second = 0.5 * f2 * sqrt(2.0 * G * L) * bc * bc;
@@ -1187,7 +1196,7 @@ static void ball_leaves_a_fixed_sphere(void **state)
     int rolling;
     (void)state;
     for (i = 0; i < N_METHODS; ++i)
-        for (rolling = 0; rolling < 2; ++rolling) {
+        for (rolling = 0; rolling < 3; ++rolling) {
             if (all_methods[i] != RBS_METHOD_SOFT)
                 leave_case(all_methods[i], rolling, 1e-3);
             leave_case(all_methods[i], rolling, 1e-4);
