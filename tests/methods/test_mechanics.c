@@ -1390,7 +1390,7 @@ static void equal_masses_leave_at_right_angles(void **state)
  * It meets the floor at vn = sqrt(2 g h), its contact point slipping at
  * u = (vx - r wy, vy + r wx); Jn = (1 + e) m vn.  Coulomb's law through the
  * impact (Stronge, Impact Mechanics, 2000, ch. 5; Brach, Mechanical Impact
- * Dynamics, 1991, ch. 4): while the point slips, kinetic friction mu_k dJn
+ * Dynamics, 1991): while the point slips, kinetic friction mu_k dJn
  * against the slip, whose direction stays fixed for a centred sphere of
  * isotropic inertia (K_tt = 3.5 / m times the identity); the tangential
  * impulse that stops the slip is m |u| / 3.5.  So if m |u| / 3.5 <=
