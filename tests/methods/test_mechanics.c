@@ -1464,8 +1464,8 @@ static void spinning_ball_bounces_by_coulomb(void **state)
                                                                   fabs(s.angular_velocity.y - w1[1])),
                                                              fabs(s.angular_velocity.z)),
                        r / I * bv);
-                report(m, "  launch speed e vn", fabs(sqrt(s.velocity.z * s.velocity.z + 2.0 * G * (s.position.z - r)) - u1),
-                       bu);
+                report(m, "  launch speed e vn",
+                       fabs(sqrt(s.velocity.z * s.velocity.z + 2.0 * G * (s.position.z - r)) - u1), bu);
             }
             rbs_world_destroy(w);
         }
@@ -1571,7 +1571,8 @@ static void cross3(const double *a, const double *b, double *c)
 static void spinning_spheres_meet_with_friction(void **state)
 {
     const double m1 = 2.0, r1 = 0.15, m2 = 0.5, r2 = 0.08, e = 0.8, dt = 1e-3, T = 1.0, mus[3] = {0.1, 0.3, 0.6};
-    const double v1[3] = {3.0, 0.0, 0.0}, w1[3] = {0.0, 5.0, 20.0}, p2[3] = {1.0, 0.12, 0.05}, w2[3] = {-10.0, 0.0, 0.0};
+    const double v1[3] = {3.0, 0.0, 0.0}, w1[3] = {0.0, 5.0, 20.0};
+    const double p2[3] = {1.0, 0.12, 0.05}, w2[3] = {-10.0, 0.0, 0.0};
     const double I1 = 0.4 * m1 * r1 * r1, I2 = 0.4 * m2 * r2 * r2, L = r1 + r2, Kt = 3.5 * (1.0 / m1 + 1.0 / m2);
     const double scale = 3.0 + r1 * sqrt(425.0) + r2 * 10.0;
     /* the touch along x at 3 m/s: (p2x - 3 t)^2 + p2y^2 + p2z^2 = L^2 */
@@ -1787,7 +1788,8 @@ static void rolling_down_a_v_groove(void **state)
                     const int cold = m == RBS_METHOD_SOFT && !rolls;
                     const double bv = 1e-11 + (cold ? mu * G * cos(phi) / cb * dt : 0.0);
                     char what[64];
-                    snprintf(what, sizeof what, "V-groove b %g, mu %g mu*: %s", degs[c], f[j], rolls ? "rolls" : "slides");
+                    snprintf(what, sizeof what, "V-groove b %g, mu %g mu*: %s", degs[c], f[j],
+                             rolls ? "rolls" : "slides");
                     report(m, what, fabs(vu - a * T) + fabs(vw) + fabs(s.velocity.y), bv);
                     report(m, "  spin about y", fabs(s.angular_velocity.y - wy) + fabs(s.angular_velocity.x) +
                            fabs(s.angular_velocity.z), 1e-11 / r + (cold ? mu * G * cos(phi) / (k * r) * dt : 0.0));
