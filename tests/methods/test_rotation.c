@@ -134,7 +134,7 @@ static double measured_flip(rbs_method m, double dt, double span, const double I
  *    cancels) and within theta^2/12 too;
  *  - adaptive (tolerance 1e-12) within 1e-6: the half period K(k) / lambda
  *    depends on the energy as ln(1/k'), so an error dE / E moves it by
- *    about dE / (E k'^2 ln(4/k')) = 700 dE / E here (measured 1.7e-8).
+ *    about dE / (E k'^2 ln(4/k')) = 900 dE / E here (measured 1.7e-8).
  * event does not take anisotropic inertia: RBS_E_UNSUPPORTED. */
 static void intermediate_axis_flip_period(void **state)
 {
