@@ -1332,6 +1332,214 @@ static void slot_2r(rbs_method m, xres *r)
 }
 
 /* ------------------------------------------------------------------------- */
+/* Session 51: mass ratio 1e12, tiny and huge bodies, a frame longer than    */
+/* the motion, a free top for 1e7 steps                                      */
+/* ------------------------------------------------------------------------- */
+
+/* A 1e12 kg ball at 1 m/s hits a resting 1 kg ball head on, e = 1, no
+ * gravity.  Exact: the light ball leaves at 2 m1 / (m1 + m2) = 2 / (1 +
+ * 1e-12) m/s, 1e-12 below 2 (so the bound must be finer than that).
+ * Measured: the relative error of its velocity after 1 s.  Bound: 1e-14
+ * (one impulse, (1 + e) v / (1/m1 + 1/m2): a few roundings). */
+static void mass_ratio_1e12(rbs_method m, xres *r)
+{
+    const double m1 = 1e12, m2 = 1.0;
+    rbs_world *w = xworld(r, m, 4, 1e-3, 0.0, 1.0);
+    rbs_material_id mat;
+    rbs_body_id light;
+    double exact = 2.0 * m1 / (m1 + m2);
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.0, 0.0, 1.0);
+    xball(w, 0.1, m1, -0.5, 0, 0, 1.0, 0, 0, mat);
+    light = xball(w, 0.1, m2, 0.0, 0, 0, 0, 0, 0, mat);
+    if (xsteps(r, w, 1000, NULL) == 0)
+        r->value = fabs(xstate(w, light).velocity.x - exact) / exact;
+    r->bound = 1e-14;
+    rbs_world_destroy(w);
+}
+
+/* Two stacks on the floor (r = 0.1 m, g = 9.81, mu 0.5 / 0.4, e = 0.5), 10
+ * s: a 1e12 kg ball on a 1 kg ball, and (1 m aside) a 1 kg ball on a
+ * 1e12 kg ball.  Exact: both at rest.  Measured: the largest displacement
+ * of the top balls, m.  Bound: the slop of two contacts, 2e-7 m, plus
+ * rounding at their height (1e3 EPS).  Extra: the light bottom ball's
+ * displacement. */
+static void stacks_1e12(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 6, 1e-3, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id heavy_top, light_top, light_bottom;
+    rbs_vec3 p0, q0, b0;
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.4, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    light_bottom = xball(w, 0.1, 1.0, 0, 0, 0.1, 0, 0, 0, mat);
+    heavy_top = xball(w, 0.1, 1e12, 0, 0, 0.3, 0, 0, 0, mat);
+    xball(w, 0.1, 1e12, 1, 0, 0.1, 0, 0, 0, mat);
+    light_top = xball(w, 0.1, 1.0, 1, 0, 0.3, 0, 0, 0, mat);
+    p0 = xstate(w, heavy_top).position;
+    q0 = xstate(w, light_top).position;
+    b0 = xstate(w, light_bottom).position;
+    r->bound = 2e-7 + 1e3 * EPS;
+    if (xsteps(r, w, 10000, NULL) == 0) {
+        r->value = maxd(vdist(xstate(w, heavy_top).position, p0), vdist(xstate(w, light_top).position, q0));
+        r->extra = vdist(xstate(w, light_bottom).position, b0);
+    }
+    rbs_world_destroy(w);
+}
+
+/* A ball of r = 1e-9 m (1e-24 kg) dropped from a gap of 1e-8 m onto the
+ * floor, e = 0.5, dt = 1 ms: it lands at t1 = sqrt(2 h / g) = 4.5e-5 s and
+ * its bounces end (Zeno) at t1 (1 + e) / (1 - e) = 1.35e-4 s, inside the
+ * first frame; then it rests.  Its landing speed, sqrt(2 g h) = 4.4e-4
+ * m/s, is below one frame of gravity, g dt, so the rollback methods take
+ * the fall as a resting approach (a speculative contact closing to the
+ * slop: docs/physics.md) and resolve no impact -- the frame-level answer,
+ * since the cascade ends inside the frame; event resolves one impact and
+ * then rests.  Measured after 10 frames: |z - r| + |v| dt, m.  Bound: the
+ * slop 1e-6 r = 1e-15 m, plus rounding (4 EPS r).  Extra: impacts
+ * resolved (events for event).  soft: not promised -- its contact sinks
+ * by g / omega^2 = g dt^2 / (4 pi^2) = 2.5e-7 m whatever the radius: 250
+ * radii here, the ball under the floor's surface. */
+static void tiny_ball(rbs_method m, xres *r)
+{
+    const double rad = 1e-9, dt = 1e-3;
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_step_info sum;
+    if (!w)
+        return;
+    memset(&sum, 0, sizeof sum);
+    mat = xmaterial(w, 0.5, 0.4, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, rad, 1e-24, 0, 0, rad + 1e-8, 0, 0, 0, mat);
+    r->bound = 1e-6 * rad + 4 * EPS * rad;
+    if (xsteps(r, w, 10, &sum) == 0) {
+        rbs_body_state s = xstate(w, b);
+        r->value = fabs(s.position.z - rad) + vlen(s.velocity) * dt;
+        r->extra = m == RBS_METHOD_EVENT ? sum.events : sum.colliding;
+    }
+    rbs_world_destroy(w);
+}
+
+/* A ball of r = 1e9 m (1 kg) rolling at 1 m/s on the floor (mu 0.5, no
+ * resistance), 10 s.  Exact: it rolls on at 1 m/s, x = 10 m, w r = v.
+ * Measured: |x - v t| + |v - 1| t + |w r - v| t, m.  Bound: rounding of
+ * its height 1e9 m (4 n EPS 1e9 = 8.9e-3 m over n = 1e4 steps -- the
+ * spacing of doubles there is 1.2e-7 m) -- no slop: rolling keeps z.
+ * Extra: |z - r|, m. */
+static void huge_ball(rbs_method m, xres *r)
+{
+    const double rad = 1e9, dt = 1e-3, T = 10.0;
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.5);
+    rbs_material_id mat;
+    rbs_body_id b;
+    rbs_vec3 spin = {0, 1.0 / rad, 0};
+    if (!w)
+        return;
+    mat = xmaterial(w, 0.5, 0.5, 0.5);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, rad, 1.0, 0, 0, rad, 1.0, 0, 0, mat);
+    if (bad(r, w, rbs_body_set_angular_velocity(w, b, spin), "set_angular_velocity")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    r->bound = 4.0 * 1e4 * EPS * rad;
+    if (xsteps(r, w, (long)(T / dt + 0.5), NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        r->value = fabs(s.position.x - T) + fabs(s.velocity.x - 1.0) * T + fabs(s.angular_velocity.y * rad - 1.0) * T;
+        r->extra = fabs(s.position.z - rad);
+    }
+    rbs_world_destroy(w);
+}
+
+/* A frame longer than the motion: a ball launched sliding at v0 = 5 m/s
+ * without spin, mu 0.3, dt = 1 s.  Exact (Meriam & Kraige): it slides
+ * until t_r = 2 v0 / (7 mu g) = 0.4854 s, then rolls at 5/7 v0 =
+ * 3.5714 m/s.  Measured after 3 frames: |v / (5/7 v0) - 1| and
+ * |r w / (5/7 v0) - 1|.  Bound: 1e-12 (the friction impulse that stops
+ * the slip is the exact one whatever the frame: angular momentum about
+ * the contact, m v0 r = (I + m r^2) w r, is kept).  Extra: |x - exact|,
+ * m: the slide inside the first frame is the method's (euler lags by the
+ * whole slide, the trapezoid of verlet, rk4 and adaptive by its curve;
+ * event exact). */
+static void slide_in_one_frame(rbs_method m, xres *r)
+{
+    const double rad = 0.1, v0 = 5.0, mu = 0.3, dt = 1.0, vr = 5.0 / 7.0 * v0;
+    const double tr = 2.0 * v0 / (7.0 * mu * G);
+    rbs_world *w = xworld(r, m, 2, dt, -G, 0.0);
+    rbs_material_id mat;
+    rbs_body_id b;
+    if (!w)
+        return;
+    mat = xmaterial(w, mu, mu, 0.0);
+    xplane(w, mat, 0, 0, 0, 0, 0, 1);
+    b = xball(w, rad, 1.0, 0, 0, rad, v0, 0, 0, mat);
+    r->bound = 1e-12;
+    if (xsteps(r, w, 3, NULL) == 0) {
+        rbs_body_state s = xstate(w, b);
+        double x = v0 * tr - 0.5 * mu * G * tr * tr + vr * (3.0 * dt - tr);
+        r->value = maxd(fabs(s.velocity.x / vr - 1.0), fabs(s.angular_velocity.y * rad / vr - 1.0));
+        r->extra = fabs(s.position.x - x);
+    }
+    rbs_world_destroy(w);
+}
+
+/* A free asymmetric top (I = diag(1, 2, 3) g m^2, w = (3, 2, 8) rad/s,
+ * |w| dt = 8.8e-3 at dt = 1 ms) for 1e7 steps (1e4 s).  Exact: its
+ * kinetic energy and world angular momentum are constant.  Measured: the
+ * largest |E - E0| / E0 at 1e4 frames spread over the run (every 1000th).
+ * Bounds: euler, selective, soft and verlet turn by the midpoint rule,
+ * symmetric, so the energy oscillates at O(theta^2) and does not drift:
+ * 0.1 theta^2 = 7.8e-6 (test_order.c's bound); rk4 drifts by at most
+ * theta^6 / 72 a step (test_free_top.c): 1e7 theta^6 / 72 = 6.6e-8;
+ * adaptive 1e-6 (1e4 x its tolerance 1e-10: its error a frame below it),
+ * over 1e6 steps only: its frames cost 30 us here (300 s for 1e7).  event
+ * does not take anisotropic inertia.  Extra: the largest |L - L0| / |L0|,
+ * which every method but rk4 and adaptive keeps to rounding. */
+static void long_free_top(rbs_method m, xres *r)
+{
+    rbs_world *w = xworld(r, m, 2, 1e-3, 0.0, 0.5);
+    rbs_sphere_def s;
+    rbs_energy e0, e;
+    rbs_vec3 L0, L;
+    const double th = 1e-3 * sqrt(9.0 + 4.0 + 64.0);
+    long k;
+    if (!w)
+        return;
+    if (m == RBS_METHOD_ADAPTIVE && bad(r, w, rbs_world_set_method(w, m, 1e-10), "set_method")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    rbs_sphere_def_init(&s);
+    s.inertia_kind = RBS_INERTIA_PRINCIPAL;
+    s.inertia.x = 1e-3; s.inertia.y = 2e-3; s.inertia.z = 3e-3;
+    s.angular_velocity.x = 3.0; s.angular_velocity.y = 2.0; s.angular_velocity.z = 8.0;
+    if (bad(r, w, rbs_world_add_sphere(w, &s, NULL), "add_sphere")) {
+        rbs_world_destroy(w);
+        return;
+    }
+    rbs_world_energy(w, &e0);
+    rbs_world_momentum(w, NULL, &L0);
+    r->bound = m == RBS_METHOD_RK4 ? 1e7 * pow(th, 6) / 72.0 : m == RBS_METHOD_ADAPTIVE ? 1e-6 : 0.1 * th * th;
+    r->value = 0.0;
+    r->extra = 0.0;
+    for (k = 0; k < 10000; ++k) {
+        if (xsteps(r, w, m == RBS_METHOD_ADAPTIVE ? 100 : 1000, NULL) != 0)
+            break;
+        rbs_world_energy(w, &e);
+        rbs_world_momentum(w, NULL, &L);
+        r->value = maxd(r->value, fabs(e.total - e0.total) / e0.total);
+        r->extra = maxd(r->extra, sqrt((L.x - L0.x) * (L.x - L0.x) + (L.y - L0.y) * (L.y - L0.y) +
+                                       (L.z - L0.z) * (L.z - L0.z)) / vlen(L0));
+    }
+    rbs_world_destroy(w);
+}
+
+/* ------------------------------------------------------------------------- */
 /* The table                                                                 */
 /* ------------------------------------------------------------------------- */
 
@@ -1416,6 +1624,24 @@ static const xcase cases[] = {
      "sqrt 3 x 1e-7 m (slop along each normal)", NULL, 0, corner_3_planes, 0, NULL},
     {"slot_2r", "largest relative error of v and r w against 5/7 v0 after 2 s: a ball sliding at 1 m/s between two planes a diameter apart, friction on both",
      "1e-12 (a few roundings a sliding step)", NULL, 0, slot_2r, 0, NULL},
+    {"mass_ratio_1e12", "relative error of the light ball's speed after a 1e12:1 head-on elastic impact (exact 2/(1 + 1e-12) m/s)",
+     "1e-14 (one impulse: a few roundings; the answer is 1e-12 below 2)", NULL, 0, mass_ratio_1e12, 0, NULL},
+    {"stacks_1e12", "largest displacement (m) of the top balls of a 1e12 kg ball on a 1 kg ball and a 1 kg ball on a 1e12 kg ball, on the floor, 10 s",
+     "2e-7 m (slop of two contacts)", "the light bottom ball's displacement, m", 0, stacks_1e12, M(RBS_METHOD_SOFT),
+     "soft contacts sink by load / (m_eff omega^2): the 1e12 kg ball crushes through the 1 kg one (as in "
+     "mass_ratio_stack); extreme mass ratios need euler (shock propagation)"},
+    {"tiny_ball_1e-9", "|z - r| + |v| dt (m) of a ball of r = 1e-9 m dropped 1e-8 m onto the floor, e = 0.5, after 10 frames of 1 ms (its bounces end at 1.35e-4 s)",
+     "1e-15 m (the slop, 1e-6 r)", "impacts resolved (events for event)", 0, tiny_ball, M(RBS_METHOD_SOFT),
+     "soft's contacts sink by load / (m_eff omega^2) = g dt^2 / (4 pi^2) = 2.5e-7 m at dt = 1 ms whatever "
+     "the radius: 250 radii of this ball, which ends under the floor's surface; small bodies need a "
+     "smaller dt or another method"},
+    {"huge_ball_1e9", "|x - v t| + t |v - v0| + t |w r - v0| (m) of a ball of r = 1e9 m rolling at 1 m/s on the floor, 10 s",
+     "4 n EPS r = 8.9e-3 m (rounding at its height)", "|z - r|, m", 0, huge_ball, 0, NULL},
+    {"slide_in_one_frame_dt_1", "largest relative error of v and r w against 5/7 v0 after 3 frames of dt = 1 s: a ball launched sliding at 5 m/s, mu 0.3, rolls from 0.485 s",
+     "1e-12 (the stopping impulse is exact whatever the frame)", "|x - exact| at 3 s, m (the slide inside the first frame: the method's)", 0, slide_in_one_frame, 0, NULL},
+    {"long_free_top_1e7", "largest |E - E0|/E0 over 1e7 steps (1e4 s; adaptive 1e6) of a free top I = diag(1, 2, 3) g m^2, |w| dt = 8.8e-3",
+     "0.1 (|w| dt)^2 = 7.8e-6 (symmetric turns: no drift); rk4 1e7 (|w| dt)^6 / 72; adaptive 1e-6", "largest |L - L0|/|L0|", 1,
+     long_free_top, 0, NULL},
 };
 
 const xcase *xcases(uint32_t *n)
