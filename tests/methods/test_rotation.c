@@ -318,8 +318,17 @@ static rock_run rocking(rbs_method m, double dt, double span, double th0)
  * 10 s at 1 ms (42 % of E_r), +2.7e-4 J at 0.1 ms, the period 1.2e-3 and
  * 1.3e-4 long (the same numbers for the three: their resting contact is
  * the same pass, "Euler's rows on a contact point that moves as the body
- * rocks", docs/physics.md, selective).  A defect, not a bound from
- * mechanics: held here to converging at first order (the gain falls
+ * rocks", docs/physics.md, selective).  The mechanism (a probe of session
+ * 51): the pass holds the geometric centre's normal velocity at zero, but
+ * the turn of the arm from the centre of mass to the centre bends the
+ * centre's path down by c w^2 h^2 / 2 a sub-step (5.7e-8 m measured with
+ * euler, 8.6e-8 m with verlet, at w = 1.95 rad/s), which a plane contact's
+ * bend does not count (solver.c, path_bend: "0 against a plane"); past the
+ * slop (1e-7 m) every second step, the end-of-step separation lifts it
+ * back by position alone, m g delta = 1.1e-6 J each time: m g c <w^2> h /
+ * 2 = 2.8e-4 J/s at 1 ms, 2.8e-3 J in 10 s (measured 2.5e-3; euler gets
+ * the same lifts but loses more in its contact).  A defect, not a bound
+ * from mechanics: held here to converging at first order (the gain falls
  * 10^(1 +- 0.2) times from 1 to 0.1 ms) and under E_r / 2 at 1 ms, so
  * that it cannot grow unseen.
  * event does not take an off-centre mass: RBS_E_UNSUPPORTED. */
