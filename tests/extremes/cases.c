@@ -1488,6 +1488,63 @@ static void slide_in_one_frame(rbs_method m, xres *r)
     rbs_world_destroy(w);
 }
 
+/* A Kepler orbit at dt = 1e-9 s: masses 3 and 1 kg, G = 1, a = 1 m, e =
+ * 0.5, from pericentre (r_p = 0.5 m, v_p = sqrt(12) m/s), 1e5 steps (1e-4
+ * s; the relative motion moves 3.5e-9 m a step against coordinates of 0.5
+ * m, seven digits below them).  Exact: Kepler's equation (mean motion 2
+ * rad/s), r = (cos E - e, sqrt(1 - e^2) sin E).  Measured: |r - r_exact|,
+ * m, at the end.  Bound: rounding, n EPS r_p = 1.1e-11 m (half an ulp of
+ * each coordinate a step, n steps, at worst all one way; soft 3 n for its
+ * sub-steps), plus the first-order lag a_p h t of euler and selective
+ * (a_p = mu / r_p^2 = 16 m/s^2: 1.6e-12 m; soft with h = dt / 3).
+ * event does not take mutual gravity. */
+static void orbit_dt_1e9(rbs_method m, xres *r)
+{
+    const double dt = 1e-9, rp = 0.5, vp = sqrt(12.0), e = 0.5;
+    const long n = 100000;
+    rbs_world *w = NULL;
+    rbs_body_id b1, b2;
+    double M, E, x, y;
+    int k;
+    {
+        rbs_world_def d;
+        rbs_status st;
+        rbs_world_def_init(&d);
+        d.max_bodies = 4;
+        d.dt = dt;
+        d.gravity.z = 0.0;
+        d.method = m;
+        d.mutual_gravity = 1;
+        d.gravity_constant = 1.0;
+        d.tolerance = 1e-12;
+        st = rbs_world_create(&d, &w);
+        if (bad(r, NULL, st, "create"))
+            return;
+    }
+    b1 = xball(w, 0.01, 3.0, 0.25 * rp, 0, 0, 0, 0.25 * vp, 0, (rbs_material_id){0, 0});
+    b2 = xball(w, 0.01, 1.0, -0.75 * rp, 0, 0, 0, -0.75 * vp, 0, (rbs_material_id){0, 0});
+    r->bound = (m == RBS_METHOD_SOFT ? 3.0 : 1.0) * (double)n * EPS * rp;
+    if (m == RBS_METHOD_EULER || m == RBS_METHOD_SELECTIVE)
+        r->bound += 16.0 * dt * n * dt;
+    else if (m == RBS_METHOD_SOFT)
+        r->bound += 16.0 * dt / 3.0 * n * dt;
+    if (xsteps(r, w, n, NULL) == 0) {
+        rbs_body_state s1 = xstate(w, b1), s2 = xstate(w, b2);
+        M = 2.0 * rbs_world_time(w);
+        E = M;
+        for (k = 0; k < 100; ++k) {
+            double dE = (E - e * sin(E) - M) / (1.0 - e * cos(E));
+            E -= dE;
+            if (fabs(dE) < 1e-17)
+                break;
+        }
+        x = cos(E) - e;
+        y = sqrt(1.0 - e * e) * sin(E);
+        r->value = hypot(s1.position.x - s2.position.x - x, s1.position.y - s2.position.y - y);
+    }
+    rbs_world_destroy(w);
+}
+
 /* A free asymmetric top (I = diag(1, 2, 3) g m^2, w = (3, 2, 8) rad/s,
  * |w| dt = 8.8e-3 at dt = 1 ms) for 1e7 steps (1e4 s).  Exact: its
  * kinetic energy and world angular momentum are constant.  Measured: the
@@ -1639,6 +1696,8 @@ static const xcase cases[] = {
      "4 n EPS r = 8.9e-3 m (rounding at its height)", "|z - r|, m", 0, huge_ball, 0, NULL},
     {"slide_in_one_frame_dt_1", "largest relative error of v and r w against 5/7 v0 after 3 frames of dt = 1 s: a ball launched sliding at 5 m/s, mu 0.3, rolls from 0.485 s",
      "1e-12 (the stopping impulse is exact whatever the frame)", "|x - exact| at 3 s, m (the slide inside the first frame: the method's)", 0, slide_in_one_frame, 0, NULL},
+    {"orbit_dt_1e-9", "|r - r_exact| (m) of a Kepler orbit (3 + 1 kg, e = 0.5, from pericentre) after 1e5 steps of dt = 1e-9 s",
+     "n EPS r_p = 1.1e-11 m (rounding; soft 3 n) + euler's and selective's a_p h t = 1.6e-12 m", NULL, 0, orbit_dt_1e9, 0, NULL},
     {"long_free_top_1e7", "largest |E - E0|/E0 over 1e7 steps (1e4 s; adaptive 1e6) of a free top I = diag(1, 2, 3) g m^2, |w| dt = 8.8e-3",
      "0.1 (|w| dt)^2 = 7.7e-6 (symmetric turns: no drift); rk4 1e7 (|w| dt)^6 / 72; adaptive 1e-6", "largest |L - L0|/|L0|", 1,
      long_free_top, 0, NULL},
