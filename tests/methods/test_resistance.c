@@ -12,10 +12,9 @@
  * Dynamics, rolling resistance): (I + m r^2) dw/dt = m g r sin th -+ mu_r r
  * N, N = m g cos th, so the ball accelerates along the slope at
  *   a = 5/7 g (sin th -+ mu_r cos th),
- * the couple against the rolling; on a level floor it decelerates at
- * 5/7 mu_r g and stops at t = 7 v0 / (5 mu_r g) after v0^2 / (2 a), then
- * stays (a ball at rest on a level floor needs no couple).  A spin w about
- * the vertical decays at mu_sp m g / I and stops at w0 I / (mu_sp m g).
+ * the couple against the rolling.  (On a level floor, rolling and spinning
+ * to a stop at 5/7 mu_r g and mu_sp m g / I: test_mechanics.c,
+ * rolling_and_spinning_resistance_stop_the_ball.)
  *
  * event does not take rolling or spinning resistance (its scope):
  * RBS_E_UNSUPPORTED.  auto takes euler here (one sphere), bit for bit.
@@ -58,76 +57,6 @@ static rbs_material_id res_material(rbs_world *w, double mur, double msp)
     p.spinning = msp;
     CHECK_OK(rbs_world_set_pair(w, &p));
     return m;
-}
-
-/* ---- a ball rolling to a stop on a level floor ------------------------- */
-
-/* A solid ball (r = 0.1 m, 1 kg) rolling at v0 = 1 m/s, mu_r = 0.05: a =
- * 5/7 mu_r g = 0.35036 m/s^2, it stops at t_s = 2.85423 s after x_s =
- * 1.42712 m, then stays.  Compared at every frame (speed and position):
- * euler, selective, auto take the constant deceleration exactly in v and
- * lag by Euler's a h t / 2 in x (5.0e-4 m at the stop; soft the same with
- * h = dt / 3), bound a dt (t_s + dt) / 2; verlet, rk4 and adaptive are
- * exact for a constant force but for the frame the ball stops in, which
- * the pass ends at v = 0 mid-frame: within a dt^2 (3.5e-7 m).  After the
- * stop it stays: |v| and r|w| below 1e-300 m/s (soft leaves a subnormal
- * 1e-323 m/s). */
-
-static void rolling_to_a_stop(void **state)
-{
-    const double r = 0.1, v0 = 1.0, mur = 0.05, dt = 1e-3;
-    const double a = 5.0 / 7.0 * mur * G_, ts = v0 / a, xs = v0 * v0 / (2.0 * a);
-    int k;
-    (void)state;
-    for (k = 0; k < N_METHODS; ++k) {
-        rbs_method m = every_method[k];
-        rbs_world *w = res_world(m, dt);
-        rbs_material_id mat = res_material(w, mur, 0.0);
-        rbs_sphere_def s;
-        rbs_body_id b;
-        rbs_body_state st;
-        rbs_status status;
-        double worst = 0.0, t;
-        long f, n = (long)(ts / dt) + 1000;
-        rbs_plane_def p;
-        rbs_plane_def_init(&p);
-        p.material = mat;
-        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
-        rbs_sphere_def_init(&s);
-        s.radius = r;
-        s.position.z = r;
-        s.velocity.x = v0;
-        s.angular_velocity.y = v0 / r;
-        s.material = mat;
-        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
-        status = RBS_OK;
-        for (f = 1; f <= n && status == RBS_OK; ++f) {
-            double vx, x;
-            status = rbs_world_step(w, NULL);
-            t = rbs_world_time(w);
-            st = state_of(w, b);
-            vx = t < ts ? v0 - a * t : 0.0;
-            x = t < ts ? v0 * t - 0.5 * a * t * t : xs;
-            if (fabs(st.velocity.x - vx) > worst)
-                worst = fabs(st.velocity.x - vx);
-            if (fabs(st.position.x - x) > worst)
-                worst = fabs(st.position.x - x);
-        }
-        st = state_of(w, b);
-        print_message("%-9s: %s worst %.3e, end x %.9f (exact %.9f) v %.3e w %.3e\n", rbs_method_name(m),
-                      rbs_status_name(status), worst, st.position.x, xs, st.velocity.x, st.angular_velocity.y);
-        rbs_world_destroy(w);
-        if (m == RBS_METHOD_EVENT) {
-            assert_int_equal(status, RBS_E_UNSUPPORTED);
-            continue;
-        }
-        assert_int_equal(status, RBS_OK);
-        if (m == RBS_METHOD_VERLET || m == RBS_METHOD_RK4 || m == RBS_METHOD_ADAPTIVE)
-            assert_true(worst < a * dt * dt);
-        else
-            assert_true(worst < a * (m == RBS_METHOD_SOFT ? dt / 3 : dt) * (ts + dt) / 2);
-        assert_true(fabs(st.velocity.x) < 1e-300 && fabs(r * st.angular_velocity.y) < 1e-300);
-    }
 }
 
 /* ---- up an incline and back down ---------------------------------------- */
@@ -239,64 +168,10 @@ static double incline_run(rbs_method m, double dt, double *slip, rbs_status *sta
     }
 }
 
-/* ---- spinning to a stop ------------------------------------------------- */
-
-/* The ball at rest on the floor spinning at w0 = 10 rad/s about the
- * vertical, mu_sp = 0.002 m: w = w0 - (mu_sp m g / I) t until t_s =
- * 2.03874 s, then 0.  A constant couple, which the pass stops at zero
- * inside its frame: every method exact to rounding at every frame (4 n EPS
- * w0 over n = 2500 frames: 2.2e-11 rad/s; measured 3e-13). */
-
-static void spinning_to_a_stop(void **state)
-{
-    const double r = 0.1, w0 = 10.0, msp = 0.002, dt = 1e-3, I = 0.4 * r * r;
-    const double al = msp * G_ / I, ts = w0 / al;
-    int k;
-    (void)state;
-    for (k = 0; k < N_METHODS; ++k) {
-        rbs_method m = every_method[k];
-        rbs_world *w = res_world(m, dt);
-        rbs_material_id mat = res_material(w, 0.0, msp);
-        rbs_sphere_def s;
-        rbs_plane_def p;
-        rbs_body_id b;
-        rbs_status status = RBS_OK;
-        double worst = 0.0;
-        long f, n = (long)(ts / dt) + 500;
-        rbs_plane_def_init(&p);
-        p.material = mat;
-        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
-        rbs_sphere_def_init(&s);
-        s.radius = r;
-        s.position.z = r;
-        s.angular_velocity.z = w0;
-        s.material = mat;
-        CHECK_OK(rbs_world_add_sphere(w, &s, &b));
-        for (f = 1; f <= n && status == RBS_OK; ++f) {
-            double t, we, wz;
-            status = rbs_world_step(w, NULL);
-            t = rbs_world_time(w);
-            wz = state_of(w, b).angular_velocity.z;
-            we = t < ts ? w0 - al * t : 0.0;
-            if (fabs(wz - we) > worst) worst = fabs(wz - we);
-        }
-        print_message("%-9s: %s worst %.3e (ts %.6f)\n", rbs_method_name(m), rbs_status_name(status), worst, ts);
-        rbs_world_destroy(w);
-        if (m == RBS_METHOD_EVENT) {
-            assert_int_equal(status, RBS_E_UNSUPPORTED);
-            continue;
-        }
-        assert_int_equal(status, RBS_OK);
-        assert_true(worst < 4.0 * n * 2.220446049250313e-16 * w0);
-    }
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(rolling_to_a_stop),
         cmocka_unit_test(rolling_up_and_down_an_incline),
-        cmocka_unit_test(spinning_to_a_stop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
