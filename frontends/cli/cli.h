@@ -95,6 +95,11 @@ int rbsf_check_scene_outputs(const rbs_scene *scene);
 /** Print a scene's load errors, one per line, at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */
 void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out);
+/** "PREFIXPATH: cannot build the world: STATUS" (rbs_scene_build's failure
+ * st; the world it would have made is gone), with the memory the world
+ * asked for and its capacities when st is RBS_E_MEMORY. */
+void rbsf_print_build_failure(const rbs_scene *scene, rbs_status st, const char *prefix, const char *path,
+                              FILE *out);
 /** Print a scene's warnings (rbs_scene_warning_get), one per line as
  * "FILE:LINE:COL: PATH: warning: MESSAGE", at most RBS_SCENE_ERRORS_MAX
  * then how many more (nothing when it has none). */

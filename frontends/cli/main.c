@@ -303,9 +303,7 @@ static int check_main(int argc, char **argv)
     rbsf_print_scene_warnings(scene, stdout); /* (a valid scene: exit 0 still) */
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
-        rbsf__tell(stdout, "%s: cannot build the world: %s%s%s\n", path,
-               rbs_status_string(st), world ? ": " : "",
-               world ? rbs_world_last_error(world) : "");
+        rbsf_print_build_failure(scene, st, "", path, stdout);
         code = RBSF_EXIT_SCENE;
         goto out;
     }
@@ -440,9 +438,7 @@ static int explain_main(int argc, char **argv)
         goto out;
     st = rbs_scene_build(scene, &world);
     if (st != RBS_OK) {
-        rbsf__tell(stdout, "%s: cannot build the world: %s%s%s\n", path,
-               rbs_status_string(st), world ? ": " : "",
-               world ? rbs_world_last_error(world) : "");
+        rbsf_print_build_failure(scene, st, "", path, stdout);
         code = RBSF_EXIT_SCENE;
         goto out;
     }

@@ -351,6 +351,26 @@ void rbsf_print_scene_errors(const rbs_scene *scene, FILE *out)
                 (unsigned long)(n - RBS_SCENE_ERRORS_MAX));
 }
 
+void rbsf_print_build_failure(const rbs_scene *scene, rbs_status st, const char *prefix, const char *path,
+                              FILE *out)
+{
+    rbs_world_def def;
+    size_t need;
+    if (st == RBS_E_MEMORY && rbs_scene_world_def(scene, &def) == RBS_OK &&
+        (need = rbs_world_memory_size(&def)) != 0) {
+        /* (the one allocation of the world: say how much, and what it is
+         * for, so that a user knows which capacity to lower) */
+        const int gb = need >= 1000000000u;
+        rbsf__tell(out,
+                   "%s%s: cannot build the world: %s: its memory, %.1f %s for max_bodies %lu and "
+                   "max_contacts %lu (simulation.max_contacts), could not be reserved\n",
+                   prefix, path, rbs_status_string(st), (double)need / (gb ? 1e9 : 1e6), gb ? "GB" : "MB",
+                   (unsigned long)def.max_bodies, (unsigned long)def.max_contacts);
+        return;
+    }
+    rbsf__tell(out, "%s%s: cannot build the world: %s\n", prefix, path, rbs_status_string(st));
+}
+
 void rbsf_print_scene_warnings(const rbs_scene *scene, FILE *out)
 {
     uint32_t i, n = rbs_scene_warning_count(scene);
@@ -2087,9 +2107,7 @@ int rbsf_run_main(int argc, char **argv)
     if (st != RBS_OK) {
         if (rbs_scene_error_count(scene) > 0)
             rbsf_print_scene_errors(scene, stderr);
-        rbsf__tell(stderr, "rbsim: %s: cannot build the world: %s%s%s\n",
-                o.scene ? o.scene : "demonstration", rbs_status_string(st),
-                world ? ": " : "", world ? rbs_world_last_error(world) : "");
+        rbsf_print_build_failure(scene, st, "rbsim: ", o.scene ? o.scene : "demonstration", stderr);
         code = RBSF_EXIT_SCENE;
         goto out;
     }

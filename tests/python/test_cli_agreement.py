@@ -119,3 +119,29 @@ def test_stepping_directly_agrees_with_the_command(write_scene, tmp_path):
             assert want == list(p[s]) + list(q[s]) + list(v[s]) + list(av[s]), k
         if k < steps:
             w.step()
+
+
+def test_cli_names_the_memory_it_could_not_reserve(tmp_path):
+    """A world whose one allocation fails: the command says how much memory
+    it asked for and for which capacities (it said only "out of memory or
+    buffer too small"), exit 3.  The address space is capped at 1 GB in the
+    child; max_contacts 2^26 asks for about 18 GB."""
+    import resource
+    scene = tmp_path / "big.json"
+    scene.write_text(
+        '{"simulation": {"steps": 2, "dt": 0.001, "max_contacts": 67108864},\n'
+        ' "bodies": [{"name": "a", "type": "sphere", "radius": 0.1, "mass": 1,'
+        ' "position": [0, 0, 1]}]}\n')
+
+    def cap():
+        resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))
+
+    for command, stream in (("run", "stderr"), ("check", "stdout")):
+        result = subprocess.run([str(cli_path()), command, str(scene)], cwd=tmp_path,
+                                stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                                timeout=120, preexec_fn=cap)
+        assert result.returncode == 3, (result.stdout, result.stderr)
+        text = getattr(result, stream)
+        assert "cannot build the world: out of memory or buffer too small: its memory, " in text
+        assert " GB for max_bodies 1 and max_contacts 67108864 (simulation.max_contacts), " \
+               "could not be reserved" in text, text
