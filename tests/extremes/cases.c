@@ -1125,30 +1125,20 @@ static void spin_to_roll(rbs_method m, xres *r)
  * for each of the 5,556 impacts: 5.2e-4 m (and 1e-9 m of rounding).
  * Extra: the impacts resolved.
  *
- * soft: a known defect, held to its present error (7.12 m) so that it can
- * only shrink.  soft detects once a frame and meets one wall a frame (at
- * most one impact a frame is documented), but from about 1.2e4 m/s (7
- * crossings a frame) the ball also ends frames inside a wall -- 0.08 m deep
- * at 1.2e4, 0.32 m at 3e4, none at 3.5e4-6e4, 2 m at 7e4 -- and at 1e5 m/s
- * it is 1.15 m into the right wall after the first frame and 5 m after 100,
- * outside the box for good, though docs/methods.md says nothing tunnels
- * (a probe of session 50; the step's max_overlap reports the depth, the
- * status is OK).  One wall alone is met as documented (a frame late, then
- * exact, at 1e4 and 1e5 m/s); it takes both walls within one sub-step's
- * reach, v h > 1.8 m (from about 6e3 m/s: 0.4 % of the radius deep at
- * 6e3, 10 % at 1.1e4).  Traced (session 50, every row of a frame at 1.2e4
- * m/s): the sub-step that stops the ball at wall B accumulates B's impulse
- * m v; the next sub-step's warm start gives it back (the ball then moves
- * at -v, away from B), and wall A's speculative row, solved before B's in
- * the sphere's serial chunk, lets it close A's gap s only at s / h < v and
- * takes the difference -- an impulse from a wall 1.8 m away -- before B's
- * row can take its own back (it can only go to zero); the relax leaves the
- * two walls squeezing, the solve's velocity carries the ball a little into
- * B each frame, and the restitution pass aims A's row at e v0 while the
- * ball is at B.  The next frame's warm start re-applies B's restitution
- * impulse too (the table stores the frame's last impulses), the same
- * mechanism from the first sub-step.  soft_substeps 1 fails from 1e4 m/s,
- * 8 from 3e4. */
+ * soft: it detects once a frame and meets at most one impact a frame
+ * (docs/methods.md), so from v dt > 1.8 m it turns at one wall a frame and
+ * ends the frame there: after frame k at +0.9 (k odd) or -0.9 (k even),
+ * |v| = v.  Its exact answer at 0.1 s is then x = -0.9, and the bound is
+ * |-0.9 - x(0.1)| = 0.1123 m, plus the slop (1e-7 m: a contact may
+ * overlap by it); every frame's end must be inside the box, the step's
+ * max_overlap at most the slop (measured: below 1e-14 m).  Before session
+ * 51 the ball worked its way out of the box (7.05 m off, 5 m outside):
+ * the next sub-step's warm start gave back the impulse that had stopped it
+ * at one wall, and the other wall's speculative row, solved first in the
+ * sphere's serial chunk, took part of that velocity as an impulse of its
+ * own; the rows of a serial chunk now take its touching lanes first
+ * (soft_rows.h, row_lanes; tests/methods/test_soft.c,
+ * ball_between_two_walls_stays_inside). */
 static double triangle(double x0, double v, double t)
 {
     const double span = 1.8;
@@ -1170,12 +1160,17 @@ static void box_1e5(rbs_method m, xres *r)
     xplane(w, (rbs_material_id){0, 0}, -1, 0, 0, 1, 0, 0);
     xplane(w, (rbs_material_id){0, 0}, 1, 0, 0, -1, 0, 0);
     b = xball(w, 0.1, 1.0, x0, 0, 0, v, 0, 0, (rbs_material_id){0, 0});
-    r->bound = m == RBS_METHOD_SOFT ? 7.2 : impacts * v * dt * 0x1p-30 + 1e-9;
+    r->bound = m == RBS_METHOD_SOFT ? fabs(-0.9 - triangle(x0, v, 100 * dt)) + 1e-7
+                                    : impacts * v * dt * 0x1p-30 + 1e-9;
     memset(&sum, 0, sizeof sum);
     if (xsteps(r, w, 100, &sum) == 0) {
         rbs_body_state s = xstate(w, b);
         r->value = fabs(s.position.x - triangle(x0, v, rbs_world_time(w)));
         r->extra = sum.colliding;
+        if (m == RBS_METHOD_SOFT && !(sum.max_overlap <= 1e-7)) {
+            r->failed = 1;
+            note(r, "a frame ended %.3g m inside a wall (more than the slop, 1e-7 m)", sum.max_overlap);
+        }
         if (!(fabs(fabs(s.velocity.x) - v) <= 1e-12 * v)) {
             r->failed = 1;
             note(r, "speed %.17g m/s, not %g: an elastic wall changed it", fabs(s.velocity.x), v);
@@ -1668,8 +1663,8 @@ static const xcase cases[] = {
     {"spin_1e6_to_roll", "largest relative error of v against 2/7 r w0 and w against 2/7 w0: a ball set spinning at 1e6 rad/s on the floor, g = 1e4, mu 0.5",
      "4 n EPS (n sub-steps of the 5.7 s slide)", "|z - r|, m", 0, spin_to_roll, 0, NULL},
     {"box_1e5_m_per_s", "|x - exact| (m) of a ball at 1e5 m/s between two walls 2 m apart, e = 1, 0.1 s (5556 impacts)",
-     "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9; soft 7.2 m, its present error: a defect, it "
-     "leaves the box (cases.c)", "impacts resolved", 0, box_1e5, 0, NULL},
+     "5556 v dt / 2^30 (each impact found to dt/2^30) + 1e-9; soft 0.1123 m + the slop 1e-7 m: one impact a "
+     "frame, each frame ending at a wall, x = -0.9 at 0.1 s (cases.c)", "impacts resolved", 0, box_1e5, 0, NULL},
     {"incline_far_1.2e6", "|d / exact - 1| of a frictionless ball sliding 1.2e6 m down a 3:4 incline, g = 1e4, 20 s",
      "euler, selective 1/n (first order); soft 1/(3n); others 4 n EPS", "distance from the plane, m", 0,
      incline_far, 0, NULL},

@@ -359,16 +359,64 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     apply(xa, xb, ra, rb, nx, ny, nz, jx, jy, jz, lb, plane);
 }
 
+/* Lane l's separation now, m, for row_lanes' order: the gap at detection
+ * plus the displacements along n (a fixed sphere's lane too: the order
+ * needs no turned normal). */
+static inline double lane_separation(const rbs__soft_rows *k, const rbs__chunk *c, uint32_t l)
+{
+    const double *ra = k->rec + (size_t)RBS__REC * c->a[l];
+    double dx = ra[RBS__REC_D], dy = ra[RBS__REC_D + 1], dz = ra[RBS__REC_D + 2];
+    if (!(c->flags >> (RBS__CH_PLANE + l) & 1u)) {
+        const double *rb = k->rec + (size_t)RBS__REC * c->b[l];
+        dx -= rb[RBS__REC_D];
+        dy -= rb[RBS__REC_D + 1];
+        dz -= rb[RBS__REC_D + 2];
+    }
+    return c->gap[l] + (c->nx[l] * dx + c->ny[l] * dy + c->nz[l] * dz);
+}
+
 /* Lanes [first, end) of a serial chunk one after the other, each alone in
- * a chunk of its own (lane 0; the others unused). */
+ * a chunk of its own (lane 0; the others unused).  In a SOLVE or RELAX
+ * pass the lanes touching now (within their slop) go first, then those
+ * apart, each set in lane order: the lanes of a serial chunk may share a
+ * body, and a touching lane's row takes back what the warm start gave
+ * beyond its need (the impulse that stopped an impact, given back at the
+ * next sub-step's start) before a speculative row of the same body reads
+ * that velocity as an approach -- solved first, the row of a wall 1.8 m
+ * away took it as an impulse of its own, and a ball between two walls
+ * (v h > 1.8 m) worked its way out of the box (docs/methods.md, "soft"). */
 static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, uint32_t first, uint32_t end, int stage,
                       rbs__soft_report *report)
 {
-    uint32_t l;
-    for (l = first; l < end; ++l) {
+    uint32_t l, order[RBS__LANES], m = 0, x;
+    if (stage == RBS__SOFT_SOLVE || stage == RBS__SOFT_RELAX || stage == RBS__SOFT_RELAX_REPORT) {
+        unsigned apart = 0;
+        for (l = first; l < end; ++l) {
+            const double *ra = k->rec + (size_t)RBS__REC * c->a[l];
+            double r = ra[RBS__REC_R];
+            if (!(c->flags >> (RBS__CH_PLANE + l) & 1u)) {
+                const double rb = k->rec[(size_t)RBS__REC * c->b[l] + RBS__REC_R];
+                r = rb < r ? rb : r;
+            }
+            if (lane_separation(k, c, l) > k->slop * r)
+                apart |= 1u << l;
+            else
+                order[m++] = l;
+        }
+        for (l = first; l < end; ++l)
+            if (apart >> l & 1u)
+                order[m++] = l;
+    } else {
+        for (l = first; l < end; ++l)
+            order[m++] = l;
+    }
+    for (x = 0; x < m; ++x) {
         rbs__chunk one;
-        unsigned bit = 1u << l, f = c->flags;
-        int plane = (f >> RBS__CH_PLANE & bit) != 0;
+        unsigned bit, f = c->flags;
+        int plane;
+        l = order[x];
+        bit = 1u << l;
+        plane = (f >> RBS__CH_PLANE & bit) != 0;
         memset(&one, 0, sizeof one);
         one.a[0] = c->a[l];
         one.b[0] = c->b[l];

@@ -319,8 +319,10 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
  * layout; row_fast is the gathered one): stage SOLVE (soft, with bias),
  * RELAX (rigid) or RESTITUTION (normal rows that make the pair leave at e
  * times its approach, and friction within Coulomb's cone of the grown
- * normal impulse, so that an oblique bounce follows the impact law). */
-static void pass(soft_pass *sp, int stage)
+ * normal impulse, so that an oblique bounce follows the impact law); apart
+ * < 0 every contact, else only those apart now by more than their slop (1)
+ * or not (0). */
+static void pass_rows(soft_pass *sp, int stage, int apart)
 {
     rbs_world *w = sp->w;
     uint32_t i;
@@ -328,6 +330,8 @@ static void pass(soft_pass *sp, int stage)
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
         v3 rv, j;
+        if (apart >= 0 && (separation(sp, c) > rbs__contact_slop(w, c)) != apart)
+            continue;
         turn(sp, c);
         rv = relative_velocity(sp, c);
         double vn = v3_dot(rv, c->n), jn, dj;
@@ -376,6 +380,23 @@ static void pass(soft_pass *sp, int stage)
             rs->impact = rs->impact > jn ? rs->impact - jn : 0.0;
         }
     }
+}
+
+/* One pass of stage over the contacts.  SOLVE and RELAX take the contacts
+ * touching now (within their slop) first, then those apart, each set in
+ * order: a touching row takes back what the warm start gave beyond its
+ * need (the impulse that stopped an impact, given back at the next
+ * sub-step's start) before a speculative row of the same body reads that
+ * velocity as an approach (soft_rows.h, row_lanes; docs/methods.md,
+ * "soft"). */
+static void pass(soft_pass *sp, int stage)
+{
+    if (stage == RESTITUTION) {
+        pass_rows(sp, stage, -1);
+        return;
+    }
+    pass_rows(sp, stage, 0);
+    pass_rows(sp, stage, 1);
 }
 
 /* Whether contact c is lone: each of its bodies is fixed (or a plane), or
