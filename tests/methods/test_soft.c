@@ -892,6 +892,58 @@ static void ball_between_two_walls_stays_inside(void **state)
             }
 }
 
+/* The same ball in a groove whose walls are tilted from parallel by t
+ * (0.001, 1 and 5 degrees; normals (cos t, 0, sin t) at x = -1 and
+ * (-cos t, 0, sin t) at x = 1, nearly opposed: a wedge, whose two rows the
+ * soft step solves as one block, soft_rows.h, row_wedge), frictionless,
+ * e = 1, no gravity, from x0 = 0.0123 at v along x, 1e3 to 1e5 m/s: each
+ * wall's contact is within the frame's reach of the other's, and each
+ * bounce sends the ball up the groove.  Exact: it stays inside both walls
+ * and keeps its speed (a frictionless plane's elastic row reverses the
+ * normal velocity and keeps the tangential one).  Checked at every frame's
+ * end, 100 frames: each wall's overlap at most the slop (1e-7 m) and |v|
+ * to 1e-12 of v (rounding).  Before session 51 the block's two lanes, the
+ * wall ahead to close and the wall behind to open, both came out pulling;
+ * the wall ahead let go first, and at 1e3 m/s (0.001 degrees) the ball
+ * went 0.2 m into it. */
+static void ball_in_a_tilted_groove_stays_inside(void **state)
+{
+    const double speeds[] = {1e3, 6e3, 1.2e4, 1e5}, tilts[] = {0.001, 1.0, 5.0}, r = 0.1, dt = 1e-3;
+    const double slop = 1e-7;
+    size_t iv, it;
+    (void)state;
+    for (iv = 0; iv < sizeof speeds / sizeof speeds[0]; ++iv)
+        for (it = 0; it < sizeof tilts / sizeof tilts[0]; ++it) {
+            const double v = speeds[iv], t = tilts[it] * PI_ / 180.0, c = cos(t), sn = sin(t);
+            rbs_world *w = soft_world(4, dt, 0.0, 1.0, 3);
+            rbs_plane_def p;
+            rbs_body_id id, b;
+            int k;
+            rbs_plane_def_init(&p);
+            p.point.x = -1.0;
+            p.normal = (rbs_vec3){c, 0.0, sn};
+            CHECK_OK(rbs_world_add_plane(w, &p, &id));
+            p.point.x = 1.0;
+            p.normal = (rbs_vec3){-c, 0.0, sn};
+            CHECK_OK(rbs_world_add_plane(w, &p, &id));
+            b = ball(w, r, 1.0, 0.0123, 0, 0, v, 0, 0, (rbs_material_id){0, 0});
+            for (k = 1; k <= 100; ++k) {
+                rbs_body_state s;
+                double da, db;
+                step_n(w, 1);
+                s = state_of(w, b);
+                /* each wall's overlap: r less the centre's distance from it */
+                da = r - ((s.position.x + 1.0) * c + s.position.z * sn);
+                db = r - (-(s.position.x - 1.0) * c + s.position.z * sn);
+                if (!(da <= slop) || !(db <= slop) || !(fabs(speed(s.velocity) - v) <= 1e-12 * v))
+                    fail_msg("%g m/s, walls %g degrees from parallel, frame %d: %.3g m into the left wall, %.3g m "
+                             "into the right, speed %.17g",
+                             v, tilts[it], k, da, db, speed(s.velocity));
+            }
+            rbs_world_destroy(w);
+        }
+}
+
 /* A line of n equal balls of radius r along x, the gaps between them gap,
  * the first moving at v towards the rest (e = 1, no gravity), in a soft
  * world of dt: each ball's slot into b. */
@@ -1731,6 +1783,7 @@ int main(void)
         cmocka_unit_test(rolling_resistance_holds_a_ball_on_a_slope),
         cmocka_unit_test(fast_bodies_do_not_tunnel),
         cmocka_unit_test(ball_between_two_walls_stays_inside),
+        cmocka_unit_test(ball_in_a_tilted_groove_stays_inside),
         cmocka_unit_test(spaced_cradle_passes_the_velocity_down_the_line),
         cmocka_unit_test(kicked_ball_stops_at_the_guard_depth),
         cmocka_unit_test(shot_into_a_grid_gains_no_energy),

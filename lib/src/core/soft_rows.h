@@ -457,6 +457,27 @@ static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, uint32_t first, ui
     }
 }
 
+/* A wedge's lane o let go (its change dj_o; soft_rows.h, row_wedge), and
+ * the other lane's row after it, within its bounds, into dj. */
+static inline void wedge_let_go(double im, double d, const double *rhs, const double *jn, const int *wait, uint32_t o,
+                                double dj_o, double *dj)
+{
+    const uint32_t e = 1u - o;
+    dj[o] = dj_o;
+    dj[e] = (rhs[e] - d * im * dj[o]) / im;
+    if (jn[e] + dj[e] < 0.0)
+        dj[e] = -jn[e];
+    else if (wait[e] && dj[e] > 0.0)
+        dj[e] = 0.0;
+}
+
+/* Whether lane o, let go in dj, stays content: its row, with the other's
+ * change, asks for no more impulse (or it waits: it may take none). */
+static inline int wedge_holds(double im, double d, const double *rhs, const int *wait, uint32_t o, const double *dj)
+{
+    return wait[o] || rhs[o] - im * (dj[o] + d * dj[1u - o]) <= 0.0;
+}
+
 /* The wedges of chunk c (RBS__CH_WEDGE: lanes l, l + 1 are the contacts of
  * one sphere with two planes whose normals n1, n2 are nearly opposed) in a
  * SOLVE, RELAX or RESTITUTION pass (the warm start takes the lanes one
@@ -555,14 +576,27 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
         if (bad[0] || bad[1]) {
             /* a lane that would pull lets go (its impulse to 0; a waiting
              * one keeps it), and the other takes its own row after that,
-             * within the same bounds */
-            const uint32_t o = bad[0] ? 0u : 1u, e = 1u - o;
-            dj[o] = jn[o] + dj[o] < 0.0 ? -jn[o] : 0.0;
-            dj[e] = (rhs[e] - d * im * dj[o]) / im;
-            if (jn[e] + dj[e] < 0.0)
-                dj[e] = -jn[e];
-            else if (wait[e] && dj[e] > 0.0)
-                dj[e] = 0.0;
+             * within the same bounds -- unless the lane let go would then
+             * push (its row, with the other's change, still asks for
+             * more) and the other way round holds: then that lane lets go
+             * instead.  (The lane that would pull in the block's answer
+             * need not be the one to let go: a ball flying across a groove
+             * 0.001 degrees from parallel towards one wall, the other
+             * behind it, both within the frame's reach, made both lanes
+             * pull in the nearly singular block; the first let go was the
+             * wall ahead, nothing stopped the ball, and from 1e3 m/s it
+             * went 0.2 m into the wall -- a probe of session 51.) */
+            double alt[2];
+            uint32_t o = bad[0] ? 0u : 1u;
+            wedge_let_go(im, d, rhs, jn, wait, o, jn[o] + dj[o] < 0.0 ? -jn[o] : 0.0, dj);
+            if (!wedge_holds(im, d, rhs, wait, o, dj)) {
+                o = 1u - o;
+                wedge_let_go(im, d, rhs, jn, wait, o, -jn[o], alt);
+                if (wedge_holds(im, d, rhs, wait, o, alt)) {
+                    dj[0] = alt[0];
+                    dj[1] = alt[1];
+                }
+            }
         }
         for (i = 0; i < 2u; ++i) {
             const uint32_t x = l + i;
