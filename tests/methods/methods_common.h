@@ -6,6 +6,17 @@
 
 #define PI_ 3.14159265358979323846
 
+/* Body-frame v = R(q)^T v for the unit quaternion q = [w x y z]. */
+static inline void to_body(const double *q, const double *v, double *out)
+{
+    const double w = q[0], x = -q[1], y = -q[2], z = -q[3];
+    const double tx = 2.0 * (y * v[2] - z * v[1]), ty = 2.0 * (z * v[0] - x * v[2]),
+                 tz = 2.0 * (x * v[1] - y * v[0]);
+    out[0] = v[0] + w * tx + (y * tz - z * ty);
+    out[1] = v[1] + w * ty + (z * tx - x * tz);
+    out[2] = v[2] + w * tz + (x * ty - y * tx);
+}
+
 /* A world for method m with no uniform gravity and mutual gravity of
  * constant G on. */
 static inline rbs_world *orbit_world(rbs_method m, double dt, double G, double tol)

@@ -27,17 +27,6 @@ typedef struct {
     double phase;  /* symmetric top: max |phi - phi0 - Omega t| / (Omega t) */
 } top_errors;
 
-/* Body-frame v = R(q)^T v for the unit quaternion q = [w x y z]. */
-static void to_body(const double *q, const double *v, double *out)
-{
-    const double w = q[0], x = -q[1], y = -q[2], z = -q[3];
-    const double tx = 2.0 * (y * v[2] - z * v[1]), ty = 2.0 * (z * v[0] - x * v[2]),
-                 tz = 2.0 * (x * v[1] - y * v[0]);
-    out[0] = v[0] + w * tx + (y * tz - z * ty);
-    out[1] = v[1] + w * ty + (z * tx - x * tz);
-    out[2] = v[2] + w * tz + (x * ty - y * tx);
-}
-
 /* A weightless sphere of principal moments I (kg m^2, body axes = world
  * axes at the start) spinning at w0 (rad/s), stepped by method m for 10 s
  * at dt = 1 ms.  symmetric: I.x == I.y, and the precession is measured. */

@@ -20,17 +20,6 @@ static const rbs_method every_method[] = {RBS_METHOD_EULER,  RBS_METHOD_SELECTIV
                                           RBS_METHOD_SOFT,   RBS_METHOD_AUTO};
 #define N_METHODS ((int)(sizeof every_method / sizeof every_method[0]))
 
-/* Body-frame v = R(q)^T v for the unit quaternion q = [w x y z]. */
-static void to_body(const double *q, const double *v, double *out)
-{
-    const double w = q[0], x = -q[1], y = -q[2], z = -q[3];
-    const double tx = 2.0 * (y * v[2] - z * v[1]), ty = 2.0 * (z * v[0] - x * v[2]),
-                 tz = 2.0 * (x * v[1] - y * v[0]);
-    out[0] = v[0] + w * tx + (y * tz - z * ty);
-    out[1] = v[1] + w * ty + (z * tx - x * tz);
-    out[2] = v[2] + w * tz + (x * ty - y * tx);
-}
-
 /* ---- the intermediate-axis flip ----------------------------------------- */
 
 /* Complete elliptic integral of the first kind, K(k) = pi / (2 AGM(1,
