@@ -34,6 +34,17 @@ static const double G = 9.81;
 static const rbs_method all_methods[] = {RBS_METHOD_AUTO,  RBS_METHOD_EULER, RBS_METHOD_SELECTIVE,
                                          RBS_METHOD_EVENT, RBS_METHOD_VERLET, RBS_METHOD_RK4,
                                          RBS_METHOD_ADAPTIVE, RBS_METHOD_SOFT};
+
+/* An incline rising along +x at the angle th (sn = sin th, cs = cos th)
+ * through the origin: the normal (-sin, 0, cos), up the slope (cos, 0, sin). */
+static void incline_plane(rbs_world *w, double sn, double cs, rbs_material_id mat)
+{
+    rbs_plane_def p;
+    rbs_plane_def_init(&p);
+    p.normal = (rbs_vec3){-sn, 0.0, cs};
+    p.material = mat;
+    CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+}
 #define N_METHODS (sizeof all_methods / sizeof *all_methods)
 
 /* A world for method m (room for 8 bodies). */
@@ -930,13 +941,8 @@ static void sliding_up_an_incline_rolls_back(void **state)
         const int soft = m == RBS_METHOD_SOFT;
         rbs_world *w = mworld(m, dt, -G, 0.0);
         rbs_material_id mat = material(w, "m", mu, mu, 0.0);
-        rbs_plane_def p;
         rbs_body_id b;
-        rbs_plane_def_init(&p);
-        /* rising along +x: the normal (-sin, 0, cos), up the slope (cos, 0, sin) */
-        p.normal = (rbs_vec3){-sn, 0.0, cs};
-        p.material = mat;
-        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        incline_plane(w, sn, cs, mat);
         b = ball(w, r, 1.0, -r * sn, 0.0, r * cs, v0 * cs, 0.0, v0 * sn, mat);
         if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
             rbs_body_state st = state_of(w, b);
@@ -1035,7 +1041,6 @@ static void incline_at_the_rolling_threshold(void **state)
             const double sink = soft ? 1e-6 * r + G * cs * dt * dt / (4.0 * PI_ * PI_) : 0.0;
             rbs_world *w = mworld(m, dt, -G, 0.0);
             rbs_material_id mat = material(w, "m", mus[c], muk[c], 0.0);
-            rbs_plane_def p;
             rbs_body_id b;
             if (c == 3) {
                 rbs_pair_def pd;
@@ -1047,10 +1052,7 @@ static void incline_at_the_rolling_threshold(void **state)
                 pd.spinning = 1e-3;
                 CHECK_OK(rbs_world_set_pair(w, &pd));
             }
-            rbs_plane_def_init(&p);
-            p.normal = (rbs_vec3){-sn, 0.0, cs};
-            p.material = mat;
-            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            incline_plane(w, sn, cs, mat);
             b = ball(w, r, 1.0, -r * sn, 0.0, r * cs, 0, 0, 0, mat);
             if (msteps(w, m, steps) == 0) {
                 rbs_body_state s = state_of(w, b);
@@ -1499,13 +1501,9 @@ static void rolling_across_an_incline_with_normal_spin(void **state)
         const int soft = m == RBS_METHOD_SOFT;
         rbs_world *w = mworld(m, dt, -G, 0.0);
         rbs_material_id mat = material(w, "m", mu, mu, 0.0);
-        rbs_plane_def p;
         rbs_sphere_def d;
         rbs_body_id b;
-        rbs_plane_def_init(&p);
-        p.normal = (rbs_vec3){-sn, 0.0, cs};
-        p.material = mat;
-        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+        incline_plane(w, sn, cs, mat);
         rbs_sphere_def_init(&d);
         d.radius = r;
         d.mass = 1.0;
