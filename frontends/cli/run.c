@@ -333,6 +333,15 @@ static int parse_run_args(int argc, char **argv, run_options *o)
         return usage_error("--speed sets the pace of --realtime, and a run "
                            "without it goes as fast as it can: give "
                            "--realtime too%s%s", "", "");
+    /* --every thins the command line's --csv, --json and --png (the
+     * demonstration's own outputs included); without one it would change
+     * nothing, silently: a scene's renderer keeps its own "every", and
+     * --stats keeps every frame. */
+    if (o->every && o->scene != NULL && !o->csv && !o->json && !o->png)
+        return usage_error("--every K keeps every K-th frame of --csv, --json "
+                           "and --png, and this run has none of them (a "
+                           "scene's renderer takes \"every\" in its entry; "
+                           "--stats keeps every frame)%s%s", "", "");
     return 0;
 }
 

@@ -202,6 +202,11 @@ class CliTests(Base):
             (["--threads", "2", "--threads=3"], "--threads given twice"),
             (["--speed", "0"], "--speed"),
             (["--speed", "2"], "--speed sets the pace of --realtime"),
+            # --every thins --csv, --json and --png only: alone, or with
+            # --stats (every frame) alone, it changed nothing, silently
+            (["--every", "5"], "--every K keeps every K-th frame of --csv, "
+             "--json and --png, and this run has none of them"),
+            (["--every", "5", "--stats", "out.csv"], "--every K keeps"),
             (["--frobnicate"], "unknown option '--frobnicate'"),
             (["--csv"], "--csv needs a value"),
             (["--csv", "out.csv", "--csv", "x.csv"], "--csv given twice"),
