@@ -109,6 +109,13 @@ void rbsf_print_scene_warnings(const rbs_scene *scene, FILE *out);
  * (`what`: how the message names the options, e.g. "rbsim run: cannot
  * apply the options") -- the options' fault, as a bad option is. */
 int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const char *method, const char *what);
+/** Print that a scene's renderer entry `index` (at file:line:column) names
+ * a type this rbsim does not register, as "FILE:LINE:COL:
+ * renderers[K].type: unknown renderer type "T" (did you mean "csv"?; known:
+ * ...)", the suggestion when a known type is at most 2 edits away; one form
+ * for check and run. */
+void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int column,
+                                 unsigned long index, const char *type);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 

@@ -183,6 +183,70 @@ void rbsf_method_list(char *out, size_t size)
     }
 }
 
+/* Levenshtein distance of two short strings (a renderer type is at most
+ * 63 bytes: RBS_NAME_MAX); longer ones count as far apart. */
+static size_t type_distance(const char *a, const char *b)
+{
+    size_t row[64], la = strlen(a), lb = strlen(b), i, j;
+    if (la >= 64 || lb >= 64)
+        return (size_t)-1;
+    for (j = 0; j <= lb; j++)
+        row[j] = j;
+    for (i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (j = 1; j <= lb; j++) {
+            size_t up = row[j], best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best)
+                best = up + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            diag = up;
+            row[j] = best;
+        }
+    }
+    return row[lb];
+}
+
+void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int column,
+                                 unsigned long index, const char *type)
+{
+    /* The types this rbsim registers (main.c's check, run.c). */
+    static const char *const known[] = {"csv", "json", "stats",
+#ifdef RBSF_HAVE_SDL
+                                        "sdl",
+#endif
+    };
+    const char *hint = NULL;
+    size_t best = 3, k; /* at most 2 edits: "cvs" for "csv" */
+    char shown[256];
+#ifndef RBSF_HAVE_SDL
+    if (strcmp(type, "sdl") == 0) {
+        rbsf__tell(out, "%s:%d:%d: renderers[%lu].type: unknown renderer type "
+                        "\"sdl\" (this rbsim was built without SDL)\n",
+                   file, line, column, index);
+        return;
+    }
+#endif
+    for (k = 0; k < sizeof known / sizeof known[0]; k++) {
+        size_t d = type_distance(type, known[k]);
+        if (d < best) {
+            best = d;
+            hint = known[k];
+        }
+    }
+    rbsf__tell(out, "%s:%d:%d: renderers[%lu].type: unknown renderer type \"%s\" "
+                    "(%s%s%sknown: csv, json, stats%s)\n",
+               file, line, column, index, rbsf__shown(type, shown, sizeof shown),
+               hint ? "did you mean \"" : "", hint ? hint : "", hint ? "\"?; " : "",
+#ifdef RBSF_HAVE_SDL
+               ", sdl (PNG frames)"
+#else
+               ""
+#endif
+    );
+}
+
 int rbsf_help(FILE *out, const char *command)
 {
     if (command == NULL) {
@@ -331,12 +395,8 @@ static int check_main(int argc, char **argv)
         if (rbs_scene_renderer_get(scene, i, &r) != RBS_OK)
             continue;
         if (rbs_renderer_find(registry, r.type, &cls) != RBS_OK) {
-            rbsf__tell(stdout, "%s:%d:%d: renderers[%lu].type: unknown renderer type "
-                   "\"%s\"%s\n",
-                   r.file, (int)r.line, (int)r.column, (unsigned long)i, r.type,
-                   strcmp(r.type, "sdl") == 0
-                       ? " (this rbsim was built without SDL)"
-                       : " (known: csv, json, stats, sdl)");
+            rbsf_print_unknown_renderer(stdout, r.file, (int)r.line, (int)r.column,
+                                        (unsigned long)i, r.type);
             code = RBSF_EXIT_SCENE;
             continue;
         }

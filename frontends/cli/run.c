@@ -2292,14 +2292,10 @@ int rbsf_run_main(int argc, char **argv)
         char err[512] = "";
         if (rbs_renderer_find(registry, configs[i].type, &cls) != RBS_OK) {
             if (outs[i].from_scene)
-                rbsf__tell(stderr, "%s:%d:%d: renderers[%lu]: unknown renderer "
-                                "type \"%s\"%s\n",
-                        configs[i].file, (int)configs[i].line,
-                        (int)configs[i].column, (unsigned long)i,
-                        configs[i].type,
-                        strcmp(configs[i].type, "sdl") == 0
-                            ? " (this rbsim was built without SDL)"
-                            : " (known: csv, json, stats, sdl)");
+                rbsf_print_unknown_renderer(stderr, configs[i].file,
+                                            (int)configs[i].line,
+                                            (int)configs[i].column,
+                                            (unsigned long)i, configs[i].type);
             code = outs[i].from_scene ? RBSF_EXIT_SCENE : RBSF_EXIT_USAGE;
             goto out;
         }

@@ -754,6 +754,31 @@ class CliTests(Base):
         self.assertIn("at most 4 renderers", r.stderr)
         self.assertEqual(sorted(os.listdir(self.dir)), ["scene.json"])
 
+    def test_unknown_renderer_type_is_named_with_a_suggestion(self):
+        # A misspelt type got "(known: csv, json, stats, sdl)" and no
+        # "did you mean", which a misspelt key or method gets; check said
+        # "renderers[0].type:", run "renderers[0]:".  Now one form for both:
+        # the key path, the closest known type, and what sdl writes (a
+        # user asking for "png").
+        cases = [("cvs", 'renderers[0].type: unknown renderer type "cvs" '
+                         '(did you mean "csv"?; known: csv, json, stats'),
+                 ("jsonl", '(did you mean "json"?; known:'),
+                 ("png", 'renderers[0].type: unknown renderer type "png" '
+                         '(known: csv, json, stats')]
+        for typ, msg in cases:
+            s = self.scene(renderers=[{"type": typ, "path": "o.csv"}])
+            r = self.rbsim("check", s)
+            self.assertEqual(r.returncode, 3, r.stdout + r.stderr)
+            self.assertIn("scene.json:", r.stdout)
+            self.assertIn(msg, r.stdout)
+            r = self.rbsim("run", s, "--quiet")
+            self.assertEqual(r.returncode, 3, r.stderr)
+            self.assertIn(msg, r.stderr)
+            self.assertFalse(os.path.exists(self.path("o.csv")))
+        if "sdl" in self.rbsim("check", s).stdout:  # (built with SDL)
+            self.assertIn("sdl (PNG frames)", r.stderr)
+            self.assertNotIn("did you mean", r.stderr)
+
     def test_scene_errors(self):
         bad = self.scene(bodies=[{"name": "x", "type": "sphere",
                                   "radius": -1, "mass": 1,
