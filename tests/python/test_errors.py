@@ -832,3 +832,23 @@ def test_an_array_of_the_wrong_shape_is_named_by_its_shape():
                                    "array of shape %s" % shape), str(info.value)
     assert w.add_sphere(position=np.array([0.0, 0.0, 1.0])).position.tolist() == [0, 0, 1]
     assert w.all_bodies()[0].position.tolist() == [0, 0, 1]
+
+
+def test_a_list_of_vectors_is_named_as_such():
+    """A list of two positions, [[0, 0, 1], [0, 0, 2]], said "expected 3
+    numbers, got 2" as np.zeros((2, 3)) did before session 50: read as two
+    numbers.  The message names the nested item (a probe of session 51)."""
+    w = rbsim.World(max_bodies=2)
+    cases = [([[0, 0, 1], [0, 0, 2]], "position", "got 2 items, position[0] a list"),
+             (((0, 0, 1),), "position", "got 1 item, position[0] a tuple"),
+             ([[1, 0, 0, 0]], "orientation", "got 1 item, orientation[0] a list")]
+    for value, key, msg in cases:
+        with pytest.raises(rbsim.InvalidError) as info:
+            w.add_sphere(**{key: value})
+        assert str(info.value) == ("invalid argument: %s: expected %d numbers, %s (one "
+                                   "vector at a time)" % (key, 4 if key == "orientation" else 3,
+                                                          msg)), str(info.value)
+    with pytest.raises(rbsim.InvalidError) as info:
+        w.add_sphere(position=(1, 2))
+    assert str(info.value) == "invalid argument: position: expected 3 numbers, got 2"
+    assert w.all_bodies() == []

@@ -143,6 +143,14 @@ def vector(value: Any, what: str, size: int = 3) -> Tuple[float, ...]:
     if len(items) > size:
         raise _e.error_class(-1)("%s: expected %d numbers, got more" % (what, size))
     if len(items) != size:
+        # a list of vectors, [[0, 0, 1], [0, 0, 2]], is named as such: "got
+        # 2" alone read as two numbers (as an array's rows did, above)
+        for i, x in enumerate(items):
+            if isinstance(x, collections.abc.Iterable) and not isinstance(x, (str, bytes)):
+                raise _e.error_class(-1)(
+                    "%s: expected %d numbers, got %d item%s, %s[%d] a %s (one vector at "
+                    "a time)" % (what, size, len(items), "" if len(items) == 1 else "s",
+                                 what, i, type(x).__name__))
         raise _e.error_class(-1)("%s: expected %d numbers, got %d"
                                  % (what, size, len(items)))
     return tuple(real(x, "%s[%d]" % (what, i)) for i, x in enumerate(items))
