@@ -116,6 +116,11 @@ int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const cha
  * for check and run. */
 void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int column,
                                  unsigned long index, const char *type);
+/** After a scene that could not be read: when `path` does not exist
+ * (ENOENT) and its folder holds a name at most 2 edits from its last
+ * component, print "PATH: did you mean 'FOLDER/NAME'?" (shown safely);
+ * else nothing.  path NULL: nothing. */
+void rbsf_suggest_scene_path(FILE *out, const char *path);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 

@@ -10,6 +10,7 @@
 #include "sdl_renderer.h"
 #endif
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <signal.h>
@@ -184,8 +185,9 @@ void rbsf_method_list(char *out, size_t size)
 }
 
 /* Levenshtein distance of two short strings (a renderer type is at most
- * 63 bytes: RBS_NAME_MAX); longer ones count as far apart. */
-static size_t type_distance(const char *a, const char *b)
+ * 63 bytes: RBS_NAME_MAX; a file name to suggest as long); longer ones
+ * count as far apart. */
+static size_t name_distance(const char *a, const char *b)
 {
     size_t row[64], la = strlen(a), lb = strlen(b), i, j;
     if (la >= 64 || lb >= 64)
@@ -229,7 +231,7 @@ void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int colu
     }
 #endif
     for (k = 0; k < sizeof known / sizeof known[0]; k++) {
-        size_t d = type_distance(type, known[k]);
+        size_t d = name_distance(type, known[k]);
         if (d < best) {
             best = d;
             hint = known[k];
@@ -245,6 +247,53 @@ void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int colu
                ""
 #endif
     );
+}
+
+void rbsf_suggest_scene_path(FILE *out, const char *path)
+{
+    struct stat sb;
+    const char *slash, *base;
+    char dir[4096], best[256] = "", shown[512];
+    size_t best_d = 3, n; /* at most 2 edits, as a renderer type's */
+    DIR *d;
+    struct dirent *e;
+    if (path == NULL || stat(path, &sb) == 0 || errno != ENOENT)
+        return;
+    slash = strrchr(path, '/');
+    base = slash ? slash + 1 : path;
+    n = slash ? (size_t)(slash - path) : 0;
+    if (*base == '\0' || n >= sizeof dir)
+        return;
+    if (slash == NULL)
+        strcpy(dir, ".");
+    else if (n == 0)
+        strcpy(dir, "/");
+    else {
+        memcpy(dir, path, n);
+        dir[n] = '\0';
+    }
+    if ((d = opendir(dir)) == NULL)
+        return; /* (the folder is missing too: nothing to suggest) */
+    while ((e = readdir(d)) != NULL) {
+        size_t dist;
+        if (e->d_name[0] == '.' && base[0] != '.')
+            continue; /* (".", "..", hidden files: only when asked for) */
+        dist = name_distance(base, e->d_name);
+        /* the closest; of equals, the first by name (readdir's order is
+         * the file system's) */
+        if (dist < best_d || (dist == best_d && best[0] && strcmp(e->d_name, best) < 0)) {
+            best_d = dist;
+            snprintf(best, sizeof best, "%s", e->d_name);
+        }
+    }
+    closedir(d);
+    if (best[0] == '\0')
+        return;
+    rbsf__puts_shown(out, path);
+    fputs(": did you mean '", out);
+    fwrite(path, 1, (size_t)(base - path), out);
+    fputs(rbsf__shown(best, shown, sizeof shown), out);
+    fputs("'?\n", out);
 }
 
 int rbsf_help(FILE *out, const char *command)
@@ -296,6 +345,8 @@ static void print_load_errors(const rbs_scene *scene, const char *path,
         rbsf_print_scene_errors(scene, stdout);
     else
         rbsf__tell(stdout, "%s: %s\n", path, rbs_status_string(st));
+    if (st == RBS_E_IO)
+        rbsf_suggest_scene_path(stdout, path);
 }
 
 /* A command's file arguments (check: SCENE; convert: IN OUT) into files:
@@ -583,6 +634,8 @@ static int convert_main(int argc, char **argv)
         }
         if (count == 0)
             rbsf__tell(stderr, "%s: %s\n", files[0], rbs_status_string(st));
+        if (st == RBS_E_IO)
+            rbsf_suggest_scene_path(stderr, files[0]);
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }

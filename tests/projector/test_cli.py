@@ -779,6 +779,25 @@ class CliTests(Base):
             self.assertIn("sdl (PNG frames)", r.stderr)
             self.assertNotIn("did you mean", r.stderr)
 
+    def test_a_misspelt_scene_path_gets_a_suggestion(self):
+        # "rbsim run scene.jsn" said only "No such file or directory"; a
+        # misspelt key or type gets "did you mean", so does a misspelt file:
+        # the closest name (at most 2 edits) in the folder it names.
+        self.scene("scene.json")
+        for cmd, out in (("check", "stdout"), ("explain", "stdout"),
+                         ("run", "stderr"), ("convert", "stderr")):
+            args = [cmd, self.path("scnee.json")] + (["o.json"] if cmd == "convert" else [])
+            r = self.rbsim(*args)
+            self.assertEqual(r.returncode, 3, (cmd, r.stdout, r.stderr))
+            text = getattr(r, out)
+            self.assertIn("No such file or directory", text, cmd)
+            self.assertIn("did you mean '%s'?" % self.path("scene.json"), text, cmd)
+        r = self.rbsim("check", "scnee.json")  # (relative: as given)
+        self.assertIn("did you mean 'scene.json'?", r.stdout)
+        r = self.rbsim("check", self.path("far_from_anything.json"))
+        self.assertEqual(r.returncode, 3)
+        self.assertNotIn("did you mean", r.stdout)
+
     def test_scene_errors(self):
         bad = self.scene(bodies=[{"name": "x", "type": "sphere",
                                   "radius": -1, "mass": 1,
