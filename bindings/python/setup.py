@@ -136,6 +136,13 @@ class BuildRbsim(build_ext):
     """Find or build librbsim, generate the cffi C source, compile it."""
 
     def run(self):
+        # Always compile and link again: the extension's one source is
+        # generated from the headers alone, so setuptools would call it
+        # "up to date" after the library changed (a newer source tree, or
+        # pkg-config now finding an installed librbsim) and keep the build
+        # folder's first extension, linked to the first library.  A build
+        # of the C file takes seconds.
+        self.force = True
         for ext in self.extensions:
             if ext.name != "rbsim._rbsim":
                 continue

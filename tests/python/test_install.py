@@ -109,6 +109,42 @@ def test_setup_py_uses_an_installed_library(tmp_path):
     assert line and str(dest) in line[0], ldd
 
 
+def test_a_second_build_links_the_library_it_finds_now(tmp_path):
+    """`pip install ./bindings/python` builds in the package's own build/
+    folder, which stays.  A second install (after `git pull`, or after
+    installing librbsim so that pkg-config finds it) regenerated the same C
+    file, so setuptools found the extension "up to date" and shipped the
+    first build's, linked to the first library (a probe of session 51).
+    Here: two builds into one build folder, against two installs of the
+    library; the second must link the second."""
+    meson = shutil.which("meson")
+    if meson is None:
+        pytest.fail("meson is not on PATH")
+    lines = []
+    for name in ("dest1", "dest2"):
+        dest = tmp_path / name
+        r = subprocess.run([meson, "install", "-C", str(BUILD_DIR), "--no-rebuild",
+                            "--quiet", "--destdir", str(dest)],
+                           capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stdout + r.stderr
+        pcs = list(dest.rglob("rbsim.pc"))
+        assert len(pcs) == 1, pcs
+        env = dict(os.environ)
+        env.update(RBSIM_LIBRARY="pkg-config", PKG_CONFIG_PATH=str(pcs[0].parent),
+                   PKG_CONFIG_SYSROOT_DIR=str(dest))
+        r = subprocess.run([sys.executable, "setup.py", "-q", "build",
+                            "--build-base", str(tmp_path / "build")],
+                           cwd=PACKAGE_DIR, env=env, capture_output=True, text=True,
+                           timeout=300)
+        assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
+        where = next((tmp_path / "build").glob("lib*/rbsim")).parent
+        ext = check_installed(where, tmp_path)
+        ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True,
+                             env=clean_env("")).stdout
+        lines.append([l for l in ldd.splitlines() if "librbsim" in l])
+        assert lines[-1] and str(dest) + "/" in lines[-1][0], (name, ldd)
+
+
 def can_build_wheels_offline():
     if importlib.util.find_spec("wheel") is not None:
         return True
