@@ -116,11 +116,14 @@ int rbsf_override_options(rbs_scene *scene, uint64_t steps, double dt, const cha
  * for check and run. */
 void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int column,
                                  unsigned long index, const char *type);
-/** After a scene that could not be read: when `path` does not exist
+/** After a scene that failed to load with status st, print a hint, or
+ * nothing (path NULL: nothing).  RBS_E_IO: when `path` does not exist
  * (ENOENT) and its folder holds a name at most 2 edits from its last
- * component, print "PATH: did you mean 'FOLDER/NAME'?" (shown safely);
- * else nothing.  path NULL: nothing. */
-void rbsf_suggest_scene_path(FILE *out, const char *path);
+ * component, "PATH: did you mean 'FOLDER/NAME'?".  RBS_E_SCENE: when path
+ * is a regular file read as a config.txt by elimination (a name not ending
+ * in .json or .txt, a first non-blank byte not '{'), "PATH was read as a
+ * text scene's config.txt: ...".  Paths shown safely. */
+void rbsf_scene_hint(FILE *out, const char *path, rbs_status st);
 /** Print help for a command (NULL: the general usage). 0 if known. */
 int rbsf_help(FILE *out, const char *command);
 

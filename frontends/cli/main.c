@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -249,7 +250,31 @@ void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int colu
     );
 }
 
-void rbsf_suggest_scene_path(FILE *out, const char *path)
+/* Whether path names a regular file whose name does not end in .json or
+ * .txt (any case) and whose first non-blank byte is not '{': the file
+ * RBS_SCENE_AUTO read as a config.txt by elimination.  (Read again, once,
+ * after the load failed; a FIFO or device is not.) */
+static int text_by_elimination(const char *path)
+{
+    struct stat sb;
+    size_t len = strlen(path);
+    FILE *f;
+    int c;
+    if (stat(path, &sb) != 0 || !S_ISREG(sb.st_mode))
+        return 0;
+    if ((len >= 5 && strcasecmp(path + len - 5, ".json") == 0) ||
+        (len >= 4 && strcasecmp(path + len - 4, ".txt") == 0))
+        return 0;
+    if ((f = fopen(path, "rb")) == NULL)
+        return 0;
+    do
+        c = getc(f);
+    while (c == ' ' || c == '\t' || c == '\n' || c == '\r');
+    fclose(f);
+    return c != '{';
+}
+
+void rbsf_scene_hint(FILE *out, const char *path, rbs_status st)
 {
     struct stat sb;
     const char *slash, *base;
@@ -257,7 +282,17 @@ void rbsf_suggest_scene_path(FILE *out, const char *path)
     size_t best_d = 3, n; /* at most 2 edits, as a renderer type's */
     DIR *d;
     struct dirent *e;
-    if (path == NULL || stat(path, &sb) == 0 || errno != ENOENT)
+    if (path == NULL)
+        return;
+    if (st == RBS_E_SCENE && text_by_elimination(path)) {
+        rbsf__puts_shown(out, path);
+        fputs(" was read as a text scene's config.txt: its name does not end in "
+              ".json and it does not start with '{' (a scene is NAME.json or a "
+              "config.txt with its materials and objects files: scenes/FORMAT.md)\n",
+              out);
+        return;
+    }
+    if (st != RBS_E_IO || stat(path, &sb) == 0 || errno != ENOENT)
         return;
     slash = strrchr(path, '/');
     base = slash ? slash + 1 : path;
@@ -345,8 +380,7 @@ static void print_load_errors(const rbs_scene *scene, const char *path,
         rbsf_print_scene_errors(scene, stdout);
     else
         rbsf__tell(stdout, "%s: %s\n", path, rbs_status_string(st));
-    if (st == RBS_E_IO)
-        rbsf_suggest_scene_path(stdout, path);
+    rbsf_scene_hint(stdout, path, st);
 }
 
 /* A command's file arguments (check: SCENE; convert: IN OUT) into files:
@@ -634,8 +668,7 @@ static int convert_main(int argc, char **argv)
         }
         if (count == 0)
             rbsf__tell(stderr, "%s: %s\n", files[0], rbs_status_string(st));
-        if (st == RBS_E_IO)
-            rbsf_suggest_scene_path(stderr, files[0]);
+        rbsf_scene_hint(stderr, files[0], st);
         rbs_scene_free(scene);
         return RBSF_EXIT_SCENE;
     }

@@ -444,8 +444,7 @@ static int load_scene(const char *path, rbs_scene **out, rbsf_signals *signals)
     else
         rbsf__tell(stderr, "rbsim: %s: %s\n", path ? path : "demonstration",
                 rbs_status_string(st));
-    if (st == RBS_E_IO)
-        rbsf_suggest_scene_path(stderr, path);
+    rbsf_scene_hint(stderr, path, st);
     rbs_scene_free(*out);
     *out = NULL;
     return -1;

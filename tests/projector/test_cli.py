@@ -798,6 +798,28 @@ class CliTests(Base):
         self.assertEqual(r.returncode, 3)
         self.assertNotIn("did you mean", r.stdout)
 
+    def test_a_file_read_as_a_text_scene_by_its_name_says_so(self):
+        # "rbsim check README.md" gave 50 lines of 'expected "key = value"'
+        # and "... and N more errors", never saying why a Markdown file was
+        # read as a config.txt.  A note after the errors says so; not for a
+        # .txt file or a JSON one.
+        note = ("was read as a text scene's config.txt: its name does not "
+                "end in .json and it does not start with '{'")
+        with open(self.path("notes.md"), "w") as f:
+            f.write("# Notes\n\nA scene, some day.\n")
+        with open(self.path("config.txt"), "w") as f:
+            f.write("stpes = 3\n")
+        with open(self.path("bad.json"), "w") as f:
+            f.write("{\"simulation\": 1}\n")
+        for cmd, out in (("check", "stdout"), ("run", "stderr")):
+            r = self.rbsim(cmd, "notes.md")
+            self.assertEqual(r.returncode, 3, (cmd, r.stdout, r.stderr))
+            self.assertIn("notes.md " + note, getattr(r, out), cmd)
+            for other in ("config.txt", "bad.json"):
+                r = self.rbsim(cmd, other)
+                self.assertEqual(r.returncode, 3, (cmd, other))
+                self.assertNotIn("was read as", r.stdout + r.stderr, (cmd, other))
+
     def test_scene_errors(self):
         bad = self.scene(bodies=[{"name": "x", "type": "sphere",
                                   "radius": -1, "mass": 1,
