@@ -185,32 +185,6 @@ void rbsf_method_list(char *out, size_t size)
     }
 }
 
-/* Levenshtein distance of two short strings (a renderer type is at most
- * 63 bytes: RBS_NAME_MAX; a file name to suggest as long); longer ones
- * count as far apart. */
-static size_t name_distance(const char *a, const char *b)
-{
-    size_t row[64], la = strlen(a), lb = strlen(b), i, j;
-    if (la >= 64 || lb >= 64)
-        return (size_t)-1;
-    for (j = 0; j <= lb; j++)
-        row[j] = j;
-    for (i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (j = 1; j <= lb; j++) {
-            size_t up = row[j], best = diag + (a[i - 1] != b[j - 1]);
-            if (up + 1 < best)
-                best = up + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            diag = up;
-            row[j] = best;
-        }
-    }
-    return row[lb];
-}
-
 void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int column,
                                  unsigned long index, const char *type)
 {
@@ -220,8 +194,7 @@ void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int colu
                                         "sdl",
 #endif
     };
-    const char *hint = NULL;
-    size_t best = 3, k; /* at most 2 edits: "cvs" for "csv" */
+    const char *hint = rbs_scene_suggest(type, known, sizeof known / sizeof known[0]);
     char shown[256];
 #ifndef RBSF_HAVE_SDL
     if (strcmp(type, "sdl") == 0) {
@@ -231,13 +204,6 @@ void rbsf_print_unknown_renderer(FILE *out, const char *file, int line, int colu
         return;
     }
 #endif
-    for (k = 0; k < sizeof known / sizeof known[0]; k++) {
-        size_t d = name_distance(type, known[k]);
-        if (d < best) {
-            best = d;
-            hint = known[k];
-        }
-    }
     rbsf__tell(out, "%s:%d:%d: renderers[%lu].type: unknown renderer type \"%s\" "
                     "(%s%s%sknown: csv, json, stats%s)\n",
                file, line, column, index, rbsf__shown(type, shown, sizeof shown),
@@ -274,12 +240,19 @@ static int text_by_elimination(const char *path)
     return c != '{';
 }
 
+static int compare_names(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
 void rbsf_scene_hint(FILE *out, const char *path, rbs_status st)
 {
     struct stat sb;
     const char *slash, *base;
-    char dir[4096], best[256] = "", shown[512];
-    size_t best_d = 3, n; /* at most 2 edits, as a renderer type's */
+    char dir[4096], shown[512];
+    const char *hint;
+    char **names = NULL;
+    size_t n, count = 0, cap = 0, k;
     DIR *d;
     struct dirent *e;
     if (path == NULL)
@@ -309,26 +282,39 @@ void rbsf_scene_hint(FILE *out, const char *path, rbs_status st)
     }
     if ((d = opendir(dir)) == NULL)
         return; /* (the folder is missing too: nothing to suggest) */
+    /* the folder's names, sorted (readdir's order is the file system's: of
+     * equally near names the first by name is suggested), then the
+     * library's rule for "did you mean" (rbs_scene_suggest, as a scene's
+     * keys and names get it); a folder too large to hold is not searched */
     while ((e = readdir(d)) != NULL) {
-        size_t dist;
         if (e->d_name[0] == '.' && base[0] != '.')
             continue; /* (".", "..", hidden files: only when asked for) */
-        dist = name_distance(base, e->d_name);
-        /* the closest; of equals, the first by name (readdir's order is
-         * the file system's) */
-        if (dist < best_d || (dist == best_d && best[0] && strcmp(e->d_name, best) < 0)) {
-            best_d = dist;
-            snprintf(best, sizeof best, "%s", e->d_name);
+        if (count == cap) {
+            char **more = cap < 4096 ? realloc(names, (cap ? 2 * cap : 64) * sizeof *names) : NULL;
+            if (more == NULL)
+                break;
+            names = more;
+            cap = cap ? 2 * cap : 64;
         }
+        if ((names[count] = strdup(e->d_name)) == NULL)
+            break;
+        count++;
     }
     closedir(d);
-    if (best[0] == '\0')
-        return;
-    rbsf__puts_shown(out, path);
-    fputs(": did you mean '", out);
-    fwrite(path, 1, (size_t)(base - path), out);
-    fputs(rbsf__shown(best, shown, sizeof shown), out);
-    fputs("'?\n", out);
+    if (e == NULL) {
+        qsort(names, count, sizeof *names, compare_names);
+        hint = rbs_scene_suggest(base, (const char *const *)names, count);
+        if (hint != NULL) {
+            rbsf__puts_shown(out, path);
+            fputs(": did you mean '", out);
+            fwrite(path, 1, (size_t)(base - path), out);
+            fputs(rbsf__shown(hint, shown, sizeof shown), out);
+            fputs("'?\n", out);
+        }
+    }
+    for (k = 0; k < count; k++)
+        free(names[k]);
+    free(names);
 }
 
 int rbsf_help(FILE *out, const char *command)

@@ -1542,10 +1542,34 @@ static void test_huge_and_tiny_directions(void **state)
     rbs_scene_free(scene);
 }
 
+/* rbs_scene_suggest: the scene's "did you mean" rule, public for front
+ * ends (the command's renderer types and scene paths): max(2, len / 3)
+ * edits, else an abbreviation of 3 bytes or more; the first of equals. */
+static void test_suggest(void **state)
+{
+    static const char *const types[] = {"csv", "json", "stats", "sdl"};
+    static const char *const files[] = {"bouncing_sphere.json", "incline.json", "orbit.json"};
+    static const char *const twins[] = {"ab", "ba"};
+    const char *const with_null[] = {"csv", NULL};
+    (void)state;
+    assert_string_equal(rbs_scene_suggest("cvs", types, 4), "csv");
+    assert_string_equal(rbs_scene_suggest("jsn", types, 4), "json");
+    assert_string_equal(rbs_scene_suggest("stat", types, 4), "stats");
+    assert_null(rbs_scene_suggest("pngs", types, 4));
+    assert_string_equal(rbs_scene_suggest("bouncing_sphre.json", files, 3), "bouncing_sphere.json");
+    assert_string_equal(rbs_scene_suggest("incl", files, 3), "incline.json"); /* an abbreviation */
+    assert_null(rbs_scene_suggest("collisions.json", files, 3));
+    assert_string_equal(rbs_scene_suggest("aa", twins, 2), "ab"); /* one edit each: the first */
+    assert_null(rbs_scene_suggest(NULL, types, 4));
+    assert_null(rbs_scene_suggest("csv", NULL, 4));
+    assert_null(rbs_scene_suggest("csv", with_null, 2));
+    assert_null(rbs_scene_suggest("csv", types, 0));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields),
+        cmocka_unit_test(test_bad_files),      cmocka_unit_test(test_error_fields), cmocka_unit_test(test_suggest),
         cmocka_unit_test(test_unreadable),     cmocka_unit_test(test_error_limit),
         cmocka_unit_test(test_override),       cmocka_unit_test(test_renderers), cmocka_unit_test(test_renderer_numbers_exact),
         cmocka_unit_test(test_names_beyond_ascii),

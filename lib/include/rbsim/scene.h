@@ -94,6 +94,15 @@ RBS_API uint32_t rbs_scene_warning_count(const rbs_scene *scene);
 RBS_API rbs_status rbs_scene_warning_get(const rbs_scene *scene, uint32_t i,
                                          rbs_scene_error *out);
 
+/** The candidate nearest to word, by the rule of the scene's own "did you
+ * mean" suggestions: within max(2, strlen(word) / 3) edits (Levenshtein,
+ * over the first 64 bytes of each), else one that word begins when word
+ * has 3 bytes or more (an abbreviation); of equally near ones the first
+ * in the array.  Returns one of candidates (not a copy), or NULL for none
+ * or when word or candidates is NULL.  Pure and thread-safe: front ends
+ * use it so that their messages suggest as the library's do. */
+RBS_API const char *rbs_scene_suggest(const char *word, const char *const *candidates, size_t n);
+
 /** The world definition the scene asks for: settings from "simulation",
  * capacities that fit the scene exactly (max_bodies, max_materials and
  * max_pairs its counts, each at least 1; max_contacts the scene's or

@@ -240,6 +240,20 @@ const char *rbs__suggest(const char *word, const char *const *candidates, size_t
     return NULL;
 }
 
+const char *rbs_scene_suggest(const char *word, const char *const *candidates, size_t n)
+{
+    size_t i;
+    if (word == NULL || candidates == NULL) {
+        return NULL;
+    }
+    for (i = 0; i < n; i++) {
+        if (candidates[i] == NULL) {
+            return NULL;
+        }
+    }
+    return rbs__suggest(word, candidates, n);
+}
+
 /* Record "cannot <verb> 'path': <strerror(err)>". */
 static void io_error(rbs_scene *scene, rbs__loc at, const char *verb, const char *path,
                      int err)
