@@ -47,7 +47,7 @@ static void single_ball_prunes(void **state)
     t = explain(w);
     ASSERT_HAS(t, "method: auto, dt = 0.001 s, slop = 1e-06 of the smaller radius, tolerance = 1e-09");
     ASSERT_HAS(t, "  auto: euler, since 1 sphere moves (soft from 64 on)\n  semi-implicit Euler sub-steps");
-    ASSERT_HAS(t, "in   contacts sphere-plane: 1 moving spheres x 1 planes");
+    ASSERT_HAS(t, "in   contacts sphere-plane: 1 moving sphere x 1 plane");
     ASSERT_HAS(t, "out  contacts sphere-sphere: fewer than two spheres");
     ASSERT_HAS(t, "out  friction, rolling and spinning resistance: no material pair");
     ASSERT_HAS(t, "out  angular velocity and orientation");

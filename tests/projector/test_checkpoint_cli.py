@@ -306,7 +306,7 @@ class ProjectorTests(CkptBase):
         s = self.scene()
         r = self.rbsim("explain", s)
         self.assertEqual(r.returncode, 0, r.stderr)
-        for line in ("world: 3 spheres (3 moving, 0 fixed), 1 planes",
+        for line in ("world: 3 spheres (3 moving, 0 fixed), 1 plane",
                      "method: auto, dt = 0.001 s",
                      "  auto: euler, since 3 spheres move (soft from 64 on)", "stages:",
                      "  in   contacts sphere-plane",

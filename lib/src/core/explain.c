@@ -34,6 +34,9 @@ static void put(text *t, const char *fmt, ...)
         t->len += (size_t)n;
 }
 
+/* "s" after a count other than 1 ("1 plane", "2 planes", "0 planes"). */
+static const char *plural(uint32_t n) { return n == 1 ? "" : "s"; }
+
 static void stage(text *t, int in, const char *name)
 {
     put(t, "  %-4s %s: ", in ? "in" : "out", name);
@@ -100,9 +103,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     }
 
     /* The world and the method. */
-    put(&t, "world: %u spheres (%u moving, %u fixed), %u planes, %u material pairs\n",
-        (unsigned)w->sphere_count, (unsigned)moving, (unsigned)fixed, (unsigned)w->plane_count,
-        (unsigned)w->pairs);
+    put(&t, "world: %u sphere%s (%u moving, %u fixed), %u plane%s, %u material pair%s\n",
+        (unsigned)w->sphere_count, plural(w->sphere_count), (unsigned)moving, (unsigned)fixed,
+        (unsigned)w->plane_count, plural(w->plane_count), (unsigned)w->pairs, plural(w->pairs));
     put(&t, "method: %s, dt = %g s, slop = %g of the smaller radius, tolerance = %g, pruning %s\n",
         rbs_method_name(w->def.method), w->def.dt, w->def.slop, w->def.tolerance,
         w->def.prune ? "on" : "off (every stage runs)");
@@ -158,7 +161,8 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     else if (w->plane_count == 0)
         put(&t, "no planes\n");
     else
-        put(&t, "%u moving spheres x %u planes\n", (unsigned)moving, (unsigned)w->plane_count);
+        put(&t, "%u moving sphere%s x %u plane%s\n", (unsigned)moving, plural(moving), (unsigned)w->plane_count,
+            plural(w->plane_count));
     stage(&t, p.sphere_pairs, "contacts sphere-sphere");
     if (w->sphere_count < 2)
         put(&t, "fewer than two spheres%s\n", why);
@@ -229,8 +233,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
     else if (!p.mutual)
         put(&t, "fewer than two spheres or none moves\n");
     else
-        put(&t, "G = %g m^3/(kg s^2), softening %g m, %u pairs\n", w->def.gravity_constant, w->def.softening,
-            (unsigned)(w->sphere_count * (w->sphere_count - 1) / 2));
+        put(&t, "G = %g m^3/(kg s^2), softening %g m, %u pair%s\n", w->def.gravity_constant, w->def.softening,
+            (unsigned)(w->sphere_count * (w->sphere_count - 1) / 2),
+            plural(w->sphere_count * (w->sphere_count - 1) / 2));
 
     /* Resting contact. */
     stage(&t, moving > 0 && m != RBS_METHOD_EVENT, "resting-contact pass");
