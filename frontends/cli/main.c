@@ -156,7 +156,7 @@ static const char convert_text[] =
     "\n"
     "Read the scene IN (either format; - is standard input) and write it to\n"
     "OUT: JSON when OUT ends in .json (or .JSON), the config.txt format (with\n"
-    "materials.txt and objects.txt beside it) when OUT ends in .txt; OUT - is\n"
+    "materials.txt and objects.txt beside it) when OUT ends in .txt (or .TXT); OUT - is\n"
     "refused (no file to rename into place).  Every file is written to a temporary\n"
     "and renamed into place only when all are complete: a failed convert\n"
     "leaves what was there and names the file that failed and why.  A folder,\n"
@@ -622,12 +622,12 @@ static int convert_main(int argc, char **argv)
                 "standard output; name a file (*.json or a config.txt path)\n");
         return RBSF_EXIT_USAGE;
     }
-    /* (".JSON" too, as the loader reads it; a folder is named as such, and
+    /* (".JSON" and ".TXT" too, as the loader reads them; a folder is named as such, and
      * its config.txt offered: a probe of session 46 got "cannot tell the
      * format of 'out'" for an existing folder and of 'x.JSON') */
     if (ends_with(files[1], ".json") || ends_with(files[1], ".JSON"))
         format = RBS_SCENE_JSON;
-    else if (ends_with(files[1], ".txt"))
+    else if (ends_with(files[1], ".txt") || ends_with(files[1], ".TXT"))
         format = RBS_SCENE_TEXT;
     else {
         struct stat sb;

@@ -1630,6 +1630,11 @@ class CliTests(Base):
         # ".JSON" as the loader reads it; a folder named as such (both said
         # "cannot tell the format": a probe of session 46)
         self.assertEqual(self.rbsim("convert", s, "up.JSON").returncode, 0)
+        # ".TXT" alike (it said "cannot tell the format": a probe of
+        # session 51), and the scene it writes loads back
+        r = self.rbsim("convert", s, "up.TXT")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(self.rbsim("check", "up.TXT").returncode, 0)
         r = self.rbsim("convert", s, "txt")
         self.assertEqual(r.returncode, 2)
         self.assertEqual(r.stderr, "rbsim convert: OUT 'txt' is a folder: name "
