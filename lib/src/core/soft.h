@@ -132,6 +132,10 @@ typedef struct rbs__soft_rows {
     double guard;          /* RBS__GUARD_DEPTH */
     const uint8_t *touched; /* per record: its contacts (rbs__soft_in); the
                                warm start's lone lanes */
+    int fixed;             /* some sphere is fixed: a SOLVE or RELAX pass over
+                              a group takes the lanes with a fixed sphere
+                              touching now first and those apart last
+                              (soft_rows.h, pass_stage) */
 } rbs__soft_rows;
 
 /* What a pass reports, per share of it (a cache line each). */

@@ -375,8 +375,33 @@ static inline double lane_separation(const rbs__soft_rows *k, const rbs__chunk *
     return c->gap[l] + (c->nx[l] * dx + c->ny[l] * dy + c->nz[l] * dz);
 }
 
-/* Lanes [first, end) of a serial chunk one after the other, each alone in
- * a chunk of its own (lane 0; the others unused).  In a SOLVE or RELAX
+/* Whether lane l of c is touching now: its separation (lane_separation)
+ * within the slop of its smaller radius. */
+static inline int lane_touching(const rbs__soft_rows *k, const rbs__chunk *c, uint32_t l)
+{
+    double r = k->rec[(size_t)RBS__REC * c->a[l] + RBS__REC_R];
+    if (!(c->flags >> (RBS__CH_PLANE + l) & 1u)) {
+        const double rb = k->rec[(size_t)RBS__REC * c->b[l] + RBS__REC_R];
+        r = rb < r ? rb : r;
+    }
+    return !(lane_separation(k, c, l) > k->slop * r);
+}
+
+/* The lanes of c (a chunk with RBS__CH_FIXED) whose pair has a fixed sphere
+ * (1/m 0 in its record), as bits. */
+static inline unsigned fixed_lanes(const rbs__soft_rows *k, const rbs__chunk *c)
+{
+    unsigned bits = 0;
+    uint32_t l;
+    for (l = 0; l < c->count; ++l)
+        if (!(c->flags >> (RBS__CH_PLANE + l) & 1u) && (k->rec[(size_t)RBS__REC * c->a[l] + RBS__REC_IM] == 0.0 ||
+                                                         k->rec[(size_t)RBS__REC * c->b[l] + RBS__REC_IM] == 0.0))
+            bits |= 1u << l;
+    return bits;
+}
+
+/* The lanes of c in bits (bit l: lane l) one after the other, each alone
+ * in a chunk of its own (lane 0; the others unused).  In a SOLVE or RELAX
  * pass the lanes touching now (within their slop) go first, then those
  * apart, each set in lane order: the lanes of a serial chunk may share a
  * body, and a touching lane's row takes back what the warm start gave
@@ -385,30 +410,26 @@ static inline double lane_separation(const rbs__soft_rows *k, const rbs__chunk *
  * that velocity as an approach -- solved first, the row of a wall 1.8 m
  * away took it as an impulse of its own, and a ball between two walls
  * (v h > 1.8 m) worked its way out of the box (docs/methods.md, "soft"). */
-static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, uint32_t first, uint32_t end, int stage,
-                      rbs__soft_report *report)
+static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, unsigned bits, int stage, rbs__soft_report *report)
 {
     uint32_t l, order[RBS__LANES], m = 0, x;
     if (stage == RBS__SOFT_SOLVE || stage == RBS__SOFT_RELAX || stage == RBS__SOFT_RELAX_REPORT) {
         unsigned apart = 0;
-        for (l = first; l < end; ++l) {
-            const double *ra = k->rec + (size_t)RBS__REC * c->a[l];
-            double r = ra[RBS__REC_R];
-            if (!(c->flags >> (RBS__CH_PLANE + l) & 1u)) {
-                const double rb = k->rec[(size_t)RBS__REC * c->b[l] + RBS__REC_R];
-                r = rb < r ? rb : r;
-            }
-            if (lane_separation(k, c, l) > k->slop * r)
-                apart |= 1u << l;
-            else
+        for (l = 0; l < c->count; ++l) {
+            if (!(bits >> l & 1u))
+                continue;
+            if (lane_touching(k, c, l))
                 order[m++] = l;
+            else
+                apart |= 1u << l;
         }
-        for (l = first; l < end; ++l)
+        for (l = 0; l < c->count; ++l)
             if (apart >> l & 1u)
                 order[m++] = l;
     } else {
-        for (l = first; l < end; ++l)
-            order[m++] = l;
+        for (l = 0; l < c->count; ++l)
+            if (bits >> l & 1u)
+                order[m++] = l;
     }
     for (x = 0; x < m; ++x) {
         rbs__chunk one;
@@ -537,7 +558,7 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
         den = im * (1.0 - d * d);
         if (!block || !(den > 0.0)) {
             /* (with friction, or a fixed sphere: the rows one after the other) */
-            row_lanes(k, c, l, l + 2u, stage, report);
+            row_lanes(k, c, 3u << l, stage, report);
             continue;
         }
         if (stage == RBS__SOFT_RESTITUTION &&
@@ -545,7 +566,7 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
               c->flags >> (RBS__CH_TOUCHED + l + 1u) & c->flags >> (RBS__CH_BOUNCE + l + 1u) & 1u)) {
             /* (a lane that does not bounce keeps its impulse: the other's
              * row alone) */
-            row_lanes(k, c, l, l + 2u, stage, report);
+            row_lanes(k, c, 3u << l, stage, report);
             continue;
         }
         /* each lane's row as an equation on K dj: apart, close the gap
@@ -626,12 +647,49 @@ static void row_wedge(const rbs__soft_rows *k, rbs__chunk *c, int stage, rbs__so
  * 1,000 1.00x (paired whole-process timings, docs/methods.md). */
 #define RBS__AHEAD 4
 
+/* The lanes with a fixed sphere of the chunks [begin, end) that are
+ * touching now (apart = 0) or apart (1), in a SOLVE or RELAX pass
+ * (pass_stage). */
+static void fixed_sweep(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end, int apart,
+                        rbs__soft_report *report)
+{
+    uint32_t i, l;
+    for (i = begin; i < end; ++i) {
+        rbs__chunk *c = &k->chunk[i];
+        unsigned bits, pick = 0;
+        if (!(c->flags >> RBS__CH_FIXED & 1u))
+            continue;
+        bits = fixed_lanes(k, c);
+        for (l = 0; l < c->count; ++l)
+            if ((bits >> l & 1u) && lane_touching(k, c, l) != apart)
+                pick |= 1u << l;
+        if (pick)
+            row_lanes(k, c, pick, stage, report);
+    }
+}
+
 /* One pass over the chunks [begin, end) in stage (stage < 0: the warm
- * start). */
+ * start).  With a fixed sphere in the world (k->fixed), a SOLVE or RELAX
+ * pass takes the lanes with a fixed sphere apart from the others: those
+ * touching now before every other lane of the chunks, those apart after
+ * them (fixed_sweep), as a serial chunk takes its touching lanes first
+ * (row_lanes) -- a fixed sphere never moves, like a plane, and a moving
+ * sphere's contacts with two of them lie in different chunks: the impulse
+ * that stopped a ball at one, given back by the next sub-step's warm
+ * start, was taken by the other's speculative row when that came first,
+ * and a ball between two fixed spheres passed through one from 3e4 m/s
+ * (docs/methods.md, "soft").  The lanes of a chunk that is not serial
+ * share no body: taken one by one (row_lanes) they give the bits they give
+ * side by side.  (This takes every chunk with a fixed sphere lane by lane:
+ * balls dropped on a bed of fixed spheres took about 1.3 times as long.) */
 static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end,
                                   rbs__soft_report *report)
 {
+    const int fixed = k->fixed && (stage == RBS__SOFT_SOLVE || stage == RBS__SOFT_RELAX ||
+                                   stage == RBS__SOFT_RELAX_REPORT);
     uint32_t i;
+    if (fixed)
+        fixed_sweep(k, stage, begin, end, 0, report);
     for (i = begin; i < end; ++i) {
         rbs__chunk *c = &k->chunk[i];
         unsigned f = c->flags, used = (1u << c->count) - 1u, active = used;
@@ -649,11 +707,18 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
 #endif
         if (stage < 0)
             lone_lanes(k, c);
+        if (fixed && (f >> RBS__CH_FIXED & 1u)) {
+            /* (its lanes with a fixed sphere: fixed_sweep's) */
+            const unsigned rest = used & ~fixed_lanes(k, c);
+            if (rest)
+                row_lanes(k, c, rest, stage, report);
+            continue;
+        }
         if (f >> RBS__CH_SERIAL & 1u) {
             if (f >> RBS__CH_WEDGE & 1u && stage >= 0)
                 row_wedge(k, c, stage, report);
             else
-                row_lanes(k, c, 0, c->count, stage, report);
+                row_lanes(k, c, used, stage, report);
             continue;
         }
         if (stage < 0) {
@@ -674,6 +739,8 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
         else
             row_chunk(k, c, stage, 0, active, report);
     }
+    if (fixed)
+        fixed_sweep(k, stage, begin, end, 1, report);
 }
 
 static void kernel_pass(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end, rbs__soft_report *report)

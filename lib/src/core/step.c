@@ -102,6 +102,7 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     if (p.friction)
         p.angular = 1;
     p.sphere_pairs = moving >= 1 && w->sphere_count >= 2;
+    p.fixed_spheres = moving < w->sphere_count;
     p.min_radius = 0.0;
     for (i = 0; i < w->sphere_count; ++i) {
         double r = w->radius[w->spheres[i]];

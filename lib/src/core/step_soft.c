@@ -315,14 +315,27 @@ static void friction_and_rolling(rbs_world *w, rbs__contact *c, const rbs__pair 
     }
 }
 
+/* Whether contact c is a sphere's contact with a plane. */
+static inline int with_plane(const rbs_world *w, const rbs__contact *c)
+{
+    return w->type[c->b] == RBS_BODY_PLANE;
+}
+
+/* Whether contact c is a moving sphere's contact with a fixed one. */
+static inline int with_fixed(const rbs_world *w, const rbs__contact *c)
+{
+    return w->type[c->b] == RBS_BODY_SPHERE && (w->fixed[c->a] || w->fixed[c->b]);
+}
+
 /* One pass over the contacts, on the world's own arrays (the general
  * layout; row_fast is the gathered one): stage SOLVE (soft, with bias),
  * RELAX (rigid) or RESTITUTION (normal rows that make the pair leave at e
  * times its approach, and friction within Coulomb's cone of the grown
  * normal impulse, so that an oblique bounce follows the impact law), over
  * contacts [begin, end); apart < 0 every one, else only those apart now by
- * more than their slop (1) or not (0). */
-static void pass_rows(soft_pass *sp, int stage, uint32_t begin, uint32_t end, int apart)
+ * more than their slop (1) or not (0); fixed < 0 every one, else only those
+ * with a fixed sphere (1) or without (0). */
+static void pass_rows(soft_pass *sp, int stage, uint32_t begin, uint32_t end, int apart, int fixed)
 {
     rbs_world *w = sp->w;
     uint32_t i;
@@ -330,6 +343,8 @@ static void pass_rows(soft_pass *sp, int stage, uint32_t begin, uint32_t end, in
         rbs__contact *c = &w->contact[i];
         const rbs__pair *p = rbs__contact_pair(w, c);
         v3 rv, j;
+        if (fixed >= 0 && with_fixed(w, c) != fixed)
+            continue;
         if (apart >= 0 && (separation(sp, c) > rbs__contact_slop(w, c)) != apart)
             continue;
         turn(sp, c);
@@ -382,12 +397,6 @@ static void pass_rows(soft_pass *sp, int stage, uint32_t begin, uint32_t end, in
     }
 }
 
-/* Whether contact c is a sphere's contact with a plane. */
-static inline int with_plane(const rbs_world *w, const rbs__contact *c)
-{
-    return w->type[c->b] == RBS_BODY_PLANE;
-}
-
 /* One pass of stage over the contacts, in order -- but in SOLVE and RELAX a
  * sphere's contacts with planes (detection makes them one run) take those
  * touching now (within their slop) before those apart, as a serial
@@ -397,15 +406,22 @@ static inline int with_plane(const rbs_world *w, const rbs__contact *c)
  * before the speculative row of an opposite wall reads that velocity as an
  * approach (docs/methods.md, "soft").  (Every touching contact before
  * every apart one made a general-layout pile of 400 balls 18 % deeper
- * during its run, median of 12; a probe of session 51.) */
+ * during its run, median of 12; a probe of session 51.)  With a fixed
+ * sphere in the world, the contacts with fixed spheres touching now go
+ * before every other contact, and those apart after them all: a fixed
+ * sphere never moves, like a plane, but a sphere's contacts with fixed
+ * spheres are not one run (soft_rows.h, pass_stage, does the same). */
 static void pass(soft_pass *sp, int stage)
 {
     const rbs_world *w = sp->w;
+    const int fixed = w->plan.fixed_spheres;
     uint32_t i = 0, j;
     if (stage == RESTITUTION) {
-        pass_rows(sp, stage, 0, w->contact_count, -1);
+        pass_rows(sp, stage, 0, w->contact_count, -1, -1);
         return;
     }
+    if (fixed)
+        pass_rows(sp, stage, 0, w->contact_count, 0, 1);
     while (i < w->contact_count) {
         const rbs__contact *c = &w->contact[i];
         j = i + 1;
@@ -413,15 +429,17 @@ static void pass(soft_pass *sp, int stage)
             /* (a run of other contacts, in order) */
             while (j < w->contact_count && !with_plane(w, &w->contact[j]))
                 ++j;
-            pass_rows(sp, stage, i, j, -1);
+            pass_rows(sp, stage, i, j, -1, fixed ? 0 : -1);
         } else {
             while (j < w->contact_count && w->contact[j].a == c->a && with_plane(w, &w->contact[j]))
                 ++j;
-            pass_rows(sp, stage, i, j, 0);
-            pass_rows(sp, stage, i, j, 1);
+            pass_rows(sp, stage, i, j, 0, -1);
+            pass_rows(sp, stage, i, j, 1, -1);
         }
         i = j;
     }
+    if (fixed)
+        pass_rows(sp, stage, 0, w->contact_count, 1, 1);
 }
 
 /* Whether contact c is lone: each of its bodies is fixed (or a plane), or
@@ -998,6 +1016,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
     f.rows.slop = w->def.slop;
     f.rows.guard = RBS__GUARD_DEPTH;
     f.rows.touched = touched;
+    f.rows.fixed = w->plan.fixed_spheres;
     rows_for_h(&f.rows, h);
     memset(f.report, 0, sizeof f.report);
 

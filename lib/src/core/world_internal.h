@@ -139,6 +139,10 @@ typedef struct rbs__plan {
     int uneven;        /* some moving sphere is anisotropic or has its centre
                           of mass off its centre: selective steps as euler
                           (never pruned) */
+    int fixed_spheres; /* some sphere is fixed (from the bodies alone, never
+                          pruned): the soft step takes a moving sphere's
+                          contacts with fixed spheres touching ones first,
+                          apart ones last (docs/methods.md, "soft") */
     int consecutive;   /* the spheres hold consecutive slots (spheres[k] =
                           spheres[0] + k: a scene of planes then spheres,
                           every pile): detection reads their centres from
