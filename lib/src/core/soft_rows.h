@@ -167,6 +167,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     double *ra[RBS__LANES], *rb[RBS__LANES], za[RBS__REC], zb[RBS__REC];
     const rbs__wd zero = wd_zero();
     unsigned flags = c->flags;
+    int some;
 
     gather(k, c, c->a, za, xa, ra);
     if (!plane)
@@ -287,7 +288,10 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
     t = wd_add(jn0, dj);
     jn1 = wd_sel(wm_lt(t, zero), zero, t);
     act = wm_from_bits(active);
-    if (stage == RBS__SOFT_RESTITUTION)
+    /* (the lanes not active keep their impulses: restitution's that do not
+     * bounce, and pass_stage's lanes with and without a fixed sphere) */
+    some = stage == RBS__SOFT_RESTITUTION || active != (1u << c->count) - 1u;
+    if (some)
         jn1 = wd_sel(act, jn1, jn0);
     dn = wd_sub(jn1, jn0);
     jx = wd_mul(nx, dn);
@@ -327,7 +331,7 @@ static ROW_INLINE void row_chunk(const rbs__soft_rows *k, rbs__chunk *c, int sta
             kt = wd_add(kt, wd_mul(wd_mul(lb, lb), xb[BII]));
         mt = wd_neg(inverse_or_zero(kt));
         rbs__wm stick;
-        if (stage == RBS__SOFT_RESTITUTION)
+        if (some)
             on = wm_and(on, act);
         vtx = wd_sub(rvx, wd_mul(nx, vn));
         vty = wd_sub(rvy, wd_mul(ny, vn));
@@ -460,7 +464,11 @@ static void row_lanes(const rbs__soft_rows *k, rbs__chunk *c, unsigned bits, int
                     ((f >> RBS__CH_SLIP >> l & 1u) << RBS__CH_SLIP) |
                     ((f >> RBS__CH_WARM >> l & 1u) << RBS__CH_WARM) | (f & 1u << RBS__CH_FIXED);
         if (stage < 0) {
-            warm_chunk(k, &one, plane);
+            /* (each kind compiled on its own, its branches known) */
+            if (plane)
+                warm_chunk(k, &one, 1);
+            else
+                warm_chunk(k, &one, 0);
             continue;
         }
         if (stage == RBS__SOFT_RESTITUTION &&
@@ -663,8 +671,12 @@ static void fixed_sweep(const rbs__soft_rows *k, int stage, uint32_t begin, uint
         for (l = 0; l < c->count; ++l)
             if ((bits >> l & 1u) && lane_touching(k, c, l) != apart)
                 pick |= 1u << l;
-        if (pick)
+        if (pick == 0)
+            continue;
+        if (c->flags >> RBS__CH_SERIAL & 1u)
             row_lanes(k, c, pick, stage, report);
+        else
+            row_chunk(k, c, stage, 0, pick, report);
     }
 }
 
@@ -679,9 +691,8 @@ static void fixed_sweep(const rbs__soft_rows *k, int stage, uint32_t begin, uint
  * start, was taken by the other's speculative row when that came first,
  * and a ball between two fixed spheres passed through one from 3e4 m/s
  * (docs/methods.md, "soft").  The lanes of a chunk that is not serial
- * share no body: taken one by one (row_lanes) they give the bits they give
- * side by side.  (This takes every chunk with a fixed sphere lane by lane:
- * balls dropped on a bed of fixed spheres took about 1.3 times as long.) */
+ * share no body, so its two sets are each taken side by side (row_chunk
+ * with the set active): they give the bits they would together. */
 static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t begin, uint32_t end,
                                   rbs__soft_report *report)
 {
@@ -710,8 +721,10 @@ static ROW_INLINE void pass_stage(const rbs__soft_rows *k, int stage, uint32_t b
         if (fixed && (f >> RBS__CH_FIXED & 1u)) {
             /* (its lanes with a fixed sphere: fixed_sweep's) */
             const unsigned rest = used & ~fixed_lanes(k, c);
-            if (rest)
+            if (rest && (f >> RBS__CH_SERIAL & 1u))
                 row_lanes(k, c, rest, stage, report);
+            else if (rest)
+                row_chunk(k, c, stage, 0, rest, report);
             continue;
         }
         if (f >> RBS__CH_SERIAL & 1u) {
