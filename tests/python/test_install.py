@@ -80,13 +80,15 @@ def test_setup_py_builds_the_library_with_meson(tmp_path):
     assert "librbsim" not in ldd and "not found" not in ldd, ldd
 
 
-def test_setup_py_uses_an_installed_library(tmp_path):
-    """pkg-config finds an installed rbsim (here: this build installed into
-    a staging folder); the extension links its librbsim.so with an rpath."""
+def build_against_an_install(tmp_path, name, build):
+    """Install this build into the staging folder tmp_path/name, build the
+    extension with setup.py into build against it (pkg-config), check the
+    installed package, and return (the staging folder, ldd's librbsim
+    lines of the extension)."""
     meson = shutil.which("meson")
     if meson is None:
         pytest.fail("meson is not on PATH")
-    dest = tmp_path / "dest"
+    dest = tmp_path / name
     r = subprocess.run([meson, "install", "-C", str(BUILD_DIR), "--no-rebuild",
                         "--quiet", "--destdir", str(dest)],
                        capture_output=True, text=True, timeout=300)
@@ -97,16 +99,22 @@ def test_setup_py_uses_an_installed_library(tmp_path):
     env.update(RBSIM_LIBRARY="pkg-config", PKG_CONFIG_PATH=str(pcs[0].parent),
                PKG_CONFIG_SYSROOT_DIR=str(dest))
     r = subprocess.run([sys.executable, "setup.py", "-q", "build",
-                        "--build-base", str(tmp_path / "build")],
+                        "--build-base", str(build)],
                        cwd=PACKAGE_DIR, env=env, capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
-    where = next((tmp_path / "build").glob("lib*/rbsim")).parent
+    where = next(build.glob("lib*/rbsim")).parent
     ext = check_installed(where, tmp_path)
     ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True,
                          env=clean_env("")).stdout
-    line = [l for l in ldd.splitlines() if "librbsim" in l]
-    assert line and str(dest) in line[0], ldd
+    return dest, [l for l in ldd.splitlines() if "librbsim" in l]
+
+
+def test_setup_py_uses_an_installed_library(tmp_path):
+    """pkg-config finds an installed rbsim (here: this build installed into
+    a staging folder); the extension links its librbsim.so with an rpath."""
+    dest, line = build_against_an_install(tmp_path, "dest", tmp_path / "build")
+    assert line and str(dest) in line[0], line
 
 
 def test_a_second_build_links_the_library_it_finds_now(tmp_path):
@@ -117,32 +125,9 @@ def test_a_second_build_links_the_library_it_finds_now(tmp_path):
     first build's, linked to the first library (a probe of session 51).
     Here: two builds into one build folder, against two installs of the
     library; the second must link the second."""
-    meson = shutil.which("meson")
-    if meson is None:
-        pytest.fail("meson is not on PATH")
-    lines = []
     for name in ("dest1", "dest2"):
-        dest = tmp_path / name
-        r = subprocess.run([meson, "install", "-C", str(BUILD_DIR), "--no-rebuild",
-                            "--quiet", "--destdir", str(dest)],
-                           capture_output=True, text=True, timeout=300)
-        assert r.returncode == 0, r.stdout + r.stderr
-        pcs = list(dest.rglob("rbsim.pc"))
-        assert len(pcs) == 1, pcs
-        env = dict(os.environ)
-        env.update(RBSIM_LIBRARY="pkg-config", PKG_CONFIG_PATH=str(pcs[0].parent),
-                   PKG_CONFIG_SYSROOT_DIR=str(dest))
-        r = subprocess.run([sys.executable, "setup.py", "-q", "build",
-                            "--build-base", str(tmp_path / "build")],
-                           cwd=PACKAGE_DIR, env=env, capture_output=True, text=True,
-                           timeout=300)
-        assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
-        where = next((tmp_path / "build").glob("lib*/rbsim")).parent
-        ext = check_installed(where, tmp_path)
-        ldd = subprocess.run(["ldd", str(ext)], capture_output=True, text=True,
-                             env=clean_env("")).stdout
-        lines.append([l for l in ldd.splitlines() if "librbsim" in l])
-        assert lines[-1] and str(dest) + "/" in lines[-1][0], (name, ldd)
+        dest, line = build_against_an_install(tmp_path, name, tmp_path / "build")
+        assert line and str(dest) + "/" in line[0], (name, line)
 
 
 def can_build_wheels_offline():
