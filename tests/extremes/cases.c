@@ -1141,7 +1141,7 @@ static void spin_to_roll(rbs_method m, xres *r)
  * sphere's serial chunk, took part of that velocity as an impulse of its
  * own; the rows of a serial chunk now take its touching lanes first
  * (soft_rows.h, row_lanes; tests/methods/test_soft.c,
- * ball_between_two_walls_stays_inside). */
+ * ball_between_walls_or_fixed_spheres_stays_inside). */
 static double triangle(double x0, double v, double t)
 {
     const double span = 1.8;
