@@ -1141,6 +1141,7 @@ static void leave_case(rbs_method m, int rolling, double dt)
     double c_last = -2.0;
     int k, n = (int)(4.0 / dt + 0.5), off = 0, hops = 0;
     char what[64];
+    memset(&s, 0, sizeof s); /* (GCC -O2 with the sanitizers cannot see that the loop sets it) */
     rbs_sphere_def_init(&d);
     d.radius = R;
     d.fixed = 1;
