@@ -1230,23 +1230,19 @@ rbs_status rbs_world_add_sphere(rbs_world *w, const rbs_sphere_def *def, rbs_bod
                 return st;
         }
     }
-    /* a fixed sphere never moves: a velocity would be dropped silently (as
-     * rbs_body_set_velocity refuses it) */
-    if (d.fixed && (v.x != 0.0 || v.y != 0.0 || v.z != 0.0))
-        FAIL(w, RBS_E_INVALID, "sphere velocity must be zero for a fixed sphere (it never moves), got "
-             "(%s, %s, %s) m/s", rbs__shortest(nb, v.x), rbs__shortest(nb2, v.y), rbs__shortest(nb3, v.z));
-    if (d.fixed && (av.x != 0.0 || av.y != 0.0 || av.z != 0.0))
-        FAIL(w, RBS_E_INVALID, "sphere angular_velocity must be zero for a fixed sphere (it never "
-             "moves), got (%s, %s, %s) rad/s", rbs__shortest(nb, av.x), rbs__shortest(nb2, av.y),
-             rbs__shortest(nb3, av.z));
-    /* nor would a force or torque do anything (rbs_body_set_force and
-     * rbs_body_set_torque refuse them on it) */
-    if (d.fixed && (f.x != 0.0 || f.y != 0.0 || f.z != 0.0))
-        FAIL(w, RBS_E_INVALID, "sphere force must be zero for a fixed sphere (it never moves), got "
-             "(%s, %s, %s) N", rbs__shortest(nb, f.x), rbs__shortest(nb2, f.y), rbs__shortest(nb3, f.z));
-    if (d.fixed && (t.x != 0.0 || t.y != 0.0 || t.z != 0.0))
-        FAIL(w, RBS_E_INVALID, "sphere torque must be zero for a fixed sphere (it never moves), got "
-             "(%s, %s, %s) N m", rbs__shortest(nb, t.x), rbs__shortest(nb2, t.y), rbs__shortest(nb3, t.z));
+    if (d.fixed) {
+        /* a fixed sphere never moves: a velocity, force or torque would be
+         * dropped silently (the setters refuse them on it) */
+        const rbs_vec3 moving[4] = {d.velocity, d.angular_velocity, d.force, d.torque};
+        static const char *const args[4][2] = {
+            {"velocity", "m/s"}, {"angular_velocity", "rad/s"}, {"force", "N"}, {"torque", "N m"}};
+        int k;
+        for (k = 0; k < 4; ++k)
+            if (moving[k].x != 0.0 || moving[k].y != 0.0 || moving[k].z != 0.0)
+                FAIL(w, RBS_E_INVALID, "sphere %s must be zero for a fixed sphere (it never moves), got "
+                     "(%s, %s, %s) %s", args[k][0], rbs__shortest(nb, moving[k].x),
+                     rbs__shortest(nb2, moving[k].y), rbs__shortest(nb3, moving[k].z), args[k][1]);
+    }
     q.w = d.orientation.w; q.x = d.orientation.x; q.y = d.orientation.y; q.z = d.orientation.z;
     {
         const double wxyz[4] = {q.w, q.x, q.y, q.z};
@@ -1569,7 +1565,6 @@ static void sphere_vals_of(const rbs_world *w, uint32_t s, sphere_vals *out)
     out->q.y = w->orient[4 * s + 2]; out->q.z = w->orient[4 * s + 3];
     out->fixed = w->fixed[s] != 0;
 }
-
 
 rbs_status rbs_body_set_position(rbs_world *w, rbs_body_id id, rbs_vec3 p)
 {
