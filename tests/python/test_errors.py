@@ -852,3 +852,37 @@ def test_a_list_of_vectors_is_named_as_such():
         w.add_sphere(position=(1, 2))
     assert str(info.value) == "invalid argument: position: expected 3 numbers, got 2"
     assert w.all_bodies() == []
+
+
+def test_an_unknown_keyword_is_named_with_the_nearest_known_one(tmp_path):
+    # Python 3.11's own TypeError names the keyword only; the binding adds
+    # the library's "did you mean" (rbs_scene_suggest, the rule of scenes
+    # and the command) and the known keywords.
+    w = rbsim.World()
+    cases = [
+        (lambda: rbsim.World(max_bodys=3), "World()", "max_bodys", "max_bodies"),
+        (lambda: w.add_sphere("a", radus=1.0), "add_sphere()", "radus", "radius"),
+        (lambda: w.add_plane(normall=(0, 0, 1)), "add_plane()", "normall", "normal"),
+        (lambda: w.set_material("a", "b", statc=1.0), "set_material()", "statc", "static"),
+        (lambda: w.run(stesp=3), "run()", "stesp", "steps"),
+        (lambda: w.start(reel_capacty=3), "start()", "reel_capacty", "reel_capacity"),
+        (lambda: rbsim.load(tmp_path / "x.json", fromat="json"), "load()", "fromat", "format"),
+        (lambda: rbsim.parse_json("{}", step=3), "parse_json()", "step", "steps"),
+    ]
+    for call, where, word, near in cases:
+        with pytest.raises(rbsim.ArgumentTypeError) as e:
+            call()
+        text = str(e.value)
+        assert where in text and repr(word) in text, text
+        assert "(did you mean %r?)" % near in text, text
+        assert isinstance(e.value, TypeError)
+    # nothing near: no suggestion, the known ones listed
+    with pytest.raises(TypeError, match=r"'zzzzzzzz'; known: max_bodies, "):
+        rbsim.World(zzzzzzzz=1)
+    # a TypeError of the call itself (not a keyword) is Python's, unchanged
+    with pytest.raises(TypeError, match="multiple values"):
+        w.add_sphere("a", name="b")
+    # the known keywords still work, and the signature is the function's
+    assert rbsim.World(max_bodies=3, dt=0.01).dt == 0.01
+    import inspect
+    assert "radius" in inspect.signature(rbsim.World.add_sphere).parameters

@@ -175,6 +175,10 @@ def test_scene_renderers_are_listed_and_not_silently_dropped():
         w.run(3)
     assert record[0].filename == __file__  # points at the caller
     w.run(3)  # warned once per world
+    w2 = rbsim.load(SCENES / "bouncing_sphere.json")
+    with pytest.warns(UserWarning, match="csv") as record:
+        w2.start(3).wait()
+    assert record[0].filename == __file__  # start() too
 
 
 def test_scene_without_method_is_auto():

@@ -128,12 +128,13 @@ def _from_scene(scene: Any, name: str, steps: Optional[int], dt: Optional[float]
     world.description = ffi.string(text).decode("utf-8", "replace") if text != ffi.NULL else ""
     # The scene's warnings (rbs_scene_warning_get: a material named in a
     # row that no body has), as the rbsim command prints them; the world is
-    # built all the same.  stacklevel 3: the caller of load()/parse_json().
+    # built all the same.  stacklevel 4: the caller of load()/parse_json()
+    # (past _check.keywords' frame).
     warning = ffi.new("rbs_scene_error *")
     for i in range(lib.rbs_scene_warning_count(scene)):
         if lib.rbs_scene_warning_get(scene, i, warning) == lib.RBS_OK:
             warnings.warn(ffi.string(warning.text).decode("utf-8", "replace"),
-                          SceneWarning, stacklevel=3)
+                          SceneWarning, stacklevel=4)
     return world
 
 
@@ -144,6 +145,7 @@ class SceneWarning(UserWarning):
     MESSAGE"."""
 
 
+@_check.keywords
 def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
          steps: Optional[int] = None, dt: Optional[float] = None,
          method: Optional[str] = None, slop: Optional[float] = None) -> World:
@@ -181,6 +183,7 @@ def load(path: Union[str, "os.PathLike[str]"], *, format: str = "auto",
         lib.rbs_scene_free(scene)
 
 
+@_check.keywords
 def parse_json(text: str, name: str = "<string>", *, steps: Optional[int] = None,
                dt: Optional[float] = None, method: Optional[str] = None,
                slop: Optional[float] = None) -> World:

@@ -11,11 +11,13 @@ str, a NUL, a lone surrogate).
 from __future__ import annotations
 
 import collections.abc
+import functools
+import inspect
 import itertools
 import math
 import numbers
 import os
-from typing import Any, Optional, Tuple
+from typing import Any, Callable, Optional, Sequence, Tuple, TypeVar
 
 import numpy as np
 
@@ -212,6 +214,47 @@ def choice(value: Any, what: str, names: Tuple[str, ...]) -> str:
         raise _e.error_class(-1)("%s: expected one of %s, got %r"
                                  % (what, ", ".join(names), value))
     return value
+
+
+def suggest(word: str, names: Sequence[str]) -> Optional[str]:
+    """The one of names nearest to word by the library's "did you mean" rule
+    (rbs_scene_suggest, so Python suggests as scenes and the command do), or
+    None."""
+    from ._native import ffi, lib
+    keep = [ffi.new("char[]", n.encode()) for n in names]
+    got = lib.rbs_scene_suggest(word.split("\0")[0].encode("utf-8", "replace"),
+                                ffi.new("const char *[]", keep), len(keep))
+    return None if got == ffi.NULL else ffi.string(got).decode()
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def keywords(f: _F) -> _F:
+    """f, whose unknown keyword arguments are refused with the library's
+    "did you mean" and the known ones listed (Python 3.11's own TypeError
+    names the word only).  A call with known keywords runs f as it is."""
+    params = inspect.signature(f).parameters
+    known = tuple(n for n, p in params.items() if n != "self" and p.kind in (
+        p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY))
+    label = f.__qualname__.replace(".__init__", "")
+
+    @functools.wraps(f)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return f(*args, **kwargs)
+        except TypeError:
+            # (an unknown keyword fails the call before f's body runs, so a
+            # TypeError with one among kwargs is that one)
+            unknown = [k for k in kwargs if k not in known]
+            if not unknown:
+                raise
+            near = suggest(unknown[0], known)
+            raise _e.ArgumentTypeError(
+                "%s(): unknown keyword argument %r%s; known: %s"
+                % (label, unknown[0], " (did you mean %r?)" % near if near else "",
+                   ", ".join(known))) from None
+    return checked  # type: ignore[return-value]
 
 
 def _describe(value: Any) -> str:

@@ -671,8 +671,9 @@ def start_world(world: World, steps: Optional[int] = None,
                 speed: float = 1.0, start_paused: bool = False,
                 pause_on_collision: Optional[bool] = None,
                 reel_capacity: Optional[int] = None, endless: bool = False,
-                _stacklevel: int = 3) -> Run:
-    """Start a run of world; see World.start."""
+                _stacklevel: int = 4) -> Run:
+    """Start a run of world; see World.start.  (_stacklevel: the warning's,
+    the caller of World.start past _check.keywords' frame.)"""
     if world.scene_renderers and not getattr(world, "_warned_renderers", False):
         world._warned_renderers = True
         warnings.warn(
@@ -732,5 +733,5 @@ def run_world(world: World, steps: Optional[int] = None,
     return start_world(world, steps, renderers, realtime=realtime, speed=speed,
                        start_paused=False, pause_on_collision=False,
                        reel_capacity=reel_capacity, endless=endless,
-                       _stacklevel=4).wait()
+                       _stacklevel=5).wait()
 

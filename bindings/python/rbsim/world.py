@@ -556,6 +556,7 @@ class World(_Handle):
     _COPY_HINT = ("world; duplicate it with World.from_checkpoint(world.checkpoint()), "
                   "or world.save(path) and rbsim.resume(path)")
 
+    @_check.keywords
     def __init__(self, *, max_bodies: Optional[int] = None,
                  max_materials: Optional[int] = None,
                  max_pairs: Optional[int] = None,
@@ -1021,6 +1022,7 @@ class World(_Handle):
         out.index, out.generation = m._cid()
         return out  # the owner: use out[0] while out is alive
 
+    @_check.keywords
     def set_material(self, a: Union[Material, str, None],
                      b: Union[Material, str, None], *,
                      static: Optional[float] = None,
@@ -1073,6 +1075,7 @@ class World(_Handle):
 
     # -- bodies -------------------------------------------------------------
 
+    @_check.keywords
     def add_sphere(self, name: Optional[str] = None, *,
                    radius: Optional[float] = None,
                    mass: Optional[float] = None,
@@ -1170,6 +1173,7 @@ class World(_Handle):
         self._call(lib.rbs_world_add_sphere, d, out)
         return Body(self, out)
 
+    @_check.keywords
     def add_plane(self, name: Optional[str] = None, *,
                   point: Optional[Vector] = None,
                   normal: Optional[Vector] = None,
@@ -1306,6 +1310,7 @@ class World(_Handle):
             raise exc
         return StepInfo._from_c(total, made)
 
+    @_check.keywords
     def run(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
             realtime: bool = False, speed: float = 1.0,
             reel_capacity: Optional[int] = None,
@@ -1341,6 +1346,7 @@ class World(_Handle):
         return run_world(self, steps, renderers, realtime=realtime, speed=speed,
                          reel_capacity=reel_capacity, endless=endless)
 
+    @_check.keywords
     def start(self, steps: Optional[int] = None, renderers: Sequence[Any] = (), *,
               realtime: bool = False, speed: float = 1.0,
               start_paused: bool = False,
