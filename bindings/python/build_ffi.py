@@ -5,7 +5,8 @@ the C preprocessor runs over ``rbsim/rbsim.h``, ``rbsim/scene.h`` and
 ``rbsim/reel.h`` with ``RBS_API`` empty and with empty stand-ins for
 ``<stddef.h>`` and ``<stdint.h>`` (cffi knows ``size_t``, ``uint32_t``, ...),
 so the status enum comes out of the ``RBS_STATUS_LIST`` X-macro exactly as the
-library sees it.  Integer macros named ``RBS_*`` are kept as cdef constants;
+library sees it.  Integer macros named ``RBS_*`` are kept as cdef constants,
+floating-point ones as ``static const double`` constants;
 what cdef cannot take (function-like macros, strings, attributes) is dropped.
 
 Used three ways:
@@ -109,6 +110,7 @@ static int rbs_py_version_header(void) { return RBS_VERSION_NUMBER; }
 """
 
 _INT_LITERAL = re.compile(r"^-?(0[xX][0-9a-fA-F]+|\d+)[uUlL]*$")
+_FLOAT_LITERAL = re.compile(r"^-?(\d+\.\d*|\.\d+|\d+)([eE][-+]?\d+)?$")
 _INT_EXPR = re.compile(r"^[\s()+\-*/%<>|&~^0-9a-fA-FxXuUlL_A-Z]+$")
 _MACRO_NAME = re.compile(r"^RBS_[A-Z0-9_]+$")
 
@@ -170,6 +172,7 @@ def generate_cdef(include_dirs: Sequence[str], cc: Optional[str] = None) -> str:
     include_dirs (which must also hold the generated rbsim/version.h)."""
     text = _preprocess(include_dirs, cc)
     macros = {}
+    doubles = {}  # floating-point macros: cdef constants of type double
     body: List[str] = []
     for line in text.splitlines():
         stripped = line.strip()
@@ -181,6 +184,8 @@ def generate_cdef(include_dirs: Sequence[str], cc: Optional[str] = None) -> str:
                 continue  # function-like, foreign or empty (RBS_API)
             if _INT_LITERAL.match(value):
                 macros[name] = value
+            elif _FLOAT_LITERAL.match(value):
+                doubles[name] = value
             elif _INT_EXPR.match(value) and not value.startswith('"'):
                 macros[name] = "..."  # computed by the compiler (API mode)
             continue
@@ -188,6 +193,7 @@ def generate_cdef(include_dirs: Sequence[str], cc: Optional[str] = None) -> str:
             parts = stripped.split()
             if len(parts) > 1:
                 macros.pop(parts[1], None)
+                doubles.pop(parts[1], None)
             continue
         if stripped.startswith("#") or not stripped:
             continue
@@ -195,6 +201,7 @@ def generate_cdef(include_dirs: Sequence[str], cc: Optional[str] = None) -> str:
     decls = _strip_attributes("\n".join(body))
     decls = re.sub(r"_Static_assert\s*\([^;]*\)\s*;", "", decls)
     defines = "".join("#define %s %s\n" % (k, v) for k, v in sorted(macros.items()))
+    defines += "".join("static const double %s;\n" % k for k in sorted(doubles))
     return defines + decls + "\n"
 
 

@@ -1,13 +1,14 @@
 /*
  * test_auto.c - RBS_METHOD_AUTO, the default: it takes RBS_METHOD_SOFT from
  * RBS_METHOD_AUTO_SOFT_BODIES moving spheres on (without mutual gravity, their
- * masses within RBS_METHOD_AUTO_SOFT_MASS_RATIO) and RBS_METHOD_EULER
+ * masses within RBS_METHOD_AUTO_SOFT_MASS_RATIO, none sunk by its own load
+ * beyond RBS_METHOD_AUTO_SOFT_SINK of its radius) and RBS_METHOD_EULER
  * otherwise, bit for bit -- the same state hash after every
  * step as the method it names -- and it says which (rbs_world_method_in_use,
  * rbs_world_explain).  Fixed spheres do not count; the choice follows the
  * bodies as they are added and removed, and survives a checkpoint.
  */
-#include "common.h"
+#include "methods_common.h"
 
 #define N_AUTO RBS_METHOD_AUTO_SOFT_BODIES
 
@@ -164,6 +165,80 @@ static void wide_mass_ratio_is_euler(void **state)
     rbs_world_destroy(b);
 }
 
+/* RBS_METHOD_AUTO_SOFT_BODIES grains of radius r, mass 1000 kg/m^3 x
+ * 4/3 pi r^3 (the mass does not matter: the sink is a / omega^2), in a
+ * single layer 3 r apart, each touching the floor at rest; soft_substeps
+ * sub-steps a frame of dt. */
+static rbs_world *grains(rbs_method method, double r, double dt, uint32_t substeps, rbs_body_id *ids)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id m;
+    uint32_t i;
+    rbs_world_def_init(&d);
+    d.max_bodies = N_AUTO + 1;
+    d.method = method;
+    d.dt = dt;
+    d.soft_substeps = substeps;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.4, 0.5);
+    floor_plane(w, m);
+    for (i = 0; i < N_AUTO; ++i)
+        ids[i] = ball(w, r, 1000.0 * 4.18879020478639 * r * r * r, 3.0 * r * (i % 8), 3.0 * r * (i / 8), r, 0, 0, 0, m);
+    return w;
+}
+
+/* Grains too small for soft keep Euler.  soft sinks a contact by its load
+ * over m_eff omega^2 (omega = 2 pi soft_substeps / (3 dt)): a length, g /
+ * omega^2 = 9.81 (1e-3 / 2 pi)^2 = 2.4849e-7 m for a grain's own weight at
+ * dt = 1 ms and 3 sub-steps, so RBS_METHOD_AUTO_SOFT_SINK (1e-3) puts the
+ * boundary at r* = 2.4849e-4 m.  Around it: soft at 1.01 r*, Euler at 0.99
+ * r*, and back to soft at 0.99 r* with dt / 2 (the sink / 4) or 6
+ * sub-steps; an applied force pushing a grain down (3 times its weight)
+ * keeps Euler at 1.01 r*.  And what it buys: grains of 1 um stay on the
+ * floor within 1 % of their radius with auto (Euler: within the slop),
+ * where soft, taken before session 52, sinks them g / omega^2 = 0.248 of
+ * their radius (the model's sink, to 2 %: the slop and the settling). */
+static void small_grains_are_euler(void **state)
+{
+    const double rstar = 9.81 * (1e-3 / (2.0 * PI_)) * (1e-3 / (2.0 * PI_)) / RBS_METHOD_AUTO_SOFT_SINK;
+    rbs_world *w, *s;
+    rbs_body_id ids[N_AUTO];
+    char buf[8192];
+    int i;
+    (void)state;
+    w = grains(RBS_METHOD_AUTO, 1.01 * rstar, 1e-3, 3, ids);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    CHECK_OK(rbs_body_set_force(w, ids[0], (rbs_vec3){0, 0, -3.0 * 9.81 * 1000.0 * 4.18879020478639 * pow(1.01 * rstar, 3)}));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    rbs_world_destroy(w);
+    w = grains(RBS_METHOD_AUTO, 0.99 * rstar, 1e-3, 3, ids);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: euler, since soft would sink a moving sphere by 0.00101 of its radius under "
+                                "its own load"));
+    CHECK_OK(rbs_world_set_dt(w, 0.5e-3));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    rbs_world_destroy(w);
+    w = grains(RBS_METHOD_AUTO, 0.99 * rstar, 1e-3, 6, ids);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    rbs_world_destroy(w);
+
+    w = grains(RBS_METHOD_AUTO, 1e-6, 1e-3, 3, ids);
+    s = grains(RBS_METHOD_SOFT, 1e-6, 1e-3, 3, ids);
+    step_n(w, 300);
+    step_n(s, 300);
+    for (i = 0; i < (int)N_AUTO; ++i) {
+        rbs_body_state a = state_of(w, ids[i]), b = state_of(s, ids[i]);
+        if (!(fabs(a.position.z - 1e-6) < 0.01 * 1e-6))
+            fail_msg("grain %d: auto left it %.3g of its radius off the floor", i, (1e-6 - a.position.z) / 1e-6);
+        if (!(fabs((1e-6 - b.position.z) - 2.4849e-7) < 0.02 * 2.4849e-7))
+            fail_msg("grain %d: soft sank it %.4g m, the model %.4g", i, 1e-6 - b.position.z, 2.4849e-7);
+    }
+    rbs_world_destroy(s);
+    rbs_world_destroy(w);
+}
+
 /* The choice follows the bodies: adding the 64th moving sphere takes soft
  * from the next step on, removing one takes Euler again; an explicit method
  * is kept whatever the count; explain names the choice and its reason. */
@@ -222,6 +297,7 @@ int main(void)
         cmocka_unit_test(from_threshold_is_soft),
         cmocka_unit_test(mutual_gravity_is_euler),
         cmocka_unit_test(wide_mass_ratio_is_euler),
+        cmocka_unit_test(small_grains_are_euler),
         cmocka_unit_test(follows_the_bodies),
         cmocka_unit_test(checkpoint_keeps_auto),
     };

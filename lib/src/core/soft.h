@@ -20,6 +20,15 @@
 
 #include "core/world_internal.h"
 
+/* The soft contact's spring frequency for sub-steps of h, rad/s: a third
+ * of the sub-step rate (why a third: step_soft.c); a load L on a
+ * contact of effective mass m sinks it by L / (m omega^2). */
+#define RBS__SOFT_HERTZ (1.0 / 3.0)
+static inline double rbs__soft_omega(double h)
+{
+    return 2.0 * 3.14159265358979323846 * RBS__SOFT_HERTZ / h;
+}
+
 #define RBS__LANES 4         /* contacts a chunk (core/wide.h: lanes) */
 #define RBS__REC 16          /* doubles a body record */
 #define RBS__REC_V 0         /* velocity */

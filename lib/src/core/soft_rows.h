@@ -519,7 +519,7 @@ static inline int wedge_holds(double im, double d, const double *rhs, const int 
  * lets those follow the depth only some sub-steps late: a spring with a
  * lag, which gains energy once h omega is large (a linearisation of the
  * frame: its largest eigenvalue 1.00014 at 0.1 degrees, 1.0006 at 1,
- * unstable above SOFT_HERTZ 0.31 and 0.33; stable at 1/4, the rate before
+ * unstable above RBS__SOFT_HERTZ 0.31 and 0.33; stable at 1/4, the rate before
  * session 37).  So the two rows are solved as one 2 x 2 block, on the
  * pair's matrix K = (1/m) [1 d; d 1], d = n1.n2 (the levers lie along the
  * normals: no turning): each lane's row is an equation on (K dj)_i --

@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <string.h>
 
+#include "core/soft.h"
 #include "core/world_internal.h"
 
 static int nonzero3(const double *p) { return p[0] != 0.0 || p[1] != 0.0 || p[2] != 0.0; }
@@ -71,6 +72,8 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     rbs__plan p;
     uint32_t i, moving = 0;
     double im_lo = 0.0, im_hi = 0.0; /* the moving spheres' 1/m, least and most */
+    double load = 0.0; /* the moving spheres' most |a| / r, 1/s^2 */
+    double omega;
     memset(&p, 0, sizeof p);
     /* (rows no contact can take -- a material on no body -- count for
      * nothing: an unused row with rolling resistance took the soft step
@@ -91,6 +94,14 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
             im_hi = w->inv_mass[s];
         if (nonzero3(&w->force[3 * s]) || nonzero3(&w->torque[3 * s]))
             p.applied = 1;
+        {
+            v3 a, torque;
+            double q;
+            rbs__accelerations(w, s, &a, &torque);
+            q = v3_len(a) / w->radius[s];
+            if (!(q <= load)) /* (a NaN is kept: it keeps euler) */
+                load = q;
+        }
         if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
             p.angular = 1;
         /* anisotropic: contact impulses leave rounding-level spin (the lever
@@ -120,16 +131,23 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     if (p.mutual_acts)
         p.gather = 0;
     p.mass_ratio = moving > 0 ? im_hi / im_lo : 1.0;
+    omega = rbs__soft_omega(w->def.dt / (double)w->def.soft_substeps);
+    p.soft_sink = load / (omega * omega);
     p.method = w->def.method;
     /* (a mass ratio beyond what soft holds -- a heavy ball sinks into a
      * light one by its load over m_eff omega^2, and from about 1e5 the
      * pair no longer settles -- keeps euler, whose resting pass holds
      * stacks of 1e9:1 still; a probe of session 46 saw a 1e9 kg ball
      * crush a 1 kg one in a heap that auto stepped with soft; a ratio
-     * that overflows keeps euler too) */
+     * that overflows keeps euler too; so does a sink under a sphere's own
+     * load beyond RBS_METHOD_AUTO_SOFT_SINK of its radius -- the sink is a
+     * length, g / omega^2 = 0.25 um at dt = 1 ms, so soft sank a pile of
+     * 1 um grains by a quarter of a radius and 1 nm ones through the floor;
+     * a probe of session 52) */
     if (p.method == RBS_METHOD_AUTO)
         p.method = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity &&
-                           p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO
+                           p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO &&
+                           p.soft_sink <= RBS_METHOD_AUTO_SOFT_SINK
                        ? RBS_METHOD_SOFT
                        : RBS_METHOD_EULER;
     if (!w->def.prune) {

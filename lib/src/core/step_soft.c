@@ -40,7 +40,7 @@
  * touching one may overlap by the slop, and deeper overlap is pushed out
  * (at most SOFT_PUSH of the smaller radius a sub-step, as Box2D caps its
  * push speed) by a damped spring of frequency
- * omega = 2 pi SOFT_HERTZ / h and damping ratio SOFT_ZETA, as the soft
+ * omega = 2 pi RBS__SOFT_HERTZ / h and damping ratio SOFT_ZETA, as the soft
  * constraint's coefficients (Catto 2011) express it for an implicit step:
  *   bias rate = omega / (2 zeta + h omega),
  *   mass scale = h omega (2 zeta + h omega) / (1 + h omega (2 zeta + h omega)),
@@ -79,16 +79,16 @@
 #include "core/soft_detect.h"
 #include "core/team.h"
 
-/* The contact frequency, as a fraction of the sub-step rate: with the
- * default 3 sub-steps, 1 / dt (the spring of 4 sub-steps at a quarter of
+/* Why the contact frequency (RBS__SOFT_HERTZ, soft.h) is a third of the
+ * sub-step rate: with the default 3 sub-steps, 1 / dt (the spring of 4 sub-steps at a quarter of
  * their rate, Box2D's cap, before session 37).  The soft coefficients
- * depend on h omega = 2 pi SOFT_HERTZ alone, and with SOFT_ZETA = 10 the
+ * depend on h omega = 2 pi RBS__SOFT_HERTZ alone, and with SOFT_ZETA = 10 the
  * row is near rigid either way (mass scale 0.979 against 0.971); a frame of
  * 3 sub-steps pushes out 26 % of a deep overlap, as 4 did.  On the peers'
  * piles (7 of 1,000 spheres, 3 of 8,000) the overlaps during the run and
  * at its end were about those of 4 sub-steps, in 0.88x the time
- * (docs/methods.md, "Session 37"). */
-#define SOFT_HERTZ (1.0 / 3.0)
+ * (docs/methods.md, "Session 37").  RBS_METHOD_AUTO reads it too
+ * (step.c: the sink it allows). */
 #define SOFT_PUSH 0.01  /* the most overlap pushed out in one sub-step, of the smaller radius */
 #define SOFT_ZETA 10.0  /* damping ratio of the contact spring */
 
@@ -590,7 +590,7 @@ static void record_start(const rbs_world *w, double *r, uint32_t i)
 /* The soft step's coefficients for sub-steps of h into the rows. */
 static void rows_for_h(rbs__soft_rows *rows, double h)
 {
-    const double omega = 2.0 * 3.14159265358979323846 * SOFT_HERTZ / h;
+    const double omega = rbs__soft_omega(h);
     const double a1 = 2.0 * SOFT_ZETA + h * omega, a2 = h * omega * a1;
     rows->inv_h = 1.0 / h;
     rows->bias_rate = omega / a1;

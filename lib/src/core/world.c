@@ -1697,6 +1697,7 @@ rbs_status rbs_world_set_dt(rbs_world *w, double dt)
         w->time_base = rbs_world_time(w);
         w->step_base = w->step_count;
         w->def.dt = dt;
+        w->plan_dirty = 1; /* (auto's choice reads dt: the sink it allows) */
     }
     return RBS_OK;
 }
