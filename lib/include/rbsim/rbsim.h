@@ -150,9 +150,9 @@ typedef enum rbs_method {
                                    RBS_METHOD_SOFT when at least
                                    RBS_METHOD_AUTO_SOFT_BODIES spheres move,
                                    their masses within a ratio of
-                                   RBS_METHOD_AUTO_SOFT_MASS_RATIO, none
-                                   sunk by its own weight beyond
-                                   RBS_METHOD_AUTO_SOFT_SINK of its radius,
+                                   RBS_METHOD_AUTO_SOFT_MASS_RATIO, no
+                                   sink beyond RBS_METHOD_AUTO_SOFT_SINK
+                                   of their smallest radius,
                                    and there is no mutual gravity, else
                                    RBS_METHOD_EULER -- bit for bit the method
                                    chosen (rbs_world_method_in_use) */
@@ -172,13 +172,16 @@ typedef enum rbs_method {
  * sub-steps; beyond it RBS_METHOD_AUTO keeps RBS_METHOD_EULER, which holds
  * such stacks (docs/methods.md, "auto"). */
 #define RBS_METHOD_AUTO_SOFT_MASS_RATIO 10000
-/** ... and only while soft would sink no moving sphere by its own load --
- * gravity and its applied force, a / omega^2 with the contact frequency
- * omega = 2 pi soft_substeps / (3 dt) -- beyond this fraction of its radius
- * (0.25 um at dt = 1 ms and 3 sub-steps: spheres from 0.25 mm up): the sink
- * is a length whatever the radius, so a pile of small grains would sink
- * into the floor and each other (a 1 um grain by a quarter of its radius, a
- * 1 nm one through the floor); beyond it RBS_METHOD_AUTO keeps
+/** ... and only while the deepest soft could sink a contact -- the
+ * moving spheres' largest load |m a| (gravity and applied force) on the
+ * lightest of them, max |m a| / (m_min omega^2), with the contact
+ * frequency omega = 2 pi soft_substeps / (3 dt) -- is at most this
+ * fraction of their smallest radius.  The sink is a length whatever the
+ * radius (a sphere's own weight: 0.25 um at dt = 1 ms and 3 sub-steps, so
+ * equal spheres from 0.25 mm up): small grains would sink into the floor
+ * and each other (1 um ones by a quarter of their radius, 1 nm ones
+ * through the floor) and a heavy ball into a light one (1000 kg on 0.1 kg
+ * of 0.05 m: 4.6 % of its radius); beyond it RBS_METHOD_AUTO keeps
  * RBS_METHOD_EULER (docs/methods.md, "auto"). */
 #define RBS_METHOD_AUTO_SOFT_SINK 1e-3
 

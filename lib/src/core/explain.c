@@ -116,9 +116,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         else if (w->def.mutual_gravity)
             put(&t, "  auto: euler, since there is mutual gravity\n");
         else if (moving >= RBS_METHOD_AUTO_SOFT_BODIES && p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO)
-            put(&t, "  auto: euler, since soft would sink a moving sphere by %.3g of its radius under its own "
-                    "load (gravity and applied force, a / omega^2; soft only within %g: a shorter dt or more "
-                    "soft_substeps lets it)\n",
+            put(&t, "  auto: euler, since soft could sink a contact by %.3g of the smallest moving radius (the "
+                    "largest load, gravity and applied force, on the lightest sphere over its mass x "
+                    "omega^2; soft only within %g: a shorter dt or more soft_substeps lets it)\n",
                 p.soft_sink, RBS_METHOD_AUTO_SOFT_SINK);
         else if (moving >= RBS_METHOD_AUTO_SOFT_BODIES)
             put(&t, "  auto: euler, since the moving spheres' masses span a ratio of %.3g (soft only within "

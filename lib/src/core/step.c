@@ -72,7 +72,8 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
     rbs__plan p;
     uint32_t i, moving = 0;
     double im_lo = 0.0, im_hi = 0.0; /* the moving spheres' 1/m, least and most */
-    double load = 0.0; /* the moving spheres' most |a| / r, 1/s^2 */
+    double load = 0.0; /* the moving spheres' largest load |m a|, N */
+    double r_lo = 0.0;  /* ... and their smallest radius, m */
     double omega;
     memset(&p, 0, sizeof p);
     /* (rows no contact can take -- a material on no body -- count for
@@ -96,11 +97,13 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
             p.applied = 1;
         {
             v3 a, torque;
-            double q;
+            double f;
             rbs__accelerations(w, s, &a, &torque);
-            q = v3_len(a) / w->radius[s];
-            if (!(q <= load)) /* (a NaN is kept: it keeps euler) */
-                load = q;
+            f = v3_len(a) / w->inv_mass[s];
+            if (!(f <= load)) /* (a NaN is kept: it keeps euler) */
+                load = f;
+            if (moving == 1 || w->radius[s] < r_lo)
+                r_lo = w->radius[s];
         }
         if (nonzero3(&w->avel[3 * s]) || nonzero3(&w->torque[3 * s]) || nonzero3(&w->com_body[3 * s]))
             p.angular = 1;
@@ -132,18 +135,20 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
         p.gather = 0;
     p.mass_ratio = moving > 0 ? im_hi / im_lo : 1.0;
     omega = rbs__soft_omega(w->def.dt / (double)w->def.soft_substeps);
-    p.soft_sink = load / (omega * omega);
+    p.soft_sink = moving > 0 ? load * im_hi / (omega * omega * r_lo) : 0.0;
     p.method = w->def.method;
     /* (a mass ratio beyond what soft holds -- a heavy ball sinks into a
      * light one by its load over m_eff omega^2, and from about 1e5 the
      * pair no longer settles -- keeps euler, whose resting pass holds
      * stacks of 1e9:1 still; a probe of session 46 saw a 1e9 kg ball
      * crush a 1 kg one in a heap that auto stepped with soft; a ratio
-     * that overflows keeps euler too; so does a sink under a sphere's own
-     * load beyond RBS_METHOD_AUTO_SOFT_SINK of its radius -- the sink is a
-     * length, g / omega^2 = 0.25 um at dt = 1 ms, so soft sank a pile of
-     * 1 um grains by a quarter of a radius and 1 nm ones through the floor;
-     * a probe of session 52) */
+     * that overflows keeps euler too; so does a sink beyond
+     * RBS_METHOD_AUTO_SOFT_SINK of the smallest radius under the largest
+     * load on the lightest sphere -- the sink is a length, g / omega^2 =
+     * 0.25 um for a sphere's own weight at dt = 1 ms, so soft sank a pile
+     * of 1 um grains by a quarter of a radius and 1 nm ones through the
+     * floor, and a 1000 kg ball pressed a 0.1 kg one of 0.05 m 4.6 % of its
+     * radius into the floor; a probe of session 52) */
     if (p.method == RBS_METHOD_AUTO)
         p.method = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity &&
                            p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO &&

@@ -126,10 +126,11 @@ typedef struct rbs__plan {
     double mass_ratio; /* the moving spheres' largest mass over their
                           smallest (1 with none; from the bodies alone,
                           never pruned): RBS_METHOD_AUTO's second test */
-    double soft_sink;  /* the deepest soft would sink a moving sphere by its
-                          own load, of its radius: max |a| / (omega^2 r),
-                          a its acceleration from gravity and its applied
-                          force (0 with none; never pruned):
+    double soft_sink;  /* the deepest soft could sink a contact of the
+                          moving spheres, of their smallest radius: the
+                          largest load |m a| (gravity and applied force)
+                          on the lightest, max |m a| / (m_min omega^2
+                          r_min) (0 with none; never pruned):
                           RBS_METHOD_AUTO's third test */
     int applied;       /* some moving sphere has an applied force or torque
                           (not a stage: never set by pruning off) */
