@@ -2,7 +2,8 @@
  * test_rotation.c - anisotropic inertia and off-centre mass against exact
  * answers, for every method: the flip period of a free asymmetric top
  * spinning near its intermediate axis (the Dzhanibekov effect), and a ball
- * with its mass off its centre rocking on a frictionless floor.
+ * with its mass off its centre rocking on a frictionless and on a rough
+ * floor.
  *
  * References: L. D. Landau, E. M. Lifshitz, Mechanics, 3rd ed., par. 37
  * (Euler's equations solved by Jacobi's elliptic functions); H. Goldstein,
@@ -220,7 +221,8 @@ typedef struct rock_run {
     double com_x;    /* largest horizontal travel of the centre of mass, m */
 } rock_run;
 
-static rock_run rocking(rbs_method m, double dt, double span, double th0)
+/* mu > 0: a rough floor (mu_s = mu_k = mu, every pair); 0: frictionless. */
+static rock_run rocking(rbs_method m, double dt, double span, double th0, double mu)
 {
     rbs_world_def d;
     rbs_world *w = NULL;
@@ -241,8 +243,14 @@ static rock_run rocking(rbs_method m, double dt, double span, double th0)
     d.method = m;
     d.restitution = 0.0;
     CHECK_OK(rbs_world_create(&d, &w));
+    if (mu > 0.0) {
+        rbs_pair_def pd;
+        rbs_pair_def_init(&pd);
+        pd.static_friction = pd.kinetic_friction = mu;
+        CHECK_OK(rbs_world_set_pair(w, &pd));
+    }
     rbs_plane_def_init(&p);
-    CHECK_OK(rbs_world_add_plane(w, &p, NULL)); /* no material: frictionless */
+    CHECK_OK(rbs_world_add_plane(w, &p, NULL)); /* no pair row: frictionless */
     rbs_sphere_def_init(&s);
     s.radius = RK_R;
     s.mass = 1.0;
@@ -297,34 +305,40 @@ static rock_run rocking(rbs_method m, double dt, double span, double th0)
  * 0.6448602 s at small amplitude), w = 2 pi / T = 9.69 rad/s, rocking
  * energy E_r = m g c (1 - cos th0) = 5.87e-3 J; 10 s at dt = 1 ms and
  * 0.1 ms.  Every method: the centre of mass stays on its vertical to
- * rounding (1e-12 m; a frictionless floor's impulses are vertical).
- * euler, selective, auto (and soft, h = dt / 3): the period within
- * (w h)^2 (9.4e-5 at 1 ms; measured 1.1e-5) and the energy within
- * 2 E_r w h (twice a step's share of the rocking energy; measured
- * 4.4e-5 J at 1 ms, 5.3e-6 J at 0.1 ms), euler's ending below E0 (its
- * contact only takes energy out, docs/physics.md).
- * verlet, rk4 and adaptive GAIN energy here, at first order: +2.5e-3 J in
- * 10 s at 1 ms (42 % of E_r), +2.7e-4 J at 0.1 ms, the period 1.2e-3 and
- * 1.3e-4 long (the same numbers for the three: their resting contact is
- * the same pass, "Euler's rows on a contact point that moves as the body
- * rocks", docs/physics.md, selective).  The mechanism (a probe of session
- * 51): the pass holds the geometric centre's normal velocity at zero, but
- * the turn of the arm from the centre of mass to the centre bends the
- * centre's path down by c w^2 h^2 / 2 a sub-step (5.7e-8 m measured with
- * euler, 8.6e-8 m with verlet, at w = 1.95 rad/s), which a plane contact's
- * bend does not count (solver.c, path_bend: "0 against a plane"); past the
- * slop (1e-7 m) every second step, the end-of-step separation lifts it
- * back by position alone, m g delta = 1.1e-6 J each time: m g c <w^2> h /
- * 2 = 2.8e-4 J/s at 1 ms, 2.8e-3 J in 10 s (measured 2.5e-3; euler gets
- * the same lifts but loses more in its contact).  Making the pass part
- * the contact at that bend's speed, h w^2 (n . r_perp) (as a sphere pair's
- * bend lets it approach), held the height but gained more (+3.3e-3 J):
- * the parting speed is carried into the next sub-step as real motion --
- * the drift, not the pass, would have to follow the arc (a trial of
- * session 51, not kept).  A defect, not a bound
- * from mechanics: held here to converging at first order (the gain falls
- * 10^(1 +- 0.2) times from 1 to 0.1 ms) and under E_r / 2 at 1 ms, so
- * that it cannot grow unseen.
+ * rounding (1e-12 m; a frictionless floor's impulses are vertical), the
+ * period within (w h)^2 (9.4e-5 at 1 ms; measured 1.1e-5) and the energy
+ * within 2 E_r w h (twice a step's share of the rocking energy; measured
+ * 4.4e-5 J at 1 ms, 5.3e-6 J at 0.1 ms), h = dt (soft: dt / 3); every
+ * method but soft ends below E0 (euler's contact only takes energy out,
+ * docs/physics.md).
+ * verlet, rk4 and adaptive take an off-centre sphere's contact rows at the
+ * sub-step's middle orientation (rbs__levers_at_middle, solver.c); until
+ * session 52 they took them at its start and GAINED energy here, at first
+ * order: +2.6e-3 J in 10 s at 1 ms (45 % of E_r), +2.8e-4 J at 0.1 ms.
+ * Why (sessions 51 and 52): the pass holds the contact's normal velocity
+ * at zero along its row, and the drift moves the centre by the trapezoid
+ * of the velocities plus the turn of the arm a from the centre of mass to
+ * the centre, whose path bends down by c th'^2 h^2 / 2 a sub-step; what
+ * sinks past the slop the end-of-step separation lifts back by position
+ * alone, m g per metre.  A row's impulse J changes the energy by J times
+ * the mean of its row's velocity before and after, so the gravity kick,
+ * the impulse and the drift together change it by J / h times the
+ * centre's normal displacement when the row is taken at the arm's middle
+ * a_m, and by that plus J th'^2 h c / 2 when at its start: with the start's
+ * rows the pass loses J / h per metre of sink and the lift gives back
+ * m g, a gain of m g c th'^2 h^2 / 2 a sub-step whatever the pass's target
+ * (a target parting at the bend's speed, which held the height, gained
+ * 3.3e-3 J: a trial of session 51).  With the middle's rows the pass
+ * loses N per metre of sink (J = N h, N = m (g + z'') the floor's force, z
+ * the centre of mass's height) and the lift gives m g back: what remains
+ * is -m z'' per metre of a sink of c th'^2 h^2 / 2 a sub-step, and with
+ * z = -c cos th, th = A cos(w t) (small A) its mean is
+ *   dE/dt = -m c^2 h <(th'^2 + th th'') th'^2> / 2 = -m c^2 h (A w)^4 / 8
+ * (<sin^4> = 3/8, <sin^2 cos^2> = 1/8): a LOSS of 1.6e-6 J/s at 1 ms,
+ * 1.5e-5 J by the tail's 9.5 s (measured 1.55e-5 J), first order in h and
+ * fourth in the amplitude.  Held within a factor 2 of that at both dt
+ * (measured 1.0 and 1.3 times; the old code's gain fails it, and the
+ * energy bound, by over 20 times).
  * event does not take an off-centre mass: RBS_E_UNSUPPORTED. */
 static void off_centre_ball_rocks_on_a_frictionless_floor(void **state)
 {
@@ -337,10 +351,11 @@ static void off_centre_ball_rocks_on_a_frictionless_floor(void **state)
                   2.0 * PI_ * sqrt((0.4 * RK_R * RK_R - RK_C * RK_C) / (RK_C * RK_G)));
     for (k = 0; k < N_METHODS; ++k) {
         rbs_method m = every_method[k];
-        double gain[2] = {0.0, 0.0};
         for (j = 0; j < 2; ++j) {
-            rock_run r = rocking(m, dts[j], 10.0, th0);
+            rock_run r = rocking(m, dts[j], 10.0, th0, 0.0);
             double h = m == RBS_METHOD_SOFT ? dts[j] / 3 : dts[j];
+            /* the loss derived above by the tail's mean time, 0.95 of 10 s */
+            double loss = RK_C * RK_C * dts[j] * pow(th0 * om, 4.0) / 8.0 * 9.5;
             print_message("%-9s dt %.0e: %s period rel err %.3e, |dE| max %.3e J, tail mean %.3e J, com x %.3e m\n",
                           rbs_method_name(m), dts[j], rbs_status_name(r.status), r.period / T - 1.0, r.energy,
                           r.drift, r.com_x);
@@ -350,19 +365,53 @@ static void off_centre_ball_rocks_on_a_frictionless_floor(void **state)
             }
             assert_int_equal(r.status, RBS_OK);
             assert_true(r.com_x < 1e-12);
-            gain[j] = r.drift;
+            assert_true(fabs(r.period / T - 1.0) < (om * h) * (om * h));
+            assert_true(r.energy < 2.0 * Er * om * h);
+            if (m != RBS_METHOD_SOFT)
+                assert_true(r.drift <= 0.0);
             if (m == RBS_METHOD_VERLET || m == RBS_METHOD_RK4 || m == RBS_METHOD_ADAPTIVE) {
-                if (j == 0)
-                    assert_true(r.energy < 0.5 * Er);
-            } else {
-                assert_true(fabs(r.period / T - 1.0) < (om * h) * (om * h));
-                assert_true(r.energy < 2.0 * Er * om * h);
-                if (m != RBS_METHOD_SOFT)
-                    assert_true(r.drift <= 0.0);
+                print_message("%-9s dt %.0e: tail mean / derived loss %.3f\n", rbs_method_name(m), dts[j],
+                              -r.drift / loss);
+                assert_true(r.drift < -0.5 * loss && r.drift > -2.0 * loss);
             }
         }
-        if (m == RBS_METHOD_VERLET || m == RBS_METHOD_RK4 || m == RBS_METHOD_ADAPTIVE)
-            ASSERT_NEAR(log10(gain[0] / gain[1]), 1.0, 0.2);
+    }
+}
+
+/* The same ball on a rough floor (mu = 0.5; static friction holds it: the
+ * friction it needs is about (R - c) w^2 th0 / g = 0.053 of the normal
+ * force at th0 = 0.2 rad),
+ * so it rolls as it rocks, about its contact point: the exact answer
+ * checked is the energy, kept (rolling without slip does no work), within
+ * 2 E_r w h as above, with w = sqrt(m g c / (I_cm + m (R - c)^2)) = 6.06
+ * rad/s, rocking about the contact point (a bound of the small-amplitude
+ * rate; measured 1.9e-5 J at 1 ms with euler, 1.0e-6 J with verlet).  The
+ * period is not checked: the rolling lever R - c cos th changes with th,
+ * and the exact period needs its own integral.  Until session 52 verlet,
+ * rk4 and adaptive gained 1.2e-3 J here in 10 s at 1 ms (20 % of E_r) and
+ * 1.1e-4 J at 0.1 ms, over the bound 16 and 15 times (the start's rows: see
+ * above). */
+static void off_centre_ball_rocks_on_a_rough_floor(void **state)
+{
+    const double th0 = 0.2, Er = RK_G * RK_C * (1.0 - cos(th0));
+    const double om = sqrt(RK_G * RK_C / (0.4 * RK_R * RK_R - RK_C * RK_C + (RK_R - RK_C) * (RK_R - RK_C)));
+    const double dts[2] = {1e-3, 1e-4};
+    int k, j;
+    (void)state;
+    for (k = 0; k < N_METHODS; ++k) {
+        rbs_method m = every_method[k];
+        for (j = 0; j < 2; ++j) {
+            rock_run r = rocking(m, dts[j], 10.0, th0, 0.5);
+            double h = m == RBS_METHOD_SOFT ? dts[j] / 3 : dts[j];
+            print_message("%-9s dt %.0e: %s |dE| max %.3e J, tail mean %.3e J\n", rbs_method_name(m), dts[j],
+                          rbs_status_name(r.status), r.energy, r.drift);
+            if (m == RBS_METHOD_EVENT) {
+                assert_int_equal(r.status, RBS_E_UNSUPPORTED);
+                continue;
+            }
+            assert_int_equal(r.status, RBS_OK);
+            assert_true(r.energy < 2.0 * Er * om * h);
+        }
     }
 }
 
@@ -371,6 +420,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(intermediate_axis_flip_period),
         cmocka_unit_test(off_centre_ball_rocks_on_a_frictionless_floor),
+        cmocka_unit_test(off_centre_ball_rocks_on_a_rough_floor),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -210,6 +210,7 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
         memcpy(&w->orient[4 * i], &S[S_Q0], 4 * sizeof(double));
         place(w, i, v3_load(&S[S_X0]), q_load(&S[S_Q0]));
     }
+    rbs__levers_at_middle(w, h, S_Q0, S_QE, S_SPIN); /* (off-centre rows: verlet's) */
     rbs__solve_resting_warm(w, info, h);
 
     /* Drift: the RK4 mean velocity plus half of what the resting pass

@@ -120,7 +120,9 @@ static void verlet_advance(rbs_world *w, double h, rbs_step_info *info)
         }
     }
 
-    /* Resting contact on the end velocities. */
+    /* Resting contact on the end velocities, off-centre spheres' rows at
+     * the sub-step's middle orientation. */
+    rbs__levers_at_middle(w, h, S_Q0, S_QE, S_SPIN);
     rbs__solve_resting_warm(w, info, h);
 
     /* Drift by the mean of the start and end velocities. */

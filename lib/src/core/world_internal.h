@@ -696,6 +696,13 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
  * the approach the bend of its path needs (solver.c); call on the
  * sub-step's start velocities, after the collision pass. */
 void rbs__trapezoid_reach(rbs_world *w, double h);
+/* verlet's and rk4's resting pass takes an off-centre sphere's contact
+ * rows at the sub-step's middle orientation: call after the start state
+ * and the rotation's end are in method_scratch (per slot: q0 at q0_at, the
+ * end qe at qe_at, spun_at nonzero when the rotation was sub-stepped) and
+ * before the pass; w->orient of those spheres is left at the middle, for
+ * the drift to replace (solver.c). */
+void rbs__levers_at_middle(rbs_world *w, double h, uint32_t q0_at, uint32_t qe_at, uint32_t spun_at);
 /* verlet's and rk4's drift moves positions by half of a resting pass's
  * impulses: after it, the other half of each sphere pair's impulse is
  * turned onto the pair's end normal (solver.c). */
