@@ -424,6 +424,71 @@ static void ball_rests_far_from_the_origin(void **state)
     }
 }
 
+/* ---- dropped far from the origin, it comes to rest ------------------------- */
+
+/* A ball (r = 0.1 m, 1 kg) dropped from a gap of 0.1 m onto a floor
+ * through (off, off, off), e = 0.5, mu_s = 0.5, mu_k = 0.4, at off = 1e7 m
+ * and 1e9 m (coordinates there round in steps of s = 1.9e-9 and 1.2e-7 m;
+ * the slop, 1e-7 m, is still above half a step up to 1.1e9 m, so no method
+ * refuses: docs/physics.md, "coordinate rounding").  Its bounces end at
+ * t_inf = 3 sqrt(2 h / g) = 0.43 s (Zeno, e = 1/2: test
+ * bouncing_ball_comes_to_rest); from 1 s to 2 s it must be at rest, as at
+ * the origin.  Measured over that second: the largest speed, exactly 0 (a
+ * resting ball's speed is 0, and so is soft's here); the steps counted in
+ * rbs_world_rounded_steps, 0 (nothing moves); the height above off + r,
+ * within the slop plus one step s of rounding of the contact's gap (soft:
+ * less its sink slop + g / omega^2, two steps for its push).  Before
+ * session 52 euler, selective and auto rested 4.3e-8 m past the slop at
+ * 1e9 m still falling at 4.3e-5 m/s (2.1e-7 m/s at 1e7 m), every frame one
+ * of the rounded steps: the resting pass asked the contact to close a gap
+ * that x + v h could not, as it rounds back to x. */
+static void ball_dropped_far_from_the_origin_rests(void **state)
+{
+    const double offs[2] = {1e7, 1e9};
+    size_t i;
+    int c, k;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        for (c = 0; c < 2; ++c) {
+            const double off = offs[c], r = 0.1, dt = 1e-3, slop = 1e-6 * r;
+            const double s_off = ldexp(1.0, ilogb(off) - 52);
+            const int soft = m == RBS_METHOD_SOFT;
+            rbs_world *w = mworld(m, dt, -G, 0.5);
+            rbs_material_id mat = material(w, "m", 0.5, 0.4, -1.0);
+            rbs_plane_def p;
+            rbs_body_id b;
+            uint64_t rounded = 0;
+            double speed = 0.0, height = 0.0;
+            char what[64];
+            rbs_plane_def_init(&p);
+            p.point = (rbs_vec3){off, off, off};
+            p.material = mat;
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            b = ball(w, r, 1.0, off, off, off + r + 0.1, 0, 0, 0, mat);
+            if (msteps(w, m, 1000) != 0) {
+                rbs_world_destroy(w);
+                continue;
+            }
+            rounded = rbs_world_rounded_steps(w);
+            for (k = 0; k < 1000; ++k) {
+                rbs_body_state st;
+                if (msteps(w, m, 1) != 0)
+                    break;
+                st = state_of(w, b);
+                speed = fmax(speed, sqrt(st.velocity.x * st.velocity.x + st.velocity.y * st.velocity.y +
+                                         st.velocity.z * st.velocity.z));
+                height = fmax(height, fabs(st.position.z - (off + r) + (soft ? slop + soft_sink(G, dt) : 0.0)));
+            }
+            snprintf(what, sizeof what, "dropped at %g m: speed at rest", off);
+            report(m, what, speed, 0.0);
+            report(m, "  rounded steps at rest", (double)(rbs_world_rounded_steps(w) - rounded), 0.0);
+            report(m, "  height over the floor", height, soft ? 2.0 * s_off + slop : slop + s_off);
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 /* ---- a small ball on a big one, dropped together ---------------------------- */
 
 /* A big ball (M = 1 kg, R = 0.2 m) with a small one (m, r = 0.05 m) resting
@@ -1891,6 +1956,7 @@ int main(void)
         cmocka_unit_test(ball_between_walls_keeps_its_period),
         cmocka_unit_test(constant_torque_spins_up_linearly),
         cmocka_unit_test(ball_rests_far_from_the_origin),
+        cmocka_unit_test(ball_dropped_far_from_the_origin_rests),
         cmocka_unit_test(stacked_drop_follows_sequential_impacts),
         cmocka_unit_test(cradles_pass_one_and_two_strikers),
         cmocka_unit_test(spinning_projectile_keeps_its_spin),
