@@ -1988,6 +1988,93 @@ static void rolling_and_spinning_resistance_stop_the_ball(void **state)
     }
 }
 
+/* ---- a ball pushed or twisted on a floor --------------------------------- */
+
+/* A solid ball (m = 2 kg, r = 0.1 m, I = 2/5 m r^2) at rest on a floor
+ * (mu_s = 0.3, mu_k = 0.2, g = 9.81), driven for 1 s by a constant
+ * horizontal force F along x at its centre, or by a constant torque tau
+ * about +y (which rolls it along +x).  Newton's laws for the centre and
+ * about it with the friction f at the contact (Meriam & Kraige, Dynamics,
+ * plane motion of a rolling wheel; the rolling ball of any mechanics text):
+ *  - force: rolling (v = r w) needs f = 2 F / 7 against F, a = 5 F / (7 m),
+ *    so it rolls iff F <= 7/2 mu_s m g; else it slides, a = F / m - mu_k g,
+ *    w' = 5 mu_k g / (2 r), and stays sliding (slip speed grows at
+ *    F / m - 7/2 mu_k g > 0);
+ *  - torque: rolling needs f = 5 tau / (7 r) along +x, a = 5 tau / (7 m r),
+ *    so it rolls iff tau <= 7/5 mu_s m g r; else its contact slips back,
+ *    a = mu_k g, w' = (tau - mu_k m g r) / I.
+ * Cases at 0.9 and 1.1 of each threshold.  (The inclines' rolling and
+ * sliding, where gravity drives the ball, are incline_at_the_rolling_
+ * threshold; spinning up under constant_torque_spins_up_linearly is free.)
+ * Bounds as for the incline: speed and spin after 1 s exact to 1e-11 (one
+ * constant acceleration; 1e-11 / r for the spin), nothing else moves
+ * (1e-12), the distance a T^2/2 plus each method's lag a T (euler_lag)
+ * to 1e-12, the height r to 1e-12; soft's
+ * contact sinks by the slop plus g / omega^2 (soft_sink; the load is the
+ * ball's weight on m_eff = m, 1e-9 for its settling), and while it sinks
+ * it bears less than the weight: the normal impulse it lacks, integrated
+ * twice, is m times the depth d it sank (the ball ends at rest in z), so
+ * a sliding ball's kinetic friction, mu_k N, moves it mu_k d further
+ * (force) or less far (torque) than the exact answer: 7.0e-8 m, bound
+ * mu_k d (1 + 1e-3); a rolling ball's friction is within its cone and
+ * does not care (1e-12). */
+static void pushed_and_twisted_balls_roll_or_slide(void **state)
+{
+    const double mass = 2.0, r = 0.1, mus = 0.3, muk = 0.2, dt = 1e-3, T = 1.0, I = 0.4 * mass * r * r;
+    const double f_star = 3.5 * mus * mass * G, t_star = 1.4 * mus * mass * G * r;
+    size_t i;
+    int c;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        const int soft = m == RBS_METHOD_SOFT;
+        for (c = 0; c < 4; ++c) {
+            const int torque = c >= 2;
+            const double q = (c % 2 ? 1.1 : 0.9) * (torque ? t_star : f_star);
+            const int rolls = c % 2 == 0;
+            double a, wdot;
+            rbs_world *w = mworld(m, dt, -G, 0.0);
+            rbs_material_id mat = material(w, "m", mus, muk, 0.0);
+            rbs_sphere_def d;
+            rbs_body_id b;
+            if (!torque) {
+                a = rolls ? 5.0 * q / (7.0 * mass) : q / mass - muk * G;
+                wdot = rolls ? a / r : muk * mass * G * r / I;
+            } else {
+                a = rolls ? 5.0 * q / (7.0 * mass * r) : muk * G;
+                wdot = rolls ? a / r : (q - muk * mass * G * r) / I;
+            }
+            floor_plane(w, mat);
+            rbs_sphere_def_init(&d);
+            d.radius = r;
+            d.mass = mass;
+            d.position.z = r;
+            d.material = mat;
+            if (torque)
+                d.torque.y = q;
+            else
+                d.force.x = q;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+            if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+                rbs_body_state s = state_of(w, b);
+                const double x_exact = a * T * (T / 2.0 + euler_lag(m, dt));
+                const double sink = soft ? 1e-6 * r + soft_sink(G, dt) : 0.0;
+                char what[64];
+                snprintf(what, sizeof what, "%s %.1f of the limit: %s", torque ? "torque" : "force",
+                         c % 2 ? 1.1 : 0.9, rolls ? "rolls" : "slides");
+                report(m, what, fabs(s.velocity.x - a * T), 1e-11);
+                report(m, "  spin", fabs(s.angular_velocity.y - wdot * T), 1e-11 / r);
+                report(m, "  nothing else moves", fabs(s.velocity.y) + fabs(s.velocity.z) +
+                       fabs(s.angular_velocity.x) + fabs(s.angular_velocity.z) + fabs(s.position.y), 1e-12);
+                report(m, "  distance a T^2/2 + lag", fabs(s.position.x - x_exact),
+                       soft && !rolls ? muk * sink * (1.0 + 1e-3) : 1e-12);
+                report(m, "  height r", fabs(s.position.z - r + sink), soft ? 1e-9 : 1e-12);
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2015,6 +2102,7 @@ int main(void)
         cmocka_unit_test(sliding_ball_swerves),
         cmocka_unit_test(rolling_down_a_v_groove),
         cmocka_unit_test(rolling_and_spinning_resistance_stop_the_ball),
+        cmocka_unit_test(pushed_and_twisted_balls_roll_or_slide),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
