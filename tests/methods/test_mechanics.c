@@ -1074,10 +1074,10 @@ static void sliding_up_an_incline_rolls_back(void **state)
  * (r, dt, 3 sub-steps, default slop) sinks to its fixed point with mu_s
  * above rolling's need but below mu_s* / ms: (N1 + N2) e1 (see
  * incline_at_the_rolling_threshold); rounding, 1e-12, when the solve holds. */
-static double sink_slide(double r, double dt, double th, double mus, double muk)
+static double sink_slide(double r, double dt, double th, double mstar, double mus, double muk)
 {
     const double h = dt / 3.0, hw = 2.0 * PI_ / 3.0, a = hw * (20.0 + hw), ms = a / (1.0 + a), is = 1.0 / (1.0 + a);
-    const double gc = G * cos(th), mstar = tan(th) / 3.5, slop = 1e-6 * r;
+    const double gc = G * cos(th), slop = 1e-6 * r;
     const double e1 = (mstar - muk * ms) * gc * h * h;
     double n1, n2;
     if (mus * ms >= mstar)
@@ -1094,7 +1094,13 @@ static double sink_slide(double r, double dt, double th, double mus, double muk)
  * mu_s* = tan th / 3.5 = 0.16496; cases mu_s = 1.0001 mu_s* (rolls: friction
  * at 99.99 % of its static limit), 0.9999 mu_s* (slides), mu_k = 0.8 mu_s,
  * and mu_s = mu_k = 5 (rolls: a sphere never stays put on an incline,
- * however rough).  (test_contacts.c's oblique_incline_closed_form checks
+ * however rough).  The same for a hollow ball (I = 2/3 m r^2; k = I /
+ * (m r^2) in general): it rolls at a = g sin th / (1 + k) = 3/5 g sin th
+ * if tan th <= (1 + k) / k mu_s = 5/2 mu_s, else slides, spinning up at
+ * mu_k g cos th / (k r) = 3/2 mu_k g cos th / r; mu_s* = tan th / 2.5
+ * (no test rolled a hollow ball down an incline; soft's bounds below take
+ * its mu_s*, the sink and sliding the same).
+ * (test_contacts.c's oblique_incline_closed_form checks
  * both regimes far from the threshold.)  Bounds as there: the speed and
  * spin after 1 s exact to 1e-11 (a constant acceleration); the distance
  * a T^2 / 2 plus each method's lag a T (euler_lag), to 1e-12; the height
@@ -1126,59 +1132,74 @@ static double sink_slide(double r, double dt, double th, double mus, double muk)
  * height the sink to 1e-9. */
 static void incline_at_the_rolling_threshold(void **state)
 {
-    const double r = 0.1, dt = 1e-3, th = PI_ / 6.0, sn = sin(th), cs = cos(th), mstar = tan(th) / 3.5;
+    const double r = 0.1, dt = 1e-3, th = PI_ / 6.0, sn = sin(th), cs = cos(th);
     const int steps = 1000;
     const double T = steps * dt;
     size_t i;
-    int c;
+    int c, hollow;
     (void)state;
     for (i = 0; i < N_METHODS; ++i) {
         rbs_method m = all_methods[i];
         const int soft = m == RBS_METHOD_SOFT;
         const double margin = 1e-4;
-        const double mus[4] = {(1.0 + margin) * mstar, (1.0 - margin) * mstar, 5.0, (1.0 + margin) * mstar};
-        const double muk[4] = {0.8 * mus[0], 0.8 * mus[1], 5.0, 0.8 * mus[3]};
-        /* (soft also runs the first case in its general layout: spinning
-         * resistance, which a ball rolling straight down never meets) */
-        for (c = 0; c < (soft ? 4 : 3); ++c) {
-            const int rolls = tan(th) <= 3.5 * mus[c];
-            const double a = rolls ? 5.0 / 7.0 * G * sn : G * (sn - muk[c] * cs);
-            const double wdot = rolls ? a / r : 5.0 * muk[c] * G * cs / (2.0 * r);
-            const double sink = soft ? 1e-6 * r + G * cs * dt * dt / (4.0 * PI_ * PI_) : 0.0;
-            rbs_world *w = mworld(m, dt, -G, 0.0);
-            rbs_material_id mat = material(w, "m", mus[c], muk[c], 0.0);
-            rbs_body_id b;
-            if (c == 3) {
-                rbs_pair_def pd;
-                rbs_pair_def_init(&pd);
-                pd.a = pd.b = mat;
-                pd.static_friction = mus[c];
-                pd.kinetic_friction = muk[c];
-                pd.restitution = 0.0;
-                pd.spinning = 1e-3;
-                CHECK_OK(rbs_world_set_pair(w, &pd));
+        for (hollow = 0; hollow < 2; ++hollow) {
+            /* k = I / (m r^2): 2/5 solid, 2/3 hollow; rolling needs
+             * mu_s >= tan th k / (1 + k) */
+            const double k = hollow ? 2.0 / 3.0 : 0.4, mstar = tan(th) * k / (1.0 + k);
+            const double mus[4] = {(1.0 + margin) * mstar, (1.0 - margin) * mstar, 5.0, (1.0 + margin) * mstar};
+            const double muk[4] = {0.8 * mus[0], 0.8 * mus[1], 5.0, 0.8 * mus[3]};
+            /* (soft also runs the solid ball's first case in its general
+             * layout: spinning resistance, which a ball rolling straight
+             * down never meets) */
+            for (c = 0; c < (soft && !hollow ? 4 : 3); ++c) {
+                const int rolls = mus[c] >= mstar;
+                const double a = rolls ? G * sn / (1.0 + k) : G * (sn - muk[c] * cs);
+                const double wdot = rolls ? a / r : muk[c] * G * cs / (k * r);
+                const double sink = soft ? 1e-6 * r + G * cs * dt * dt / (4.0 * PI_ * PI_) : 0.0;
+                rbs_world *w = mworld(m, dt, -G, 0.0);
+                rbs_material_id mat = material(w, "m", mus[c], muk[c], 0.0);
+                rbs_sphere_def d;
+                rbs_body_id b;
+                if (c == 3) {
+                    rbs_pair_def pd;
+                    rbs_pair_def_init(&pd);
+                    pd.a = pd.b = mat;
+                    pd.static_friction = mus[c];
+                    pd.kinetic_friction = muk[c];
+                    pd.restitution = 0.0;
+                    pd.spinning = 1e-3;
+                    CHECK_OK(rbs_world_set_pair(w, &pd));
+                }
+                incline_plane(w, sn, cs, mat);
+                rbs_sphere_def_init(&d);
+                d.radius = r;
+                d.mass = 1.0;
+                d.inertia_kind = hollow ? RBS_INERTIA_HOLLOW : RBS_INERTIA_SOLID;
+                d.position = (rbs_vec3){-r * sn, 0.0, r * cs};
+                d.material = mat;
+                CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+                if (msteps(w, m, steps) == 0) {
+                    rbs_body_state s = state_of(w, b);
+                    /* down the slope d = (-cos, 0, -sin); the spin about n x d = (0, -1, 0) */
+                    double along = -(s.position.x + r * sn) * cs - (s.position.z - r * cs) * sn;
+                    double normal = -(s.position.x + r * sn) * sn + (s.position.z - r * cs) * cs;
+                    double v_along = -s.velocity.x * cs - s.velocity.z * sn;
+                    double v_normal = -s.velocity.x * sn + s.velocity.z * cs;
+                    double x_exact = a * T * (T / 2.0 + euler_lag(m, dt));
+                    double xb = !soft ? 1e-12
+                                : rolls && c != 2 ? sink_slide(r, dt, th, mstar, mus[c], muk[c])
+                                                  : 1e-7;
+                    char what[64];
+                    snprintf(what, sizeof what, "incline %s mu_s %.4f mu_s*: %s%s", hollow ? "hollow" : "solid",
+                             mus[c] / mstar, rolls ? "rolls" : "slides", c == 3 ? " (general)" : "");
+                    report(m, what, fabs(v_along - a * T) + fabs(v_normal) + fabs(s.velocity.y), 1e-11);
+                    report(m, "  spin", fabs(-s.angular_velocity.y - wdot * T) + fabs(s.angular_velocity.x) +
+                           fabs(s.angular_velocity.z), 1e-11 / r);
+                    report(m, "  distance a T^2/2 + lag", fabs(along - x_exact), xb);
+                    report(m, "  height over the plane", fabs(normal + sink), soft ? 1e-9 : 1e-12);
+                }
+                rbs_world_destroy(w);
             }
-            incline_plane(w, sn, cs, mat);
-            b = ball(w, r, 1.0, -r * sn, 0.0, r * cs, 0, 0, 0, mat);
-            if (msteps(w, m, steps) == 0) {
-                rbs_body_state s = state_of(w, b);
-                /* down the slope d = (-cos, 0, -sin); the spin about n x d = (0, -1, 0) */
-                double along = -(s.position.x + r * sn) * cs - (s.position.z - r * cs) * sn;
-                double normal = -(s.position.x + r * sn) * sn + (s.position.z - r * cs) * cs;
-                double v_along = -s.velocity.x * cs - s.velocity.z * sn;
-                double v_normal = -s.velocity.x * sn + s.velocity.z * cs;
-                double x_exact = a * T * (T / 2.0 + euler_lag(m, dt));
-                double xb = !soft ? 1e-12 : rolls && c != 2 ? sink_slide(r, dt, th, mus[c], muk[c]) : 1e-7;
-                char what[64];
-                snprintf(what, sizeof what, "incline mu_s %.4f mu_s*: %s%s", mus[c] / mstar, rolls ? "rolls" : "slides",
-                         c == 3 ? " (general)" : "");
-                report(m, what, fabs(v_along - a * T) + fabs(v_normal) + fabs(s.velocity.y), 1e-11);
-                report(m, "  spin", fabs(-s.angular_velocity.y - wdot * T) + fabs(s.angular_velocity.x) +
-                       fabs(s.angular_velocity.z), 1e-11 / r);
-                report(m, "  distance a T^2/2 + lag", fabs(along - x_exact), xb);
-                report(m, "  height over the plane", fabs(normal + sink), soft ? 1e-9 : 1e-12);
-            }
-            rbs_world_destroy(w);
         }
     }
 }
