@@ -2144,6 +2144,70 @@ static void pushed_and_twisted_balls_roll_or_slide(void **state)
     }
 }
 
+/* ---- a ball pressed to a wall rolls down it -------------------------------- */
+
+/* A solid ball (1 kg, r = 0.1 m) pressed against a wall x = 0 (normal +x)
+ * by a constant force F along -x at its centre, gravity g down the wall,
+ * mu_s = 0.5, mu_k = 0.4: the wall's load is the applied force, not
+ * gravity.  As on an incline (incline_at_the_rolling_threshold, with
+ * g sin th -> g and m g cos th -> F): it rolls down at a = 5/7 g (spin
+ * a / r) iff 2/7 m g <= mu_s F, else slides at a = g - mu_k F / m,
+ * spinning up at 5 mu_k F / (2 m r).  Cases F = 1.1 and 0.9 of 2/7 m g /
+ * mu_s.  Bounds as for the pushed ball (pushed_and_twisted_balls_roll_or_
+ * slide): speed and spin exact to 1e-11 (1e-11 / r), the distance a T^2/2
+ * plus each method's lag to 1e-12, x = r to 1e-12; soft sinks into the
+ * wall by the slop plus (F / m) / omega^2, and slides mu_k times that less
+ * far (its contact bears less than F while it sinks). */
+static void ball_pressed_to_a_wall_rolls_down(void **state)
+{
+    const double mass = 1.0, r = 0.1, mus = 0.5, muk = 0.4, dt = 1e-3, T = 1.0, z0 = 10.0;
+    size_t i;
+    int c;
+    (void)state;
+    for (i = 0; i < N_METHODS; ++i) {
+        rbs_method m = all_methods[i];
+        const int soft = m == RBS_METHOD_SOFT;
+        for (c = 0; c < 2; ++c) {
+            const double F = (c ? 0.9 : 1.1) * (2.0 / 7.0) * mass * G / mus;
+            const int rolls = c == 0;
+            const double a = rolls ? 5.0 / 7.0 * G : G - muk * F / mass;
+            const double wdot = rolls ? a / r : 2.5 * muk * F / (mass * r);
+            const double sink = soft ? 1e-6 * r + soft_sink(F / mass, dt) : 0.0;
+            rbs_world *w = mworld(m, dt, -G, 0.0);
+            rbs_material_id mat = material(w, "m", mus, muk, 0.0);
+            rbs_plane_def p;
+            rbs_sphere_def d;
+            rbs_body_id b;
+            rbs_plane_def_init(&p);
+            p.normal = (rbs_vec3){1, 0, 0};
+            p.material = mat;
+            CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+            rbs_sphere_def_init(&d);
+            d.radius = r;
+            d.mass = mass;
+            d.position = (rbs_vec3){r, 0.0, z0};
+            d.force.x = -F;
+            d.material = mat;
+            CHECK_OK(rbs_world_add_sphere(w, &d, &b));
+            if (msteps(w, m, (int)(T / dt + 0.5)) == 0) {
+                rbs_body_state s = state_of(w, b);
+                const double down = a * T * (T / 2.0 + euler_lag(m, dt));
+                char what[64];
+                snprintf(what, sizeof what, "pressed to a wall by %.2f N: %s", F, rolls ? "rolls" : "slides");
+                /* rolling down the wall (-z) with the contact at -r x:
+                 * v_z + r w_y = 0, so w_y = a t / r > 0 */
+                report(m, what, fabs(s.velocity.z + a * T) + fabs(s.velocity.x) + fabs(s.velocity.y), 1e-11);
+                report(m, "  spin", fabs(s.angular_velocity.y - wdot * T) + fabs(s.angular_velocity.x) +
+                       fabs(s.angular_velocity.z), 1e-11 / r);
+                report(m, "  distance a T^2/2 + lag", fabs(z0 - s.position.z - down),
+                       soft && !rolls ? muk * sink * (1.0 + 1e-3) : 1e-12);
+                report(m, "  off the wall", fabs(s.position.x - r + sink), soft ? 1e-9 : 1e-12);
+            }
+            rbs_world_destroy(w);
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2173,6 +2237,7 @@ int main(void)
         cmocka_unit_test(rolling_down_a_v_groove),
         cmocka_unit_test(rolling_and_spinning_resistance_stop_the_ball),
         cmocka_unit_test(pushed_and_twisted_balls_roll_or_slide),
+        cmocka_unit_test(ball_pressed_to_a_wall_rolls_down),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
