@@ -20,7 +20,9 @@
  * A speculative contact (gap > slop, contact.c) takes no collision impulse;
  * the collision pass marks it as an impact (bias -1: left out of the resting
  * pass too) when it approaches faster than its threshold, and the resting
- * pass lets it approach at (gap - slop) / h, so it closes to the slop.
+ * pass lets it approach at (gap - slop) / h, so it closes to the slop
+ * (0 when gap - slop is within the rounding of its coordinates, which no
+ * move could close: rbs__solve_resting_warm).
  */
 #include <string.h>
 
