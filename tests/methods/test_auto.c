@@ -12,13 +12,24 @@
 
 #define N_AUTO RBS_METHOD_AUTO_SOFT_BODIES
 
+/* A world of def d with a material "m" (mu_s 0.5, mu_k 0.4, e 0.5) and a
+ * floor of it. */
+static rbs_world *on_a_floor(const rbs_world_def *d, rbs_material_id *m)
+{
+    rbs_world *w = NULL;
+    CHECK_OK(rbs_world_create(d, &w));
+    *m = material(w, "m", 0.5, 0.4, 0.5);
+    floor_plane(w, *m);
+    return w;
+}
+
 /* A heap of `moving` spheres on a 0.11 m lattice over a floor, and `fixed`
  * fixed spheres under the floor's far end, with friction: every stage of a
  * pile runs (impacts, rest, friction, sphere pairs). */
 static rbs_world *heap(rbs_method method, uint32_t moving, uint32_t fixed, int mutual, int prune)
 {
     rbs_world_def d;
-    rbs_world *w = NULL;
+    rbs_world *w;
     rbs_material_id m;
     rbs_sphere_def s;
     uint32_t i;
@@ -27,9 +38,7 @@ static rbs_world *heap(rbs_method method, uint32_t moving, uint32_t fixed, int m
     d.method = method;
     d.mutual_gravity = mutual;
     d.prune = prune;
-    CHECK_OK(rbs_world_create(&d, &w));
-    m = material(w, "m", 0.5, 0.4, 0.5);
-    floor_plane(w, m);
+    w = on_a_floor(&d, &m);
     for (i = 0; i < moving; ++i)
         ball(w, 0.05, 0.1, 0.11 * (i % 8) + 0.003 * (i % 3), 0.11 * ((i / 8) % 8), 0.06 + 0.11 * (i / 64), 0, 0,
              -0.1 * (i % 5), m);
@@ -111,15 +120,13 @@ static void mutual_gravity_is_euler(void **state)
 static rbs_world *tower(rbs_method method, double heavy, rbs_body_id *top, rbs_body_id *under)
 {
     rbs_world_def d;
-    rbs_world *w = NULL;
+    rbs_world *w;
     rbs_material_id m;
     uint32_t i;
     rbs_world_def_init(&d);
     d.max_bodies = N_AUTO + 1;
     d.method = method;
-    CHECK_OK(rbs_world_create(&d, &w));
-    m = material(w, "m", 0.5, 0.4, 0.5);
-    floor_plane(w, m);
+    w = on_a_floor(&d, &m);
     for (i = 0; i + 2 < N_AUTO; ++i)
         ball(w, 0.05, 0.1, 0.11 * (i % 8) + 0.003 * (i % 3), 0.11 * ((i / 8) % 8), 0.06 + 0.11 * (i / 64), 0, 0,
              -0.1 * (i % 5), m);
@@ -184,7 +191,7 @@ static void wide_mass_ratio_is_euler(void **state)
 static rbs_world *grains(rbs_method method, double r, double dt, uint32_t substeps, rbs_body_id *ids)
 {
     rbs_world_def d;
-    rbs_world *w = NULL;
+    rbs_world *w;
     rbs_material_id m;
     uint32_t i;
     rbs_world_def_init(&d);
@@ -192,9 +199,7 @@ static rbs_world *grains(rbs_method method, double r, double dt, uint32_t subste
     d.method = method;
     d.dt = dt;
     d.soft_substeps = substeps;
-    CHECK_OK(rbs_world_create(&d, &w));
-    m = material(w, "m", 0.5, 0.4, 0.5);
-    floor_plane(w, m);
+    w = on_a_floor(&d, &m);
     for (i = 0; i < N_AUTO; ++i)
         ids[i] = ball(w, r, 1000.0 * 4.18879020478639 * r * r * r, 3.0 * r * (i % 8), 3.0 * r * (i / 8), r, 0, 0, 0, m);
     return w;
