@@ -48,7 +48,7 @@ int main(int argc, char **argv)
            "the reason, quoted below), `error` that a call failed (quoted below).\n"
            "EPS = 2^-52 = 2.2e-16.\n\n"
            "The default method, `auto`, has no column: it takes `euler` below 64 moving spheres and\n"
-           "`soft` from 64 on (their masses within a ratio of 1e4, soft's deepest sink within 1e-3 of their smallest radius), bit for bit (tests/methods/test_auto.c); every case here has fewer\n"
+           "`soft` from 64 on (their masses within a ratio of 1e4, soft's deepest sink within 1e-3 of their smallest radius on up to 4x soft_substeps), bit for bit (tests/methods/test_auto.c); every case here has fewer\n"
            "than 64 spheres, so `auto` meets the `euler` column.\n\n",
            rbs_version());
     printf("| case | measured | bound |");

@@ -138,10 +138,10 @@ static rbs_world *tower(rbs_method method, double heavy, rbs_body_id *top, rbs_b
 /* A heavy ball on a light one: soft sinks their contacts by the heavy one's
  * weight over the light one's mass x omega^2 (docs/methods.md), 4.6 % of
  * the radius for 1000 kg on 0.1 kg at dt = 1 ms (a probe of session 52;
- * auto took soft for it), so auto takes soft only while that sink is
- * within RBS_METHOD_AUTO_SOFT_SINK of the radius: 10 kg on 0.1 kg (the
- * sink 100 g / omega^2 = 2.48e-5 m, 5e-4 of 0.05 m) soft, 30 kg (1.5e-3)
- * euler, saying why.  Beyond RBS_METHOD_AUTO_SOFT_MASS_RATIO Euler, bit
+ * auto took soft on 3 sub-steps for it), so auto keeps that sink within
+ * RBS_METHOD_AUTO_SOFT_SINK of the radius: 10 kg on 0.1 kg (the sink 100 g
+ * / omega^2 = 2.48e-5 m, 5e-4 of 0.05 m) soft on 3, 30 kg (1.49e-3) soft
+ * on 4, 1000 kg (0.0497: 21.2 sub-steps, beyond 12) euler, saying why.  Beyond RBS_METHOD_AUTO_SOFT_MASS_RATIO Euler, bit
  * for bit, says why, and holds the heavy ball on the
  * light one: after 1 s the pair overlaps by less than 1 % of a radius
  * (Euler's resting pass keeps stacks of 1e9:1 within the slop, 1e-6 of the
@@ -160,9 +160,15 @@ static void wide_mass_ratio_is_euler(void **state)
     assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_SOFT);
     rbs_world_destroy(a);
     a = tower(RBS_METHOD_AUTO, 30.0, &top, &under);
+    CHECK_OK(rbs_world_explain(a, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft on 4 sub-steps, since 64 spheres move (soft from 64 on, without mutual "
+                                "gravity), and on soft_substeps 3 it could sink a contact by 0.00149 of the smallest "
+                                "moving radius"));
+    rbs_world_destroy(a);
+    a = tower(RBS_METHOD_AUTO, 1000.0, &top, &under);
     assert_int_equal(rbs_world_method_in_use(a), RBS_METHOD_EULER);
     CHECK_OK(rbs_world_explain(a, buf, sizeof buf, NULL));
-    assert_non_null(strstr(buf, "  auto: euler, since soft could sink a contact by 0.00149 of the smallest moving "
+    assert_non_null(strstr(buf, "  auto: euler, since soft could sink a contact by 0.0497 of the smallest moving "
                                 "radius"));
     rbs_world_destroy(a);
     a = tower(RBS_METHOD_AUTO, 1e8, &top, &under);
@@ -205,18 +211,23 @@ static rbs_world *grains(rbs_method method, double r, double dt, uint32_t subste
     return w;
 }
 
-/* Grains too small for soft keep Euler.  soft sinks a contact by its load
- * over m_eff omega^2 (omega = 2 pi soft_substeps / (3 dt)): a length, g /
- * omega^2 = 9.81 (1e-3 / 2 pi)^2 = 2.4849e-7 m for a grain's own weight at
- * dt = 1 ms and 3 sub-steps, so RBS_METHOD_AUTO_SOFT_SINK (1e-3) puts the
- * boundary at r* = 2.4849e-4 m.  Around it: soft at 1.01 r*, Euler at 0.99
- * r*, and back to soft at 0.99 r* with dt / 2 (the sink / 4) or 6
- * sub-steps; an applied force pushing a grain down (3 times its weight)
- * keeps Euler at 1.01 r*.  And what it buys: grains of 1 um stay on the
- * floor within 1 % of their radius with auto (Euler: within the slop),
- * where soft, taken before session 52, sinks them g / omega^2 = 0.248 of
- * their radius (the model's sink, to 2 %: the slop and the settling). */
-static void small_grains_are_euler(void **state)
+/* Grains too small for soft at soft_substeps take more sub-steps, then
+ * Euler.  soft sinks a contact by its load over m_eff omega^2 (omega = 2 pi
+ * n / (3 dt), n sub-steps): a length, g / omega^2 = 9.81 (1e-3 / 2 pi)^2 =
+ * 2.4849e-7 m for a grain's own weight at dt = 1 ms and 3 sub-steps, so
+ * RBS_METHOD_AUTO_SOFT_SINK (1e-3) puts the boundary at r* = 2.4849e-4 m,
+ * and below it auto takes the fewest n with the sink (3/n)^2 x 2.4849e-7
+ * within 1e-3 r, up to RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS x 3 = 12.  So:
+ * 1.01 r* soft on 3; 0.99 r* soft on 4 (3 sqrt(1/0.99) = 3.015), bit for
+ * bit soft with soft_substeps 4, and on 3 again with dt / 2 (the sink / 4)
+ * or soft_substeps 6 given; r* / 15 on 12 (3 sqrt(15) = 11.6), r* / 17
+ * Euler (12.4); an applied force pushing a grain down (20 weights, the
+ * sink x 21: 13.7 sub-steps) Euler at 1.01 r*.  And what it buys: grains
+ * of 1 um stay on the floor within 1 % of their radius with auto (Euler:
+ * within the slop), where soft on 3, taken before session 52, sinks them
+ * g / omega^2 = 0.248 of their radius (the model's sink, to 2 %: the slop
+ * and the settling). */
+static void small_grains_take_more_substeps_or_euler(void **state)
 {
     const double rstar = 9.81 * (1e-3 / (2.0 * PI_)) * (1e-3 / (2.0 * PI_)) / RBS_METHOD_AUTO_SOFT_SINK;
     rbs_world *w, *s;
@@ -226,19 +237,39 @@ static void small_grains_are_euler(void **state)
     (void)state;
     w = grains(RBS_METHOD_AUTO, 1.01 * rstar, 1e-3, 3, ids);
     assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
-    CHECK_OK(rbs_body_set_force(w, ids[0], (rbs_vec3){0, 0, -3.0 * 9.81 * 1000.0 * 4.18879020478639 * pow(1.01 * rstar, 3)}));
-    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
-    rbs_world_destroy(w);
-    w = grains(RBS_METHOD_AUTO, 0.99 * rstar, 1e-3, 3, ids);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft, since 64 spheres move"));
+    CHECK_OK(rbs_body_set_force(w, ids[0], (rbs_vec3){0, 0, -20.0 * 9.81 * 1000.0 * 4.18879020478639 * pow(1.01 * rstar, 3)}));
     assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
     CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
-    assert_non_null(strstr(buf, "  auto: euler, since soft could sink a contact by 0.00101 of the smallest moving "
+    assert_non_null(strstr(buf, "  auto: euler, since soft could sink a contact by 0.0208 of the smallest moving "
                                 "radius (the largest load"));
-    CHECK_OK(rbs_world_set_dt(w, 0.5e-3));
+    assert_non_null(strstr(buf, "within 0.001 it would take more than 4 x soft_substeps sub-steps"));
+    rbs_world_destroy(w);
+    w = grains(RBS_METHOD_AUTO, 0.99 * rstar, 1e-3, 3, ids);
+    s = grains(RBS_METHOD_SOFT, 0.99 * rstar, 1e-3, 4, ids);
     assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft on 4 sub-steps, since 64 spheres move (soft from 64 on, without mutual "
+                                "gravity), and on soft_substeps 3 it could sink a contact by 0.00101 of the smallest "
+                                "moving radius"));
+    assert_non_null(strstr(buf, "  4 sub-steps of dt/4;"));
+    same_steps(w, s, 50);
+    rbs_world_destroy(s);
+    CHECK_OK(rbs_world_set_dt(w, 0.5e-3));
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft, since 64 spheres move"));
     rbs_world_destroy(w);
     w = grains(RBS_METHOD_AUTO, 0.99 * rstar, 1e-3, 6, ids);
-    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft, since 64 spheres move"));
+    rbs_world_destroy(w);
+    w = grains(RBS_METHOD_AUTO, rstar / 15.0, 1e-3, 3, ids);
+    CHECK_OK(rbs_world_explain(w, buf, sizeof buf, NULL));
+    assert_non_null(strstr(buf, "  auto: soft on 12 sub-steps"));
+    rbs_world_destroy(w);
+    w = grains(RBS_METHOD_AUTO, rstar / 17.0, 1e-3, 3, ids);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
     rbs_world_destroy(w);
 
     w = grains(RBS_METHOD_AUTO, 1e-6, 1e-3, 3, ids);
@@ -314,7 +345,7 @@ int main(void)
         cmocka_unit_test(from_threshold_is_soft),
         cmocka_unit_test(mutual_gravity_is_euler),
         cmocka_unit_test(wide_mass_ratio_is_euler),
-        cmocka_unit_test(small_grains_are_euler),
+        cmocka_unit_test(small_grains_take_more_substeps_or_euler),
         cmocka_unit_test(follows_the_bodies),
         cmocka_unit_test(checkpoint_keeps_auto),
     };

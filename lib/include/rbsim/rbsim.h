@@ -150,9 +150,11 @@ typedef enum rbs_method {
                                    RBS_METHOD_SOFT when at least
                                    RBS_METHOD_AUTO_SOFT_BODIES spheres move,
                                    their masses within a ratio of
-                                   RBS_METHOD_AUTO_SOFT_MASS_RATIO, no
-                                   sink beyond RBS_METHOD_AUTO_SOFT_SINK
-                                   of their smallest radius,
+                                   RBS_METHOD_AUTO_SOFT_MASS_RATIO, its
+                                   sink within RBS_METHOD_AUTO_SOFT_SINK
+                                   of their smallest radius (on up to
+                                   RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS
+                                   times soft_substeps),
                                    and there is no mutual gravity, else
                                    RBS_METHOD_EULER -- bit for bit the method
                                    chosen (rbs_world_method_in_use) */
@@ -181,9 +183,17 @@ typedef enum rbs_method {
  * equal spheres from 0.25 mm up): small grains would sink into the floor
  * and each other (1 um ones by a quarter of their radius, 1 nm ones
  * through the floor) and a heavy ball into a light one (1000 kg on 0.1 kg
- * of 0.05 m: 4.6 % of its radius); beyond it RBS_METHOD_AUTO keeps
- * RBS_METHOD_EULER (docs/methods.md, "auto"). */
+ * of 0.05 m: 4.6 % of its radius).  Beyond it RBS_METHOD_AUTO takes soft
+ * on the fewest sub-steps that bring the sink within (it falls with h^2),
+ * if at most RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS times soft_substeps, and
+ * RBS_METHOD_EULER otherwise (docs/methods.md, "auto"). */
 #define RBS_METHOD_AUTO_SOFT_SINK 1e-3
+/** ... the most sub-steps RBS_METHOD_AUTO gives the soft step, as a
+ * multiple of soft_substeps, to keep its sink within RBS_METHOD_AUTO_SOFT_SINK
+ * (4: at most 4x the soft step's work, where Euler's global rollback costs
+ * 4x to 140x it on heaps of 64 to 1,000); the results are those of
+ * RBS_METHOD_SOFT with that many soft_substeps, bit for bit. */
+#define RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS 4
 
 /** Name of a method ("euler", ...), or NULL when out of range. */
 RBS_API const char *rbs_method_name(rbs_method method);

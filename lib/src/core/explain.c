@@ -110,7 +110,14 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         rbs_method_name(w->def.method), w->def.dt, w->def.slop, w->def.tolerance,
         w->def.prune ? "on" : "off (every stage runs)");
     if (w->def.method == RBS_METHOD_AUTO) {
-        if (m == RBS_METHOD_SOFT)
+        if (m == RBS_METHOD_SOFT && p.soft_substeps > w->def.soft_substeps)
+            put(&t, "  auto: soft on %u sub-steps, since %u spheres move (soft from %u on, without mutual "
+                    "gravity), and on soft_substeps %u it could sink a contact by %.3g of the smallest "
+                    "moving radius (the largest load on the lightest sphere over its mass x omega^2; "
+                    "within %g on %u)\n",
+                (unsigned)p.soft_substeps, (unsigned)moving, (unsigned)RBS_METHOD_AUTO_SOFT_BODIES,
+                (unsigned)w->def.soft_substeps, p.soft_sink, RBS_METHOD_AUTO_SOFT_SINK, (unsigned)p.soft_substeps);
+        else if (m == RBS_METHOD_SOFT)
             put(&t, "  auto: soft, since %u spheres move (soft from %u on, without mutual gravity)\n",
                 (unsigned)moving, (unsigned)RBS_METHOD_AUTO_SOFT_BODIES);
         else if (w->def.mutual_gravity)
@@ -118,8 +125,9 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
         else if (moving >= RBS_METHOD_AUTO_SOFT_BODIES && p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO)
             put(&t, "  auto: euler, since soft could sink a contact by %.3g of the smallest moving radius (the "
                     "largest load, gravity and applied force, on the lightest sphere over its mass x "
-                    "omega^2; soft only within %g: a shorter dt or more soft_substeps lets it)\n",
-                p.soft_sink, RBS_METHOD_AUTO_SOFT_SINK);
+                    "omega^2), and within %g it would take more than %u x soft_substeps sub-steps: a "
+                    "shorter dt or more soft_substeps lets it)\n",
+                p.soft_sink, RBS_METHOD_AUTO_SOFT_SINK, (unsigned)RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS);
         else if (moving >= RBS_METHOD_AUTO_SOFT_BODIES)
             put(&t, "  auto: euler, since the moving spheres' masses span a ratio of %.3g (soft only within "
                     "%g: it sinks a heavy sphere into a light one by its load)\n",
@@ -134,11 +142,11 @@ rbs_status rbs_world_explain(const rbs_world *w, char *buf, size_t size, size_t 
                 "guards, acting from half a radius deep, where a kick within the frame can "
                 "reach further); no rollback: overlap beyond the slop is pushed out by springs of "
                 "omega = 2 pi/(3h)\n",
-            (unsigned)w->def.soft_substeps, (unsigned)w->def.soft_substeps);
+            (unsigned)p.soft_substeps, (unsigned)p.soft_substeps);
         if (w->def.soft_tolerance > 0.0 && p.gather)
             put(&t, "  soft_tolerance %g: a frame takes fewer (halved, down to 1) while no contact can "
                     "reach an overlap of %g x n/%u of its radius\n",
-                w->def.soft_tolerance, w->def.soft_tolerance, (unsigned)w->def.soft_substeps);
+                w->def.soft_tolerance, w->def.soft_tolerance, (unsigned)p.soft_substeps);
         else if (w->def.soft_tolerance > 0.0)
             put(&t, "  soft_tolerance %g: not used, every frame takes all sub-steps (this world steps "
                     "in the general layout: mutual gravity, rolling or spinning resistance, or an "

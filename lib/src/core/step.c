@@ -4,6 +4,7 @@
  * failure (a step that produces NaN or infinity is undone).
  */
 #include <limits.h>
+#include <math.h>
 #include <string.h>
 
 #include "core/soft.h"
@@ -148,13 +149,25 @@ void rbs__plan_compute(const rbs_world *w, rbs__plan *out)
      * 0.25 um for a sphere's own weight at dt = 1 ms, so soft sank a pile
      * of 1 um grains by a quarter of a radius and 1 nm ones through the
      * floor, and a 1000 kg ball pressed a 0.1 kg one of 0.05 m 4.6 % of its
-     * radius into the floor; a probe of session 52) */
-    if (p.method == RBS_METHOD_AUTO)
-        p.method = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity &&
-                           p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO &&
-                           p.soft_sink <= RBS_METHOD_AUTO_SOFT_SINK
-                       ? RBS_METHOD_SOFT
-                       : RBS_METHOD_EULER;
+     * radius into the floor; a probe of session 52 -- unless more
+     * sub-steps, at most RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS times as many,
+     * bring it within: then soft on those) */
+    p.soft_substeps = w->def.soft_substeps;
+    if (p.method == RBS_METHOD_AUTO) {
+        int soft = moving >= RBS_METHOD_AUTO_SOFT_BODIES && !w->def.mutual_gravity &&
+                   p.mass_ratio <= RBS_METHOD_AUTO_SOFT_MASS_RATIO;
+        if (soft && !(p.soft_sink <= RBS_METHOD_AUTO_SOFT_SINK)) {
+            /* the sink falls with h^2: the fewest sub-steps that bring it
+             * within the bound, up to RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS
+             * times soft_substeps (a NaN: none) */
+            const double n = ceil(w->def.soft_substeps * sqrt(p.soft_sink / RBS_METHOD_AUTO_SOFT_SINK));
+            soft = n <= (double)RBS_METHOD_AUTO_SOFT_MORE_SUBSTEPS * w->def.soft_substeps &&
+                   n <= (double)RBS__SOFT_SUBSTEPS_MAX;
+            if (soft)
+                p.soft_substeps = (uint32_t)n;
+        }
+        p.method = soft ? RBS_METHOD_SOFT : RBS_METHOD_EULER;
+    }
     if (!w->def.prune) {
         p.angular = p.gyroscopic = p.friction = p.sphere_pairs = 1;
         p.mutual = w->def.mutual_gravity != 0;

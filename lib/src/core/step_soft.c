@@ -7,7 +7,8 @@
  *   detect once, with every pair the bodies' sweeps over the frame can
  *   close (rbs__detect_swept: margins |v| dt + |a| dt^2), and guards for
  *   the pairs a kick of a closing neighbour can close (guard_depth);
- *   for each of n sub-steps of h = dt / n (n = def.soft_substeps, or with
+ *   for each of n sub-steps of h = dt / n (n = plan.soft_substeps: def's,
+ *   or more under RBS_METHOD_AUTO (step.c), or with
  *   def.soft_tolerance fewer when no contact can go deep; tolerated_substeps):
  *     v += a h                      (forces)
  *     warm start                    (apply the accumulated impulses again;
@@ -531,7 +532,7 @@ static void shared_increment(v3 a, double h, double *inc)
  * the frame's start, so a checkpoint needs nothing more to resume it. */
 static uint32_t tolerated_substeps(const rbs_world *w, double q)
 {
-    const uint32_t full = w->def.soft_substeps;
+    const uint32_t full = w->plan.soft_substeps;
     uint32_t n = full;
     while (n > 1 && q < (double)(n / 2) / (double)full)
         n /= 2;
@@ -942,7 +943,7 @@ static void fly_free(rbs_world *w, const double *acc, unsigned char *mark, doubl
  * the row kernels (soft.h), its stages on the world's threads (team.h). */
 static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
 {
-    const uint32_t full = w->def.soft_substeps, B = w->def.max_bodies;
+    const uint32_t full = w->plan.soft_substeps, B = w->def.max_bodies;
     const double dt = w->def.dt, h_full = dt / full;
     /* adapt: def.soft_tolerance may take fewer sub-steps; the frame's n and
      * h are known once detection has measured every contact's reachable
@@ -1082,7 +1083,7 @@ static rbs_status step_gathered(rbs_world *w, rbs_step_info *info)
 
 rbs_status rbs__step_soft(rbs_world *w, rbs_step_info *info)
 {
-    const uint32_t n = w->def.soft_substeps;
+    const uint32_t n = w->plan.soft_substeps;
     const double dt = w->def.dt, h = dt / n;
     const uint32_t B = w->def.max_bodies;
     double *inc = w->method_scratch; /* per slot: the accelerations (6), then the margins */

@@ -131,7 +131,11 @@ typedef struct rbs__plan {
                           largest load |m a| (gravity and applied force)
                           on the lightest, max |m a| / (m_min omega^2
                           r_min) (0 with none; never pruned):
-                          RBS_METHOD_AUTO's third test */
+                          RBS_METHOD_AUTO's third test, at
+                          def.soft_substeps */
+    uint32_t soft_substeps; /* the soft step's sub-steps a frame:
+                               def.soft_substeps, or more when
+                               RBS_METHOD_AUTO raised them (soft_sink) */
     int applied;       /* some moving sphere has an applied force or torque
                           (not a stage: never set by pruning off) */
     rbs_method method; /* the method a step takes (RBS_METHOD_AUTO resolved;
