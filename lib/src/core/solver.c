@@ -1385,6 +1385,58 @@ static uint32_t warm_sweeps_factor(const rbs_world *w)
     return r < (double)RBS__COLLISION_SWEEPS ? (uint32_t)r : RBS__COLLISION_SWEEPS;
 }
 
+/* The warm start of contact c from its entry m for a sub-step of h: the
+ * normal impulse m->n h and the tangential one, m->t h turned into today's
+ * tangent plane and kept in the static cone (with friction; else 0). */
+static void warm_impulse(const rbs__contact *c, const rbs__pair *p, const rbs__warm *m, int friction, double h,
+                         double *jn, v3 *jt)
+{
+    *jn = m->n * h;
+    *jt = v3_make(0, 0, 0);
+    if (friction) {
+        double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
+        v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
+        *jt = rbs__warm_tangent(l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0),
+                                rbs__friction_cap(p, c->jslip, *jn) * *jn);
+    }
+}
+
+int rbs__warm_accelerations(rbs_world *w, double h, uint32_t at_slot)
+{
+    uint32_t i, k, at = 0;
+    int any = 0;
+    for (k = 0; k < w->sphere_count; ++k)
+        memset(&w->method_scratch[RBS__SCRATCH_STRIDE * w->spheres[k] + at_slot], 0, 3 * sizeof(double));
+    if (w->warm_used == 0)
+        return 0;
+    rbs__warm_sort(w);
+    for (i = 0; i < w->contact_count; ++i) {
+        const rbs__contact *c = &w->contact[i];
+        const rbs__warm *m;
+        double jn;
+        v3 jt, j;
+        int e;
+        if (c->bias < 0.0)
+            continue; /* an impact: no warm start */
+        m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
+        if (m == NULL)
+            continue;
+        warm_impulse(c, rbs__contact_pair(w, c), m, w->plan.friction, h, &jn, &jt);
+        j = v3_scale(v3_add(v3_scale(c->n, jn), jt), 1.0 / h); /* N */
+        if (j.x == 0.0 && j.y == 0.0 && j.z == 0.0)
+            continue;
+        for (e = 0; e < 2; ++e) {
+            const uint32_t b = e ? c->b : c->a;
+            double *f = &w->method_scratch[RBS__SCRATCH_STRIDE * b + at_slot];
+            if (!rbs__body_moves(w, b))
+                continue;
+            v3_store(f, v3_mad(v3_load(f), j, (e ? -1.0 : 1.0) * w->inv_mass[b]));
+            any = 1;
+        }
+    }
+    return any;
+}
+
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
 {
     uint32_t sweep, i, max_sweeps = w->def.max_sweeps, at = 0, blocks;
@@ -1424,13 +1476,7 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
              * (a stack converges at once instead of creeping) */
             const rbs__warm *m = rbs__warm_find(w, rbs__warm_key(w, c), &at);
             if (m != NULL) {
-                c->jn = m->n * h;
-                if (friction) {
-                    double l = m->t.x * m->t.x + m->t.y * m->t.y + m->t.z * m->t.z;
-                    v3 t = v3_mad(m->t, c->n, -v3_dot(m->t, c->n)); /* in today's plane */
-                    c->jt = rbs__warm_tangent(l > 0.0 ? v3_scale(t, h) : v3_make(0, 0, 0),
-                                              rbs__friction_cap(p, c->jslip, c->jn) * c->jn);
-                }
+                warm_impulse(c, p, m, friction, h, &c->jn, &c->jt);
                 rbs__apply_pair(w, c, v3_add(v3_scale(c->n, c->jn), c->jt));
                 any = warmed = 1;
             }

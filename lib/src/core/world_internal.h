@@ -694,6 +694,14 @@ double rbs__resist_row(rbs_world *w, uint32_t i);
 /* The resting pass warm-started from the last warm pass, for a sub-step of h
  * seconds (h <= 0: cold, like rbs__solve_resting); stores its impulses. */
 void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h);
+/* The linear acceleration (m/s^2) the warm start of a pass for a sub-step
+ * of h seconds (> 0) predicts for each moving sphere -- its contacts' warm
+ * impulses as the pass would apply them (impacts left out), over h and its
+ * mass -- into
+ * method_scratch[RBS__SCRATCH_STRIDE * i + at_slot .. + 2], 0 for a sphere
+ * with none; call after the collision pass.  Returns whether any is not 0
+ * (rk4's stages take it: step_rk4.c; solver.c). */
+int rbs__warm_accelerations(rbs_world *w, double h, uint32_t at_slot);
 /* verlet's and rk4's speculative contacts: each one's gap becomes the
  * reach the resting pass may let its end velocity close in the sub-step of
  * h seconds, given the trapezoid drift, and a touching sphere pair's bias
