@@ -240,8 +240,8 @@ void rbs__rk4_advance(rbs_world *w, double h, rbs_step_info *info)
 
     /* Drift: the RK4 mean velocity plus half of what the resting pass
      * changed (the trapezoid over the sub-step); less the contacts' share
-     * the stages took, h/2 of it (1/6 of h (0 + 1 + 1 + 2) / 2), which the
-     * pass's change holds. */
+     * the stages' velocities took, (2 h/2 + 2 h/2 + h) / 6 = h/2 of it,
+     * which the pass's change holds. */
     for (k = 0; k < w->sphere_count; ++k) {
         uint32_t i = w->spheres[k];
         double *S = &w->method_scratch[RBS__SCRATCH_STRIDE * i];
