@@ -337,6 +337,220 @@ static void checkpoint_keeps_auto(void **state)
     rbs_world_destroy(w);
 }
 
+/* ---- The default on a heap at its extremes (auto takes soft) ---------- */
+
+#define EPS_ 2.220446049250313e-16
+#define GRAV 9.81
+
+/* A heap frame: the scene is turned by tilt about y and moved by off. */
+typedef struct heap_frame {
+    double c, s;
+    rbs_vec3 off;
+} heap_frame;
+
+static rbs_vec3 frame_dir(const heap_frame *f, double x, double y, double z)
+{
+    rbs_vec3 v;
+    v.x = f->c * x + f->s * z;
+    v.y = y;
+    v.z = -f->s * x + f->c * z;
+    return v;
+}
+
+static rbs_vec3 frame_point(const heap_frame *f, double x, double y, double z)
+{
+    rbs_vec3 v = frame_dir(f, x, y, z);
+    v.x += f->off.x;
+    v.y += f->off.y;
+    v.z += f->off.z;
+    return v;
+}
+
+/* A world point back in the scene's frame. */
+static void frame_back(const heap_frame *f, rbs_vec3 p, double out[3])
+{
+    double x = p.x - f->off.x, y = p.y - f->off.y, z = p.z - f->off.z;
+    out[0] = f->c * x - f->s * z;
+    out[1] = y;
+    out[2] = f->s * x + f->c * z;
+}
+
+/* The peer benchmark's pile (bench/peers/scenes.py, "pile") in a frame:
+ * n = side^3 spheres of r 0.05 m, 0.1 kg on a lattice of `spacing` (side
+ * per row), lowest centres z0 above the floor, each coordinate jittered by
+ * up to `jit` m, e = 0.5, mu = 0.5, in a 2 m x 2 m box (floor z = 0, walls
+ * x, y = +-1); gravity (0, 0, gz) turned with the scene.  Auto: the world
+ * takes soft (n >= 64 equal spheres, sink g / omega^2 = 2.5e-7 m = 5e-6 r
+ * within RBS_METHOD_AUTO_SOFT_SINK). */
+static rbs_world *box_heap(const heap_frame *f, int side, double spacing, double z0, double jit, double gz,
+                           rbs_body_id *b)
+{
+    static const double pl[5][6] = {{0, 0, 0, 0, 0, 1},  {-1, 0, 0, 1, 0, 0}, {1, 0, 0, -1, 0, 0},
+                                    {0, -1, 0, 0, 1, 0}, {0, 1, 0, 0, -1, 0}};
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id m;
+    uint64_t x = 12345;
+    int i, k, n = side * side * side;
+    rbs_world_def_init(&d);
+    d.max_bodies = (uint32_t)n + 5;
+    d.gravity = frame_dir(f, 0.0, 0.0, gz);
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.5, 0.5);
+    for (i = 0; i < 5; ++i) {
+        rbs_plane_def p;
+        rbs_plane_def_init(&p);
+        p.point = frame_point(f, pl[i][0], pl[i][1], pl[i][2]);
+        p.normal = frame_dir(f, pl[i][3], pl[i][4], pl[i][5]);
+        p.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &p, NULL));
+    }
+    for (i = 0; i < n; ++i) {
+        double c[3];
+        c[0] = (i % side - 0.5 * (side - 1)) * spacing;
+        c[1] = ((i / side) % side - 0.5 * (side - 1)) * spacing;
+        c[2] = z0 + (i / (side * side)) * spacing;
+        for (k = 0; k < 3; ++k) {
+            x = x * 6364136223846793005ull + 1442695040888963407ull;
+            c[k] += jit * ((double)(x >> 11) / 4503599627370496.0 - 1.0);
+        }
+        rbs_vec3 p = frame_point(f, c[0], c[1], c[2]);
+        b[i] = ball(w, 0.05, 0.1, p.x, p.y, p.z, 0, 0, 0, m);
+    }
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    return w;
+}
+
+/* The pile dropped from 100 m in auto's soft step flies 1.5 s without
+ * touching (0.12 m lattice, jitter 5 mm: gaps of at least 1 cm), so every
+ * sphere's velocity is exactly -g t: to 4 n EPS g T (n = 4,500 sub-steps of
+ * v += a h; measured 1e-13 m/s).  Positions are not exact: a sphere with a
+ * speculative contact -- a neighbour within the frame's reach, |v| dt
+ * each, from about 0.5 s on here -- flies the frame on the sub-steps,
+ * semi-implicit Euler, which leads the exact z0 - g t^2 / 2 by g dt h / 2
+ * a frame (h = dt / 3); a sphere with none flies exactly (stage_free).  So
+ * each is within [exact - g h T / 2, exact] (2.45e-3 m; 4 n EPS 100 m for
+ * rounding), and the pile loses potential energy it should keep (found in
+ * session 52, not fixed: docs/methods.md, "What it does not do"); the lead
+ * is taken here to be reached, by some sphere, by at least a tenth of its
+ * bound, so that this test fails when it is taken back. */
+static void heap_in_free_flight(void **state)
+{
+    heap_frame f = {1.0, 0.0, {0, 0, 0}};
+    rbs_body_id b[216];
+    rbs_body_state s0[216];
+    const int steps = 1500;
+    const double T = steps * 1e-3, h = 1e-3 / 3.0, n = 3.0 * steps;
+    const double vtol = 4.0 * n * EPS_ * GRAV * T, ztol = 4.0 * n * EPS_ * 100.0, lead = GRAV * h * T / 2.0;
+    double most = 0.0;
+    int i;
+    rbs_world *w = box_heap(&f, 6, 0.12, 100.0, 0.005, -GRAV, b);
+    (void)state;
+    for (i = 0; i < 216; ++i)
+        s0[i] = state_of(w, b[i]);
+    step_n(w, steps);
+    for (i = 0; i < 216; ++i) {
+        rbs_body_state s = state_of(w, b[i]);
+        double z = s0[i].position.z - 0.5 * GRAV * T * T;
+        ASSERT_NEAR(s.velocity.x, 0.0, vtol);
+        ASSERT_NEAR(s.velocity.y, 0.0, vtol);
+        ASSERT_NEAR(s.velocity.z, -GRAV * T, vtol);
+        ASSERT_NEAR(s.position.x, s0[i].position.x, ztol);
+        ASSERT_NEAR(s.position.y, s0[i].position.y, ztol);
+        assert_true(s.position.z <= z + ztol);
+        assert_true(s.position.z >= z - lead - ztol);
+        most = z - s.position.z > most ? z - s.position.z : most;
+    }
+    assert_true(most >= 0.1 * lead);
+    rbs_world_destroy(w);
+}
+
+/* A heap of 216 spheres touching each other and the floor on a lattice of
+ * exactly 2 r, with no gravity: no force and no approach, so nothing may
+ * move -- every position the same bits, every velocity exactly 0, the
+ * energy exactly its start -- over 1,000 frames of auto's soft step. */
+static void heap_without_gravity_stays_still(void **state)
+{
+    heap_frame f = {1.0, 0.0, {0, 0, 0}};
+    rbs_body_id b[216];
+    rbs_body_state s0[216];
+    rbs_energy e0, e1;
+    int i;
+    rbs_world *w = box_heap(&f, 6, 0.1, 0.05, 0.0, 0.0, b);
+    (void)state;
+    for (i = 0; i < 216; ++i)
+        s0[i] = state_of(w, b[i]);
+    CHECK_OK(rbs_world_energy(w, &e0));
+    step_n(w, 1000);
+    CHECK_OK(rbs_world_energy(w, &e1));
+    for (i = 0; i < 216; ++i) {
+        rbs_body_state s = state_of(w, b[i]);
+        assert_true(s.position.x == s0[i].position.x && s.position.y == s0[i].position.y &&
+                    s.position.z == s0[i].position.z);
+        assert_true(s.velocity.x == 0.0 && s.velocity.y == 0.0 && s.velocity.z == 0.0);
+        assert_true(s.angular_velocity.x == 0.0 && s.angular_velocity.y == 0.0 && s.angular_velocity.z == 0.0);
+    }
+    assert_true(e1.total == e0.total && e1.kinetic == 0.0);
+    rbs_world_destroy(w);
+}
+
+/* The pile of 216 dropped into its box at the origin, 1e6 m and 1e8 m away
+ * along each axis, and turned by 0.7 rad at 1e6 m, settles as at the origin
+ * by the bounds soft promises a pile: after 2 s no sphere overlaps another
+ * or a wall by more than 1 % of its radius (issue 9's bound; measured at
+ * most 0.011 % at the origin), and the energy never rises above its start
+ * by more than the rounding of the potential energy at the offset, 8 N EPS
+ * m g |offset| (each sphere's m g z rounded at |z|; 1e-9 J at the origin;
+ * measured 1e-12 J at the origin).  Rounding at 1e8 m is 1.5e-8 m, under
+ * the slop (5e-8 m) but not by much: the lattice's settled heights differ
+ * from the origin's by the packing, not by the offset (a probe of session
+ * 52 with 1,000 spheres: centre of mass 0.1308, 0.1312, 0.1292, 0.1299 and
+ * 0.1288 m above the floor at 0, 1e3, 1e6, 1e8 m and tilted at 1e6). */
+static void heap_far_from_origin_and_tilted(void **state)
+{
+    static const double cfg[5][4] = {
+        {0.0, 0.0, 0.0, 0.0}, {0.0, 1e6, -1e6, 1e6}, {0.0, 1e8, 1e8, -1e8}, {0.7, 1e6, 0.0, 1e6}, {0.7, 0.0, 0.0, 0.0}};
+    int c;
+    (void)state;
+    for (c = 0; c < 5; ++c) {
+        heap_frame f;
+        rbs_body_id b[216];
+        double p[216][3], deepest = 0.0, most = 0.0;
+        double allow = 8.0 * 216 * EPS_ * 0.1 * GRAV * (fabs(cfg[c][1]) + fabs(cfg[c][2]) + fabs(cfg[c][3])) + 1e-9;
+        rbs_energy e0, e;
+        rbs_world *w;
+        int i, j, k;
+        f.c = cos(cfg[c][0]);
+        f.s = sin(cfg[c][0]);
+        f.off.x = cfg[c][1];
+        f.off.y = cfg[c][2];
+        f.off.z = cfg[c][3];
+        w = box_heap(&f, 6, 0.12, 0.1, 0.005, -GRAV, b);
+        CHECK_OK(rbs_world_energy(w, &e0));
+        for (k = 0; k < 2000; ++k) {
+            step_n(w, 1);
+            CHECK_OK(rbs_world_energy(w, &e));
+            most = e.total - e0.total > most ? e.total - e0.total : most;
+        }
+        for (i = 0; i < 216; ++i) {
+            frame_back(&f, state_of(w, b[i]).position, p[i]);
+            for (k = 0; k < 3; ++k)
+                assert_true(isfinite(p[i][k]));
+            deepest = fmax(deepest, 0.05 - p[i][2]);
+            deepest = fmax(deepest, 0.05 - (1.0 - fabs(p[i][0])));
+            deepest = fmax(deepest, 0.05 - (1.0 - fabs(p[i][1])));
+            for (j = 0; j < i; ++j) {
+                double dx = p[i][0] - p[j][0], dy = p[i][1] - p[j][1], dz = p[i][2] - p[j][2];
+                deepest = fmax(deepest, 0.1 - sqrt(dx * dx + dy * dy + dz * dz));
+            }
+        }
+        if (deepest > 0.01 * 0.05 || most > allow)
+            fail_msg("case %d: deepest overlap %g m (bound %g), energy rise %g J (bound %g)", c, deepest,
+                     0.01 * 0.05, most, allow);
+        rbs_world_destroy(w);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -348,6 +562,9 @@ int main(void)
         cmocka_unit_test(small_grains_take_more_substeps_or_euler),
         cmocka_unit_test(follows_the_bodies),
         cmocka_unit_test(checkpoint_keeps_auto),
+        cmocka_unit_test(heap_in_free_flight),
+        cmocka_unit_test(heap_without_gravity_stays_still),
+        cmocka_unit_test(heap_far_from_origin_and_tilted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
