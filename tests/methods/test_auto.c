@@ -656,6 +656,75 @@ static void heap_of_radii_one_to_ten(void **state)
     rbs_world_destroy(w);
 }
 
+/* A stack of 64 spheres (4 x 4 x 4, touching: spacing 2 r = 0.1 m) in a box
+ * whose walls touch its outer columns, settled 1 s by auto's soft step;
+ * removing a top sphere at rest takes euler, whose resting pass pushes
+ * soft's sunk contacts out to its slop, and adding it back takes soft.
+ * Neither switch may kick the heap: soft sinks each contact by its load
+ * over m_eff omega^2, at most 4 m g / (m_eff omega^2) = 8 g / omega^2 with
+ * m_eff = m / 2 (docs/methods.md), so euler lifts a sphere by at most 4
+ * such sinks plus 4 slops and the energy rises by at most
+ * 64 m g 4 (8 g / omega^2 + slop r) = 5.1e-4 J; with the sphere put back
+ * where it was, soft sinks the heap back and its energy stays within that
+ * of the start (6e-5 J above it 10 frames on).  The heap is at rest again --
+ * kinetic energy under 1e-9 J -- 10 frames after euler takes over
+ * (measured 2e-15 J) and 200 after soft does (2.5e-8 J after 10 frames,
+ * while it sinks back into its springs). */
+static void heap_switches_at_the_threshold_without_a_kick(void **state)
+{
+    rbs_world_def d;
+    rbs_world *w = NULL;
+    rbs_material_id m;
+    rbs_sphere_def top;
+    rbs_body_id b[64], again;
+    rbs_body_state s;
+    rbs_energy e0, e1, e2;
+    const double om = 2.0 * PI_ / 1e-3, bound = 64 * 0.1 * GRAV * 4.0 * (8.0 * GRAV / (om * om) + 1e-6 * 0.05);
+    int i;
+    (void)state;
+    rbs_world_def_init(&d);
+    d.max_bodies = 70;
+    CHECK_OK(rbs_world_create(&d, &w));
+    m = material(w, "m", 0.5, 0.5, 0.5);
+    floor_plane(w, m);
+    for (i = 0; i < 4; ++i) {
+        rbs_plane_def pl;
+        rbs_plane_def_init(&pl);
+        pl.point.x = i == 0 ? -0.2 : i == 1 ? 0.2 : 0.0;
+        pl.point.y = i == 2 ? -0.2 : i == 3 ? 0.2 : 0.0;
+        pl.normal = (rbs_vec3){-pl.point.x / 0.2, -pl.point.y / 0.2, 0.0};
+        pl.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+    }
+    for (i = 0; i < 64; ++i)
+        b[i] = ball(w, 0.05, 0.1, -0.15 + 0.1 * (i % 4), -0.15 + 0.1 * ((i / 4) % 4), 0.05 + 0.1 * (i / 16), 0, 0,
+                    0, m);
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    step_n(w, 1000);
+    s = state_of(w, b[63]);
+    CHECK_OK(rbs_world_energy(w, &e0));
+    CHECK_OK(rbs_world_remove_body(w, b[63]));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_EULER);
+    step_n(w, 10);
+    CHECK_OK(rbs_world_energy(w, &e1));
+    /* e0 less the removed sphere's energy (at rest: its potential) */
+    if (e1.total - (e0.total - s.mass * GRAV * s.position.z) > bound || e1.kinetic > 1e-9)
+        fail_msg("to euler: energy rise %g J (bound %g), kinetic %g J", e1.total - (e0.total - s.mass * GRAV * s.position.z),
+                 bound, e1.kinetic);
+    rbs_sphere_def_init(&top);
+    top.radius = 0.05;
+    top.mass = 0.1;
+    top.position = s.position;
+    top.material = m;
+    CHECK_OK(rbs_world_add_sphere(w, &top, &again));
+    assert_int_equal(rbs_world_method_in_use(w), RBS_METHOD_SOFT);
+    step_n(w, 200);
+    CHECK_OK(rbs_world_energy(w, &e2));
+    if (e2.total - e0.total > bound || e2.kinetic > 1e-9)
+        fail_msg("to soft: energy rise %g J (bound %g), kinetic %g J", e2.total - e0.total, bound, e2.kinetic);
+    rbs_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -672,6 +741,7 @@ int main(void)
         cmocka_unit_test(heap_far_from_origin_and_tilted),
         cmocka_unit_test(heap_thrown_at_a_wall),
         cmocka_unit_test(heap_of_radii_one_to_ten),
+        cmocka_unit_test(heap_switches_at_the_threshold_without_a_kick),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
