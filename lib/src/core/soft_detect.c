@@ -498,46 +498,58 @@ static void pass_prepare(void *ctx, uint32_t share, uint32_t begin, uint32_t end
     detect *d = (detect *)ctx;
     rbs_world *w = d->w;
     const rbs__soft_in *in = d->in;
-    prepared *p = &d->prep[share];
     const int keep = w->vl_valid && w->vl_items == w->sphere_count;
+    /* (the share's running values in locals, stored once at the end: kept
+     * in d->prep, each step of each waited on the store of the last) */
+    prepared p;
     uint32_t k, c;
     for (c = 0; c < 3; ++c) {
-        p->lo[c] = INFINITY;
-        p->hi[c] = -INFINITY;
+        p.lo[c] = INFINITY;
+        p.hi[c] = -INFINITY;
     }
-    p->size = p->rmax = p->rsum = 0.0;
-    p->slack = INFINITY;
-    p->jumps[0] = p->jumps[1] = p->jumps[2] = 0;
+    p.size = p.rmax = p.rsum = 0.0;
+    p.slack = INFINITY;
+    p.jumps[0] = p.jumps[1] = p.jumps[2] = 0;
     for (k = begin; k < end; ++k) {
         const uint32_t a = w->spheres[k];
+        double margin, reach;
         v3 acc, tau;
         rbs__accelerations(w, a, &acc, &tau);
         if (in->acc != NULL) {
             v3_store(&in->acc[6 * a], acc);
             v3_store(&in->acc[6 * a + 3], tau);
         }
-        in->margin[a] = rbs__sweep_margin(w, a, acc, in->dt);
+        margin = rbs__sweep_margin(w, a, acc, in->dt);
+        in->margin[a] = margin;
         if (d->centres == w->bp_center)
             memcpy(&w->bp_center[3 * k], &w->pos[3 * a], 3 * sizeof(double));
-        w->bp_reach[k] = rbs__sphere_reach(w, a, in->margin[a]);
-        p->rsum += w->radius[a];
-        p->rmax = w->bp_reach[k] > p->rmax ? w->bp_reach[k] : p->rmax;
+        reach = rbs__sphere_reach(w, a, margin);
+        w->bp_reach[k] = reach;
+        p.rsum += w->radius[a];
+        p.rmax = reach > p.rmax ? reach : p.rmax;
         for (c = 0; c < 3; ++c) {
             const double x = d->centres[3 * k + c];
-            p->lo[c] = x < p->lo[c] ? x : p->lo[c];
-            p->hi[c] = x > p->hi[c] ? x : p->hi[c];
-            p->size = fabs(x) > p->size ? fabs(x) : p->size;
+            p.lo[c] = x < p.lo[c] ? x : p.lo[c];
+            p.hi[c] = x > p.hi[c] ? x : p.hi[c];
+            p.size = fabs(x) > p.size ? fabs(x) : p.size;
             /* (from the world's positions: another share may be copying
              * the last sphere's centre right now) */
             if (k > 0)
-                p->jumps[c] += fabs(w->pos[3 * a + c] - w->pos[3 * w->spheres[k - 1] + c]) > w->radius[a];
+                p.jumps[c] += fabs(w->pos[3 * a + c] - w->pos[3 * w->spheres[k - 1] + c]) > w->radius[a];
         }
         if (keep) {
             const double x = rbs__broadphase_slack(w, d->centres, k);
-            if (!(x >= p->slack))
-                p->slack = x; /* (a NaN stays) */
+            if (!(x >= p.slack))
+                p.slack = x; /* (a NaN stays) */
         }
     }
+    memcpy(d->prep[share].lo, p.lo, sizeof p.lo);
+    memcpy(d->prep[share].hi, p.hi, sizeof p.hi);
+    memcpy(d->prep[share].jumps, p.jumps, sizeof p.jumps);
+    d->prep[share].size = p.size;
+    d->prep[share].rmax = p.rmax;
+    d->prep[share].rsum = p.rsum;
+    d->prep[share].slack = p.slack;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -546,14 +558,13 @@ static void pass_prepare(void *ctx, uint32_t share, uint32_t begin, uint32_t end
 
 /* Whether a candidate pair of items i, j is a contact of the frame (the
  * broad phase's test with the sweeps' reaches; a pair of fixed spheres is
- * none). */
-static inline int pair_is_contact(const detect *d, uint32_t i, uint32_t j)
+ * none): fixed_i, whether i's sphere is fixed (j's is read only then). */
+static inline int pair_is_contact(const detect *d, const double *C, const double *R, uint32_t i, uint32_t j,
+                                  int fixed_i)
 {
-    const rbs_world *w = d->w;
-    const double *C = d->centres, *R = w->bp_reach;
-    double ex = C[3 * i] - C[3 * j], ey = C[3 * i + 1] - C[3 * j + 1], ez = C[3 * i + 2] - C[3 * j + 2];
-    double sr = R[i] + R[j];
-    return ex * ex + ey * ey + ez * ez <= sr * sr && !(w->fixed[w->spheres[i]] && w->fixed[w->spheres[j]]);
+    const double ex = C[3 * i] - C[3 * j], ey = C[3 * i + 1] - C[3 * j + 1], ez = C[3 * i + 2] - C[3 * j + 2];
+    const double sr = R[i] + R[j];
+    return (ex * ex + ey * ey + ez * ez <= sr * sr) & !(fixed_i && d->w->fixed[d->w->spheres[j]]);
 }
 
 /* The gap of sphere a to plane p, and whether it is a contact (within the
@@ -620,32 +631,45 @@ static void pass_count(void *ctx, uint32_t share, uint32_t begin, uint32_t end)
             memset(d->in->scratch + (size_t)k * w->def.max_bodies + g->slab_first[s], 0,
                    (size_t)(g->slab_first[s + 1] - g->slab_first[s]) * sizeof(double));
         const uint32_t leaf = g->level_first[0] + s;
+        /* (the candidate list's arrays, and the leaf's count, in locals:
+         * stored through a uint32_t pointer, vl_start's end and the count
+         * were read again for every pair) */
+        const uint32_t *vl_start = w->vl_start, *vl_pair = w->vl_pair;
+        const double *C = d->centres, *R = w->bp_reach;
+        uint32_t own = 0;
         memset(count, 0, sizeof d->count[s]);
         for (x = g->slab_first[s]; x < g->slab_first[s + 1]; ++x) {
             const uint32_t i = w->soft_order[x], a = w->spheres[i];
+            const uint32_t k_end = d->pairs ? vl_start[i + 1] : 0;
+            const int fixed_a = w->fixed[a] != 0;
             unsigned bits = 0;
             double gap;
-            if (!w->fixed[a])
+            if (!fixed_a)
                 for (q = 0; q < w->plane_count; ++q)
                     if (plane_is_contact(d, a, w->planes[q], &gap)) {
                         bits |= q < 8 ? 1u << q : 0xFFu;
-                        count[leaf]++;
+                        own++;
                     }
             w->soft_planes[x] = (uint8_t)bits;
-            for (k = d->pairs ? w->vl_start[i] : 0; k < (d->pairs ? w->vl_start[i + 1] : 0); ++k) {
-                const uint32_t j = w->vl_pair[2 * k + 1];
-                if (!pair_is_contact(d, i, j))
-                    continue;
-                if (slab[j] == s) {
-                    count[leaf]++;
-                    list[put++] = k;
-                } else {
+            for (k = d->pairs ? vl_start[i] : 0; k < k_end; ++k) {
+                const uint32_t j = vl_pair[2 * k + 1];
+                const uint32_t hit = (uint32_t)pair_is_contact(d, C, R, i, j, fixed_a);
+                const uint32_t here = hit & (uint32_t)(slab[j] == s);
+                /* a contact within the slab: listed without a branch (the
+                 * slot after the listed ones is free whether or not it is
+                 * one: the crossed ones, from the end, are fewer than the
+                 * pairs not yet listed); one to another slab (a few in a
+                 * hundred) aside */
+                list[put] = k;
+                put += here;
+                if (hit != here) {
                     count[group_of(d, s, slab[j], i, j)]++;
                     *--back = k;
                     cross++;
                 }
             }
         }
+        count[leaf] += own + put;
         d->listed[s] = put;
         d->crossed[s] = cross;
     }
