@@ -48,7 +48,6 @@ static double inv_mass_along(const rbs_world *w, uint32_t a, v3 ra, uint32_t b, 
     return k;
 }
 
-/* Fill material properties and thresholds of a new contact. */
 /* Resting threshold: the approach speed one step of the applied forces can
  * build.  Along the normal when the forces press the pair together
  * (-(a_a - a_b).n > 0, n from b to a); and, for two bodies that are both
