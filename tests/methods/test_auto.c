@@ -12,6 +12,21 @@
 
 #define N_AUTO RBS_METHOD_AUTO_SOFT_BODIES
 
+/* Four walls of material m at x = +-half and y = +-half, facing in. */
+static void box_walls(rbs_world *w, rbs_material_id m, double half)
+{
+    int i;
+    for (i = 0; i < 4; ++i) {
+        rbs_plane_def pl;
+        rbs_plane_def_init(&pl);
+        pl.point.x = i == 0 ? -half : i == 1 ? half : 0.0;
+        pl.point.y = i == 2 ? -half : i == 3 ? half : 0.0;
+        pl.normal = (rbs_vec3){i == 0 ? 1.0 : i == 1 ? -1.0 : 0.0, i == 2 ? 1.0 : i == 3 ? -1.0 : 0.0, 0.0};
+        pl.material = m;
+        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
+    }
+}
+
 /* A world of def d with a material "m" (mu_s 0.5, mu_k 0.4, e 0.5) and a
  * floor of it. */
 static rbs_world *on_a_floor(const rbs_world_def *d, rbs_material_id *m)
@@ -623,15 +638,7 @@ static void heap_of_radii_one_to_ten(void **state)
     CHECK_OK(rbs_world_create(&d, &w));
     m = material(w, "m", 0.5, 0.5, 0.5);
     floor_plane(w, m);
-    for (i = 0; i < 4; ++i) {
-        rbs_plane_def pl;
-        rbs_plane_def_init(&pl);
-        pl.point.x = i == 0 ? -1.0 : i == 1 ? 1.0 : 0.0;
-        pl.point.y = i == 2 ? -1.0 : i == 3 ? 1.0 : 0.0;
-        pl.normal = (rbs_vec3){-pl.point.x, -pl.point.y, 0.0};
-        pl.material = m;
-        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
-    }
+    box_walls(w, m, 1.0);
     for (i = 0; i < N; ++i) {
         x = x * 6364136223846793005ull + 1442695040888963407ull;
         r[i] = 0.01 * pow(10.0, (double)(x >> 11) / 9007199254740992.0);
@@ -687,15 +694,7 @@ static void heap_switches_at_the_threshold_without_a_kick(void **state)
     CHECK_OK(rbs_world_create(&d, &w));
     m = material(w, "m", 0.5, 0.5, 0.5);
     floor_plane(w, m);
-    for (i = 0; i < 4; ++i) {
-        rbs_plane_def pl;
-        rbs_plane_def_init(&pl);
-        pl.point.x = i == 0 ? -0.2 : i == 1 ? 0.2 : 0.0;
-        pl.point.y = i == 2 ? -0.2 : i == 3 ? 0.2 : 0.0;
-        pl.normal = (rbs_vec3){-pl.point.x / 0.2, -pl.point.y / 0.2, 0.0};
-        pl.material = m;
-        CHECK_OK(rbs_world_add_plane(w, &pl, NULL));
-    }
+    box_walls(w, m, 0.2);
     for (i = 0; i < 64; ++i)
         b[i] = ball(w, 0.05, 0.1, -0.15 + 0.1 * (i % 4), -0.15 + 0.1 * ((i / 4) % 4), 0.05 + 0.1 * (i / 16), 0, 0,
                     0, m);
