@@ -1462,8 +1462,8 @@ void rbs__solve_resting_warm(rbs_world *w, rbs_step_info *info, double h)
              * m/s, every frame one of rbs_world_rounded_steps (euler,
              * selective; 2.1e-7 m/s at 1e7 m; a probe of session 52) */
             const double past = c->gap - rbs__contact_slop(w, c);
-            const double at = fmax(rbs__max_abs(v3_load(&w->pos[3 * c->a])), rbs__max_abs(v3_load(&w->pos[3 * c->b])));
-            c->bias = h > 0.0 ? (past > 0.5 * rbs__spacing(at) ? past / h : 0.0) : -1.0;
+            const double far = fmax(rbs__max_abs(v3_load(&w->pos[3 * c->a])), rbs__max_abs(v3_load(&w->pos[3 * c->b])));
+            c->bias = h > 0.0 ? (past > 0.5 * rbs__spacing(far) ? past / h : 0.0) : -1.0;
         }
         if (c->bias < 0.0)
             continue; /* left out of the pass: no warm start either */

@@ -81,8 +81,9 @@
 #include "core/team.h"
 
 /* Why the contact frequency (RBS__SOFT_HERTZ, soft.h) is a third of the
- * sub-step rate: with the default 3 sub-steps, 1 / dt (the spring of 4 sub-steps at a quarter of
- * their rate, Box2D's cap, before session 37).  The soft coefficients
+ * sub-step rate: with the default 3 sub-steps, 1 / dt (the spring of 4
+ * sub-steps at a quarter of their rate, Box2D's cap, before session 37).
+ * The soft coefficients
  * depend on h omega = 2 pi RBS__SOFT_HERTZ alone, and with SOFT_ZETA = 10 the
  * row is near rigid either way (mass scale 0.979 against 0.971); a frame of
  * 3 sub-steps pushes out 26 % of a deep overlap, as 4 did.  On the peers'
