@@ -673,7 +673,7 @@ static void cradle_case(rbs_method m, int n, int k, double gap, double e)
     CHECK_OK(rbs_world_energy(w, &e0));
     if (msteps(w, m, 1000) == 0) {
         double err = 0.0, p = 0.0;
-        char what[64];
+        char what[128];
         for (j = 0; j < n; ++j) {
             double vx = state_of(w, b[j]).velocity.x;
             err = fmax(err, fabs(vx - v[j]));
