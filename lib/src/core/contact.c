@@ -368,8 +368,20 @@ int rbs__impact_normal(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double 
     return 1;
 }
 
-/* A closing pair's kicks (rbs__kick_speed), each added to its body's sum in
- * kick (m/s): 2 u / m_a to a's, 2 u / m_b to b's. */
+/* The kicks of a closing pair of spheres (d from b's centre to a's, dist
+ * its length): an impact at the normal closing speed u changes a's velocity
+ * by (1 + e) m_b / (m_a + m_b) u <= 2 m_b / (m_a + m_b) u (the impact law,
+ * frictionless), and b's by 2 m_a / (m_a + m_b) u; each is added to its
+ * body's sum in kick (m/s). */
+double rbs__kick_speed(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist)
+{
+    double du = v3_dot(d, v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])));
+    double ia = w->inv_mass[a], ib = w->inv_mass[b];
+    if (!(du < 0.0) || !(ia + ib > 0.0))
+        return 0.0; /* (most pairs: not closing) */
+    return -du / (dist * (ia + ib));
+}
+
 static void kick_add(const rbs_world *w, double *kick, uint32_t a, uint32_t b, v3 d, double dist)
 {
     double u = rbs__kick_speed(w, a, b, d, dist);

@@ -250,15 +250,6 @@ static void warm_index(rbs_world *w)
     w->warm_indexed = 1;
 }
 
-/* Inlined into each caller (GCC and Clang): called, its thirteen
- * arguments went through the stack for every contact, and the emission's
- * values of the pair (its velocities, its row) were loaded again. */
-#if defined(__GNUC__)
-#define FILL_INLINE inline __attribute__((always_inline))
-#else
-#define FILL_INLINE inline
-#endif
-
 /* A contact into a lane of the emitter's group: sphere a and body b (plane:
  * a plane) -- slots, and the records ra, rb of the frame (soft_rank; a
  * plane has none) -- of material-pair row `row`, the unit normal n from b to a, the
@@ -269,8 +260,8 @@ static void warm_index(rbs_world *w)
  * records), its approach speed at the frame's start (restitution's target
  * e v0, and whether it bounces: faster than its resting threshold) and the
  * last frame's impulses for the warm start. */
-static FILL_INLINE void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, uint32_t a, uint32_t b,
-                                  int plane, uint32_t row, v3 n, double gap, double lb, int guard, int wedge)
+static void lane_fill(const detect *d, emitter *em, uint32_t ra, uint32_t rb, uint32_t a, uint32_t b, int plane,
+                      uint32_t row, v3 n, double gap, double lb, int guard, int wedge)
 {
     rbs_world *w = d->w;
     const rbs__soft_in *in = d->in;

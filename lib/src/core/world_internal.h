@@ -520,18 +520,8 @@ void rbs__plane_contact(const rbs_world *w, rbs__contact *c, uint32_t a, uint32_
 /* A pair of spheres' kick speed u, m/s per kg (0 when they are not
  * closing; d = p_a - p_b, dist = |d|): the normal closing speed over
  * 1/m_a + 1/m_b, so that one impact changes a's velocity by at most
- * 2 u / m_a and b's by 2 u / m_b (the impact law, frictionless: an impact
- * at the normal closing speed changes a's velocity by (1 + e) m_b / (m_a +
- * m_b) u <= 2 m_b / (m_a + m_b) u; contact.c, detect_kicked).  Inline: the
- * soft step's detection asks it for every contact. */
-static inline double rbs__kick_speed(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist)
-{
-    double du = v3_dot(d, v3_sub(v3_load(&w->vel[3 * a]), v3_load(&w->vel[3 * b])));
-    double ia = w->inv_mass[a], ib = w->inv_mass[b];
-    if (!(du < 0.0) || !(ia + ib > 0.0))
-        return 0.0; /* (most pairs: not closing) */
-    return -du / (dist * (ia + ib));
-}
+ * 2 u / m_a and b's by 2 u / m_b (contact.c, detect_kicked). */
+double rbs__kick_speed(const rbs_world *w, uint32_t a, uint32_t b, v3 d, double dist);
 /* The swept detection's second pass alone (rbs__detect_swept's guards),
  * for a caller that made the first pass itself: kick[slot] holds the sum of
  * each sphere's kicks (and becomes its grown margin); the guards go to the
